@@ -1,0 +1,73 @@
+"""The ``txtool`` command line: argument parsing only; every command calls into the core.
+
+Each command lives in ``txtool/commands/<name>.py`` as a click command named ``command``; the
+modules import nothing heavy at module level, so ``txtool validate`` never loads pinocchio.
+"""
+
+from __future__ import annotations
+
+import importlib
+import sys
+
+import click
+
+from txtool import __version__
+
+COMMAND_MODULES = (
+    "show",
+    "convert",
+    "roundtrip",
+    "validate",
+    "migrate",
+    "rules",
+    "map",
+    "simulate",
+    "schema",
+    "demo",
+)
+
+
+class LazyGroup(click.Group):
+    """Loads a command's module only when that command runs (or help lists it)."""
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return sorted(name for name in COMMAND_MODULES if self._load(name) is not None)
+
+    def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
+        if cmd_name not in COMMAND_MODULES:
+            return None
+        return self._load(cmd_name)
+
+    @staticmethod
+    def _load(name: str) -> click.Command | None:
+        module_name = f"txtool.commands.{name}"
+        try:
+            module = importlib.import_module(module_name)
+        except ModuleNotFoundError as exc:
+            if exc.name == module_name:
+                return None
+            raise
+        return module.command
+
+
+@click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, prog_name="txtool")
+@click.option("--debug", is_flag=True, help="Show the traceback of internal errors.")
+@click.pass_context
+def cli(ctx: click.Context, debug: bool) -> None:
+    """Lint, convert and verify robot transmission configurations (ros_control, ros2_control)."""
+    ctx.ensure_object(dict)
+    ctx.obj["debug"] = debug
+
+
+def main() -> None:
+    debug = "--debug" in sys.argv[1:]
+    try:
+        cli.main(prog_name="txtool", standalone_mode=True)
+    except SystemExit:
+        raise
+    except Exception as exc:  # the last line of defence: one line, exit 2
+        if debug:
+            raise
+        click.echo(f"txtool: internal error: {type(exc).__name__}: {exc} (please report)", err=True)
+        sys.exit(2)

@@ -1,0 +1,156 @@
+"""The parts of a robot description that transmissions refer to, read with lxml.
+
+URDF ``<joint>`` elements (type, limits, mimic, dynamics) and ROS 2 ``<ros2_control>`` components
+(their joints and interfaces). Light on purpose: no yourdfpy, no pinocchio.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from lxml import etree
+
+from txtool.numbers import parse_strict
+
+
+@dataclass(frozen=True)
+class JointInfo:
+    name: str
+    type: str
+    lower: float | None = None
+    upper: float | None = None
+    velocity: float | None = None
+    effort: float | None = None
+    damping: float = 0.0
+    friction: float = 0.0
+    mimic: str | None = None
+    line: int = 0
+
+    @property
+    def is_fixed(self) -> bool:
+        return self.type == "fixed"
+
+    @property
+    def is_linear(self) -> bool:
+        return self.type == "prismatic"
+
+    def position_range(self) -> tuple[float, float]:
+        """The joint's position limits; +-pi where absent (continuous joints)."""
+        if self.type != "continuous" and self.lower is not None and self.upper is not None:
+            if self.lower < self.upper:
+                return self.lower, self.upper
+        return -math.pi, math.pi
+
+
+@dataclass(frozen=True)
+class ComponentJoint:
+    name: str
+    command_interfaces: tuple[str, ...]
+    state_interfaces: tuple[str, ...]
+    line: int = 0
+
+
+@dataclass(frozen=True)
+class Component:
+    """One ``<ros2_control>`` element."""
+
+    name: str
+    type: str
+    plugin: str | None
+    joints: tuple[ComponentJoint, ...]
+    line: int = 0
+
+    def joint(self, name: str) -> ComponentJoint | None:
+        return next((j for j in self.joints if j.name == name), None)
+
+
+def local(element: etree._Element) -> str:
+    """Tag without namespace; '' for comments and processing instructions."""
+    tag = element.tag
+    if not isinstance(tag, str):
+        return ""
+    return tag.rsplit("}", 1)[-1]
+
+
+def children(element: etree._Element, name: str) -> list[etree._Element]:
+    return [child for child in element if local(child) == name]
+
+
+def robot_joints(root: etree._Element) -> dict[str, JointInfo]:
+    """The URDF joints of a document (any depth, outside ``<ros2_control>``)."""
+    joints: dict[str, JointInfo] = {}
+    for element in root.iter():
+        if local(element) != "joint" or _inside(element, ("ros2_control", "transmission")):
+            continue
+        name = element.get("name")
+        if name is None or element.get("type") is None:
+            continue
+        joints[name] = _joint_info(element, name)
+    return joints
+
+
+def _inside(element: etree._Element, names: tuple[str, ...]) -> bool:
+    parent = element.getparent()
+    while parent is not None:
+        if local(parent) in names:
+            return True
+        parent = parent.getparent()
+    return False
+
+
+def _attr_number(element: etree._Element | None, key: str) -> float | None:
+    if element is None:
+        return None
+    return parse_strict(element.get(key))
+
+
+def _joint_info(element: etree._Element, name: str) -> JointInfo:
+    limit = next(iter(children(element, "limit")), None)
+    dynamics = next(iter(children(element, "dynamics")), None)
+    mimic = next(iter(children(element, "mimic")), None)
+    return JointInfo(
+        name=name,
+        type=element.get("type", ""),
+        lower=_attr_number(limit, "lower"),
+        upper=_attr_number(limit, "upper"),
+        velocity=_attr_number(limit, "velocity"),
+        effort=_attr_number(limit, "effort"),
+        damping=_attr_number(dynamics, "damping") or 0.0,
+        friction=_attr_number(dynamics, "friction") or 0.0,
+        mimic=mimic.get("joint") if mimic is not None else None,
+        line=element.sourceline or 0,
+    )
+
+
+def components(root: etree._Element) -> list[Component]:
+    """Every ``<ros2_control>`` element (the root itself for a bare fragment)."""
+    found = []
+    for element in root.iter():
+        if local(element) == "ros2_control":
+            found.append(component_of(element))
+    return found
+
+
+def component_of(element: etree._Element) -> Component:
+    hardware = next(iter(children(element, "hardware")), None)
+    plugin = None
+    if hardware is not None:
+        plugin_el = next(iter(children(hardware, "plugin")), None)
+        plugin = (plugin_el.text or "").strip() if plugin_el is not None else None
+    joints = tuple(
+        ComponentJoint(
+            name=j.get("name", ""),
+            command_interfaces=tuple(c.get("name", "") for c in children(j, "command_interface")),
+            state_interfaces=tuple(s.get("name", "") for s in children(j, "state_interface")),
+            line=j.sourceline or 0,
+        )
+        for j in children(element, "joint")
+    )
+    return Component(
+        name=element.get("name", ""),
+        type=element.get("type", ""),
+        plugin=plugin,
+        joints=joints,
+        line=element.sourceline or 0,
+    )

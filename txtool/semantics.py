@@ -1,0 +1,187 @@
+"""What a ROS loader actually builds from a transmission: the parameters the maths uses.
+
+ros_control (ROS 1) sorts the members of a coupled transmission by ``<role>`` and reads the
+simple reduction from the actuator. ros2_control reads the simple reduction from the joint,
+takes coupled parameters in XML order, and then orders the joint and actuator handles by name
+(a ``std::set``) when the hardware plugin configures the transmission. :func:`effective` returns
+the parameters bound to each index together with the names at that index, so two configs
+behave alike exactly when their :class:`Effective` values are equal.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Literal
+
+from txtool.model import Member, Number, Transmission
+
+Loader = Literal["ros1", "ros2"]
+ROLES_JOINT = ("joint1", "joint2")
+ROLES_ACTUATOR = ("actuator1", "actuator2")
+
+
+class NotLoadable(ValueError):
+    """The loader would refuse this transmission; the message says why."""
+
+
+@dataclass(frozen=True)
+class Effective:
+    """Parameters as the transmission maths sees them: index i of each tuple goes together."""
+
+    name: str
+    kind: Literal["simple", "differential", "four_bar"]
+    joints: tuple[str, ...]
+    actuators: tuple[str, ...]
+    actuator_reduction: tuple[float, ...]
+    joint_reduction: tuple[float, ...]
+    joint_offset: tuple[float, ...]
+    loader: Loader
+
+    @property
+    def directions(self) -> tuple[int, ...]:
+        """Sign of the effective reduction per joint: -1 where the joint runs reversed."""
+        signs = []
+        for i in range(len(self.joints)):
+            product = self.joint_reduction[i] * self.actuator_reduction[i]
+            signs.append(-1 if product < 0 else 1)
+        return tuple(signs)
+
+
+def loader_of(transmission: Transmission) -> Loader:
+    return "ros1" if transmission.dialect == "ros1" else "ros2"
+
+
+def effective(transmission: Transmission) -> Effective:
+    """The loaded parameters, or :class:`NotLoadable` with the loader's reason."""
+    if transmission.kind == "other":
+        raise NotLoadable(f"custom type '{transmission.type}' has no standard maths")
+    if loader_of(transmission) == "ros1":
+        result = _ros1(transmission)
+    else:
+        result = _ros2(transmission)
+    for value in result.actuator_reduction + result.joint_reduction:
+        if value == 0.0:
+            raise NotLoadable("reduction ratio cannot be zero")
+        if not math.isfinite(value):
+            raise NotLoadable(f"reduction {value!r} is not finite")
+    for value in result.joint_offset:
+        if not math.isfinite(value):
+            raise NotLoadable(f"offset {value!r} is not finite")
+    return result
+
+
+def _required(number: Number | None, what: str) -> float:
+    if number is None:
+        raise NotLoadable(f"{what} is missing")
+    if number.value is None:
+        raise NotLoadable(f"{what} '{number.text}' is not a number")
+    return number.value
+
+
+def _ros1(t: Transmission) -> Effective:
+    want = 1 if t.kind == "simple" else 2
+    if len(t.actuators) != want:
+        raise NotLoadable(f"expected {want} actuator(s), got {len(t.actuators)}")
+    if len(t.joints) != want:
+        raise NotLoadable(f"expected {want} joint(s), got {len(t.joints)}")
+    if t.kind == "simple":
+        joint, actuator = t.joints[0], t.actuators[0]
+        return Effective(
+            name=t.name,
+            kind="simple",
+            joints=(joint.name,),
+            actuators=(actuator.name,),
+            actuator_reduction=(
+                _required(actuator.mechanical_reduction, _what(actuator, "reduction")),
+            ),
+            joint_reduction=(1.0,),
+            joint_offset=(_value_ros1_optional(joint.offset, 0.0, _what(joint, "offset")),),
+            loader="ros1",
+        )
+    joints = _by_role(t.joints, ROLES_JOINT, "joint")
+    actuators = _by_role(t.actuators, ROLES_ACTUATOR, "actuator")
+    return Effective(
+        name=t.name,
+        kind=t.kind,  # type: ignore[arg-type]
+        joints=tuple(j.name for j in joints),
+        actuators=tuple(a.name for a in actuators),
+        actuator_reduction=tuple(
+            _required(a.mechanical_reduction, _what(a, "reduction")) for a in actuators
+        ),
+        joint_reduction=tuple(
+            _value_ros1_optional(j.mechanical_reduction, 1.0, _what(j, "reduction"))
+            for j in joints
+        ),
+        joint_offset=tuple(_value_ros1_optional(j.offset, 0.0, _what(j, "offset")) for j in joints),
+        loader="ros1",
+    )
+
+
+def _value_ros1_optional(number: Number | None, default: float, what: str) -> float:
+    if number is None:
+        return default
+    if number.value is None:
+        raise NotLoadable(f"{what} '{number.text}' is not a number")
+    return number.value
+
+
+def _what(member: Member, field: str) -> str:
+    return f"'{member.name}' {field}"
+
+
+def _by_role(members: tuple[Member, ...], roles: tuple[str, str], noun: str) -> list[Member]:
+    by_role: dict[str, Member] = {}
+    for member in members:
+        if member.role not in roles:
+            raise NotLoadable(
+                f"{noun} '{member.name}' has role {member.role!r}, expected {' or '.join(roles)}"
+            )
+        if member.role in by_role:
+            raise NotLoadable(f"{noun}s '{by_role[member.role].name}' and '{member.name}' "
+                              f"both have role '{member.role}'")
+        by_role[member.role] = member
+    return [by_role[role] for role in roles]
+
+
+def _ros2_number(number: Number | None, default: float) -> float:
+    # ros2_control silently falls back to the default for absent or unparsable text.
+    if number is None or number.value is None:
+        return default
+    return number.value
+
+
+def _ros2(t: Transmission) -> Effective:
+    if not t.joints:
+        raise NotLoadable("no joints (ros2_control's loader reads joints.at(0))")
+    if t.kind == "simple":
+        joint = t.joints[0]
+        actuator = t.actuators[0].name if t.actuators else "actuator1"
+        return Effective(
+            name=t.name,
+            kind="simple",
+            joints=(joint.name,),
+            actuators=(actuator,),
+            actuator_reduction=(1.0,),
+            joint_reduction=(_ros2_number(joint.mechanical_reduction, 1.0),),
+            joint_offset=(_ros2_number(joint.offset, 0.0),),
+            loader="ros2",
+        )
+    if len(t.joints) < 2 or len(t.actuators) < 2:
+        raise NotLoadable(
+            f"needs 2 joints and 2 actuators, got {len(t.joints)} and {len(t.actuators)}"
+        )
+    joint_names = sorted({j.name for j in t.joints})
+    actuator_names = sorted({a.name for a in t.actuators})
+    if len(joint_names) != 2 or len(actuator_names) != 2:
+        raise NotLoadable("there should be exactly two unique joint and actuator names")
+    return Effective(
+        name=t.name,
+        kind=t.kind,  # type: ignore[arg-type]
+        joints=tuple(joint_names),
+        actuators=tuple(actuator_names),
+        actuator_reduction=tuple(_ros2_number(a.mechanical_reduction, 1.0) for a in t.actuators[:2]),
+        joint_reduction=tuple(_ros2_number(j.mechanical_reduction, 1.0) for j in t.joints[:2]),
+        joint_offset=tuple(_ros2_number(j.offset, 0.0) for j in t.joints[:2]),
+        loader="ros2",
+    )

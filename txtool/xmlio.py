@@ -1,0 +1,207 @@
+"""Safe XML parsing, loading of inputs (files, stdin, xacro) and atomic writing.
+
+Every reader goes through :func:`safe_parser`: no entity expansion, no DTD loading, no network
+access, no huge trees. Parsed elements keep ``sourceline`` for diagnostics.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import sys
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from lxml import etree
+
+XACRO_NS = "http://www.ros.org/wiki/xacro"
+XACRO_SUFFIXES = (".xacro",)
+MAX_BYTES = 64 * 1024 * 1024
+
+_DECLARATION = re.compile(rb"^\s*<\?xml[^>]*\?>")
+_ENCODING = re.compile(rb"""^\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
+
+
+class InputError(Exception):
+    """A one-line, user-facing error: ``path[:line]: reason``. Exit code 2."""
+
+
+def safe_parser(*, recover: bool = False) -> etree.XMLParser:
+    return etree.XMLParser(
+        resolve_entities=False,
+        no_network=True,
+        load_dtd=False,
+        dtd_validation=False,
+        huge_tree=False,
+        remove_comments=False,
+        remove_pis=False,
+        strip_cdata=False,
+        recover=recover,
+    )
+
+
+@dataclass
+class Source:
+    """One input document.
+
+    ``tree`` is what the transmissions are read from: the file itself, or its xacro expansion.
+    For xacro inputs ``source_tree`` is the file as written (for locations and in-place edits).
+    """
+
+    path: str
+    data: bytes
+    tree: etree._ElementTree
+    expanded: bool = False
+    source_tree: etree._ElementTree | None = None
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def root(self) -> etree._Element:
+        return self.tree.getroot()
+
+
+def is_xacro(path: str) -> bool:
+    return path.endswith(XACRO_SUFFIXES)
+
+
+def read_bytes(path: str, *, stdin_name: str | None = None) -> tuple[str, bytes]:
+    """Read a file or ``-`` (stdin); returns the display path and the bytes."""
+    if path == "-":
+        return stdin_name or "<stdin>", sys.stdin.buffer.read(MAX_BYTES + 1)
+    p = Path(path)
+    try:
+        if p.is_dir():
+            raise InputError(f"{path}: is a directory")
+        size = p.stat().st_size
+        if size > MAX_BYTES:
+            raise InputError(f"{path}: file is {size} bytes, larger than the {MAX_BYTES} limit")
+        return path, p.read_bytes()
+    except FileNotFoundError:
+        raise InputError(f"{path}: no such file") from None
+    except PermissionError:
+        raise InputError(f"{path}: permission denied") from None
+    except OSError as exc:
+        raise InputError(f"{path}: {exc.strerror or exc}") from None
+
+
+def parse_bytes(data: bytes, path: str) -> etree._ElementTree:
+    """Parse a document safely; malformed XML becomes :class:`XMLSyntax`."""
+    if len(data) > MAX_BYTES:
+        raise InputError(f"{path}: document larger than the {MAX_BYTES} byte limit")
+    if not data.strip():
+        raise XMLSyntax(path, 1, 1, "document is empty")
+    try:
+        root = etree.fromstring(_movable_declaration(data), safe_parser())
+    except etree.XMLSyntaxError as exc:
+        line, column = exc.position if exc.position else (1, 1)
+        raise XMLSyntax(path, max(line, 1), max(column, 1), _syntax_message(exc)) from None
+    return root.getroottree()
+
+
+def _movable_declaration(data: bytes) -> bytes:
+    """Blank out an XML declaration that stands after a comment, keeping line numbers.
+
+    Some published URDFs prepend a licence comment before ``<?xml ...?>``; libxml2 rejects
+    that. The declaration carries nothing a transmission needs beyond its encoding, which
+    we honour by decoding first.
+    """
+    head = data[:4096]
+    index = head.find(b"<?xml")
+    if index <= 0 or not head[:index].strip():
+        return data
+    match = re.compile(rb"<\?xml[^>]*\?>").search(data, index)
+    if match is None:
+        return data
+    encoding = _ENCODING.match(data[index:])
+    text = data
+    if encoding and encoding.group(1).lower() not in (b"utf-8", b"utf8"):
+        text = data.decode(encoding.group(1).decode("ascii")).encode("utf-8")
+        match = re.compile(rb"<\?xml[^>]*\?>").search(text)
+        if match is None:
+            return text
+    blank = b" " * (match.end() - match.start())
+    return text[: match.start()] + blank + text[match.end() :]
+
+
+def _syntax_message(exc: etree.XMLSyntaxError) -> str:
+    message = str(exc.msg or exc)
+    return re.sub(r", line \d+, column \d+$", "", message).strip()
+
+
+class XMLSyntax(InputError):
+    """Malformed XML: a lint finding (TX001) for ``validate``, an input error elsewhere."""
+
+    def __init__(self, path: str, line: int, column: int, reason: str) -> None:
+        super().__init__(f"{path}:{line}:{column}: {reason}")
+        self.path = path
+        self.line = line
+        self.column = column
+        self.reason = reason
+
+
+@dataclass(frozen=True)
+class XacroOptions:
+    args: tuple[tuple[str, str], ...] = ()
+    pkg_dirs: tuple[str, ...] = ()
+    pkg_paths: tuple[tuple[str, str], ...] = ()
+
+
+def load(
+    path: str,
+    *,
+    xacro: XacroOptions | None = None,
+    stdin_name: str | None = None,
+    expand: bool = True,
+) -> Source:
+    """Load one input; ``.xacro`` files are expanded in-process unless ``expand`` is False."""
+    display, data = read_bytes(path, stdin_name=stdin_name)
+    tree = parse_bytes(data, display)
+    if not (expand and is_xacro(display) and path != "-"):
+        return Source(path=display, data=data, tree=tree)
+    from txtool.xacro_support import expand_xacro
+
+    expanded = expand_xacro(path, display, xacro or XacroOptions())
+    return Source(path=display, data=data, tree=expanded, expanded=True, source_tree=tree)
+
+
+def serialize(tree: etree._ElementTree, original: bytes | None = None) -> bytes:
+    """Write a tree back, keeping the original XML declaration text when there was one."""
+    body = etree.tostring(tree, encoding="utf-8", xml_declaration=False)
+    declaration = _DECLARATION.match(original) if original is not None else None
+    if declaration:
+        encoding = _ENCODING.match(original or b"")
+        if encoding and encoding.group(1).lower() not in (b"utf-8", b"utf8"):
+            body = etree.tostring(tree, encoding=encoding.group(1).decode(), xml_declaration=False)
+        gap = re.match(rb"\s*", original[declaration.end() :]).group(0)  # type: ignore[union-attr, index]
+        body = declaration.group(0).lstrip() + (gap or b"\n") + body
+    if original is not None and original.endswith(b"\n") and not body.endswith(b"\n"):
+        body += b"\n"
+    return body
+
+
+def write_atomic(path: str, data: bytes) -> None:
+    """Replace ``path`` with ``data`` via a temp file in the same folder (mode kept)."""
+    target = os.path.realpath(path)
+    folder = os.path.dirname(target) or "."
+    mode = None
+    if os.path.exists(target):
+        mode = os.stat(target).st_mode & 0o7777
+    handle, temp = tempfile.mkstemp(prefix=".txtool-", suffix=".tmp", dir=folder)
+    try:
+        with os.fdopen(handle, "wb") as out:
+            out.write(data)
+            out.flush()
+            os.fsync(out.fileno())
+        os.chmod(temp, mode if mode is not None else 0o644 & ~_umask())
+        os.replace(temp, target)
+    except BaseException:
+        if os.path.exists(temp):
+            os.unlink(temp)
+        raise
+
+
+def _umask() -> int:
+    current = os.umask(0)
+    os.umask(current)
+    return current
