@@ -1,0 +1,1 @@
+"""The lint pipeline: context, rules, suppressions, severities."""

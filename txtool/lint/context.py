@@ -1,0 +1,62 @@
+"""Everything a lint rule may look at for one document."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from functools import cached_property
+
+from lxml import etree
+
+from txtool.locate import Locator, Position
+from txtool.problem import Problem
+from txtool.reader import Found, read_source
+from txtool.robot import Component, JointInfo, components, local, robot_joints
+from txtool.xmlio import Source
+
+
+@dataclass
+class LintContext:
+    """One parsed document (after xacro expansion when the input is xacro).
+
+    ``found`` are the transmissions with their elements; ``joints`` the URDF joints;
+    ``components`` the ``<ros2_control>`` elements. ``is_robot`` is False for bare
+    fragments (a ``<transmission>`` or ``<ros2_control>`` root, or a xacro macro library
+    without a robot), where cross-checks against the robot's joints do not apply.
+    """
+
+    source: Source
+    found: list[Found] = field(default_factory=list)
+
+    def __post_init__(self) -> None:
+        if not self.found:
+            self.found = read_source(self.source)
+
+    @cached_property
+    def locator(self) -> Locator:
+        return Locator(self.source)
+
+    @cached_property
+    def joints(self) -> dict[str, JointInfo]:
+        return robot_joints(self.source.root)
+
+    @cached_property
+    def components(self) -> list[Component]:
+        return components(self.source.root)
+
+    @property
+    def is_robot(self) -> bool:
+        return local(self.source.root) == "robot" and bool(self.joints)
+
+    def position(self, element: etree._Element) -> Position:
+        return self.locator.position(element)
+
+    def problem(self, code: str, element: etree._Element, message: str) -> Problem:
+        """A problem at ``element``; marks positions only traced through xacro."""
+        where = self.position(element)
+        if where.expanded:
+            message = f"{message} (after xacro expansion)"
+        return Problem(self.source.path, where.line, where.column, code, message)
+
+    def transmissions(self) -> Iterator[Found]:
+        return iter(self.found)

@@ -1,0 +1,29 @@
+"""The one value type every lint finding is: small, frozen, sortable."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Literal
+
+Severity = Literal["error", "warning", "info"]
+SEVERITIES: tuple[Severity, ...] = ("error", "warning", "info")
+
+
+@dataclass(frozen=True, order=True)
+class Problem:
+    """A finding at a 1-based ``line:column`` of ``path``.
+
+    Rules create problems with ``code`` and ``message``; the pipeline stamps ``name``,
+    ``severity`` and ``fixable`` from the rule's registry entry.
+    """
+
+    path: str
+    line: int
+    column: int
+    code: str
+    message: str = field(compare=False)
+    end_line: int | None = field(default=None, compare=False)
+    end_column: int | None = field(default=None, compare=False)
+    severity: Severity = field(default="error", compare=False)
+    name: str = field(default="", compare=False)
+    fixable: bool = field(default=False, compare=False)

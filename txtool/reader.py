@@ -1,0 +1,216 @@
+"""Read every ``<transmission>`` of a document into the canonical model.
+
+The dialect is detected per transmission, so one file may mix them:
+
+* ``ros1``: outside ``<ros2_control>`` with ``<type>`` (or the legacy ``type=`` attribute),
+  ``<hardwareInterface>``, ``<mechanicalReduction>``, ``<role>`` elements.
+* ``ros2-p1``: inside ``<ros2_control>`` (or carrying ``<plugin>``), roles as ``<role>`` elements.
+* ``ros2-p2``: inside ``<ros2_control>``, roles as ``role=`` attributes (what ros2_control parses).
+
+Numbers are parsed the way the detected loader parses them (see :mod:`txtool.numbers`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from lxml import etree
+
+from txtool.locate import Locator
+from txtool.model import Dialect, Location, Member, Number, Transmission, kind_of
+from txtool.numbers import parse_ros1, parse_ros2
+from txtool.robot import Component, children, component_of, local
+from txtool.xmlio import Source
+
+XACRO_NS = "http://www.ros.org/wiki/xacro"
+
+
+@dataclass(frozen=True)
+class Found:
+    """A transmission and the element it was read from (in ``Source.tree``)."""
+
+    transmission: Transmission
+    element: etree._Element
+
+
+def read_source(source: Source) -> list[Found]:
+    """All transmissions of ``source`` in document order."""
+    locator = Locator(source)
+    return [
+        Found(read_transmission(element, locator), element)
+        for element in transmission_elements(source.root)
+    ]
+
+
+def transmission_elements(root: etree._Element) -> list[etree._Element]:
+    """``<transmission>`` elements that are transmissions (not nested in another one)."""
+    found = []
+    for element in root.iter():
+        if local(element) == "transmission" and not _inside_transmission(element):
+            found.append(element)
+    return found
+
+
+def _inside_transmission(element: etree._Element) -> bool:
+    parent = element.getparent()
+    while parent is not None:
+        if local(parent) == "transmission":
+            return True
+        parent = parent.getparent()
+    return False
+
+
+def enclosing_component(element: etree._Element) -> etree._Element | None:
+    parent = element.getparent()
+    while parent is not None:
+        if local(parent) == "ros2_control":
+            return parent
+        parent = parent.getparent()
+    return None
+
+
+def detect_dialect(element: etree._Element) -> Dialect:
+    members = children(element, "joint") + children(element, "actuator")
+    ros2 = enclosing_component(element) is not None or bool(children(element, "plugin"))
+    ros2 = ros2 or any(m.get("role") is not None for m in members)
+    if not ros2:
+        return "ros1"
+    role_elements = any(children(m, "role") for m in members)
+    role_attributes = any(m.get("role") is not None for m in members)
+    return "ros2-p1" if role_elements and not role_attributes else "ros2-p2"
+
+
+def read_transmission(element: etree._Element, locator: Locator) -> Transmission:
+    dialect = detect_dialect(element)
+    if dialect == "ros1":
+        return _read_ros1(element, locator)
+    return _read_ros2(element, locator, dialect)
+
+
+def text_of(element: etree._Element | None) -> str | None:
+    if element is None:
+        return None
+    return element.text if element.text is not None else ""
+
+
+def first_child_text(element: etree._Element, name: str) -> str | None:
+    """Text of the first ``name`` child (``""`` when it is empty), or None."""
+    found = children(element, name)
+    return text_of(found[0]) if found else None
+
+
+def _number(text: str | None, parse: Callable[[str | None], float | None]) -> Number | None:
+    if text is None:
+        return None
+    return Number(value=parse(text), text=text)
+
+
+def _location(element: etree._Element, locator: Locator) -> Location:
+    position = locator.position(element)
+    return Location(path=locator.source.path, line=position.line, column=position.column)
+
+
+def ros1_type(element: etree._Element) -> str:
+    """``<type>`` text, else the legacy ``type=`` attribute, else ``""``."""
+    typed = first_child_text(element, "type")
+    if typed is not None and typed.strip():
+        return typed.strip()
+    return (element.get("type") or typed or "").strip()
+
+
+def _read_ros1(element: etree._Element, locator: Locator) -> Transmission:
+    type_string = ros1_type(element)
+    legacy = _number(first_child_text(element, "mechanicalReduction"), parse_ros1)
+    joints = tuple(_ros1_member(j, locator) for j in children(element, "joint"))
+    actuators = [_ros1_member(a, locator) for a in children(element, "actuator")]
+    if legacy is not None and len(actuators) == 1 and actuators[0].mechanical_reduction is None:
+        # Pre-Hydro form: the reduction stands under <transmission>, meaning the actuator's.
+        actuators[0] = actuators[0].model_copy(update={"mechanical_reduction": legacy})
+    return Transmission(
+        name=element.get("name", ""),
+        type=type_string,
+        kind=kind_of(type_string),
+        joints=joints,
+        actuators=tuple(actuators),
+        parameters=_parameters(element),
+        dialect="ros1",
+        location=_location(element, locator),
+        xml=_xml_if_custom(element, type_string),
+    )
+
+
+def _ros1_member(element: etree._Element, locator: Locator) -> Member:
+    interfaces = tuple(
+        (text_of(h) or "").strip()
+        for h in children(element, "hardwareInterface")
+        if (text_of(h) or "").strip()
+    )
+    role = first_child_text(element, "role")
+    return Member(
+        name=element.get("name", ""),
+        role=role.strip() if role is not None else None,
+        mechanical_reduction=_number(first_child_text(element, "mechanicalReduction"), parse_ros1),
+        offset=_number(first_child_text(element, "offset"), parse_ros1),
+        interfaces=interfaces,
+        location=_location(element, locator),
+    )
+
+
+def _read_ros2(element: etree._Element, locator: Locator, dialect: Dialect) -> Transmission:
+    plugin = first_child_text(element, "plugin")
+    type_string = (plugin or "").strip()
+    component_element = enclosing_component(element)
+    component = component_of(component_element) if component_element is not None else None
+    return Transmission(
+        name=element.get("name", ""),
+        type=type_string,
+        kind=kind_of(type_string),
+        joints=tuple(_ros2_member(j, locator, component) for j in children(element, "joint")),
+        actuators=tuple(_ros2_member(a, locator, None) for a in children(element, "actuator")),
+        parameters=_parameters(element),
+        dialect=dialect,
+        location=_location(element, locator),
+        ros2_control=component.name if component is not None else None,
+        xml=_xml_if_custom(element, type_string),
+    )
+
+
+def _ros2_number(element: etree._Element, name: str) -> Number | None:
+    # ros2_control takes the first matching child whose text is not null.
+    for child in children(element, name):
+        if child.text is not None:
+            return Number(value=parse_ros2(child.text), text=child.text)
+    return Number(value=None, text="") if children(element, name) else None
+
+
+def _ros2_member(
+    element: etree._Element, locator: Locator, component: Component | None
+) -> Member:
+    role = element.get("role")
+    if role is None:
+        role_text = first_child_text(element, "role")
+        role = role_text.strip() if role_text is not None else None
+    declared = component.joint(element.get("name", "")) if component is not None else None
+    return Member(
+        name=element.get("name", ""),
+        role=role,
+        mechanical_reduction=_ros2_number(element, "mechanical_reduction"),
+        offset=_ros2_number(element, "offset"),
+        interfaces=declared.command_interfaces if declared is not None else (),
+        state_interfaces=declared.state_interfaces if declared is not None else (),
+        read_only=(element.get("read_only") or "").strip().lower() == "true",
+        location=_location(element, locator),
+    )
+
+
+def _parameters(element: etree._Element) -> tuple[tuple[str, str], ...]:
+    return tuple(
+        (p.get("name", ""), (p.text or "").strip()) for p in children(element, "param")
+    )
+
+
+def _xml_if_custom(element: etree._Element, type_string: str) -> str | None:
+    if kind_of(type_string) != "other":
+        return None
+    return etree.tostring(element, encoding="unicode", with_tail=False)
