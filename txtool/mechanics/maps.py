@@ -1,0 +1,295 @@
+"""ros2_control's standard transmissions as vectorised numpy maps.
+
+The formulas are written out as ros2_control's ``transmission_interface`` computes them (not via
+a matrix inverse), so results match its test vectors to the last bits. Inputs have shape
+``(..., n)``: the last axis is the transmission index (``joints``/``actuators`` order).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from txtool.mechanics import linear
+from txtool.model import Transmission
+from txtool.semantics import Effective, NotLoadable, effective
+
+KINDS = ("simple", "differential", "four_bar")
+EFFORT_ALIASES = ("effort", "torque", "force")
+TO_ACTUATOR = ("position", "velocity", *EFFORT_ALIASES)
+TO_JOINT = (*TO_ACTUATOR, "absolute_position")
+
+
+class ZeroReduction(NotLoadable):
+    """A reduction ratio of zero: neither ROS loader constructs such a transmission."""
+
+    def __init__(self, name: str) -> None:
+        super().__init__(f"transmission '{name}': reduction ratio cannot be zero")
+        self.transmission = name
+
+
+Arr = np.ndarray
+Red = Sequence[float]
+Formula = Callable[[Arr, Red, Red, Arr], Arr]
+
+
+@dataclass(frozen=True, eq=False)
+class TransmissionMap:
+    """One loaded transmission as maps between joint space and actuator space."""
+
+    name: str
+    kind: str
+    joints: tuple[str, ...]
+    actuators: tuple[str, ...]
+    A: np.ndarray
+    offset: np.ndarray
+    convention: str = "ros2"
+    actuator_reduction: tuple[float, ...] = field(default=())
+    joint_reduction: tuple[float, ...] = field(default=())
+
+    def __post_init__(self) -> None:
+        if self.kind not in KINDS:
+            raise ValueError(f"transmission '{self.name}': unknown kind {self.kind!r}")
+        linear.check_convention(self.convention)
+        a = np.array(self.A, dtype=float)
+        offset = np.array(self.offset, dtype=float).reshape(-1)
+        n = 1 if self.kind == "simple" else 2
+        if a.shape != (n, n) or offset.shape != (n,):
+            raise ValueError(f"transmission '{self.name}': A must be {n}x{n} and offset {n}")
+        a.setflags(write=False)
+        offset.setflags(write=False)
+        object.__setattr__(self, "A", a)
+        object.__setattr__(self, "offset", offset)
+        if not self.actuator_reduction or not self.joint_reduction:
+            ar, jr = _reductions_from_a(self.kind, a)
+            object.__setattr__(self, "actuator_reduction", ar)
+            object.__setattr__(self, "joint_reduction", jr)
+        if 0.0 in self.actuator_reduction or 0.0 in self.joint_reduction:
+            raise ZeroReduction(self.name)
+
+    @property
+    def size(self) -> int:
+        return len(self.offset)
+
+    @property
+    def A_inv(self) -> np.ndarray:  # noqa: N802 - the maths' name
+        """Joint velocity = ``A_inv @`` actuator velocity."""
+        return np.linalg.inv(self.A)
+
+    @property
+    def effort_to_joint(self) -> np.ndarray:
+        """``E`` with joint effort = ``E @`` actuator effort (``A.T`` when power-conserving)."""
+        ar, jr = self.actuator_reduction, self.joint_reduction
+        return np.array(linear.effort_matrix(self.kind, ar, jr, self.convention))
+
+    @property
+    def effort_to_actuator(self) -> np.ndarray:
+        """Actuator effort = this ``@`` joint effort."""
+        return np.linalg.inv(self.effort_to_joint)
+
+    def joint_to_actuator(self, quantity: str, values: ArrayLike) -> np.ndarray:
+        """Map joint values (shape ``(..., n)``) to actuator values."""
+        if quantity not in TO_ACTUATOR:
+            raise ValueError(f"cannot map {quantity!r} from joint to actuator "
+                             f"(expected one of {', '.join(TO_ACTUATOR)})")
+        return self._apply(_FORMULAS[self._key(quantity)][1], values)
+
+    def actuator_to_joint(self, quantity: str, values: ArrayLike) -> np.ndarray:
+        """Map actuator values (shape ``(..., n)``) to joint values."""
+        if quantity not in TO_JOINT:
+            raise ValueError(f"cannot map {quantity!r} from actuator to joint "
+                             f"(expected one of {', '.join(TO_JOINT)})")
+        return self._apply(_FORMULAS[self._key(quantity)][0], values)
+
+    def _key(self, quantity: str) -> tuple[str, str]:
+        if quantity in EFFORT_ALIASES:
+            kind = "four_bar_ros1" if self.kind == "four_bar" and self.convention == "ros1" else (
+                self.kind
+            )
+            return kind, "effort"
+        if quantity == "absolute_position":
+            quantity = "position"
+        return self.kind, quantity
+
+    def _apply(self, formula: Formula, values: ArrayLike) -> np.ndarray:
+        x = np.asarray(values, dtype=float)
+        if x.ndim == 0 or x.shape[-1] != self.size:
+            raise ValueError(f"transmission '{self.name}' maps {self.size} value(s) per sample, "
+                             f"got shape {x.shape}")
+        ar = self.actuator_reduction
+        jr = self.joint_reduction
+        return formula(x, ar, jr, self.offset)
+
+
+def _reductions_from_a(kind: str, a: np.ndarray) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """Reductions reproducing ``A`` when a map was built from a matrix (not unique: scale)."""
+    if kind == "simple":
+        return (float(a[0, 0]),), (1.0,)
+    if kind == "differential":
+        jr1 = float(a[0, 1] / a[0, 0]) if a[0, 0] != 0 else 0.0
+        return (float(a[0, 0]), float(a[1, 0])), (1.0, jr1)
+    jr1 = float(a[1, 1] / a[1, 0]) if a[1, 0] != 0 else 0.0
+    return (float(a[0, 0]), float(a[1, 0])), (1.0, jr1)
+
+
+def _stack(*columns: np.ndarray) -> np.ndarray:
+    return np.stack(columns, axis=-1)
+
+
+# Each formula takes (x, ar, jr, off) with x of shape (..., n). Keys: (kind, quantity) ->
+# (actuator_to_joint, joint_to_actuator). Names follow the reference: a = actuator, j = joint.
+
+
+def _simple_pos_aj(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
+    return x / (ar[0] * jr[0]) + off
+
+
+def _simple_pos_ja(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
+    return (x - off) * (ar[0] * jr[0])
+
+
+def _simple_vel_aj(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
+    return x / (ar[0] * jr[0])
+
+
+def _simple_vel_ja(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
+    return x * (ar[0] * jr[0])
+
+
+def _diff_pos_aj(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
+    a0, a1 = x[..., 0] / ar[0], x[..., 1] / ar[1]
+    return _stack((a0 + a1) / (2 * jr[0]) + off[0], (a0 - a1) / (2 * jr[1]) + off[1])
+
+
+def _diff_pos_ja(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
+    p0, p1 = x[..., 0] - off[0], x[..., 1] - off[1]
+    return _stack((p0 * jr[0] + p1 * jr[1]) * ar[0], (p0 * jr[0] - p1 * jr[1]) * ar[1])
+
+
+def _diff_vel_aj(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
+    a0, a1 = x[..., 0] / ar[0], x[..., 1] / ar[1]
+    return _stack((a0 + a1) / (2 * jr[0]), (a0 - a1) / (2 * jr[1]))
+
+
+def _diff_vel_ja(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
+    v0, v1 = x[..., 0], x[..., 1]
+    return _stack((v0 * jr[0] + v1 * jr[1]) * ar[0], (v0 * jr[0] - v1 * jr[1]) * ar[1])
+
+
+def _diff_eff_aj(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
+    e0, e1 = x[..., 0] * ar[0], x[..., 1] * ar[1]
+    return _stack(jr[0] * (e0 + e1), jr[1] * (e0 - e1))
+
+
+def _diff_eff_ja(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
+    e0, e1 = x[..., 0] / jr[0], x[..., 1] / jr[1]
+    return _stack((e0 + e1) / (2 * ar[0]), (e0 - e1) / (2 * ar[1]))
+
+
+def _fourbar_pos_aj(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
+    a0 = x[..., 0] / (jr[0] * ar[0])
+    return _stack(a0 + off[0], (x[..., 1] / ar[1] - a0) / jr[1] + off[1])
+
+
+def _fourbar_pos_ja(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
+    p0, p1 = x[..., 0] - off[0], x[..., 1] - off[1]
+    return _stack(p0 * jr[0] * ar[0], (p0 + p1 * jr[1]) * ar[1])
+
+
+def _fourbar_vel_aj(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
+    a0 = x[..., 0] / (jr[0] * ar[0])
+    return _stack(a0, (x[..., 1] / ar[1] - a0) / jr[1])
+
+
+def _fourbar_vel_ja(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
+    v0, v1 = x[..., 0], x[..., 1]
+    return _stack(v0 * jr[0] * ar[0], (v0 + v1 * jr[1]) * ar[1])
+
+
+def _fourbar_eff_aj(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
+    e0, e1 = x[..., 0], x[..., 1]
+    return _stack(jr[0] * e0 * ar[0] + e1 * ar[1], jr[1] * e1 * ar[1])
+
+
+def _fourbar_eff_ja(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
+    e0, e1 = x[..., 0], x[..., 1]
+    return _stack((e0 - e1 / jr[1]) / (jr[0] * ar[0]), e1 / (ar[1] * jr[1]))
+
+
+def _fourbar_ros1_eff_aj(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
+    e0, e1 = x[..., 0], x[..., 1]
+    return _stack(jr[0] * (e0 * ar[0]), jr[1] * (e1 * ar[1] - e0 * ar[0] * jr[0]))
+
+
+def _fourbar_ros1_eff_ja(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
+    e0, e1 = x[..., 0], x[..., 1]
+    return _stack(e0 / (ar[0] * jr[0]), (e0 + e1 / jr[1]) / ar[1])
+
+
+_FORMULAS: dict[tuple[str, str], tuple[Formula, Formula]] = {
+    ("simple", "position"): (_simple_pos_aj, _simple_pos_ja),
+    ("simple", "velocity"): (_simple_vel_aj, _simple_vel_ja),
+    # Simple effort is the inverse of the velocity map: e_j = e_a * n, e_a = e_j / n.
+    ("simple", "effort"): (_simple_vel_ja, _simple_vel_aj),
+    ("differential", "position"): (_diff_pos_aj, _diff_pos_ja),
+    ("differential", "velocity"): (_diff_vel_aj, _diff_vel_ja),
+    ("differential", "effort"): (_diff_eff_aj, _diff_eff_ja),
+    ("four_bar", "position"): (_fourbar_pos_aj, _fourbar_pos_ja),
+    ("four_bar", "velocity"): (_fourbar_vel_aj, _fourbar_vel_ja),
+    ("four_bar", "effort"): (_fourbar_eff_aj, _fourbar_eff_ja),
+    ("four_bar_ros1", "effort"): (_fourbar_ros1_eff_aj, _fourbar_ros1_eff_ja),
+}
+
+
+def from_parameters(
+    name: str,
+    kind: str,
+    actuator_reduction: tuple[float, ...],
+    joint_reduction: tuple[float, ...],
+    joint_offset: tuple[float, ...],
+    *,
+    joints: tuple[str, ...] | None = None,
+    actuators: tuple[str, ...] | None = None,
+    convention: str = "ros2",
+) -> TransmissionMap:
+    """A map from raw parameters (index order); names default to ``joint1``/``actuator1``..."""
+    n = 1 if kind == "simple" else 2
+    if 0.0 in tuple(actuator_reduction) + tuple(joint_reduction):
+        raise ZeroReduction(name)
+    if not (len(actuator_reduction) == len(joint_reduction) == len(joint_offset) == n):
+        raise ValueError(f"transmission '{name}': a {kind} transmission takes {n} value(s) "
+                         f"per reduction and offset")
+    ar, jr = tuple(map(float, actuator_reduction)), tuple(map(float, joint_reduction))
+    return TransmissionMap(
+        name=name,
+        kind=kind,
+        joints=joints or tuple(f"joint{i + 1}" for i in range(n)),
+        actuators=actuators or tuple(f"actuator{i + 1}" for i in range(n)),
+        A=np.array(linear.velocity_matrix(kind, ar, jr)),
+        offset=np.array(joint_offset, dtype=float),
+        convention=convention,
+        actuator_reduction=ar,
+        joint_reduction=jr,
+    )
+
+
+def from_effective(eff: Effective, convention: str = "ros2") -> TransmissionMap:
+    """The maps of a loaded transmission (index order = ``eff.joints``/``eff.actuators``)."""
+    return from_parameters(
+        eff.name,
+        eff.kind,
+        eff.actuator_reduction,
+        eff.joint_reduction,
+        eff.joint_offset,
+        joints=eff.joints,
+        actuators=eff.actuators,
+        convention=convention,
+    )
+
+
+def from_transmission(t: Transmission, convention: str = "ros2") -> TransmissionMap:
+    """The maps the transmission's loader builds; :class:`NotLoadable` when it builds none."""
+    return from_effective(effective(t), convention)
