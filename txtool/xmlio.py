@@ -167,17 +167,33 @@ def load(
 
 def serialize(tree: etree._ElementTree, original: bytes | None = None) -> bytes:
     """Write a tree back, keeping the original XML declaration text when there was one."""
-    body = etree.tostring(tree, encoding="utf-8", xml_declaration=False)
+    encoding = "utf-8"
     declaration = _DECLARATION.match(original) if original is not None else None
     if declaration:
-        encoding = _ENCODING.match(original or b"")
-        if encoding and encoding.group(1).lower() not in (b"utf-8", b"utf8"):
-            body = etree.tostring(tree, encoding=encoding.group(1).decode(), xml_declaration=False)
+        declared = _ENCODING.match(original or b"")
+        if declared and declared.group(1).lower() not in (b"utf-8", b"utf8"):
+            encoding = declared.group(1).decode("ascii")
+    body = _top_level(tree, encoding)
+    if declaration:
         gap = re.match(rb"\s*", original[declaration.end() :]).group(0)  # type: ignore[union-attr, index]
         body = declaration.group(0).lstrip() + (gap or b"\n") + body
     if original is not None and original.endswith(b"\n") and not body.endswith(b"\n"):
         body += b"\n"
     return body
+
+
+def _top_level(tree: etree._ElementTree, encoding: str) -> bytes:
+    """The document without declaration; top-level comments each on a line of their own."""
+    root = tree.getroot()
+    before = list(root.itersiblings(preceding=True))[::-1]
+    after = list(root.itersiblings())
+    parts = []
+    if tree.docinfo.doctype:
+        parts.append(tree.docinfo.doctype.encode(encoding))
+    for node in [*before, root, *after]:
+        parts.append(etree.tostring(node, encoding=encoding, xml_declaration=False,
+                                    with_tail=False))
+    return b"\n".join(parts)
 
 
 def write_atomic(path: str, data: bytes) -> None:

@@ -1,0 +1,281 @@
+"""Convert the transmissions of a whole document, keeping everything else as written.
+
+Only transmissions whose dialect differs from the target are rewritten; comments, other
+elements, attribute order, namespaces and the XML declaration are untouched. ROS 1 -> ROS 2
+moves each transmission into the ``<ros2_control>`` that declares its joints (or a new one);
+ROS 2 -> ROS 1 moves it out to the top level, just before its ``<ros2_control>``.
+Every conversion is checked by reading the result back and converting it back.
+"""
+
+from __future__ import annotations
+
+import copy
+from dataclasses import dataclass, field
+
+from lxml import etree
+
+from txtool import dialects
+from txtool.model import Dialect, Transmission
+from txtool.reader import enclosing_component, read_source
+from txtool.robot import children, local
+from txtool.semantics import NotLoadable, effective
+from txtool.translate import family, translate
+from txtool.views import differences
+from txtool.xmlio import Source, parse_bytes, serialize
+
+DEFAULT_HARDWARE_PLUGIN = "mock_components/GenericSystem"
+KNOWN_CHILDREN = {
+    "ros1": {
+        "transmission": {"type", "joint", "actuator", "mechanicalReduction"},
+        "joint": {"hardwareInterface", "role", "offset", "mechanicalReduction"},
+        "actuator": {"hardwareInterface", "role", "mechanicalReduction"},
+    },
+    "ros2": {
+        "transmission": {"plugin", "joint", "actuator", "param"},
+        "joint": {"mechanical_reduction", "offset", "role"},
+        "actuator": {"mechanical_reduction", "offset", "role"},
+    },
+}
+
+
+@dataclass
+class Conversion:
+    data: bytes
+    target: Dialect
+    losses: list[str] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    converted: int = 0
+
+
+def convert_source(
+    source: Source, target: Dialect, *, hardware_plugin: str = DEFAULT_HARDWARE_PLUGIN
+) -> Conversion:
+    tree = copy.deepcopy(source.tree)
+    originals = read_source(Source(source.path, source.data, tree))
+    result = Conversion(data=b"", target=target)
+    placer = _Placer(tree.getroot(), hardware_plugin)
+    for found in originals:
+        t = found.transmission
+        if t.dialect == target or t.kind == "other" and family(t.dialect) == family(target):
+            continue
+        translation = translate(t, target)
+        result.losses.extend(translation.losses)
+        result.notes.extend(translation.notes)
+        if t.kind == "other":
+            continue
+        result.losses.extend(_unknown_children(found.element, t, target))
+        _behaviour(t, translation.transmission, result)
+        placer.place(found.element, translation.transmission)
+        result.converted += 1
+    result.data = serialize(tree, source.data)
+    result.losses.extend(_check(source, result, originals))
+    return result
+
+
+def _unknown_children(element: etree._Element, t: Transmission, target: Dialect) -> list[str]:
+    known = KNOWN_CHILDREN[family(t.dialect)]
+    lost = []
+    for parent in [element, *children(element, "joint"), *children(element, "actuator")]:
+        allowed = known["transmission" if parent is element else local(parent)]
+        for child in parent:
+            if isinstance(child.tag, str) and local(child) not in allowed:
+                owner = f"{local(parent)} '{parent.get('name', '')}'"
+                lost.append(f"{owner}: <{local(child)}> has no place in {target}; dropped")
+    return lost
+
+
+def _behaviour(before: Transmission, after: Transmission, result: Conversion) -> None:
+    """A loss when the target loader would bind the values differently (never silent)."""
+    try:
+        old = effective(before)
+    except NotLoadable as exc:
+        result.notes.append(f"transmission '{before.name}': the original is not loadable ({exc})")
+        return
+    try:
+        new = effective(after)
+    except NotLoadable as exc:
+        result.losses.append(f"transmission '{after.name}': the result is not loadable ({exc})")
+        return
+    if _same_binding(old, new):
+        return
+    if old.joints != new.joints:
+        reason = (f"joints {', '.join(new.joints)} take the values written for "
+                  f"{', '.join(old.joints)} (ros2_control orders handles by name; see TX401)")
+    else:
+        reason = "the loaded reductions or offsets differ"
+    result.losses.append(
+        f"transmission '{before.name}': behaves differently under {new.loader}: {reason}"
+    )
+
+
+def _same_binding(old, new) -> bool:
+    fields = ("kind", "joints", "actuators", "actuator_reduction", "joint_reduction",
+              "joint_offset")
+    if old.kind == "simple":
+        same_names = (old.joints, old.actuators) == (new.joints, new.actuators)
+        return same_names and old.joint_offset == new.joint_offset and (
+            old.actuator_reduction[0] * old.joint_reduction[0]
+            == new.actuator_reduction[0] * new.joint_reduction[0]
+        )
+    return all(getattr(old, f) == getattr(new, f) for f in fields)
+
+
+def _check(source: Source, result: Conversion, originals) -> list[str]:
+    """Read the output back, convert it back, and compare with the original."""
+    tree = parse_bytes(result.data, source.path)
+    written = {f.transmission.name: f.transmission for f in read_source(
+        Source(source.path, result.data, tree))}
+    problems = []
+    for found in originals:
+        t = found.transmission
+        if t.kind == "other" or t.name not in written:
+            continue
+        back = translate(written[t.name], t.dialect).transmission
+        for diff in differences(t, back):
+            problems.append(f"transmission '{t.name}' did not survive the round trip: {diff}")
+    return problems
+
+
+class _Placer:
+    """Puts converted elements where their target dialect expects them."""
+
+    def __init__(self, root: etree._Element, hardware_plugin: str) -> None:
+        self.root = root
+        self.hardware_plugin = hardware_plugin
+        self.created: etree._Element | None = None
+
+    def place(self, old: etree._Element, t: Transmission) -> None:
+        moving_out = t.dialect == "ros1" and enclosing_component(old) is not None
+        moving_in = t.dialect != "ros1" and enclosing_component(old) is None
+        if moving_out and local(self.root) == "robot":
+            component = enclosing_component(old)
+            _remove(old)
+            _insert_before(component, self._build(t, component))
+        elif moving_in and local(self.root) == "robot" and old.getparent() is not None:
+            component = self._component_for(t)
+            _remove(old)
+            _append(component, self._build_inside(t, component))
+        else:
+            new = self._build(t, old)
+            new.tail = old.tail
+            if old.getparent() is None:
+                raise ValueError("cannot replace the root element in place")
+            old.getparent().replace(old, new)
+
+    def _build(self, t: Transmission, sibling: etree._Element) -> etree._Element:
+        indent, step = _indentation(sibling)
+        return dialects.build(t, t.dialect, indent=indent, step=step,
+                              namespace=_namespace(sibling))
+
+    def _build_inside(self, t: Transmission, parent: etree._Element) -> etree._Element:
+        indent, step = _child_indentation(parent)
+        return dialects.build(t, t.dialect, indent=indent, step=step,
+                              namespace=_namespace(parent))
+
+    def _component_for(self, t: Transmission) -> etree._Element:
+        names = {j.name for j in t.joints}
+        for element in self.root.iter():
+            if local(element) == "ros2_control":
+                declared = {j.get("name") for j in children(element, "joint")}
+                if names <= declared:
+                    return element
+        if self.created is None:
+            self.created = self._new_component()
+        for joint in t.joints:
+            self._declare(self.created, joint)
+        return self.created
+
+    def _new_component(self) -> etree._Element:
+        ns = _namespace(self.root)
+        q = (lambda tag: f"{{{ns}}}{tag}") if ns else (lambda tag: tag)
+        component = etree.Element(q("ros2_control"), name=self.root.get("name", "robot"),
+                                  type="system")
+        hardware = etree.SubElement(component, q("hardware"))
+        etree.SubElement(hardware, q("plugin")).text = self.hardware_plugin
+        indent, step = _child_indentation(self.root)
+        dialects.pretty(component, indent, step)
+        _append(self.root, component)
+        return component
+
+    def _declare(self, component: etree._Element, joint) -> None:
+        if any(j.get("name") == joint.name for j in children(component, "joint")):
+            return
+        ns = _namespace(component)
+        q = (lambda tag: f"{{{ns}}}{tag}") if ns else (lambda tag: tag)
+        element = etree.Element(q("joint"), name=joint.name)
+        for name in joint.interfaces:
+            etree.SubElement(element, q("command_interface"), name=name)
+        for name in joint.state_interfaces:
+            etree.SubElement(element, q("state_interface"), name=name)
+        indent, step = _child_indentation(component)
+        dialects.pretty(element, indent, step)
+        declared = children(component, "joint") or children(component, "hardware")
+        if declared:
+            anchor = declared[-1]
+            element.tail = anchor.tail
+            anchor.tail = "\n" + _leading_space(anchor)
+            anchor.addnext(element)
+        else:
+            _append(component, element)
+
+
+def _namespace(element: etree._Element) -> str | None:
+    tag = element.tag
+    return tag[1:].split("}", 1)[0] if isinstance(tag, str) and tag.startswith("{") else None
+
+
+def _leading_space(element: etree._Element) -> str:
+    previous = element.getprevious()
+    text = previous.tail if previous is not None else (
+        element.getparent().text if element.getparent() is not None else "")
+    text = text or ""
+    return text.rsplit("\n", 1)[-1] if "\n" in text else ""
+
+
+def _indentation(element: etree._Element) -> tuple[str, str]:
+    indent = _leading_space(element)
+    kids = [c for c in element if isinstance(c.tag, str)]
+    step = "  "
+    if kids:
+        inner = _leading_space(kids[0])
+        if inner.startswith(indent) and len(inner) > len(indent):
+            step = inner[len(indent):]
+    return indent, step
+
+
+def _child_indentation(parent: etree._Element) -> tuple[str, str]:
+    outer, step = _indentation(parent)
+    kids = [c for c in parent if isinstance(c.tag, str)]
+    if kids:
+        return _leading_space(kids[-1]), step
+    return outer + step, step
+
+
+def _remove(element: etree._Element) -> None:
+    parent = element.getparent()
+    previous = element.getprevious()
+    if element.getnext() is None:
+        # The last child's tail carries the indentation of the parent's closing tag.
+        if previous is not None:
+            previous.tail = element.tail
+        else:
+            parent.text = element.tail
+    parent.remove(element)
+
+
+def _insert_before(anchor: etree._Element, element: etree._Element) -> None:
+    element.tail = "\n" + _leading_space(anchor)
+    anchor.addprevious(element)
+
+
+def _append(parent: etree._Element, element: etree._Element) -> None:
+    kids = list(parent)
+    if kids:
+        last = kids[-1]
+        closing = last.tail or ""
+        last.tail = "\n" + _leading_space(last) if kids else closing
+        element.tail = closing
+    else:
+        indent, _ = _indentation(parent)
+        element.tail = "\n" + indent
+    parent.append(element)

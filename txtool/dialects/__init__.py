@@ -1,0 +1,37 @@
+"""One writer module per XML dialect; each builds a ``<transmission>`` element from the model."""
+
+from __future__ import annotations
+
+from lxml import etree
+
+from txtool.dialects import ros1, ros2
+from txtool.model import Dialect, Transmission
+
+
+def build(
+    t: Transmission, dialect: Dialect, *, indent: str = "  ", step: str = "  ",
+    namespace: str | None = None,
+) -> etree._Element:
+    """A ``<transmission>`` element for ``t`` formatted to sit at ``indent``.
+
+    ``namespace`` is the default namespace of the place it goes to (some URDFs declare one).
+    """
+    writer = ros1.write if dialect == "ros1" else ros2.write
+    element = writer(t, dialect)
+    if namespace:
+        for node in element.iter():
+            node.tag = f"{{{namespace}}}{node.tag}"
+    pretty(element, indent, step)
+    return element
+
+
+def pretty(element: etree._Element, indent: str, step: str) -> None:
+    """Indent ``element``'s descendants; leaf text is left alone."""
+    children = list(element)
+    if not children:
+        return
+    inner = indent + step
+    element.text = "\n" + inner
+    for index, child in enumerate(children):
+        pretty(child, inner, step)
+        child.tail = "\n" + (inner if index < len(children) - 1 else indent)

@@ -1,0 +1,301 @@
+"""Translate a canonical transmission from one dialect to another, saying what cannot be carried.
+
+The rules (each one is tested):
+
+* Simple: ROS 1 reads the reduction from the **actuator**, ros2_control from the **joint**; the
+  value moves so that the effective reduction is unchanged.
+* Coupled: members are emitted in role order (joint1, joint2 / actuator1, actuator2), since
+  ros2_control binds values by XML order.
+* Missing roles are written as ``joint1`` / ``actuator1`` in ROS 2 (ros2_control throws without).
+* Offsets stay on the joint; direction is the sign of the effective reduction.
+* A number whose text the target loader would read differently is rewritten in shortest
+  round-trip form; otherwise its text is kept as written.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+from txtool.model import Dialect, Member, Number, Transmission, standard_type
+from txtool.numbers import format_float, parse_ros1, parse_ros2
+
+ROS1_INTERFACE = {
+    "position": "hardware_interface/PositionJointInterface",
+    "velocity": "hardware_interface/VelocityJointInterface",
+    "effort": "hardware_interface/EffortJointInterface",
+}
+ROS1_STATE_ONLY = "hardware_interface/JointStateInterface"
+
+
+@dataclass
+class Translation:
+    transmission: Transmission
+    losses: list[str] = field(default_factory=list)  # information that does not survive
+    notes: list[str] = field(default_factory=list)  # changes that keep behaviour
+
+
+def family(dialect: Dialect) -> str:
+    return "ros1" if dialect == "ros1" else "ros2"
+
+
+def interface_kind(name: str) -> str | None:
+    """``hardware_interface/BiDirectionalPositionJointInterface`` -> ``position``."""
+    short = name.strip().rsplit("/", 1)[-1]
+    short = short.removeprefix("BiDirectional")
+    for kind in ("Position", "Velocity", "Effort"):
+        if short == f"{kind}JointInterface":
+            return kind.lower()
+    if short == "JointStateInterface":
+        return "state"
+    if name.strip() in ("position", "velocity", "effort"):
+        return name.strip()
+    return None
+
+
+def ros2_interfaces(ros1_names: tuple[str, ...]) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """Command and state interfaces of a ros2_control joint for ROS 1 hardware interfaces."""
+    commands: list[str] = []
+    for name in ros1_names:
+        kind = interface_kind(name)
+        if kind in ("position", "velocity", "effort") and kind not in commands:
+            commands.append(kind)
+    states = ["position", "velocity"]
+    if "effort" in commands:
+        states.append("effort")
+    return tuple(commands), tuple(states)
+
+
+def translate(t: Transmission, target: Dialect) -> Translation:
+    if t.kind == "other":
+        result = Translation(t)
+        if family(t.dialect) != family(target):
+            result.losses.append(
+                f"transmission '{t.name}': custom type '{t.type}' cannot be carried to "
+                f"{target}; left as written"
+            )
+        return result
+    if family(t.dialect) == family(target):
+        return Translation(t.model_copy(update={"dialect": target}))
+    if target == "ros1":
+        return _to_ros1(t)
+    return _to_ros2(t, target)
+
+
+def _retext(number: Number | None, parse: Callable[[str | None], float | None]) -> Number | None:
+    """Keep the text when the target loader reads it as the same value."""
+    if number is None or number.value is None:
+        return number
+    if number.text is not None and parse(number.text) == number.value:
+        return number
+    return Number(value=number.value, text=format_float(number.value))
+
+
+def _ordered(members: tuple[Member, ...], roles: tuple[str, str]) -> tuple[Member, ...] | None:
+    by_role = {m.role: m for m in members}
+    if len(members) == 2 and set(by_role) == set(roles):
+        return tuple(by_role[r] for r in roles)
+    return None
+
+
+def _order_coupled(t: Transmission, result: Translation) -> tuple[tuple[Member, ...], ...]:
+    joints = _ordered(t.joints, ("joint1", "joint2"))
+    actuators = _ordered(t.actuators, ("actuator1", "actuator2"))
+    if joints is None or actuators is None:
+        result.losses.append(
+            f"transmission '{t.name}': coupled members need roles joint1/joint2 and "
+            "actuator1/actuator2 to be ordered; kept in XML order"
+        )
+    return joints or t.joints, actuators or t.actuators
+
+
+def _to_ros2(t: Transmission, target: Dialect) -> Translation:
+    result = Translation(t)
+    joints, actuators = t.joints, t.actuators
+    if t.kind == "simple":
+        joints, actuators = _simple_to_ros2(t, result)
+    else:
+        joints, actuators = _order_coupled(t, result)
+        joints = tuple(_ros2_joint(j, result) for j in joints)
+        actuators = tuple(_ros2_actuator(a, result) for a in actuators)
+    result.transmission = t.model_copy(
+        update={
+            "type": standard_type(t.kind),
+            "joints": joints,
+            "actuators": actuators,
+            "dialect": target,
+        }
+    )
+    return result
+
+
+def _simple_to_ros2(t: Transmission, result: Translation) -> tuple[tuple[Member, ...], ...]:
+    reduction = t.actuators[0].mechanical_reduction if t.actuators else None
+    joints = []
+    for index, joint in enumerate(t.joints):
+        if joint.mechanical_reduction is not None:
+            result.losses.append(
+                f"joint '{joint.name}': <mechanicalReduction> {joint.mechanical_reduction.text}"
+                " is ignored by ros_control for simple transmissions and has no place in ROS 2"
+            )
+        moved = _retext(reduction, parse_ros2) if index == 0 else None
+        joints.append(
+            _ros2_joint(joint, result).model_copy(
+                update={"mechanical_reduction": moved, "role": joint.role or "joint1"}
+            )
+        )
+    actuators = tuple(
+        _ros2_actuator(a, result).model_copy(
+            update={"mechanical_reduction": None, "role": a.role or "actuator1"}
+        )
+        for a in t.actuators
+    )
+    return tuple(joints), actuators
+
+
+def _ros2_joint(joint: Member, result: Translation) -> Member:
+    commands, states = ros2_interfaces(joint.interfaces)
+    unknown = [i for i in joint.interfaces if interface_kind(i) is None]
+    if unknown:
+        result.losses.append(
+            f"joint '{joint.name}': hardware interface(s) {', '.join(unknown)} have no "
+            "ros2_control equivalent"
+        )
+    return joint.model_copy(
+        update={
+            "mechanical_reduction": _retext(joint.mechanical_reduction, parse_ros2),
+            "offset": _retext(joint.offset, parse_ros2),
+            "interfaces": commands,
+            "state_interfaces": states,
+        }
+    )
+
+
+def _ros2_actuator(actuator: Member, result: Translation) -> Member:
+    if actuator.interfaces:
+        result.notes.append(
+            f"actuator '{actuator.name}': <hardwareInterface> is not used by ros_control's "
+            "loaders and has no place in ROS 2; dropped"
+        )
+    return actuator.model_copy(
+        update={
+            "mechanical_reduction": _retext(actuator.mechanical_reduction, parse_ros2),
+            "interfaces": (),
+        }
+    )
+
+
+def _to_ros1(t: Transmission) -> Translation:
+    result = Translation(t)
+    if t.kind == "simple":
+        joints, actuators = _simple_to_ros1(t, result)
+    else:
+        joints, actuators = _order_coupled(t, result)
+        joints = tuple(_ros1_joint(j, result) for j in joints)
+        actuators = tuple(_ros1_actuator(a, result, required=True) for a in actuators)
+    for name, value in t.parameters:
+        result.losses.append(f"transmission '{t.name}': <param name=\"{name}\"> {value} has no "
+                             "place in ROS 1")
+    result.transmission = t.model_copy(
+        update={
+            "type": standard_type(t.kind),
+            "joints": joints,
+            "actuators": actuators,
+            "dialect": "ros1",
+            "parameters": (),
+            "ros2_control": None,
+        }
+    )
+    return result
+
+
+def _simple_to_ros1(t: Transmission, result: Translation) -> tuple[tuple[Member, ...], ...]:
+    first = t.joints[0] if t.joints else None
+    reduction = first.mechanical_reduction if first is not None else None
+    if reduction is None or reduction.value is None:
+        reduction = Number(value=1.0, text="1")  # ros2_control's default, required in ROS 1
+    actuators = []
+    for index, actuator in enumerate(t.actuators):
+        if actuator.mechanical_reduction is not None:
+            result.losses.append(
+                f"actuator '{actuator.name}': <mechanical_reduction> "
+                f"{actuator.mechanical_reduction.text} is ignored by ros2_control for simple "
+                "transmissions"
+            )
+        actuators.append(
+            _ros1_actuator(actuator, result).model_copy(
+                update={"mechanical_reduction": _retext(reduction, parse_ros1) if index == 0
+                        else None}
+            )
+        )
+    if not actuators:
+        result.notes.append(
+            f"transmission '{t.name}': no actuator; wrote 'actuator1' as ros2_control names it"
+        )
+        actuators.append(Member(name="actuator1", mechanical_reduction=reduction))
+    joints = tuple(
+        _ros1_joint(j, result).model_copy(
+            update={"mechanical_reduction": None, "role": _unless(j.role, "joint1")}
+        )
+        for j in t.joints
+    )
+    actuators = [a.model_copy(update={"role": _unless(a.role, "actuator1")}) for a in actuators]
+    return joints, tuple(actuators)
+
+
+def _unless(role: str | None, default: str) -> str | None:
+    # ros_control ignores roles of simple transmissions; the ROS 2 default is not carried back.
+    return None if role == default else role
+
+
+def _ros1_joint(joint: Member, result: Translation) -> Member:
+    names = [ROS1_INTERFACE[c] for c in joint.interfaces if c in ROS1_INTERFACE]
+    dropped = [c for c in joint.interfaces if c not in ROS1_INTERFACE]
+    if dropped:
+        result.notes.append(
+            f"joint '{joint.name}': command interface(s) {', '.join(dropped)} have no ROS 1 "
+            "hardware interface; dropped"
+        )
+    if not names and joint.state_interfaces:
+        names = [ROS1_STATE_ONLY]
+    if joint.read_only:
+        result.losses.append(f"joint '{joint.name}': read_only has no place in ROS 1")
+    return joint.model_copy(
+        update={
+            "mechanical_reduction": _retext(_as_loaded(joint.mechanical_reduction, 1.0), parse_ros1),
+            "offset": _retext(_as_loaded(joint.offset, 0.0), parse_ros1),
+            "interfaces": tuple(names),
+            "state_interfaces": (),
+            "read_only": False,
+        }
+    )
+
+
+def _as_loaded(number: Number | None, default: float) -> Number | None:
+    """ros2_control reads unparsable text as the default: carry that value, not the text."""
+    if number is not None and number.value is None:
+        return Number(value=default, text=format_float(default))
+    return number
+
+
+def _ros1_actuator(actuator: Member, result: Translation, *, required: bool = False) -> Member:
+    """``required``: ROS 1 refuses a coupled actuator without a reduction; ROS 2 meant 1.0."""
+    if actuator.offset is not None:
+        result.losses.append(
+            f"actuator '{actuator.name}': <offset> {actuator.offset.text} is ignored by "
+            "ros2_control and has no place in ROS 1"
+        )
+    if actuator.read_only:
+        result.losses.append(f"actuator '{actuator.name}': read_only has no place in ROS 1")
+    reduction = _retext(actuator.mechanical_reduction, parse_ros1)
+    if required and (reduction is None or reduction.value is None):
+        reduction = Number(value=1.0, text="1")
+    return actuator.model_copy(
+        update={
+            "mechanical_reduction": reduction,
+            "offset": None,
+            "interfaces": (),
+            "state_interfaces": (),
+            "read_only": False,
+        }
+    )
