@@ -93,7 +93,10 @@ def singular(eff: Effective, max_condition: float = MAX_CONDITION) -> str | None
                 return f"{side} reduction of '{name}' is zero"
             if not math.isfinite(value):
                 return f"{side} reduction of '{name}' is {value!r}"
-    m = a_matrix(eff)
+    return matrix_singular(a_matrix(eff), max_condition)
+
+
+def matrix_singular(m: Matrix, max_condition: float = MAX_CONDITION) -> str | None:
     if determinant(m) == 0.0:
         return "the velocity map A has determinant 0"
     cond = matrix_condition(m)
