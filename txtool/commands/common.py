@@ -1,0 +1,65 @@
+"""Options and error handling shared by the commands (light: click only)."""
+
+from __future__ import annotations
+
+import functools
+import sys
+from collections.abc import Callable
+from typing import Any
+
+import click
+
+from txtool.xmlio import InputError, XacroOptions
+
+
+def _pairs(values: tuple[str, ...], option: str) -> tuple[tuple[str, str], ...]:
+    pairs = []
+    for value in values:
+        name, sep, rest = value.partition(":=")
+        if not sep or not name:
+            raise click.BadParameter(f"expected NAME:=VALUE, got {value!r}", param_hint=option)
+        pairs.append((name, rest))
+    return tuple(pairs)
+
+
+def xacro_options(function: Callable[..., Any]) -> Callable[..., Any]:
+    """``--xacro-arg``, ``--pkg-dir``, ``--pkg-path``, gathered into ``xacro=XacroOptions``."""
+
+    @click.option("--xacro-arg", "xacro_args", multiple=True, metavar="NAME:=VALUE",
+                  help="A xacro argument (repeatable).")
+    @click.option("--pkg-dir", "pkg_dirs", multiple=True, metavar="DIR",
+                  type=click.Path(file_okay=False),
+                  help="A folder holding packages, for $(find pkg) (repeatable).")
+    @click.option("--pkg-path", "pkg_paths", multiple=True, metavar="NAME:=DIR",
+                  help="Where one package is, for $(find NAME) (repeatable).")
+    @functools.wraps(function)
+    def wrapper(*args: Any, xacro_args, pkg_dirs, pkg_paths, **kwargs: Any) -> Any:
+        options = XacroOptions(
+            args=_pairs(xacro_args, "--xacro-arg"),
+            pkg_dirs=tuple(pkg_dirs),
+            pkg_paths=_pairs(pkg_paths, "--pkg-path"),
+        )
+        return function(*args, xacro=options, **kwargs)
+
+    return wrapper
+
+
+def exit_on_input_error(function: Callable[..., int | None]) -> Callable[..., None]:
+    """Run a command body; an :class:`InputError` is one line on stderr and exit 2."""
+
+    @functools.wraps(function)
+    def wrapper(*args: Any, **kwargs: Any) -> None:
+        try:
+            code = function(*args, **kwargs)
+        except InputError as exc:
+            click.echo(f"txtool: {exc}", err=True)
+            sys.exit(2)
+        sys.exit(code or 0)
+
+    return wrapper
+
+
+FORMAT_OPTION = click.option(
+    "--format", "output_format", type=click.Choice(["text", "json"]), default="text",
+    show_default=True, help="Output format.",
+)
