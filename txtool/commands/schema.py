@@ -1,0 +1,19 @@
+"""``txtool schema``: the JSON Schema of the canonical model."""
+
+from __future__ import annotations
+
+import click
+
+
+@click.command("schema")
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write to a file.")
+def command(output) -> None:
+    """Print the JSON Schema of ``txtool show --format json`` (schemas/transmission.schema.json)."""
+    from txtool.schema import schema_text
+    from txtool.xmlio import write_atomic
+
+    text = schema_text()
+    if output:
+        write_atomic(output, text.encode("utf-8"))
+    else:
+        click.echo(text, nl=False)

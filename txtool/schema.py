@@ -1,0 +1,16 @@
+"""JSON Schemas generated from the pydantic models (checked in under ``schemas/``)."""
+
+from __future__ import annotations
+
+import json
+
+from txtool.model import Document
+
+SCHEMA_FILES = {"transmission.schema.json": Document}
+
+
+def schema_text(model=Document) -> str:
+    schema = model.model_json_schema()
+    schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
+    schema["title"] = "txtool transmissions (txtool show --format json)"
+    return json.dumps(schema, indent=2, sort_keys=True) + "\n"
