@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import Any
 
 from lxml import etree
 
@@ -23,10 +24,16 @@ class LintContext:
     ``components`` the ``<ros2_control>`` elements. ``is_robot`` is False for bare
     fragments (a ``<transmission>`` or ``<ros2_control>`` root, or a xacro macro library
     without a robot), where cross-checks against the robot's joints do not apply.
+
+    ``literal`` is True when a xacro file is linted as written (a macro library, or when
+    expansion is off or failed): values containing ``${...}`` or ``$(...)`` are then unknown
+    (see :meth:`unknown`). ``options`` holds each rule's validated options by code.
     """
 
     source: Source
     found: list[Found] = field(default_factory=list)
+    literal: bool = False
+    options: Mapping[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         if not self.found:
@@ -46,7 +53,15 @@ class LintContext:
 
     @property
     def is_robot(self) -> bool:
-        return local(self.source.root) == "robot" and bool(self.joints)
+        return not self.literal and local(self.source.root) == "robot" and bool(self.joints)
+
+    def unknown(self, text: str | None) -> bool:
+        """True for a value only xacro can tell: it contains ``${...}`` or ``$(...)``."""
+        return text is not None and ("${" in text or "$(" in text)
+
+    def option(self, code: str) -> Any:
+        """The options of rule ``code`` (its ``Options`` model), or None."""
+        return self.options.get(code)
 
     def position(self, element: etree._Element) -> Position:
         return self.locator.position(element)

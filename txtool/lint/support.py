@@ -1,0 +1,155 @@
+"""Helpers shared by rules: members with their elements, xacro-aware scoping, type families."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+from lxml import etree
+
+from txtool.lint.context import LintContext
+from txtool.model import Member
+from txtool.reader import Found, enclosing_component
+from txtool.robot import children, local
+from txtool.xmlio import XACRO_NS
+
+# Transmission families with their own loaders (not ros_control's transmission_interface):
+# pr2_mechanism / ros_ethercat parse their own XML; franka_hw registers state/model interfaces.
+OWN_LOADER_FAMILIES: tuple[str, ...] = ("pr2_mechanism_model/", "sr_mechanism_model/")
+KNOWN_FAMILIES: tuple[str, ...] = (*OWN_LOADER_FAMILIES, "franka_hw/")
+
+
+@dataclass(frozen=True)
+class MemberRef:
+    """A joint or actuator of a transmission, with the element it was read from."""
+
+    noun: str  # "joint" or "actuator"
+    member: Member
+    element: etree._Element
+
+
+def members(found: Found) -> Iterator[MemberRef]:
+    """Joints then actuators, paired with their elements (same order as the model)."""
+    transmission = found.transmission
+    for noun, models in (("joint", transmission.joints), ("actuator", transmission.actuators)):
+        for member, element in zip(models, children(found.element, noun), strict=True):
+            yield MemberRef(noun, member, element)
+
+
+def is_xacro(element: etree._Element) -> bool:
+    # xacro itself goes by the "xacro:" prefix; files use several namespace spellings.
+    tag = element.tag
+    if not isinstance(tag, str):
+        return False
+    return element.prefix == "xacro" or tag.startswith(f"{{{XACRO_NS}}}")
+
+
+def opaque(ctx: LintContext, element: etree._Element) -> bool:
+    """True when a literal xacro element's children depend on xacro (conditionals, macro calls).
+
+    Counting or pairing its joints and actuators would then be guesswork.
+    """
+    return ctx.literal and any(is_xacro(child) for child in element)
+
+
+def scope(ctx: LintContext, element: etree._Element) -> tuple[int, ...] | None:
+    """A key under which elements are instantiated together, or None when that is unknowable.
+
+    After expansion every element is real (one scope). In a literal xacro file, elements under
+    different macros are only comparable when the same macro holds them, and never under
+    ``xacro:if`` / ``xacro:unless`` (both branches are written but only one is produced).
+    """
+    if not ctx.literal:
+        return ()
+    key: list[int] = []
+    parent = element.getparent()
+    while parent is not None:
+        if is_xacro(parent):
+            if local(parent) in ("if", "unless"):
+                return None
+            key.append(id(parent))
+        parent = parent.getparent()
+    return tuple(key)
+
+
+def type_element(found: Found) -> etree._Element | None:
+    """The element that carries the type: ``<plugin>`` (ROS 2) or ``<type>`` (ROS 1)."""
+    name = "type" if found.transmission.dialect == "ros1" else "plugin"
+    elements = children(found.element, name)
+    return elements[0] if elements else None
+
+
+def typed_ros1(found: Found) -> bool:
+    """A ROS 1 transmission ros_control gets past parsing: it has a ``<type>`` element.
+
+    With only the pre-Hydro ``type=`` attribute the parser skips it before any loader runs.
+    """
+    return found.transmission.dialect == "ros1" and type_element(found) is not None
+
+
+def loaded_by_ros_control(found: Found) -> bool:
+    """Whether ros_control's own parser handles this transmission (not a custom loader)."""
+    kind_type = found.transmission.type
+    return not kind_type.startswith(OWN_LOADER_FAMILIES)
+
+
+@dataclass(frozen=True)
+class NumberRef:
+    """A number element a loader reads: ``field`` is "reduction" or "offset"."""
+
+    element: etree._Element
+    field: str
+    noun: str
+    member: str
+
+    def describe(self) -> str:
+        return f"{self.field} of {self.noun} '{self.member}'"
+
+
+def read_numbers(found: Found) -> Iterator[NumberRef]:
+    """The reduction and offset elements the transmission's loader reads (standard types)."""
+    t = found.transmission
+    if t.kind == "other" or (t.dialect == "ros1" and not typed_ros1(found)):
+        return
+    ros1 = t.dialect == "ros1"
+    coupled = t.kind != "simple"
+    reduction = "mechanicalReduction" if ros1 else "mechanical_reduction"
+    seen = {"joint": 0, "actuator": 0}
+    for ref in members(found):
+        seen[ref.noun] += 1
+        if not ros1 and seen[ref.noun] > (2 if coupled else 1):
+            continue  # ros2_control reads only the first one or two
+        tags: list[str] = []
+        if ref.noun == "actuator" and (ros1 or coupled):
+            tags.append(reduction)
+        if ref.noun == "joint":
+            tags += [reduction, "offset"] if (coupled or not ros1) else ["offset"]
+        for tag in tags:
+            element = _number_element(ref.element, tag, ros1)
+            if element is not None:
+                field = "offset" if tag == "offset" else "reduction"
+                yield NumberRef(element, field, ref.noun, ref.member.name)
+
+
+def _number_element(member: etree._Element, tag: str, ros1: bool) -> etree._Element | None:
+    found = children(member, tag)
+    if not found:
+        return None
+    if not ros1:
+        # ros2_control takes the first element with non-null text.
+        return next((e for e in found if e.text is not None), found[0])
+    return found[0]
+
+
+def label(found: Found) -> str:
+    """``transmission 'name'`` for messages (or ``unnamed transmission``)."""
+    name = found.transmission.name
+    return f"transmission '{name}'" if name else "unnamed transmission"
+
+
+def loader_group(found: Found) -> tuple[object, ...]:
+    """Transmissions read by the same loader instance: ROS 1, or one ``<ros2_control>``."""
+    if found.transmission.dialect == "ros1":
+        return ("ros1",)
+    component = enclosing_component(found.element)
+    return ("ros2", id(component) if component is not None else None)

@@ -1,0 +1,132 @@
+"""The rule registry: an explicit list of rule modules, loaded on first use.
+
+Each rule is one module ``txtool/rules/txNNN_kebab_name.py`` with ``CODE``, ``NAME``,
+``SEVERITY``, ``FIXABLE``, ``check(ctx)`` (and ``fix(root)`` when fixable); its module docstring
+is its documentation. To add a rule, write the module and add its name to :data:`RULE_MODULES`.
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from functools import lru_cache
+from types import ModuleType
+from typing import TYPE_CHECKING, Any
+
+from txtool.problem import SEVERITIES, Severity
+
+if TYPE_CHECKING:
+    from lxml import etree
+
+    from txtool.lint.context import LintContext
+    from txtool.problem import Problem
+
+RULE_MODULES: tuple[str, ...] = (
+    # TX0xx: the document itself (produced by the pipeline)
+    "tx001_xml_syntax",
+    "tx002_xacro_failed",
+    # TX1xx: one transmission as its loader reads it
+    "tx100_missing_name",
+    "tx101_missing_type",
+    "tx102_unknown_type",
+    "tx103_wrong_member_count",
+    "tx104_missing_reduction",
+    "tx105_invalid_number",
+    "tx106_zero_reduction",
+    "tx107_bad_role",
+    "tx108_duplicate_name",
+    "tx109_shared_member",
+    "tx110_missing_interface",
+    # TX2xx-TX4xx: cross-checks against the robot, dialects, ignored values (add below)
+)
+
+
+class UnknownRule(KeyError):
+    def __str__(self) -> str:
+        return f"no such rule: {self.args[0]}"
+
+
+@dataclass(frozen=True)
+class Rule:
+    """One registered rule: its metadata, its functions and its documentation."""
+
+    code: str
+    name: str
+    severity: Severity
+    fixable: bool
+    module: ModuleType
+
+    @property
+    def check(self) -> Callable[[LintContext], Iterator[Problem]]:
+        return self.module.check  # type: ignore[no-any-return]
+
+    @property
+    def fix(self) -> Callable[[etree._Element], int] | None:
+        return getattr(self.module, "fix", None) if self.fixable else None
+
+    @property
+    def options(self) -> Any:
+        """The rule's pydantic ``Options`` model, or None when it takes no options."""
+        return getattr(self.module, "Options", None)
+
+    @property
+    def doc(self) -> str:
+        return (self.module.__doc__ or "").strip()
+
+    @property
+    def summary(self) -> str:
+        """The first sentence of the documentation (one line)."""
+        first = self.doc.split("\n\n", 1)[0]
+        return " ".join(first.split())
+
+
+def _load(module_name: str) -> Rule:
+    module = importlib.import_module(f"{__name__}.{module_name}")
+    rule = Rule(
+        code=module.CODE,
+        name=module.NAME,
+        severity=module.SEVERITY,
+        fixable=bool(getattr(module, "FIXABLE", False)),
+        module=module,
+    )
+    _check_contract(module_name, rule)
+    return rule
+
+
+def _check_contract(module_name: str, rule: Rule) -> None:
+    expected = f"{rule.code.lower()}_{rule.name.replace('-', '_')}"
+    if module_name != expected:
+        raise ValueError(f"rule module {module_name} should be named {expected}")
+    if rule.severity not in SEVERITIES:
+        raise ValueError(f"{rule.code}: severity {rule.severity!r} is not one of {SEVERITIES}")
+    if rule.fixable and rule.fix is None:
+        raise ValueError(f"{rule.code}: FIXABLE but no fix() function")
+
+
+@lru_cache(maxsize=1)
+def all_rules() -> dict[str, Rule]:
+    """Every registered rule by code, in code order."""
+    rules = [_load(name) for name in RULE_MODULES]
+    by_code: dict[str, Rule] = {}
+    for rule in sorted(rules, key=lambda r: r.code):
+        if rule.code in by_code:
+            raise ValueError(f"rule code {rule.code} is registered twice")
+        by_code[rule.code] = rule
+    return by_code
+
+
+def get(code: str) -> Rule:
+    """The rule with ``code`` (case-insensitive) or its kebab name; :class:`UnknownRule`."""
+    rules = all_rules()
+    wanted = code.strip()
+    if wanted.upper() in rules:
+        return rules[wanted.upper()]
+    for rule in rules.values():
+        if rule.name == wanted.lower():
+            return rule
+    raise UnknownRule(code)
+
+
+def codes() -> tuple[str, ...]:
+    return tuple(all_rules())

@@ -1,0 +1,39 @@
+"""xacro could not expand the file: a missing argument, package or property.
+
+Produced by the pipeline when in-process xacro expansion fails; the message names what is
+missing and how to provide it (``--xacro-arg name:=VALUE``, ``--pkg-dir DIR``,
+``--pkg-path name:=DIR``, or ``xacro-args`` / ``pkg-dirs`` / ``pkg-paths`` in the
+configuration). The transmissions written literally in the file are still checked, as for a
+macro library (values containing ``${...}`` or ``$(...)`` are then unknown).
+
+Failing example (no ``--xacro-arg prefix:=...``, no default)::
+
+    <robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+      <xacro:arg name="prefix"/>
+      <link name="$(arg prefix)base"/>
+    </robot>
+
+Passing example::
+
+    <robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+      <xacro:arg name="prefix" default=""/>
+      <link name="$(arg prefix)base"/>
+    </robot>
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from txtool.lint.context import LintContext
+from txtool.problem import Problem
+
+CODE = "TX002"
+NAME = "xacro-failed"
+SEVERITY = "error"
+FIXABLE = False
+
+
+def check(ctx: LintContext) -> Iterator[Problem]:
+    """Nothing to check on an expanded document: the pipeline reports expansion errors."""
+    return iter(())

@@ -1,0 +1,68 @@
+"""A transmission, joint or actuator without a ``name`` attribute, or with an empty one.
+
+ros_control (ROS 1) logs "No name attribute specified for transmission." and skips the
+transmission; a joint or actuator without ``name`` makes it drop every joint (or actuator) of
+the transmission, so the transmission is skipped too; an empty member name skips that member.
+ros2_control's parser throws ``no attribute 'name' in '<tag>' tag`` and the hardware
+component fails to load; an empty name is accepted but nothing can refer to it.
+
+Failing example::
+
+    <transmission>
+      <type>transmission_interface/SimpleTransmission</type>
+      <joint name="">...</joint>
+    </transmission>
+
+Passing example::
+
+    <transmission name="shoulder_trans">
+      <type>transmission_interface/SimpleTransmission</type>
+      <joint name="shoulder">...</joint>
+    </transmission>
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from lxml import etree
+
+from txtool.lint.context import LintContext
+from txtool.lint.support import label
+from txtool.problem import Problem
+from txtool.robot import children
+
+CODE = "TX100"
+NAME = "missing-name"
+SEVERITY = "error"
+FIXABLE = False
+
+
+def check(ctx: LintContext) -> Iterator[Problem]:
+    for found in ctx.transmissions():
+        ros1 = found.transmission.dialect == "ros1"
+        what = _consequence(found.element, "transmission", ros1, member=False)
+        if what:
+            yield ctx.problem(CODE, found.element, f"{label(found)} {what}")
+        for noun in ("joint", "actuator"):
+            for element in children(found.element, noun):
+                what = _consequence(element, noun, ros1, member=True)
+                if what:
+                    yield ctx.problem(CODE, element, f"{noun} of {label(found)} {what}")
+
+
+def _consequence(element: etree._Element, tag: str, ros1: bool, *, member: bool) -> str | None:
+    name = element.get("name")
+    if name is None:
+        if not ros1:
+            return f"has no name: ros2_control throws \"no attribute 'name' in '{tag}' tag\""
+        if member:
+            return f"has no name: ros_control drops every {tag} of the transmission and skips it"
+        return "has no name: ros_control skips it"
+    if name.strip():
+        return None
+    if not ros1:
+        return "has an empty name: ros2_control accepts it but nothing can refer to it"
+    if member:
+        return f"has an empty name: ros_control skips this {tag}"
+    return "has an empty name: ros_control skips it"

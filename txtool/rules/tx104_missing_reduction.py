@@ -1,0 +1,62 @@
+"""A ROS 1 actuator without ``<mechanicalReduction>``: ros_control refuses the transmission.
+
+The SimpleTransmission, DifferentialTransmission and FourBarLinkageTransmission loaders of
+ros_control require the element in every ``<actuator>`` ("Actuator 'A' of transmission 'T'
+does not specify the required <mechanicalReduction> element.") and load nothing without it.
+A ``<mechanicalReduction>`` written directly under ``<transmission>`` (the pre-Hydro form)
+is not read. gazebo_ros_control ignores reductions, so a simulation may run fine while the
+real robot's transmission fails to load. ROS 2 has no such requirement (the default is 1.0).
+
+Failing example::
+
+    <transmission name="t">
+      <type>transmission_interface/SimpleTransmission</type>
+      <joint name="j">
+        <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+      </joint>
+      <actuator name="m"/>
+    </transmission>
+
+Passing example::
+
+    <transmission name="t">
+      <type>transmission_interface/SimpleTransmission</type>
+      <joint name="j">
+        <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+      </joint>
+      <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
+    </transmission>
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from txtool.lint.context import LintContext
+from txtool.lint.support import label, members, opaque, typed_ros1
+from txtool.problem import Problem
+from txtool.robot import children
+
+CODE = "TX104"
+NAME = "missing-reduction"
+SEVERITY = "error"
+FIXABLE = False
+
+
+def check(ctx: LintContext) -> Iterator[Problem]:
+    for found in ctx.transmissions():
+        if found.transmission.kind == "other" or not typed_ros1(found):
+            continue
+        legacy = bool(children(found.element, "mechanicalReduction"))
+        for ref in members(found):
+            if ref.noun != "actuator" or opaque(ctx, ref.element):
+                continue
+            if children(ref.element, "mechanicalReduction"):
+                continue
+            message = (
+                f"actuator '{ref.member.name}' of {label(found)} has no <mechanicalReduction>: "
+                "ros_control refuses the transmission"
+            )
+            if legacy:
+                message += " (it does not read the one under <transmission>)"
+            yield ctx.problem(CODE, ref.element, message)

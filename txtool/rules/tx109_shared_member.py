@@ -1,0 +1,61 @@
+"""A joint or actuator that appears in more than one transmission of the same loader.
+
+Each transmission maps its actuators' values onto its joints and back; two transmissions on
+the same joint (or actuator) both write its position, velocity and effort, so the last one
+to run wins and commands are split between two actuators. Neither ros_control nor
+ros2_control rejects this. Compared as for TX108 (per loader, per ``<ros2_control>``
+component, xacro-aware); custom types are skipped, since some (``franka_hw/...``) list joints
+on purpose that standard transmissions also drive.
+
+Failing example::
+
+    <transmission name="a">...<joint name="elbow">...</joint>...</transmission>
+    <transmission name="b">...<joint name="elbow">...</joint>...</transmission>
+
+Passing example::
+
+    <transmission name="a">...<joint name="elbow">...</joint>...</transmission>
+    <transmission name="b">...<joint name="wrist">...</joint>...</transmission>
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from txtool.lint.context import LintContext
+from txtool.lint.support import label, loader_group, members, scope, typed_ros1
+from txtool.problem import Problem
+from txtool.reader import Found
+
+CODE = "TX109"
+NAME = "shared-member"
+SEVERITY = "error"
+FIXABLE = False
+
+
+def check(ctx: LintContext) -> Iterator[Problem]:
+    owner: dict[tuple[object, ...], Found] = {}
+    for found in ctx.transmissions():
+        t = found.transmission
+        where = scope(ctx, found.element)
+        if t.kind == "other" or where is None:
+            continue
+        if t.dialect == "ros1" and not typed_ros1(found):
+            continue  # ros_control skips it before any member is used
+        seen_here: set[tuple[str, str]] = set()
+        for ref in members(found):
+            name = ref.member.name
+            if not name.strip() or ctx.unknown(name) or (ref.noun, name) in seen_here:
+                continue
+            seen_here.add((ref.noun, name))
+            key = (loader_group(found), where, ref.noun, name)
+            first = owner.setdefault(key, found)
+            if first is found:
+                continue
+            line = ctx.position(first.element).line
+            yield ctx.problem(
+                CODE,
+                ref.element,
+                f"{ref.noun} '{name}' of {label(found)} is also in {label(first)} (line {line}): "
+                "both transmissions write its values",
+            )
