@@ -1,0 +1,43 @@
+"""``txtool map``: joint <-> actuator values of one transmission (argument parsing only)."""
+
+from __future__ import annotations
+
+import click
+
+
+@click.command("map")
+@click.argument("file")
+@click.option("--transmission", "-t", "name", required=True, help="Name of the transmission.")
+@click.option("--to", "to", required=True, type=click.Choice(["actuator", "joint"]),
+              help="actuator: map joint values to the actuators; joint: the reverse.")
+@click.option("--position", metavar="V[,V]", help="Positions, in role order.")
+@click.option("--velocity", metavar="V[,V]", help="Velocities, in role order.")
+@click.option("--effort", metavar="V[,V]", help="Efforts (torques or forces), in role order.")
+@click.option("--effort-convention", "convention", type=click.Choice(["ros2", "ros1"]),
+              default="ros2", show_default=True,
+              help="Four-bar effort map: ros2_control's (power-conserving) or ros_control's.")
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text",
+              show_default=True)
+def command(
+    file: str,
+    name: str,
+    to: str,
+    position: str | None,
+    velocity: str | None,
+    effort: str | None,
+    convention: str,
+    fmt: str,
+) -> None:
+    """Map positions, velocities or efforts through transmission NAME of FILE.
+
+    Values are comma-separated in role order (joint1,joint2 or actuator1,actuator2) and are
+    printed in the same order, whatever order ros2_control gives the handles (by name).
+    """
+    from txtool.mechanics.mapcmd import render_text, run_map
+
+    outcome = run_map(file, name, to, position=position, velocity=velocity, effort=effort,
+                      convention=convention)
+    if outcome.exit_code:
+        click.echo(f"txtool: {outcome.error}", err=True)
+        raise SystemExit(outcome.exit_code)
+    click.echo(outcome.to_json() if fmt == "json" else render_text(outcome), nl=fmt == "json")

@@ -1,0 +1,177 @@
+"""``txtool map``: map values of one transmission between joint and actuator space.
+
+Values are given and printed in ROLE order (``joint1, joint2`` / ``actuator1, actuator2``),
+the order people write them in. The maths runs in the loader's index order: ROS 1 sorts by
+role, so the two agree; ros2_control binds parameters in XML order but orders the handles by
+NAME. A value given for role ``joint1`` goes to the handle of the member that has that role,
+and ros2_control then applies whatever parameters sit at that handle's name-sorted index.
+Where roles are missing or not ``joint1``/``joint2`` (ros2_control does not check them), XML
+order stands in for role order.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+from dataclasses import dataclass, field
+
+from txtool.mechanics.maps import TransmissionMap, from_effective
+from txtool.model import Member, Transmission
+from txtool.numbers import format_float, parse_strict
+from txtool.semantics import ROLES_ACTUATOR, ROLES_JOINT, NotLoadable, effective
+from txtool.xmlio import InputError, XacroOptions, load
+
+QUANTITIES = ("position", "velocity", "effort")
+
+
+@dataclass(frozen=True)
+class MapOutcome:
+    """What ``txtool map`` prints; ``error`` is a one-line message when ``exit_code`` != 0."""
+
+    exit_code: int
+    error: str | None = None
+    transmission: str = ""
+    to: str = ""
+    inputs: tuple[str, ...] = ()  # input member names, role order
+    outputs: tuple[str, ...] = ()  # output member names, role order
+    values: dict[str, list[float]] = field(default_factory=dict)
+    convention: str = "ros2"
+
+    def to_json(self) -> str:
+        return json.dumps(self.values)
+
+
+class _Failure(Exception):
+    pass
+
+
+def run_map(
+    path: str,
+    transmission: str,
+    to: str,
+    *,
+    position: str | None = None,
+    velocity: str | None = None,
+    effort: str | None = None,
+    convention: str = "ros2",
+    xacro: XacroOptions | None = None,
+) -> MapOutcome:
+    """Load ``path``, find ``transmission`` and map the given comma-separated values."""
+    try:
+        return _run(path, transmission, to, {"position": position, "velocity": velocity,
+                                             "effort": effort}, convention, xacro)
+    except InputError as exc:
+        return MapOutcome(2, str(exc))
+    except _Failure as exc:
+        return MapOutcome(2, f"{path}: {exc}")
+
+
+def _run(
+    path: str,
+    name: str,
+    to: str,
+    raw: dict[str, str | None],
+    convention: str,
+    xacro: XacroOptions | None,
+) -> MapOutcome:
+    if to not in ("actuator", "joint"):
+        raise _Failure(f"--to must be 'actuator' or 'joint', not {to!r}")
+    requested = {q: text for q, text in raw.items() if text is not None}
+    if not requested:
+        raise _Failure("nothing to map: give --position, --velocity or --effort")
+    t = _find(path, name, xacro)
+    try:
+        eff = effective(t)
+        tmap = from_effective(eff, convention)
+    except NotLoadable as exc:
+        raise _Failure(f"transmission '{t.name}' cannot be loaded: {exc}") from None
+    joints = _role_order(t.joints, ROLES_JOINT, tmap.joints)
+    actuators = _role_order(t.actuators, ROLES_ACTUATOR, tmap.actuators)
+    source, target = (joints, actuators) if to == "actuator" else (actuators, joints)
+    values = {}
+    for quantity in QUANTITIES:
+        if quantity in requested:
+            given = _parse(quantity, requested[quantity] or "", len(source), t.name)
+            values[quantity] = _map(tmap, to, quantity, given, source, target)
+    return MapOutcome(0, None, t.name, to, tuple(_names(tmap, to, source, True)),
+                      tuple(_names(tmap, to, target, False)), values, convention)
+
+
+def _find(path: str, name: str, xacro: XacroOptions | None) -> Transmission:
+    from txtool.reader import read_source
+
+    found = [f.transmission for f in read_source(load(path, xacro=xacro or XacroOptions()))]
+    for t in found:
+        if t.name == name:
+            return t
+    names = ", ".join(sorted({f"'{t.name}'" for t in found})) or "none"
+    raise _Failure(f"no transmission named '{name}' (transmissions: {names})")
+
+
+def _role_order(members: tuple[Member, ...], roles: tuple[str, ...], loaded: tuple[str, ...]
+                ) -> list[int]:
+    """For each role position, the index of that member in the maths' order ``loaded``."""
+    if len(loaded) == 1:
+        return [0]
+    by_role = {m.role: m.name for m in members if m.role in roles}
+    if len(by_role) == len(roles) and len({m.role for m in members}) == len(members):
+        ordered = [by_role[role] for role in roles]
+    else:
+        ordered = [m.name for m in members[: len(loaded)]]
+    return [loaded.index(n) for n in ordered]
+
+
+def _names(tmap: TransmissionMap, to: str, order: list[int], is_input: bool) -> list[str]:
+    joint_side = (to == "actuator") == is_input
+    names = tmap.joints if joint_side else tmap.actuators
+    return [names[i] for i in order]
+
+
+def _parse(quantity: str, text: str, count: int, name: str) -> list[float]:
+    parts = [p.strip() for p in text.split(",")]
+    values = []
+    for part in parts:
+        value = parse_strict(part)
+        if value is None:
+            raise _Failure(f"--{quantity}: {part!r} is not a number")
+        values.append(value)
+    if len(values) != count:
+        raise _Failure(f"--{quantity} needs {count} value(s) for transmission '{name}', "
+                       f"got {len(values)}")
+    return values
+
+
+def _map(tmap: TransmissionMap, to: str, quantity: str, given: list[float],
+         source: list[int], target: list[int]) -> list[float]:
+    x = [0.0] * len(given)
+    for k, index in enumerate(source):
+        x[index] = given[k]
+    if to == "actuator":
+        y = tmap.joint_to_actuator(quantity, x)
+    else:
+        y = tmap.actuator_to_joint(quantity, x)
+    return [float(y[index]) for index in target]
+
+
+def _show(value: float) -> str:
+    # Twelve significant digits hide the last-bit noise of the maths (2.9999999999999996).
+    return format_float(float(f"{value:.12g}"))
+
+
+def render_text(outcome: MapOutcome) -> str:
+    """A small table: one row per quantity, one column per output member (role order)."""
+    from rich.console import Console
+    from rich.table import Table
+
+    src, dst = ("joint", "actuator") if outcome.to == "actuator" else ("actuator", "joint")
+    table = Table(title=f"transmission '{outcome.transmission}': {src} -> {dst}")
+    table.add_column("quantity")
+    for name in outcome.outputs:
+        table.add_column(f"{dst} '{name}'", justify="right")
+    for quantity, values in outcome.values.items():
+        table.add_row(quantity, *(_show(v) for v in values))
+    if "effort" in outcome.values:
+        table.caption = f"effort convention: {outcome.convention}"
+    buffer = io.StringIO()
+    Console(file=buffer, width=100, color_system=None, highlight=False).print(table)
+    return buffer.getvalue()
