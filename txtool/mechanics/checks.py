@@ -140,7 +140,7 @@ def check_map(
     inv = invertibility(tmap)
     problems = []
     if inv.reason:
-        problems.append(inv.reason)
+        problems.append(f"{inv.reason} (condition number {inv.condition_number:.3g})")
     trip = round_trip(tmap, joints)
     for quantity, error in trip.errors.items():
         if error > trip.tolerance:
