@@ -1,0 +1,126 @@
+"""CLI behaviour: exit codes and messages together."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+
+from txtool import __version__
+from txtool.schema import schema_text
+
+
+def test_version(run):
+    assert run("--version") == (0, f"txtool, version {__version__}\n", "")
+
+
+def test_missing_file_is_one_line_and_exit_2(run):
+    code, out, err = run("show", "nope.urdf")
+    assert (code, out, err) == (2, "", "txtool: nope.urdf: no such file\n")
+
+
+def test_malformed_xml_names_the_line(run, tmp_path):
+    bad = tmp_path / "bad.urdf"
+    bad.write_text('<robot name="r">\n  <transmission name="t">\n</robot>\n')
+    code, out, err = run("convert", str(bad), "--to", "ros1")
+    assert code == 2
+    assert err.startswith(f"txtool: {bad}:3:") and err.count("\n") == 1
+
+
+def test_missing_xacro_argument_is_named(run, tmp_path):
+    robot = tmp_path / "r.urdf.xacro"
+    robot.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                     '<link name="$(arg prefix)base"/></robot>')
+    code, _, err = run("show", str(robot))
+    assert code == 2
+    assert "missing argument 'prefix'" in err and "--xacro-arg prefix:=VALUE" in err
+    code, out, _ = run("show", str(robot), "--xacro-arg", "prefix:=left_", "--format", "json")
+    assert code == 0 and json.loads(out) == {"transmissions": []}
+
+
+def test_missing_package_is_named_and_pkg_path_resolves_it(run, tmp_path, fixtures):
+    pkg = tmp_path / "demo_pkg" / "urdf"
+    pkg.mkdir(parents=True)
+    (pkg / "arm.urdf").write_text((fixtures / "demo_robot.urdf").read_text())
+    robot = tmp_path / "top.urdf.xacro"
+    robot.write_text('<robot name="top" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                     '<xacro:include filename="$(find demo_pkg)/urdf/arm.urdf"/></robot>')
+    code, _, err = run("show", str(robot))
+    assert code == 2 and "package 'demo_pkg' not found" in err
+    for option in (["--pkg-dir", str(tmp_path)], ["--pkg-path", f"demo_pkg:={tmp_path / 'demo_pkg'}"]):
+        code, out, err = run("show", str(robot), "--format", "json", *option)
+        assert code == 0, err
+        assert [t["name"] for t in json.loads(out)["transmissions"]] == [
+            "shoulder_trans", "wrist_trans"]
+
+
+def test_show_json_is_in_document_order(run, fixtures):
+    code, out, _ = run("show", str(fixtures / "four_bar.ros1.urdf"), "--format", "json")
+    data = json.loads(out)
+    assert code == 0
+    (t,) = data["transmissions"]
+    assert [j["name"] for j in t["joints"]] == ["bar_joint", "foo_joint"]
+    assert t["location"] == {"path": str(fixtures / "four_bar.ros1.urdf"), "line": 5,
+                             "column": 3}
+
+
+def test_stdin_with_a_name(run, fixtures):
+    text = (fixtures / "demo_robot.urdf").read_text()
+    code, out, _ = run("show", "-", "--stdin-filename", "arm.urdf", "--format", "json",
+                       input=text)
+    assert code == 0
+    assert json.loads(out)["transmissions"][0]["location"]["path"] == "arm.urdf"
+
+
+def test_output_file_is_written_and_input_is_not_overwritten(run, fixtures, tmp_path):
+    target = tmp_path / "out.urdf"
+    assert run("convert", str(fixtures / "demo_robot.urdf"), "--to", "ros2-p2",
+               "-o", str(target))[0] == 0
+    assert b"<ros2_control" in target.read_bytes()
+    copy = tmp_path / "copy.urdf"
+    copy.write_bytes((fixtures / "demo_robot.urdf").read_bytes())
+    code, _, err = run("convert", str(copy), "--to", "ros2-p2", "-o", str(copy))
+    assert code == 2 and "--write" in err
+    assert copy.read_bytes() == (fixtures / "demo_robot.urdf").read_bytes()
+    assert run("convert", str(copy), "--to", "ros2-p2", "-o", str(copy), "--write")[0] == 0
+    assert b"<ros2_control" in copy.read_bytes()
+
+
+def test_roundtrip_exit_codes(run, fixtures):
+    code, out, _ = run("roundtrip", str(fixtures / "demo_robot.urdf"), "--format", "json")
+    assert code == 0 and json.loads(out)["ok"] is True
+    code, out, _ = run("roundtrip", str(fixtures / "four_bar.ros1.urdf"), "--format", "json")
+    data = json.loads(out)
+    assert code == 1 and data["ok"] is False
+    assert all(row["reduction"] and row["roles"] for row in data["cycles"])
+    assert all(row["equivalent"].startswith("no") for row in data["cycles"])
+
+
+def test_roundtrip_against_a_conversion(run, fixtures):
+    code, out, _ = run("roundtrip", str(fixtures / "demo_robot.urdf"), "--against",
+                       str(fixtures / "demo_robot.ros2-p2.urdf"), "--format", "json")
+    assert code == 0 and json.loads(out)["equivalent"] is True
+
+
+def test_checked_in_schema_is_current(fixtures):
+    schema = fixtures.parent / "schemas" / "transmission.schema.json"
+    assert schema.read_text() == schema_text(), "run: txtool schema -o " + str(schema)
+
+
+def test_light_commands_do_not_import_heavy_modules(fixtures):
+    code = (
+        "import sys\n"
+        "from txtool.cli import cli\n"
+        "for args in (['show', F], ['convert', F, '--to', 'ros2-p2'], ['roundtrip', F]):\n"
+        "    try:\n"
+        "        cli.main(args, standalone_mode=False)\n"
+        "    except SystemExit:\n"
+        "        pass\n"
+        "heavy = [m for m in ('pinocchio', 'yourdfpy', 'trimesh') if m in sys.modules]\n"
+        "print('HEAVY', heavy)\n"
+    )
+    env = dict(os.environ, F=str(fixtures / "demo_robot.urdf"))
+    out = subprocess.run([sys.executable, "-c", "import os; F=os.environ['F']\n" + code],
+                         capture_output=True, text=True, env=env, check=True).stdout
+    assert "HEAVY []" in out

@@ -1,0 +1,103 @@
+"""Property: every conversion cycle is the identity on the canonical model, bit for bit."""
+
+from __future__ import annotations
+
+import math
+
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from lxml import etree
+
+from txtool import dialects
+from txtool.convert import convert_source
+from txtool.model import Member, Number, Transmission, standard_type
+from txtool.numbers import format_float
+from txtool.reader import read_source
+from txtool.roundtrip import cycles_from
+from txtool.views import view
+from txtool.xmlio import Source, parse_bytes
+
+reductions = st.one_of(
+    st.floats(min_value=1e-300, max_value=1e300),
+    st.floats(min_value=-1e300, max_value=-1e-300),
+    st.sampled_from([1.0, -1.0, 5e-324, 1e-12, 1e15, -50.0, 325.949]),
+)
+offsets = st.one_of(st.floats(allow_nan=False, allow_infinity=False, width=64),
+                    st.sampled_from([0.0, 0.5, -math.pi]))
+interfaces = st.sampled_from(["position", "velocity", "effort"])
+
+
+def number(value: float) -> Number:
+    return Number(value=value, text=format_float(value))
+
+
+@st.composite
+def transmissions(draw) -> Transmission:
+    kind = draw(st.sampled_from(["simple", "differential", "four_bar"]))
+    dialect = draw(st.sampled_from(["ros1", "ros2-p1", "ros2-p2"]))
+    n = 1 if kind == "simple" else 2
+    command = draw(interfaces)
+    joints, actuators = [], []
+    for i in range(n):
+        joint_reduction = None if kind == "simple" and dialect == "ros1" else number(draw(reductions))
+        if kind != "simple" and dialect == "ros1" and draw(st.booleans()):
+            joint_reduction = None  # optional in ROS 1 coupled transmissions
+        ros1_interface = f"hardware_interface/{command.capitalize()}JointInterface"
+        joints.append(Member(
+            name=f"joint_{i}", role=f"joint{i + 1}" if (n == 2 or dialect != "ros1") else None,
+            mechanical_reduction=joint_reduction,
+            offset=number(draw(offsets)) if draw(st.booleans()) else None,
+            interfaces=(ros1_interface,) if dialect == "ros1" else (command,),
+            state_interfaces=() if dialect == "ros1" else ("position", "velocity"),
+        ))
+        actuator_reduction = number(draw(reductions))
+        if kind == "simple" and dialect != "ros1":
+            actuator_reduction = None  # ros2_control ignores it
+        actuators.append(Member(
+            name=f"motor_{i}", role=f"actuator{i + 1}" if (n == 2 or dialect != "ros1") else None,
+            mechanical_reduction=actuator_reduction,
+        ))
+    return Transmission(name="t", type=standard_type(kind), kind=kind, joints=tuple(joints),
+                        actuators=tuple(actuators), dialect=dialect)
+
+
+def document(t: Transmission) -> bytes:
+    root = etree.Element("robot", name="r")
+    parent = root
+    if t.dialect != "ros1":
+        parent = etree.SubElement(root, "ros2_control", name="hw", type="system")
+        for joint in t.joints:
+            declared = etree.SubElement(parent, "joint", name=joint.name)
+            for name in joint.interfaces:
+                etree.SubElement(declared, "command_interface", name=name)
+            for name in joint.state_interfaces:
+                etree.SubElement(declared, "state_interface", name=name)
+    parent.append(dialects.build(t, t.dialect))
+    return etree.tostring(root)
+
+
+def read_one(data: bytes) -> Transmission:
+    source = Source("t.urdf", data, parse_bytes(data, "t.urdf"))
+    (found,) = [f for f in read_source(source)]
+    return found.transmission
+
+
+@settings(max_examples=150, deadline=None)
+@given(transmissions())
+def test_every_cycle_is_the_identity(t):
+    data = document(t)
+    original = read_one(data)
+    for cycle in cycles_from(original.dialect):
+        current = data
+        for step in cycle[1:]:
+            current = convert_source(Source("t.urdf", current, parse_bytes(current, "t")),
+                                     step).data
+        back = read_one(current)
+        assert back.dialect == original.dialect
+        assert repr(view(back)) == repr(view(original)), cycle
+        for before, after in zip(original.joints + original.actuators,
+                                 back.joints + back.actuators, strict=True):
+            for field in ("mechanical_reduction", "offset"):
+                a, b = getattr(before, field), getattr(after, field)
+                if a is not None and b is not None:
+                    assert a.value.hex() == b.value.hex()
