@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import sys
 
 import click
 
@@ -56,7 +57,9 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_
     if output:
         write_atomic(output, data)
     else:
-        click.get_binary_stream("stdout").write(data)
+        sys.stdout.flush()
+        sys.stdout.buffer.write(data)
+        sys.stdout.buffer.flush()
     return 0
 
 
