@@ -1,0 +1,175 @@
+"""The closed loop: computed-torque control through two sets of transmissions.
+
+Everything linear is folded into a few matrices that act on one history row per step::
+
+    row = [x | v | 1 | a | ff | (q_ref v_ref) | (friction ff) | tau_a demanded | tau_a applied]
+
+``H @ row`` gives the controller's joint estimates (decoded with the candidate from the actuator
+readings the plant produces with the robot's maps), the acceleration command
+``qdd_ref + kp e + kd e_dot`` (``ff = qdd_ref + kp q_ref + kd v_ref`` is precomputed) and, when
+needed, an actuator-effort bias (damping and friction compensation, off-diagonal rotor inertia).
+``PD @ row`` is the plant's joint effort from the applied actuator efforts minus joint damping,
+and ``Phi @ row`` is the semi-implicit Euler step. So a step costs one ``rnea``, one ``aba``, four
+small matrix products, a clip and a few views, with no Python loop over transmissions.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+import pinocchio as pin
+
+from txtool.simulate.model import RobotModel
+
+FRICTION_SPEED = 0.01  # rad/s (m/s) below which Coulomb friction is linear in speed
+CHUNK = 500
+
+
+@dataclass
+class Controller:
+    """Gains and what the controller knows (per DoF) besides the candidate's maps."""
+
+    kp: np.ndarray
+    kd: np.ndarray
+    ki: np.ndarray
+    i_limit: np.ndarray  # bound of |integral(e)| (i_clamp / ki), inf when unbounded
+    damping: np.ndarray  # compensated viscous damping
+    friction: np.ndarray  # compensated Coulomb friction, on the sign of the reference velocity
+
+
+@dataclass
+class Plan:
+    robot: RobotModel
+    dt: float
+    steps: int
+    rows: np.ndarray  # (steps + 1, W)
+    slots: dict[str, slice]
+    H: np.ndarray
+    C: np.ndarray
+    PD: np.ndarray
+    Phi: np.ndarray
+    limit: np.ndarray
+    plant: tuple[pin.Model, pin.Data]
+    ctrl: tuple[pin.Model, pin.Data]
+    plant_block: np.ndarray | None  # off-diagonal rotor inertia (or mimic): crba + solve
+    ctrl_block: np.ndarray | None
+    plant_friction: np.ndarray | None
+    bias: bool
+    q_ref: np.ndarray
+    ki: np.ndarray | None = None
+    i_limit: np.ndarray | None = None
+    diverged_at: int | None = None
+    done: int = 0
+    extras: dict[str, object] = field(default_factory=dict)
+
+    def column(self, name: str) -> np.ndarray:
+        return self.rows[:, self.slots[name]]
+
+
+def layout(nv: int, na: int, *, unobserved: bool, friction_ff: bool) -> dict[str, slice]:
+    sizes = [("x", nv), ("v", nv), ("one", 1), ("a", nv), ("ff", nv)]
+    if unobserved:
+        sizes += [("qref", nv), ("vref", nv)]
+    if friction_ff:
+        sizes.append(("fric", nv))
+    sizes += [("ta", na), ("sat", na)]
+    slots, start = {}, 0
+    for name, size in sizes:
+        slots[name] = slice(start, start + size)
+        start += size
+    return slots
+
+
+def make_model(robot: RobotModel, inertia: np.ndarray) -> tuple[pin.Model, np.ndarray | None]:
+    """A model copy with the diagonal of ``inertia`` as armature; the rest as a block (or None)."""
+    model = pin.Model(robot.model)
+    model.armature = np.diag(inertia).copy()
+    off = inertia - np.diag(np.diag(inertia))
+    return model, (off if np.any(off) else None)
+
+
+def run(plan: Plan, progress: Callable[[int], None] | None = None) -> Plan:
+    """Advance ``plan`` to its last step (or to divergence); ``progress(steps_done)``."""
+    with np.errstate(all="ignore"):
+        while plan.done < plan.steps:
+            stop = min(plan.done + CHUNK, plan.steps)
+            _steps(plan, plan.done, stop)
+            if not np.isfinite(plan.rows[plan.done + 1 : stop + 1, plan.slots["x"]]).all():
+                bad = np.nonzero(~np.isfinite(plan.rows[plan.done : stop + 1]).all(axis=1))[0]
+                plan.diverged_at = plan.done + int(bad[0])
+                plan.done = stop
+                break
+            plan.done = stop
+            if progress is not None:
+                progress(stop)
+    return plan
+
+
+def _steps(plan: Plan, start: int, stop: int) -> None:
+    robot = plan.robot
+    nv, two = robot.nv, 2 * robot.nv
+    rows, s = plan.rows, plan.slots
+    H, C, PD, Phi = plan.H, plan.C, plan.PD, plan.Phi
+    limit, neg_limit = plan.limit, -plan.limit
+    cm, cdata = plan.ctrl
+    pm, pdata = plan.plant
+    rnea, aba, dot, minimum, maximum = pin.rnea, pin.aba, np.dot, np.minimum, np.maximum
+    out = np.empty(H.shape[0])
+    xh, vh, acc = out[:nv], out[nv:two], out[two : 3 * nv]
+    bias = out[3 * nv :] if plan.bias else None
+    tj = np.empty(nv)
+    ta_s, sat_s, a_s = s["ta"], s["sat"], s["a"]
+    config = _configurer(robot) if robot.has_continuous else None
+    qh = np.zeros(robot.model.nq) if config else xh
+    qp = np.zeros(robot.model.nq) if config else None
+    friction, block = plan.plant_friction, plan.plant_block
+    ki, i_limit, z = plan.ki, plan.i_limit, plan.extras.setdefault("z", np.zeros(nv))
+    ctrl_block, dt, q_ref = plan.ctrl_block, plan.dt, plan.q_ref
+    for k in range(start, stop):
+        row = rows[k]
+        dot(H, row, out=out)
+        if ki is not None:
+            z += dt * (q_ref[k] - xh)
+            np.clip(z, -i_limit, i_limit, out=z)  # type: ignore[arg-type]
+            acc += ki * z
+        if config is not None:
+            config(xh, qh)
+        tau = rnea(cm, cdata, qh, vh, acc)
+        if ki is not None and ctrl_block is not None:
+            tau += ctrl_block @ (ki * z)
+        ta = row[ta_s]
+        dot(C, tau, out=ta)
+        if bias is not None:
+            ta += bias
+        sat = row[sat_s]
+        minimum(ta, limit, out=sat)
+        maximum(sat, neg_limit, out=sat)
+        dot(PD, row, out=tj)
+        x, v = row[:nv], row[nv:two]
+        if friction is not None:
+            tj -= friction * np.clip(v / FRICTION_SPEED, -1.0, 1.0)
+        if config is not None:
+            config(x, qp)
+            x = qp
+        if block is None:
+            row[a_s] = aba(pm, pdata, x, v, tj)
+        else:
+            mass = pin.crba(pm, pdata, x)
+            mass = np.triu(mass) + np.triu(mass, 1).T + block
+            row[a_s] = np.linalg.solve(mass, tj - pin.nonLinearEffects(pm, pdata, x, v))
+        dot(Phi, row, out=rows[k + 1, :two])
+
+
+def _configurer(robot: RobotModel) -> Callable[[np.ndarray, np.ndarray], None]:
+    plain_q, plain_v, cos_q, cont_v = robot.config_indices()
+    sin_q = cos_q + 1
+
+    def config(x: np.ndarray, q: np.ndarray) -> None:
+        q[plain_q] = x[plain_v]
+        angles = x[cont_v]
+        q[cos_q] = np.cos(angles)
+        q[sin_q] = np.sin(angles)
+
+    return config

@@ -1,0 +1,195 @@
+"""Reference motions sampled at every control step: positions, velocities, accelerations.
+
+The default motion takes every actuated joint from 25% to 75% of its position range and back
+with minimum-jerk profiles (analytic derivatives). A CSV trajectory is interpolated linearly
+(piecewise-constant velocity, zero acceleration) or with a cubic spline whose end velocities are
+zero, so the reference starts at rest like the plant.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from txtool.numbers import parse_strict
+from txtool.xmlio import InputError
+
+CONTINUOUS_RANGE = (-1.0, 1.0)
+
+
+@dataclass(frozen=True)
+class Reference:
+    time: np.ndarray  # (steps + 1,)
+    q: np.ndarray  # (steps + 1, nv)
+    qd: np.ndarray
+    qdd: np.ndarray
+    source: str
+
+
+def step_times(duration: float, dt: float) -> np.ndarray:
+    steps = max(1, int(round(duration / dt)))
+    return np.arange(steps + 1) * dt
+
+
+def minimum_jerk(t: np.ndarray, t0: float, t1: float, a: float, b: float
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Position, velocity, acceleration of a rest-to-rest move a -> b over [t0, t1]."""
+    span = t1 - t0
+    s = np.clip((t - t0) / span, 0.0, 1.0)
+    inside = (t > t0) & (t < t1)
+    d = b - a
+    q = a + d * (10 * s**3 - 15 * s**4 + 6 * s**5)
+    qd = np.where(inside, d * (30 * s**2 - 60 * s**3 + 30 * s**4) / span, 0.0)
+    qdd = np.where(inside, d * (60 * s - 180 * s**2 + 120 * s**3) / span**2, 0.0)
+    return q, qd, qdd
+
+
+def default_motion(ranges: list[tuple[float, float]], duration: float, dt: float) -> Reference:
+    """25% -> 75% over the first half of ``duration``, back to 25% over the second."""
+    t = step_times(duration, dt)
+    half = t[-1] / 2
+    n = len(ranges)
+    q, qd, qdd = (np.zeros((len(t), n)) for _ in range(3))
+    for i, (lo, hi) in enumerate(ranges):
+        low, high = lo + 0.25 * (hi - lo), lo + 0.75 * (hi - lo)
+        up = minimum_jerk(t, 0.0, half, low, high)
+        down = minimum_jerk(t, half, t[-1], high, low)
+        second = t >= half
+        for target, a, b in zip((q, qd, qdd), up, down, strict=True):
+            target[:, i] = np.where(second, b, a)
+    return Reference(t, q, qd, qdd, "minimum-jerk 25% -> 75% -> 25% of each range")
+
+
+@dataclass(frozen=True)
+class Table:
+    """A parsed CSV trajectory: sample times and positions of the named joints."""
+
+    path: str
+    time: np.ndarray
+    joints: tuple[str, ...]
+    positions: np.ndarray  # (rows, len(joints))
+
+    @property
+    def end(self) -> float:
+        return float(self.time[-1])
+
+
+def read_csv(path: str, known: set[str]) -> Table:
+    try:
+        with open(path, newline="", encoding="utf-8") as handle:
+            rows = list(csv.reader(handle))
+    except FileNotFoundError:
+        raise InputError(f"{path}: no such file") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"{path}: cannot read: {exc}") from None
+    if not rows:
+        raise InputError(f"{path}:1: empty trajectory (expected a header time,<joint>,...)")
+    header = [cell.strip() for cell in rows[0]]
+    if not header or header[0] != "time" or len(header) < 2:
+        raise InputError(f"{path}:1: header must be time,<joint>,... (got {','.join(header)!r})")
+    for name in header[1:]:
+        if name not in known:
+            raise InputError(f"{path}:1: '{name}' is not a moving joint of the robot")
+    if len(set(header)) != len(header):
+        raise InputError(f"{path}:1: a column is repeated")
+    data = _numbers(path, rows[1:], len(header))
+    if not data:
+        raise InputError(f"{path}:2: no samples after the header")
+    table = np.array(data)
+    times = table[:, 0]
+    if times[0] < 0:
+        raise InputError(f"{path}:2: time must not be negative")
+    bad = np.nonzero(np.diff(times) <= 0)[0]
+    if bad.size:
+        raise InputError(f"{path}:{bad[0] + 3}: times must increase")
+    return Table(path, times, tuple(header[1:]), table[:, 1:])
+
+
+def _numbers(path: str, rows: list[list[str]], width: int) -> list[list[float]]:
+    data = []
+    for number, row in enumerate(rows, 2):
+        if not row or all(not cell.strip() for cell in row):
+            continue
+        if len(row) != width:
+            raise InputError(f"{path}:{number}: expected {width} values, got {len(row)}")
+        values = [parse_strict(cell) for cell in row]
+        for cell, value in zip(row, values, strict=True):
+            if value is None:
+                raise InputError(f"{path}:{number}: '{cell.strip()}' is not a finite number")
+        data.append(values)
+    return data
+
+
+def from_table(table: Table, joints: tuple[str, ...], hold: np.ndarray, t: np.ndarray,
+               interpolation: str) -> Reference:
+    """Sample ``table`` at ``t``; joints it does not name hold ``hold``."""
+    n = len(joints)
+    q = np.tile(hold, (len(t), 1))
+    qd = np.zeros((len(t), n))
+    qdd = np.zeros((len(t), n))
+    for column, name in enumerate(table.joints):
+        i = joints.index(name)
+        values = table.positions[:, column]
+        if len(table.time) == 1:
+            q[:, i] = values[0]
+        elif interpolation == "linear":
+            q[:, i], qd[:, i] = _linear(table.time, values, t)
+        else:
+            q[:, i], qd[:, i], qdd[:, i] = _cubic(table.time, values, t)
+    return Reference(t, q, qd, qdd, f"{table.path} ({interpolation})")
+
+
+def _linear(x: np.ndarray, y: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    slope = np.diff(y) / np.diff(x)
+    k = np.clip(np.searchsorted(x, t, side="right") - 1, 0, len(x) - 2)
+    inside = (t >= x[0]) & (t < x[-1])
+    return np.interp(t, x, y), np.where(inside, slope[k], 0.0)
+
+
+def _cubic(x: np.ndarray, y: np.ndarray, t: np.ndarray
+           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Clamped cubic spline (zero end slopes), held constant outside [x0, xn]."""
+    m = _clamped_second_derivatives(x, y)
+    h = np.diff(x)
+    k = np.clip(np.searchsorted(x, t, side="right") - 1, 0, len(x) - 2)
+    tc = np.clip(t, x[0], x[-1])
+    a, b = x[k + 1] - tc, tc - x[k]
+    hk = h[k]
+    q = (m[k] * a**3 + m[k + 1] * b**3) / (6 * hk) + (y[k] / hk - m[k] * hk / 6) * a \
+        + (y[k + 1] / hk - m[k + 1] * hk / 6) * b
+    qd = (-m[k] * a**2 + m[k + 1] * b**2) / (2 * hk) + (y[k + 1] - y[k]) / hk \
+        - (m[k + 1] - m[k]) * hk / 6
+    qdd = (m[k] * a + m[k + 1] * b) / hk
+    outside = (t < x[0]) | (t > x[-1])
+    return q, np.where(outside, 0.0, qd), np.where(outside, 0.0, qdd)
+
+
+def _clamped_second_derivatives(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Second derivatives at the knots (tridiagonal system, Thomas algorithm)."""
+    n = len(x)
+    h = np.diff(x)
+    lower, diag, upper, rhs = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
+    slope = np.diff(y) / h
+    diag[0], upper[0], rhs[0] = h[0] / 3, h[0] / 6, slope[0]
+    diag[-1], lower[-1], rhs[-1] = h[-1] / 3, h[-1] / 6, -slope[-1]
+    lower[1:-1], upper[1:-1] = h[:-1] / 6, h[1:] / 6
+    diag[1:-1] = (h[:-1] + h[1:]) / 3
+    rhs[1:-1] = slope[1:] - slope[:-1]
+    for i in range(1, n):
+        w = lower[i] / diag[i - 1]
+        diag[i] -= w * upper[i - 1]
+        rhs[i] -= w * rhs[i - 1]
+    m = np.zeros(n)
+    m[-1] = rhs[-1] / diag[-1]
+    for i in range(n - 2, -1, -1):
+        m[i] = (rhs[i] - upper[i] * m[i + 1]) / diag[i]
+    return m
+
+
+def joint_range(kind: str, lower: float, upper: float) -> tuple[float, float]:
+    if kind == "continuous" or not (math.isfinite(lower) and math.isfinite(upper)):
+        return CONTINUOUS_RANGE
+    return lower, upper

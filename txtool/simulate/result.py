@@ -1,0 +1,171 @@
+"""What a run produced (time series) and what it means (metrics, verdict, reasons)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+LIMIT_SLACK = 1e-9  # position limits: ignore round-off at a limit
+
+
+@dataclass
+class Series:
+    """Time series of one run; efforts are defined on [0, steps), states on [0, steps]."""
+
+    time: np.ndarray
+    joints: tuple[str, ...]
+    units: tuple[str, ...]
+    actuators: tuple[str, ...]
+    transmission_of: tuple[str, ...]
+    q_ref: np.ndarray
+    q: np.ndarray
+    effort_demand: np.ndarray
+    effort: np.ndarray
+    velocity: np.ndarray  # actuator speeds
+    effort_limit: np.ndarray
+    velocity_limit: np.ndarray
+    lower: np.ndarray
+    upper: np.ndarray
+    joint_actuators: dict[str, list[int]] = field(default_factory=dict)
+
+
+@dataclass
+class JointStats:
+    max_error: float
+    rms_error: float
+    max_error_time: float
+    limit_margin: float | None  # smallest distance to a position limit (negative: outside)
+    units: str
+
+
+@dataclass
+class ActuatorStats:
+    peak_effort: float
+    effort_limit: float
+    rms_effort: float
+    peak_velocity: float
+    velocity_limit: float
+    saturated_fraction: float
+    first_violation: float | None
+    transmission: str
+
+    @property
+    def effort_percent(self) -> float:
+        return _percent(self.peak_effort, self.effort_limit)
+
+    @property
+    def velocity_percent(self) -> float:
+        return _percent(self.peak_velocity, self.velocity_limit)
+
+
+def _percent(value: float, limit: float) -> float:
+    if math.isinf(limit):
+        return 0.0
+    return math.inf if limit == 0 else 100.0 * value / limit
+
+
+@dataclass
+class RunResult:
+    robot: str
+    config: str
+    dt: float
+    steps: int
+    duration: float
+    reference: str
+    joints: dict[str, JointStats]
+    actuators: dict[str, ActuatorStats]
+    reasons: list[str]
+    notes: list[str]
+    series: Series | None = None
+    timings: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def passed(self) -> bool:
+        return not self.reasons
+
+    @property
+    def verdict(self) -> str:
+        return "pass" if self.passed else "fail"
+
+
+def joint_stats(series: Series) -> dict[str, JointStats]:
+    error = series.q - series.q_ref
+    stats = {}
+    for v, name in enumerate(series.joints):
+        column = np.abs(error[:, v])
+        worst = int(np.argmax(column))
+        lower, upper = series.lower[v], series.upper[v]
+        margin = None
+        if math.isfinite(lower) and math.isfinite(upper):
+            margin = float(np.min(np.minimum(series.q[:, v] - lower, upper - series.q[:, v])))
+        stats[name] = JointStats(
+            max_error=float(column[worst]),
+            rms_error=float(np.sqrt(np.mean(column**2))),
+            max_error_time=float(series.time[worst]),
+            limit_margin=margin,
+            units=series.units[v],
+        )
+    return stats
+
+
+def actuator_stats(series: Series) -> dict[str, ActuatorStats]:
+    demand = np.abs(series.effort_demand)
+    speed = np.abs(series.velocity)
+    over_effort = demand > series.effort_limit
+    over_speed = speed > series.velocity_limit
+    stats = {}
+    for i, name in enumerate(series.actuators):
+        first = _first(series.time, over_effort[:, i], over_speed[:, i])
+        stats[name] = ActuatorStats(
+            peak_effort=float(demand[:, i].max(initial=0.0)),
+            effort_limit=float(series.effort_limit[i]),
+            rms_effort=float(np.sqrt(np.mean(demand[:, i] ** 2))) if len(demand) else 0.0,
+            peak_velocity=float(speed[:, i].max(initial=0.0)),
+            velocity_limit=float(series.velocity_limit[i]),
+            saturated_fraction=float(np.mean(over_effort[:, i])) if len(demand) else 0.0,
+            first_violation=first,
+            transmission=series.transmission_of[i],
+        )
+    return stats
+
+
+def _first(time: np.ndarray, effort: np.ndarray, speed: np.ndarray) -> float | None:
+    hits = [int(np.argmax(flags)) for flags in (effort, speed) if flags.any()]
+    return float(time[min(hits)]) if hits else None
+
+
+def verdict_reasons(series: Series, joints: dict[str, JointStats],
+                    actuators: dict[str, ActuatorStats], tolerance: float,
+                    allow_saturation: bool) -> list[str]:
+    """Why the run fails (empty when it passes), worst offenders first within each check."""
+    reasons = []
+    for name, j in sorted(joints.items(), key=lambda kv: -kv[1].max_error):
+        if not j.max_error <= tolerance:
+            reasons.append(f"joint '{name}': tracking error {j.max_error:.4g} {j.units} exceeds "
+                           f"the tolerance {tolerance:g} {j.units} (at t={j.max_error_time:.3f} s)")
+    for v, name in enumerate(series.joints):
+        j = joints[name]
+        if j.limit_margin is not None and j.limit_margin < -LIMIT_SLACK:
+            t = _first_outside(series, v)
+            reasons.append(f"joint '{name}': leaves its position limits by "
+                           f"{-j.limit_margin:.4g} {j.units} (first at t={t:.3f} s)")
+    if allow_saturation:
+        return reasons
+    for name, a in actuators.items():
+        first = f" (first at t={a.first_violation:.3f} s)" if a.first_violation is not None else ""
+        if a.peak_effort > a.effort_limit:
+            reasons.append(f"actuator '{name}': effort {a.peak_effort:.4g} exceeds its limit "
+                           f"{a.effort_limit:.4g}, saturated {100 * a.saturated_fraction:.1f}% "
+                           f"of the time{first}")
+        if a.peak_velocity > a.velocity_limit:
+            reasons.append(f"actuator '{name}': speed {a.peak_velocity:.4g} exceeds its limit "
+                           f"{a.velocity_limit:.4g}{first}")
+    return reasons
+
+
+def _first_outside(series: Series, v: int) -> float:
+    q = series.q[:, v]
+    outside = (q < series.lower[v] - LIMIT_SLACK) | (q > series.upper[v] + LIMIT_SLACK)
+    return float(series.time[int(np.argmax(outside))])

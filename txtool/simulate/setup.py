@@ -1,0 +1,179 @@
+"""From robot, drives, parameters and reference to the matrices of :class:`loop.Plan`."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from txtool.simulate.drive import Drive
+from txtool.simulate.loop import Controller, Plan, layout, make_model
+from txtool.simulate.model import RobotModel
+from txtool.simulate.params import Params
+from txtool.simulate.reference import Reference
+
+
+@dataclass(frozen=True)
+class Binding:
+    """How the candidate's actuators meet the robot's, by name."""
+
+    S: np.ndarray  # (na_candidate, na_robot): 1 where the names agree
+    unbound: tuple[str, ...]  # candidate actuators the robot does not have
+    uncommanded: tuple[str, ...]  # robot actuators the candidate never commands
+    unobserved: tuple[str, ...]  # joints whose estimate needs an unbound actuator
+
+
+def bind(plant: Drive, ctrl: Drive) -> Binding:
+    index = {name: i for i, name in enumerate(plant.actuators)}
+    S = np.zeros((ctrl.na, plant.na))
+    for c, name in enumerate(ctrl.actuators):
+        if name in index:
+            S[c, index[name]] = 1.0
+    unbound = tuple(a for a in ctrl.actuators if a not in index)
+    uncommanded = tuple(a for a in plant.actuators if a not in ctrl.actuators)
+    missing = [ctrl.actuators.index(a) for a in unbound]
+    unobserved = tuple(
+        j for v, j in enumerate(plant.joints)
+        if missing and np.any(ctrl.pos_a2j[v, missing] != 0)
+    )
+    return Binding(S, unbound, uncommanded, unobserved)
+
+
+def rotor_inertias(names: tuple[str, ...], params: Params, *drives: Drive) -> np.ndarray:
+    """Per actuator: the params file, else a drake:rotor_inertia tag (robot first), else 0."""
+    values = []
+    for name in names:
+        given = params.actuators.get(name)
+        value = given.rotor_inertia if given is not None else None
+        for drive in drives:
+            if value is None and "rotor_inertia" in drive.drake.get(name, {}):
+                value = drive.drake[name]["rotor_inertia"][0]
+        values.append(value or 0.0)
+    return np.array(values, dtype=float)
+
+
+def actuator_limits(robot: RobotModel, plant: Drive, params: Params
+                    ) -> tuple[np.ndarray, np.ndarray]:
+    """Effort and speed limits per robot actuator: given, else implied by the joint limits.
+
+    The implied effort limit is the largest actuator effort that joint efforts within the URDF
+    limits need (``|E| @ effort`` with E = the joint-to-actuator effort map; ``effort / |n|`` for
+    a simple transmission); the speed limit is ``|A| @ velocity`` (``velocity * |n|``).
+    """
+    effort = _box(plant.eff_j2a, robot.effort)
+    speed = _box(plant.vel_j2a, robot.velocity)
+    for i, name in enumerate(plant.actuators):
+        given = params.actuators.get(name)
+        if given is not None and given.effort_limit is not None:
+            effort[i] = given.effort_limit
+        if given is not None and given.velocity_limit is not None:
+            speed[i] = given.velocity_limit
+    return effort, speed
+
+
+def _box(matrix: np.ndarray, bounds: np.ndarray) -> np.ndarray:
+    result = np.zeros(matrix.shape[0])
+    for i, row in enumerate(np.abs(matrix)):
+        used = row != 0
+        result[i] = math.inf if np.isinf(bounds[used]).any() else float(row[used] @ bounds[used])
+    return result
+
+
+def controller(robot: RobotModel, params: Params, bandwidth: float) -> Controller:
+    """Gains from the params file, else critically damped at ``bandwidth`` (kp=w^2, kd=2w)."""
+    n = robot.nv
+    kp, kd = np.full(n, bandwidth**2), np.full(n, 2 * bandwidth)
+    ki, limit = np.zeros(n), np.full(n, math.inf)
+    for v, joint in enumerate(robot.joints):
+        gains = params.joints.get(joint)
+        if gains is None:
+            continue
+        kp[v] = gains.kp if gains.kp is not None else kp[v]
+        kd[v] = gains.kd if gains.kd is not None else kd[v]
+        ki[v] = gains.ki or 0.0
+        if gains.i_clamp is not None and ki[v] > 0:
+            limit[v] = gains.i_clamp / ki[v]
+    return Controller(kp, kd, ki, limit, robot.damping.copy(), robot.friction.copy())
+
+
+def build_plan(robot: RobotModel, plant: Drive, ctrl: Drive, binding: Binding,
+               rotor: tuple[np.ndarray, np.ndarray], limit: np.ndarray, gains: Controller,
+               ref: Reference, dt: float) -> Plan:
+    """``rotor`` = (per robot actuator, per candidate actuator) rotor inertias."""
+    nv, na = robot.nv, plant.na
+    unobserved = [robot.joints.index(j) for j in binding.unobserved]
+    friction_ff = bool(np.any(gains.friction))
+    s = layout(nv, na, unobserved=bool(unobserved), friction_ff=friction_ff)
+    width = s["sat"].stop
+    steps = len(ref.time) - 1
+    rows = _rows(s, width, ref, gains)
+    E = _estimates(s, width, nv, plant, ctrl, binding.S, unobserved)
+    F = np.zeros((nv, width))
+    F[:, s["ff"]] = np.eye(nv)
+    F -= gains.kp[:, None] * E[:nv] + gains.kd[:, None] * E[nv:]
+    C = binding.S.T @ ctrl.eff_j2a
+    ctrl_model, ctrl_block = make_model(robot, ctrl.reflected_inertia(rotor[1]))
+    plant_model, plant_block = make_model(robot, plant.reflected_inertia(rotor[0]))
+    if plant_block is None and robot.mimic:
+        plant_block = np.zeros((nv, nv))  # aba does not take mimic joints: crba + solve
+    bias_rows = np.diag(gains.damping) @ E[nv:]
+    if ctrl_block is not None:
+        bias_rows = bias_rows + ctrl_block @ F
+    if friction_ff:
+        bias_rows[:, s["fric"]] += np.eye(nv)
+    bias = bool(np.any(bias_rows))
+    H = np.vstack([E, F, C @ bias_rows] if bias else [E, F])
+    PD = np.zeros((nv, width))
+    PD[:, s["sat"]] = plant.eff_a2j
+    PD[:, s["v"]] = -np.diag(robot.damping)
+    friction = robot.friction if np.any(robot.friction) else None
+    use_ki = bool(np.any(gains.ki))
+    return Plan(
+        robot=robot, dt=dt, steps=steps, rows=rows, slots=s, H=H, C=C, PD=PD,
+        Phi=_euler(s, width, nv, dt), limit=limit,
+        plant=(plant_model, plant_model.createData()), ctrl=(ctrl_model, ctrl_model.createData()),
+        plant_block=plant_block, ctrl_block=ctrl_block, plant_friction=friction, bias=bias,
+        q_ref=ref.q, ki=gains.ki if use_ki else None, i_limit=gains.i_limit if use_ki else None,
+    )
+
+
+def _rows(s: dict[str, slice], width: int, ref: Reference, gains: Controller) -> np.ndarray:
+    rows = np.zeros((len(ref.time), width))
+    rows[0, s["x"]] = ref.q[0]
+    rows[0, s["v"]] = ref.qd[0]
+    rows[:, s["one"]] = 1.0
+    rows[:, s["ff"]] = ref.qdd + gains.kp * ref.q + gains.kd * ref.qd
+    if "qref" in s:
+        rows[:, s["qref"]] = ref.q
+        rows[:, s["vref"]] = ref.qd
+    if "fric" in s:
+        rows[:, s["fric"]] = gains.friction * np.sign(ref.qd)
+    return rows
+
+
+def _estimates(s: dict[str, slice], width: int, nv: int, plant: Drive, ctrl: Drive,
+               S: np.ndarray, unobserved: list[int]) -> np.ndarray:
+    """Rows mapping a history row to the controller's [position; velocity] estimates."""
+    E = np.zeros((2 * nv, width))
+    E[:nv, s["x"]] = ctrl.pos_a2j @ S @ plant.pos_j2a
+    E[:nv, s["one"]] = (ctrl.pos_a2j @ S @ plant.pos_j2a_c + ctrl.pos_a2j_c)[:, None]
+    E[nv:, s["v"]] = ctrl.vel_a2j @ S @ plant.vel_j2a
+    for v in unobserved:
+        E[v, :] = 0.0
+        E[nv + v, :] = 0.0
+        E[v, s["qref"].start + v] = 1.0
+        E[nv + v, s["vref"].start + v] = 1.0
+    return E
+
+
+def _euler(s: dict[str, slice], width: int, nv: int, dt: float) -> np.ndarray:
+    """Semi-implicit Euler: v' = v + dt a, x' = x + dt v' (unwrapped angles for continuous)."""
+    eye = np.eye(nv)
+    phi = np.zeros((2 * nv, width))
+    phi[:nv, s["x"]] = eye
+    phi[:nv, s["v"]] = dt * eye
+    phi[:nv, s["a"]] = dt * dt * eye
+    phi[nv:, s["v"]] = eye
+    phi[nv:, s["a"]] = dt * eye
+    return phi
