@@ -1,0 +1,89 @@
+"""``txtool simulate``: argument parsing only; the work is in :mod:`txtool.simulate.app`."""
+
+from __future__ import annotations
+
+import click
+
+from txtool.xmlio import InputError, XacroOptions
+
+
+def _pairs(values: tuple[str, ...], option: str) -> tuple[tuple[str, str], ...]:
+    pairs = []
+    for value in values:
+        name, sep, rest = value.partition(":=")
+        if not sep or not name:
+            raise click.BadParameter(f"expected NAME:=VALUE, got {value!r}", param_hint=option)
+        pairs.append((name, rest))
+    return tuple(pairs)
+
+
+@click.command("simulate")
+@click.argument("robot", metavar="ROBOT")
+@click.option("--config", "configs", multiple=True, metavar="CANDIDATE",
+              help="Config whose transmissions the controller uses (repeat to compare several; "
+                   "default: ROBOT's own).")
+@click.option("--params", type=click.Path(dir_okay=False), metavar="FILE.toml",
+              help="Actuator and gain parameters (default: [tool.txtool.simulate] in the "
+                   "nearest pyproject.toml above ROBOT).")
+@click.option("--bandwidth", type=float, metavar="RAD/S",
+              help="Closed-loop bandwidth w for default gains kp=w^2, kd=2w  [default: 20]")
+@click.option("--duration", type=float, metavar="S", help="Run length  [default: 5]")
+@click.option("--dt", type=float, metavar="S", help="Control and integration step  "
+              "[default: 0.001]")
+@click.option("--tolerance", type=float, metavar="RAD|M",
+              help="Largest tracking error that passes  [default: 0.01]")
+@click.option("--trajectory", type=click.Path(dir_okay=False), metavar="FILE.csv",
+              help="Reference positions: header time,<joint>,... (default: minimum-jerk moves).")
+@click.option("--interpolation", type=click.Choice(["cubic", "linear"]), default="cubic",
+              show_default=True, help="How --trajectory samples are interpolated.")
+@click.option("--allow-saturation", is_flag=True,
+              help="Do not fail on actuator effort or speed limits (still reported).")
+@click.option("--loader", type=click.Choice(["auto", "ros1", "ros2"]), default="auto",
+              show_default=True, help="Which transmissions to use when a file has both kinds.")
+@click.option("--effort-map", "convention", type=click.Choice(["ros2", "loader"]),
+              default="ros2", show_default=True,
+              help="Controller effort maps: ros2 (power-consistent) or each config's own "
+                   "loader (keeps the ROS 1 four-bar effort bug).")
+@click.option("--format", "output", type=click.Choice(["text", "json"]), default="text",
+              show_default=True)
+@click.option("--csv", "csv_path", type=click.Path(dir_okay=False), metavar="PATH",
+              help="Write the time series (PATH.N.csv per config when several).")
+@click.option("--plot", "plot_path", type=click.Path(dir_okay=False), metavar="PATH.png|.svg",
+              help="Plot tracking error and actuator effort (needs the 'plot' extra).")
+@click.option("--jobs", "-j", type=click.IntRange(min=1), default=1, show_default=True,
+              help="Parallel processes for several configs.")
+@click.option("--xacro-arg", "xacro_args", multiple=True, metavar="NAME:=VALUE",
+              help="xacro argument for .xacro inputs.")
+@click.option("--pkg-dir", "pkg_dirs", multiple=True, metavar="DIR",
+              help="Folder holding packages for $(find pkg).")
+@click.option("--pkg-path", "pkg_paths", multiple=True, metavar="NAME:=DIR",
+              help="Location of one package for $(find NAME).")
+def command(robot: str, configs: tuple[str, ...], params: str | None, bandwidth: float | None,
+            duration: float | None, dt: float | None, tolerance: float | None,
+            trajectory: str | None, interpolation: str, allow_saturation: bool, loader: str,
+            convention: str, output: str, csv_path: str | None, plot_path: str | None,
+            jobs: int, xacro_args: tuple[str, ...], pkg_dirs: tuple[str, ...],
+            pkg_paths: tuple[str, ...]) -> None:
+    """Check a transmission config in closed loop against the robot's own.
+
+    The plant uses ROBOT's transmissions; a computed-torque controller encodes its commands and
+    decodes its measurements with each CANDIDATE's. Exit 0 when the tracking error stays within
+    --tolerance and no limit is exceeded, 1 when not, 2 on bad input.
+    """
+    xacro = XacroOptions(args=_pairs(xacro_args, "--xacro-arg"), pkg_dirs=pkg_dirs,
+                         pkg_paths=_pairs(pkg_paths, "--pkg-path"))
+    from txtool.simulate.app import main
+    from txtool.simulate.run import Options
+
+    options = Options(
+        robot=robot, configs=configs, params=params, bandwidth=bandwidth, duration=duration,
+        dt=dt, tolerance=tolerance, trajectory=trajectory, interpolation=interpolation,
+        allow_saturation=allow_saturation, loader=loader, convention=convention, xacro=xacro,
+        jobs=jobs,
+    )
+    try:
+        _, code = main(options, output=output, csv_path=csv_path, plot_path=plot_path)
+    except InputError as exc:
+        click.echo(str(exc), err=True)
+        raise SystemExit(2) from None
+    raise SystemExit(code)

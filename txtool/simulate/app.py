@@ -1,0 +1,74 @@
+"""What ``txtool simulate`` does once its arguments are parsed: run, render, write, exit code."""
+
+from __future__ import annotations
+
+import json
+import os
+import time
+from dataclasses import replace
+
+from rich.console import Console
+from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn, TimeRemainingColumn
+
+from txtool.simulate import plot, report
+from txtool.simulate.result import RunResult
+from txtool.simulate.run import Options, execute, exit_code
+
+SHOW_AFTER = 1.0  # seconds: shorter runs get no progress bar
+WIDE = 132  # columns for reports written to files and pipes
+
+
+class LazyProgress:
+    """A rich progress bar on stderr that appears only once a run has taken over a second."""
+
+    def __init__(self, console: Console, what: str) -> None:
+        self.console = console
+        self.what = what
+        self.started = time.perf_counter()
+        self.bar: Progress | None = None
+        self.task = 0
+
+    def __call__(self, done: int, total: int) -> None:
+        if self.bar is None:
+            if not self.console.is_terminal or time.perf_counter() - self.started < SHOW_AFTER:
+                return
+            self.bar = Progress(TextColumn(self.what), BarColumn(), TaskProgressColumn(),
+                                TimeRemainingColumn(), console=self.console, transient=True)
+            self.bar.start()
+            self.task = self.bar.add_task(self.what, total=total)
+        self.bar.update(self.task, completed=done, total=total)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.stop()
+
+
+def main(options: Options, *, output: str = "text", csv_path: str | None = None,
+         plot_path: str | None = None, console: Console | None = None,
+         err_console: Console | None = None) -> tuple[list[RunResult], int]:
+    """Run every config, print the report, write the optional files; (runs, exit code)."""
+    if console is None:
+        console = Console()
+        if not console.is_terminal and "COLUMNS" not in os.environ:
+            console.width = WIDE
+    err_console = err_console or Console(stderr=True)
+    if plot_path is not None:
+        plot.require(plot_path)
+    keep = csv_path is not None or plot_path is not None
+    options = replace(options, keep_series=keep)
+    what = "simulating" if len(options.configs) <= 1 else "configs"
+    progress = LazyProgress(err_console, what)
+    try:
+        runs = execute(options, progress)
+    finally:
+        progress.close()
+    if output == "json":
+        console.file.write(json.dumps(report.document(runs), indent=2) + "\n")
+    else:
+        report.render_text(runs, console)
+    for index, run in enumerate(runs, 1):
+        if csv_path is not None:
+            report.write_csv(run, report.numbered(csv_path, index, len(runs)))
+        if plot_path is not None:
+            plot.plot(run, report.numbered(plot_path, index, len(runs)))
+    return runs, exit_code(runs)
