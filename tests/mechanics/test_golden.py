@@ -201,3 +201,15 @@ def test_round_trip_is_identity(kind, convention, quantity, ar, jr, off, x) -> N
     back = m.actuator_to_joint(quantity, m.joint_to_actuator(quantity, joint))
     scale = max(1.0, *np.abs(joint), *np.abs(off[:n]))
     np.testing.assert_allclose(back, joint, rtol=0, atol=1e-12 * scale)
+
+
+def test_a_given_directly_must_have_the_kind_structure() -> None:
+    from txtool.mechanics import TransmissionMap
+
+    ok = TransmissionMap("t", "four_bar", ("a", "b"), ("m", "n"), np.array([[-20.0, 0.0],
+                         [-20.0, -80.0]]), np.array([-2.0, 4.0]))
+    close(ok.actuator_to_joint("position", [3, 5]), [-2.15, 3.975])
+    with pytest.raises(ValueError, match="structure of a four_bar"):
+        TransmissionMap("t", "four_bar", ("a", "b"), ("m", "n"), np.eye(2) + 1, np.zeros(2))
+    with pytest.raises(ValueError, match="structure of a differential"):
+        TransmissionMap("t", "differential", ("a", "b"), ("m", "n"), np.eye(2) + 1, np.zeros(2))

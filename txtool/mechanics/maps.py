@@ -69,6 +69,10 @@ class TransmissionMap:
             object.__setattr__(self, "joint_reduction", jr)
         if 0.0 in self.actuator_reduction or 0.0 in self.joint_reduction:
             raise ZeroReduction(self.name)
+        expected = linear.velocity_matrix(self.kind, self.actuator_reduction, self.joint_reduction)
+        if not np.allclose(a, expected, rtol=1e-12, atol=0.0):
+            raise ValueError(f"transmission '{self.name}': A does not have the structure of a "
+                             f"{self.kind} transmission with these reductions")
 
     @property
     def size(self) -> int:
@@ -106,10 +110,9 @@ class TransmissionMap:
 
     def _key(self, quantity: str) -> tuple[str, str]:
         if quantity in EFFORT_ALIASES:
-            kind = "four_bar_ros1" if self.kind == "four_bar" and self.convention == "ros1" else (
-                self.kind
-            )
-            return kind, "effort"
+            if self.kind == "four_bar" and self.convention == "ros1":
+                return "four_bar_ros1", "effort"
+            return self.kind, "effort"
         if quantity == "absolute_position":
             quantity = "position"
         return self.kind, quantity
@@ -119,9 +122,7 @@ class TransmissionMap:
         if x.ndim == 0 or x.shape[-1] != self.size:
             raise ValueError(f"transmission '{self.name}' maps {self.size} value(s) per sample, "
                              f"got shape {x.shape}")
-        ar = self.actuator_reduction
-        jr = self.joint_reduction
-        return formula(x, ar, jr, self.offset)
+        return formula(x, self.actuator_reduction, self.joint_reduction, self.offset)
 
 
 def _reductions_from_a(kind: str, a: np.ndarray) -> tuple[tuple[float, ...], tuple[float, ...]]:
