@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import re
 
-# std::stod: leading whitespace, optional sign, decimal or hex float, inf/nan; trailing junk ignored.
+# std::stod: leading whitespace, a sign, a decimal number or inf/nan; trailing junk is ignored.
 _STOD = re.compile(
     r"\s*([+-]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf(?:inity)?|nan(?:\([^)]*\))?))",
     re.IGNORECASE,

@@ -37,9 +37,9 @@ class JointInfo:
 
     def position_range(self) -> tuple[float, float]:
         """The joint's position limits; +-pi where absent (continuous joints)."""
-        if self.type != "continuous" and self.lower is not None and self.upper is not None:
-            if self.lower < self.upper:
-                return self.lower, self.upper
+        bounded = self.lower is not None and self.upper is not None
+        if self.type != "continuous" and bounded and self.lower < self.upper:
+            return self.lower, self.upper
         return -math.pi, math.pi
 
 

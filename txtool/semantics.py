@@ -56,10 +56,7 @@ def effective(transmission: Transmission) -> Effective:
     """The loaded parameters, or :class:`NotLoadable` with the loader's reason."""
     if transmission.kind == "other":
         raise NotLoadable(f"custom type '{transmission.type}' has no standard maths")
-    if loader_of(transmission) == "ros1":
-        result = _ros1(transmission)
-    else:
-        result = _ros2(transmission)
+    result = _ros1(transmission) if loader_of(transmission) == "ros1" else _ros2(transmission)
     for value in result.actuator_reduction + result.joint_reduction:
         if value == 0.0:
             raise NotLoadable("reduction ratio cannot be zero")
@@ -180,7 +177,9 @@ def _ros2(t: Transmission) -> Effective:
         kind=t.kind,  # type: ignore[arg-type]
         joints=tuple(joint_names),
         actuators=tuple(actuator_names),
-        actuator_reduction=tuple(_ros2_number(a.mechanical_reduction, 1.0) for a in t.actuators[:2]),
+        actuator_reduction=tuple(
+            _ros2_number(a.mechanical_reduction, 1.0) for a in t.actuators[:2]
+        ),
         joint_reduction=tuple(_ros2_number(j.mechanical_reduction, 1.0) for j in t.joints[:2]),
         joint_offset=tuple(_ros2_number(j.offset, 0.0) for j in t.joints[:2]),
         loader="ros2",

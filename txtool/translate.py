@@ -262,7 +262,9 @@ def _ros1_joint(joint: Member, result: Translation) -> Member:
         result.losses.append(f"joint '{joint.name}': read_only has no place in ROS 1")
     return joint.model_copy(
         update={
-            "mechanical_reduction": _retext(_as_loaded(joint.mechanical_reduction, 1.0), parse_ros1),
+            "mechanical_reduction": _retext(
+                _as_loaded(joint.mechanical_reduction, 1.0), parse_ros1
+            ),
             "offset": _retext(_as_loaded(joint.offset, 0.0), parse_ros1),
             "interfaces": tuple(names),
             "state_interfaces": (),
