@@ -1,0 +1,107 @@
+"""TX200 unknown-joint: a transmission names a joint that does not exist.
+
+What it checks
+    Every ``<joint name="...">`` of a transmission must be
+
+    * a ``<joint>`` of the robot, when the document is a robot with joints (a bare
+      ``<transmission>`` fragment or a macro library is not cross-checked), and
+    * in ROS 2, a ``<joint>`` of the enclosing ``<ros2_control>`` component.
+
+Why
+    ros2_control copies each transmission joint's interfaces from the component; a joint the
+    component does not declare makes the parser throw ``Error while parsing 'HW'. Transmission
+    'T' declared joint 'J' is not available in component 'HW'.`` and nothing of the robot
+    loads. In ROS 1 a transmission joint that is not in the robot has no joint to drive
+    (gazebo_ros_control refuses it as "not in the gazebo model"). Names still holding xacro
+    expressions (``${prefix}joint1``) are matched as patterns, never reported.
+
+Failing example::
+
+    <ros2_control name="RRBot" type="system">
+      <joint name="joint1"><command_interface name="position"/></joint>
+      <transmission name="transmission1">
+        <plugin>transmission_interface/SimpleTransmission</plugin>
+        <joint name="joint31415" role="joint1"/>
+      </transmission>
+    </ros2_control>
+
+Passing example::
+
+    <ros2_control name="RRBot" type="system">
+      <joint name="joint1"><command_interface name="position"/></joint>
+      <transmission name="transmission1">
+        <plugin>transmission_interface/SimpleTransmission</plugin>
+        <joint name="joint1" role="joint1"/>
+      </transmission>
+    </ros2_control>
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable, Iterator
+
+from lxml import etree
+
+from txtool.lint.context import LintContext
+from txtool.lint.support import label, opaque
+from txtool.problem import Problem
+from txtool.reader import Found, enclosing_component
+from txtool.robot import children
+
+CODE = "TX200"
+NAME = "unknown-joint"
+SEVERITY = "error"
+FIXABLE = False
+
+_EXPRESSION = re.compile(r"\$\{[^}]*\}|\$\([^)]*\)")
+
+
+def known_name(name: str, names: Iterable[str]) -> bool:
+    """``name`` is one of ``names``, or matches one written with xacro expressions."""
+    pool = list(names)
+    if name in pool:
+        return True
+    return any(
+        _EXPRESSION.search(candidate) and _as_pattern(candidate).fullmatch(name)
+        for candidate in pool
+    )
+
+
+def _as_pattern(text: str) -> re.Pattern[str]:
+    parts = _EXPRESSION.split(text)
+    return re.compile(".*".join(re.escape(part) for part in parts), re.DOTALL)
+
+
+def check(ctx: LintContext) -> Iterator[Problem]:
+    robot_joints = list(ctx.joints) if ctx.is_robot else None
+    for found in ctx.transmissions():
+        declared = _component_joints(ctx, found)
+        for joint in children(found.element, "joint"):
+            name = joint.get("name", "")
+            if not name or ctx.unknown(name):
+                continue
+            if declared is not None and not known_name(name, declared[1]):
+                yield ctx.problem(
+                    CODE,
+                    joint,
+                    f"joint '{name}' of {label(found)} is not a <joint> of <ros2_control> "
+                    f"'{declared[0]}': ros2_control throws \"declared joint '{name}' is not "
+                    "available in component\"",
+                )
+            elif robot_joints is not None and not known_name(name, robot_joints):
+                yield ctx.problem(
+                    CODE,
+                    joint,
+                    f"joint '{name}' of {label(found)} is not a <joint> of the robot: the "
+                    "loader has no joint to bind it to",
+                )
+
+
+def _component_joints(ctx: LintContext, found: Found) -> tuple[str, list[str]] | None:
+    """Name and joint names of the enclosing component, None if none or not knowable."""
+    component: etree._Element | None = enclosing_component(found.element)
+    if component is None or opaque(ctx, component):
+        return None
+    names = [j.get("name", "") for j in children(component, "joint")]
+    return component.get("name", ""), names

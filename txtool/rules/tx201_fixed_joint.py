@@ -1,0 +1,60 @@
+"""TX201 fixed-joint: a transmission drives a joint of type ``fixed``.
+
+What it checks
+    A transmission ``<joint>`` that names a URDF ``<joint type="fixed">`` of the robot (only
+    when the document is a robot with joints). Custom transmission types are not checked:
+    some name a fixed joint on purpose (franka_hw/FrankaModelInterface uses the flange as its
+    ``tip``).
+
+Why
+    A fixed joint has no degree of freedom: there is no position to read and nothing to
+    command. Simulators merge fixed joints away (gazebo_ros_control then reports the joint as
+    "not in the gazebo model" and stops), and a hardware plugin would command a joint that
+    cannot move. Usually the joint type or the transmission's joint name is wrong.
+
+Failing example::
+
+    <robot name="r">
+      <joint name="tool_mount" type="fixed"><parent link="a"/><child link="b"/></joint>
+      <transmission name="t">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="tool_mount">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>1</mechanicalReduction></actuator>
+      </transmission>
+    </robot>
+
+Passing example: the same with ``type="revolute"`` (and its ``<limit>``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from txtool.lint.context import LintContext
+from txtool.problem import Problem
+from txtool.robot import children
+
+CODE = "TX201"
+NAME = "fixed-joint"
+SEVERITY = "error"
+FIXABLE = False
+
+
+def check(ctx: LintContext) -> Iterator[Problem]:
+    if not ctx.is_robot:
+        return
+    for found in ctx.transmissions():
+        if found.transmission.kind == "other":
+            continue
+        for joint in children(found.element, "joint"):
+            info = ctx.joints.get(joint.get("name", ""))
+            if info is None or not info.is_fixed:
+                continue
+            yield ctx.problem(
+                CODE,
+                joint,
+                f"joint '{info.name}' of transmission '{found.transmission.name}' is a fixed "
+                "joint: it cannot move, so the transmission has nothing to read or command",
+            )

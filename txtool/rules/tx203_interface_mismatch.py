@@ -1,0 +1,132 @@
+"""TX203 interface-mismatch: the joints of a transmission cannot share its interfaces.
+
+What it checks
+    * ROS 1: all joints of one transmission must list the same set of
+      ``<hardwareInterface>`` names (any order). Joints without any are left to other rules.
+    * ROS 2: each transmission joint that the enclosing ``<ros2_control>`` component declares
+      must have at least one ``<command_interface>`` or ``<state_interface>`` there.
+
+Why
+    ros_control's transmission loader refuses a transmission whose joints differ: "Failed to
+    load transmission 'T'. It has joints with different hardware interfaces. This is
+    currently unsupported." ros2_control copies the interface names of the component's
+    ``<joint>`` into the transmission; a joint with none gives the transmission no handle, and
+    configuring it throws "None of the provided joint handles are valid or from the required
+    interfaces".
+
+Failing example (ROS 1)::
+
+    <transmission name="wrist">
+      <type>transmission_interface/DifferentialTransmission</type>
+      <joint name="flex">
+        <role>joint1</role>
+        <hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>
+      </joint>
+      <joint name="roll">
+        <role>joint2</role>
+        <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+      </joint>
+      ...
+    </transmission>
+
+Passing example: both joints list ``hardware_interface/PositionJointInterface``.
+
+Failing example (ROS 2)::
+
+    <ros2_control name="HW" type="system">
+      <joint name="joint1"/>
+      <transmission name="t">
+        <plugin>transmission_interface/SimpleTransmission</plugin>
+        <joint name="joint1" role="joint1"/>
+      </transmission>
+    </ros2_control>
+
+Passing example: ``<joint name="joint1"><command_interface name="position"/></joint>``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from lxml import etree
+
+from txtool.lint.context import LintContext
+from txtool.lint.support import label, loaded_by_ros_control, members, opaque
+from txtool.problem import Problem
+from txtool.reader import Found, enclosing_component
+from txtool.robot import children
+
+CODE = "TX203"
+NAME = "interface-mismatch"
+SEVERITY = "error"
+FIXABLE = False
+
+
+def check(ctx: LintContext) -> Iterator[Problem]:
+    for found in ctx.transmissions():
+        if found.transmission.dialect == "ros1":
+            if loaded_by_ros_control(found):
+                yield from _check_ros1(ctx, found)
+        else:
+            yield from _check_ros2(ctx, found)
+
+
+def _check_ros1(ctx: LintContext, found: Found) -> Iterator[Problem]:
+    first: tuple[str, frozenset[str]] | None = None
+    for ref in members(found):
+        interfaces = frozenset(ref.member.interfaces)
+        if ref.noun != "joint" or not interfaces or opaque(ctx, ref.element):
+            continue
+        if any(ctx.unknown(name) for name in interfaces):
+            continue
+        if first is None:
+            first = (ref.member.name, interfaces)
+        elif interfaces != first[1]:
+            yield ctx.problem(
+                CODE,
+                ref.element,
+                f"joint '{ref.member.name}' of {label(found)} lists hardware interfaces "
+                f"{_listing(interfaces)} but joint '{first[0]}' lists {_listing(first[1])}: "
+                "ros_control refuses joints with different hardware interfaces",
+            )
+
+
+def _listing(interfaces: frozenset[str]) -> str:
+    return "[" + ", ".join(sorted(interfaces)) + "]"
+
+
+def component_joint(
+    ctx: LintContext, found: Found, name: str
+) -> tuple[etree._Element, etree._Element] | None:
+    """The enclosing ``<ros2_control>`` and its ``<joint name=name>``, when both are knowable."""
+    component = enclosing_component(found.element)
+    if component is None:
+        return None
+    joint = next((j for j in children(component, "joint") if j.get("name") == name), None)
+    if joint is None or opaque(ctx, joint):
+        return None
+    return component, joint
+
+
+def declared_interfaces(joint: etree._Element) -> list[str]:
+    """Command then state interface names of a component joint, without repeats."""
+    names = [
+        child.get("name", "")
+        for tag in ("command_interface", "state_interface")
+        for child in children(joint, tag)
+    ]
+    return list(dict.fromkeys(names))
+
+
+def _check_ros2(ctx: LintContext, found: Found) -> Iterator[Problem]:
+    for ref in members(found):
+        pair = component_joint(ctx, found, ref.member.name) if ref.noun == "joint" else None
+        if pair is None or declared_interfaces(pair[1]):
+            continue
+        yield ctx.problem(
+            CODE,
+            ref.element,
+            f"joint '{ref.member.name}' of {label(found)} has no command or state interface "
+            f"in <ros2_control> '{pair[0].get('name', '')}': the transmission gets no handle "
+            "for it and ros2_control cannot configure it",
+        )
