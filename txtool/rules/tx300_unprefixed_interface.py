@@ -1,0 +1,92 @@
+"""TX300 unprefixed-interface: a ROS 1 hardware interface without ``hardware_interface/``.
+
+What it checks
+    A ``<hardwareInterface>`` of a ROS 1 joint or actuator written as a registered interface
+    name without its namespace: ``PositionJointInterface`` instead of
+    ``hardware_interface/PositionJointInterface`` (likewise Velocity, Effort, JointState and
+    the BiDirectional ones).
+
+Why
+    ros_control looks the name up as a pluginlib class, and only the prefixed names are
+    registered: it warns "Failed to process the 'PositionJointInterface' hardware interface
+    for transmission 'T'" and, with no valid interface left, fails to load the transmission.
+    gazebo_ros_control accepts both spellings but warns "Deprecated syntax, please prepend
+    'hardware_interface/'" (gazebo_ros_pkgs#550), so a robot can work in simulation and fail
+    on the real hardware.
+
+Fix
+    Prepends ``hardware_interface/``, keeping the whitespace around the name. Names holding
+    xacro expressions are left as written.
+
+    Transmission families with loaders of their own (``pr2_mechanism_model/``,
+    ``sr_mechanism_model/``) are neither reported nor fixed.
+
+Failing example::
+
+    <joint name="j1">
+      <hardwareInterface>PositionJointInterface</hardwareInterface>
+    </joint>
+
+Passing example::
+
+    <joint name="j1">
+      <hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>
+    </joint>
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from lxml import etree
+
+from txtool.lint.context import LintContext
+from txtool.lint.support import OWN_LOADER_FAMILIES, label, loaded_by_ros_control
+from txtool.problem import Problem
+from txtool.reader import detect_dialect, ros1_type, text_of, transmission_elements
+from txtool.robot import children, local
+from txtool.rules.tx204_unknown_interface import PREFIX, unprefixed_registered
+
+CODE = "TX300"
+NAME = "unprefixed-interface"
+SEVERITY = "warning"
+FIXABLE = True
+
+
+def _unprefixed(
+    transmission: etree._Element,
+) -> Iterator[tuple[etree._Element, etree._Element, str]]:
+    """(member, hardwareInterface element, name) for each unprefixed registered name."""
+    for member in children(transmission, "joint") + children(transmission, "actuator"):
+        for element in children(member, "hardwareInterface"):
+            text = (text_of(element) or "").strip()
+            if text and unprefixed_registered(text):
+                yield member, element, text
+
+
+def check(ctx: LintContext) -> Iterator[Problem]:
+    for found in ctx.transmissions():
+        if found.transmission.dialect != "ros1" or not loaded_by_ros_control(found):
+            continue
+        for member, element, text in _unprefixed(found.element):
+            yield ctx.problem(
+                CODE,
+                element,
+                f"hardware interface '{text}' of {local(member)} '{member.get('name', '')}' in "
+                f"{label(found)} lacks the '{PREFIX}' prefix: "
+                "ros_control cannot find it ('Failed to process the hardware interface'); "
+                f"write '{PREFIX}{text}'",
+            )
+
+
+def fix(root: etree._Element) -> int:
+    fixed = 0
+    for transmission in transmission_elements(root):
+        if detect_dialect(transmission) != "ros1":
+            continue
+        if ros1_type(transmission).startswith(OWN_LOADER_FAMILIES):
+            continue
+        for _, element, text in list(_unprefixed(transmission)):
+            element.text = (element.text or "").replace(text, PREFIX + text, 1)
+            fixed += 1
+    return fixed

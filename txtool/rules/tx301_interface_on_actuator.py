@@ -1,0 +1,133 @@
+"""TX301 interface-on-actuator: the hardware interface sits only on the actuator.
+
+What it checks
+    A ROS 1 transmission ``<joint>`` with no (non-empty) ``<hardwareInterface>`` while an
+    ``<actuator>`` of the same transmission has one: the placement from before ROS Indigo.
+
+Why
+    Since Indigo, ros_control requires the interface on the joint (ros_control#177): the
+    parser logs "No valid hardware interface element found in joint 'J'" and skips the joint,
+    and a transmission left without joints fails to load. gazebo_ros_control still falls back
+    to the actuator's interface with a warning (gazebo_ros_pkgs#184), so such robots often
+    work in simulation only.
+
+Fix
+    *Copies* the actuator's ``<hardwareInterface>`` elements into the joint (as its first
+    children, text kept verbatim, so ``${...}`` survives). The actuator keeps its copy:
+    ros_control accepts an actuator interface as optional, and tools that still read it
+    there (older gazebo_ros_control) keep working, so copying changes nothing for any
+    consumer except the one that was broken. When the actuators list different interfaces the
+    right choice is ambiguous and the problem is reported but not fixed. Families with
+    loaders of their own (``pr2_mechanism_model/``, ``sr_mechanism_model/``) are skipped.
+
+    TX110 (missing-interface) reports the same joints as errors; this rule adds the cause
+    and the fix.
+
+Failing example::
+
+    <transmission name="tran1">
+      <type>transmission_interface/SimpleTransmission</type>
+      <joint name="joint1"/>
+      <actuator name="motor1">
+        <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        <mechanicalReduction>1</mechanicalReduction>
+      </actuator>
+    </transmission>
+
+Passing example (what the fix writes)::
+
+    <transmission name="tran1">
+      <type>transmission_interface/SimpleTransmission</type>
+      <joint name="joint1">
+        <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+      </joint>
+      <actuator name="motor1">
+        <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        <mechanicalReduction>1</mechanicalReduction>
+      </actuator>
+    </transmission>
+"""
+
+from __future__ import annotations
+
+import copy
+from collections.abc import Iterator
+
+from lxml import etree
+
+from txtool.lint.context import LintContext
+from txtool.lint.support import OWN_LOADER_FAMILIES, is_xacro, label, loaded_by_ros_control
+from txtool.problem import Problem
+from txtool.reader import detect_dialect, ros1_type, text_of, transmission_elements
+from txtool.robot import children
+from txtool.rules.tx302_legacy_type_attribute import insert_child
+
+CODE = "TX301"
+NAME = "interface-on-actuator"
+SEVERITY = "warning"
+FIXABLE = True
+
+
+def _interfaces(member: etree._Element) -> list[etree._Element]:
+    return [h for h in children(member, "hardwareInterface") if (text_of(h) or "").strip()]
+
+
+def _bare_joints(transmission: etree._Element) -> list[etree._Element]:
+    """Joints without an interface, when some actuator of the transmission has one.
+
+    A joint whose children come partly from xacro (``<xacro:insert_block>``, conditionals)
+    may get its interface there, so it does not count as bare.
+    """
+    if not any(_interfaces(a) for a in children(transmission, "actuator")):
+        return []
+    return [
+        joint
+        for joint in children(transmission, "joint")
+        if not _interfaces(joint) and not any(is_xacro(child) for child in joint)
+    ]
+
+
+def check(ctx: LintContext) -> Iterator[Problem]:
+    for found in ctx.transmissions():
+        if found.transmission.dialect != "ros1" or not loaded_by_ros_control(found):
+            continue
+        joints = _bare_joints(found.element)
+        if not joints:
+            continue
+        actuator = next(a for a in children(found.element, "actuator") if _interfaces(a))
+        for joint in joints:
+            yield ctx.problem(
+                CODE,
+                joint,
+                f"joint '{joint.get('name', '')}' of {label(found)} has no "
+                f"<hardwareInterface>, only actuator '{actuator.get('name', '')}' has: "
+                "ros_control (since Indigo) skips the joint ('No valid hardware interface')",
+            )
+
+
+def _shared_interfaces(transmission: etree._Element) -> list[etree._Element] | None:
+    """The actuators' interface elements when all actuators that have some agree."""
+    lists = [_interfaces(a) for a in children(transmission, "actuator")]
+    lists = [found for found in lists if found]
+    texts = {frozenset((text_of(h) or "").strip() for h in found) for found in lists}
+    return lists[0] if len(texts) == 1 else None
+
+
+def fix(root: etree._Element) -> int:
+    fixed = 0
+    for transmission in transmission_elements(root):
+        if detect_dialect(transmission) != "ros1":
+            continue
+        if ros1_type(transmission).startswith(OWN_LOADER_FAMILIES):
+            continue
+        joints = _bare_joints(transmission)
+        source = _shared_interfaces(transmission) if joints else None
+        if source is None:
+            continue
+        for joint in joints:
+            for index, interface in enumerate(source):
+                duplicate = copy.deepcopy(interface)
+                duplicate.tail = None
+                insert_child(joint, duplicate, index)
+            fixed += 1
+    return fixed

@@ -1,0 +1,209 @@
+"""TX302 legacy-type-attribute: the transmission type given as a ``type="..."`` attribute.
+
+What it checks
+    A ROS 1 ``<transmission type="...">``. Two forms occur in published robots:
+
+    * legacy (pre-Hydro, pr2_mechanism_model era): the attribute is the only type, often with
+      ``<mechanicalReduction>`` directly under ``<transmission>``;
+    * hybrid: the attribute *and* a ``<type>`` element (husky, urdf_sim_tutorial).
+
+Why
+    ros_control reads the type only from the ``<type>`` child element. A legacy transmission
+    is skipped with "No type element found in transmission 'T'", and a reduction standing
+    directly under ``<transmission>`` is never read (the SimpleTransmission loader wants the
+    actuator's). In the hybrid form the attribute is ignored: harmless, but misleading.
+
+Fix
+    * hybrid: removes the attribute;
+    * legacy ``SimpleTransmission`` or ``transmission_interface/SimpleTransmission``: adds
+      ``<type>transmission_interface/SimpleTransmission</type>`` as the first child and
+      removes the attribute;
+    * for both, when the type is SimpleTransmission, a ``<mechanicalReduction>`` directly under
+      ``<transmission>`` moves into the single ``<actuator>`` (unless that actuator already
+      has one), keeping its text, so xacro expressions survive.
+
+    Custom attribute types (``pr2_mechanism_model/*``) have loaders of their own and no
+    standard equivalent; they are reported, not fixed. New and moved elements take the
+    indentation of the surrounding XML.
+
+Failing example::
+
+    <transmission name="wheel_trans" type="SimpleTransmission">
+      <actuator name="wheel_motor"/>
+      <joint name="wheel"/>
+      <mechanicalReduction>1</mechanicalReduction>
+    </transmission>
+
+Passing example (what the fix writes)::
+
+    <transmission name="wheel_trans">
+      <type>transmission_interface/SimpleTransmission</type>
+      <actuator name="wheel_motor">
+        <mechanicalReduction>1</mechanicalReduction>
+      </actuator>
+      <joint name="wheel"/>
+    </transmission>
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from lxml import etree
+
+from txtool.lint.context import LintContext
+from txtool.lint.support import label
+from txtool.problem import Problem
+from txtool.reader import Found, detect_dialect, first_child_text, transmission_elements
+from txtool.robot import children
+
+CODE = "TX302"
+NAME = "legacy-type-attribute"
+SEVERITY = "warning"
+FIXABLE = True
+
+SIMPLE = "transmission_interface/SimpleTransmission"
+_SIMPLE_ATTRIBUTES = ("SimpleTransmission", SIMPLE)
+
+
+def _type_element_text(transmission: etree._Element) -> str:
+    return (first_child_text(transmission, "type") or "").strip()
+
+
+def check(ctx: LintContext) -> Iterator[Problem]:
+    for found in ctx.transmissions():
+        attribute = found.element.get("type")
+        if found.transmission.dialect != "ros1" or attribute is None:
+            continue
+        yield ctx.problem(CODE, found.element, _message(found, attribute))
+
+
+def _message(found: Found, attribute: str) -> str:
+    if _type_element_text(found.element):
+        return (
+            f"{label(found)} has a type=\"{attribute}\" attribute beside its <type> element: "
+            "ros_control ignores the attribute"
+        )
+    message = (
+        f"{label(found)} gives its type as the legacy type=\"{attribute}\" attribute: "
+        "ros_control reads only a <type> element and skips it ('No type element found')"
+    )
+    if attribute.strip() not in _SIMPLE_ATTRIBUTES:
+        message += "; a custom type, port it by hand"
+    return message
+
+
+def fix(root: etree._Element) -> int:
+    fixed = 0
+    for transmission in transmission_elements(root):
+        attribute = transmission.get("type")
+        if attribute is None or detect_dialect(transmission) != "ros1":
+            continue
+        written = _type_element_text(transmission)
+        if not written and attribute.strip() not in _SIMPLE_ATTRIBUTES:
+            continue
+        if not written:
+            type_element = etree.Element(_same_namespace(transmission, "type"))
+            type_element.text = SIMPLE
+            insert_child(transmission, type_element, 0)
+        del transmission.attrib["type"]
+        if (written or SIMPLE) in _SIMPLE_ATTRIBUTES:  # SimpleTransmission, old or new name
+            _move_reduction_to_actuator(transmission)
+        fixed += 1
+    return fixed
+
+
+def _move_reduction_to_actuator(transmission: etree._Element) -> None:
+    reductions = children(transmission, "mechanicalReduction")
+    actuators = children(transmission, "actuator")
+    if len(reductions) != 1 or len(actuators) != 1:
+        return
+    if children(actuators[0], "mechanicalReduction"):
+        return
+    remove_child(reductions[0])
+    insert_child(actuators[0], reductions[0], len(actuators[0]))
+
+
+def _same_namespace(parent: etree._Element, name: str) -> str:
+    namespace = etree.QName(parent).namespace
+    return f"{{{namespace}}}{name}" if namespace else name
+
+
+# Whitespace-preserving edits, shared with the other fixes.
+
+
+def _text_before(element: etree._Element) -> str | None:
+    previous = element.getprevious()
+    if previous is not None:
+        return previous.tail
+    parent = element.getparent()
+    return parent.text if parent is not None else None
+
+
+def line_indent(element: etree._Element) -> str | None:
+    """The whitespace that starts ``element``'s line; None when something precedes it."""
+    before = _text_before(element)
+    if before is None or "\n" not in before:
+        return None
+    last = before.rsplit("\n", 1)[1]
+    return None if last.strip() else last
+
+
+def indent_step(element: etree._Element) -> str:
+    """One level of indentation as used inside or around ``element`` (two spaces if unknown)."""
+    for scope in (element, element.getparent()):
+        outer = line_indent(scope) if scope is not None else None
+        if scope is None or outer is None:
+            continue
+        for child in scope:
+            inner = line_indent(child)
+            if inner is not None and inner.startswith(outer) and len(inner) > len(outer):
+                return inner[len(outer) :]
+    return "\t" if "\t" in (line_indent(element) or "") else "  "
+
+
+def _children_gap(parent: etree._Element) -> str | None:
+    """Newline plus indentation that separates ``parent``'s children, if they are laid out."""
+    for child in parent:
+        indent = line_indent(child)
+        if indent is not None:
+            return "\n" + indent
+    return None
+
+
+def insert_child(parent: etree._Element, child: etree._Element, index: int) -> None:
+    """Insert ``child`` at ``index`` among ``parent``'s children, laid out like its siblings."""
+    kids = list(parent)
+    if not kids:
+        own = line_indent(parent)
+        child.tail = None
+        if own is not None and not (parent.text or "").strip():
+            parent.text = "\n" + own + indent_step(parent)
+            child.tail = "\n" + own
+        parent.append(child)
+        return
+    gap = _children_gap(parent)
+    if index < len(kids):
+        child.tail = gap
+        kids[index].addprevious(child)
+        return
+    last = kids[-1]
+    child.tail = last.tail
+    last.tail = gap
+    last.addnext(child)
+
+
+def remove_child(element: etree._Element) -> None:
+    """Remove ``element`` and the whitespace that led up to it (its tail stays)."""
+    parent = element.getparent()
+    if parent is None:
+        return
+    previous = element.getprevious()
+    before = previous.tail if previous is not None else parent.text
+    joined = element.tail if before is None or not before.strip() else before + (element.tail or "")
+    if previous is not None:
+        previous.tail = joined
+    else:
+        parent.text = joined
+    element.tail = None
+    parent.remove(element)

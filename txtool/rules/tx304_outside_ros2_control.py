@@ -1,0 +1,72 @@
+"""TX304 outside-ros2-control: a transmission that ros2_control will never read.
+
+What it checks
+    A document that has ``<ros2_control>`` blocks, and also a transmission that is not inside
+    any of them: typically a top-level ROS 1 transmission left over from before a port. In a
+    xacro file read as written, transmissions inside a ``<xacro:macro>`` are not reported:
+    the macro may be instantiated inside a ``<ros2_control>`` block.
+
+Why
+    ros2_control reads transmissions only from the ``<transmission>`` children of a
+    ``<ros2_control>`` element; a top-level one is ignored without a message. Its reduction
+    and offset therefore have no effect on the ROS 2 robot, although the file suggests they
+    do. Move it into the component that owns its joints (``txtool migrate`` converts it), or
+    delete it if the ROS 1 description is no longer used.
+
+Failing example::
+
+    <robot name="diffbot">
+      ...
+      <transmission name="wheel_left_trans">
+        <type>transmission_interface/SimpleTransmission</type>
+        ...
+      </transmission>
+      <ros2_control name="DiffBot" type="system">...</ros2_control>
+    </robot>
+
+Passing example: the transmission, in the ROS 2 form, inside ``<ros2_control>``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from lxml import etree
+
+from txtool.lint.context import LintContext
+from txtool.lint.support import is_xacro, label
+from txtool.problem import Problem
+from txtool.reader import enclosing_component
+from txtool.robot import local
+
+CODE = "TX304"
+NAME = "outside-ros2-control"
+SEVERITY = "warning"
+FIXABLE = False
+
+
+def check(ctx: LintContext) -> Iterator[Problem]:
+    if not ctx.components:
+        return
+    for found in ctx.transmissions():
+        if enclosing_component(found.element) is not None or _in_macro(ctx, found.element):
+            continue
+        form = "ROS 1 " if found.transmission.dialect == "ros1" else ""
+        yield ctx.problem(
+            CODE,
+            found.element,
+            f"{form}{label(found)} stands outside every <ros2_control> block of this document: "
+            "ros2_control ignores it",
+        )
+
+
+def _in_macro(ctx: LintContext, element: etree._Element) -> bool:
+    """In a xacro file read as written, a macro body may be instantiated anywhere."""
+    if not ctx.literal:
+        return False
+    parent = element.getparent()
+    while parent is not None:
+        if is_xacro(parent) and local(parent) == "macro":
+            return True
+        parent = parent.getparent()
+    return False
