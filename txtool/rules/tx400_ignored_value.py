@@ -1,0 +1,110 @@
+"""TX400 ignored-value: a value the ROS loader never reads.
+
+What it checks
+    Values written in a standard transmission that its loader does not use:
+
+    * ROS 2 SimpleTransmission: the actuator's ``<mechanical_reduction>`` and ``<offset>``
+      (ros2_control takes both from the joint; ROS 1 took the reduction from the actuator);
+    * ROS 2 Differential / FourBarLinkage: actuator ``<offset>`` elements, and joints or
+      actuators past the second (the loaders read ``joints.at(0..1)`` and
+      ``actuators.at(0..1)``);
+    * ROS 1 SimpleTransmission: the joint's ``<mechanicalReduction>`` (ros_control reads the
+      actuator's);
+    * ROS 1, any standard type: an actuator ``<offset>`` (only joint offsets exist), and a
+      ``<mechanicalReduction>`` directly under ``<transmission>`` (the loaders read the
+      ``<actuator>``'s and ``<joint>``'s; with a ``type=`` attribute this is TX302's case).
+
+Why
+    A value that is never read looks like configuration but changes nothing: the robot runs
+    with the default (1.0 or 0.0) while the file says otherwise. Usually it was written on the
+    wrong side during a port between ROS 1 and ROS 2.
+
+Failing example::
+
+    <transmission name="t">
+      <plugin>transmission_interface/SimpleTransmission</plugin>
+      <actuator name="m" role="actuator1">
+        <mechanical_reduction>50</mechanical_reduction>
+      </actuator>
+      <joint name="j" role="joint1"/>
+    </transmission>
+
+Passing example: the ``<mechanical_reduction>`` on the ``<joint>``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from lxml import etree
+
+from txtool.lint.context import LintContext
+from txtool.lint.support import label, members
+from txtool.problem import Problem
+from txtool.reader import Found
+from txtool.robot import children
+
+CODE = "TX400"
+NAME = "ignored-value"
+SEVERITY = "warning"
+FIXABLE = False
+
+Finding = tuple[etree._Element, str]
+
+
+def check(ctx: LintContext) -> Iterator[Problem]:
+    for found in ctx.transmissions():
+        if found.transmission.kind == "other":
+            continue
+        findings = _ros1(found) if found.transmission.dialect == "ros1" else _ros2(found)
+        for element, message in findings:
+            yield ctx.problem(CODE, element, message)
+
+
+def _ros2(found: Found) -> Iterator[Finding]:
+    simple = found.transmission.kind == "simple"
+    fields = ("mechanical_reduction", "offset") if simple else ("offset",)
+    reason = (
+        "ros2_control's SimpleTransmission takes reduction and offset from the joint"
+        if simple
+        else "ros2_control's coupled transmissions have joint offsets only"
+    )
+    seen = {"joint": 0, "actuator": 0}
+    for ref in members(found):
+        seen[ref.noun] += 1
+        if ref.noun == "actuator":
+            for field in fields:
+                for element in children(ref.element, field):
+                    yield element, _never_read(found, ref.noun, ref.member.name, field, reason)
+        if not simple and seen[ref.noun] > 2:
+            yield ref.element, (
+                f"{ref.noun} '{ref.member.name}' of {label(found)} comes after the second: "
+                "ros2_control's loader reads only the first two and ignores it"
+            )
+
+
+def _ros1(found: Found) -> Iterator[Finding]:
+    simple = found.transmission.kind == "simple"
+    for ref in members(found):
+        if ref.noun == "joint" and simple:
+            for element in children(ref.element, "mechanicalReduction"):
+                yield element, _never_read(
+                    found, ref.noun, ref.member.name, "mechanicalReduction",
+                    "ros_control's SimpleTransmission takes the reduction from the actuator",
+                )
+        if ref.noun == "actuator":
+            for element in children(ref.element, "offset"):
+                yield element, _never_read(
+                    found, ref.noun, ref.member.name, "offset",
+                    "ros_control reads offsets from joints only",
+                )
+    if found.element.get("type") is None:
+        for element in children(found.element, "mechanicalReduction"):
+            yield element, (
+                f"<mechanicalReduction> directly under {label(found)} is never read: "
+                "ros_control reads the reductions of its <actuator> and <joint> elements"
+            )
+
+
+def _never_read(found: Found, noun: str, name: str, field: str, reason: str) -> str:
+    return f"<{field}> of {noun} '{name}' in {label(found)} is never read: {reason}"

@@ -1,0 +1,91 @@
+"""TX401 role-order-mismatch: ros2_control would bind a coupled transmission's values wrongly.
+
+What it checks
+    A ROS 2 Differential or FourBarLinkage transmission (its first two joints and first two
+    actuators, separately):
+
+    * whose members are written in an XML order that differs from the order of their names
+      (``bar_joint`` before ``alpha_joint``), or
+    * whose ``role`` values (``joint1``/``joint2``, ``actuator1``/``actuator2``) run against
+      the XML order, and therefore against the name order too.
+
+Why
+    ros2_control's loaders take ``mechanical_reduction`` and ``offset`` by XML position
+    (``joints.at(0)``, ``joints.at(1)``; the roles are ignored, ros2_control#3382), while
+    ``configure`` orders the joint and actuator handles by name (a ``std::set``,
+    ros2_control#1745). When the two orders differ, the values written on one joint are applied
+    to the other. ros_control (ROS 1) instead sorts by role, so when roles and XML order
+    disagree the two loaders put the values on different joints: a description converted
+    from ROS 1 keeping the XML order (the ros_control four-bar test robot lists ``bar_joint``
+    with role ``joint2`` before ``foo_joint``) changes behaviour silently.
+
+Failing example::
+
+    <transmission name="wrist">
+      <plugin>transmission_interface/DifferentialTransmission</plugin>
+      <joint name="wrist_roll" role="joint1"><mechanical_reduction>2</mechanical_reduction></joint>
+      <joint name="wrist_flex" role="joint2"><mechanical_reduction>4</mechanical_reduction></joint>
+      ...
+    </transmission>
+
+    (``wrist_flex`` sorts first, so it gets the reduction 2 written on ``wrist_roll``.)
+
+Passing example: ``wrist_flex`` (role ``joint1``) written before ``wrist_roll`` (role
+``joint2``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from txtool.lint.context import LintContext
+from txtool.lint.support import label
+from txtool.model import Member
+from txtool.problem import Problem
+from txtool.robot import children
+from txtool.semantics import ROLES_ACTUATOR, ROLES_JOINT
+
+CODE = "TX401"
+NAME = "role-order-mismatch"
+SEVERITY = "error"
+FIXABLE = False
+
+
+def check(ctx: LintContext) -> Iterator[Problem]:
+    for found in ctx.transmissions():
+        t = found.transmission
+        if t.dialect == "ros1" or t.kind not in ("differential", "four_bar"):
+            continue
+        groups = (
+            ("joint", t.joints, children(found.element, "joint"), ROLES_JOINT),
+            ("actuator", t.actuators, children(found.element, "actuator"), ROLES_ACTUATOR),
+        )
+        for noun, members, elements, roles in groups:
+            if any(ctx.unknown(m.name) for m in members[:2]):
+                continue
+            message = _mismatch(noun, members[:2], roles)
+            if message is not None:
+                yield ctx.problem(CODE, elements[0], f"{label(found)}: {message}")
+
+
+def _mismatch(noun: str, members: tuple[Member, ...], roles: tuple[str, str]) -> str | None:
+    names = [m.name for m in members]
+    if len(names) < 2 or names[0] == names[1]:
+        return None
+    values = "reductions and offsets" if noun == "joint" else "reductions"
+    by_name = sorted(names)
+    if names != by_name:
+        return (
+            f"ros2_control binds the {noun} {values} in XML order ({names[0]}, {names[1]}) "
+            f"but orders the {noun} handles by name ({by_name[0]}, {by_name[1]}), so the "
+            f"values written on '{names[0]}' land on '{names[1]}'"
+        )
+    written = [m.role for m in members]
+    if written == [roles[1], roles[0]]:
+        return (
+            f"the {noun} roles ({written[0]}, {written[1]}) run against the XML and name "
+            f"order ({names[0]}, {names[1]}): ros2_control ignores roles and binds the "
+            f"{values} to '{names[0]}' first, ros_control sorts by role and binds them to "
+            f"'{names[1]}' first"
+        )
+    return None

@@ -1,0 +1,92 @@
+"""TX403 singular-transmission: the transmission's linear map cannot be inverted reliably.
+
+What it checks
+    For a loadable standard transmission, the matrix ``A`` with
+    ``actuator velocity = A · joint velocity``, built from the reductions the ROS loader
+    actually binds (:func:`txtool.semantics.effective`), must be invertible and well
+    conditioned: its 2-norm condition number at most ``max-condition``. Transmissions the
+    loader refuses (a zero or non-numeric reduction) are TX106's and other rules' business.
+
+Why
+    ``actuator_to_joint`` applies ``A⁻¹`` and ``joint_to_actuator`` applies ``A``: with a
+    singular or near-singular ``A`` a tiny encoder reading becomes a huge joint value, or
+    two joints become indistinguishable from the actuators. Simple transmissions always pass
+    (a 1x1 map); a coupled one fails when its reductions differ by many orders of magnitude
+    or underflow.
+
+Options (``[tool.txtool.rules.TX403]``):
+
+``max-condition``
+    the largest acceptable condition number (default ``1e12``).
+
+Failing example::
+
+    <transmission name="diff">
+      <type>transmission_interface/DifferentialTransmission</type>
+      <actuator name="a1">
+        <role>actuator1</role><mechanicalReduction>1</mechanicalReduction>
+      </actuator>
+      <actuator name="a2">
+        <role>actuator2</role><mechanicalReduction>1e-13</mechanicalReduction>
+      </actuator>
+      <joint name="j1"><role>joint1</role>...</joint>
+      <joint name="j2"><role>joint2</role>...</joint>
+    </transmission>
+
+Passing example: the same with both actuator reductions ``50``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from pydantic import BaseModel, ConfigDict, Field
+
+from txtool.lint.context import LintContext
+from txtool.lint.support import label
+from txtool.mechanics.linear import MAX_CONDITION, condition_number, singular
+from txtool.model import Transmission
+from txtool.problem import Problem
+from txtool.semantics import NotLoadable, effective
+
+CODE = "TX403"
+NAME = "singular-transmission"
+SEVERITY = "error"
+FIXABLE = False
+
+
+class Options(BaseModel):
+    model_config = ConfigDict(extra="forbid", populate_by_name=True)
+    max_condition: float = Field(default=MAX_CONDITION, gt=1.0, alias="max-condition")
+
+
+def check(ctx: LintContext) -> Iterator[Problem]:
+    options = ctx.option(CODE) or Options()
+    for found in ctx.transmissions():
+        t = found.transmission
+        if t.kind == "other" or _has_unknown_number(ctx, t):
+            continue
+        try:
+            loaded = effective(t)
+        except NotLoadable:
+            continue
+        reason = singular(loaded, options.max_condition)
+        if reason is None:
+            continue
+        yield ctx.problem(
+            CODE,
+            found.element,
+            f"{label(found)}: {reason} (condition number {condition_number(loaded):.3g}); "
+            "the joint state cannot be recovered reliably from the actuators",
+        )
+
+
+def _has_unknown_number(ctx: LintContext, t: Transmission) -> bool:
+    """A value only xacro can tell (ros2_control would read it as the default meanwhile)."""
+    numbers = [
+        number
+        for member in t.joints + t.actuators
+        for number in (member.mechanical_reduction, member.offset)
+        if number is not None
+    ]
+    return any(ctx.unknown(number.text) for number in numbers)
