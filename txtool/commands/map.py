@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import click
 
+from txtool.commands.common import xacro_options
+
 
 @click.command("map")
 @click.argument("file")
@@ -18,6 +20,7 @@ import click
               help="Four-bar effort map: ros2_control's (power-conserving) or ros_control's.")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text",
               show_default=True)
+@xacro_options
 def command(
     file: str,
     name: str,
@@ -27,6 +30,7 @@ def command(
     effort: str | None,
     convention: str,
     fmt: str,
+    xacro,
 ) -> None:
     """Map positions, velocities or efforts through transmission NAME of FILE.
 
@@ -36,7 +40,7 @@ def command(
     from txtool.mechanics.mapcmd import render_text, run_map
 
     outcome = run_map(file, name, to, position=position, velocity=velocity, effort=effort,
-                      convention=convention)
+                      convention=convention, xacro=xacro)
     if outcome.exit_code:
         click.echo(f"txtool: {outcome.error}", err=True)
         raise SystemExit(outcome.exit_code)
