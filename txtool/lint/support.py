@@ -87,6 +87,17 @@ def typed_ros1(found: Found) -> bool:
     return found.transmission.dialect == "ros1" and type_element(found) is not None
 
 
+def parsed(found: Found) -> bool:
+    """Whether the transmission gets past its loader's parser (ROS 1: a name and a ``<type>``).
+
+    ros_control skips a transmission without a name or type, so it takes part in no
+    comparison with others; ros2_control's parser throws instead, reported on its own.
+    """
+    if found.transmission.dialect != "ros1":
+        return True
+    return bool(found.transmission.name.strip()) and typed_ros1(found)
+
+
 def loaded_by_ros_control(found: Found) -> bool:
     """Whether ros_control's own parser handles this transmission (not a custom loader)."""
     kind_type = found.transmission.type

@@ -93,7 +93,10 @@ def nearest_standard(text: str) -> str | None:
         if best is None or distance < best[0]:
             best = (distance, full)
     assert best is not None
-    return best[1] if best[0] <= MAX_DISTANCE else None
+    if best[0] <= MAX_DISTANCE:
+        return best[1]
+    # A standard name followed by stray text (``.../SimpleTransmission name=""``).
+    return next((full for full in STANDARD_NAMES if wanted.startswith(full.lower())), None)
 
 
 def edit_distance(a: str, b: str) -> int:

@@ -23,7 +23,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
-from txtool.lint.support import loader_group, scope
+from txtool.lint.support import loader_group, parsed, scope
 from txtool.problem import Problem
 from txtool.reader import Found
 
@@ -38,7 +38,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
     for found in ctx.transmissions():
         name = found.transmission.name
         where = scope(ctx, found.element)
-        if not name.strip() or ctx.unknown(name) or where is None:
+        if not name.strip() or ctx.unknown(name) or where is None or not parsed(found):
             continue
         key = (loader_group(found), where, name)
         if key not in first:

@@ -23,7 +23,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
-from txtool.lint.support import label, loader_group, members, scope, typed_ros1
+from txtool.lint.support import label, loader_group, members, parsed, scope
 from txtool.problem import Problem
 from txtool.reader import Found
 
@@ -40,7 +40,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         where = scope(ctx, found.element)
         if t.kind == "other" or where is None:
             continue
-        if t.dialect == "ros1" and not typed_ros1(found):
+        if not parsed(found):
             continue  # ros_control skips it before any member is used
         seen_here: set[tuple[str, str]] = set()
         for ref in members(found):

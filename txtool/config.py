@@ -1,0 +1,260 @@
+"""Lint configuration: ``[tool.txtool]`` in ``pyproject.toml`` or a ``.txtool.toml``.
+
+The configuration of a file is the first one found searching upward from the file's folder
+(in each folder ``.txtool.toml`` wins over ``pyproject.toml``; a ``pyproject.toml`` without
+``[tool.txtool]`` is passed over). ``--config PATH`` replaces the search. Relative package
+folders are relative to the configuration file. Any mistake is a :class:`ConfigError` naming
+the file and the key (exit 2).
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Iterable
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+from typing import Any
+
+from pydantic import BaseModel, ConfigDict, Field, ValidationError
+
+from txtool.problem import Severity
+from txtool.xmlio import InputError, XacroOptions
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - exercised on Python 3.10 only
+    import tomli as tomllib
+
+CONFIG_FILE = ".txtool.toml"
+PYPROJECT = "pyproject.toml"
+
+
+class ConfigError(InputError):
+    """A bad configuration or rule selection: one line naming the file and key; exit 2."""
+
+
+class Config(BaseModel):
+    """What a configuration file may say (and what command-line options override)."""
+
+    model_config = ConfigDict(extra="forbid", populate_by_name=True)
+
+    select: list[str] | None = Field(
+        default=None, description="Rule codes or code prefixes to run (default: all)."
+    )
+    ignore: list[str] = Field(default_factory=list, description="Rule codes or prefixes to skip.")
+    severity: dict[str, Severity] = Field(
+        default_factory=dict, description="Per-rule severity, e.g. TX300 = \"error\"."
+    )
+    rules: dict[str, dict[str, Any]] = Field(
+        default_factory=dict, description="Per-rule options, e.g. [tool.txtool.rules.TX102]."
+    )
+    xacro_args: dict[str, str] = Field(default_factory=dict, alias="xacro-args")
+    pkg_dirs: list[str] = Field(default_factory=list, alias="pkg-dirs")
+    pkg_paths: dict[str, str] = Field(default_factory=dict, alias="pkg-paths")
+    no_xacro: bool = Field(default=False, alias="no-xacro")
+
+
+@dataclass(frozen=True)
+class Settings:
+    """A configuration resolved against the rule registry: what the pipeline runs."""
+
+    enabled: frozenset[str]
+    severity: dict[str, Severity]
+    options: dict[str, Any]
+    xacro: XacroOptions
+    no_xacro: bool
+    origin: str = "<defaults>"
+
+
+def load_config(path: Path) -> Config:
+    """Read ``path`` (a ``.txtool.toml`` or a ``pyproject.toml``) into a :class:`Config`."""
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise ConfigError(f"{path}: {exc.strerror or exc}") from None
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"{path}: invalid TOML: {exc}") from None
+    table: Any = data
+    prefix = ""
+    if path.name == PYPROJECT:
+        table = data.get("tool", {}).get("txtool", {})
+        prefix = "tool.txtool."
+    if not isinstance(table, dict):
+        raise ConfigError(f"{path}: key '{prefix.rstrip('.')}': expected a table")
+    try:
+        return Config.model_validate(table)
+    except ValidationError as exc:
+        error = exc.errors()[0]
+        key = prefix + ".".join(str(part) for part in error["loc"])
+        reason = "unknown key" if error["type"] == "extra_forbidden" else error["msg"]
+        raise ConfigError(f"{path}: key '{key}': {reason}") from None
+
+
+@lru_cache(maxsize=256)
+def find_config(folder: Path) -> Path | None:
+    """The configuration file that applies to files in ``folder`` (searching upward)."""
+    for candidate in (folder, *folder.parents):
+        own = candidate / CONFIG_FILE
+        if own.is_file():
+            return own
+        pyproject = candidate / PYPROJECT
+        if pyproject.is_file() and _has_txtool_table(pyproject):
+            return pyproject
+    return None
+
+
+def _has_txtool_table(pyproject: Path) -> bool:
+    try:
+        text = pyproject.read_text(encoding="utf-8", errors="replace")
+    except OSError:
+        return False
+    return "[tool.txtool" in text
+
+
+def resolve(
+    config: Config,
+    *,
+    origin: str = "<defaults>",
+    base: Path | None = None,
+) -> Settings:
+    """Check ``config`` against the registry and resolve it to :class:`Settings`."""
+    from txtool.rules import all_rules
+
+    rules = all_rules()
+    selected = set(rules)
+    if config.select is not None:
+        selected = _expand(config.select, rules, origin, "select")
+    ignored = _expand(config.ignore, rules, origin, "ignore")
+    for code in config.severity:
+        _exact(code, rules, origin, f"severity.{code}")
+    options: dict[str, Any] = {}
+    for code, values in config.rules.items():
+        options[_exact(code, rules, origin, f"rules.{code}")] = _options(
+            rules[code.upper()], values, origin
+        )
+    folder = base or Path(".")
+    return Settings(
+        enabled=frozenset(selected - ignored),
+        severity={code.upper(): level for code, level in config.severity.items()},
+        options=options,
+        xacro=XacroOptions(
+            args=tuple(config.xacro_args.items()),
+            pkg_dirs=tuple(str(folder / d) for d in config.pkg_dirs),
+            pkg_paths=tuple((name, str(folder / d)) for name, d in config.pkg_paths.items()),
+        ),
+        no_xacro=config.no_xacro,
+        origin=origin,
+    )
+
+
+def _expand(selectors: Iterable[str], rules: dict[str, Any], origin: str, key: str) -> set[str]:
+    """Codes matched by ``selectors`` (exact codes, prefixes such as ``TX1``, or ``ALL``)."""
+    chosen: set[str] = set()
+    for selector in selectors:
+        wanted = selector.strip().upper()
+        matched = {code for code in rules if wanted == "ALL" or code.startswith(wanted)}
+        if not wanted or not matched:
+            raise ConfigError(f"{origin}: key '{key}': unknown rule code '{selector}'")
+        chosen |= matched
+    return chosen
+
+
+def _exact(code: str, rules: dict[str, Any], origin: str, key: str) -> str:
+    if code.upper() not in rules:
+        raise ConfigError(f"{origin}: key '{key}': unknown rule code '{code}'")
+    return code.upper()
+
+
+def _options(rule: Any, values: dict[str, Any], origin: str) -> Any:
+    model = rule.options
+    if model is None:
+        raise ConfigError(f"{origin}: key 'rules.{rule.code}': {rule.code} takes no options")
+    try:
+        return model.model_validate(values)
+    except ValidationError as exc:
+        error = exc.errors()[0]
+        key = f"rules.{rule.code}." + ".".join(str(part) for part in error["loc"])
+        reason = "unknown key" if error["type"] == "extra_forbidden" else error["msg"]
+        raise ConfigError(f"{origin}: key '{key}': {reason}") from None
+
+
+@dataclass(frozen=True)
+class Overrides:
+    """Command-line options that override or extend the configuration."""
+
+    select: tuple[str, ...] | None = None
+    ignore: tuple[str, ...] = ()
+    xacro: XacroOptions = XacroOptions()
+    no_xacro: bool = False
+
+
+def merged(config: Config, overrides: Overrides) -> Config:
+    """``config`` with the command line applied: select replaces, the rest extends."""
+    update: dict[str, Any] = {
+        "ignore": [*config.ignore, *overrides.ignore],
+        "xacro_args": {**config.xacro_args, **dict(overrides.xacro.args)},
+        "no_xacro": config.no_xacro or overrides.no_xacro,
+    }
+    if overrides.select is not None:
+        update["select"] = list(overrides.select)
+    return config.model_copy(update=update)
+
+
+def check_overrides(overrides: Overrides) -> None:
+    """Reject unknown codes given on the command line before any file is read."""
+    from txtool.rules import all_rules
+
+    rules = all_rules()
+    for option, selectors in (("--select", overrides.select or ()), ("--ignore", overrides.ignore)):
+        for selector in selectors:
+            wanted = selector.strip().upper()
+            if not wanted or not any(wanted == "ALL" or c.startswith(wanted) for c in rules):
+                raise ConfigError(f"option '{option}': unknown rule code '{selector}'")
+
+
+class SettingsCache:
+    """Settings per configuration file, found once per folder."""
+
+    def __init__(self, overrides: Overrides, explicit: str | None = None) -> None:
+        self.overrides = overrides
+        self.explicit = Path(explicit) if explicit else None
+        self._by_file: dict[Path | None, Settings] = {}
+        check_overrides(overrides)
+
+    def for_file(self, path: str) -> Settings:
+        if self.explicit is not None:
+            config_path: Path | None = self.explicit
+        else:
+            folder = Path(path).resolve().parent if path != "-" else Path.cwd()
+            config_path = find_config(folder)
+        if config_path not in self._by_file:
+            self._by_file[config_path] = self._settings(config_path)
+        return self._by_file[config_path]
+
+    def _settings(self, config_path: Path | None) -> Settings:
+        if config_path is None:
+            config, origin, base = Config(), "command line", Path.cwd()
+        else:
+            if not config_path.is_file():
+                raise ConfigError(f"{config_path}: no such configuration file")
+            config, origin, base = load_config(config_path), str(config_path), config_path.parent
+        settings = resolve(merged(config, self.overrides), origin=origin, base=base)
+        extra = self.overrides.xacro
+        xacro = XacroOptions(  # the command line first: the first match wins
+            args=settings.xacro.args,
+            pkg_dirs=extra.pkg_dirs + settings.xacro.pkg_dirs,
+            pkg_paths=extra.pkg_paths + settings.xacro.pkg_paths,
+        )
+        return Settings(
+            enabled=settings.enabled,
+            severity=settings.severity,
+            options=settings.options,
+            xacro=xacro,
+            no_xacro=settings.no_xacro,
+            origin=settings.origin,
+        )
+
+
+def default_settings() -> Settings:
+    return resolve(Config())

@@ -1,0 +1,183 @@
+"""The lint pipeline for one document: parse, expand, run rules, stamp, suppress, sort.
+
+Which tree the rules see:
+
+* a plain file: the file as parsed;
+* a xacro file whose expansion contains transmissions: the expansion (positions traced back to
+  the file as written, see :mod:`txtool.locate`);
+* a xacro macro library (the expansion has no transmission, the file has some inside macros),
+  a xacro file read from stdin or with xacro turned off, or one whose expansion failed (TX002):
+  the file as written, in *literal* mode, where values containing ``${...}``/``$(...)`` are
+  unknown. A file with both literal transmissions and transmissions produced by macro calls is
+  checked on its expansion: every transmission it produces is checked once, where it is
+  produced; macros the file defines but never calls are not checked then.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import re
+
+from txtool.config import Config, Settings, resolve
+from txtool.lint.context import LintContext
+from txtool.lint.suppress import parse as parse_suppressions
+from txtool.problem import Problem
+from txtool.rules import Rule, all_rules
+from txtool.xmlio import Source, XMLSyntax, is_xacro, parse_bytes, read_bytes
+
+PIPELINE_CODES = frozenset({"TX001", "TX002", "TX003"})
+_TAG_END = re.compile(r"<[^>]*>?")
+
+
+def lint_source(source: Source, config: Config | Settings | None = None) -> list[Problem]:
+    """Problems of an already loaded document (expanded or not), sorted by position."""
+    settings = as_settings(config)
+    return finish(run_rules(context_for(source, settings), settings), source, settings)
+
+
+def lint_file(path: str, settings: Settings, *, stdin_name: str | None = None) -> list[Problem]:
+    """Problems of one file (or ``-``); malformed XML and failed xacro are findings.
+
+    Raises :class:`~txtool.xmlio.InputError` when the file cannot be read.
+    """
+    display, data = read_bytes(path, stdin_name=stdin_name)
+    try:
+        tree = parse_bytes(data, display)
+    except XMLSyntax as exc:
+        bare = Source(path=display, data=data, tree=None)  # type: ignore[arg-type]
+        return finish([_pipeline(display, exc.line, exc.column, "TX001", exc.reason)], bare,
+                      settings)
+    source = Source(path=display, data=data, tree=tree)
+    late = _late_declaration(display, data)
+    if path == "-" or settings.no_xacro or not is_xacro(display):
+        return finish(late + run_rules(context_for(source, settings), settings), source, settings)
+    from txtool.xacro_support import XacroError, expand_xacro
+
+    try:
+        expanded = expand_xacro(path, display, settings.xacro)
+    except XacroError as exc:
+        line, column = _xacro_position(data, exc.reason)
+        failed = _pipeline(display, line, column, "TX002", f"xacro: {exc.reason}")
+        problems = [*late, failed, *run_rules(context_for(source, settings), settings)]
+        return finish(problems, source, settings)
+    full = Source(path=display, data=data, tree=expanded, expanded=True, source_tree=tree)
+    return finish(late + run_rules(context_for(full, settings), settings), full, settings)
+
+
+def _late_declaration(path: str, data: bytes) -> list[Problem]:
+    """TX001 for an ``<?xml ...?>`` declaration after a comment (read anyway, see xmlio)."""
+    head = data[:4096].removeprefix(b"\xef\xbb\xbf")
+    index = head.find(b"<?xml")
+    if index <= 0 or not head[:index].strip():
+        return []
+    line = head.count(b"\n", 0, index) + 1
+    column = index - (head.rfind(b"\n", 0, index) + 1) + 1
+    reason = (
+        "XML declaration not at the start of the document (it follows a comment): not "
+        "well-formed, so xacro and other strict XML parsers reject the file"
+    )
+    return [_pipeline(path, line, column, "TX001", reason)]
+
+
+def as_settings(config: Config | Settings | None) -> Settings:
+    if isinstance(config, Settings):
+        return config
+    return resolve(config or Config())
+
+
+def context_for(source: Source, settings: Settings) -> LintContext:
+    """The context the rules see (see the module documentation for the choice)."""
+    options = settings.options
+    if not source.expanded:
+        return LintContext(source, literal=is_xacro(source.path), options=options)
+    expanded = LintContext(source, options=options)
+    if expanded.found or source.source_tree is None:
+        return expanded
+    as_written = Source(path=source.path, data=source.data, tree=source.source_tree)
+    literal = LintContext(as_written, literal=True, options=options)
+    return literal if literal.found else expanded
+
+
+def run_rules(ctx: LintContext, settings: Settings) -> list[Problem]:
+    problems = []
+    for rule in all_rules().values():
+        if rule.code in settings.enabled and rule.code not in PIPELINE_CODES:
+            problems.extend(stamp(problem, rule, settings) for problem in rule.check(ctx))
+    return problems
+
+
+def stamp(problem: Problem, rule: Rule, settings: Settings) -> Problem:
+    """Give a rule's problem its registry name, configured severity and fixability."""
+    return dataclasses.replace(
+        problem,
+        name=rule.name,
+        severity=settings.severity.get(rule.code, rule.severity),
+        fixable=rule.fixable,
+    )
+
+
+def finish(problems: list[Problem], source: Source, settings: Settings) -> list[Problem]:
+    """Select, suppress, report unused suppressions, add end positions, sort."""
+    rules = all_rules()
+    kept = [p for p in problems if p.code in settings.enabled]
+    suppressions = parse_suppressions(source.data)
+    if suppressions:
+        kept = [p for p in kept if not suppressions.suppressed(p)]
+        if "TX003" in settings.enabled:
+            for directive, code in suppressions.unused(settings.enabled):
+                what = f"'{directive.kind} {code}'" if code else f"'{directive.kind}'"
+                message = f"suppression {what} silences nothing: remove it"
+                kept.append(
+                    _pipeline(source.path, directive.line, directive.column, "TX003", message)
+                )
+    finished = []
+    for problem in kept:
+        if problem.code in PIPELINE_CODES:
+            problem = stamp(problem, rules[problem.code], settings)
+        finished.append(problem)
+    return sorted(_with_ends(finished, source.data))
+
+
+def _pipeline(path: str, line: int, column: int, code: str, message: str) -> Problem:
+    return Problem(path, max(line, 1), max(column, 1), code, message)
+
+
+def _with_ends(problems: list[Problem], data: bytes) -> list[Problem]:
+    """End positions (exclusive): the end of the tag (or text) starting at the position."""
+    if not problems:
+        return problems
+    lines = data.decode("utf-8", errors="replace").splitlines()
+    ended = []
+    for problem in problems:
+        end_column = problem.column + 1
+        if 1 <= problem.line <= len(lines):
+            text = lines[problem.line - 1]
+            rest = text[problem.column - 1 :]
+            match = _TAG_END.match(rest)
+            if match:
+                end_column = problem.column + len(match.group(0))
+            elif rest.strip():
+                end_column = problem.column + len(rest.rstrip())
+        ended.append(dataclasses.replace(problem, end_line=problem.line, end_column=end_column))
+    return ended
+
+
+def _xacro_position(data: bytes, reason: str) -> tuple[int, int]:
+    """Where the missing argument, package or property is used, else 1:1."""
+    quoted = re.search(r"'([^']+)'", reason)
+    if not quoted:
+        return 1, 1
+    name = re.escape(quoted.group(1))
+    if "argument" in reason:
+        pattern = rf"\$\(arg\s+{name}\s*\)"
+    elif "package" in reason:
+        pattern = rf"\$\(find\s+{name}\s*\)"
+    else:
+        pattern = rf"\$\{{[^}}]*\b{name}\b"
+    text = data.decode("utf-8", errors="replace")
+    match = re.search(pattern, text)
+    if not match:
+        return 1, 1
+    line = text.count("\n", 0, match.start()) + 1
+    column = match.start() - (text.rfind("\n", 0, match.start()) + 1) + 1
+    return line, column
