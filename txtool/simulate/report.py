@@ -91,9 +91,9 @@ def actuator_table(run: RunResult) -> Table:
     for name, a in run.actuators.items():
         first = "-" if a.first_violation is None else f"{a.first_violation:.3f} s"
         table.add_row(
-            escape(name), escape(a.transmission or "(direct)"), _num(a.peak_effort),
-            _num(a.rms_effort), _num(a.effort_limit), _pct(a.peak_effort, a.effort_limit),
-            _num(a.peak_velocity), _num(a.velocity_limit),
+            escape(name), escape(a.transmission or "(direct)"), _num(a.peak_effort, 3),
+            _num(a.rms_effort, 3), _num(a.effort_limit, 3), _pct(a.peak_effort, a.effort_limit),
+            _num(a.peak_velocity, 3), _num(a.velocity_limit, 3),
             _pct(a.peak_velocity, a.velocity_limit), f"{100 * a.saturated_fraction:.1f}%", first,
         )
     return table

@@ -67,9 +67,28 @@ def settings(options: Options, params: Params) -> Settings:
     return Settings(**values)
 
 
-def simulate_one(options: Options, config: str | None, label: str | None = None,
-                 progress: Progress | None = None) -> result.RunResult:
-    """Simulate ``options.robot`` controlled through ``config`` (None: the robot's own)."""
+@dataclass
+class Prepared:
+    """Everything a run needs, built: the loop's :class:`loop.Plan` and what judges it."""
+
+    options: Options
+    config: str | None
+    label: str
+    robot: RobotModel
+    plant: Drive
+    ctrl: Drive
+    binding: setup.Binding
+    plan: loop.Plan
+    ref: reference.Reference
+    settings: Settings
+    duration: float
+    effort_limit: np.ndarray
+    speed_limit: np.ndarray
+    setup_s: float
+
+
+def prepare(options: Options, config: str | None, label: str | None = None) -> Prepared:
+    """Load ROBOT and the config, build the model, parameters, reference and loop matrices."""
     started = time.perf_counter()
     source = load(options.robot, xacro=options.xacro)
     robot = build(source)
@@ -93,17 +112,31 @@ def simulate_one(options: Options, config: str | None, label: str | None = None,
     gains = setup.controller(robot, params, run_settings.bandwidth)
     plan = setup.build_plan(robot, plant, ctrl, binding, rotor, effort_limit, gains, ref,
                             run_settings.dt)
-    built = time.perf_counter()
-    loop.run(plan, (lambda done: progress(done, plan.steps)) if progress else None)
-    finished = time.perf_counter()
-    series = _series(plan, robot, plant, ref, effort_limit, speed_limit)
-    run = _judge(options, series, plan, binding, robot, plant, ctrl, run_settings, duration)
-    run.config = label or (config if config is not None else options.robot)
-    run.reference = ref.source
-    run.notes = _notes(robot, plant, ctrl, config is not None)
-    run.timings = {"setup_s": built - started, "loop_s": finished - built,
-                   "step_us": 1e6 * (finished - built) / max(plan.done, 1)}
-    if not options.keep_series:
+    return Prepared(options, config, label or (config if config is not None else options.robot),
+                    robot, plant, ctrl, binding, plan, ref, run_settings, duration, effort_limit,
+                    speed_limit, time.perf_counter() - started)
+
+
+def simulate_one(options: Options, config: str | None, label: str | None = None,
+                 progress: Progress | None = None) -> result.RunResult:
+    """Simulate ``options.robot`` controlled through ``config`` (None: the robot's own)."""
+    p = prepare(options, config, label)
+    started = time.perf_counter()
+    steps = p.plan.steps
+    loop.run(p.plan, (lambda done: progress(done, steps)) if progress else None)
+    return finish(p, time.perf_counter() - started)
+
+
+def finish(p: Prepared, loop_s: float) -> result.RunResult:
+    """Metrics, reasons and notes of a prepared run whose loop has run."""
+    series = _series(p.plan, p.robot, p.plant, p.ref, p.effort_limit, p.speed_limit)
+    run = _judge(p.options, series, p.plan, p.binding, p.settings, p.duration)
+    run.config = p.label
+    run.reference = p.ref.source
+    run.notes = _notes(p.robot, p.plant, p.ctrl, p.config is not None)
+    run.timings = {"setup_s": p.setup_s, "loop_s": loop_s,
+                   "step_us": 1e6 * loop_s / max(p.plan.done, 1)}
+    if not p.options.keep_series:
         run.series = None
     return run
 
@@ -143,8 +176,7 @@ def _series(plan: loop.Plan, robot: RobotModel, plant: Drive, ref: reference.Ref
 
 
 def _judge(options: Options, series: result.Series, plan: loop.Plan, binding: setup.Binding,
-           robot: RobotModel, plant: Drive, ctrl: Drive, s: Settings, duration: float
-           ) -> result.RunResult:
+           s: Settings, duration: float) -> result.RunResult:
     joints = result.joint_stats(series)
     actuators = result.actuator_stats(series)
     reasons = []

@@ -1,0 +1,69 @@
+"""The simulate part of ``txtool demo``: the demo robot against itself and a sign-flipped copy."""
+
+from __future__ import annotations
+
+import tempfile
+from pathlib import Path
+
+from rich.console import Console
+from rich.markup import escape
+from rich.rule import Rule
+
+from txtool.reader import read_source
+from txtool.robot import children
+from txtool.semantics import loader_of
+from txtool.simulate import report
+from txtool.simulate.run import Options, simulate_one
+from txtool.xmlio import InputError, load, serialize
+
+DEMO_ROBOT = Path(__file__).resolve().parents[2] / "fixtures" / "demo_robot.urdf"
+
+
+def demo_runs(console: Console, robot: Path | None = None) -> None:
+    """Simulate the demo robot with its own config (passes), then with one sign flipped (fails)."""
+    path = robot or DEMO_ROBOT
+    shown = _display(path)
+    console.print(Rule(f"txtool simulate {shown}"))
+    own = simulate_one(Options(robot=str(path), keep_series=False), None, label=shown)
+    own.robot = shown
+    report.render_run(own, console)
+    with tempfile.TemporaryDirectory(prefix="txtool-demo-") as folder:
+        flipped, what = flipped_copy(str(path), Path(folder))
+        label = f"{shown} with {what}"
+        console.print(Rule(f"txtool simulate {shown} --config <{what}>"))
+        run = simulate_one(Options(robot=str(path), keep_series=False), str(flipped),
+                           label=label)
+    console.print(f"{escape(label)}: {report.verdict_line(run)}")
+    for reason in run.reasons[1:3]:
+        console.print(f"  - {escape(reason)}")
+    if len(run.reasons) > 3:
+        console.print(f"  - ... {len(run.reasons) - 3} more")
+
+
+def _display(path: Path) -> str:
+    try:
+        return str(path.resolve().relative_to(Path.cwd()))
+    except ValueError:
+        return path.name
+
+
+def flipped_copy(robot: str, folder: Path) -> tuple[Path, str]:
+    """Write ``robot`` with the first simple transmission's reduction negated; (path, what)."""
+    source = load(robot)
+    for found in read_source(source):
+        t = found.transmission
+        if t.kind != "simple":
+            continue
+        if loader_of(t) == "ros1":
+            holders = children(found.element, "actuator")
+            tag = "mechanicalReduction"
+        else:
+            holders = children(found.element, "joint")
+            tag = "mechanical_reduction"
+        for element in (children(holders[0], tag) if holders else []):
+            value = float((element.text or "").strip())
+            element.text = repr(-value).removesuffix(".0")
+            target = folder / f"flipped-{Path(robot).name}"
+            target.write_bytes(serialize(source.tree, source.data))
+            return target, f"'{t.name}' reversed"
+    raise InputError(f"{robot}: no simple transmission with a reduction to flip")
