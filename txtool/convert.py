@@ -86,6 +86,14 @@ def _unknown_children(element: etree._Element, t: Transmission, target: Dialect)
 
 def _behaviour(before: Transmission, after: Transmission, result: Conversion) -> None:
     """A loss when the target loader would bind the values differently (never silent)."""
+    from txtool.translate import is_expression
+
+    numbers = [n for m in before.joints + before.actuators
+               for n in (m.mechanical_reduction, m.offset)]
+    if any(is_expression(n) for n in numbers):
+        result.notes.append(f"transmission '{before.name}': xacro expressions are carried "
+                            "verbatim; check the expanded result")
+        return
     try:
         old = effective(before)
     except NotLoadable as exc:
@@ -145,22 +153,40 @@ class _Placer:
         self.created: etree._Element | None = None
 
     def place(self, old: etree._Element, t: Transmission) -> None:
-        moving_out = t.dialect == "ros1" and enclosing_component(old) is not None
-        moving_in = t.dialect != "ros1" and enclosing_component(old) is None
-        if moving_out and local(self.root) == "robot":
-            component = enclosing_component(old)
+        component = enclosing_component(old)
+        moving_out = t.dialect == "ros1" and component is not None
+        moving_in = t.dialect != "ros1" and component is None and old.getparent() is not None
+        if moving_out and component.getparent() is not None:
             _remove(old)
             _insert_before(component, self._build(t, component))
-        elif moving_in and local(self.root) == "robot" and old.getparent() is not None:
+        elif moving_in and old.getparent() is self.root and local(self.root) == "robot":
             component = self._component_for(t)
             _remove(old)
             _append(component, self._build_inside(t, component))
+        elif moving_in and local(self.root) == "robot":
+            # Inside a xacro macro or conditional: a <ros2_control> of its own, in place,
+            # so that the transmission stays in the scope of its ${...} parameters.
+            self._wrap_in_place(old, t)
         else:
             new = self._build(t, old)
             new.tail = old.tail
             if old.getparent() is None:
                 raise ValueError("cannot replace the root element in place")
             old.getparent().replace(old, new)
+
+    def _wrap_in_place(self, old: etree._Element, t: Transmission) -> None:
+        ns = _namespace(old)
+        q = (lambda tag: f"{{{ns}}}{tag}") if ns else (lambda tag: tag)
+        component = etree.Element(q("ros2_control"), name=t.name, type="system")
+        hardware = etree.SubElement(component, q("hardware"))
+        etree.SubElement(hardware, q("plugin")).text = self.hardware_plugin
+        indent, step = _indentation(old)
+        dialects.pretty(component, indent, step)
+        component.tail = old.tail
+        old.getparent().replace(old, component)
+        for joint in t.joints:
+            self._declare(component, joint)
+        _append(component, self._build_inside(t, component))
 
     def _build(self, t: Transmission, sibling: etree._Element) -> etree._Element:
         indent, step = _indentation(sibling)

@@ -82,6 +82,12 @@ def translate(t: Transmission, target: Dialect) -> Translation:
     return _to_ros2(t, target)
 
 
+def is_expression(number: Number | None) -> bool:
+    """A xacro expression (``${ratio}``) in an unexpanded source: carried verbatim."""
+    text = number.text if number is not None else None
+    return text is not None and ("${" in text or "$(" in text)
+
+
 def _retext(number: Number | None, parse: Callable[[str | None], float | None]) -> Number | None:
     """Keep the text when the target loader reads it as the same value."""
     if number is None or number.value is None:
@@ -212,7 +218,7 @@ def _to_ros1(t: Transmission) -> Translation:
 def _simple_to_ros1(t: Transmission, result: Translation) -> tuple[tuple[Member, ...], ...]:
     first = t.joints[0] if t.joints else None
     reduction = first.mechanical_reduction if first is not None else None
-    if reduction is None or reduction.value is None:
+    if (reduction is None or reduction.value is None) and not is_expression(reduction):
         reduction = Number(value=1.0, text="1")  # ros2_control's default, required in ROS 1
     actuators = []
     for index, actuator in enumerate(t.actuators):
@@ -275,7 +281,7 @@ def _ros1_joint(joint: Member, result: Translation) -> Member:
 
 def _as_loaded(number: Number | None, default: float) -> Number | None:
     """ros2_control reads unparsable text as the default: carry that value, not the text."""
-    if number is not None and number.value is None:
+    if number is not None and number.value is None and not is_expression(number):
         return Number(value=default, text=format_float(default))
     return number
 
@@ -290,7 +296,7 @@ def _ros1_actuator(actuator: Member, result: Translation, *, required: bool = Fa
     if actuator.read_only:
         result.losses.append(f"actuator '{actuator.name}': read_only has no place in ROS 1")
     reduction = _retext(actuator.mechanical_reduction, parse_ros1)
-    if required and (reduction is None or reduction.value is None):
+    if required and (reduction is None or reduction.value is None) and not is_expression(reduction):
         reduction = Number(value=1.0, text="1")
     return actuator.model_copy(
         update={

@@ -125,3 +125,31 @@ def test_transmission_goes_into_the_component_that_declares_its_joints():
     (t,) = read(result.data)
     assert t.ros2_control == "Arm"
     assert result.data.count(b"<ros2_control") == 1
+
+
+XACRO_MACRO = b"""<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="r">
+  <xacro:macro name="arm_trans" params="prefix ratio">
+    <transmission name="${prefix}_trans">
+      <type>transmission_interface/SimpleTransmission</type>
+      <joint name="${prefix}_joint">
+        <hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>
+      </joint>
+      <actuator name="${prefix}_motor">
+        <mechanicalReduction>${ratio}</mechanicalReduction>
+      </actuator>
+    </transmission>
+  </xacro:macro>
+</robot>
+"""
+
+
+def test_unexpanded_xacro_keeps_expressions_and_macro_scope():
+    result = convert_source(source(XACRO_MACRO), "ros2-p2")
+    assert result.losses == []
+    text = result.data.decode()
+    macro = text.index("<xacro:macro")
+    assert macro < text.index('<ros2_control name="${prefix}_trans"') < text.index(
+        "</xacro:macro>")
+    assert "<mechanical_reduction>${ratio}</mechanical_reduction>" in text
+    back = convert_source(source(result.data), "ros1").data.decode()
+    assert "<mechanicalReduction>${ratio}</mechanicalReduction>" in back
