@@ -1,0 +1,46 @@
+"""``txtool rules [CODE]``: the rule catalogue, or one rule's documentation."""
+
+from __future__ import annotations
+
+import json
+
+import click
+
+from txtool.commands.common import exit_on_input_error
+
+
+@click.command("rules")
+@click.argument("code", required=False)
+@click.option("--format", "output_format", type=click.Choice(["text", "json"]), default="text",
+              show_default=True, help="Output format.")
+@exit_on_input_error
+def command(code: str | None, output_format: str) -> int:
+    """List every rule, or show the documentation of CODE (a code such as TX105, or a name)."""
+    from txtool.rules import UnknownRule, all_rules, get
+    from txtool.xmlio import InputError
+
+    if code is None:
+        rules = list(all_rules().values())
+    else:
+        try:
+            rules = [get(code)]
+        except UnknownRule as exc:
+            raise InputError(f"{exc} (see 'txtool rules')") from None
+    if output_format == "json":
+        rows = [
+            {"code": r.code, "name": r.name, "severity": r.severity, "fixable": r.fixable,
+             "summary": r.summary, "doc": r.doc}
+            for r in rules
+        ]
+        click.echo(json.dumps(rows if code is None else rows[0], indent=2))
+    elif code is None:
+        width = max(len(r.name) for r in rules)
+        for r in rules:
+            fix = "fix" if r.fixable else "   "
+            click.echo(f"{r.code}  {r.name:<{width}}  {r.severity:<7}  {fix}  {r.summary}")
+    else:
+        rule = rules[0]
+        fixable = ", fixable by 'txtool migrate'" if rule.fixable else ""
+        click.echo(f"{rule.code} {rule.name} (default severity: {rule.severity}{fixable})\n")
+        click.echo(rule.doc)
+    return 0

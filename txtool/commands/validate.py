@@ -1,0 +1,78 @@
+"""``txtool validate``: lint transmission configurations (argument parsing only)."""
+
+from __future__ import annotations
+
+import os
+import sys
+
+import click
+
+from txtool.commands.common import exit_on_input_error, xacro_options
+
+FORMATS = ("text", "json", "github", "sarif")
+
+
+def _codes(values: tuple[str, ...]) -> tuple[str, ...]:
+    return tuple(code.strip() for value in values for code in value.split(",") if code.strip())
+
+
+def default_format() -> str:
+    return "github" if os.environ.get("GITHUB_ACTIONS") == "true" else "text"
+
+
+def use_color(mode: str) -> bool:
+    if mode != "auto":
+        return mode == "always"
+    if os.environ.get("NO_COLOR") or os.environ.get("TERM") == "dumb":
+        return False
+    return sys.stdout.isatty()
+
+
+@click.command("validate")
+@click.argument("paths", nargs=-1, type=click.Path())
+@click.option("--format", "output_format", type=click.Choice(FORMATS), default=None,
+              help="Output format [default: text; github when GITHUB_ACTIONS=true].")
+@click.option("--select", multiple=True, metavar="CODES",
+              help="Only these rule codes or prefixes (comma-separated, repeatable).")
+@click.option("--ignore", multiple=True, metavar="CODES",
+              help="Skip these rule codes or prefixes (comma-separated, repeatable).")
+@click.option("--strict", is_flag=True, help="Warnings fail too (exit 1).")
+@click.option("--exit-zero", is_flag=True, help="Exit 0 even when there are findings.")
+@click.option("--config", "config_path", type=click.Path(dir_okay=False), metavar="PATH",
+              help="Use this configuration file instead of searching for one.")
+@click.option("--no-xacro", is_flag=True,
+              help="Do not expand xacro; check .xacro files as written.")
+@click.option("--stdin-filename", metavar="NAME",
+              help="The name to report (and find the configuration by) for '-'.")
+@click.option("--color", type=click.Choice(["auto", "always", "never"]), default="auto",
+              show_default=True, help="Colour the text output (NO_COLOR is honoured by auto).")
+@xacro_options
+@exit_on_input_error
+def command(paths, output_format, select, ignore, strict, exit_zero, config_path, no_xacro,
+            stdin_filename, color, xacro) -> int:
+    """Check transmissions in files and folders (*.urdf, *.xacro, robot *.xml; '-' is stdin).
+
+    Exit codes: 0 nothing at the failing level, 1 findings at it (errors; warnings too with
+    --strict; infos never), 2 usage, configuration or input error.
+    """
+    from txtool.lint.api import LintOptions, exit_code, lint_paths
+    from txtool.reporters import Summary, render
+
+    options = LintOptions(
+        select=_codes(select) or None,
+        ignore=_codes(ignore),
+        config=config_path,
+        xacro=xacro,
+        no_xacro=no_xacro,
+        stdin_filename=stdin_filename,
+        strict=strict,
+        exit_zero=exit_zero,
+    )
+    result = lint_paths(list(paths) or ["."], options)
+    for error in result.errors:
+        click.echo(f"txtool: {error}", err=True)
+    fmt = output_format or default_format()
+    summary = Summary.of(result.problems, result.files, unreadable=len(result.errors))
+    report = render(fmt, result.problems, summary, color=fmt == "text" and use_color(color))
+    click.echo(report, nl=False, color=True)
+    return exit_code(result, options)

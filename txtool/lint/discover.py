@@ -1,0 +1,63 @@
+"""Which files ``txtool validate`` checks when given folders."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterable, Iterator
+from pathlib import Path
+
+from lxml import etree
+
+SUFFIXES = (".urdf", ".xacro")  # ``.urdf.xacro`` ends with ``.xacro``
+XML_ROOTS = frozenset({"robot", "ros2_control", "transmission"})
+
+
+def expand_paths(paths: Iterable[str]) -> Iterator[str]:
+    """Files to lint, in a stable order: given files as they are, folders searched recursively.
+
+    A given file is always checked, whatever its name; a missing one is passed on so that
+    loading reports it. ``-`` (stdin) is passed on as well. Each file is produced once.
+    """
+    seen: set[str] = set()
+    for path in paths:
+        found = _walk(path) if path != "-" and os.path.isdir(path) else iter([path])
+        for candidate in found:
+            key = candidate if candidate == "-" else os.path.realpath(candidate)
+            if key not in seen:
+                seen.add(key)
+                yield candidate
+
+
+def _walk(folder: str) -> Iterator[str]:
+    for root, dirs, files in os.walk(folder):
+        dirs[:] = sorted(d for d in dirs if not d.startswith("."))
+        for name in sorted(files):
+            path = os.path.join(root, name)
+            if is_candidate(path):
+                yield path
+
+
+def is_candidate(path: str) -> bool:
+    """A robot description by its name, or an ``.xml`` whose root says it is one."""
+    name = path.lower()
+    if name.endswith(SUFFIXES):
+        return True
+    return name.endswith(".xml") and root_tag(Path(path)) in XML_ROOTS
+
+
+def root_tag(path: Path) -> str | None:
+    """The local name of the root element, reading no further than it; None if unreadable."""
+    try:
+        for _, element in etree.iterparse(
+            str(path),
+            events=("start",),
+            resolve_entities=False,
+            no_network=True,
+            load_dtd=False,
+            huge_tree=False,
+        ):
+            tag = element.tag
+            return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else None
+    except (etree.XMLSyntaxError, OSError):
+        return None
+    return None

@@ -1,0 +1,51 @@
+"""Output formats of ``txtool validate``: pure functions from problems to text.
+
+Each format is one module exposing ``render(problems, summary, *, color=False) -> str``; it is
+imported only when chosen (the text format loads rich only when colouring).
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from txtool.problem import Problem
+
+FORMATS: dict[str, str] = {
+    "text": "text",
+    "json": "json_format",
+    "github": "github",
+    "sarif": "sarif",
+}
+
+
+@dataclass(frozen=True)
+class Summary:
+    files: int
+    errors: int
+    warnings: int
+    infos: int
+    unreadable: int = 0  # files that could not be read (reported on stderr)
+
+    @classmethod
+    def of(cls, problems: Sequence[Problem], files: int, *, unreadable: int = 0) -> Summary:
+        def count(level: str) -> int:
+            return sum(1 for p in problems if p.severity == level)
+
+        return cls(files, count("error"), count("warning"), count("info"), unreadable)
+
+
+def render(
+    output_format: str, problems: Sequence[Problem], summary: Summary, *, color: bool = False
+) -> str:
+    """The report in ``output_format`` (one of :data:`FORMATS`)."""
+    module = importlib.import_module(f"{__name__}.{FORMATS[output_format]}")
+    return module.render(problems, summary, color=color)  # type: ignore[no-any-return]
+
+
+def end_of(problem: Problem) -> tuple[int, int]:
+    """The exclusive end position, one character past the start when the pipeline set none."""
+    if problem.end_line is None or problem.end_column is None:
+        return problem.line, problem.column + 1
+    return problem.end_line, problem.end_column

@@ -1,0 +1,36 @@
+"""GitHub Actions workflow commands: one ``::error file=...::message`` annotation per problem."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from txtool.problem import Problem
+from txtool.reporters import Summary, end_of
+
+LEVELS = {"error": "error", "warning": "warning", "info": "notice"}
+
+
+def _data(text: str) -> str:
+    return text.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+
+
+def _property(text: str) -> str:
+    return _data(text).replace(":", "%3A").replace(",", "%2C")
+
+
+def annotation(problem: Problem) -> str:
+    end_line, end_column = end_of(problem)
+    fields = [
+        f"file={_property(problem.path)}",
+        f"line={problem.line}",
+        f"col={problem.column}",
+        f"endLine={end_line}",
+        f"endColumn={end_column}",
+        f"title={_property(f'{problem.code} {problem.name}')}",
+    ]
+    level = LEVELS.get(problem.severity, "error")
+    return f"::{level} {','.join(fields)}::{_data(problem.message)}"
+
+
+def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False) -> str:
+    return "".join(annotation(p) + "\n" for p in problems)

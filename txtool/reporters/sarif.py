@@ -1,0 +1,126 @@
+"""SARIF 2.1.0 for GitHub code scanning: every registered rule, one result per problem.
+
+Paths become relative URIs with forward slashes (relative to the working folder when they
+are absolute and inside it), so results stay stable across checkouts.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from collections.abc import Sequence
+from pathlib import Path, PurePath
+from typing import Any
+from urllib.parse import quote
+
+from txtool import __version__
+from txtool.problem import Problem
+from txtool.reporters import Summary, end_of
+
+SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
+LEVELS = {"error": "error", "warning": "warning", "info": "note"}
+INFORMATION_URI = "https://pypi.org/project/txtool/"
+
+
+def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False) -> str:
+    return json.dumps(sarif_log(problems), indent=2) + "\n"
+
+
+def sarif_log(problems: Sequence[Problem]) -> dict[str, Any]:
+    from txtool.rules import all_rules
+
+    rules = list(all_rules().values())
+    index = {rule.code: i for i, rule in enumerate(rules)}
+    driver = {
+        "name": "txtool",
+        "semanticVersion": __version__,
+        "informationUri": INFORMATION_URI,
+        "rules": [_rule(rule) for rule in rules],
+    }
+    return {
+        "$schema": SCHEMA,
+        "version": "2.1.0",
+        "runs": [
+            {
+                "tool": {"driver": driver},
+                "columnKind": "unicodeCodePoints",
+                "results": [_result(p, index) for p in problems],
+            }
+        ],
+    }
+
+
+def _rule(rule: Any) -> dict[str, Any]:
+    doc = rule.doc
+    return {
+        "id": rule.code,
+        "name": rule.name,
+        "shortDescription": {"text": rule.summary},
+        "fullDescription": {"text": _first_paragraphs(doc)},
+        "help": {"text": doc, "markdown": _markdown(rule)},
+        "defaultConfiguration": {"level": LEVELS[rule.severity]},
+        "properties": {"tags": ["ros", "transmission"]},
+    }
+
+
+def _first_paragraphs(doc: str) -> str:
+    """The prose before the examples, on one line per paragraph."""
+    prose = doc.split("Failing example", 1)[0].split("Options (", 1)[0]
+    paragraphs = [" ".join(p.split()) for p in prose.split("\n\n") if p.strip()]
+    return "\n\n".join(paragraphs)
+
+
+def _markdown(rule: Any) -> str:
+    """The docstring with its ``Example::`` blocks as fenced XML."""
+    out = [f"**{rule.code} {rule.name}**", ""]
+    fenced = False
+    for line in rule.doc.splitlines():
+        if fenced and line.strip() and not line.startswith("    "):
+            while out[-1] == "":
+                out.pop()
+            out += ["```", ""]
+            fenced = False
+        if line.rstrip().endswith("::") and not fenced:
+            out += [line.rstrip()[:-1], "", "```xml"]
+            fenced = True
+            continue
+        out.append(line[4:] if fenced else line)
+    if fenced:
+        out.append("```")
+    return "\n".join(out).replace("```xml\n\n", "```xml\n")
+
+
+def _result(problem: Problem, index: dict[str, int]) -> dict[str, Any]:
+    end_line, end_column = end_of(problem)
+    result: dict[str, Any] = {
+        "ruleId": problem.code,
+        "level": LEVELS.get(problem.severity, "error"),
+        "message": {"text": problem.message},
+        "locations": [
+            {
+                "physicalLocation": {
+                    "artifactLocation": {"uri": artifact_uri(problem.path)},
+                    "region": {
+                        "startLine": problem.line,
+                        "startColumn": problem.column,
+                        "endLine": end_line,
+                        "endColumn": end_column,
+                    },
+                }
+            }
+        ],
+    }
+    if problem.code in index:
+        result["ruleIndex"] = index[problem.code]
+    return result
+
+
+def artifact_uri(path: str) -> str:
+    """A relative URI for ``path`` when possible, else a ``file://`` URI."""
+    pure = PurePath(path)
+    if pure.is_absolute():
+        try:
+            pure = Path(path).relative_to(Path(os.getcwd()))
+        except ValueError:
+            return Path(path).as_uri()
+    return quote(pure.as_posix())

@@ -1,0 +1,76 @@
+"""``path:line:col: severity CODE name: message`` lines and a summary line.
+
+Plain text unless ``color``; then rich styles it (imported only in that case).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from txtool.problem import Problem
+from txtool.reporters import Summary
+
+STYLES = {"error": "bold red", "warning": "yellow", "info": "cyan"}
+
+
+def line_of(problem: Problem) -> str:
+    return (
+        f"{problem.path}:{problem.line}:{problem.column}: {problem.severity} "
+        f"{problem.code} {problem.name}: {problem.message}"
+    )
+
+
+def summary_line(summary: Summary) -> str:
+    files = _plural(summary.files, "file")
+    counts = [
+        _plural(count, noun)
+        for count, noun in (
+            (summary.errors, "error"), (summary.warnings, "warning"), (summary.infos, "info"),
+        )
+        if count
+    ]
+    line = f"Found {', '.join(counts)} in {files}" if counts else f"No problems in {files}"
+    if summary.unreadable:
+        line += f"; {_plural(summary.unreadable, 'file')} could not be read"
+    return line + "."
+
+
+def _plural(count: int, noun: str) -> str:
+    return f"{count} {noun}" + ("" if count == 1 else "s")
+
+
+def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False) -> str:
+    if not color:
+        lines = [line_of(p) for p in problems]
+        return "\n".join([*lines, summary_line(summary)]) + "\n"
+    return _render_rich(problems, summary)
+
+
+def _render_rich(problems: Sequence[Problem], summary: Summary) -> str:
+    import io
+
+    from rich.console import Console
+    from rich.text import Text
+
+    out = io.StringIO()
+    console = Console(
+        file=out, force_terminal=True, color_system="standard", width=10_000,
+        highlight=False, soft_wrap=True,
+    )
+    for p in problems:
+        console.print(
+            Text.assemble(
+                (f"{p.path}:{p.line}:{p.column}:", "bold"),
+                " ",
+                (p.severity, STYLES.get(p.severity, "")),
+                " ",
+                (p.code, "bold"),
+                " ",
+                (p.name, "dim"),
+                ": ",
+                p.message,
+            )
+        )
+    failed = summary.errors or summary.warnings or summary.infos
+    console.print(Text(summary_line(summary), style="bold" if failed else "green"))
+    return out.getvalue()
