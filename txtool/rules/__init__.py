@@ -40,6 +40,20 @@ RULE_MODULES: tuple[str, ...] = (
     "tx109_shared_member",
     "tx110_missing_interface",
     # TX2xx-TX4xx: cross-checks against the robot, dialects, ignored values (add below)
+    "tx200_unknown_joint",
+    "tx201_fixed_joint",
+    "tx202_mimic_joint",
+    "tx203_interface_mismatch",
+    "tx204_unknown_interface",
+    "tx300_unprefixed_interface",
+    "tx301_interface_on_actuator",
+    "tx302_legacy_type_attribute",
+    "tx303_wrong_dialect_tag",
+    "tx304_outside_ros2_control",
+    "tx400_ignored_value",
+    "tx401_role_order_mismatch",
+    "tx402_four_bar_effort_ros1",
+    "tx403_singular_transmission",
 )
 
 
