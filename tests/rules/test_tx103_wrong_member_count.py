@@ -1,0 +1,87 @@
+from __future__ import annotations
+
+from tests.rules.helpers import check, problems
+
+IFACE = "<hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>"
+ROS1 = f"""
+<robot name="r">
+  <transmission name="t">
+    <type>transmission_interface/{{type}}</type>
+    <joint name="a">{IFACE}</joint>
+    {{more}}
+    <actuator name="m"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>
+</robot>
+"""
+
+
+def test_ros1_simple_with_two_joints_fires_at_the_transmission():
+    xml = ROS1.format(type="SimpleTransmission", more=f'<joint name="b">{IFACE}</joint>')
+    found = problems(xml, select=["TX103"])
+    assert [(p.line, p.column, p.code) for p in found] == [(2, 3, "TX103")]
+    assert "2 joints and 1 actuator" in found[0].message
+    assert "ros_control needs exactly 1 joint and 1 actuator" in found[0].message
+
+
+def test_ros1_differential_with_one_of_each_fires():
+    assert check(ROS1.format(type="DifferentialTransmission", more=""), select=["TX103"]) == [
+        (2, 3, "TX103")
+    ]
+
+
+def test_ros1_simple_one_and_one_passes():
+    assert check(ROS1.format(type="SimpleTransmission", more=""), select=["TX103"]) == []
+
+
+ROS2 = """
+<robot name="r">
+  <ros2_control name="hw" type="{component}">
+    <joint name="a"/>
+    <transmission name="t">
+      <plugin>transmission_interface/SimpleTransmission</plugin>
+      <joint name="a" role="joint1"/>
+      {more}
+    </transmission>
+  </ros2_control>
+</robot>
+"""
+
+
+def test_ros2_simple_without_actuator_passes():
+    assert check(ROS2.format(component="actuator", more=""), select=["TX103"]) == []
+
+
+def test_ros2_simple_with_two_joints_in_an_actuator_component_throws():
+    xml = ROS2.format(component="actuator", more='<joint name="b" role="joint2"/>')
+    found = problems(xml, select=["TX103"])
+    assert [(p.line, p.column) for p in found] == [(4, 5)]
+    assert "There should be exactly one joint" in found[0].message
+
+
+def test_ros2_simple_with_two_joints_in_a_system_ignores_the_second():
+    xml = ROS2.format(component="system", more='<joint name="b" role="joint2"/>')
+    assert "uses only joint 'a'" in problems(xml, select=["TX103"])[0].message
+
+
+def test_custom_types_are_not_counted():
+    xml = ROS1.format(type="SimpleTransmission", more="").replace(
+        "transmission_interface/SimpleTransmission", "franka_hw/FrankaStateInterface"
+    )
+    assert check(xml.replace('<joint name="a">', '<joint name="a"/><joint name="b">'),
+                 select=["TX103"]) == []
+
+
+def test_literal_xacro_members_under_conditionals_are_not_counted():
+    xml = f"""
+    <robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+      <xacro:macro name="tr" params="gripper">
+        <transmission name="t">
+          <type>transmission_interface/SimpleTransmission</type>
+          <joint name="a">{IFACE}</joint>
+          <xacro:if value="${{gripper}}"><joint name="b">{IFACE}</joint></xacro:if>
+          <actuator name="m"><mechanicalReduction>1</mechanicalReduction></actuator>
+        </transmission>
+      </xacro:macro>
+    </robot>
+    """
+    assert check(xml, filename="lib.urdf.xacro", select=["TX103"]) == []
