@@ -4,17 +4,8 @@ from __future__ import annotations
 
 import click
 
-from txtool.xmlio import InputError, XacroOptions
-
-
-def _pairs(values: tuple[str, ...], option: str) -> tuple[tuple[str, str], ...]:
-    pairs = []
-    for value in values:
-        name, sep, rest = value.partition(":=")
-        if not sep or not name:
-            raise click.BadParameter(f"expected NAME:=VALUE, got {value!r}", param_hint=option)
-        pairs.append((name, rest))
-    return tuple(pairs)
+from txtool.commands.common import FORMAT_OPTION, exit_on_input_error, xacro_options
+from txtool.xmlio import XacroOptions
 
 
 @click.command("simulate")
@@ -40,38 +31,30 @@ def _pairs(values: tuple[str, ...], option: str) -> tuple[tuple[str, str], ...]:
               help="Do not fail on actuator effort or speed limits (still reported).")
 @click.option("--loader", type=click.Choice(["auto", "ros1", "ros2"]), default="auto",
               show_default=True, help="Which transmissions to use when a file has both kinds.")
-@click.option("--effort-map", "convention", type=click.Choice(["ros2", "loader"]),
+@click.option("--effort-convention", "convention", type=click.Choice(["ros2", "loader"]),
               default="ros2", show_default=True,
-              help="Controller effort maps: ros2 (power-consistent) or each config's own "
-                   "loader (keeps the ROS 1 four-bar effort bug).")
-@click.option("--format", "output", type=click.Choice(["text", "json"]), default="text",
-              show_default=True)
+              help="Controller effort maps: ros2_control's (power-conserving) for every config, "
+                   "or each config's own loader's (ROS 1 four-bar: ros_control's).")
+@FORMAT_OPTION
 @click.option("--csv", "csv_path", type=click.Path(dir_okay=False), metavar="PATH",
               help="Write the time series (PATH.N.csv per config when several).")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False), metavar="PATH.png|.svg",
               help="Plot tracking error and actuator effort (needs the 'plot' extra).")
 @click.option("--jobs", "-j", type=click.IntRange(min=1), default=1, show_default=True,
               help="Parallel processes for several configs.")
-@click.option("--xacro-arg", "xacro_args", multiple=True, metavar="NAME:=VALUE",
-              help="xacro argument for .xacro inputs.")
-@click.option("--pkg-dir", "pkg_dirs", multiple=True, metavar="DIR",
-              help="Folder holding packages for $(find pkg).")
-@click.option("--pkg-path", "pkg_paths", multiple=True, metavar="NAME:=DIR",
-              help="Location of one package for $(find NAME).")
+@xacro_options
+@exit_on_input_error
 def command(robot: str, configs: tuple[str, ...], params: str | None, bandwidth: float | None,
             duration: float | None, dt: float | None, tolerance: float | None,
             trajectory: str | None, interpolation: str, allow_saturation: bool, loader: str,
-            convention: str, output: str, csv_path: str | None, plot_path: str | None,
-            jobs: int, xacro_args: tuple[str, ...], pkg_dirs: tuple[str, ...],
-            pkg_paths: tuple[str, ...]) -> None:
+            convention: str, output_format: str, csv_path: str | None,
+            plot_path: str | None, jobs: int, xacro: XacroOptions) -> int:
     """Check a transmission config in closed loop against the robot's own.
 
     The plant uses ROBOT's transmissions; a computed-torque controller encodes its commands and
     decodes its measurements with each CANDIDATE's. Exit 0 when the tracking error stays within
     --tolerance and no limit is exceeded, 1 when not, 2 on bad input.
     """
-    xacro = XacroOptions(args=_pairs(xacro_args, "--xacro-arg"), pkg_dirs=pkg_dirs,
-                         pkg_paths=_pairs(pkg_paths, "--pkg-path"))
     from txtool.simulate.app import main
     from txtool.simulate.run import Options
 
@@ -81,9 +64,5 @@ def command(robot: str, configs: tuple[str, ...], params: str | None, bandwidth:
         allow_saturation=allow_saturation, loader=loader, convention=convention, xacro=xacro,
         jobs=jobs,
     )
-    try:
-        _, code = main(options, output=output, csv_path=csv_path, plot_path=plot_path)
-    except InputError as exc:
-        click.echo(str(exc), err=True)
-        raise SystemExit(2) from None
-    raise SystemExit(code)
+    _, code = main(options, output=output_format, csv_path=csv_path, plot_path=plot_path)
+    return code

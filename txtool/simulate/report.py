@@ -35,13 +35,13 @@ def render_text(runs: list[RunResult], console: Console) -> None:
         return
     console.print(comparison_table(runs))
     for run in runs:
-        console.print(f"{escape(run.config)}: {verdict_line(run)}")
+        console.print(f"{escape(run.config)}: {verdict_line(run)}", soft_wrap=True)
         for reason in run.reasons[1:]:
-            console.print(f"  - {escape(reason)}")
+            console.print(f"  - {escape(reason)}", soft_wrap=True)
     failed = [run.config for run in runs if not run.passed]
     if failed:
         console.print(f"[bold red]FAIL[/]: {len(failed)} of {len(runs)} configs fail: "
-                      + ", ".join(escape(c) for c in failed))
+                      + ", ".join(escape(c) for c in failed), soft_wrap=True)
     else:
         console.print(f"[bold green]PASS[/]: all {len(runs)} configs track the reference")
 
@@ -53,10 +53,10 @@ def render_run(run: RunResult, console: Console) -> None:
     console.print(joint_table(run))
     console.print(actuator_table(run))
     for note in run.notes:
-        console.print(f"note: {escape(note)}")
-    console.print(verdict_line(run))
+        console.print(f"note: {escape(note)}", soft_wrap=True)
+    console.print(verdict_line(run), soft_wrap=True)
     for reason in run.reasons[1:]:
-        console.print(f"  - {escape(reason)}")
+        console.print(f"  - {escape(reason)}", soft_wrap=True)
 
 
 def verdict_line(run: RunResult) -> str:
@@ -149,11 +149,21 @@ def run_json(run: RunResult) -> dict[str, Any]:
 
 
 def document(runs: list[RunResult]) -> dict[str, Any]:
-    """One run: its JSON; several: ``{"verdict", "runs": [...]}``."""
+    """One run: its JSON; several: ``{"verdict", "runs": [...]}``. Non-finite numbers: null."""
     if len(runs) == 1:
-        return run_json(runs[0])
-    return {"verdict": "pass" if all(r.passed for r in runs) else "fail",
-            "runs": [run_json(r) for r in runs]}
+        return _clean(run_json(runs[0]))
+    return _clean({"verdict": "pass" if all(r.passed for r in runs) else "fail",
+                   "runs": [run_json(r) for r in runs]})
+
+
+def _clean(value: Any) -> Any:
+    if isinstance(value, float):
+        return _finite(value)
+    if isinstance(value, dict):
+        return {k: _clean(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_clean(v) for v in value]
+    return value
 
 
 def numbered(path: str, index: int, count: int) -> str:

@@ -129,8 +129,9 @@ def simulate_one(options: Options, config: str | None, label: str | None = None,
 
 def finish(p: Prepared, loop_s: float) -> result.RunResult:
     """Metrics, reasons and notes of a prepared run whose loop has run."""
-    series = _series(p.plan, p.robot, p.plant, p.ref, p.effort_limit, p.speed_limit)
-    run = _judge(p.options, series, p.plan, p.binding, p.settings, p.duration)
+    with np.errstate(all="ignore"):  # a diverged run may hold huge values
+        series = _series(p.plan, p.robot, p.plant, p.ref, p.effort_limit, p.speed_limit)
+        run = _judge(p.options, series, p.plan, p.binding, p.settings, p.duration)
     run.config = p.label
     run.reference = p.ref.source
     run.notes = _notes(p.robot, p.plant, p.ctrl, p.config is not None)

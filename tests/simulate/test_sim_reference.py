@@ -1,0 +1,105 @@
+"""Reference motions: minimum-jerk defaults and CSV trajectories with consistent derivatives."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from tests.simulate.robots import arm_ros1, write
+from txtool.simulate.reference import (
+    default_motion,
+    from_table,
+    minimum_jerk,
+    read_csv,
+    step_times,
+)
+from txtool.simulate.run import Options, prepare, simulate_one
+from txtool.xmlio import InputError
+
+JOINTS = ("a", "b")
+
+
+def assert_consistent(t, q, qd, qdd, tol):
+    """Central differences of q and qd agree with qd and qdd (inside the interval)."""
+    dt = t[1] - t[0]
+    inner = slice(1, -1)
+    assert np.max(np.abs(np.gradient(q, dt, axis=0) - qd)[inner]) < tol
+    assert np.max(np.abs(np.gradient(qd, dt, axis=0) - qdd)[inner]) < tol * 10
+
+
+def test_minimum_jerk_rest_to_rest():
+    t = np.linspace(0, 2, 2001)
+    q, qd, qdd = minimum_jerk(t, 0.0, 2.0, -1.0, 3.0)
+    assert q[0] == -1.0 and q[-1] == 3.0
+    assert qd[0] == qd[-1] == 0 and qdd[0] == qdd[-1] == 0
+    assert qd.max() == pytest.approx(1.875 * 4 / 2, rel=1e-6)
+    assert_consistent(t, q, qd, qdd, 1e-3)
+
+
+def test_default_motion_spans_25_to_75_percent_and_back():
+    ref = default_motion([(-2.0, 2.0), (0.0, 1.0)], 4.0, 0.001)
+    assert len(ref.time) == 4001
+    assert np.allclose(ref.q[0], [-1.0, 0.25]) and np.allclose(ref.q[-1], [-1.0, 0.25])
+    assert np.allclose(ref.q[2000], [1.0, 0.75])
+    assert np.allclose(ref.q.min(axis=0), [-1.0, 0.25]) and np.allclose(ref.q.max(axis=0),
+                                                                         [1.0, 0.75])
+    assert_consistent(ref.time, ref.q, ref.qd, ref.qdd, 1e-3)
+
+
+def table(tmp_path, text):
+    return read_csv(write(tmp_path, "t.csv", text), set(JOINTS))
+
+
+def test_linear_interpolation(tmp_path):
+    tab = table(tmp_path, "time,b\n0,0\n1,2\n2,2\n")
+    ref = from_table(tab, JOINTS, np.array([0.5, 0.0]), step_times(3.0, 0.25), "linear")
+    assert np.allclose(ref.q[:, 0], 0.5)  # not in the CSV: held
+    assert np.allclose(ref.q[:5, 1], [0, 0.5, 1.0, 1.5, 2.0])
+    assert np.allclose(ref.qd[:5, 1], [2, 2, 2, 2, 0])
+    assert np.allclose(ref.q[-1, 1], 2.0) and not ref.qdd.any()
+
+
+def test_cubic_interpolation_passes_the_samples_and_starts_at_rest(tmp_path):
+    tab = table(tmp_path, "time,a,b\n0,0,1\n0.5,0.4,1\n1.2,-0.3,0.5\n2,0.1,0.5\n")
+    t = step_times(2.5, 0.0005)
+    ref = from_table(tab, JOINTS, np.zeros(2), t, "cubic")
+    for time, a, b in ((0, 0, 1), (0.5, 0.4, 1), (1.2, -0.3, 0.5), (2.0, 0.1, 0.5)):
+        k = int(round(time / 0.0005))
+        assert ref.q[k] == pytest.approx([a, b], abs=1e-12)
+    assert np.allclose(ref.qd[0], 0) and np.allclose(ref.qd[-1], 0)
+    inside = t <= 2.0
+    assert_consistent(t[inside], ref.q[inside], ref.qd[inside], ref.qdd[inside], 1e-3)
+
+
+def test_single_row_holds(tmp_path):
+    tab = table(tmp_path, "time,a\n0,0.3\n")
+    ref = from_table(tab, JOINTS, np.zeros(2), step_times(1.0, 0.1), "cubic")
+    assert np.allclose(ref.q[:, 0], 0.3) and not ref.qd.any()
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        ("", "t.csv:1: empty trajectory"),
+        ("t,a\n0,1\n", "t.csv:1: header must be time,<joint>,..."),
+        ("time,c\n0,1\n", "t.csv:1: 'c' is not a moving joint of the robot"),
+        ("time,a\n", "t.csv:2: no samples after the header"),
+        ("time,a\n0,1\n1,x\n", "t.csv:3: 'x' is not a finite number"),
+        ("time,a\n0,1\n1\n", "t.csv:3: expected 2 values, got 1"),
+        ("time,a\n0,1\n1,2\n1,3\n", "t.csv:4: times must increase"),
+        ("time,a\n-1,1\n", "t.csv:2: time must not be negative"),
+    ],
+)
+def test_bad_csv(tmp_path, text, message):
+    with pytest.raises(InputError) as caught:
+        table(tmp_path, text)
+    assert message in str(caught.value)
+
+
+def test_trajectory_sets_the_duration_unless_given(tmp_path):
+    robot = write(tmp_path, "arm.urdf", arm_ros1())
+    csv = write(tmp_path, "t.csv", "time,shoulder,elbow\n0,0,0\n0.5,0.1,0.2\n1.5,0,0\n")
+    assert prepare(Options(robot=robot, trajectory=csv), None).duration == 1.5
+    assert prepare(Options(robot=robot, trajectory=csv, duration=2.0), None).duration == 2.0
+    run = simulate_one(Options(robot=robot, trajectory=csv, interpolation="linear"), None)
+    assert run.steps == 1500 and "linear" in run.reference

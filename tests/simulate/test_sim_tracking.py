@@ -1,0 +1,135 @@
+"""Closed-loop verdicts: matching configs pass, mismatches fail and name what is wrong."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from tests.simulate.robots import arm_both, arm_ros1, arm_ros2, pendulum, write
+from txtool.simulate.run import Options, simulate_one
+from txtool.xmlio import InputError
+
+
+@pytest.fixture
+def arm(tmp_path):
+    return write(tmp_path, "arm.urdf", arm_ros1())
+
+
+def run_with(tmp_path, robot: str, candidate_text: str | None, **options):
+    config = write(tmp_path, "candidate.urdf", candidate_text) if candidate_text else None
+    return simulate_one(Options(robot=robot, **options), config)
+
+
+def test_identical_configs_track_within_1e_3(tmp_path, arm):
+    run = run_with(tmp_path, arm, arm_ros1())
+    assert run.passed, run.reasons
+    assert max(j.max_error for j in run.joints.values()) < 1e-3
+    assert run.steps == 5000 and run.dt == 0.001
+    assert all(a.saturated_fraction == 0 for a in run.actuators.values())
+
+
+def test_flipped_sign_fails_and_names_the_joint(tmp_path, arm):
+    run = run_with(tmp_path, arm, arm_ros1(n=-50))
+    assert not run.passed
+    assert run.reasons[0].startswith("joint 'shoulder': tracking error")
+    assert run.joints["shoulder"].max_error > 0.5
+
+
+def test_shifted_offset_fails_and_names_the_joint(tmp_path, arm):
+    run = run_with(tmp_path, arm, arm_ros1(offset=0.3), duration=2.0)
+    assert not run.passed
+    assert run.reasons[0].startswith("joint 'elbow': tracking error")
+    assert run.joints["elbow"].max_error == pytest.approx(0.2, abs=0.03)
+
+
+def test_swapped_differential_roles_fail_and_name_the_joints(tmp_path, arm):
+    run = run_with(tmp_path, arm, arm_ros1(swap=True), duration=2.0)
+    assert not run.passed
+    failing = " ".join(r for r in run.reasons if "tracking error" in r)
+    assert "'elbow'" in failing and "'wrist'" in failing
+
+
+def test_ros1_robot_against_its_ros2_conversion_gives_the_same_trajectory(tmp_path, arm):
+    own = run_with(tmp_path, arm, None, duration=2.0, keep_series=True)
+    converted = run_with(tmp_path, arm, arm_ros2(), duration=2.0, keep_series=True)
+    assert converted.passed, converted.reasons
+    assert np.max(np.abs(own.series.q - converted.series.q)) < 1e-9
+    assert np.max(np.abs(own.series.effort - converted.series.effort)) < 1e-9
+    ros2_robot = write(tmp_path, "arm-ros2.urdf", arm_ros2())
+    reverse = run_with(tmp_path, ros2_robot, arm_ros1(), duration=2.0)
+    assert np.max(np.abs(reverse.series.q - own.series.q)) < 1e-9
+
+
+def test_too_small_effort_limit_names_the_actuator_and_the_first_violation(tmp_path, arm):
+    params = write(tmp_path, "p.toml", "[actuators.m_shoulder]\neffort_limit = 0.05\n")
+    run = run_with(tmp_path, arm, None, params=params, duration=2.0)
+    assert not run.passed
+    reason = next(r for r in run.reasons if r.startswith("actuator 'm_shoulder': effort"))
+    first = run.actuators["m_shoulder"].first_violation
+    assert first is not None and f"first at t={first:.3f} s" in reason
+    assert run.actuators["m_shoulder"].saturated_fraction > 0
+    assert run.actuators["m_shoulder"].peak_effort > 0.05
+    allowed = run_with(tmp_path, arm, None, params=params, duration=2.0, allow_saturation=True)
+    assert not any(r.startswith("actuator") for r in allowed.reasons)
+
+
+def test_speed_limit(tmp_path, arm):
+    params = write(tmp_path, "p.toml", "[actuators.m_left]\nvelocity_limit = 10.0\n")
+    run = run_with(tmp_path, arm, None, params=params, duration=2.0)
+    assert any(r.startswith("actuator 'm_left': speed") for r in run.reasons)
+
+
+def test_renamed_actuator_is_reported(tmp_path, arm):
+    run = run_with(tmp_path, arm, arm_ros1().replace('"m_shoulder"', '"m_other"'), duration=1.0)
+    assert "actuator 'm_other' of the config is not an actuator of the robot" in run.reasons
+    assert "actuator 'm_shoulder' of the robot gets no command from the config" in run.reasons
+    assert "joint 'shoulder': the config cannot measure it" in run.reasons
+
+
+def test_joint_without_transmission_is_driven_directly(tmp_path):
+    robot = write(tmp_path, "partial.urdf", arm_ros1(shoulder=False))
+    run = simulate_one(Options(robot=robot, duration=3.0), None)
+    assert run.passed, run.reasons
+    assert "shoulder" in run.actuators and run.actuators["shoulder"].transmission == ""
+    assert any("driven directly" in note and "shoulder" in note for note in run.notes)
+
+
+def test_leaving_the_position_limits_fails(tmp_path):
+    robot = write(tmp_path, "p.urdf", pendulum(1.0, 0.3, 10.0))
+    beyond = write(tmp_path, "beyond.csv", "time,swing\n0,2.5\n0.5,3.2\n")
+    run = simulate_one(Options(robot=robot, trajectory=beyond, allow_saturation=True), None)
+    assert any(r.startswith("joint 'swing': leaves its position limits by") for r in run.reasons)
+    assert run.joints["swing"].limit_margin < 0
+
+
+def test_unstable_gains_fail_without_a_traceback(tmp_path, arm):
+    unlimited = "".join(f"[actuators.{a}]\neffort_limit = 1e300\n"
+                        for a in ("m_shoulder", "m_left", "m_right"))
+    params = write(tmp_path, "p.toml", unlimited)
+    run = run_with(tmp_path, arm, None, bandwidth=3000.0, duration=1.0, params=params)
+    assert not run.passed
+    assert run.reasons[0].startswith("the simulation diverged at t=")
+
+
+def test_damping_friction_and_integral_terms(tmp_path):
+    text = arm_ros1().replace('<dynamics damping="0.05"/>',
+                              '<dynamics damping="0.3" friction="0.2"/>')
+    params = write(tmp_path, "p.toml", "[joints.shoulder]\nki = 20.0\ni_clamp = 0.5\n")
+    run = simulate_one(Options(robot=write(tmp_path, "f.urdf", text), params=params), None)
+    assert run.passed, run.reasons
+
+
+def test_file_with_both_dialects_needs_a_loader_choice(tmp_path):
+    robot = write(tmp_path, "both.urdf", arm_both())
+    with pytest.raises(InputError, match="both ROS 1 and ROS 2 transmissions.*--loader"):
+        simulate_one(Options(robot=robot), None)
+    for loader in ("ros1", "ros2"):
+        assert simulate_one(Options(robot=robot, loader=loader, duration=1.0), None).steps == 1000
+
+
+def test_transmission_on_an_unknown_joint_is_an_input_error(tmp_path, arm):
+    bad = write(tmp_path, "bad.urdf", arm_ros1().replace('<joint name="shoulder">',
+                                                         '<joint name="shoulderr">'))
+    with pytest.raises(InputError, match=r"bad\.urdf:\d+: transmission 't_shoulder': joint "
+                                         r"'shoulderr' is not a joint of the robot"):
+        simulate_one(Options(robot=arm), bad)
