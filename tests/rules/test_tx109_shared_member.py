@@ -42,3 +42,8 @@ def test_custom_types_may_share_joints():
         + "</robot>"
     )
     assert check(xml, select=["TX109"]) == []
+
+
+def test_a_repeated_transmission_is_left_to_tx108():
+    xml = '<robot name="r">\n' + ros1("a", "j1", "m1") + ros1("a", "j1", "m1") + "</robot>"
+    assert check(xml, select=["TX108", "TX109"]) == [(7, 3, "TX108")]

@@ -52,7 +52,7 @@ def opaque(ctx: LintContext, element: etree._Element) -> bool:
     return ctx.literal and any(is_xacro(child) for child in element)
 
 
-def scope(ctx: LintContext, element: etree._Element) -> tuple[int, ...] | None:
+def scope(ctx: LintContext, element: etree._Element) -> tuple[etree._Element, ...] | None:
     """A key under which elements are instantiated together, or None when that is unknowable.
 
     After expansion every element is real (one scope). In a literal xacro file, elements under
@@ -61,13 +61,14 @@ def scope(ctx: LintContext, element: etree._Element) -> tuple[int, ...] | None:
     """
     if not ctx.literal:
         return ()
-    key: list[int] = []
+    # Elements themselves, not id(): lxml proxies are recreated, keeping them keeps them stable.
+    key: list[etree._Element] = []
     parent = element.getparent()
     while parent is not None:
         if is_xacro(parent):
             if local(parent) in ("if", "unless"):
                 return None
-            key.append(id(parent))
+            key.append(parent)
         parent = parent.getparent()
     return tuple(key)
 
@@ -163,4 +164,4 @@ def loader_group(found: Found) -> tuple[object, ...]:
     if found.transmission.dialect == "ros1":
         return ("ros1",)
     component = enclosing_component(found.element)
-    return ("ros2", id(component) if component is not None else None)
+    return ("ros2", component)

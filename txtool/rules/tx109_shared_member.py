@@ -35,13 +35,16 @@ FIXABLE = False
 
 def check(ctx: LintContext) -> Iterator[Problem]:
     owner: dict[tuple[object, ...], Found] = {}
+    names: set[tuple[object, ...]] = set()
     for found in ctx.transmissions():
         t = found.transmission
         where = scope(ctx, found.element)
-        if t.kind == "other" or where is None:
+        if t.kind == "other" or where is None or not parsed(found):
+            continue  # ros_control skips unparsed ones before any member is used
+        named = (loader_group(found), where, t.name)
+        if t.name and named in names:
             continue
-        if not parsed(found):
-            continue  # ros_control skips it before any member is used
+        names.add(named)
         seen_here: set[tuple[str, str]] = set()
         for ref in members(found):
             name = ref.member.name

@@ -1,0 +1,104 @@
+"""Every corpus file validates (exit 0 or 1, never 2 or a crash) with its documented defects.
+
+MANIFEST.tsv describes each file's quirks and intended defects; EXPECTED encodes them: for the
+transmission rules (TX0xx/TX1xx) the exact count per code, for the cross-check, dialect and
+ignored-value rules (TX2xx-TX4xx) the set of codes.
+"""
+
+from __future__ import annotations
+
+import json
+from collections import Counter
+
+import pytest
+from click.testing import CliRunner
+
+from tests.corpus import corpus_file, corpus_names
+from txtool.cli import cli
+
+EXPECTED: dict[str, tuple[dict[str, int], set[str]]] = {
+    "baxter__baxter.urdf": ({}, {"TX300"}),
+    # macro with <hardwareInterface> and no <mechanicalReduction>
+    "franka_ros__franka_description_utils.xacro": ({"TX104": 1}, set()),
+    "franka_ros__panda-gazebo.urdf": ({"TX104": 7}, set()),
+    # $(find rrbot_description) unresolved; hardwareInterface only in the actuator (pre-Indigo)
+    "gazebo_ros_demos__rrbot_2013_hydro.xacro": ({"TX002": 1, "TX110": 1}, {"TX300", "TX301"}),
+    "husky__wheel.urdf.xacro": ({}, {"TX302"}),
+    "iiwa_stack__iiwa.transmission.xacro": ({}, set()),
+    "interbotix__vx300s.urdf.xacro": ({}, {"TX202"}),
+    "kinova_ros__kinova_common.xacro": ({"TX002": 1}, set()),
+    "moveit_resources__pr2_robot.urdf": ({}, {"TX302"}),
+    "open_manipulator__open_manipulator_x.gazebo.xacro": ({}, {"TX300"}),
+    "pr2__base.transmission.xacro": ({}, {"TX302"}),
+    "pr2__forearm.transmission.xacro": ({}, {"TX302"}),
+    "pr2__gripper.transmission.xacro": ({}, {"TX302"}),
+    "pr2__shoulder.transmission.xacro": ({}, {"TX302"}),
+    "pr2__torso.transmission.xacro": ({}, {"TX302"}),
+    "ros2_control_demos__example_8__rrbot_transmissions_system_position_only.ros2_control.xacro": (
+        {}, set()
+    ),
+    "ros2_control_demos__example_8__rrbot_transmissions_system_position_only.urdf.xacro": (
+        {"TX002": 1}, set()
+    ),
+    "ros2_control_test_assets__actuator_only_custom_plugin.urdf": ({"TX102": 1}, set()),
+    "ros2_control_test_assets__diffbot_urdf.urdf": ({}, {"TX302", "TX304"}),
+    "ros2_control_test_assets__invalid_hw_transmission_joint_mismatch.urdf": ({}, {"TX200"}),
+    "ros2_control_test_assets__invalid_transmission_too_many_joints.urdf": (
+        {"TX103": 1}, {"TX200"}
+    ),
+    # Differential and FourBar on the same joints
+    "ros2_control_test_assets__minimal_robot_hardware_resources.urdf": ({"TX109": 4}, set()),
+    "ros2_control_test_assets__minimal_robot_transmissions.urdf": ({}, {"TX300"}),
+    "ros2_control_test_assets__modular_robot_sensors_SimpleTansmission_typo.urdf": (
+        {"TX102": 1}, set()
+    ),
+    "ros2_control_test_assets__multi_joints_transmission.urdf": ({}, set()),
+    "ros_control__differential_transmission_loader_full.urdf": ({}, set()),
+    "ros_control__four_bar_linkage_transmission_loader_full.urdf": ({}, {"TX402"}),
+    # 14 copies named alike: 8 role defects, actuator reduction missing, 3 non-numbers, 2 zeros
+    "ros_control__four_bar_linkage_transmission_loader_invalid.urdf": (
+        {"TX104": 1, "TX105": 3, "TX106": 2, "TX107": 8, "TX108": 13}, {"TX402"}
+    ),
+    # names and interfaces missing or empty, <type> missing or empty
+    "ros_control__parser_test_invalid.urdf": (
+        {"TX100": 6, "TX101": 2, "TX102": 1, "TX108": 6, "TX110": 2}, set()
+    ),
+    # reduction missing, 'fifty', offset 'zero', reduction 0; four copies of one name
+    "ros_control__simple_transmission_loader_invalid.urdf": (
+        {"TX104": 1, "TX105": 2, "TX106": 1, "TX108": 3}, set()
+    ),
+    "ros_control__transmission_interface_loader_bidirectional_valid.urdf": ({}, set()),
+    "ros_control__transmission_interface_loader_duplicate.urdf": ({"TX108": 1}, set()),
+    "shadow__middle.transmission.xacro": ({}, set()),
+    # licence comment before the XML declaration
+    "shadow__shadowhand_motor.urdf": ({"TX001": 1}, set()),
+    "tiago__ros2_control.urdf.xacro": ({}, set()),
+    "tiago__ros2_control_transmissions.urdf.xacro": ({}, set()),
+    "ur_description__ur_transmissions.xacro": ({}, set()),
+    "urdf_sim_tutorial__12-gripper.urdf.xacro": ({}, {"TX302"}),
+}
+
+
+def _own(code: str) -> bool:
+    return code.startswith(("TX0", "TX1"))
+
+
+def test_every_corpus_file_has_an_expectation():
+    names = corpus_names()
+    if names == ["<corpus missing>"]:
+        corpus_file("MANIFEST.tsv")  # skips, or fails under TXTOOL_REQUIRE_CORPUS=1
+    assert sorted(EXPECTED) == names
+
+
+@pytest.mark.parametrize("name", corpus_names())
+def test_corpus_file_findings_match_its_documented_defects(name):
+    path = corpus_file(name)
+    result = CliRunner().invoke(cli, ["validate", "--format", "json", str(path)])
+    assert result.exception is None or isinstance(result.exception, SystemExit)
+    report = json.loads(result.stdout)
+    codes = Counter(p["code"] for p in report["problems"])
+    own, others = EXPECTED[name]
+    failing = report["summary"]["errors"] > 0
+    assert result.exit_code == (1 if failing else 0), result.stderr
+    assert {c: n for c, n in codes.items() if _own(c)} == own
+    assert {c for c in codes if not _own(c)} == others
