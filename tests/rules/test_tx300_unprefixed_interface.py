@@ -1,0 +1,105 @@
+from __future__ import annotations
+
+from tests.rules.helpers import check, problems, snippet
+from txtool.rules import tx300_unprefixed_interface as rule
+from txtool.xmlio import parse_bytes, serialize
+
+BEFORE = """
+<robot name="r">
+  <transmission name="t">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j">
+      <hardwareInterface>PositionJointInterface</hardwareInterface>
+    </joint>
+    <actuator name="m">
+      <hardwareInterface> EffortJointInterface </hardwareInterface>
+      <mechanicalReduction>1</mechanicalReduction>
+    </actuator>
+  </transmission>
+</robot>
+"""
+
+AFTER = """
+<robot name="r">
+  <transmission name="t">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j">
+      <hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>
+    </joint>
+    <actuator name="m">
+      <hardwareInterface> hardware_interface/EffortJointInterface </hardwareInterface>
+      <mechanicalReduction>1</mechanicalReduction>
+    </actuator>
+  </transmission>
+</robot>
+"""
+
+
+def fixed(xml: str) -> tuple[str, int, int]:
+    """The text after one fix run, the fixes made, and the fixes a second run makes."""
+    data = snippet(xml).encode()
+    tree = parse_bytes(data, "robot.urdf")
+    first = rule.fix(tree.getroot())
+    text = serialize(tree, data).decode()
+    return text, first, rule.fix(tree.getroot())
+
+
+def test_unprefixed_interfaces_warn_on_joint_and_actuator():
+    found = problems(BEFORE, select=["TX300"])
+    assert [(p.line, p.column, p.code) for p in found] == [(5, 7, "TX300"), (8, 7, "TX300")]
+    assert found[0].severity == "warning" and found[0].fixable
+    assert "'PositionJointInterface' of joint 'j' in transmission 't'" in found[0].message
+    assert "write 'hardware_interface/PositionJointInterface'" in found[0].message
+
+
+def test_prefixed_interfaces_pass():
+    assert check(AFTER, select=["TX300"]) == []
+
+
+def test_fix_prepends_the_prefix_and_is_idempotent():
+    text, first, second = fixed(BEFORE)
+    assert text == snippet(AFTER)
+    assert (first, second) == (2, 0)
+
+
+def test_fix_keeps_xacro_expressions_verbatim():
+    macro = """
+    <robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+      <xacro:macro name="arm_trans" params="prefix">
+        <transmission name="${prefix}_trans">
+          <type>transmission_interface/SimpleTransmission</type>
+          <joint name="${prefix}_joint">
+            <hardwareInterface>VelocityJointInterface</hardwareInterface>
+            <hardwareInterface>${extra_interface}</hardwareInterface>
+          </joint>
+          <actuator name="${prefix}_motor">
+            <mechanicalReduction>${gear * 2}</mechanicalReduction>
+          </actuator>
+        </transmission>
+      </xacro:macro>
+    </robot>
+    """
+    expected = snippet(macro).replace(
+        "<hardwareInterface>VelocityJointInterface",
+        "<hardwareInterface>hardware_interface/VelocityJointInterface",
+    )
+    text, first, second = fixed(macro)
+    assert text == expected
+    assert (first, second) == (1, 0)
+
+
+def test_ros2_and_own_loader_families_are_left_alone():
+    pr2 = BEFORE.replace(
+        "transmission_interface/SimpleTransmission", "sr_mechanism_model/SimpleTransmission"
+    )
+    assert check(pr2, select=["TX300"]) == []
+    assert fixed(pr2)[1] == 0
+
+
+def test_fix_on_real_robots_leaves_nothing_to_report():
+    from tests.corpus import corpus_file
+
+    for name in ("baxter__baxter.urdf", "open_manipulator__open_manipulator_x.gazebo.xacro"):
+        text, first, second = fixed(corpus_file(name).read_text())
+        assert first > 0 and second == 0
+        assert check(text, select=["TX300"], filename=name, no_xacro=True) == []
