@@ -52,4 +52,6 @@ def test_ros2_transmission_on_a_fixed_joint_fires():
       </ros2_control>
     </robot>
     """
-    assert check(xml, select=["TX201"]) == [(9, 7, "TX201")]
+    found = problems(xml, select=["TX201"])
+    assert [(p.line, p.column, p.code) for p in found] == [(9, 7, "TX201")]
+    assert "Fixed joints do not make sense in ros2_control" in found[0].message

@@ -1,4 +1,4 @@
-"""TX200 unknown-joint: a transmission names a joint that does not exist.
+"""A transmission names a joint that does not exist.
 
 What it checks
     Every ``<joint name="...">`` of a transmission must be

@@ -1,4 +1,4 @@
-"""TX201 fixed-joint: a transmission drives a joint of type ``fixed``.
+"""A transmission drives a joint of type ``fixed``.
 
 What it checks
     A transmission ``<joint>`` that names a URDF ``<joint type="fixed">`` of the robot (only
@@ -10,7 +10,10 @@ Why
     A fixed joint has no degree of freedom: there is no position to read and nothing to
     command. Simulators merge fixed joints away (gazebo_ros_control then reports the joint as
     "not in the gazebo model" and stops), and a hardware plugin would command a joint that
-    cannot move. Usually the joint type or the transmission's joint name is wrong.
+    cannot move. ros2_control (master) refuses a fixed joint declared in a
+    ``<ros2_control>`` block outright: "Joint 'J' is of type 'fixed'. Fixed joints do not
+    make sense in ros2_control." Usually the joint type or the transmission's joint name is
+    wrong.
 
 Failing example::
 
@@ -32,8 +35,12 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from lxml import etree
+
 from txtool.lint.context import LintContext
+from txtool.lint.support import label
 from txtool.problem import Problem
+from txtool.reader import enclosing_component
 from txtool.robot import children
 
 CODE = "TX201"
@@ -52,9 +59,18 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             info = ctx.joints.get(joint.get("name", ""))
             if info is None or not info.is_fixed:
                 continue
-            yield ctx.problem(
-                CODE,
-                joint,
-                f"joint '{info.name}' of transmission '{found.transmission.name}' is a fixed "
-                "joint: it cannot move, so the transmission has nothing to read or command",
+            effect = (
+                "ros2_control throws \"Fixed joints do not make sense in ros2_control\""
+                if _declared_by_component(found.element, info.name)
+                else "it cannot move, so the transmission has nothing to read or command"
             )
+            yield ctx.problem(
+                CODE, joint, f"joint '{info.name}' of {label(found)} is a fixed joint: {effect}"
+            )
+
+
+def _declared_by_component(transmission: etree._Element, joint: str) -> bool:
+    component = enclosing_component(transmission)
+    return component is not None and any(
+        j.get("name") == joint for j in children(component, "joint")
+    )

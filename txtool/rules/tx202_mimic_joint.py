@@ -1,4 +1,4 @@
-"""TX202 mimic-joint: a transmission drives a joint that mimics another joint.
+"""A transmission drives a joint that mimics another joint.
 
 What it checks
     A transmission ``<joint>`` of a standard transmission type that names a URDF joint with a
@@ -36,6 +36,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
+from txtool.lint.support import label
 from txtool.problem import Problem
 from txtool.robot import children
 
@@ -58,7 +59,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             yield ctx.problem(
                 CODE,
                 joint,
-                f"joint '{info.name}' of transmission '{found.transmission.name}' mimics "
+                f"joint '{info.name}' of {label(found)} mimics "
                 f"'{info.mimic}': it follows that joint, so driving it through its own "
                 "transmission fights the mimic constraint",
             )

@@ -1,4 +1,4 @@
-"""TX203 interface-mismatch: the joints of a transmission cannot share its interfaces.
+"""The joints of a transmission cannot share its interfaces.
 
 What it checks
     * ROS 1: all joints of one transmission must list the same set of

@@ -1,4 +1,4 @@
-"""TX204 unknown-interface: an interface name the transmission loader does not know.
+"""An interface name the transmission loader does not know.
 
 What it checks
     * ROS 1: every ``<hardwareInterface>`` of a joint or actuator of a standard transmission

@@ -1,4 +1,4 @@
-"""TX300 unprefixed-interface: a ROS 1 hardware interface without ``hardware_interface/``.
+"""A ROS 1 hardware interface without ``hardware_interface/``.
 
 What it checks
     A ``<hardwareInterface>`` of a ROS 1 joint or actuator written as a registered interface

@@ -1,4 +1,4 @@
-"""TX301 interface-on-actuator: the hardware interface sits only on the actuator.
+"""The hardware interface sits only on the actuator.
 
 What it checks
     A ROS 1 transmission ``<joint>`` with no (non-empty) ``<hardwareInterface>`` while an

@@ -1,4 +1,4 @@
-"""TX302 legacy-type-attribute: the transmission type given as a ``type="..."`` attribute.
+"""The transmission type given as a ``type="..."`` attribute.
 
 What it checks
     A ROS 1 ``<transmission type="...">``. Two forms occur in published robots:

@@ -1,4 +1,4 @@
-"""TX303 wrong-dialect-tag: a ROS 1 spelling in a ROS 2 transmission, or the reverse.
+"""A ROS 1 spelling in a ROS 2 transmission, or the reverse.
 
 What it checks
     * In a ROS 2 transmission (inside ``<ros2_control>`` or carrying ``<plugin>``):

@@ -1,4 +1,4 @@
-"""TX304 outside-ros2-control: a transmission that ros2_control will never read.
+"""A transmission that ros2_control will never read.
 
 What it checks
     A document that has ``<ros2_control>`` blocks, and also a transmission that is not inside

@@ -1,4 +1,4 @@
-"""TX400 ignored-value: a value the ROS loader never reads.
+"""A value the ROS loader never reads.
 
 What it checks
     Values written in a standard transmission that its loader does not use:

@@ -1,4 +1,4 @@
-"""TX401 role-order-mismatch: ros2_control would bind a coupled transmission's values wrongly.
+"""A coupled ROS 2 transmission whose values ros2_control binds to the wrong joint.
 
 What it checks
     A ROS 2 Differential or FourBarLinkage transmission (its first two joints and first two

@@ -1,4 +1,4 @@
-"""TX402 four-bar-effort-ros1: the ROS 1 four-bar effort map does not conserve power.
+"""The ROS 1 four-bar effort map does not conserve power.
 
 What it checks
     Every ROS 1 ``transmission_interface/FourBarLinkageTransmission``.

@@ -1,4 +1,4 @@
-"""TX403 singular-transmission: the transmission's linear map cannot be inverted reliably.
+"""The transmission's linear map cannot be inverted reliably.
 
 What it checks
     For a loadable standard transmission, the matrix ``A`` with
