@@ -117,21 +117,25 @@ def resolve(
     *,
     origin: str = "<defaults>",
     base: Path | None = None,
+    prefix: str = "",
 ) -> Settings:
-    """Check ``config`` against the registry and resolve it to :class:`Settings`."""
+    """Check ``config`` against the registry and resolve it to :class:`Settings`.
+
+    ``prefix`` is put before key names in errors (``tool.txtool.`` for a pyproject.toml).
+    """
     from txtool.rules import all_rules
 
     rules = all_rules()
     selected = set(rules)
     if config.select is not None:
-        selected = _expand(config.select, rules, origin, "select")
-    ignored = _expand(config.ignore, rules, origin, "ignore")
+        selected = _expand(config.select, rules, origin, f"{prefix}select")
+    ignored = _expand(config.ignore, rules, origin, f"{prefix}ignore")
     for code in config.severity:
-        _exact(code, rules, origin, f"severity.{code}")
+        _exact(code, rules, origin, f"{prefix}severity.{code}")
     options: dict[str, Any] = {}
     for code, values in config.rules.items():
-        options[_exact(code, rules, origin, f"rules.{code}")] = _options(
-            rules[code.upper()], values, origin
+        options[_exact(code, rules, origin, f"{prefix}rules.{code}")] = _options(
+            rules[code.upper()], values, origin, f"{prefix}rules.{code.upper()}"
         )
     folder = base or Path(".")
     return Settings(
@@ -166,15 +170,15 @@ def _exact(code: str, rules: dict[str, Any], origin: str, key: str) -> str:
     return code.upper()
 
 
-def _options(rule: Any, values: dict[str, Any], origin: str) -> Any:
+def _options(rule: Any, values: dict[str, Any], origin: str, where: str) -> Any:
     model = rule.options
     if model is None:
-        raise ConfigError(f"{origin}: key 'rules.{rule.code}': {rule.code} takes no options")
+        raise ConfigError(f"{origin}: key '{where}': {rule.code} takes no options")
     try:
         return model.model_validate(values)
     except ValidationError as exc:
         error = exc.errors()[0]
-        key = f"rules.{rule.code}." + ".".join(str(part) for part in error["loc"])
+        key = f"{where}." + ".".join(str(part) for part in error["loc"])
         reason = "unknown key" if error["type"] == "extra_forbidden" else error["msg"]
         raise ConfigError(f"{origin}: key '{key}': {reason}") from None
 
@@ -233,13 +237,15 @@ class SettingsCache:
         return self._by_file[config_path]
 
     def _settings(self, config_path: Path | None) -> Settings:
+        prefix = ""
         if config_path is None:
             config, origin, base = Config(), "command line", Path.cwd()
         else:
             if not config_path.is_file():
                 raise ConfigError(f"{config_path}: no such configuration file")
             config, origin, base = load_config(config_path), str(config_path), config_path.parent
-        settings = resolve(merged(config, self.overrides), origin=origin, base=base)
+            prefix = "tool.txtool." if config_path.name == PYPROJECT else ""
+        settings = resolve(merged(config, self.overrides), origin=origin, base=base, prefix=prefix)
         extra = self.overrides.xacro
         xacro = XacroOptions(  # the command line first: the first match wins
             args=settings.xacro.args,

@@ -48,16 +48,18 @@ def is_candidate(path: str) -> bool:
 def root_tag(path: Path) -> str | None:
     """The local name of the root element, reading no further than it; None if unreadable."""
     try:
-        for _, element in etree.iterparse(
-            str(path),
-            events=("start",),
-            resolve_entities=False,
-            no_network=True,
-            load_dtd=False,
-            huge_tree=False,
-        ):
-            tag = element.tag
-            return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else None
+        with path.open("rb") as handle:
+            events = etree.iterparse(
+                handle,
+                events=("start",),
+                resolve_entities=False,
+                no_network=True,
+                load_dtd=False,
+                huge_tree=False,
+            )
+            for _, element in events:
+                tag = element.tag
+                return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else None
     except (etree.XMLSyntaxError, OSError):
         return None
     return None

@@ -3,7 +3,8 @@
 ``<!-- txtool: disable-next-line TX105 -->`` silences the listed codes on the next line,
 ``<!-- txtool: disable-line TX105 -->`` on the comment's own line, and
 ``<!-- txtool: disable-file TX300 TX301 -->`` in the whole file. Codes are separated by
-spaces or commas; without codes every rule is silenced. Text after ``--`` is a free reason.
+spaces or commas; without codes every rule is silenced. Text after ``;`` is a free reason
+(``<!-- txtool: disable-line TX106; zero on purpose -->``).
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ _MARK = b"txtool:"
 _DIRECTIVE = re.compile(
     rb"<!--\s*txtool:\s*(disable-next-line|disable-line|disable-file)\b(.*?)-->", re.DOTALL
 )
-_CODE = re.compile(r"[A-Za-z]+\d+")
+_CODE = re.compile(r"\bTX\d{3}\b", re.IGNORECASE)
 
 
 @dataclass
@@ -75,7 +76,7 @@ def parse(data: bytes) -> Suppressions:
         column = match.start() - (data.rfind(b"\n", 0, match.start()) + 1) + 1
         kind = match.group(1).decode()
         target = {"disable-next-line": end_line + 1, "disable-line": start_line}.get(kind)
-        reason_free = match.group(2).decode("utf-8", "replace").split("--", 1)[0]
+        reason_free = match.group(2).decode("utf-8", "replace").split(";", 1)[0]
         codes = frozenset(code.upper() for code in _CODE.findall(reason_free))
         directives.append(Directive(kind, start_line, column, target, codes))
     return Suppressions(directives)

@@ -19,7 +19,6 @@ from txtool.reporters import Summary, end_of
 
 SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
 LEVELS = {"error": "error", "warning": "warning", "info": "note"}
-INFORMATION_URI = "https://pypi.org/project/txtool/"
 
 
 def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False) -> str:
@@ -34,7 +33,6 @@ def sarif_log(problems: Sequence[Problem]) -> dict[str, Any]:
     driver = {
         "name": "txtool",
         "semanticVersion": __version__,
-        "informationUri": INFORMATION_URI,
         "rules": [_rule(rule) for rule in rules],
     }
     return {

@@ -1,0 +1,162 @@
+"""``txtool validate`` as a user runs it: exit codes and output asserted together."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from tests.lint.conftest import BROKEN, CLEAN, WARNING_ONLY
+
+TX106_LINE = (
+    "robot.urdf:6:24: error TX106 zero-reduction: reduction of actuator 'm' of transmission "
+    "'t' is zero: ros_control refuses it (\"Transmission reduction ratio cannot be zero\")"
+)
+
+
+def write(folder, name, text):
+    path = folder / name
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text)
+    return path
+
+
+def test_findings_exit_1_with_text_lines_and_a_summary(validate, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    write(tmp_path, "robot.urdf", BROKEN)
+    code, out, err = validate("robot.urdf")
+    lines = out.splitlines()
+    assert code == 1 and err == ""
+    assert lines[0] == TX106_LINE
+    assert lines[1].startswith("robot.urdf:9:5: warning TX102 unknown-type: ")
+    assert lines[-1] == "Found 1 error, 1 warning in 1 file."
+
+
+def test_clean_file_exits_0(validate, tmp_path):
+    path = write(tmp_path, "robot.urdf", CLEAN)
+    assert validate(str(path)) == (0, "No problems in 1 file.\n", "")
+
+
+def test_warnings_fail_only_with_strict(validate, tmp_path):
+    path = write(tmp_path, "robot.urdf", WARNING_ONLY)
+    assert validate(str(path))[0] == 0
+    code, out, _ = validate("--strict", str(path))
+    assert code == 1 and "TX102" in out
+
+
+def test_exit_zero(validate, tmp_path):
+    path = write(tmp_path, "robot.urdf", BROKEN)
+    code, out, _ = validate("--exit-zero", str(path))
+    assert code == 0 and "TX106" in out
+
+
+def test_infos_never_fail(validate, tmp_path):
+    text = CLEAN.replace("<robot", "<!-- txtool: disable-file TX105 -->\n<robot")
+    path = write(tmp_path, "robot.urdf", text)
+    code, out, _ = validate("--strict", str(path))
+    assert code == 0 and "info TX003 unused-suppression" in out
+
+
+def test_select_and_ignore(validate, tmp_path):
+    path = write(tmp_path, "robot.urdf", BROKEN)
+    code, out, _ = validate("--select", "TX102", str(path))
+    assert code == 0 and "TX102" in out and "TX106" not in out
+    code, out, _ = validate("--ignore", "TX106,TX102", str(path))
+    assert (code, out) == (0, "No problems in 1 file.\n")
+    code, out, _ = validate("--select", "TX1", "--ignore", "TX102", str(path))
+    assert code == 1 and "TX106" in out and "TX102" not in out
+
+
+def test_unknown_code_is_a_usage_error(validate, tmp_path):
+    path = write(tmp_path, "robot.urdf", CLEAN)
+    assert validate("--select", "TX999", str(path)) == (
+        2, "", "txtool: option '--select': unknown rule code 'TX999'\n"
+    )
+
+
+def test_missing_file_is_exit_2_and_other_files_are_still_checked(validate, tmp_path):
+    path = write(tmp_path, "robot.urdf", BROKEN)
+    code, out, err = validate(str(tmp_path / "nope.urdf"), str(path))
+    assert code == 2
+    assert err == f"txtool: {tmp_path / 'nope.urdf'}: no such file\n"
+    assert "TX106" in out and out.endswith("in 1 file; 1 file could not be read.\n")
+
+
+def test_bad_option_is_exit_2(validate, tmp_path):
+    code, _, err = validate("--format", "yaml", str(tmp_path))
+    assert code == 2 and "Invalid value for '--format'" in err
+
+
+def test_malformed_xml_is_a_finding_not_a_crash(validate, tmp_path):
+    path = write(tmp_path, "robot.urdf", "<robot>\n  <transmission>\n</robot>\n")
+    code, out, err = validate(str(path))
+    assert code == 1 and err == ""
+    assert f"{path}:3:9: error TX001 xml-syntax: Opening and ending tag mismatch" in out
+
+
+def test_directories_are_searched_for_robot_files(validate, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    write(tmp_path, "pkg/urdf/a.urdf", BROKEN)
+    write(tmp_path, "pkg/urdf/b.urdf.xacro", CLEAN)
+    write(tmp_path, "pkg/config/robot.xml", BROKEN)
+    write(tmp_path, "pkg/config/other.xml", "<launch/>")
+    write(tmp_path, "pkg/.hidden/c.urdf", BROKEN)
+    write(tmp_path, "pkg/notes.txt", BROKEN)
+    code, out, _ = validate("--format", "json", "pkg")
+    report = json.loads(out)
+    assert code == 1
+    assert sorted({p["path"] for p in report["problems"]}) == [
+        "pkg/config/robot.xml", "pkg/urdf/a.urdf"
+    ]
+    assert report["summary"] == {"files": 3, "errors": 2, "warnings": 2, "infos": 0}
+
+
+def test_stdin_with_a_filename(validate, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    code, out, _ = validate("--stdin-filename", "robot.urdf", "-", input=BROKEN)
+    assert code == 1 and out.splitlines()[0] == TX106_LINE
+
+
+def test_stdin_xacro_is_checked_as_written(validate):
+    xacro = BROKEN.replace(">0<", ">${r}<").replace("<robot", '<robot xmlns:xacro="x"')
+    code, out, _ = validate("--stdin-filename", "r.urdf.xacro", "--select", "TX106", "-",
+                            input=xacro)
+    assert (code, out) == (0, "No problems in 1 file.\n")
+
+
+def test_github_format_is_chosen_under_github_actions(validate, tmp_path, monkeypatch):
+    path = write(tmp_path, "robot.urdf", BROKEN)
+    monkeypatch.setenv("GITHUB_ACTIONS", "true")
+    code, out, _ = validate("--select", "TX106", str(path))
+    assert code == 1
+    assert out.startswith(f"::error file={path},line=6,col=24,endLine=6,endColumn=45,"
+                          "title=TX106 zero-reduction::reduction of actuator 'm'")
+
+
+@pytest.mark.parametrize(
+    ("args", "env", "colored"),
+    [
+        ((), {}, False),  # not a terminal
+        (("--color", "always"), {}, True),
+        (("--color", "always"), {"NO_COLOR": "1"}, True),
+        (("--color", "never"), {}, False),
+    ],
+)
+def test_color(validate, tmp_path, monkeypatch, args, env, colored):
+    for key, value in env.items():
+        monkeypatch.setenv(key, value)
+    path = write(tmp_path, "robot.urdf", BROKEN)
+    code, out, _ = validate(*args, str(path))
+    assert code == 1 and ("\x1b[" in out) is colored
+    assert "TX106" in out
+
+
+def test_auto_color_honours_no_color(monkeypatch):
+    from txtool.commands import validate as module
+
+    monkeypatch.setattr("sys.stdout.isatty", lambda: True)
+    monkeypatch.delenv("NO_COLOR", raising=False)
+    monkeypatch.delenv("TERM", raising=False)
+    assert module.use_color("auto") is True
+    monkeypatch.setenv("NO_COLOR", "1")
+    assert module.use_color("auto") is False

