@@ -1,0 +1,68 @@
+"""``txtool migrate PATH... (--check | --diff | --write)``: argument parsing only."""
+
+from __future__ import annotations
+
+import click
+
+from txtool.commands.common import exit_on_input_error
+
+TARGETS = ("ros1", "ros2-p1", "ros2-p2")
+
+
+def _codes(values: tuple[str, ...]) -> tuple[str, ...]:
+    return tuple(code.strip() for value in values for code in value.split(",") if code.strip())
+
+
+def _mode(check: bool, diff: bool, write: bool) -> str:
+    chosen = [name for name, on in (("check", check), ("diff", diff), ("write", write)) if on]
+    if len(chosen) != 1:
+        raise click.UsageError("give exactly one of --check, --diff, --write")
+    return chosen[0]
+
+
+@click.command("migrate")
+@click.argument("paths", nargs=-1, required=True, type=click.Path())
+@click.option("--to", "target", type=click.Choice(TARGETS),
+              help="Also convert the transmissions to this dialect.")
+@click.option("--check", is_flag=True, help="Write nothing; exit 1 if a file would change.")
+@click.option("--diff", is_flag=True,
+              help="Write nothing; print a unified diff and exit 1 if a file would change.")
+@click.option("--write", is_flag=True, help="Rewrite the files that change (atomically).")
+@click.option("--select", multiple=True, metavar="CODES",
+              help="Only these fix codes or prefixes (comma-separated, repeatable).")
+@click.option("--ignore", multiple=True, metavar="CODES",
+              help="Skip these fix codes or prefixes (comma-separated, repeatable).")
+@click.option("--config", "config_path", type=click.Path(dir_okay=False), metavar="PATH",
+              help="Use this configuration file instead of searching for one.")
+@click.option("--allow-lossy", is_flag=True,
+              help="Convert even when something cannot be carried (it is still reported).")
+@click.option("--hardware-plugin", default="mock_components/GenericSystem", show_default=True,
+              help="<plugin> of a <ros2_control> block created for ROS 1 transmissions.")
+@exit_on_input_error
+def command(paths, target, check, diff, write, select, ignore, config_path, allow_lossy,
+            hardware_plugin) -> int:
+    """Apply the fixable rules (and, with --to, the conversion) to files and folders in place.
+
+    Folders are searched like validate does (*.urdf, *.xacro, robot *.xml). xacro files are
+    migrated as written, never expanded: ${...} expressions, macros and comments are kept.
+
+    Exit codes: 0 nothing to do (or all written), 1 changes pending (--check, --diff) or a
+    conversion refused for losses, 2 usage, configuration or input error.
+    """
+    from txtool.migrate import MigrateOptions, migrate_paths
+
+    options = MigrateOptions(
+        mode=_mode(check, diff, write),  # type: ignore[arg-type]
+        target=target,
+        select=_codes(select) or None,
+        ignore=_codes(ignore),
+        config=config_path,
+        allow_lossy=allow_lossy,
+        hardware_plugin=hardware_plugin,
+    )
+    report = migrate_paths(paths, options)
+    if report.diff:
+        click.echo(report.diff, nl=False)
+    for message in report.messages:
+        click.echo(message, err=True)
+    return report.exit_code

@@ -1,0 +1,455 @@
+"""Migrate files in place: apply the fixable rules and, optionally, a dialect conversion.
+
+Files are read as written, never expanded: in a xacro file the literal transmission XML is
+rewritten and ``${...}`` expressions, macros and comments stay as they are. Only the lines that
+the migration changes are replaced; every other line keeps its original bytes (quoting, spacing,
+line endings), so a diff shows the migration and nothing else. A file that does not change is
+never written. The result of a migration is a fixed point: migrating it again changes nothing.
+
+:func:`migrate_paths` returns a :class:`Report` (diff text, messages and exit code); it writes
+files only in ``write`` mode. Nothing here prints.
+"""
+
+from __future__ import annotations
+
+import copy
+import difflib
+import os
+import re
+from collections import Counter
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+from typing import Literal
+
+from lxml import etree
+
+from txtool.config import Overrides, SettingsCache
+from txtool.convert import DEFAULT_HARDWARE_PLUGIN, convert_source
+from txtool.lint.discover import expand_paths
+from txtool.lint.suppress import Suppressions
+from txtool.lint.suppress import parse as parse_suppressions
+from txtool.model import Dialect
+from txtool.problem import Problem
+from txtool.reader import transmission_elements
+from txtool.rules import Rule, all_rules
+from txtool.xmlio import InputError, Source, parse_bytes, read_bytes, serialize, write_atomic
+
+Mode = Literal["check", "diff", "write"]
+_ENCODING = re.compile(rb"""^\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
+MAX_FIX_ROUNDS = 4
+
+
+@dataclass(frozen=True)
+class MigrateOptions:
+    """What ``txtool migrate`` takes besides the paths."""
+
+    mode: Mode = "check"
+    target: Dialect | None = None
+    select: tuple[str, ...] | None = None
+    ignore: tuple[str, ...] = ()
+    config: str | None = None
+    allow_lossy: bool = False
+    hardware_plugin: str = DEFAULT_HARDWARE_PLUGIN
+
+
+@dataclass
+class FileResult:
+    """One file: its bytes before and after, and what was done to it."""
+
+    path: str
+    original: bytes
+    data: bytes
+    fixes: dict[str, int] = field(default_factory=dict)
+    converted: int = 0
+    target: Dialect | None = None
+    losses: list[str] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    refused: bool = False
+
+    @property
+    def changed(self) -> bool:
+        return not self.refused and self.data != self.original
+
+    def describe(self) -> str:
+        """What changed, e.g. ``TX300 x2, 3 transmission(s) to ros2-p2``."""
+        parts = [f"{code} x{count}" for code, count in sorted(self.fixes.items()) if count]
+        if self.converted:
+            parts.append(f"{self.converted} transmission(s) to {self.target}")
+        return ", ".join(parts)
+
+
+@dataclass
+class Report:
+    """The outcome of a run: per-file results, unreadable files, text for the two streams."""
+
+    mode: Mode
+    files: list[FileResult] = field(default_factory=list)
+    errors: list[str] = field(default_factory=list)
+    diff: str = ""
+    messages: list[str] = field(default_factory=list)
+
+    @property
+    def changed(self) -> list[FileResult]:
+        return [f for f in self.files if f.changed]
+
+    @property
+    def refused(self) -> list[FileResult]:
+        return [f for f in self.files if f.refused]
+
+    @property
+    def exit_code(self) -> int:
+        """2 an input or write error; 1 refused losses or (check/diff) changes pending; 0."""
+        if self.errors:
+            return 2
+        if self.refused or (self.mode != "write" and self.changed):
+            return 1
+        return 0
+
+    def summary(self) -> str:
+        parts = []
+        if self.changed:
+            verb = "changed" if self.mode == "write" else "would be changed"
+            parts.append(f"{len(self.changed)} file(s) {verb}")
+        if self.refused:
+            parts.append(f"{len(self.refused)} file(s) refused (losses; see --allow-lossy)")
+        if self.errors:
+            parts.append(f"{len(self.errors)} file(s) could not be read or written")
+        if not parts:
+            return f"nothing to do ({len(self.files)} file(s) checked)"
+        return ", ".join(parts)
+
+
+def migrate_paths(paths: Iterable[str], options: MigrateOptions) -> Report:
+    """Migrate files and folders (searched like ``validate`` does); writes in ``write`` mode.
+
+    Every file's configuration is resolved before any file is touched, so a bad configuration
+    (:class:`~txtool.config.ConfigError`, exit 2) stops the run with nothing written.
+    """
+    report = Report(mode=options.mode)
+    for path, rules in _plan(paths, options):
+        try:
+            result = migrate_file(path, rules, options)
+        except InputError as exc:
+            _error(report, str(exc))
+            continue
+        report.files.append(result)
+        _record(report, result, options)
+    report.messages.append(report.summary())
+    return report
+
+
+def _plan(paths: Iterable[str], options: MigrateOptions) -> list[tuple[str, list[Rule]]]:
+    overrides = Overrides(select=options.select, ignore=options.ignore)
+    settings = SettingsCache(overrides, options.config)
+    plan = []
+    for path in expand_paths(paths):
+        if path == "-":
+            raise InputError("-: migrate rewrites files in place; standard input is not supported")
+        enabled = settings.for_file(path).enabled
+        plan.append((path, [r for r in all_rules().values() if r.fixable and r.code in enabled]))
+    return plan
+
+
+def _error(report: Report, message: str) -> None:
+    report.errors.append(message)
+    report.messages.append(f"txtool: {message}")
+
+
+def _record(report: Report, result: FileResult, options: MigrateOptions) -> None:
+    for note in result.notes:
+        report.messages.append(f"note: {result.path}: {note}")
+    level = "error" if result.refused else "warning"
+    for loss in result.losses:
+        report.messages.append(f"{level}: {result.path}: {loss}")
+    if result.refused:
+        report.messages.append(f"refused {result.path}: {len(result.losses)} item(s) would be "
+                               "lost; not changed (use --allow-lossy to accept)")
+        return
+    if not result.changed:
+        return
+    if options.mode == "diff":
+        report.diff += unified_diff(result.path, result.original, result.data)
+    if options.mode == "write":
+        try:
+            _write(result)
+        except InputError as exc:
+            _error(report, str(exc))
+            return
+        report.messages.append(f"changed {result.path} ({result.describe()})")
+    else:
+        report.messages.append(f"would change {result.path} ({result.describe()})")
+
+
+def _write(result: FileResult) -> None:
+    """Write atomically, unless the file changed on disk since it was read."""
+    try:
+        with open(result.path, "rb") as handle:
+            current = handle.read()
+        if current != result.original:
+            raise InputError(f"{result.path}: changed on disk during the migration; not written")
+        write_atomic(result.path, result.data)
+    except OSError as exc:
+        raise InputError(f"{result.path}: cannot write: {exc.strerror or exc}") from None
+
+
+def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions) -> FileResult:
+    """The migrated bytes of one file (nothing is written); :class:`InputError` if unreadable.
+
+    A file whose conversion would lose something is refused (left unchanged) unless
+    ``allow_lossy``; losses of a file that would not change anyway are only reported.
+    """
+    display, original = read_bytes(path)
+    baseline_tree = parse_bytes(original, display)
+    result = FileResult(path=display, original=original, data=original, target=options.target)
+    tree = copy.deepcopy(baseline_tree)
+    _count(result.fixes, fix_tree(tree, rules, original))
+    migrated = serialize(tree, original)
+    if options.target is not None:
+        migrated = _convert(result, migrated, rules, options)
+    if result.refused:
+        return result
+    result.losses.extend(dropped_comments(baseline_tree, parse_bytes(migrated, display)))
+    data = splice(original, serialize(baseline_tree, original), migrated)
+    if result.losses and not options.allow_lossy and data != original:
+        result.refused = True
+        return result
+    result.data = data
+    return result
+
+
+def _convert(result: FileResult, data: bytes, rules: Sequence[Rule],
+             options: MigrateOptions) -> bytes:
+    """Convert ``data`` to the target dialect, then fix what the conversion wrote."""
+    assert options.target is not None
+    source = Source(path=result.path, data=data, tree=parse_bytes(data, result.path))
+    try:
+        conversion = convert_source(source, options.target,
+                                    hardware_plugin=options.hardware_plugin)
+    except ValueError as exc:
+        result.losses.append(f"cannot convert: {exc}")
+        result.refused = True
+        return data
+    result.notes.extend(conversion.notes)
+    result.losses.extend(conversion.losses)
+    result.converted = conversion.converted
+    tree = parse_bytes(conversion.data, result.path)
+    _count(result.fixes, fix_tree(tree, rules, conversion.data))
+    return serialize(tree, conversion.data)
+
+
+def dropped_comments(before: etree._ElementTree, after: etree._ElementTree) -> list[str]:
+    """A loss for each comment of ``before`` that ``after`` no longer has (conversions rebuild
+    the transmissions they convert, without the comments inside them)."""
+    left = Counter(_comments(after))
+    lost = []
+    for comment in _comment_nodes(before):
+        if left[comment.text] > 0:
+            left[comment.text] -= 1
+            continue
+        text = " ".join((comment.text or "").split())
+        text = text if len(text) <= 60 else text[:57] + "..."
+        lost.append(f"line {comment.sourceline}: comment '{text}' is inside a converted "
+                    "transmission; dropped")
+    return lost
+
+
+def _comment_nodes(tree: etree._ElementTree) -> list[etree._Comment]:
+    root = tree.getroot()
+    around = [*root.itersiblings(preceding=True), *root.itersiblings()]
+    inside = root.iter(etree.Comment)
+    return [node for node in (*around, *inside) if isinstance(node, etree._Comment)]
+
+
+def _comments(tree: etree._ElementTree) -> list[str | None]:
+    return [node.text for node in _comment_nodes(tree)]
+
+
+def _count(total: dict[str, int], counts: dict[str, int]) -> None:
+    for code, count in counts.items():
+        total[code] = total.get(code, 0) + count
+
+
+# Fixes -----------------------------------------------------------------------------------------
+
+
+def fix_tree(tree: etree._ElementTree, rules: Sequence[Rule], data: bytes) -> dict[str, int]:
+    """Apply the fixes of ``rules`` until none finds anything more; counts by code.
+
+    Suppression comments in ``data`` (the text ``tree`` was parsed from) are honoured: a
+    ``disable-file`` directive turns a fix off, a line directive keeps it off the transmission
+    holding that line.
+    """
+    suppressions = parse_suppressions(data)
+    counts: dict[str, int] = {}
+    for _ in range(MAX_FIX_ROUNDS):
+        fixed = 0
+        for rule in rules:
+            count = _fix_one(tree.getroot(), rule, suppressions)
+            if count:
+                counts[rule.code] = counts.get(rule.code, 0) + count
+                fixed += count
+        if not fixed:
+            break
+    return counts
+
+
+def _fix_one(root: etree._Element, rule: Rule, suppressions: Suppressions) -> int:
+    fix = rule.fix
+    assert fix is not None
+    if not _mentions(suppressions, rule.code):
+        return fix(root)
+    return sum(fix(element) for element in transmission_elements(root)
+               if not _silenced(element, rule.code, suppressions))
+
+
+def _mentions(suppressions: Suppressions, code: str) -> bool:
+    return any(not d.codes or code in d.codes for d in suppressions.directives)
+
+
+def _silenced(element: etree._Element, code: str, suppressions: Suppressions) -> bool:
+    """Whether a directive covers ``code`` on any line of ``element`` (as originally parsed)."""
+    lines = {e.sourceline for e in element.iter() if e.sourceline is not None}
+    return any(
+        directive.covers(Problem("", line, 1, code, ""))
+        for directive in suppressions.directives
+        for line in lines or {0}
+    )
+
+
+# Minimal rewriting -----------------------------------------------------------------------------
+
+
+def splice(original: bytes, baseline: bytes, migrated: bytes) -> bytes:
+    """``migrated``, with the lines the migration left alone taken verbatim from ``original``.
+
+    ``baseline`` is ``original`` parsed and serialized unchanged and ``migrated`` the migrated
+    tree serialized the same way, so ``baseline`` differs from ``original`` only in formatting
+    (quotes, spaces and line breaks inside tags, character references) and from ``migrated``
+    only by the migration. ``original`` and ``baseline`` are cut into the same blocks, each
+    ending with the line where a node (element start tag, comment) ends; a block whose lines
+    the migration did not touch is copied from ``original``, the rest comes from ``migrated``
+    with the line ending of ``original``. When the result would not parse to the migrated
+    document, the serialized document is returned instead.
+    """
+    if migrated == baseline:
+        return original
+    if baseline == original:
+        return migrated
+    try:
+        merged = _merge(original, baseline, migrated)
+    except InputError:
+        return migrated
+    return merged if _same_document(merged, migrated) else migrated
+
+
+def _merge(original: bytes, baseline: bytes, migrated: bytes) -> bytes:
+    o, b, n = (text.splitlines(keepends=True) for text in (original, baseline, migrated))
+    cuts = _cuts(parse_bytes(original, "<original>"), parse_bytes(baseline, "<baseline>"))
+    cuts.append((len(b), len(o)))
+    in_n = _matches([_key(line) for line in b], [_key(line) for line in n])
+    newline = _newline(original)
+    out: list[bytes] = []
+    pn = pb = po = 0
+    for eb, eo in cuts:
+        block = range(pb, eb)
+        if block and _untouched(block, in_n):
+            out += _lines(n[pn : in_n[pb]], newline) + o[po:eo]
+            pn = in_n[eb - 1] + 1
+        pb, po = eb, eo
+    out += _lines(n[pn:], newline)
+    return b"".join(out)
+
+
+def _cuts(original: etree._ElementTree, baseline: etree._ElementTree) -> list[tuple[int, int]]:
+    """(baseline line, original line) pairs, both increasing, where the same node ends."""
+    cuts: list[tuple[int, int]] = []
+    nodes = _nodes(baseline), _nodes(original)
+    if len(nodes[0]) != len(nodes[1]):
+        raise InputError("the baseline is not a serialization of the original")
+    for first, second in zip(*nodes, strict=True):
+        b, o = first.sourceline, second.sourceline
+        if b is None or o is None:
+            continue
+        if cuts and b == cuts[-1][0]:
+            cuts[-1] = (b, max(o, cuts[-1][1]))  # a break inside a start tag, not in baseline
+        elif not cuts or (b > cuts[-1][0] and o > cuts[-1][1]):
+            cuts.append((b, o))
+    return cuts
+
+
+def _nodes(tree: etree._ElementTree) -> list[etree._Element]:
+    root = tree.getroot()
+    before = list(root.itersiblings(preceding=True))[::-1]
+    return [*before, *root.iter(), *root.itersiblings()]
+
+
+def _untouched(block: range, in_n: dict[int, int]) -> bool:
+    """Whether the migration kept every line of ``block`` and put nothing between them."""
+    if any(i not in in_n for i in block):
+        return False
+    return in_n[block[-1]] - in_n[block[0]] == len(block) - 1
+
+
+def _key(line: bytes) -> bytes:
+    return line.rstrip(b"\r\n")
+
+
+def _matches(a: list[bytes], b: list[bytes]) -> dict[int, int]:
+    """Index in ``b`` of each line of ``a`` that the longest matching alignment pairs."""
+    matcher = difflib.SequenceMatcher(None, a, b, autojunk=False)
+    pairs: dict[int, int] = {}
+    for block in matcher.get_matching_blocks():
+        for k in range(block.size):
+            pairs[block.a + k] = block.b + k
+    return pairs
+
+
+def _lines(lines: list[bytes], newline: bytes) -> list[bytes]:
+    return [_key(line) + newline if line != _key(line) else line for line in lines]
+
+
+def _newline(data: bytes) -> bytes:
+    crlf = data.count(b"\r\n")
+    return b"\r\n" if crlf and crlf * 2 >= data.count(b"\n") else b"\n"
+
+
+def _same_document(a: bytes, b: bytes) -> bool:
+    try:
+        first = parse_bytes(a, "<merged>")
+        second = parse_bytes(b, "<migrated>")
+    except InputError:
+        return False
+    return _canonical(first) == _canonical(second)
+
+
+def _canonical(tree: etree._ElementTree) -> bytes:
+    return etree.tostring(tree, method="c14n")
+
+
+# Diff ------------------------------------------------------------------------------------------
+
+
+def unified_diff(path: str, before: bytes, after: bytes) -> str:
+    """A unified diff with ``a/PATH`` and ``b/PATH`` headers (``git apply`` / ``patch -p1``)."""
+    name = path.replace(os.sep, "/").lstrip("/")
+    lines = difflib.unified_diff(
+        _text(before).splitlines(keepends=True),
+        _text(after).splitlines(keepends=True),
+        f"a/{name}",
+        f"b/{name}",
+    )
+    out = []
+    for line in lines:
+        if not line.endswith("\n"):
+            line += "\n\\ No newline at end of file\n"
+        out.append(line)
+    return "".join(out)
+
+
+def _text(data: bytes) -> str:
+    declared = _ENCODING.match(data)
+    encoding = declared.group(1).decode("ascii") if declared else "utf-8"
+    try:
+        return data.decode(encoding, errors="replace")
+    except LookupError:
+        return data.decode("utf-8", errors="replace")
