@@ -1,0 +1,188 @@
+"""xacro files are migrated as written: ``${...}``, macros and comments stay; conversions."""
+
+from __future__ import annotations
+
+import pytest
+
+MACRO = """
+<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="arm">
+  <xacro:property name="elbow_ratio" value="50"/>
+  <!-- one transmission per joint -->
+  <xacro:macro name="simple_trans" params="prefix joint reduction:=1 iface:=EffortJointInterface">
+    <transmission name="${prefix}${joint}_trans" type='SimpleTransmission'>
+      <type>transmission_interface/SimpleTransmission</type>
+      <joint name="${prefix}${joint}">
+        <hardwareInterface>PositionJointInterface</hardwareInterface>
+        <hardwareInterface>hardware_interface/${iface}</hardwareInterface>
+      </joint>
+      <actuator name="${prefix}${joint}_motor">
+        <mechanicalReduction>${reduction * 2}</mechanicalReduction>
+      </actuator>
+    </transmission>
+  </xacro:macro>
+  <xacro:simple_trans prefix="left_" joint="elbow" reduction="${elbow_ratio}"/>
+</robot>
+"""
+
+MACRO_FIXED = """\
+<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="arm">
+  <xacro:property name="elbow_ratio" value="50"/>
+  <!-- one transmission per joint -->
+  <xacro:macro name="simple_trans" params="prefix joint reduction:=1 iface:=EffortJointInterface">
+    <transmission name="${prefix}${joint}_trans">
+      <type>transmission_interface/SimpleTransmission</type>
+      <joint name="${prefix}${joint}">
+        <hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>
+        <hardwareInterface>hardware_interface/${iface}</hardwareInterface>
+      </joint>
+      <actuator name="${prefix}${joint}_motor">
+        <mechanicalReduction>${reduction * 2}</mechanicalReduction>
+      </actuator>
+    </transmission>
+  </xacro:macro>
+  <xacro:simple_trans prefix="left_" joint="elbow" reduction="${elbow_ratio}"/>
+</robot>
+"""
+
+MACRO_P2 = """\
+<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="arm">
+  <xacro:property name="elbow_ratio" value="50"/>
+  <!-- one transmission per joint -->
+  <xacro:macro name="simple_trans" params="prefix joint reduction:=1">
+    <ros2_control name="${prefix}${joint}_trans" type="system">
+      <hardware>
+        <plugin>my_robot/Hardware</plugin>
+      </hardware>
+      <joint name="${prefix}${joint}">
+        <command_interface name="position"/>
+        <state_interface name="position"/>
+        <state_interface name="velocity"/>
+      </joint>
+      <transmission name="${prefix}${joint}_trans">
+        <plugin>transmission_interface/SimpleTransmission</plugin>
+        <actuator name="${prefix}${joint}_motor" role="actuator1"/>
+        <joint name="${prefix}${joint}" role="joint1">
+          <mechanical_reduction>${reduction}</mechanical_reduction>
+        </joint>
+      </transmission>
+    </ros2_control>
+  </xacro:macro>
+  <xacro:simple_trans prefix="left_" joint="elbow" reduction="${elbow_ratio}"/>
+</robot>
+"""
+
+
+@pytest.fixture(autouse=True)
+def _in_tmp(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+
+
+def test_xacro_is_fixed_as_written_keeping_expressions_and_comments(run, write):
+    path = write("arm.urdf.xacro", MACRO)
+    assert run("migrate", "--write", "arm.urdf.xacro") == (
+        0, "", "changed arm.urdf.xacro (TX300 x1, TX302 x1)\n1 file(s) changed\n")
+    assert path.read_text() == MACRO_FIXED
+    assert run("migrate", "--check", "arm.urdf.xacro") == (
+        0, "", "nothing to do (1 file(s) checked)\n")
+
+
+def test_to_ros2_p2_keeps_the_macro_and_wraps_the_transmission_in_place(run, write):
+    ros1 = MACRO.replace(" iface:=EffortJointInterface", "").replace(
+        "        <hardwareInterface>hardware_interface/${iface}</hardwareInterface>\n", "").replace(
+        "${reduction * 2}", "${reduction}")
+    path = write("arm.urdf.xacro", ros1)
+    code, out, err = run("migrate", "--write", "--to", "ros2-p2",
+                         "--hardware-plugin", "my_robot/Hardware", "arm.urdf.xacro")
+    assert (code, out) == (0, "")
+    assert err == (
+        "note: arm.urdf.xacro: transmission '${prefix}${joint}_trans': xacro expressions are "
+        "carried verbatim; check the expanded result\n"
+        "changed arm.urdf.xacro (TX300 x1, TX302 x1, 1 transmission(s) to ros2-p2)\n"
+        "1 file(s) changed\n"
+    )
+    assert path.read_text() == MACRO_P2
+    code, out, _ = run("migrate", "--check", "--to", "ros2-p2", "arm.urdf.xacro")
+    assert (code, out) == (0, "")
+
+
+def test_a_comment_inside_a_converted_transmission_is_a_loss(run, write):
+    text = MACRO.replace("      <actuator name=\"${prefix}${joint}_motor\">\n",
+                         "      <actuator name=\"${prefix}${joint}_motor\">\n"
+                         "        <!-- motor side -->\n")
+    path = write("arm.urdf.xacro", text)
+    code, out, err = run("migrate", "--write", "--to", "ros2-p2", "arm.urdf.xacro")
+    assert (code, out) == (1, "")
+    assert ("error: arm.urdf.xacro: line 13: comment 'motor side' is inside a converted "
+            "transmission; dropped\n") in err
+    assert err.endswith("1 file(s) refused (losses; see --allow-lossy)\n")
+    assert path.read_text() == text.lstrip("\n")
+    code, _, err = run("migrate", "--write", "--to", "ros2-p2", "--allow-lossy",
+                       "arm.urdf.xacro")
+    assert code == 0
+    assert "warning: arm.urdf.xacro: line 13: comment 'motor side'" in err
+    assert "<ros2_control" in path.read_text() and "motor side" not in path.read_text()
+
+
+CUSTOM = """
+<robot name="panda">
+  <joint name="j1" type="revolute"><parent link="a"/><child link="b"/></joint>
+  <transmission name="t1">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j1"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m1"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>
+  <transmission name="state">
+    <type>franka_hw/FrankaStateInterface</type>
+    <joint name="j1"><hardwareInterface>franka_hw/FrankaStateInterface</hardwareInterface></joint>
+    <actuator name="s1"><hardwareInterface>franka_hw/FrankaStateInterface</hardwareInterface></actuator>
+  </transmission>
+</robot>
+"""
+
+
+def test_a_lossy_conversion_is_refused_unless_allowed(run, write):
+    path = write("panda.urdf", CUSTOM)
+    code, out, err = run("migrate", "--diff", "--to", "ros2-p2", "panda.urdf")
+    assert (code, out) == (1, "")
+    assert err == (
+        "error: panda.urdf: transmission 'state': custom type 'franka_hw/FrankaStateInterface' "
+        "cannot be carried to ros2-p2; left as written\n"
+        "refused panda.urdf: 1 item(s) would be lost; not changed (use --allow-lossy to accept)\n"
+        "1 file(s) refused (losses; see --allow-lossy)\n"
+    )
+    code, out, err = run("migrate", "--write", "--to", "ros2-p2", "--allow-lossy", "panda.urdf")
+    assert (code, out) == (0, "")
+    assert err.startswith("warning: panda.urdf: transmission 'state': custom type")
+    assert err.endswith("changed panda.urdf (1 transmission(s) to ros2-p2)\n1 file(s) changed\n")
+    assert "<ros2_control" in path.read_text() and "franka_hw/FrankaStateInterface" in (
+        path.read_text())
+    # What is left cannot be converted, but nothing would change: reported, not refused.
+    code, out, err = run("migrate", "--check", "--to", "ros2-p2", "panda.urdf")
+    assert (code, out) == (0, "")
+    assert err.startswith("warning: panda.urdf: transmission 'state': custom type")
+    assert err.endswith("nothing to do (1 file(s) checked)\n")
+
+
+def test_to_ros1_moves_transmissions_out_of_ros2_control(run, write):
+    path = write("arm.urdf", """
+        <robot name="arm">
+          <ros2_control name="arm" type="system">
+            <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+            <joint name="j1"><command_interface name="effort"/></joint>
+            <transmission name="t1">
+              <plugin>transmission_interface/SimpleTransmission</plugin>
+              <actuator name="m1" role="actuator1"/>
+              <joint name="j1" role="joint1"><mechanical_reduction>10</mechanical_reduction></joint>
+            </transmission>
+          </ros2_control>
+        </robot>
+        """)
+    code, out, _ = run("migrate", "--write", "--to", "ros1", "arm.urdf")
+    assert (code, out) == (0, "")
+    text = path.read_text()
+    assert text.index("<transmission") < text.index("<ros2_control")
+    assert "<hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>" in text
+    assert run("migrate", "--check", "--to", "ros1", "arm.urdf")[0] == 0

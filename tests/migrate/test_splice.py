@@ -1,0 +1,93 @@
+"""The three-way line merge that keeps every line the migration does not change."""
+
+from __future__ import annotations
+
+import textwrap
+
+from txtool.migrate import MigrateOptions, migrate_file, splice, unified_diff
+from txtool.rules import all_rules
+from txtool.xmlio import parse_bytes, serialize
+
+FIXES = [rule for rule in all_rules().values() if rule.fixable]
+
+
+def _migrate(tmp_path, text: str, **options) -> bytes:
+    path = tmp_path / "robot.urdf"
+    path.write_bytes(textwrap.dedent(text).lstrip("\n").encode())
+    return migrate_file(str(path), FIXES, MigrateOptions(**options)).data
+
+
+def test_formatting_outside_the_changed_lines_is_kept(tmp_path):
+    data = _migrate(tmp_path, """
+        <robot name='r'>
+          <link
+              name = 'base' />
+          <joint name="j" type='revolute'><parent link="base"/><child link="tip"/></joint>
+          <transmission name="t" type="SimpleTransmission">
+            <type>transmission_interface/SimpleTransmission</type>
+            <joint name="j"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+            <actuator name="m"/>
+          </transmission>
+          <gazebo reference='tip' >&#x20;<mu1 value = "1"/></gazebo>
+        </robot>
+        """)
+    assert data.decode() == textwrap.dedent("""\
+        <robot name='r'>
+          <link
+              name = 'base' />
+          <joint name="j" type='revolute'><parent link="base"/><child link="tip"/></joint>
+          <transmission name="t">
+            <type>transmission_interface/SimpleTransmission</type>
+            <joint name="j"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+            <actuator name="m"/>
+          </transmission>
+          <gazebo reference='tip' >&#x20;<mu1 value = "1"/></gazebo>
+        </robot>
+        """)
+
+
+def test_a_changed_line_that_was_also_reformatted_takes_the_serialized_form(tmp_path):
+    data = _migrate(tmp_path, """
+        <robot name="r">
+          <transmission name='t' type='SimpleTransmission' >
+            <type>transmission_interface/SimpleTransmission</type>
+            <joint name="j"/>
+            <actuator name="m"/>
+          </transmission>
+        </robot>
+        """)
+    assert data.decode() == textwrap.dedent("""\
+        <robot name="r">
+          <transmission name="t">
+            <type>transmission_interface/SimpleTransmission</type>
+            <joint name="j"/>
+            <actuator name="m"/>
+          </transmission>
+        </robot>
+        """)
+
+
+def test_identities():
+    original = b"<a x='1'>\n  <b />\n</a>\n"
+    baseline = serialize(parse_bytes(original, "x"), original)
+    assert baseline == b'<a x="1">\n  <b/>\n</a>\n'
+    assert splice(original, baseline, baseline) == original  # nothing migrated
+    migrated = b'<a x="1">\n  <c/>\n</a>\n'
+    assert splice(baseline, baseline, migrated) == migrated  # nothing to keep
+    assert splice(original, baseline, migrated) == b"<a x='1'>\n  <c/>\n</a>\n"
+
+
+def test_a_merge_that_would_change_the_document_falls_back_to_the_serialized_form():
+    # A baseline that does not come from the original: the merge cannot be trusted.
+    original = b"<a>\n<b/>\n<c/>\n</a>\n"
+    baseline = b"<a>\n<b/>\n<d/>\n</a>\n"
+    migrated = b"<a>\n<e/>\n<d/>\n</a>\n"
+    assert splice(original, baseline, migrated) == migrated
+
+
+def test_a_missing_final_newline_is_marked_in_the_diff():
+    assert unified_diff("/abs/r.urdf", b"<a/>", b"<b/>") == (
+        "--- a/abs/r.urdf\n+++ b/abs/r.urdf\n@@ -1 +1 @@\n"
+        "-<a/>\n\\ No newline at end of file\n"
+        "+<b/>\n\\ No newline at end of file\n"
+    )
