@@ -65,10 +65,11 @@ class FileResult:
     losses: list[str] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     refused: bool = False
+    unwritten: bool = False  # the write failed
 
     @property
     def changed(self) -> bool:
-        return not self.refused and self.data != self.original
+        return not (self.refused or self.unwritten) and self.data != self.original
 
     def describe(self) -> str:
         """What changed, e.g. ``TX300 x2, 3 transmission(s) to ros2-p2``."""
@@ -173,6 +174,7 @@ def _record(report: Report, result: FileResult, options: MigrateOptions) -> None
         try:
             _write(result)
         except InputError as exc:
+            result.unwritten = True
             _error(report, str(exc))
             return
         report.messages.append(f"changed {result.path} ({result.describe()})")

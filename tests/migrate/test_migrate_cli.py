@@ -308,3 +308,40 @@ def test_migrate_imports_nothing_heavy(write, tmp_path):
     done = subprocess.run([sys.executable, "-c", probe], cwd=tmp_path, capture_output=True,
                           text=True)
     assert (done.returncode, done.stdout) == (1, "[]\n"), done.stderr
+
+
+def test_a_file_that_cannot_be_written_is_one_line_and_exit_2(run, write, monkeypatch):
+    from txtool import migrate
+
+    def refuse(path: str, data: bytes) -> None:
+        raise PermissionError(13, "Permission denied")
+
+    monkeypatch.setattr(migrate, "write_atomic", refuse)
+    path = write("robot.urdf", ROBOT)
+    clean = write("clean.urdf", CLEAN)
+    assert run("migrate", "--write", "robot.urdf", "clean.urdf") == (2, "", (
+        "txtool: robot.urdf: cannot write: Permission denied\n"
+        "1 file(s) could not be read or written\n"
+    ))
+    assert path.read_text() == ROBOT.lstrip("\n") and clean.read_text() == CLEAN.lstrip("\n")
+
+
+def test_a_file_changed_on_disk_meanwhile_is_not_overwritten(write, monkeypatch):
+    from txtool import migrate
+
+    path = write("robot.urdf", ROBOT)
+    real = migrate.migrate_file
+
+    def edit_meanwhile(*args, **kwargs):
+        result = real(*args, **kwargs)
+        path.write_text(CLEAN)
+        return result
+
+    monkeypatch.setattr(migrate, "migrate_file", edit_meanwhile)
+    report = migrate.migrate_paths(["robot.urdf"], migrate.MigrateOptions(mode="write"))
+    assert report.exit_code == 2
+    assert report.messages == [
+        "txtool: robot.urdf: changed on disk during the migration; not written",
+        "1 file(s) could not be read or written",
+    ]
+    assert path.read_text() == CLEAN
