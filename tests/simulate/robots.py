@@ -72,7 +72,7 @@ ARM_ROS1_SHOULDER = f"""
 
 ARM_ROS1_WRIST = f"""
   <transmission name="t_wrist">
-    <type>transmission_interface/DifferentialTransmission</type>
+    <type>transmission_interface/{{kind}}</type>
     <joint name="{{j1}}"><role>joint1</role><offset>{{offset}}</offset>{EFFORT}</joint>
     <joint name="{{j2}}"><role>joint2</role>{EFFORT}</joint>
     <actuator name="m_left"><role>actuator1</role><mechanicalReduction>30</mechanicalReduction>
@@ -112,11 +112,11 @@ ARM_ROS2_TRANSMISSIONS = """
 
 
 def arm_ros1(n: float = 50, offset: float = 0.1, swap: bool = False, extra: str = "",
-             shoulder: bool = True) -> str:
+             shoulder: bool = True, kind: str = "DifferentialTransmission") -> str:
     """3-DoF arm: simple shoulder, differential elbow/wrist (roles swapped with ``swap``)."""
     j1, j2 = ("wrist", "elbow") if swap else ("elbow", "wrist")
     transmissions = ARM_ROS1_SHOULDER.format(n=n) if shoulder else ""
-    transmissions += ARM_ROS1_WRIST.format(j1=j1, j2=j2, offset=offset)
+    transmissions += ARM_ROS1_WRIST.format(j1=j1, j2=j2, offset=offset, kind=kind)
     return f'<robot name="arm" xmlns:drake="http://drake.mit.edu">{ARM_BODY}' \
            f"{transmissions}{extra}</robot>"
 

@@ -103,11 +103,14 @@ def test_bad_params_key_is_one_line_exit_2(tmp_path, arm):
         (["{arm}", "--trajectory", "{tmp}/none.csv"], "none.csv: no such file"),
         (["{arm}", "--plot", "{tmp}/x.pdf"], "--plot writes .png or .svg files"),
         (["{bad_xml}"], "bad.urdf:1:"),
+        (["{no_links}"], "pinocchio cannot build the model: No link elements found"),
     ],
 )
 def test_input_errors_exit_2_with_one_line(tmp_path, arm, args, message):
     bad_xml = write(tmp_path, "bad.urdf", "<robot><joint></robot>")
-    filled = [a.format(arm=arm, tmp=tmp_path, bad_xml=bad_xml) for a in args]
+    no_links = write(tmp_path, "empty.urdf", '<robot name="empty"/>')
+    filled = [a.format(arm=arm, tmp=tmp_path, bad_xml=bad_xml, no_links=no_links)
+              for a in args]
     code, out, err = txtool(*filled)
     assert code == 2 and out == ""
     assert err.count("\n") == 1 and message in err, err

@@ -133,3 +133,11 @@ def test_transmission_on_an_unknown_joint_is_an_input_error(tmp_path, arm):
     with pytest.raises(InputError, match=r"bad\.urdf:\d+: transmission 't_shoulder': joint "
                                          r"'shoulderr' is not a joint of the robot"):
         simulate_one(Options(robot=arm), bad)
+
+
+def test_ros1_four_bar_effort_map_shows_with_the_loader_convention(tmp_path):
+    robot = write(tmp_path, "fb.urdf", arm_ros1(kind="FourBarLinkageTransmission"))
+    physical = simulate_one(Options(robot=robot), None)
+    assert physical.passed, physical.reasons
+    loader = simulate_one(Options(robot=robot, convention="loader"), None)
+    assert any(r.startswith("joint 'wrist': tracking error") for r in loader.reasons)

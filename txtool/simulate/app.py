@@ -35,7 +35,7 @@ class LazyProgress:
             self.bar = Progress(TextColumn(self.what), BarColumn(), TaskProgressColumn(),
                                 TimeRemainingColumn(), console=self.console, transient=True)
             self.bar.start()
-            self.task = self.bar.add_task(self.what, total=total)
+            self.task = self.bar.add_task(self.what, total=total, completed=done)
         self.bar.update(self.task, completed=done, total=total)
 
     def close(self) -> None:

@@ -108,58 +108,97 @@ def run(plan: Plan, progress: Callable[[int], None] | None = None) -> Plan:
 
 
 def _steps(plan: Plan, start: int, stop: int) -> None:
-    robot = plan.robot
-    nv, two = robot.nv, 2 * robot.nv
-    rows, s = plan.rows, plan.slots
+    general = plan.ki is not None or plan.robot.has_continuous \
+        or plan.plant_friction is not None or plan.plant_block is not None
+    (_general_steps if general else _fast_steps)(plan, start, stop)
+
+
+def _views(plan: Plan, start: int, stop: int) -> zip:
+    """Per step: the history row, its x, v, demanded and applied effort, the next [x v], k.
+
+    Iterating 2-D column views yields each step's 1-D views more cheaply than indexing.
+    """
+    rows, s, two = plan.rows, plan.slots, 2 * plan.robot.nv
+    span = slice(start, stop)
+    return zip(rows[span], rows[span, s["x"]], rows[span, s["v"]], rows[span, s["ta"]],
+               rows[span, s["sat"]], rows[start + 1 : stop + 1, :two], range(start, stop),
+               strict=True)
+
+
+def _fast_steps(plan: Plan, start: int, stop: int) -> None:
+    """The common case: revolute/prismatic joints, viscous damping, diagonal rotor inertia."""
+    nv = plan.robot.nv
     H, C, PD, Phi = plan.H, plan.C, plan.PD, plan.Phi
+    A = plan.rows[:, plan.slots["a"]]
     limit, neg_limit = plan.limit, -plan.limit
-    cm, cdata = plan.ctrl
-    pm, pdata = plan.plant
+    (cm, cdata), (pm, pdata) = plan.ctrl, plan.plant
     rnea, aba, dot, minimum, maximum = pin.rnea, pin.aba, np.dot, np.minimum, np.maximum
-    out = np.empty(H.shape[0])
-    xh, vh, acc = out[:nv], out[nv:two], out[two : 3 * nv]
-    bias = out[3 * nv :] if plan.bias else None
-    tj = np.empty(nv)
-    ta_s, sat_s, a_s = s["ta"], s["sat"], s["a"]
+    out, tj = np.empty(H.shape[0]), np.empty(nv)
+    xh, vh, acc, bias = out[:nv], out[nv : 2 * nv], out[2 * nv : 3 * nv], out[3 * nv :]
+    if plan.bias:
+        for row, x, v, ta, sat, nxt, k in _views(plan, start, stop):
+            dot(H, row, out=out)
+            dot(C, rnea(cm, cdata, xh, vh, acc), out=ta)
+            ta += bias
+            minimum(ta, limit, out=sat)
+            maximum(sat, neg_limit, out=sat)
+            dot(PD, row, out=tj)
+            A[k] = aba(pm, pdata, x, v, tj)
+            dot(Phi, row, out=nxt)
+        return
+    for row, x, v, ta, sat, nxt, k in _views(plan, start, stop):
+        dot(H, row, out=out)
+        dot(C, rnea(cm, cdata, xh, vh, acc), out=ta)
+        minimum(ta, limit, out=sat)
+        maximum(sat, neg_limit, out=sat)
+        dot(PD, row, out=tj)
+        A[k] = aba(pm, pdata, x, v, tj)
+        dot(Phi, row, out=nxt)
+
+
+def _general_steps(plan: Plan, start: int, stop: int) -> None:
+    """Every feature: integral term, continuous joints, Coulomb friction, crba + solve."""
+    robot, nv = plan.robot, plan.robot.nv
+    rows, H, C, PD, Phi = plan.rows, plan.H, plan.C, plan.PD, plan.Phi
+    limit = plan.limit
+    (cm, cdata), (pm, pdata) = plan.ctrl, plan.plant
+    out, tj = np.empty(H.shape[0]), np.empty(nv)
+    xh, vh, acc, bias = out[:nv], out[nv : 2 * nv], out[2 * nv : 3 * nv], out[3 * nv :]
+    A = rows[:, plan.slots["a"]]
     config = _configurer(robot) if robot.has_continuous else None
     qh = np.zeros(robot.model.nq) if config else xh
-    qp = np.zeros(robot.model.nq) if config else None
+    qp = np.zeros(robot.model.nq)
     friction, block = plan.plant_friction, plan.plant_block
     ki, i_limit, z = plan.ki, plan.i_limit, plan.extras.setdefault("z", np.zeros(nv))
     ctrl_block, dt, q_ref = plan.ctrl_block, plan.dt, plan.q_ref
-    for k in range(start, stop):
-        row = rows[k]
-        dot(H, row, out=out)
+    for row, x, v, ta, sat, nxt, k in _views(plan, start, stop):
+        np.dot(H, row, out=out)
         if ki is not None:
             z += dt * (q_ref[k] - xh)
             np.clip(z, -i_limit, i_limit, out=z)  # type: ignore[arg-type]
             acc += ki * z
         if config is not None:
             config(xh, qh)
-        tau = rnea(cm, cdata, qh, vh, acc)
+        tau = pin.rnea(cm, cdata, qh, vh, acc)
         if ki is not None and ctrl_block is not None:
             tau += ctrl_block @ (ki * z)
-        ta = row[ta_s]
-        dot(C, tau, out=ta)
-        if bias is not None:
+        np.dot(C, tau, out=ta)
+        if plan.bias:
             ta += bias
-        sat = row[sat_s]
-        minimum(ta, limit, out=sat)
-        maximum(sat, neg_limit, out=sat)
-        dot(PD, row, out=tj)
-        x, v = row[:nv], row[nv:two]
+        np.clip(ta, -limit, limit, out=sat)
+        np.dot(PD, row, out=tj)
         if friction is not None:
             tj -= friction * np.clip(v / FRICTION_SPEED, -1.0, 1.0)
         if config is not None:
             config(x, qp)
             x = qp
         if block is None:
-            row[a_s] = aba(pm, pdata, x, v, tj)
+            A[k] = pin.aba(pm, pdata, x, v, tj)
         else:
             mass = pin.crba(pm, pdata, x)
             mass = np.triu(mass) + np.triu(mass, 1).T + block
-            row[a_s] = np.linalg.solve(mass, tj - pin.nonLinearEffects(pm, pdata, x, v))
-        dot(Phi, row, out=rows[k + 1, :two])
+            A[k] = np.linalg.solve(mass, tj - pin.nonLinearEffects(pm, pdata, x, v))
+        np.dot(Phi, row, out=nxt)
 
 
 def _configurer(robot: RobotModel) -> Callable[[np.ndarray, np.ndarray], None]:

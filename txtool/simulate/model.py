@@ -8,7 +8,12 @@ leader inside Pinocchio (``mimic=True``); they have no DoF of their own and no t
 
 from __future__ import annotations
 
+import contextlib
 import math
+import os
+import sys
+import tempfile
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 import numpy as np
@@ -78,11 +83,16 @@ def build(source: Source) -> RobotModel:
                              "simulate supports fixed-base robots with 1-DoF joints")
     mimic = tuple(n for n, j in info.items() if j.mimic is not None and j.type in MOVING)
     text = serialize(source.tree).decode("utf-8")
-    try:
-        model = pin.buildModelFromXML(text, bool(mimic))
-    except (RuntimeError, ValueError) as exc:
-        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        raise InputError(f"{source.path}: pinocchio cannot build the model: {first}") from None
+    with captured_stderr() as said:
+        try:
+            model = pin.buildModelFromXML(text, bool(mimic))
+        except (RuntimeError, ValueError) as exc:
+            model = None
+            error = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+    if model is None:
+        detail = next((line.removeprefix("Error:").strip() for line in said
+                       if line.startswith("Error:")), error)
+        raise InputError(f"{source.path}: pinocchio cannot build the model: {detail}")
     joints: list[str] = []
     for name, joint in zip(model.names[1:], model.joints[1:], strict=True):
         if joint.nv == 0:
@@ -92,6 +102,23 @@ def build(source: Source) -> RobotModel:
         raise InputError(f"{source.path}: the robot has no moving joints")
     order = sorted(joints, key=lambda n: model.joints[model.getJointId(n)].idx_v)
     return _robot_model(source.path, model, tuple(order), info, mimic)
+
+
+@contextlib.contextmanager
+def captured_stderr() -> Iterator[list[str]]:
+    """Collect what C++ code writes to file descriptor 2 (urdfdom's console logging)."""
+    lines: list[str] = []
+    sys.stderr.flush()
+    saved = os.dup(2)
+    with tempfile.TemporaryFile(mode="w+b") as sink:
+        os.dup2(sink.fileno(), 2)
+        try:
+            yield lines
+        finally:
+            os.dup2(saved, 2)
+            os.close(saved)
+            sink.seek(0)
+            lines.extend(sink.read().decode("utf-8", "replace").splitlines())
 
 
 def _robot_model(path: str, model: pin.Model, joints: tuple[str, ...],
