@@ -194,8 +194,6 @@ def test_a_malformed_file_is_reported_and_skipped_and_the_others_are_written(run
     assert good.read_text() == ROBOT_FIXED
 
 
-# The .xml root-tag probe of txtool.lint.discover may leave its file to the garbage collector.
-@pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")
 def test_folders_are_searched_like_validate_does(run, write):
     write("d/robot.urdf", ROBOT)
     write("d/sub/arm.urdf.xacro", ROBOT)
