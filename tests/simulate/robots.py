@@ -111,7 +111,7 @@ ARM_ROS2_TRANSMISSIONS = """
 """
 
 
-def arm_ros1(n: float = 50, offset: float = 0.1, swap: bool = False, extra: str = "",
+def arm_ros1(n: float | str = 50, offset: float = 0.1, swap: bool = False, extra: str = "",
              shoulder: bool = True, kind: str = "DifferentialTransmission") -> str:
     """3-DoF arm: simple shoulder, differential elbow/wrist (roles swapped with ``swap``)."""
     j1, j2 = ("wrist", "elbow") if swap else ("elbow", "wrist")

@@ -144,3 +144,16 @@ def test_demo_robot_against_its_conversions():
             args += ["--config", str(FIXTURES / name)]
     code, out, err = txtool(*args)
     assert (code, err) == (0, ""), out
+
+
+def test_xacro_candidate_with_arguments(tmp_path, arm):
+    text = arm_ros1(n="${n}").replace(
+        '<robot name="arm" xmlns:drake="http://drake.mit.edu">',
+        '<robot name="arm" xmlns:drake="http://drake.mit.edu" '
+        'xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:arg name="n" default="50"/><xacro:property name="n" value="$(arg n)"/>')
+    candidate = write(tmp_path, "arm.urdf.xacro", text)
+    code, out, _ = txtool(arm, "--config", candidate)
+    assert code == 0, out
+    code, out, _ = txtool(arm, "--config", candidate, "--xacro-arg", "n:=-50")
+    assert code == 1 and "FAIL: joint 'shoulder'" in out

@@ -109,6 +109,7 @@ def test_unstable_gains_fail_without_a_traceback(tmp_path, arm):
     run = run_with(tmp_path, arm, None, bandwidth=3000.0, duration=1.0, params=params)
     assert not run.passed
     assert run.reasons[0].startswith("the simulation diverged at t=")
+    assert all(np.isfinite(j.max_error) for j in run.joints.values())
 
 
 def test_damping_friction_and_integral_terms(tmp_path):

@@ -161,7 +161,7 @@ def _reference(options: Options, robot: RobotModel, s: Settings
 
 def _series(plan: loop.Plan, robot: RobotModel, plant: Drive, ref: reference.Reference,
             effort_limit: np.ndarray, speed_limit: np.ndarray) -> result.Series:
-    end = plan.done if plan.diverged_at is None else plan.diverged_at
+    end = plan.done if plan.diverged_at is None else max(plan.diverged_at - 1, 0)
     rows = plan.rows[: end + 1]
     velocity = rows[:, plan.slots["v"]] @ plant.vel_j2a.T
     return result.Series(
