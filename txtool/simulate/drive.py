@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from lxml import etree
 
+from txtool.mechanics.inertia import reflected_inertia
 from txtool.mechanics.maps import TransmissionMap, from_transmission
 from txtool.numbers import parse_strict
 from txtool.reader import Found, read_source
@@ -43,14 +44,21 @@ class Drive:
     direct: tuple[str, ...]
     maps: list[TransmissionMap] = field(default_factory=list)
     drake: dict[str, dict[str, tuple[float, int]]] = field(default_factory=dict)
+    # Per block: DoF indices, actuator indices, the map (None for a direct actuator).
+    blocks: list[tuple[list[int], list[int], TransmissionMap | None]] = field(
+        default_factory=list)
 
     @property
     def na(self) -> int:
         return len(self.actuators)
 
     def reflected_inertia(self, rotor: np.ndarray) -> np.ndarray:
-        """``A^T diag(J) A`` of the whole robot for per-actuator rotor inertias ``rotor``."""
-        return self.vel_j2a.T @ (rotor[:, None] * self.vel_j2a)
+        """Joint-space rotor inertia of the whole robot (``rotor``: one value per actuator)."""
+        inertia = np.zeros((len(self.joints), len(self.joints)))
+        for columns, rows, tmap in self.blocks:
+            block = np.diag(rotor[rows]) if tmap is None else reflected_inertia(tmap, rotor[rows])
+            inertia[np.ix_(columns, columns)] += block
+        return inertia
 
     def actuators_of(self, joint: str) -> list[int]:
         v = self.joints.index(joint)
@@ -140,10 +148,12 @@ def _matrices(path: str, robot: RobotModel, blocks: list, actuators: list[str], 
     c_j2a, c_a2j = np.zeros(na), np.zeros(nv)
     row = 0
     owners: list[str] = []
+    placed: list[tuple[list[int], list[int], TransmissionMap | None]] = []
     for columns, names, tname, tmap in blocks:
         rows = list(range(row, row + len(names)))
         row += len(names)
         owners.extend([tname] * len(names))
+        placed.append((columns, rows, tmap))
         ix_a, ix_j = np.ix_(rows, columns), np.ix_(columns, rows)
         if tmap is None:
             for key in m:
@@ -161,7 +171,7 @@ def _matrices(path: str, robot: RobotModel, blocks: list, actuators: list[str], 
                 c_j2a[rows], c_a2j[columns] = j2a_c, a2j_c
     return Drive(path, robot.joints, tuple(actuators), tuple(owners), m["pos_j2a"], c_j2a,
                  m["pos_a2j"], c_a2j, m["vel_j2a"], m["vel_a2j"], m["eff_j2a"], m["eff_a2j"],
-                 direct, list(maps))
+                 direct, list(maps), blocks=placed)
 
 
 def probe(function: object, quantity: str, n: int) -> tuple[np.ndarray, np.ndarray]:

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from txtool.mechanics.limits import actuator_limits as implied_limits
 from txtool.simulate.drive import Drive
 from txtool.simulate.loop import Controller, Plan, layout, make_model
 from txtool.simulate.model import RobotModel
@@ -57,12 +58,20 @@ def actuator_limits(robot: RobotModel, plant: Drive, params: Params
                     ) -> tuple[np.ndarray, np.ndarray]:
     """Effort and speed limits per robot actuator: given, else implied by the joint limits.
 
-    The implied effort limit is the largest actuator effort that joint efforts within the URDF
-    limits need (``|E| @ effort`` with E = the joint-to-actuator effort map; ``effort / |n|`` for
-    a simple transmission); the speed limit is ``|A| @ velocity`` (``velocity * |n|``).
+    The implied limits are :func:`txtool.mechanics.limits.actuator_limits`: the worst case over
+    the box of URDF joint limits (``effort / |n|`` and ``velocity * |n|`` for a simple
+    transmission). A direct actuator takes its joint's limits; no (or zero) limit means none.
     """
-    effort = _box(plant.eff_j2a, robot.effort)
-    speed = _box(plant.vel_j2a, robot.velocity)
+    effort = np.full(plant.na, math.inf)
+    speed = np.full(plant.na, math.inf)
+    for columns, rows, tmap in plant.blocks:
+        if tmap is None:
+            effort[rows] = robot.effort[columns]
+            speed[rows] = robot.velocity[columns]
+            continue
+        for i, limit in zip(rows, implied_limits(tmap, robot.info), strict=True):
+            effort[i] = limit.effort or math.inf
+            speed[i] = limit.velocity or math.inf
     for i, name in enumerate(plant.actuators):
         given = params.actuators.get(name)
         if given is not None and given.effort_limit is not None:
@@ -70,14 +79,6 @@ def actuator_limits(robot: RobotModel, plant: Drive, params: Params
         if given is not None and given.velocity_limit is not None:
             speed[i] = given.velocity_limit
     return effort, speed
-
-
-def _box(matrix: np.ndarray, bounds: np.ndarray) -> np.ndarray:
-    result = np.zeros(matrix.shape[0])
-    for i, row in enumerate(np.abs(matrix)):
-        used = row != 0
-        result[i] = math.inf if np.isinf(bounds[used]).any() else float(row[used] @ bounds[used])
-    return result
 
 
 def controller(robot: RobotModel, params: Params, bandwidth: float) -> Controller:
