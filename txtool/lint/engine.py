@@ -15,7 +15,6 @@ Which tree the rules see:
 
 from __future__ import annotations
 
-import dataclasses
 import re
 
 from txtool.config import Config, Settings, resolve
@@ -99,26 +98,16 @@ def context_for(source: Source, settings: Settings) -> LintContext:
 
 
 def run_rules(ctx: LintContext, settings: Settings) -> list[Problem]:
-    problems = []
+    """The problems of every enabled rule, as the rules made them (:func:`finish` stamps them)."""
+    problems: list[Problem] = []
     for rule in all_rules().values():
         if rule.code in settings.enabled and rule.code not in PIPELINE_CODES:
-            problems.extend(stamp(problem, rule, settings) for problem in rule.check(ctx))
+            problems.extend(rule.check(ctx))
     return problems
 
 
-def stamp(problem: Problem, rule: Rule, settings: Settings) -> Problem:
-    """Give a rule's problem its registry name, configured severity and fixability."""
-    return dataclasses.replace(
-        problem,
-        name=rule.name,
-        severity=settings.severity.get(rule.code, rule.severity),
-        fixable=rule.fixable,
-    )
-
-
 def finish(problems: list[Problem], source: Source, settings: Settings) -> list[Problem]:
-    """Select, suppress, report unused suppressions, add end positions, sort."""
-    rules = all_rules()
+    """Select, suppress, report unused suppressions, stamp, add end positions, sort."""
     kept = [p for p in problems if p.code in settings.enabled]
     suppressions = parse_suppressions(source.data)
     if suppressions:
@@ -130,36 +119,44 @@ def finish(problems: list[Problem], source: Source, settings: Settings) -> list[
                 kept.append(
                     _pipeline(source.path, directive.line, directive.column, "TX003", message)
                 )
-    finished = []
-    for problem in kept:
-        if problem.code in PIPELINE_CODES:
-            problem = stamp(problem, rules[problem.code], settings)
-        finished.append(problem)
-    return sorted(_with_ends(finished, source.data))
+    if not kept:
+        return kept
+    rules = all_rules()
+    lines = source.data.decode("utf-8", errors="replace").splitlines()
+    return sorted(_stamped(p, rules[p.code], settings, lines) for p in kept)
+
+
+def _stamped(problem: Problem, rule: Rule, settings: Settings, lines: list[str]) -> Problem:
+    """The problem with its registry name, configured severity, fixability and end."""
+    return Problem(
+        problem.path,
+        problem.line,
+        problem.column,
+        problem.code,
+        problem.message,
+        end_line=problem.line,
+        end_column=_end_column(problem, lines),
+        severity=settings.severity.get(rule.code, rule.severity),
+        name=rule.name,
+        fixable=rule.fixable,
+    )
 
 
 def _pipeline(path: str, line: int, column: int, code: str, message: str) -> Problem:
     return Problem(path, max(line, 1), max(column, 1), code, message)
 
 
-def _with_ends(problems: list[Problem], data: bytes) -> list[Problem]:
-    """End positions (exclusive): the end of the tag (or text) starting at the position."""
-    if not problems:
-        return problems
-    lines = data.decode("utf-8", errors="replace").splitlines()
-    ended = []
-    for problem in problems:
-        end_column = problem.column + 1
-        if 1 <= problem.line <= len(lines):
-            text = lines[problem.line - 1]
-            rest = text[problem.column - 1 :]
-            match = _TAG_END.match(rest)
-            if match:
-                end_column = problem.column + len(match.group(0))
-            elif rest.strip():
-                end_column = problem.column + len(rest.rstrip())
-        ended.append(dataclasses.replace(problem, end_line=problem.line, end_column=end_column))
-    return ended
+def _end_column(problem: Problem, lines: list[str]) -> int:
+    """Exclusive end: the end of the tag (or text) starting at the position, on its line."""
+    if not 1 <= problem.line <= len(lines):
+        return problem.column + 1
+    rest = lines[problem.line - 1][problem.column - 1 :]
+    match = _TAG_END.match(rest)
+    if match:
+        return problem.column + len(match.group(0))
+    if rest.strip():
+        return problem.column + len(rest.rstrip())
+    return problem.column + 1
 
 
 def _xacro_position(data: bytes, reason: str) -> tuple[int, int]:

@@ -28,12 +28,25 @@ class MemberRef:
     element: etree._Element
 
 
-def members(found: Found) -> Iterator[MemberRef]:
+def members(found: Found) -> list[MemberRef]:
     """Joints then actuators, paired with their elements (same order as the model)."""
+    cached = _MEMBERS.get(id(found))
+    if cached is not None and cached[0] is found:
+        return cached[1]
+    refs = []
     transmission = found.transmission
     for noun, models in (("joint", transmission.joints), ("actuator", transmission.actuators)):
         for member, element in zip(models, children(found.element, noun), strict=True):
-            yield MemberRef(noun, member, element)
+            refs.append(MemberRef(noun, member, element))
+    if len(_MEMBERS) >= _MEMBERS_MAX:
+        _MEMBERS.clear()
+    # Every rule asks again; the entry holds ``found`` so its id() cannot be reused meanwhile.
+    _MEMBERS[id(found)] = (found, refs)
+    return refs
+
+
+_MEMBERS: dict[int, tuple[Found, list[MemberRef]]] = {}
+_MEMBERS_MAX = 4096
 
 
 def is_xacro(element: etree._Element) -> bool:

@@ -33,6 +33,7 @@ Passing example::
 from __future__ import annotations
 
 from collections.abc import Iterator
+from functools import lru_cache
 
 from pydantic import BaseModel, ConfigDict, Field
 
@@ -83,17 +84,19 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         yield ctx.problem(CODE, element, message)
 
 
+@lru_cache(maxsize=256)
 def nearest_standard(text: str) -> str | None:
-    """The standard type ``text`` is a near-miss of, or None."""
+    """The standard type ``text`` is a near-miss of (by its class name), or None."""
     wanted = text.lower()
     short = wanted.rsplit("/", 1)[-1]
     best: tuple[int, str] | None = None
     for full, name in zip(STANDARD_NAMES, STANDARD_TYPES, strict=True):
-        distance = min(edit_distance(wanted, full.lower()), edit_distance(short, name.lower()))
+        if abs(len(short) - len(name)) > MAX_DISTANCE:
+            continue
+        distance = edit_distance(short, name.lower())
         if best is None or distance < best[0]:
             best = (distance, full)
-    assert best is not None
-    if best[0] <= MAX_DISTANCE:
+    if best is not None and best[0] <= MAX_DISTANCE:
         return best[1]
     # A standard name followed by stray text (``.../SimpleTransmission name=""``).
     return next((full for full in STANDARD_NAMES if wanted.startswith(full.lower())), None)
