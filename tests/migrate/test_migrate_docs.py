@@ -1,4 +1,4 @@
-"""The examples of docs/migrate.md are what txtool prints."""
+"""The examples of the README's migrate section are what txtool prints."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ from pathlib import Path
 from tests.migrate.test_migrate_cli import ROBOT
 from tests.migrate.test_migrate_xacro import CUSTOM, MACRO
 
-DOC = Path(__file__).resolve().parents[2] / "docs" / "migrate.md"
+README = Path(__file__).resolve().parents[2] / "README.md"
 # The xacro example is the test macro without its second interface and with a plain reduction.
 ARM = (MACRO.replace(" iface:=EffortJointInterface", "")
        .replace("        <hardwareInterface>hardware_interface/${iface}</hardwareInterface>\n", "")
@@ -17,10 +17,15 @@ ARM = (MACRO.replace(" iface:=EffortJointInterface", "")
 FILES = {"robot.urdf": ROBOT, "arm.urdf.xacro": ARM, "panda.urdf": CUSTOM}
 
 
+def _section() -> str:
+    text = README.read_text()
+    return text[text.index("### `txtool migrate"):text.index("### `txtool roundtrip")]
+
+
 def _sessions() -> list[tuple[str, str]]:
     """(command, expected output) for every ``$ txtool ...`` line of the console blocks."""
     sessions = []
-    for block in re.findall(r"```console\n(.*?)```", DOC.read_text(), re.S):
+    for block in re.findall(r"```console\n(.*?)```", _section(), re.S):
         for part in re.split(r"^\$ ", block, flags=re.M)[1:]:
             command, _, output = part.partition("\n")
             sessions.append((command, output))
@@ -43,5 +48,5 @@ def test_the_examples_are_what_txtool_prints(run, tmp_path, monkeypatch):
 def test_the_table_lists_every_fixable_rule():
     from txtool.rules import all_rules
 
-    listed = re.findall(r"^\| (TX\d+) ", DOC.read_text(), re.M)
+    listed = re.findall(r"^\| (TX\d+) ", _section(), re.M)
     assert listed == sorted(code for code, rule in all_rules().items() if rule.fixable)
