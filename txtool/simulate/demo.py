@@ -33,9 +33,9 @@ def demo_runs(console: Console, robot: Path | None = None) -> None:
         console.print(Rule(f"txtool simulate {shown} --config <{what}>"))
         run = simulate_one(Options(robot=str(path), keep_series=False), str(flipped),
                            label=label)
-    console.print(f"{escape(label)}: {report.verdict_line(run)}")
+    console.print(f"{escape(label)}: {report.verdict_line(run)}", soft_wrap=True)
     for reason in run.reasons[1:3]:
-        console.print(f"  - {escape(reason)}")
+        console.print(f"  - {escape(reason)}", soft_wrap=True)
     if len(run.reasons) > 3:
         console.print(f"  - ... {len(run.reasons) - 3} more")
 
