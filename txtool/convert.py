@@ -158,17 +158,17 @@ class _Placer:
         moving_in = t.dialect != "ros1" and component is None and old.getparent() is not None
         if moving_out and component.getparent() is not None:
             _remove(old)
-            _insert_before(component, self._build(t, component))
+            _insert_before(component, self._build(t, component, old))
         elif moving_in and old.getparent() is self.root and local(self.root) == "robot":
             component = self._component_for(t)
             _remove(old)
-            _append(component, self._build_inside(t, component))
+            _append(component, self._build_inside(t, component, old))
         elif moving_in and local(self.root) == "robot":
             # Inside a xacro macro or conditional: a <ros2_control> of its own, in place,
             # so that the transmission stays in the scope of its ${...} parameters.
             self._wrap_in_place(old, t)
         else:
-            new = self._build(t, old)
+            new = self._build(t, old, old)
             new.tail = old.tail
             if old.getparent() is None:
                 raise ValueError("cannot replace the root element in place")
@@ -186,17 +186,19 @@ class _Placer:
         old.getparent().replace(old, component)
         for joint in t.joints:
             self._declare(component, joint)
-        _append(component, self._build_inside(t, component))
+        _append(component, self._build_inside(t, component, old))
 
-    def _build(self, t: Transmission, sibling: etree._Element) -> etree._Element:
+    def _build(self, t: Transmission, sibling: etree._Element,
+               old: etree._Element) -> etree._Element:
         indent, step = _indentation(sibling)
-        return dialects.build(t, t.dialect, indent=indent, step=step,
-                              namespace=_namespace(sibling))
+        return _with_comments(dialects.build(t, t.dialect, indent=indent, step=step,
+                                             namespace=_namespace(sibling)), old, indent, step)
 
-    def _build_inside(self, t: Transmission, parent: etree._Element) -> etree._Element:
+    def _build_inside(self, t: Transmission, parent: etree._Element,
+                      old: etree._Element) -> etree._Element:
         indent, step = _child_indentation(parent)
-        return dialects.build(t, t.dialect, indent=indent, step=step,
-                              namespace=_namespace(parent))
+        return _with_comments(dialects.build(t, t.dialect, indent=indent, step=step,
+                                             namespace=_namespace(parent)), old, indent, step)
 
     def _component_for(self, t: Transmission) -> etree._Element:
         names = {j.name for j in t.joints}
@@ -243,6 +245,24 @@ class _Placer:
             anchor.addnext(element)
         else:
             _append(component, element)
+
+
+def _with_comments(new: etree._Element, old: etree._Element, indent: str,
+                   step: str) -> etree._Element:
+    """Carry the comments of the old element: under the same joint or actuator when they
+    stood there, else at the top of the transmission."""
+    targets = {(local(m), m.get("name")): m for m in new if isinstance(m.tag, str)}
+    for parent in [old, *children(old, "joint"), *children(old, "actuator")]:
+        target = new if parent is old else targets.get((local(parent), parent.get("name")), new)
+        comments = [etree.Comment(c.text) for c in parent if isinstance(c, etree._Comment)]
+        for position, comment in enumerate(comments):
+            if target is new:
+                new.insert(position, comment)
+            else:
+                target.append(comment)
+    if any(isinstance(c, etree._Comment) for c in new.iter()):
+        dialects.pretty(new, indent, step)
+    return new
 
 
 def _namespace(element: etree._Element) -> str | None:

@@ -108,22 +108,19 @@ def test_to_ros2_p2_keeps_the_macro_and_wraps_the_transmission_in_place(run, wri
     assert (code, out) == (0, "")
 
 
-def test_a_comment_inside_a_converted_transmission_is_a_loss(run, write):
-    text = MACRO.replace("      <actuator name=\"${prefix}${joint}_motor\">\n",
-                         "      <actuator name=\"${prefix}${joint}_motor\">\n"
-                         "        <!-- motor side -->\n")
+def test_a_comment_inside_a_converted_transmission_is_carried(run, write):
+    ros1 = MACRO.replace(" iface:=EffortJointInterface", "").replace(
+        "        <hardwareInterface>hardware_interface/${iface}</hardwareInterface>\n", "").replace(
+        "${reduction * 2}", "${reduction}")
+    text = ros1.replace("      <actuator name=\"${prefix}${joint}_motor\">\n",
+                        "      <actuator name=\"${prefix}${joint}_motor\">\n"
+                        "        <!-- motor side -->\n")
     path = write("arm.urdf.xacro", text)
     code, out, err = run("migrate", "--write", "--to", "ros2-p2", "arm.urdf.xacro")
-    assert (code, out) == (1, "")
-    assert ("error: arm.urdf.xacro: line 13: comment 'motor side' is inside a converted "
-            "transmission; dropped\n") in err
-    assert err.endswith("1 file(s) refused (losses; see --allow-lossy)\n")
-    assert path.read_text() == text.lstrip("\n")
-    code, _, err = run("migrate", "--write", "--to", "ros2-p2", "--allow-lossy",
-                       "arm.urdf.xacro")
-    assert code == 0
-    assert "warning: arm.urdf.xacro: line 13: comment 'motor side'" in err
-    assert "<ros2_control" in path.read_text() and "motor side" not in path.read_text()
+    assert (code, out) == (0, ""), err
+    converted = path.read_text()
+    actuator = converted.index('<actuator name="${prefix}${joint}_motor" role="actuator1">')
+    assert actuator < converted.index("<!-- motor side -->") < converted.index("</transmission>")
 
 
 CUSTOM = """
