@@ -153,3 +153,14 @@ def test_unexpanded_xacro_keeps_expressions_and_macro_scope():
     assert "<mechanical_reduction>${ratio}</mechanical_reduction>" in text
     back = convert_source(source(result.data), "ros1").data.decode()
     assert "<mechanicalReduction>${ratio}</mechanicalReduction>" in back
+
+
+def test_comments_inside_a_converted_transmission_are_carried():
+    data = ROS1_SIMPLE.replace(b"<offset>0.25</offset>", b"<offset>0.25</offset><!-- calibrated -->")
+    data = data.replace(b"<type>", b"<!-- wrist --><type>")
+    result = convert_source(source(data), "ros2-p2")
+    text = result.data.decode()
+    start, end = text.index('<transmission name="t">'), text.index("</transmission>")
+    assert start < text.index("<!-- wrist -->") < text.index("<plugin>")
+    joint = text.index('<joint name="j" role="joint1">')
+    assert joint < text.index("<!-- calibrated -->") < end
