@@ -9,22 +9,20 @@ the file and the key (exit 2).
 
 from __future__ import annotations
 
+import dataclasses
 import sys
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
-from typing import Any
-
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from typing import TYPE_CHECKING, Any
 
 from txtool.problem import Severity
 from txtool.xmlio import InputError, XacroOptions
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - exercised on Python 3.10 only
-    import tomli as tomllib
+if TYPE_CHECKING:
+    from txtool.lint.config_model import Config
+
 
 CONFIG_FILE = ".txtool.toml"
 PYPROJECT = "pyproject.toml"
@@ -34,25 +32,36 @@ class ConfigError(InputError):
     """A bad configuration or rule selection: one line naming the file and key; exit 2."""
 
 
-class Config(BaseModel):
-    """What a configuration file may say (and what command-line options override)."""
+def __getattr__(name: str) -> Any:
+    # The pydantic model is only built when a configuration file is read (start-up time).
+    if name == "Config":
+        from txtool.lint.config_model import Config
 
-    model_config = ConfigDict(extra="forbid", populate_by_name=True)
+        return Config
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
-    select: list[str] | None = Field(
-        default=None, description="Rule codes or code prefixes to run (default: all)."
-    )
-    ignore: list[str] = Field(default_factory=list, description="Rule codes or prefixes to skip.")
-    severity: dict[str, Severity] = Field(
-        default_factory=dict, description="Per-rule severity, e.g. TX300 = \"error\"."
-    )
-    rules: dict[str, dict[str, Any]] = Field(
-        default_factory=dict, description="Per-rule options, e.g. [tool.txtool.rules.TX102]."
-    )
-    xacro_args: dict[str, str] = Field(default_factory=dict, alias="xacro-args")
-    pkg_dirs: list[str] = Field(default_factory=list, alias="pkg-dirs")
-    pkg_paths: dict[str, str] = Field(default_factory=dict, alias="pkg-paths")
-    no_xacro: bool = Field(default=False, alias="no-xacro")
+
+@dataclass(frozen=True)
+class Values:
+    """What :func:`resolve` reads: a :class:`Config`'s fields as plain values.
+
+    Used so that a run without any configuration file never builds the pydantic model.
+    """
+
+    select: list[str] | tuple[str, ...] | None = None
+    ignore: list[str] | tuple[str, ...] = ()
+    severity: dict[str, Severity] = field(default_factory=dict)
+    rules: dict[str, dict[str, Any]] = field(default_factory=dict)
+    xacro_args: dict[str, str] = field(default_factory=dict)
+    pkg_dirs: list[str] | tuple[str, ...] = ()
+    pkg_paths: dict[str, str] = field(default_factory=dict)
+    no_xacro: bool = False
+
+    @classmethod
+    def of(cls, config: Config | None) -> Values:
+        if config is None:
+            return cls()
+        return cls(**{name: getattr(config, name) for name in cls.__dataclass_fields__})
 
 
 @dataclass(frozen=True)
@@ -69,6 +78,11 @@ class Settings:
 
 def load_config(path: Path) -> Config:
     """Read ``path`` (a ``.txtool.toml`` or a ``pyproject.toml``) into a :class:`Config`."""
+    if sys.version_info >= (3, 11):
+        import tomllib
+    else:  # pragma: no cover - exercised on Python 3.10 only
+        import tomli as tomllib
+
     try:
         data = tomllib.loads(path.read_text(encoding="utf-8"))
     except OSError as exc:
@@ -82,6 +96,10 @@ def load_config(path: Path) -> Config:
         prefix = "tool.txtool."
     if not isinstance(table, dict):
         raise ConfigError(f"{path}: key '{prefix.rstrip('.')}': expected a table")
+    from pydantic import ValidationError
+
+    from txtool.lint.config_model import Config
+
     try:
         return Config.model_validate(table)
     except ValidationError as exc:
@@ -113,7 +131,7 @@ def _has_txtool_table(pyproject: Path) -> bool:
 
 
 def resolve(
-    config: Config,
+    config: Config | Values | None = None,
     *,
     origin: str = "<defaults>",
     base: Path | None = None,
@@ -125,6 +143,8 @@ def resolve(
     """
     from txtool.rules import all_rules
 
+    if not isinstance(config, Values):
+        config = Values.of(config)
     rules = all_rules()
     selected = set(rules)
     if config.select is not None:
@@ -171,6 +191,8 @@ def _exact(code: str, rules: dict[str, Any], origin: str, key: str) -> str:
 
 
 def _options(rule: Any, values: dict[str, Any], origin: str, where: str) -> Any:
+    from pydantic import ValidationError
+
     model = rule.options
     if model is None:
         raise ConfigError(f"{origin}: key '{where}': {rule.code} takes no options")
@@ -193,16 +215,16 @@ class Overrides:
     no_xacro: bool = False
 
 
-def merged(config: Config, overrides: Overrides) -> Config:
+def merged(config: Config | None, overrides: Overrides) -> Values:
     """``config`` with the command line applied: select replaces, the rest extends."""
-    update: dict[str, Any] = {
-        "ignore": [*config.ignore, *overrides.ignore],
-        "xacro_args": {**config.xacro_args, **dict(overrides.xacro.args)},
-        "no_xacro": config.no_xacro or overrides.no_xacro,
-    }
-    if overrides.select is not None:
-        update["select"] = list(overrides.select)
-    return config.model_copy(update=update)
+    values = Values.of(config)
+    return dataclasses.replace(
+        values,
+        select=values.select if overrides.select is None else list(overrides.select),
+        ignore=[*values.ignore, *overrides.ignore],
+        xacro_args={**values.xacro_args, **dict(overrides.xacro.args)},
+        no_xacro=values.no_xacro or overrides.no_xacro,
+    )
 
 
 def check_overrides(overrides: Overrides) -> None:
@@ -238,8 +260,9 @@ class SettingsCache:
 
     def _settings(self, config_path: Path | None) -> Settings:
         prefix = ""
+        config: Config | None = None
         if config_path is None:
-            config, origin, base = Config(), "command line", Path.cwd()
+            origin, base = "command line", Path.cwd()
         else:
             if not config_path.is_file():
                 raise ConfigError(f"{config_path}: no such configuration file")
@@ -263,4 +286,4 @@ class SettingsCache:
 
 
 def default_settings() -> Settings:
-    return resolve(Config())
+    return resolve(None)

@@ -16,13 +16,17 @@ Which tree the rules see:
 from __future__ import annotations
 
 import re
+from typing import TYPE_CHECKING
 
-from txtool.config import Config, Settings, resolve
+from txtool.config import Settings, resolve
 from txtool.lint.context import LintContext
 from txtool.lint.suppress import parse as parse_suppressions
 from txtool.problem import Problem
 from txtool.rules import Rule, all_rules
 from txtool.xmlio import Source, XMLSyntax, is_xacro, parse_bytes, read_bytes
+
+if TYPE_CHECKING:
+    from txtool.config import Config
 
 PIPELINE_CODES = frozenset({"TX001", "TX002", "TX003"})
 _TAG_END = re.compile(r"<[^>]*>?")
@@ -81,7 +85,7 @@ def _late_declaration(path: str, data: bytes) -> list[Problem]:
 def as_settings(config: Config | Settings | None) -> Settings:
     if isinstance(config, Settings):
         return config
-    return resolve(config or Config())
+    return resolve(config)
 
 
 def context_for(source: Source, settings: Settings) -> LintContext:

@@ -52,7 +52,7 @@ MAX_DISTANCE = 3
 
 
 class Options(BaseModel):
-    model_config = ConfigDict(extra="forbid", populate_by_name=True)
+    model_config = ConfigDict(extra="forbid", populate_by_name=True, defer_build=True)
 
     known_families: list[str] = Field(default_factory=list, alias="known-families")
 

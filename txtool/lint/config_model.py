@@ -1,0 +1,33 @@
+"""The configuration file's model (``[tool.txtool]`` or ``.txtool.toml``), see :mod:`txtool.config`.
+
+Kept apart so that a run without a configuration file never builds it.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from pydantic import BaseModel, ConfigDict, Field
+
+from txtool.problem import Severity
+
+
+class Config(BaseModel):
+    """What a configuration file may say (and what command-line options override)."""
+
+    model_config = ConfigDict(extra="forbid", populate_by_name=True, defer_build=True)
+
+    select: list[str] | None = Field(
+        default=None, description="Rule codes or code prefixes to run (default: all)."
+    )
+    ignore: list[str] = Field(default_factory=list, description="Rule codes or prefixes to skip.")
+    severity: dict[str, Severity] = Field(
+        default_factory=dict, description="Per-rule severity, e.g. TX300 = \"error\"."
+    )
+    rules: dict[str, dict[str, Any]] = Field(
+        default_factory=dict, description="Per-rule options, e.g. [tool.txtool.rules.TX102]."
+    )
+    xacro_args: dict[str, str] = Field(default_factory=dict, alias="xacro-args")
+    pkg_dirs: list[str] = Field(default_factory=list, alias="pkg-dirs")
+    pkg_paths: dict[str, str] = Field(default_factory=dict, alias="pkg-paths")
+    no_xacro: bool = Field(default=False, alias="no-xacro")
