@@ -161,6 +161,6 @@ def test_comments_inside_a_converted_transmission_are_carried():
     result = convert_source(source(data), "ros2-p2")
     text = result.data.decode()
     start, end = text.index('<transmission name="t">'), text.index("</transmission>")
-    assert start < text.index("<!-- wrist -->") < text.index("<plugin>")
+    assert start < text.index("<!-- wrist -->") < text.index("<plugin>", start)
     joint = text.index('<joint name="j" role="joint1">')
     assert joint < text.index("<!-- calibrated -->") < end
