@@ -19,6 +19,7 @@ import re
 from typing import TYPE_CHECKING
 
 from txtool.config import Settings, resolve
+from txtool.lint import support
 from txtool.lint.context import LintContext
 from txtool.lint.suppress import parse as parse_suppressions
 from txtool.problem import Problem
@@ -104,9 +105,14 @@ def context_for(source: Source, settings: Settings) -> LintContext:
 def run_rules(ctx: LintContext, settings: Settings) -> list[Problem]:
     """The problems of every enabled rule, as the rules made them (:func:`finish` stamps them)."""
     problems: list[Problem] = []
-    for rule in all_rules().values():
-        if rule.code in settings.enabled and rule.code not in PIPELINE_CODES:
-            problems.extend(rule.check(ctx))
+    if not ctx.found:
+        return problems  # every rule is about transmissions
+    try:
+        for rule in all_rules().values():
+            if rule.code in settings.enabled and rule.code not in PIPELINE_CODES:
+                problems.extend(rule.check(ctx))
+    finally:
+        support.forget()
     return problems
 
 

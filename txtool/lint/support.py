@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
+from typing import Any
 
 from lxml import etree
 
@@ -30,23 +31,37 @@ class MemberRef:
 
 def members(found: Found) -> list[MemberRef]:
     """Joints then actuators, paired with their elements (same order as the model)."""
-    cached = _MEMBERS.get(id(found))
-    if cached is not None and cached[0] is found:
-        return cached[1]
+    return _memo(found, "members", _members)
+
+
+def _members(found: Found) -> list[MemberRef]:
     refs = []
     transmission = found.transmission
     for noun, models in (("joint", transmission.joints), ("actuator", transmission.actuators)):
         for member, element in zip(models, children(found.element, noun), strict=True):
             refs.append(MemberRef(noun, member, element))
-    if len(_MEMBERS) >= _MEMBERS_MAX:
-        _MEMBERS.clear()
-    # Every rule asks again; the entry holds ``found`` so its id() cannot be reused meanwhile.
-    _MEMBERS[id(found)] = (found, refs)
     return refs
 
 
-_MEMBERS: dict[int, tuple[Found, list[MemberRef]]] = {}
-_MEMBERS_MAX = 4096
+# Every rule asks the same questions of each transmission; the answers are kept for the
+# document being linted (the engine calls forget() after its rules ran). Entries hold
+# ``found`` itself, so its id() cannot be reused while they live.
+_MEMO: dict[tuple[int, str], tuple[Found, Any]] = {}
+
+
+def _memo(found: Found, what: str, compute: Callable[[Found], Any]) -> Any:
+    key = (id(found), what)
+    cached = _MEMO.get(key)
+    if cached is not None and cached[0] is found:
+        return cached[1]
+    value = compute(found)
+    _MEMO[key] = (found, value)
+    return value
+
+
+def forget() -> None:
+    """Drop the answers kept for the last document."""
+    _MEMO.clear()
 
 
 def is_xacro(element: etree._Element) -> bool:
@@ -88,6 +103,10 @@ def scope(ctx: LintContext, element: etree._Element) -> tuple[etree._Element, ..
 
 def type_element(found: Found) -> etree._Element | None:
     """The element that carries the type: ``<plugin>`` (ROS 2) or ``<type>`` (ROS 1)."""
+    return _memo(found, "type_element", _type_element)  # type: ignore[no-any-return]
+
+
+def _type_element(found: Found) -> etree._Element | None:
     name = "type" if found.transmission.dialect == "ros1" else "plugin"
     elements = children(found.element, name)
     return elements[0] if elements else None
