@@ -1,0 +1,60 @@
+"""Which tree the rules see for xacro files, and where their findings point."""
+
+from __future__ import annotations
+
+from tests.rules.helpers import problems, snippet
+from txtool.config import resolve
+from txtool.lint.api import lint_source
+from txtool.xmlio import load
+
+MACRO = """
+<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="tr" params="n r">
+    <transmission name="${{n}}_t">
+      <type>transmission_interface/SimpleTransmission</type>
+      <joint name="${{n}}"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+      <actuator name="${{n}}_m"><mechanicalReduction>${{r}}</mechanicalReduction></actuator>
+    </transmission>
+  </xacro:macro>
+  {calls}
+</robot>
+"""
+
+
+def test_expanded_findings_point_into_the_macro_and_say_so():
+    xml = MACRO.format(calls='<xacro:tr n="a" r="0"/>\n  <xacro:tr n="b" r="50"/>')
+    found = problems(xml, filename="r.urdf.xacro", select=["TX106"])
+    assert [(p.line, p.column) for p in found] == [(6, 31)]
+    assert "actuator 'a_m' of transmission 'a_t'" in found[0].message
+    assert found[0].message.endswith("(after xacro expansion)")
+
+
+def test_a_macro_library_is_checked_as_written_with_exact_positions():
+    xml = MACRO.format(calls="").replace("${r}", "0")
+    found = problems(xml, filename="lib.xacro", select=["TX106"])
+    assert [(p.line, p.column) for p in found] == [(6, 31)]
+    assert "after xacro expansion" not in found[0].message
+    assert "actuator '${n}_m'" in found[0].message
+
+
+def test_a_file_that_calls_its_macros_is_checked_on_the_expansion_only():
+    xml = MACRO.format(calls='<xacro:tr n="a" r="50"/>').replace("${r}", "0")
+    found = problems(xml, filename="r.urdf.xacro", select=["TX106"])
+    assert [(p.line, "a_m" in p.message) for p in found] == [(6, True)]
+
+
+def test_no_xacro_checks_the_literal_file(tmp_path):
+    xml = MACRO.format(calls='<xacro:tr n="a" r="0"/>')
+    assert problems(xml, filename="r.urdf.xacro", select=["TX106"], no_xacro=True) == []
+
+
+def test_lint_source_for_callers_with_a_loaded_source(tmp_path):
+    path = tmp_path / "r.urdf.xacro"
+    path.write_text(snippet(MACRO.format(calls='<xacro:tr n="a" r="0"/>')))
+    source = load(str(path))
+    found = lint_source(source)
+    assert [(p.line, p.code, p.severity, p.name) for p in found] == [
+        (6, "TX106", "error", "zero-reduction")
+    ]
+    assert lint_source(source, resolve(None)) == found
+    assert lint_source(load(str(path), expand=False)) == []  # ${r} is unknown as written
