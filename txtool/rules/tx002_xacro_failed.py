@@ -6,11 +6,10 @@ missing and how to provide it (``--xacro-arg name:=VALUE``, ``--pkg-dir DIR``,
 configuration). The transmissions written literally in the file are still checked, as for a
 macro library (values containing ``${...}`` or ``$(...)`` are then unknown).
 
-Failing example (no ``--xacro-arg prefix:=...``, no default)::
+Failing example::
 
     <robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
-      <xacro:arg name="prefix"/>
-      <link name="$(arg prefix)base"/>
+      <link name="$(arg prefix)base"/>  <!-- and no --xacro-arg prefix:=... -->
     </robot>
 
 Passing example::
