@@ -9,7 +9,7 @@ macro library (values containing ``${...}`` or ``$(...)`` are then unknown).
 Failing example::
 
     <robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
-      <link name="$(arg prefix)base"/>  <!-- and no --xacro-arg prefix:=... -->
+      <link name="$(arg prefix)base"/>  <!-- no argument "prefix" given -->
     </robot>
 
 Passing example::
