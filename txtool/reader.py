@@ -46,8 +46,8 @@ def read_source(source: Source) -> list[Found]:
 def transmission_elements(root: etree._Element) -> list[etree._Element]:
     """``<transmission>`` elements that are transmissions (not nested in another one)."""
     found = []
-    for element in root.iter():
-        if local(element) == "transmission" and not _inside_transmission(element):
+    for element in root.iter("{*}transmission"):
+        if not _inside_transmission(element):
             found.append(element)
     return found
 

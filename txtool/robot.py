@@ -74,14 +74,15 @@ def local(element: etree._Element) -> str:
 
 
 def children(element: etree._Element, name: str) -> list[etree._Element]:
-    return [child for child in element if local(child) == name]
+    """Child elements named ``name`` in any namespace (or none)."""
+    return list(element.iterchildren("{*}" + name))
 
 
 def robot_joints(root: etree._Element) -> dict[str, JointInfo]:
     """The URDF joints of a document (any depth, outside ``<ros2_control>``)."""
     joints: dict[str, JointInfo] = {}
-    for element in root.iter():
-        if local(element) != "joint" or _inside(element, ("ros2_control", "transmission")):
+    for element in root.iter("{*}joint"):
+        if _inside(element, ("ros2_control", "transmission")):
             continue
         name = element.get("name")
         if name is None or element.get("type") is None:
@@ -126,9 +127,8 @@ def _joint_info(element: etree._Element, name: str) -> JointInfo:
 def components(root: etree._Element) -> list[Component]:
     """Every ``<ros2_control>`` element (the root itself for a bare fragment)."""
     found = []
-    for element in root.iter():
-        if local(element) == "ros2_control":
-            found.append(component_of(element))
+    for element in root.iter("{*}ros2_control"):
+        found.append(component_of(element))
     return found
 
 
