@@ -11,7 +11,7 @@ from lxml import etree
 from txtool.lint.context import LintContext
 from txtool.model import Member
 from txtool.reader import Found, enclosing_component
-from txtool.robot import children, local
+from txtool.robot import JointInfo, children, local
 from txtool.xmlio import XACRO_NS
 
 # Transmission families with their own loaders (not ros_control's transmission_interface):
@@ -197,3 +197,18 @@ def loader_group(found: Found) -> tuple[object, ...]:
         return ("ros1",)
     component = enclosing_component(found.element)
     return ("ros2", component)
+
+
+def robot_joints_of_transmissions(
+    ctx: LintContext,
+) -> Iterator[tuple[Found, etree._Element, JointInfo]]:
+    """(transmission, its ``<joint>`` element, the robot's joint) for standard transmissions."""
+    if not ctx.is_robot:
+        return
+    for found in ctx.transmissions():
+        if found.transmission.kind == "other":
+            continue
+        for joint in children(found.element, "joint"):
+            info = ctx.joints.get(joint.get("name", ""))
+            if info is not None:
+                yield found, joint, info

@@ -38,7 +38,7 @@ from collections.abc import Iterator
 from lxml import etree
 
 from txtool.lint.context import LintContext
-from txtool.lint.support import label
+from txtool.lint.support import label, robot_joints_of_transmissions
 from txtool.problem import Problem
 from txtool.reader import enclosing_component
 from txtool.robot import children
@@ -50,23 +50,17 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    if not ctx.is_robot:
-        return
-    for found in ctx.transmissions():
-        if found.transmission.kind == "other":
+    for found, joint, info in robot_joints_of_transmissions(ctx):
+        if not info.is_fixed:
             continue
-        for joint in children(found.element, "joint"):
-            info = ctx.joints.get(joint.get("name", ""))
-            if info is None or not info.is_fixed:
-                continue
-            effect = (
-                "ros2_control throws \"Fixed joints do not make sense in ros2_control\""
-                if _declared_by_component(found.element, info.name)
-                else "it cannot move, so the transmission has nothing to read or command"
-            )
-            yield ctx.problem(
-                CODE, joint, f"joint '{info.name}' of {label(found)} is a fixed joint: {effect}"
-            )
+        effect = (
+            "ros2_control throws \"Fixed joints do not make sense in ros2_control\""
+            if _declared_by_component(found.element, info.name)
+            else "it cannot move, so the transmission has nothing to read or command"
+        )
+        yield ctx.problem(
+            CODE, joint, f"joint '{info.name}' of {label(found)} is a fixed joint: {effect}"
+        )
 
 
 def _declared_by_component(transmission: etree._Element, joint: str) -> bool:

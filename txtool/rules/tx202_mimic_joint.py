@@ -36,9 +36,8 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
-from txtool.lint.support import label
+from txtool.lint.support import label, robot_joints_of_transmissions
 from txtool.problem import Problem
-from txtool.robot import children
 
 CODE = "TX202"
 NAME = "mimic-joint"
@@ -47,19 +46,13 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    if not ctx.is_robot:
-        return
-    for found in ctx.transmissions():
-        if found.transmission.kind == "other":
+    for found, joint, info in robot_joints_of_transmissions(ctx):
+        if info.mimic is None:
             continue
-        for joint in children(found.element, "joint"):
-            info = ctx.joints.get(joint.get("name", ""))
-            if info is None or info.mimic is None:
-                continue
-            yield ctx.problem(
-                CODE,
-                joint,
-                f"joint '{info.name}' of {label(found)} mimics "
-                f"'{info.mimic}': it follows that joint, so driving it through its own "
-                "transmission fights the mimic constraint",
-            )
+        yield ctx.problem(
+            CODE,
+            joint,
+            f"joint '{info.name}' of {label(found)} mimics "
+            f"'{info.mimic}': it follows that joint, so driving it through its own "
+            "transmission fights the mimic constraint",
+        )
