@@ -28,6 +28,7 @@ from typing import Any
 from txtool.config import Config, resolve
 from txtool.lint.engine import lint_file
 from txtool.problem import Problem
+from txtool.xmlio import parse_bytes, serialize
 
 
 def snippet(xml: str) -> str:
@@ -46,3 +47,12 @@ def problems(xml: str, *, filename: str = "robot.urdf", **options: Any) -> list[
 
 def check(xml: str, **options: Any) -> list[tuple[int, int, str]]:
     return sorted((p.line, p.column, p.code) for p in problems(xml, **options))
+
+
+def fixed(rule: Any, xml: str) -> tuple[str, int, int]:
+    """The text after one run of ``rule.fix``, the fixes made, and the fixes a second run makes."""
+    data = snippet(xml).encode()
+    tree = parse_bytes(data, "robot.urdf")
+    first = rule.fix(tree.getroot())
+    text = serialize(tree, data).decode()
+    return text, first, rule.fix(tree.getroot())

@@ -1,8 +1,7 @@
 from __future__ import annotations
 
-from tests.rules.helpers import check, problems, snippet
+from tests.rules.helpers import check, fixed, problems, snippet
 from txtool.rules import tx300_unprefixed_interface as rule
-from txtool.xmlio import parse_bytes, serialize
 
 BEFORE = """
 <robot name="r">
@@ -35,15 +34,6 @@ AFTER = """
 """
 
 
-def fixed(xml: str) -> tuple[str, int, int]:
-    """The text after one fix run, the fixes made, and the fixes a second run makes."""
-    data = snippet(xml).encode()
-    tree = parse_bytes(data, "robot.urdf")
-    first = rule.fix(tree.getroot())
-    text = serialize(tree, data).decode()
-    return text, first, rule.fix(tree.getroot())
-
-
 def test_unprefixed_interfaces_warn_on_joint_and_actuator():
     found = problems(BEFORE, select=["TX300"])
     assert [(p.line, p.column, p.code) for p in found] == [(5, 7, "TX300"), (8, 7, "TX300")]
@@ -57,7 +47,7 @@ def test_prefixed_interfaces_pass():
 
 
 def test_fix_prepends_the_prefix_and_is_idempotent():
-    text, first, second = fixed(BEFORE)
+    text, first, second = fixed(rule, BEFORE)
     assert text == snippet(AFTER)
     assert (first, second) == (2, 0)
 
@@ -83,7 +73,7 @@ def test_fix_keeps_xacro_expressions_verbatim():
         "<hardwareInterface>VelocityJointInterface",
         "<hardwareInterface>hardware_interface/VelocityJointInterface",
     )
-    text, first, second = fixed(macro)
+    text, first, second = fixed(rule, macro)
     assert text == expected
     assert (first, second) == (1, 0)
 
@@ -93,13 +83,13 @@ def test_ros2_and_own_loader_families_are_left_alone():
         "transmission_interface/SimpleTransmission", "sr_mechanism_model/SimpleTransmission"
     )
     assert check(pr2, select=["TX300"]) == []
-    assert fixed(pr2)[1] == 0
+    assert fixed(rule, pr2)[1] == 0
 
 
 def test_fix_on_real_robots_leaves_nothing_to_report():
     from tests.corpus import corpus_file
 
     for name in ("baxter__baxter.urdf", "open_manipulator__open_manipulator_x.gazebo.xacro"):
-        text, first, second = fixed(corpus_file(name).read_text())
+        text, first, second = fixed(rule, corpus_file(name).read_text())
         assert first > 0 and second == 0
         assert check(text, select=["TX300"], filename=name, no_xacro=True) == []

@@ -1,8 +1,7 @@
 from __future__ import annotations
 
-from tests.rules.helpers import check, problems, snippet
+from tests.rules.helpers import check, fixed, problems, snippet
 from txtool.rules import tx301_interface_on_actuator as rule
-from txtool.xmlio import parse_bytes, serialize
 
 BEFORE = """
 <robot name="rrbot">
@@ -33,15 +32,6 @@ AFTER = """
 """
 
 
-def fixed(xml: str) -> tuple[str, int, int]:
-    """The text after one fix run, the fixes made, and the fixes a second run makes."""
-    data = snippet(xml).encode()
-    tree = parse_bytes(data, "robot.urdf")
-    first = rule.fix(tree.getroot())
-    text = serialize(tree, data).decode()
-    return text, first, rule.fix(tree.getroot())
-
-
 def test_interface_only_on_the_actuator_warns_at_the_joint():
     found = problems(BEFORE, select=["TX301"])
     assert [(p.line, p.column, p.code) for p in found] == [(4, 5, "TX301")]
@@ -55,7 +45,7 @@ def test_interface_on_the_joint_passes():
 
 
 def test_fix_copies_the_interface_into_the_joint_and_is_idempotent():
-    text, first, second = fixed(BEFORE)
+    text, first, second = fixed(rule, BEFORE)
     assert text == snippet(AFTER)
     assert (first, second) == (1, 0)
 
@@ -82,7 +72,7 @@ def test_fix_inserts_before_existing_joint_children_with_tabs():
         "\t\t\t<hardwareInterface>hardware_interface/JointStateInterface</hardwareInterface>\n"
         "\t\t\t<offset>0.5</offset>\n",
     )
-    text, first, second = fixed(before)
+    text, first, second = fixed(rule, before)
     assert text == after
     assert (first, second) == (1, 0)
 
@@ -108,7 +98,7 @@ def test_fix_on_unexpanded_xacro_keeps_expressions():
         "        <hardwareInterface>hardware_interface/${hw}</hardwareInterface>\n"
         "      </joint>",
     )
-    text, first, second = fixed(macro)
+    text, first, second = fixed(rule, macro)
     assert text == expected
     assert (first, second) == (1, 0)
 
@@ -126,7 +116,7 @@ def test_actuators_that_disagree_are_reported_but_not_fixed():
     </transmission>
     """
     assert check(xml, select=["TX301"]) == [(3, 3, "TX301"), (4, 3, "TX301")]
-    text, first, _ = fixed(xml)
+    text, first, _ = fixed(rule, xml)
     assert (text, first) == (snippet(xml), 0)
 
 
@@ -134,6 +124,6 @@ def test_fix_on_the_2013_rrbot_leaves_nothing_to_report():
     from tests.corpus import corpus_file
 
     name = "gazebo_ros_demos__rrbot_2013_hydro.xacro"
-    text, first, second = fixed(corpus_file(name).read_text())
+    text, first, second = fixed(rule, corpus_file(name).read_text())
     assert (first, second) == (1, 0)
     assert check(text, select=["TX301", "TX110"], filename=name, no_xacro=True) == []

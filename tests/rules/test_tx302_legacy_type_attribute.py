@@ -1,8 +1,7 @@
 from __future__ import annotations
 
-from tests.rules.helpers import check, problems, snippet
+from tests.rules.helpers import check, fixed, problems, snippet
 from txtool.rules import tx302_legacy_type_attribute as rule
-from txtool.xmlio import parse_bytes, serialize
 
 LEGACY = """
 <robot name="diffbot">
@@ -29,15 +28,6 @@ LEGACY_FIXED = """
 """
 
 
-def fixed(xml: str) -> tuple[str, int, int]:
-    """The text after one fix run, the fixes made, and the fixes a second run makes."""
-    data = snippet(xml).encode()
-    tree = parse_bytes(data, "robot.urdf")
-    first = rule.fix(tree.getroot())
-    text = serialize(tree, data).decode()
-    return text, first, rule.fix(tree.getroot())
-
-
 def test_legacy_attribute_warns_at_the_transmission():
     found = problems(LEGACY, select=["TX302"])
     assert [(p.line, p.column, p.code) for p in found] == [(2, 3, "TX302")]
@@ -51,7 +41,7 @@ def test_type_element_passes():
 
 
 def test_fix_writes_the_type_element_and_moves_the_reduction():
-    text, first, second = fixed(LEGACY)
+    text, first, second = fixed(rule, LEGACY)
     assert text == snippet(LEGACY_FIXED)
     assert (first, second) == (1, 0)
 
@@ -59,7 +49,7 @@ def test_fix_writes_the_type_element_and_moves_the_reduction():
 def test_fix_accepts_the_prefixed_simple_type_in_the_attribute():
     xml = LEGACY.replace('type="SimpleTransmission"',
                          'type="transmission_interface/SimpleTransmission"')
-    assert fixed(xml)[0] == snippet(LEGACY_FIXED)
+    assert fixed(rule, xml)[0] == snippet(LEGACY_FIXED)
 
 
 HYBRID = (
@@ -84,7 +74,7 @@ def test_hybrid_warns_that_the_attribute_is_ignored():
 
 
 def test_fix_removes_the_attribute_of_a_hybrid():
-    text, first, second = fixed(HYBRID)
+    text, first, second = fixed(rule, HYBRID)
     assert text == HYBRID.replace(' type="SimpleTransmission"', "")
     assert (first, second) == (1, 0)
 
@@ -107,7 +97,7 @@ def test_custom_attribute_types_are_reported_not_fixed():
     found = problems(xml, select=["TX302"], filename="base.transmission.xacro")
     assert [(p.line, p.column) for p in found] == [(3, 5)]
     assert "a custom type, port it by hand" in found[0].message
-    text, first, _ = fixed(xml)
+    text, first, _ = fixed(rule, xml)
     assert (text, first) == (snippet(xml), 0)
 
 
@@ -128,7 +118,7 @@ def test_fix_on_unexpanded_xacro_keeps_expressions():
         </robot>
         """
     )
-    text, first, second = fixed(xml)
+    text, first, second = fixed(rule, xml)
     assert text == expected
     assert (first, second) == (1, 0)
 
@@ -156,6 +146,6 @@ def test_fix_on_real_robots():
         "pr2__base.transmission.xacro": (0, [(6, 5, "TX302"), (15, 5, "TX302")]),
     }
     for name, (fixes, remaining) in expected.items():
-        text, first, second = fixed(corpus_file(name).read_text())
+        text, first, second = fixed(rule, corpus_file(name).read_text())
         assert (first, second) == (fixes, 0), name
         assert check(text, select=["TX302"], filename=name, no_xacro=True) == remaining, name
