@@ -10,6 +10,7 @@ Every conversion is checked by reading the result back and converting it back.
 from __future__ import annotations
 
 import copy
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from lxml import etree
@@ -19,7 +20,7 @@ from txtool.model import Dialect, Transmission
 from txtool.reader import enclosing_component, read_source
 from txtool.robot import children, local
 from txtool.semantics import NotLoadable, effective
-from txtool.translate import family, translate
+from txtool.translate import family, is_expression, translate
 from txtool.views import differences
 from txtool.xmlio import Source, parse_bytes, serialize
 
@@ -86,8 +87,6 @@ def _unknown_children(element: etree._Element, t: Transmission, target: Dialect)
 
 def _behaviour(before: Transmission, after: Transmission, result: Conversion) -> None:
     """A loss when the target loader would bind the values differently (never silent)."""
-    from txtool.translate import is_expression
-
     numbers = [n for m in before.joints + before.actuators
                for n in (m.mechanical_reduction, m.offset)]
     if any(is_expression(n) for n in numbers):
@@ -174,14 +173,18 @@ class _Placer:
                 raise ValueError("cannot replace the root element in place")
             old.getparent().replace(old, new)
 
-    def _wrap_in_place(self, old: etree._Element, t: Transmission) -> None:
-        ns = _namespace(old)
-        q = (lambda tag: f"{{{ns}}}{tag}") if ns else (lambda tag: tag)
-        component = etree.Element(q("ros2_control"), name=t.name, type="system")
+    def _component(self, name: str, like: etree._Element, indent: str,
+                   step: str) -> etree._Element:
+        """A ``<ros2_control type="system">`` with its ``<hardware><plugin>``."""
+        q = _qualifier(like)
+        component = etree.Element(q("ros2_control"), name=name, type="system")
         hardware = etree.SubElement(component, q("hardware"))
         etree.SubElement(hardware, q("plugin")).text = self.hardware_plugin
-        indent, step = _indentation(old)
         dialects.pretty(component, indent, step)
+        return component
+
+    def _wrap_in_place(self, old: etree._Element, t: Transmission) -> None:
+        component = self._component(t.name, old, *_indentation(old))
         component.tail = old.tail
         old.getparent().replace(old, component)
         for joint in t.joints:
@@ -214,22 +217,15 @@ class _Placer:
         return self.created
 
     def _new_component(self) -> etree._Element:
-        ns = _namespace(self.root)
-        q = (lambda tag: f"{{{ns}}}{tag}") if ns else (lambda tag: tag)
-        component = etree.Element(q("ros2_control"), name=self.root.get("name", "robot"),
-                                  type="system")
-        hardware = etree.SubElement(component, q("hardware"))
-        etree.SubElement(hardware, q("plugin")).text = self.hardware_plugin
-        indent, step = _child_indentation(self.root)
-        dialects.pretty(component, indent, step)
+        component = self._component(self.root.get("name", "robot"), self.root,
+                                     *_child_indentation(self.root))
         _append(self.root, component)
         return component
 
     def _declare(self, component: etree._Element, joint) -> None:
         if any(j.get("name") == joint.name for j in children(component, "joint")):
             return
-        ns = _namespace(component)
-        q = (lambda tag: f"{{{ns}}}{tag}") if ns else (lambda tag: tag)
+        q = _qualifier(component)
         element = etree.Element(q("joint"), name=joint.name)
         for name in joint.interfaces:
             etree.SubElement(element, q("command_interface"), name=name)
@@ -268,6 +264,12 @@ def _with_comments(new: etree._Element, old: etree._Element, indent: str,
 def _namespace(element: etree._Element) -> str | None:
     tag = element.tag
     return tag[1:].split("}", 1)[0] if isinstance(tag, str) and tag.startswith("{") else None
+
+
+def _qualifier(like: etree._Element) -> Callable[[str], str]:
+    """Tag names in the default namespace of ``like`` (some URDFs declare one)."""
+    ns = _namespace(like)
+    return (lambda tag: f"{{{ns}}}{tag}") if ns else (lambda tag: tag)
 
 
 def _leading_space(element: etree._Element) -> str:
@@ -318,9 +320,8 @@ def _append(parent: etree._Element, element: etree._Element) -> None:
     kids = list(parent)
     if kids:
         last = kids[-1]
-        closing = last.tail or ""
-        last.tail = "\n" + _leading_space(last) if kids else closing
-        element.tail = closing
+        element.tail = last.tail or ""
+        last.tail = "\n" + _leading_space(last)
     else:
         indent, _ = _indentation(parent)
         element.tail = "\n" + indent

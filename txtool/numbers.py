@@ -53,14 +53,3 @@ def format_float(value: float) -> str:
         text = text[:-2]
     return text
 
-
-def same_number(text: str | None, value: float) -> bool:
-    """True when ``text`` already spells ``value`` (so it can be kept as written)."""
-    if text is None:
-        return False
-    parsed = parse_ros1(text) if text.strip() else None
-    if parsed is None:
-        return False
-    if math.isnan(parsed) and math.isnan(value):
-        return True
-    return parsed == value and parse_strict(text) is not None

@@ -23,8 +23,6 @@ from txtool.numbers import parse_ros1, parse_ros2
 from txtool.robot import Component, children, component_of, local
 from txtool.xmlio import Source
 
-XACRO_NS = "http://www.ros.org/wiki/xacro"
-
 
 @dataclass(frozen=True)
 class Found:
