@@ -59,6 +59,12 @@ def convert_source(
         t = found.transmission
         if t.dialect == target or t.kind == "other" and family(t.dialect) == family(target):
             continue
+        if target == "ros1" and enclosing_component(found.element) is tree.getroot():
+            result.losses.append(
+                f"transmission '{t.name}': a bare <ros2_control> fragment has no place for a "
+                "top-level ROS 1 transmission; convert the robot description that holds it"
+            )
+            continue
         translation = translate(t, target)
         result.losses.extend(translation.losses)
         result.notes.extend(translation.notes)
@@ -170,8 +176,9 @@ class _Placer:
             new = self._build(t, old, old)
             new.tail = old.tail
             if old.getparent() is None:
-                raise ValueError("cannot replace the root element in place")
-            old.getparent().replace(old, new)
+                _become(old, new)  # a bare <transmission> fragment
+            else:
+                old.getparent().replace(old, new)
 
     def _component(self, name: str, like: etree._Element, indent: str,
                    step: str) -> etree._Element:
@@ -264,6 +271,17 @@ def _with_comments(new: etree._Element, old: etree._Element, indent: str,
 def _namespace(element: etree._Element) -> str | None:
     tag = element.tag
     return tag[1:].split("}", 1)[0] if isinstance(tag, str) and tag.startswith("{") else None
+
+
+def _become(old: etree._Element, new: etree._Element) -> None:
+    """Give the root element ``new``'s content, keeping its place among top-level comments."""
+    old.tag = new.tag
+    old.attrib.clear()
+    old.attrib.update(new.attrib)
+    old.text = new.text
+    for child in list(old):
+        old.remove(child)
+    old.extend(list(new))
 
 
 def _qualifier(like: etree._Element) -> Callable[[str], str]:

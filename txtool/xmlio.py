@@ -203,7 +203,10 @@ def write_atomic(path: str, data: bytes) -> None:
     mode = None
     if os.path.exists(target):
         mode = os.stat(target).st_mode & 0o7777
-    handle, temp = tempfile.mkstemp(prefix=".txtool-", suffix=".tmp", dir=folder)
+    try:
+        handle, temp = tempfile.mkstemp(prefix=".txtool-", suffix=".tmp", dir=folder)
+    except OSError as exc:
+        raise InputError(f"{path}: cannot write: {exc.strerror or exc}") from None
     try:
         with os.fdopen(handle, "wb") as out:
             out.write(data)

@@ -124,3 +124,43 @@ def test_light_commands_do_not_import_heavy_modules(fixtures):
     out = subprocess.run([sys.executable, "-c", "import os; F=os.environ['F']\n" + code],
                          capture_output=True, text=True, env=env, check=True).stdout
     assert "HEAVY []" in out
+
+
+def test_unwritable_output_is_one_line_and_exit_2(run, fixtures, tmp_path):
+    target = tmp_path / "missing" / "out.urdf"
+    code, out, err = run("convert", str(fixtures / "demo_robot.urdf"), "--to", "ros2-p2",
+                         "-o", str(target))
+    assert (code, err) == (2, f"txtool: {target}: cannot write: No such file or directory\n")
+    assert not target.parent.exists()
+
+
+BARE_ROS1 = ('<transmission name="t"><type>transmission_interface/SimpleTransmission</type>'
+             '<joint name="j"><hardwareInterface>hardware_interface/EffortJointInterface'
+             '</hardwareInterface></joint><actuator name="m"><mechanicalReduction>5'
+             '</mechanicalReduction></actuator></transmission>\n')
+
+
+def test_bare_transmission_fragment_converts_in_place(run, tmp_path):
+    fragment = tmp_path / "t.xml"
+    fragment.write_text("<!-- a macro body -->\n" + BARE_ROS1)
+    code, out, err = run("convert", str(fragment), "--to", "ros2-p2", "--allow-lossy")
+    assert code == 0
+    assert out.startswith("<!-- a macro body -->\n<transmission name=\"t\">")
+    assert "<mechanical_reduction>5</mechanical_reduction>" in out
+    # no <ros2_control> to declare the joint's interfaces in: said, not silent
+    assert "interfaces: {j: {effort}} -> {j: {}}" in err
+    code, _, err = run("roundtrip", str(fragment))
+    assert code == 1 and "internal error" not in err
+
+
+def test_ros2_control_fragment_cannot_become_ros1(run, tmp_path):
+    fragment = tmp_path / "hw.xml"
+    fragment.write_text(
+        '<ros2_control name="h" type="system"><joint name="j"/><transmission name="t">'
+        '<plugin>transmission_interface/SimpleTransmission</plugin>'
+        '<joint name="j" role="joint1"/></transmission></ros2_control>\n')
+    code, out, err = run("convert", str(fragment), "--to", "ros1")
+    assert (code, out) == (1, "")
+    assert err.splitlines()[0] == (
+        "error: transmission 't': a bare <ros2_control> fragment has no place for a top-level "
+        "ROS 1 transmission; convert the robot description that holds it")
