@@ -26,4 +26,6 @@ class Problem:
     end_column: int | None = field(default=None, compare=False)
     severity: Severity = field(default="error", compare=False)
     name: str = field(default="", compare=False)
-    fixable: bool = field(default=False, compare=False)
+    # A rule leaves this None, or sets it False for a finding its fix declines by design;
+    # the pipeline stamps True or False.
+    fixable: bool | None = field(default=None, compare=False)

@@ -97,6 +97,7 @@ def test_custom_attribute_types_are_reported_not_fixed():
     found = problems(xml, select=["TX302"], filename="base.transmission.xacro")
     assert [(p.line, p.column) for p in found] == [(3, 5)]
     assert "a custom type, port it by hand" in found[0].message
+    assert found[0].fixable is False  # the fix leaves custom types alone
     text, first, _ = fixed(rule, xml)
     assert (text, first) == (snippet(xml), 0)
 

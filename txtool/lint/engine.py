@@ -148,7 +148,7 @@ def _stamped(problem: Problem, rule: Rule, settings: Settings, lines: list[str])
         end_column=_end_column(problem, lines),
         severity=settings.severity.get(rule.code, rule.severity),
         name=rule.name,
-        fixable=rule.fixable,
+        fixable=rule.fixable and problem.fixable is not False,
     )
 
 

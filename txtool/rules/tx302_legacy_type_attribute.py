@@ -47,6 +47,7 @@ Passing example (what the fix writes)::
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Iterator
 
 from lxml import etree
@@ -75,7 +76,15 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         attribute = found.element.get("type")
         if found.transmission.dialect != "ros1" or attribute is None:
             continue
-        yield ctx.problem(CODE, found.element, _message(found, attribute))
+        problem = ctx.problem(CODE, found.element, _message(found, attribute))
+        if not _fixed_by_us(found.element, attribute):
+            problem = dataclasses.replace(problem, fixable=False)
+        yield problem
+
+
+def _fixed_by_us(transmission: etree._Element, attribute: str) -> bool:
+    """The fix drops a redundant attribute and rewrites simple types; custom ones are left."""
+    return bool(_type_element_text(transmission)) or attribute.strip() in _SIMPLE_ATTRIBUTES
 
 
 def _message(found: Found, attribute: str) -> str:
@@ -99,9 +108,9 @@ def fix(root: etree._Element) -> int:
         attribute = transmission.get("type")
         if attribute is None or detect_dialect(transmission) != "ros1":
             continue
-        written = _type_element_text(transmission)
-        if not written and attribute.strip() not in _SIMPLE_ATTRIBUTES:
+        if not _fixed_by_us(transmission, attribute):
             continue
+        written = _type_element_text(transmission)
         if not written:
             type_element = etree.Element(_same_namespace(transmission, "type"))
             type_element.text = SIMPLE
