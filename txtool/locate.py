@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 from lxml import etree
 
@@ -29,22 +29,24 @@ class Locator:
     def __init__(self, source: Source) -> None:
         self.source = source
 
-    @cached_property
+    @property
     def lines(self) -> list[str]:
-        return self.source.data.decode("utf-8", errors="replace").splitlines()
+        return text_lines(self.source.data)
 
     def column(self, line: int, tag: str, name: str | None = None) -> int:
         """Column of ``<tag`` (preferably with ``name="..."``) on ``line``; 1 if not found."""
-        if not 1 <= line <= len(self.lines):
+        lines = self.lines
+        if not 1 <= line <= len(lines):
             return 1
-        text = self.lines[line - 1]
+        text = lines[line - 1]
+        starts = [match.start() for match in _tag_pattern(tag).finditer(text)]
         if name is not None:
-            match = re.search(rf"<(?:\w+:)?{re.escape(tag)}\b[^>]*name\s*=\s*[\"']"
-                              rf"{re.escape(name)}[\"']", text)
-            if match:
-                return match.start() + 1
-        match = re.search(rf"<(?:\w+:)?{re.escape(tag)}\b", text)
-        return match.start() + 1 if match else _first_text_column(text)
+            for start in starts:
+                end = text.find(">", start)
+                attribute = _NAME_ATTRIBUTE.search(text, start, end if end >= 0 else len(text))
+                if attribute is not None and attribute.group(2) == name:
+                    return start + 1
+        return starts[0] + 1 if starts else _first_text_column(text)
 
     def position(self, element: etree._Element) -> Position:
         """Where ``element`` (of :attr:`Source.tree`) is written."""
@@ -119,6 +121,20 @@ def _match_named(
 def _pattern(text: str) -> re.Pattern[str]:
     parts = re.split(r"\$\{[^}]*\}|\$\([^)]*\)", text)
     return re.compile(".*".join(re.escape(p) for p in parts), re.DOTALL)
+
+
+@lru_cache(maxsize=2)
+def text_lines(data: bytes) -> list[str]:
+    """The lines of a document (shared by everything that places findings in it)."""
+    return data.decode("utf-8", errors="replace").splitlines()
+
+
+_NAME_ATTRIBUTE = re.compile(r"\bname\s*=\s*([\"'])(.*?)\1")
+
+
+@lru_cache(maxsize=64)
+def _tag_pattern(tag: str) -> re.Pattern[str]:
+    return re.compile(rf"<(?:[\w.-]+:)?{re.escape(tag)}(?![\w.:-])")
 
 
 def _first_text_column(text: str) -> int:

@@ -18,9 +18,9 @@ from dataclasses import dataclass
 from lxml import etree
 
 from txtool.locate import Locator
-from txtool.model import Dialect, Location, Member, Number, Transmission, kind_of
+from txtool.model import Dialect, Location, Member, Number, Transmission, kind_of, replace
 from txtool.numbers import parse_ros1, parse_ros2
-from txtool.robot import Component, children, component_of, local
+from txtool.robot import Component, child_index, children, component_of, local
 from txtool.xmlio import Source
 
 
@@ -32,9 +32,13 @@ class Found:
     element: etree._Element
 
 
-def read_source(source: Source) -> list[Found]:
-    """All transmissions of ``source`` in document order."""
-    locator = Locator(source)
+def read_source(source: Source, *, locate: bool = True) -> list[Found]:
+    """All transmissions of ``source`` in document order.
+
+    With ``locate=False`` the model carries no locations (the linter places its findings from
+    the elements, and finding columns for every member would cost more than the rules).
+    """
+    locator = Locator(source) if locate else None
     return [
         Found(read_transmission(element, locator), element)
         for element in transmission_elements(source.root)
@@ -69,9 +73,10 @@ def enclosing_component(element: etree._Element) -> etree._Element | None:
 
 
 def detect_dialect(element: etree._Element) -> Dialect:
-    members = children(element, "joint") + children(element, "actuator")
-    ros2 = enclosing_component(element) is not None or bool(children(element, "plugin"))
-    ros2 = ros2 or any(m.get("role") is not None for m in members)
+    kids = child_index(element)
+    members = kids.get("joint", []) + kids.get("actuator", [])
+    ros2 = "plugin" in kids or any(m.get("role") is not None for m in members)
+    ros2 = ros2 or enclosing_component(element) is not None
     if not ros2:
         return "ros1"
     role_elements = any(children(m, "role") for m in members)
@@ -79,7 +84,7 @@ def detect_dialect(element: etree._Element) -> Dialect:
     return "ros2-p1" if role_elements and not role_attributes else "ros2-p2"
 
 
-def read_transmission(element: etree._Element, locator: Locator) -> Transmission:
+def read_transmission(element: etree._Element, locator: Locator | None) -> Transmission:
     dialect = detect_dialect(element)
     if dialect == "ros1":
         return _read_ros1(element, locator)
@@ -98,65 +103,80 @@ def first_child_text(element: etree._Element, name: str) -> str | None:
     return text_of(found[0]) if found else None
 
 
+def _first_text(kids: dict[str, list[etree._Element]], name: str) -> str | None:
+    """:func:`first_child_text` over a :func:`~txtool.robot.child_index`."""
+    found = kids.get(name)
+    return text_of(found[0]) if found else None
+
+
 def _number(text: str | None, parse: Callable[[str | None], float | None]) -> Number | None:
     if text is None:
         return None
     return Number(value=parse(text), text=text)
 
 
-def _location(element: etree._Element, locator: Locator) -> Location:
+def _location(element: etree._Element, locator: Locator | None) -> Location | None:
+    if locator is None:
+        return None
     position = locator.position(element)
     return Location(path=locator.source.path, line=position.line, column=position.column)
 
 
 def ros1_type(element: etree._Element) -> str:
     """``<type>`` text, else the legacy ``type=`` attribute, else ``""``."""
-    typed = first_child_text(element, "type")
+    return _ros1_type(element, child_index(element))
+
+
+def _ros1_type(element: etree._Element, kids: dict[str, list[etree._Element]]) -> str:
+    typed = _first_text(kids, "type")
     if typed is not None and typed.strip():
         return typed.strip()
     return (element.get("type") or typed or "").strip()
 
 
-def _read_ros1(element: etree._Element, locator: Locator) -> Transmission:
-    type_string = ros1_type(element)
-    legacy = _number(first_child_text(element, "mechanicalReduction"), parse_ros1)
-    joints = tuple(_ros1_member(j, locator) for j in children(element, "joint"))
-    actuators = [_ros1_member(a, locator) for a in children(element, "actuator")]
+def _read_ros1(element: etree._Element, locator: Locator | None) -> Transmission:
+    kids = child_index(element)
+    type_string = _ros1_type(element, kids)
+    legacy = _number(_first_text(kids, "mechanicalReduction"), parse_ros1)
+    joints = tuple(_ros1_member(j, locator) for j in kids.get("joint", ()))
+    actuators = [_ros1_member(a, locator) for a in kids.get("actuator", ())]
     if legacy is not None and len(actuators) == 1 and actuators[0].mechanical_reduction is None:
         # Pre-Hydro form: the reduction stands under <transmission>, meaning the actuator's.
-        actuators[0] = actuators[0].model_copy(update={"mechanical_reduction": legacy})
+        actuators[0] = replace(actuators[0], mechanical_reduction=legacy)
     return Transmission(
         name=element.get("name", ""),
         type=type_string,
         kind=kind_of(type_string),
         joints=joints,
         actuators=tuple(actuators),
-        parameters=_parameters(element),
+        parameters=_parameters(kids),
         dialect="ros1",
         location=_location(element, locator),
         xml=_xml_if_custom(element, type_string),
     )
 
 
-def _ros1_member(element: etree._Element, locator: Locator) -> Member:
+def _ros1_member(element: etree._Element, locator: Locator | None) -> Member:
+    kids = child_index(element)
     interfaces = tuple(
         (text_of(h) or "").strip()
-        for h in children(element, "hardwareInterface")
+        for h in kids.get("hardwareInterface", ())
         if (text_of(h) or "").strip()
     )
-    role = first_child_text(element, "role")
+    role = _first_text(kids, "role")
     return Member(
         name=element.get("name", ""),
         role=role.strip() if role is not None else None,
-        mechanical_reduction=_number(first_child_text(element, "mechanicalReduction"), parse_ros1),
-        offset=_number(first_child_text(element, "offset"), parse_ros1),
+        mechanical_reduction=_number(_first_text(kids, "mechanicalReduction"), parse_ros1),
+        offset=_number(_first_text(kids, "offset"), parse_ros1),
         interfaces=interfaces,
         location=_location(element, locator),
     )
 
 
-def _read_ros2(element: etree._Element, locator: Locator, dialect: Dialect) -> Transmission:
-    plugin = first_child_text(element, "plugin")
+def _read_ros2(element: etree._Element, locator: Locator | None, dialect: Dialect) -> Transmission:
+    kids = child_index(element)
+    plugin = _first_text(kids, "plugin")
     type_string = (plugin or "").strip()
     component_element = enclosing_component(element)
     component = component_of(component_element) if component_element is not None else None
@@ -164,9 +184,9 @@ def _read_ros2(element: etree._Element, locator: Locator, dialect: Dialect) -> T
         name=element.get("name", ""),
         type=type_string,
         kind=kind_of(type_string),
-        joints=tuple(_ros2_member(j, locator, component) for j in children(element, "joint")),
-        actuators=tuple(_ros2_member(a, locator, None) for a in children(element, "actuator")),
-        parameters=_parameters(element),
+        joints=tuple(_ros2_member(j, locator, component) for j in kids.get("joint", ())),
+        actuators=tuple(_ros2_member(a, locator, None) for a in kids.get("actuator", ())),
+        parameters=_parameters(kids),
         dialect=dialect,
         location=_location(element, locator),
         ros2_control=component.name if component is not None else None,
@@ -183,7 +203,7 @@ def _ros2_number(element: etree._Element, name: str) -> Number | None:
 
 
 def _ros2_member(
-    element: etree._Element, locator: Locator, component: Component | None
+    element: etree._Element, locator: Locator | None, component: Component | None
 ) -> Member:
     role = element.get("role")
     if role is None:
@@ -202,10 +222,8 @@ def _ros2_member(
     )
 
 
-def _parameters(element: etree._Element) -> tuple[tuple[str, str], ...]:
-    return tuple(
-        (p.get("name", ""), (p.text or "").strip()) for p in children(element, "param")
-    )
+def _parameters(kids: dict[str, list[etree._Element]]) -> tuple[tuple[str, str], ...]:
+    return tuple((p.get("name", ""), (p.text or "").strip()) for p in kids.get("param", ()))
 
 
 def _xml_if_custom(element: etree._Element, type_string: str) -> str | None:

@@ -78,6 +78,16 @@ def children(element: etree._Element, name: str) -> list[etree._Element]:
     return list(element.iterchildren("{*}" + name))
 
 
+def child_index(element: etree._Element) -> dict[str, list[etree._Element]]:
+    """Child elements by local name, in document order: one pass for many lookups."""
+    index: dict[str, list[etree._Element]] = {}
+    for child in element:
+        tag = child.tag
+        if isinstance(tag, str):
+            index.setdefault(tag.rpartition("}")[2], []).append(child)
+    return index
+
+
 def robot_joints(root: etree._Element) -> dict[str, JointInfo]:
     """The URDF joints of a document (any depth, outside ``<ros2_control>``)."""
     joints: dict[str, JointInfo] = {}
@@ -107,9 +117,10 @@ def _attr_number(element: etree._Element | None, key: str) -> float | None:
 
 
 def _joint_info(element: etree._Element, name: str) -> JointInfo:
-    limit = next(iter(children(element, "limit")), None)
-    dynamics = next(iter(children(element, "dynamics")), None)
-    mimic = next(iter(children(element, "mimic")), None)
+    kids = child_index(element)
+    limit = _first(kids, "limit")
+    dynamics = _first(kids, "dynamics")
+    mimic = _first(kids, "mimic")
     return JointInfo(
         name=name,
         type=element.get("type", ""),
@@ -122,6 +133,11 @@ def _joint_info(element: etree._Element, name: str) -> JointInfo:
         mimic=mimic.get("joint") if mimic is not None else None,
         line=element.sourceline or 0,
     )
+
+
+def _first(index: dict[str, list[etree._Element]], name: str) -> etree._Element | None:
+    found = index.get(name)
+    return found[0] if found else None
 
 
 def components(root: etree._Element) -> list[Component]:

@@ -1,16 +1,16 @@
-"""JSON Schemas generated from the pydantic models (checked in under ``schemas/``)."""
+"""JSON Schemas generated from the model's pydantic schema (checked in under ``schemas/``)."""
 
 from __future__ import annotations
 
 import json
 
-from txtool.model import Document
+from txtool.model import Document, json_schema
 
 SCHEMA_FILES = {"transmission.schema.json": Document}
 
 
-def schema_text(model=Document) -> str:
-    schema = model.model_json_schema()
+def schema_text(model: type = Document) -> str:
+    schema = json_schema(model)
     schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
     schema["title"] = "txtool transmissions (txtool show --format json)"
     return json.dumps(schema, indent=2, sort_keys=True) + "\n"

@@ -17,7 +17,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from txtool.model import Dialect, Member, Number, Transmission, standard_type
+from txtool.model import Dialect, Member, Number, Transmission, replace, standard_type
 from txtool.numbers import format_float, parse_ros1, parse_ros2
 
 ROS1_INTERFACE = {
@@ -76,7 +76,7 @@ def translate(t: Transmission, target: Dialect) -> Translation:
             )
         return result
     if family(t.dialect) == family(target):
-        return Translation(t.model_copy(update={"dialect": target}))
+        return Translation(replace(t, dialect=target))
     if target == "ros1":
         return _to_ros1(t)
     return _to_ros2(t, target)
@@ -124,13 +124,12 @@ def _to_ros2(t: Transmission, target: Dialect) -> Translation:
         joints, actuators = _order_coupled(t, result)
         joints = tuple(_ros2_joint(j, result) for j in joints)
         actuators = tuple(_ros2_actuator(a, result) for a in actuators)
-    result.transmission = t.model_copy(
-        update={
-            "type": standard_type(t.kind),
-            "joints": joints,
-            "actuators": actuators,
-            "dialect": target,
-        }
+    result.transmission = replace(
+        t,
+        type=standard_type(t.kind),
+        joints=joints,
+        actuators=actuators,
+        dialect=target,
     )
     return result
 
@@ -146,14 +145,12 @@ def _simple_to_ros2(t: Transmission, result: Translation) -> tuple[tuple[Member,
             )
         moved = _retext(reduction, parse_ros2) if index == 0 else None
         joints.append(
-            _ros2_joint(joint, result).model_copy(
-                update={"mechanical_reduction": moved, "role": joint.role or "joint1"}
-            )
+            replace(_ros2_joint(joint, result), mechanical_reduction=moved,
+                    role=joint.role or "joint1")
         )
     actuators = tuple(
-        _ros2_actuator(a, result).model_copy(
-            update={"mechanical_reduction": None, "role": a.role or "actuator1"}
-        )
+        replace(_ros2_actuator(a, result), mechanical_reduction=None,
+                role=a.role or "actuator1")
         for a in t.actuators
     )
     return tuple(joints), actuators
@@ -167,13 +164,12 @@ def _ros2_joint(joint: Member, result: Translation) -> Member:
             f"joint '{joint.name}': hardware interface(s) {', '.join(unknown)} have no "
             "ros2_control equivalent"
         )
-    return joint.model_copy(
-        update={
-            "mechanical_reduction": _retext(joint.mechanical_reduction, parse_ros2),
-            "offset": _retext(joint.offset, parse_ros2),
-            "interfaces": commands,
-            "state_interfaces": states,
-        }
+    return replace(
+        joint,
+        mechanical_reduction=_retext(joint.mechanical_reduction, parse_ros2),
+        offset=_retext(joint.offset, parse_ros2),
+        interfaces=commands,
+        state_interfaces=states,
     )
 
 
@@ -183,11 +179,10 @@ def _ros2_actuator(actuator: Member, result: Translation) -> Member:
             f"actuator '{actuator.name}': <hardwareInterface> is not used by ros_control's "
             "loaders and has no place in ROS 2; dropped"
         )
-    return actuator.model_copy(
-        update={
-            "mechanical_reduction": _retext(actuator.mechanical_reduction, parse_ros2),
-            "interfaces": (),
-        }
+    return replace(
+        actuator,
+        mechanical_reduction=_retext(actuator.mechanical_reduction, parse_ros2),
+        interfaces=(),
     )
 
 
@@ -202,15 +197,14 @@ def _to_ros1(t: Transmission) -> Translation:
     for name, value in t.parameters:
         result.losses.append(f"transmission '{t.name}': <param name=\"{name}\"> {value} has no "
                              "place in ROS 1")
-    result.transmission = t.model_copy(
-        update={
-            "type": standard_type(t.kind),
-            "joints": joints,
-            "actuators": actuators,
-            "dialect": "ros1",
-            "parameters": (),
-            "ros2_control": None,
-        }
+    result.transmission = replace(
+        t,
+        type=standard_type(t.kind),
+        joints=joints,
+        actuators=actuators,
+        dialect="ros1",
+        parameters=(),
+        ros2_control=None,
     )
     return result
 
@@ -229,9 +223,9 @@ def _simple_to_ros1(t: Transmission, result: Translation) -> tuple[tuple[Member,
                 "transmissions"
             )
         actuators.append(
-            _ros1_actuator(actuator, result).model_copy(
-                update={"mechanical_reduction": _retext(reduction, parse_ros1) if index == 0
-                        else None}
+            replace(
+                _ros1_actuator(actuator, result),
+                mechanical_reduction=_retext(reduction, parse_ros1) if index == 0 else None,
             )
         )
     if not actuators:
@@ -240,12 +234,11 @@ def _simple_to_ros1(t: Transmission, result: Translation) -> tuple[tuple[Member,
         )
         actuators.append(Member(name="actuator1", mechanical_reduction=reduction))
     joints = tuple(
-        _ros1_joint(j, result).model_copy(
-            update={"mechanical_reduction": None, "role": _unless(j.role, "joint1")}
-        )
+        replace(_ros1_joint(j, result), mechanical_reduction=None,
+                role=_unless(j.role, "joint1"))
         for j in t.joints
     )
-    actuators = [a.model_copy(update={"role": _unless(a.role, "actuator1")}) for a in actuators]
+    actuators = [replace(a, role=_unless(a.role, "actuator1")) for a in actuators]
     return joints, tuple(actuators)
 
 
@@ -266,16 +259,13 @@ def _ros1_joint(joint: Member, result: Translation) -> Member:
         names = [ROS1_STATE_ONLY]
     if joint.read_only:
         result.losses.append(f"joint '{joint.name}': read_only has no place in ROS 1")
-    return joint.model_copy(
-        update={
-            "mechanical_reduction": _retext(
-                _as_loaded(joint.mechanical_reduction, 1.0), parse_ros1
-            ),
-            "offset": _retext(_as_loaded(joint.offset, 0.0), parse_ros1),
-            "interfaces": tuple(names),
-            "state_interfaces": (),
-            "read_only": False,
-        }
+    return replace(
+        joint,
+        mechanical_reduction=_retext(_as_loaded(joint.mechanical_reduction, 1.0), parse_ros1),
+        offset=_retext(_as_loaded(joint.offset, 0.0), parse_ros1),
+        interfaces=tuple(names),
+        state_interfaces=(),
+        read_only=False,
     )
 
 
@@ -298,12 +288,11 @@ def _ros1_actuator(actuator: Member, result: Translation, *, required: bool = Fa
     reduction = _retext(actuator.mechanical_reduction, parse_ros1)
     if required and (reduction is None or reduction.value is None) and not is_expression(reduction):
         reduction = Number(value=1.0, text="1")
-    return actuator.model_copy(
-        update={
-            "mechanical_reduction": reduction,
-            "offset": None,
-            "interfaces": (),
-            "state_interfaces": (),
-            "read_only": False,
-        }
+    return replace(
+        actuator,
+        mechanical_reduction=reduction,
+        offset=None,
+        interfaces=(),
+        state_interfaces=(),
+        read_only=False,
     )

@@ -19,6 +19,7 @@ from txtool.commands.common import FORMAT_OPTION, exit_on_input_error, xacro_opt
 @exit_on_input_error
 def command(path, output_format, actuator_limits, stdin_filename, xacro) -> int:
     """List the transmissions of FILE (URDF, xacro or a fragment; '-' for stdin)."""
+    from txtool.model import dump
     from txtool.reader import read_source
     from txtool.xmlio import load
 
@@ -26,7 +27,7 @@ def command(path, output_format, actuator_limits, stdin_filename, xacro) -> int:
     transmissions = [f.transmission for f in read_source(source)]
     limits = _limits(source, transmissions) if actuator_limits else None
     if output_format == "json":
-        data = {"transmissions": [t.model_dump(mode="json") for t in transmissions]}
+        data = {"transmissions": [dump(t) for t in transmissions]}
         if limits is not None:
             data["actuator_limits"] = [
                 {"transmission": t, "actuator": a, "position": lim.position,

@@ -44,12 +44,14 @@ def use_color(mode: str) -> bool:
               help="Do not expand xacro; check .xacro files as written.")
 @click.option("--stdin-filename", metavar="NAME",
               help="The name to report (and find the configuration by) for '-'.")
+@click.option("-j", "--jobs", type=click.IntRange(min=0), default=0, show_default=True,
+              help="Worker processes for many files (0: one per CPU; 1: no workers).")
 @click.option("--color", type=click.Choice(["auto", "always", "never"]), default="auto",
               show_default=True, help="Colour the text output (NO_COLOR is honoured by auto).")
 @xacro_options
 @exit_on_input_error
 def command(paths, output_format, select, ignore, strict, exit_zero, config_path, no_xacro,
-            stdin_filename, color, xacro) -> int:
+            stdin_filename, jobs, color, xacro) -> int:
     """Check transmissions in files and folders (*.urdf, *.xacro, robot *.xml; '-' is stdin).
 
     Exit codes: 0 nothing at the failing level, 1 findings at it (errors; warnings too with
@@ -67,6 +69,7 @@ def command(paths, output_format, select, ignore, strict, exit_zero, config_path
         stdin_filename=stdin_filename,
         strict=strict,
         exit_zero=exit_zero,
+        jobs=jobs,
     )
     result = lint_paths(list(paths) or ["."], options)
     for error in result.errors:

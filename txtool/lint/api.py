@@ -2,9 +2,13 @@
 
 from __future__ import annotations
 
+import os
+import sys
+import threading
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 
-from txtool.config import Overrides, SettingsCache
+from txtool.config import Overrides, Settings, SettingsCache
 from txtool.lint.discover import expand_paths
 from txtool.lint.engine import lint_file, lint_source
 from txtool.problem import Problem
@@ -25,6 +29,7 @@ class LintOptions:
     stdin_filename: str | None = None
     strict: bool = False
     exit_zero: bool = False
+    jobs: int = 0  # worker processes; 0: one per usable CPU when there are enough files
 
 
 @dataclass
@@ -43,25 +48,81 @@ def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions) -> Lint
     """Lint files, folders (recursively) and ``-``.
 
     A file that cannot be read is recorded in ``errors`` and the others are still checked; a
-    bad configuration or rule selection raises :class:`~txtool.config.ConfigError`.
+    bad configuration or rule selection raises :class:`~txtool.config.ConfigError`. Many
+    files are shared among worker processes (see :func:`worker_count`); the result is the
+    same, in the same order, as when one process checks them all.
     """
     overrides = Overrides(
         select=options.select, ignore=options.ignore, xacro=options.xacro,
         no_xacro=options.no_xacro,
     )
     settings = SettingsCache(overrides, options.config)
-    result = LintResult()
+    work: list[tuple[str, Settings]] = []
     for path in expand_paths(paths):
         where = options.stdin_filename if path == "-" and options.stdin_filename else path
-        file_settings = settings.for_file(where)  # a ConfigError stops the run
-        try:
-            problems = lint_file(path, file_settings, stdin_name=options.stdin_filename)
-        except InputError as exc:
-            result.errors.append(str(exc))
+        work.append((path, settings.for_file(where)))  # a ConfigError stops the run
+    result = LintResult()
+    for outcome in _outcomes(work, options):
+        if isinstance(outcome, str):
+            result.errors.append(outcome)
             continue
         result.files += 1
-        result.problems.extend(problems)
+        result.problems.extend(outcome)
     return result
+
+
+# Below this many files per worker, starting the workers costs more than it saves.
+MIN_FILES_PER_WORKER = 32
+_WORK: list[tuple[str, Settings]] = []  # what forked workers inherit (see _outcomes)
+_STDIN_NAME: str | None = None
+
+
+def worker_count(files: int, jobs: int) -> int:
+    """How many processes check ``files`` files: ``jobs``, or with 0 one per usable CPU, but
+    one when there are few files, and one where processes cannot be forked (only a fork
+    inherits the loaded modules cheaply) or threads are running (forking them is unsafe)."""
+    if jobs == 1 or sys.platform == "win32" or not hasattr(os, "fork"):
+        return 1
+    if threading.active_count() > 1:
+        return 1
+    cpus = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    wanted = jobs if jobs > 1 else (cpus or 1)
+    return max(1, min(wanted, files // MIN_FILES_PER_WORKER))
+
+
+def _outcomes(
+    work: list[tuple[str, Settings]], options: LintOptions
+) -> Iterator[list[Problem] | str]:
+    """Each file's problems, or its input error as a string, in input order."""
+    global _WORK, _STDIN_NAME
+    workers = worker_count(len(work), options.jobs)
+    if workers == 1 or any(path == "-" for path, _ in work):
+        for index in range(len(work)):
+            yield _lint_one(index, work, options.stdin_filename)
+        return
+    import multiprocessing
+
+    _WORK, _STDIN_NAME = work, options.stdin_filename
+    try:
+        with multiprocessing.get_context("fork").Pool(workers) as pool:
+            chunk = max(1, min(64, len(work) // (workers * 8)))
+            yield from pool.imap(_lint_forked, range(len(work)), chunksize=chunk)
+    finally:
+        _WORK, _STDIN_NAME = [], None
+
+
+def _lint_forked(index: int) -> list[Problem] | str:
+    return _lint_one(index, _WORK, _STDIN_NAME)
+
+
+def _lint_one(
+    index: int, work: list[tuple[str, Settings]], stdin_name: str | None
+) -> list[Problem] | str:
+    path, settings = work[index]
+    try:
+        return lint_file(path, settings, stdin_name=stdin_name)
+    except InputError as exc:
+        return str(exc)
 
 
 def exit_code(result: LintResult, options: LintOptions) -> int:

@@ -37,7 +37,7 @@ class LintContext:
 
     def __post_init__(self) -> None:
         if not self.found:
-            self.found = read_source(self.source)
+            self.found = read_source(self.source, locate=False)
 
     @cached_property
     def locator(self) -> Locator:

@@ -22,6 +22,7 @@ from txtool.config import Settings, resolve
 from txtool.lint import support
 from txtool.lint.context import LintContext
 from txtool.lint.suppress import parse as parse_suppressions
+from txtool.locate import text_lines
 from txtool.problem import Problem
 from txtool.rules import Rule, all_rules
 from txtool.xmlio import Source, XMLSyntax, is_xacro, parse_bytes, read_bytes
@@ -107,6 +108,7 @@ def run_rules(ctx: LintContext, settings: Settings) -> list[Problem]:
     problems: list[Problem] = []
     if not ctx.found:
         return problems  # every rule is about transmissions
+    support.remember_children()
     try:
         for rule in all_rules().values():
             if rule.code in settings.enabled and rule.code not in PIPELINE_CODES:
@@ -132,7 +134,7 @@ def finish(problems: list[Problem], source: Source, settings: Settings) -> list[
     if not kept:
         return kept
     rules = all_rules()
-    lines = source.data.decode("utf-8", errors="replace").splitlines()
+    lines = text_lines(source.data)
     return sorted(_stamped(p, rules[p.code], settings, lines) for p in kept)
 
 

@@ -82,8 +82,13 @@ class Rule:
 
     @property
     def options(self) -> Any:
-        """The rule's pydantic ``Options`` model, or None when it takes no options."""
-        return getattr(self.module, "Options", None)
+        """The rule's pydantic options model, or None when it takes no options.
+
+        A rule with options has ``options_model()``, which builds the model on first use:
+        pydantic's model machinery costs more than linting a file, and most runs need none.
+        """
+        build = getattr(self.module, "options_model", None)
+        return build() if build is not None else None
 
     @property
     def doc(self) -> str:

@@ -33,9 +33,8 @@ Passing example::
 from __future__ import annotations
 
 from collections.abc import Iterator
-from functools import lru_cache
-
-from pydantic import BaseModel, ConfigDict, Field
+from functools import cache, lru_cache
+from typing import Any
 
 from txtool.lint.context import LintContext
 from txtool.lint.support import KNOWN_FAMILIES, label, type_element
@@ -51,15 +50,22 @@ STANDARD_NAMES = tuple(TYPE_PREFIX + short for short in STANDARD_TYPES)
 MAX_DISTANCE = 3
 
 
-class Options(BaseModel):
-    model_config = ConfigDict(extra="forbid", populate_by_name=True, defer_build=True)
+@cache
+def options_model() -> Any:
+    """The pydantic model of this rule's options (built when a configuration names them)."""
+    from pydantic import BaseModel, ConfigDict, Field
 
-    known_families: list[str] = Field(default_factory=list, alias="known-families")
+    class Options(BaseModel):
+        model_config = ConfigDict(extra="forbid", populate_by_name=True)
+
+        known_families: list[str] = Field(default_factory=list, alias="known-families")
+
+    return Options
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    options = ctx.option(CODE) or Options()
-    families = KNOWN_FAMILIES + tuple(options.known_families)
+    options = ctx.option(CODE)
+    families = KNOWN_FAMILIES + tuple(options.known_families if options else ())
     for found in ctx.transmissions():
         element = type_element(found)
         if element is None:

@@ -33,10 +33,9 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
-from txtool.lint.support import MemberRef, label, members, opaque, typed_ros1
+from txtool.lint.support import MemberRef, children, label, members, opaque, typed_ros1
 from txtool.problem import Problem
 from txtool.reader import Found
-from txtool.robot import children
 
 CODE = "TX107"
 NAME = "bad-role"

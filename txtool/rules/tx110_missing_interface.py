@@ -28,10 +28,9 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
-from txtool.lint.support import label, loaded_by_ros_control, members, opaque, typed_ros1
+from txtool.lint.support import children, label, loaded_by_ros_control, members, opaque, typed_ros1
 from txtool.problem import Problem
 from txtool.reader import Found
-from txtool.robot import children
 
 CODE = "TX110"
 NAME = "missing-interface"

@@ -44,10 +44,9 @@ from collections.abc import Iterable, Iterator
 from lxml import etree
 
 from txtool.lint.context import LintContext
-from txtool.lint.support import label, opaque
+from txtool.lint.support import children, label, opaque
 from txtool.problem import Problem
 from txtool.reader import Found, enclosing_component
-from txtool.robot import children
 
 CODE = "TX200"
 NAME = "unknown-joint"

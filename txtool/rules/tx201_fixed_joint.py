@@ -38,10 +38,9 @@ from collections.abc import Iterator
 from lxml import etree
 
 from txtool.lint.context import LintContext
-from txtool.lint.support import label, robot_joints_of_transmissions
+from txtool.lint.support import children, label, robot_joints_of_transmissions
 from txtool.problem import Problem
 from txtool.reader import enclosing_component
-from txtool.robot import children
 
 CODE = "TX201"
 NAME = "fixed-joint"

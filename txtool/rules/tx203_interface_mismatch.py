@@ -51,10 +51,9 @@ from collections.abc import Iterator
 from lxml import etree
 
 from txtool.lint.context import LintContext
-from txtool.lint.support import label, loaded_by_ros_control, members, opaque
+from txtool.lint.support import children, label, loaded_by_ros_control, members, opaque
 from txtool.problem import Problem
 from txtool.reader import Found, enclosing_component
-from txtool.robot import children
 
 CODE = "TX203"
 NAME = "interface-mismatch"

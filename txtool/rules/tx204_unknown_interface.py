@@ -53,10 +53,9 @@ import difflib
 from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
-from txtool.lint.support import label, members
+from txtool.lint.support import children, label, members
 from txtool.problem import Problem
 from txtool.reader import Found
-from txtool.robot import children
 from txtool.rules.tx203_interface_mismatch import component_joint, declared_interfaces
 
 CODE = "TX204"

@@ -56,10 +56,15 @@ from collections.abc import Iterator
 from lxml import etree
 
 from txtool.lint.context import LintContext
-from txtool.lint.support import OWN_LOADER_FAMILIES, is_xacro, label, loaded_by_ros_control
+from txtool.lint.support import (
+    OWN_LOADER_FAMILIES,
+    children,
+    is_xacro,
+    label,
+    loaded_by_ros_control,
+)
 from txtool.problem import Problem
 from txtool.reader import detect_dialect, ros1_type, text_of, transmission_elements
-from txtool.robot import children
 from txtool.rules.tx302_legacy_type_attribute import insert_child
 
 CODE = "TX301"

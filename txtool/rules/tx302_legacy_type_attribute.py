@@ -53,10 +53,9 @@ from collections.abc import Iterator
 from lxml import etree
 
 from txtool.lint.context import LintContext
-from txtool.lint.support import label
+from txtool.lint.support import children, label
 from txtool.problem import Problem
 from txtool.reader import Found, detect_dialect, first_child_text, transmission_elements
-from txtool.robot import children
 
 CODE = "TX302"
 NAME = "legacy-type-attribute"

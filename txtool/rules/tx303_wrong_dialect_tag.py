@@ -40,10 +40,10 @@ from collections.abc import Iterator
 from lxml import etree
 
 from txtool.lint.context import LintContext
-from txtool.lint.support import label
+from txtool.lint.support import children, label
 from txtool.problem import Problem
 from txtool.reader import Found
-from txtool.robot import children, local
+from txtool.robot import local
 
 CODE = "TX303"
 NAME = "wrong-dialect-tag"

@@ -39,10 +39,9 @@ from collections.abc import Iterator
 from lxml import etree
 
 from txtool.lint.context import LintContext
-from txtool.lint.support import label, members
+from txtool.lint.support import children, label, members
 from txtool.problem import Problem
 from txtool.reader import Found
-from txtool.robot import children
 
 CODE = "TX400"
 NAME = "ignored-value"

@@ -39,10 +39,9 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
-from txtool.lint.support import label
+from txtool.lint.support import children, label
 from txtool.model import Member
 from txtool.problem import Problem
-from txtool.robot import children
 from txtool.semantics import ROLES_ACTUATOR, ROLES_JOINT
 
 CODE = "TX401"

@@ -39,8 +39,8 @@ Passing example: the same with both actuator reductions ``50``.
 from __future__ import annotations
 
 from collections.abc import Iterator
-
-from pydantic import BaseModel, ConfigDict, Field
+from functools import cache
+from typing import Any
 
 from txtool.lint.context import LintContext
 from txtool.lint.support import label
@@ -55,13 +55,22 @@ SEVERITY = "error"
 FIXABLE = False
 
 
-class Options(BaseModel):
-    model_config = ConfigDict(extra="forbid", populate_by_name=True)
-    max_condition: float = Field(default=MAX_CONDITION, gt=1.0, alias="max-condition")
+@cache
+def options_model() -> Any:
+    """The pydantic model of this rule's options (built when a configuration names them)."""
+    from pydantic import BaseModel, ConfigDict, Field
+
+    class Options(BaseModel):
+        model_config = ConfigDict(extra="forbid", populate_by_name=True)
+
+        max_condition: float = Field(default=MAX_CONDITION, gt=1.0, alias="max-condition")
+
+    return Options
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    options = ctx.option(CODE) or Options()
+    options = ctx.option(CODE)
+    max_condition = options.max_condition if options else MAX_CONDITION
     for found in ctx.transmissions():
         t = found.transmission
         if t.kind == "other" or _has_unknown_number(ctx, t):
@@ -70,7 +79,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             loaded = effective(t)
         except NotLoadable:
             continue
-        reason = singular(loaded, options.max_condition)
+        reason = singular(loaded, max_condition)
         if reason is None:
             continue
         yield ctx.problem(
