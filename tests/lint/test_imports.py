@@ -46,3 +46,18 @@ def test_validate_of_xacro_imports_nothing_heavy(tmp_path):
     probe = run_validate(str(robot))
     assert probe["code"] == 1 and "xacro" in probe["loaded"]
     assert [name for name in HEAVY if name in probe["loaded"]] == []
+
+
+@pytest.mark.parametrize("output_format", ["text", "github", "sarif"])
+def test_validate_without_configuration_never_builds_pydantic_models(tmp_path, output_format):
+    """pydantic's model machinery costs more than linting a file: only a configuration with
+    rule options and the json format (validated against its schema) need it."""
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(BROKEN)
+    probe = subprocess.run(
+        [sys.executable, "-c", PROBE.replace('name.split(".")[0]', "name"), "validate",
+         "--format", output_format, str(robot)],
+        capture_output=True, text=True, timeout=120, cwd=tmp_path,
+    )
+    loaded = json.loads(probe.stderr.strip().splitlines()[-1])["loaded"]
+    assert "pydantic.main" not in loaded and "pydantic.fields" not in loaded

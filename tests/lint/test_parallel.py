@@ -1,0 +1,55 @@
+"""Many files are shared among worker processes; the report is the same as from one process."""
+
+from __future__ import annotations
+
+from click.testing import CliRunner
+
+from tests.lint.conftest import BROKEN
+from txtool.cli import cli
+from txtool.lint.api import MIN_FILES_PER_WORKER, LintOptions, lint_paths, worker_count
+
+CLEAN = """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="j" type="revolute"><parent link="a"/><child link="b"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>
+"""
+
+
+def write_files(folder, count):
+    for index in range(count):
+        text = BROKEN if index % 3 == 0 else CLEAN
+        (folder / f"robot_{index:03d}.urdf").write_text(text.replace('name="r"', f'name="r{index}"'))
+    return folder / "robot_010b.urdf"  # missing: an input error in the middle of the run
+
+
+def test_few_files_are_checked_in_process():
+    assert worker_count(MIN_FILES_PER_WORKER - 1, 0) == 1
+    assert worker_count(10_000, 1) == 1
+
+
+def test_many_files_use_at_most_the_requested_workers():
+    assert worker_count(10_000, 2) == 2
+    assert worker_count(3 * MIN_FILES_PER_WORKER, 8) == 3
+
+
+def test_workers_report_exactly_what_one_process_reports(tmp_path):
+    missing = write_files(tmp_path, 4 * MIN_FILES_PER_WORKER)
+    files = sorted([str(missing), *(str(p) for p in tmp_path.iterdir())])
+    one = lint_paths(files, LintOptions(jobs=1))
+    many = lint_paths(files, LintOptions(jobs=2))
+    assert many.problems == one.problems
+    assert [p.message for p in many.problems] == [p.message for p in one.problems]
+    assert (many.files, many.errors) == (one.files, one.errors)
+    assert one.files == 4 * MIN_FILES_PER_WORKER and len(one.errors) == 1
+
+
+def test_jobs_option_gives_the_same_report_and_exit_code(tmp_path):
+    missing = str(write_files(tmp_path, 2 * MIN_FILES_PER_WORKER))
+    runner = CliRunner()
+    args = ["--format", "json", str(tmp_path), missing]
+    serial = runner.invoke(cli, ["validate", "-j", "1", *args])
+    parallel = runner.invoke(cli, ["validate", "--jobs", "2", *args])
+    assert serial.exit_code == parallel.exit_code == 2  # the missing file
+    assert parallel.stdout == serial.stdout
+    assert '"files": 64' in serial.stdout
