@@ -9,13 +9,14 @@ source by its transmission's name: literally, or through the ``${...}`` pattern 
 from __future__ import annotations
 
 import re
+from collections.abc import Iterator
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
 
 from lxml import etree
 
 from txtool.robot import local
-from txtool.xmlio import Source
+from txtool.xmlio import XACRO_NS, Source
 
 
 @dataclass(frozen=True)
@@ -58,7 +59,10 @@ class Locator:
     def _traced(self, element: etree._Element) -> Position:
         twin, exact = self._twin(element)
         if twin is None:
-            return Position(1, 1, expanded=True)
+            twin = self._producer(element)
+            if twin is None:
+                return Position(1, 1, expanded=True)
+            exact = False
         line = twin.sourceline or 1
         return Position(line, self.column(line, local(twin), twin.get("name")), not exact)
 
@@ -84,6 +88,42 @@ class Locator:
             best = found
         return best, exact
 
+    def _producer(self, element: etree._Element) -> etree._Element | None:
+        """The source element that produced ``element``: a macro call or include (or a literal
+        element whose name xacro computed), by aligning each level of the
+        expansion with the file as written."""
+        tree = self.source.source_tree
+        if tree is None:
+            return None
+        chain = [element, *element.iterancestors()][::-1]
+        written = tree.getroot()
+        for step in chain[1:]:
+            made = self._alignment(written, step.getparent()).get(step)
+            if made is None or is_xacro_element(made):
+                return made
+            written = made
+        return written
+
+    def _alignment(
+        self, written: etree._Element, produced: etree._Element
+    ) -> dict[etree._Element, etree._Element]:
+        key = (written, produced)  # the elements themselves keep their proxies alive
+        if key not in self._alignments:
+            self._alignments[key] = _align(written, produced, self._macros)
+        return self._alignments[key]
+
+    @cached_property
+    def _alignments(self) -> dict[tuple[etree._Element, etree._Element], dict]:
+        return {}
+
+    @cached_property
+    def _macros(self) -> dict[str, etree._Element]:
+        return {
+            e.get("name", ""): e
+            for e in self._all_source
+            if local(e) == "macro" and is_xacro_element(e)
+        }
+
     @cached_property
     def _all_source(self) -> list[etree._Element]:
         tree = self.source.source_tree
@@ -91,6 +131,122 @@ class Locator:
 
     def _source_transmissions(self) -> list[etree._Element]:
         return [e for e in self._all_source if local(e) == "transmission"]
+
+
+def is_xacro_element(element: etree._Element) -> bool:
+    """A xacro directive or macro call (``xacro:`` prefix or the xacro namespace)."""
+    tag = element.tag
+    if not isinstance(tag, str):
+        return False
+    return element.prefix == "xacro" or tag.startswith(f"{{{XACRO_NS}}}")
+
+
+# xacro elements that produce no element where they stand.
+_SILENT = frozenset({"property", "arg", "macro"})
+
+
+def _align(
+    written: etree._Element, produced: etree._Element, macros: dict[str, etree._Element]
+) -> dict[etree._Element, etree._Element]:
+    """Map each child of ``produced`` (expansion) to the child of ``written`` (source) that
+    made it: its literal twin, else the macro call or include before that twin."""
+    made = [c for c in produced if isinstance(c.tag, str)]
+    result: dict[etree._Element, etree._Element] = {}
+    start = 0
+    pending: list[etree._Element] = []
+    for child in _in_place(written):
+        if is_xacro_element(child):
+            if local(child) not in _SILENT:
+                pending.append(child)
+            continue
+        twin = _next_twin(made, start, child)
+        if twin is None:
+            continue
+        _attribute(made[start:twin], pending, macros, result)
+        result[made[twin]] = child
+        start, pending = twin + 1, []
+    _attribute(made[start:], pending, macros, result)
+    return result
+
+
+def _in_place(written: etree._Element) -> Iterator[etree._Element]:
+    """The element children, with those of conditionals in their place (which is where xacro
+    puts them when the condition holds)."""
+    for child in written:
+        if not isinstance(child.tag, str):
+            continue
+        if is_xacro_element(child) and local(child) in ("if", "unless"):
+            yield from _in_place(child)
+        else:
+            yield child
+
+
+def _next_twin(made: list[etree._Element], start: int, child: etree._Element) -> int | None:
+    name = child.get("name")
+    for index in range(start, len(made)):
+        candidate = made[index]
+        if local(candidate) != local(child):
+            continue
+        if name is None or _match_named([child], candidate.get("name"))[0] is not None:
+            return index
+    return None
+
+
+def _attribute(
+    elements: list[etree._Element],
+    producers: list[etree._Element],
+    macros: dict[str, etree._Element],
+    result: dict[etree._Element, etree._Element],
+) -> None:
+    """Share produced elements among the xacro calls that stand between two literal twins, in
+    order: a call whose macro is known produces at most what its body holds."""
+    if not producers:
+        return
+    expected = [_expected(p, macros) for p in producers]
+    used: list[dict[str, int]] = [{} for _ in producers]
+    cursor = 0
+    for element in elements:
+        tag = local(element)
+        choice = next(
+            (k for k in range(cursor, len(producers))
+             if expected[k] is not None and used[k].get(tag, 0) < expected[k].get(tag, 0)),
+            None,
+        )
+        if choice is None:
+            unknown = [k for k in range(cursor, len(producers)) if expected[k] is None]
+            named = sorted((k for k in unknown if _mentions(producers[k], element)),
+                           key=lambda k: -_mentions(producers[k], element))
+            calls = [k for k in unknown if local(producers[k]) != "include"]
+            choice = (named or calls or unknown or [len(producers) - 1])[0]
+        used[choice][tag] = used[choice].get(tag, 0) + 1
+        cursor = choice
+        result[element] = producers[choice]
+
+
+def _mentions(call: etree._Element, element: etree._Element) -> int:
+    """Length of the longest argument of ``call`` found in ``element``'s name (0: none): macros
+    usually build names from their arguments (``prefix="left_"`` makes ``left_wheel_trans``)."""
+    name = element.get("name") or ""
+    return max((len(value) for value in call.attrib.values() if value and value in name),
+               default=0)
+
+
+def _expected(producer: etree._Element, macros: dict[str, etree._Element]) -> dict[str, int] | None:
+    """How many elements of each tag a call or conditional produces, when the file tells."""
+    name = local(producer)
+    body = macros.get(name) if name not in ("include", "call", "insert_block") else None
+    if body is None:
+        return None
+    counts: dict[str, int] = {}
+    for child in body:
+        if not isinstance(child.tag, str):
+            continue
+        if is_xacro_element(child):
+            if local(child) in _SILENT:
+                continue
+            return None  # nested calls and conditionals: unknown
+        counts[local(child)] = counts.get(local(child), 0) + 1
+    return counts
 
 
 def _chain_to_transmission(element: etree._Element) -> list[etree._Element]:

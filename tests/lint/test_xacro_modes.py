@@ -58,3 +58,66 @@ def test_lint_source_for_callers_with_a_loaded_source(tmp_path):
     ]
     assert lint_source(source, resolve(None)) == found
     assert lint_source(load(str(path), expand=False)) == []  # ${r} is unknown as written
+
+
+LIBRARY = """<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="tr" params="n r">
+    <transmission name="${n}_t">
+      <type>transmission_interface/SimpleTransmission</type>
+      <joint name="${n}"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+      <actuator name="${n}_m"><mechanicalReduction>${r}</mechanicalReduction></actuator>
+    </transmission>
+  </xacro:macro>
+</robot>
+"""
+
+
+def lint_with_library(tmp_path, calls: str) -> list:
+    (tmp_path / "lib.xacro").write_text(LIBRARY)
+    robot = tmp_path / "robot.urdf.xacro"
+    robot.write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="lib.xacro"/>\n'
+        '  <link name="base"/>\n'
+        f"{calls}"
+        "</robot>\n"
+    )
+    return lint_source(load(str(robot)), resolve(None))
+
+
+def test_a_transmission_made_by_an_included_macro_points_at_its_call(tmp_path):
+    found = lint_with_library(
+        tmp_path, '  <xacro:tr n="left" r="50"/>\n  <xacro:tr n="right" r="0"/>\n'
+    )
+    zero = [p for p in found if p.code == "TX106"]
+    assert [(p.line, p.column) for p in zero] == [(5, 3)]
+    assert "'right_m'" in zero[0].message
+    assert zero[0].message.endswith("(after xacro expansion)")
+
+
+def test_a_call_under_a_conditional_is_found_in_it(tmp_path):
+    found = lint_with_library(
+        tmp_path,
+        '  <xacro:tr n="up" r="50"/>\n'
+        '  <link name="tip"/>\n'
+        '  <xacro:if value="true">\n'
+        '    <xacro:tr n="down" r="0"/>\n'
+        "  </xacro:if>\n",
+    )
+    zero = [p for p in found if p.code == "TX106"]
+    assert [(p.line, p.column) for p in zero] == [(7, 5)]
+
+
+def test_calls_inside_a_literal_element_are_found_one_level_down(tmp_path):
+    found = lint_with_library(
+        tmp_path,
+        '  <xacro:tr n="first" r="0"/>\n'
+        '  <ros2_control name="arm" type="system">\n'
+        '    <hardware><plugin>mock_components/GenericSystem</plugin></hardware>\n'
+        '    <joint name="first"><command_interface name="effort"/></joint>\n'
+        '    <xacro:tr n="second" r="0"/>\n'
+        "  </ros2_control>\n",
+    )
+    assert [(p.line, p.column) for p in found if p.code == "TX106"] == [(4, 3)]
+    inside = [p for p in found if "second" in p.message]
+    assert inside and {(p.line, p.column) for p in inside} == {(8, 5)}

@@ -10,10 +10,10 @@ from lxml import etree
 
 from txtool import robot
 from txtool.lint.context import LintContext
+from txtool.locate import is_xacro_element
 from txtool.model import Member
 from txtool.reader import Found, enclosing_component
 from txtool.robot import JointInfo, local
-from txtool.xmlio import XACRO_NS
 
 # Transmission families with their own loaders (not ros_control's transmission_interface):
 # pr2_mechanism / ros_ethercat parse their own XML; franka_hw registers state/model interfaces.
@@ -90,12 +90,8 @@ def children(element: etree._Element, name: str) -> list[etree._Element]:
 
 
 
-def is_xacro(element: etree._Element) -> bool:
-    # xacro itself goes by the "xacro:" prefix; files use several namespace spellings.
-    tag = element.tag
-    if not isinstance(tag, str):
-        return False
-    return element.prefix == "xacro" or tag.startswith(f"{{{XACRO_NS}}}")
+# xacro itself goes by the "xacro:" prefix; files use several namespace spellings.
+is_xacro = is_xacro_element
 
 
 def opaque(ctx: LintContext, element: etree._Element) -> bool:
