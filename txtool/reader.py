@@ -39,8 +39,9 @@ def read_source(source: Source, *, locate: bool = True) -> list[Found]:
     the elements, and finding columns for every member would cost more than the rules).
     """
     locator = Locator(source) if locate else None
+    components: dict[etree._Element, Component] = {}  # each read once, however many members
     return [
-        Found(read_transmission(element, locator), element)
+        Found(read_transmission(element, locator, components), element)
         for element in transmission_elements(source.root)
     ]
 
@@ -84,11 +85,15 @@ def detect_dialect(element: etree._Element) -> Dialect:
     return "ros2-p1" if role_elements and not role_attributes else "ros2-p2"
 
 
-def read_transmission(element: etree._Element, locator: Locator | None) -> Transmission:
+def read_transmission(
+    element: etree._Element,
+    locator: Locator | None,
+    components: dict[etree._Element, Component] | None = None,
+) -> Transmission:
     dialect = detect_dialect(element)
     if dialect == "ros1":
         return _read_ros1(element, locator)
-    return _read_ros2(element, locator, dialect)
+    return _read_ros2(element, locator, dialect, {} if components is None else components)
 
 
 def text_of(element: etree._Element | None) -> str | None:
@@ -174,12 +179,21 @@ def _ros1_member(element: etree._Element, locator: Locator | None) -> Member:
     )
 
 
-def _read_ros2(element: etree._Element, locator: Locator | None, dialect: Dialect) -> Transmission:
+def _read_ros2(
+    element: etree._Element,
+    locator: Locator | None,
+    dialect: Dialect,
+    components: dict[etree._Element, Component],
+) -> Transmission:
     kids = child_index(element)
     plugin = _first_text(kids, "plugin")
     type_string = (plugin or "").strip()
     component_element = enclosing_component(element)
-    component = component_of(component_element) if component_element is not None else None
+    component = None
+    if component_element is not None:
+        component = components.get(component_element)
+        if component is None:
+            component = components[component_element] = component_of(component_element)
     return Transmission(
         name=element.get("name", ""),
         type=type_string,

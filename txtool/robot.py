@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 from lxml import etree
 
@@ -62,7 +63,14 @@ class Component:
     line: int = 0
 
     def joint(self, name: str) -> ComponentJoint | None:
-        return next((j for j in self.joints if j.name == name), None)
+        return self._by_name.get(name)
+
+    @cached_property
+    def _by_name(self) -> dict[str, ComponentJoint]:
+        by_name: dict[str, ComponentJoint] = {}
+        for joint in self.joints:
+            by_name.setdefault(joint.name, joint)  # the first of a repeated name, as before
+        return by_name
 
 
 def local(element: etree._Element) -> str:

@@ -1,0 +1,89 @@
+"""Work grows linearly with the document: time per transmission from 100 to 100,000.
+
+Run: ``python bench/bench_scale.py [--sizes 100,1000,10000,100000] [--commands ...]``.
+
+Each size N is one generated robot: a chain of N revolute joints, each driven by one ROS 1
+simple transmission (about 450 bytes per joint: 100,000 joints make a 45 MB file, under the 64 MB
+input limit). Every command runs in this process through the command line (click), so start-up is
+paid once; the table shows microseconds per transmission and the ratio of each size to the
+smallest (flat means linear: budget 1.5 for the largest size). A size whose run exceeds
+``--timeout`` seconds is reported as such, and the rest still run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from click.testing import CliRunner
+
+from txtool.cli import cli
+
+LINK = '<link name="l{i}"/>'
+JOINT = ('<joint name="j{i}" type="revolute"><parent link="l{p}"/><child link="l{i}"/>'
+         '<limit lower="-1" upper="1" effort="10" velocity="2"/></joint>')
+TRANSMISSION = (
+    '<transmission name="t{i}"><type>transmission_interface/SimpleTransmission</type>'
+    '<joint name="j{i}"><hardwareInterface>hardware_interface/EffortJointInterface'
+    '</hardwareInterface></joint><actuator name="m{i}"><mechanicalReduction>{n}'
+    "</mechanicalReduction></actuator></transmission>"
+)
+COMMANDS = {
+    "validate": ["validate", "--format", "json", "--jobs", "1"],
+    "show": ["show", "--format", "json"],
+    "convert": ["convert", "--to", "ros2-p2"],
+    "roundtrip": ["roundtrip"],
+    "migrate": ["migrate", "--diff", "--to", "ros2-p2"],
+}
+
+
+def robot(joints: int) -> str:
+    parts = ['<robot name="chain">', LINK.format(i=0)]
+    parts += [LINK.format(i=i) + JOINT.format(i=i, p=i - 1) for i in range(1, joints + 1)]
+    parts += [TRANSMISSION.format(i=i, n=10 + i % 90) for i in range(1, joints + 1)]
+    return "\n".join(parts) + "\n</robot>\n"
+
+
+def measure(command: list[str], path: Path) -> float:
+    runner = CliRunner()
+    start = time.perf_counter()
+    result = runner.invoke(cli, [*command, str(path)])
+    elapsed = time.perf_counter() - start
+    if result.exit_code not in (0, 1):
+        raise SystemExit(f"{' '.join(command)} {path}: exit {result.exit_code}: {result.output}")
+    return elapsed
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--sizes", default="100,1000,10000,100000")
+    parser.add_argument("--commands", default=",".join(COMMANDS))
+    args = parser.parse_args()
+    sizes = [int(s) for s in args.sizes.split(",")]
+    commands = args.commands.split(",")
+    table: dict[str, dict[int, float]] = {name: {} for name in commands}
+    with tempfile.TemporaryDirectory(prefix="txtool-scale-") as folder:
+        for size in sizes:
+            path = Path(folder) / f"chain_{size}.urdf"
+            path.write_text(robot(size))
+            megabytes = path.stat().st_size / 1e6
+            for name in commands:
+                measure(COMMANDS[name], path) if size <= 1000 else None  # warm caches
+                table[name][size] = measure(COMMANDS[name], path) / size
+            print(f"N={size:>7} ({megabytes:5.1f} MB): " + "  ".join(
+                f"{name} {table[name][size] * 1e6:7.1f} us" for name in commands), flush=True)
+    smallest = min(sizes)
+    print(f"\nratio of time per transmission to N={smallest} (flat = linear; budget 1.5):")
+    for name in commands:
+        ratios = {size: table[name][size] / table[name][smallest] for size in sizes}
+        print(f"  {name:10s} " + "  ".join(f"N={s}: {r:4.2f}" for s, r in ratios.items()))
+    print(json.dumps({name: {str(s): t for s, t in row.items()} for name, row in table.items()}),
+          file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
