@@ -56,15 +56,17 @@ FIXABLE = False
 _EXPRESSION = re.compile(r"\$\{[^}]*\}|\$\([^)]*\)")
 
 
-def known_name(name: str, names: Iterable[str]) -> bool:
-    """``name`` is one of ``names``, or matches one written with xacro expressions."""
-    pool = list(names)
-    if name in pool:
-        return True
-    return any(
-        _EXPRESSION.search(candidate) and _as_pattern(candidate).fullmatch(name)
-        for candidate in pool
-    )
+class Names:
+    """Joint names, some possibly written with xacro expressions (matched as patterns)."""
+
+    def __init__(self, names: Iterable[str]) -> None:
+        self.exact = set(names)
+        self.patterns = [_as_pattern(n) for n in self.exact if _EXPRESSION.search(n)]
+
+    def __contains__(self, name: object) -> bool:
+        if name in self.exact:
+            return True
+        return isinstance(name, str) and any(p.fullmatch(name) for p in self.patterns)
 
 
 def _as_pattern(text: str) -> re.Pattern[str]:
@@ -73,14 +75,15 @@ def _as_pattern(text: str) -> re.Pattern[str]:
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    robot_joints = list(ctx.joints) if ctx.is_robot else None
+    robot_joints = Names(ctx.joints) if ctx.is_robot else None
+    components: dict[etree._Element, tuple[str, Names] | None] = {}
     for found in ctx.transmissions():
-        declared = _component_joints(ctx, found)
+        declared = _component_joints(ctx, found, components)
         for joint in children(found.element, "joint"):
             name = joint.get("name", "")
             if not name or ctx.unknown(name):
                 continue
-            if declared is not None and not known_name(name, declared[1]):
+            if declared is not None and name not in declared[1]:
                 yield ctx.problem(
                     CODE,
                     joint,
@@ -88,7 +91,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
                     f"'{declared[0]}': ros2_control throws \"declared joint '{name}' is not "
                     "available in component\"",
                 )
-            elif robot_joints is not None and not known_name(name, robot_joints):
+            elif robot_joints is not None and name not in robot_joints:
                 yield ctx.problem(
                     CODE,
                     joint,
@@ -97,10 +100,14 @@ def check(ctx: LintContext) -> Iterator[Problem]:
                 )
 
 
-def _component_joints(ctx: LintContext, found: Found) -> tuple[str, list[str]] | None:
+def _component_joints(
+    ctx: LintContext, found: Found, seen: dict[etree._Element, tuple[str, Names] | None]
+) -> tuple[str, Names] | None:
     """Name and joint names of the enclosing component, None if none or not knowable."""
     component: etree._Element | None = enclosing_component(found.element)
     if component is None or opaque(ctx, component):
         return None
-    names = [j.get("name", "") for j in children(component, "joint")]
-    return component.get("name", ""), names
+    if component not in seen:
+        names = Names(j.get("name", "") for j in children(component, "joint"))
+        seen[component] = (component.get("name", ""), names)
+    return seen[component]
