@@ -12,10 +12,11 @@ click's ``CliRunner``, so that an internal error is an exception rather than the
 ``internal error`` message. Unlike the test suite the run is not derandomized (``--seed`` makes
 it repeatable) and does not stop at the first failure.
 
-A failure is a run that does not end as txtool promises (see ``run_failure``: an exception, an
-exit code other than 0/1/2, a traceback, no message, ``validate`` exiting 2 on a readable file,
-bad JSON) or one slower than ``--slow`` seconds (default 2). Failures are grouped by kind (the
-exception type and the innermost txtool frame); for each kind the first one is saved in
+A failure is a run that does not end as txtool promises (see ``run_failure``: an exception, a
+warning, an exit code other than 0/1/2, a traceback, no message, ``validate`` exiting 2 on a
+readable file, bad JSON) or one taking more than ``--slow`` seconds of CPU time (default 2).
+Failures are grouped by kind (the exception type and the innermost txtool frame, or the command
+and what went wrong); for each kind the first one is saved in
 ``--out`` (default ``fuzz-out``) as ``NNN-<command>.<ext>`` (the document) and
 ``NNN-<command>.txt`` (command line, mutation steps, traceback), and a summary is printed:
 
@@ -28,12 +29,12 @@ exception type and the innermost txtool frame); for each kind the first one is s
 from __future__ import annotations
 
 import argparse
-import os
 import signal
 import sys
 import tempfile
 import time
 import traceback
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -47,11 +48,10 @@ from hypothesis import strategies as st  # noqa: E402
 from tests.hardening.fuzz_inputs import (  # noqa: E402
     COMMANDS,
     FuzzDocument,
-    command_line,
     documents,
     extra_arguments,
-    file_name,
     run_failure,
+    write_inputs,
 )
 from txtool.cli import cli  # noqa: E402
 
@@ -103,11 +103,9 @@ def innermost_txtool_frame(exc: BaseException) -> str:
 def run_one(tally: Tally, command: str, document: FuzzDocument, extra: tuple[str, ...]) -> None:
     tally.examples += 1
     with tempfile.TemporaryDirectory() as folder:
-        path = os.path.join(folder, file_name(document))
-        Path(path).write_bytes(document.data)
-        argv = command_line(command, path, extra)
+        path, argv = write_inputs(folder, command, document, extra)
         signal.alarm(HANG_LIMIT)
-        start = time.perf_counter()
+        start = time.process_time()  # CPU time: other jobs on the machine do not count
         try:
             result = CliRunner().invoke(cli, argv, catch_exceptions=True)
         except Hang:
@@ -116,7 +114,7 @@ def run_one(tally: Tally, command: str, document: FuzzDocument, extra: tuple[str
             return
         finally:
             signal.alarm(0)
-        elapsed = time.perf_counter() - start
+        elapsed = time.process_time() - start
     failure = run_failure(command, path, result)
     if failure is not None:
         exc = result.exception
@@ -148,6 +146,10 @@ def main() -> None:
         raise Hang
 
     signal.signal(signal.SIGALRM, on_alarm)
+    # As in the test suite (filterwarnings = error): a warning is output nobody asked for.
+    warnings.simplefilter("error")
+    for module in ("xacro", "pkg_resources"):
+        warnings.filterwarnings("ignore", category=DeprecationWarning, module=module)
 
     @settings(max_examples=options.examples, deadline=None, database=None,
               suppress_health_check=list(HealthCheck), derandomize=False)
