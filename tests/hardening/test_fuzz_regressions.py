@@ -6,6 +6,7 @@ import json
 import textwrap
 from pathlib import Path
 
+import pytest
 from click.testing import CliRunner, Result
 
 from txtool.cli import cli
@@ -114,3 +115,20 @@ def test_roundtrip_against_reports_a_difference_that_overflows_as_null(tmp_path)
     row = strict_json(result.stdout)["transmissions"][0]
     assert row["status"] == "differs" and row["reason"].startswith("actuator 'm1' position")
     assert row["differences"]["position"] is None
+
+
+@pytest.mark.xfail(strict=True, reason="show --format json dumps the canonical model with "
+                   "model_dump(mode='json'), which keeps nan/inf floats: json.dumps writes NaN")
+def test_show_json_of_a_ros1_nan_reduction_is_json(tmp_path):
+    result, _ = run(tmp_path, """
+        <robot name="r">
+          <transmission name="t">
+            <type>transmission_interface/SimpleTransmission</type>
+            <joint name="a"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+            <actuator name="m"><mechanicalReduction>nan</mechanicalReduction></actuator>
+          </transmission>
+        </robot>
+    """, "show", "--format", "json")
+    assert result.exit_code == 0
+    reduction = strict_json(result.stdout)["transmissions"][0]["actuators"][0]["mechanical_reduction"]
+    assert reduction == {"value": None, "text": "nan"}
