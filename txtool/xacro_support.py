@@ -22,7 +22,14 @@ from typing import Any
 
 from lxml import etree
 
-from txtool.xmlio import ENTITY_REFUSAL, InputError, XacroOptions, XMLSyntax, parse_bytes
+from txtool.xmlio import (
+    ENTITY_REFUSAL,
+    EntityRefused,
+    InputError,
+    XacroOptions,
+    XMLSyntax,
+    parse_bytes,
+)
 
 MAX_DEPTH = 256  # libxml2's limit without huge_tree, so both parsers agree
 
@@ -111,10 +118,12 @@ def _checked_parse(original: Callable[..., Any], xacro: Any) -> Callable[..., An
 
 
 def refuse_unsafe_xml(data: bytes, path: str) -> None:
-    """Raise :class:`UnsafeXML` if expat would meet an entity declaration or deep nesting.
+    """Raise :class:`UnsafeXML` if the file declares or refers to entities, or nests too deep.
 
-    Malformed XML passes: xacro's own parse reports it. The check stops at the first
-    declaration, before any reference to it can be expanded.
+    expat is asked first (it is what xacro parses with; the check stops at the first
+    declaration, before any reference to it can be expanded), then lxml, which also sees
+    references in attribute values that expat drops without a word. Malformed XML passes:
+    xacro's own parse reports it.
     """
     parser = xml.parsers.expat.ParserCreate()
     parser.SetParamEntityParsing(xml.parsers.expat.XML_PARAM_ENTITY_PARSING_NEVER)
@@ -122,6 +131,12 @@ def refuse_unsafe_xml(data: bytes, path: str) -> None:
 
     def on_entity(*_: Any) -> None:
         raise UnsafeXML(path, parser.CurrentLineNumber, ENTITY_REFUSAL)
+
+    def on_skipped(name: str, is_parameter: bool) -> None:
+        # A reference to an entity of a DTD that expat does not load (nor do we).
+        reason = (f"Entity '{name}' not defined: txtool loads no DTD and expands no entity; "
+                  "write the text itself")
+        raise UnsafeXML(path, parser.CurrentLineNumber, reason)
 
     def on_start(*_: Any) -> None:
         nonlocal depth
@@ -136,10 +151,17 @@ def refuse_unsafe_xml(data: bytes, path: str) -> None:
 
     parser.EntityDeclHandler = on_entity
     parser.UnparsedEntityDeclHandler = on_entity
+    parser.SkippedEntityHandler = on_skipped
     parser.StartElementHandler = on_start
     parser.EndElementHandler = on_end
     with contextlib.suppress(xml.parsers.expat.ExpatError):
         parser.Parse(data, True)
+    try:
+        parse_bytes(data, path)
+    except EntityRefused as exc:
+        raise UnsafeXML(path, exc.line, exc.reason) from None
+    except InputError:
+        pass
 
 
 def _root_cause(exc: BaseException) -> BaseException:

@@ -115,20 +115,21 @@ def parse_bytes(data: bytes, path: str) -> etree._ElementTree:
         raise InputError(f"{path}: document larger than the {MAX_BYTES} byte limit")
     if _is_blank(data):
         raise XMLSyntax(path, 1, 1, "document is empty")
+    parser = safe_parser()
     try:
-        root = etree.fromstring(_movable_declaration(data), safe_parser())
+        root = etree.fromstring(_movable_declaration(data), parser)
     except etree.XMLSyntaxError as exc:
         if is_binary(data):
             raise XMLSyntax(path, 1, 1, "not an XML document (binary data)") from None
         reason = _syntax_message(exc)
         if reason == ENTITY_REFUSAL:
-            raise XMLSyntax(path, _entity_line(data), 1, reason) from None
+            raise EntityRefused(path, _entity_line(data), 1, reason) from None
         line, column = exc.position if exc.position else (1, 1)
         raise XMLSyntax(path, max(line, 1), max(column, 1), reason) from None
     except (LookupError, UnicodeError) as exc:  # an encoding name or text Python cannot decode
         raise XMLSyntax(path, 1, 1, f"cannot decode the document: {exc}") from None
     tree = root.getroottree()
-    _refuse_entity_declarations(tree, data, path)
+    _refuse_entities(tree, parser, data, path)
     return tree
 
 
@@ -147,15 +148,23 @@ def is_binary(data: bytes) -> bool:
     return b"\x00" in head or controls > max(8, len(head) // 50)
 
 
-def _refuse_entity_declarations(tree: etree._ElementTree, data: bytes, path: str) -> None:
+def _refuse_entities(
+    tree: etree._ElementTree, parser: etree.XMLParser, data: bytes, path: str
+) -> None:
     """Entities are never expanded (see :func:`safe_parser`); declaring them is refused.
 
-    Unexpanded references would read as empty text, and xacro's parser (expat) would expand
-    internal ones, so a document that declares entities is not read at all.
+    Unexpanded references would read as empty text (libxml2 drops them from attribute values),
+    and xacro's parser (expat) would expand internal ones, so a document that declares entities
+    is not read at all, nor one that refers to entities of a DTD that is never loaded.
     """
     dtd = tree.docinfo.internalDTD
     if dtd is not None and dtd.entities():
-        raise XMLSyntax(path, _entity_line(data), 1, ENTITY_REFUSAL)
+        raise EntityRefused(path, _entity_line(data), 1, ENTITY_REFUSAL)
+    for entry in parser.error_log:
+        if entry.type_name in ("WAR_UNDECLARED_ENTITY", "ERR_UNDECLARED_ENTITY"):
+            reason = (f"{entry.message.strip()}: txtool loads no DTD and expands no entity; "
+                      "write the text itself")
+            raise EntityRefused(path, max(entry.line, 1), max(entry.column, 1), reason)
 
 
 def _entity_line(data: bytes) -> int:
@@ -212,6 +221,10 @@ class XMLSyntax(InputError):
         self.line = line
         self.column = column
         self.reason = reason
+
+
+class EntityRefused(XMLSyntax):
+    """A document that declares entities, or refers to entities of a DTD (never loaded)."""
 
 
 @dataclass(frozen=True)
