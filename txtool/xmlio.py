@@ -6,6 +6,7 @@ access, no huge trees. Parsed elements keep ``sourceline`` for diagnostics.
 
 from __future__ import annotations
 
+import codecs
 import os
 import re
 import sys
@@ -28,6 +29,11 @@ _UNICODE_STARTS = (
     b"<\x00", b"\x00<", b"\x00\x00\x00<",
 )
 _TEXT_CONTROLS = frozenset(b"\t\n\r")
+_MARKS = (  # UTF-32 first: its little-endian mark starts like UTF-16's
+    (codecs.BOM_UTF32_LE, "utf-32-le"), (codecs.BOM_UTF32_BE, "utf-32-be"),
+    (codecs.BOM_UTF8, "utf-8"), (codecs.BOM_UTF16_LE, "utf-16-le"),
+    (codecs.BOM_UTF16_BE, "utf-16-be"),
+)
 ENTITY_REFUSAL = (
     "the DOCTYPE declares entities; txtool does not read entity declarations "
     "(they can pull in local files or expand without bound): remove them"
@@ -131,6 +137,25 @@ def parse_bytes(data: bytes, path: str) -> etree._ElementTree:
     tree = root.getroottree()
     _refuse_entities(tree, parser, data, path)
     return tree
+
+
+def document_text(data: bytes) -> str:
+    """The document as text, decoded as its byte-order mark or declaration says (else UTF-8).
+
+    For finding columns in the text as written; undecodable bytes become U+FFFD.
+    """
+    for mark, codec in _MARKS:
+        if data.startswith(mark):
+            return data[len(mark):].decode(codec, errors="replace")
+    if data.startswith((b"<\x00", b"\x00<")):
+        return data.decode("utf-16-le" if data[0] == 0x3C else "utf-16-be", errors="replace")
+    declared = _ENCODING.match(data)
+    if declared:
+        try:
+            return data.decode(declared.group(1).decode("ascii"), errors="replace")
+        except LookupError:
+            pass
+    return data.decode("utf-8", errors="replace")
 
 
 def _is_blank(data: bytes) -> bool:
