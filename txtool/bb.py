@@ -34,6 +34,8 @@ class BBExport:
 def export_bb(
     transmissions: Sequence[Transmission], joints: Mapping[str, JointInfo]
 ) -> BBExport:
+    if not transmissions:
+        return BBExport("# no transmission to export\n")
     blocks: list[str] = []
     lost: list[str] = []
     for t in transmissions:

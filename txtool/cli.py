@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import importlib
 import sys
+from types import ModuleType
 
 import click
 
@@ -62,6 +63,9 @@ def cli(ctx: click.Context, debug: bool) -> None:
 
 def main() -> None:
     debug = "--debug" in sys.argv[1:]
+    xmlio = _xmlio_if_loaded()
+    if xmlio is not None:
+        xmlio.forget_reading()
     try:
         cli.main(prog_name="txtool", standalone_mode=True)
     except SystemExit:
@@ -69,5 +73,19 @@ def main() -> None:
     except Exception as exc:  # the last line of defence: one line, exit 2
         if debug:
             raise
-        click.echo(f"txtool: internal error: {type(exc).__name__}: {exc} (please report)", err=True)
+        click.echo(internal_error_line(exc), err=True)
         sys.exit(2)
+
+
+def internal_error_line(exc: BaseException) -> str:
+    """``txtool: internal error: Type: message (while reading PATH; please report)``."""
+    xmlio = _xmlio_if_loaded()
+    message = " ".join(str(exc).split()) or "(no message)"
+    path = xmlio.reading() if xmlio is not None else None
+    where = f"while reading {path}; " if path else ""
+    return f"txtool: internal error: {type(exc).__name__}: {message} ({where}please report)"
+
+
+def _xmlio_if_loaded() -> ModuleType | None:
+    # Not imported here: commands that read no file (--version, rules, schema) skip lxml.
+    return sys.modules.get("txtool.xmlio")

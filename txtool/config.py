@@ -10,6 +10,7 @@ the file and the key (exit 2).
 from __future__ import annotations
 
 import dataclasses
+import os
 import sys
 from collections.abc import Iterable
 from dataclasses import dataclass, field
@@ -26,6 +27,10 @@ if TYPE_CHECKING:
 
 CONFIG_FILE = ".txtool.toml"
 PYPROJECT = "pyproject.toml"
+SIMULATE_TABLE = "simulate"
+NO_XACRO_ENV = "TXTOOL_NO_XACRO"
+_ENV_TRUE = ("1", "true", "yes", "on")
+_ENV_FALSE = ("", "0", "false", "no", "off")
 
 
 class ConfigError(InputError):
@@ -94,6 +99,9 @@ def load_config(path: Path) -> Config:
     if path.name == PYPROJECT:
         table = data.get("tool", {}).get("txtool", {})
         prefix = "tool.txtool."
+        if isinstance(table, dict):
+            # [tool.txtool.simulate] belongs to `txtool simulate`, which checks it itself.
+            table = {key: value for key, value in table.items() if key != SIMULATE_TABLE}
     if not isinstance(table, dict):
         raise ConfigError(f"{path}: key '{prefix.rstrip('.')}': expected a table")
     from pydantic import ValidationError
@@ -120,6 +128,33 @@ def find_config(folder: Path) -> Path | None:
         if pyproject.is_file() and _has_txtool_table(pyproject):
             return pyproject
     return None
+
+
+def no_xacro_from_environment() -> bool:
+    """``TXTOOL_NO_XACRO``: a CI runner's way to forbid xacro whatever the repository says.
+
+    A value that is neither true nor false is an error rather than a guess: this is a
+    safety switch, and a typo must not leave xacro on.
+    """
+    raw = os.environ.get(NO_XACRO_ENV, "")
+    value = raw.strip().lower()
+    if value in _ENV_TRUE:
+        return True
+    if value in _ENV_FALSE:
+        return False
+    raise ConfigError(f"{NO_XACRO_ENV}: expected 1 or 0 (or true/false, "
+                      f"yes/no, on/off), got {raw!r}")
+
+
+def no_xacro_configured(path: str) -> bool:
+    """``no-xacro`` of the configuration that applies to the file ``path`` (found upward).
+
+    Only ``true`` counts: a configuration can turn xacro off, never back on.
+    """
+    if path == "-":
+        return False
+    config_path = find_config(Path(path).resolve().parent)
+    return config_path is not None and load_config(config_path).no_xacro
 
 
 def _has_txtool_table(pyproject: Path) -> bool:
@@ -223,7 +258,7 @@ def merged(config: Config | None, overrides: Overrides) -> Values:
         select=values.select if overrides.select is None else list(overrides.select),
         ignore=[*values.ignore, *overrides.ignore],
         xacro_args={**values.xacro_args, **dict(overrides.xacro.args)},
-        no_xacro=values.no_xacro or overrides.no_xacro,
+        no_xacro=values.no_xacro or overrides.no_xacro or no_xacro_from_environment(),
     )
 
 
@@ -247,6 +282,7 @@ class SettingsCache:
         self.explicit = Path(explicit) if explicit else None
         self._by_file: dict[Path | None, Settings] = {}
         check_overrides(overrides)
+        no_xacro_from_environment()  # a bad value stops the run before any file is read
 
     def for_file(self, path: str) -> Settings:
         if self.explicit is not None:

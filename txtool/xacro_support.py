@@ -2,6 +2,11 @@
 
 ``$(find pkg)`` is resolved from ``--pkg-path name:=DIR`` and from folders given with
 ``--pkg-dir`` (a package is a sub-folder named like it, or one whose ``package.xml`` names it).
+
+xacro parses with ``xml.dom.minidom`` (expat), which expands internal entities. Every file it
+reads, the top file and each ``<xacro:include>``, is first checked with a bare expat parser and
+refused when it declares entities (see :func:`refuse_unsafe_xml`), so nothing is ever expanded
+or pulled in from a DTD.
 """
 
 from __future__ import annotations
@@ -9,11 +14,24 @@ from __future__ import annotations
 import contextlib
 import io
 import os
+import xml.dom.minidom
+import xml.parsers.expat
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 from lxml import etree
 
-from txtool.xmlio import InputError, XacroOptions, XMLSyntax, parse_bytes
+from txtool.xmlio import (
+    ENTITY_REFUSAL,
+    EntityRefused,
+    InputError,
+    XacroOptions,
+    XMLSyntax,
+    parse_bytes,
+)
+
+MAX_DEPTH = 256  # libxml2's limit without huge_tree, so both parsers agree
 
 
 class XacroError(InputError):
@@ -55,8 +73,9 @@ def expand_xacro(path: str, display: str, options: XacroOptions) -> etree._Eleme
     def eval_find(pkg: str) -> str:
         return find_package(pkg, options)
 
-    saved = substitution_args._eval_find
+    saved_find, saved_parse = substitution_args._eval_find, xacro.parse
     substitution_args._eval_find = eval_find
+    xacro.parse = _checked_parse(saved_parse, xacro)
     stderr = io.StringIO()
     try:
         with contextlib.redirect_stderr(stderr), _quiet_cwd():
@@ -65,12 +84,84 @@ def expand_xacro(path: str, display: str, options: XacroOptions) -> etree._Eleme
     except Exception as exc:  # xacro raises many kinds, all user-facing
         raise XacroError(display, _xacro_reason(_root_cause(exc))) from None
     finally:
-        substitution_args._eval_find = saved
+        substitution_args._eval_find = saved_find
+        xacro.parse = saved_parse
         _reset_xacro_state(xacro)
     try:
         return parse_bytes(text.encode("utf-8"), display)
     except XMLSyntax as exc:
         raise XacroError(display, f"expanded document is not XML: {exc.reason}") from None
+
+
+class UnsafeXML(Exception):
+    """A file xacro would read declares entities or nests too deep."""
+
+    def __init__(self, path: str, line: int, reason: str) -> None:
+        super().__init__(f"{path}:{line}: {reason}")
+
+
+def _checked_parse(original: Callable[..., Any], xacro: Any) -> Callable[..., Any]:
+    """xacro's ``parse(inp, filename)``, reading files as bytes checked by refuse_unsafe_xml."""
+
+    def parse(inp: Any, filename: str | None = None) -> Any:
+        if inp is not None or filename is None:
+            return original(inp, filename)
+        try:
+            data = Path(os.path.join(xacro.root_dir, filename)).read_bytes()
+        except OSError:
+            return original(inp, filename)  # xacro reports an unreadable file its own way
+        refuse_unsafe_xml(data, filename)
+        # Bytes, not text: expat then honours the file's BOM and encoding declaration.
+        return xml.dom.minidom.parseString(data)
+
+    return parse
+
+
+def refuse_unsafe_xml(data: bytes, path: str) -> None:
+    """Raise :class:`UnsafeXML` if the file declares or refers to entities, or nests too deep.
+
+    expat is asked first (it is what xacro parses with; the check stops at the first
+    declaration, before any reference to it can be expanded), then lxml, which also sees
+    references in attribute values that expat drops without a word. Malformed XML passes:
+    xacro's own parse reports it.
+    """
+    parser = xml.parsers.expat.ParserCreate()
+    parser.SetParamEntityParsing(xml.parsers.expat.XML_PARAM_ENTITY_PARSING_NEVER)
+    depth = 0
+
+    def on_entity(*_: Any) -> None:
+        raise UnsafeXML(path, parser.CurrentLineNumber, ENTITY_REFUSAL)
+
+    def on_skipped(name: str, is_parameter: bool) -> None:
+        # A reference to an entity of a DTD that expat does not load (nor do we).
+        reason = (f"Entity '{name}' not defined: txtool loads no DTD and expands no entity; "
+                  "write the text itself")
+        raise UnsafeXML(path, parser.CurrentLineNumber, reason)
+
+    def on_start(*_: Any) -> None:
+        nonlocal depth
+        depth += 1
+        if depth > MAX_DEPTH:
+            reason = f"elements nested more than {MAX_DEPTH} levels deep (a safety limit)"
+            raise UnsafeXML(path, parser.CurrentLineNumber, reason)
+
+    def on_end(*_: Any) -> None:
+        nonlocal depth
+        depth -= 1
+
+    parser.EntityDeclHandler = on_entity
+    parser.UnparsedEntityDeclHandler = on_entity
+    parser.SkippedEntityHandler = on_skipped
+    parser.StartElementHandler = on_start
+    parser.EndElementHandler = on_end
+    with contextlib.suppress(xml.parsers.expat.ExpatError):
+        parser.Parse(data, True)
+    try:
+        parse_bytes(data, path)
+    except EntityRefused as exc:
+        raise UnsafeXML(path, exc.line, exc.reason) from None
+    except InputError:
+        pass
 
 
 def _root_cause(exc: BaseException) -> BaseException:
@@ -85,7 +176,7 @@ def _root_cause(exc: BaseException) -> BaseException:
 def _xacro_reason(exc: BaseException) -> str:
     from xacro import substitution_args
 
-    if isinstance(exc, XacroPackageMissing):
+    if isinstance(exc, XacroPackageMissing | UnsafeXML):
         return str(exc)
     if isinstance(exc, substitution_args.ArgException):
         return f"missing argument '{exc}' (give --xacro-arg {exc}:=VALUE)"

@@ -6,10 +6,12 @@ access, no huge trees. Parsed elements keep ``sourceline`` for diagnostics.
 
 from __future__ import annotations
 
+import codecs
 import os
 import re
 import sys
 import tempfile
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -21,6 +23,23 @@ MAX_BYTES = 64 * 1024 * 1024
 
 _DECLARATION = re.compile(rb"^\s*<\?xml[^>]*\?>")
 _ENCODING = re.compile(rb"""^\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
+# Byte-order marks, and how the first "<" looks in UTF-16/32 text that has none.
+_UNICODE_STARTS = (
+    b"\xff\xfe", b"\xfe\xff", b"\x00\x00\xfe\xff",
+    b"<\x00", b"\x00<", b"\x00\x00\x00<",
+)
+_TEXT_CONTROLS = frozenset(b"\t\n\r")
+_MARKS = (  # UTF-32 first: its little-endian mark starts like UTF-16's
+    (codecs.BOM_UTF32_LE, "utf-32-le"), (codecs.BOM_UTF32_BE, "utf-32-be"),
+    (codecs.BOM_UTF8, "utf-8"), (codecs.BOM_UTF16_LE, "utf-16-le"),
+    (codecs.BOM_UTF16_BE, "utf-16-be"),
+)
+ENTITY_REFUSAL = (
+    "the DOCTYPE declares entities; txtool does not read entity declarations "
+    "(they can pull in local files or expand without bound): remove them"
+)
+
+_reading: ContextVar[str | None] = ContextVar("txtool_reading", default=None)
 
 
 class InputError(Exception):
@@ -65,10 +84,21 @@ def is_xacro(path: str) -> bool:
     return path.endswith(XACRO_SUFFIXES)
 
 
+def reading() -> str | None:
+    """The input read last (by :func:`read_bytes`), for naming it in an internal error."""
+    return _reading.get()
+
+
+def forget_reading() -> None:
+    _reading.set(None)
+
+
 def read_bytes(path: str, *, stdin_name: str | None = None) -> tuple[str, bytes]:
     """Read a file or ``-`` (stdin); returns the display path and the bytes."""
     if path == "-":
+        _reading.set(stdin_name or "<stdin>")
         return stdin_name or "<stdin>", sys.stdin.buffer.read(MAX_BYTES + 1)
+    _reading.set(path)
     p = Path(path)
     try:
         if p.is_dir():
@@ -89,14 +119,83 @@ def parse_bytes(data: bytes, path: str) -> etree._ElementTree:
     """Parse a document safely; malformed XML becomes :class:`XMLSyntax`."""
     if len(data) > MAX_BYTES:
         raise InputError(f"{path}: document larger than the {MAX_BYTES} byte limit")
-    if not data.strip():
+    if _is_blank(data):
         raise XMLSyntax(path, 1, 1, "document is empty")
+    parser = safe_parser()
     try:
-        root = etree.fromstring(_movable_declaration(data), safe_parser())
+        root = etree.fromstring(_movable_declaration(data), parser)
     except etree.XMLSyntaxError as exc:
+        if is_binary(data):
+            raise XMLSyntax(path, 1, 1, "not an XML document (binary data)") from None
+        reason = _syntax_message(exc)
+        if reason == ENTITY_REFUSAL:
+            raise EntityRefused(path, _entity_line(data), 1, reason) from None
         line, column = exc.position if exc.position else (1, 1)
-        raise XMLSyntax(path, max(line, 1), max(column, 1), _syntax_message(exc)) from None
-    return root.getroottree()
+        raise XMLSyntax(path, max(line, 1), max(column, 1), reason) from None
+    except (LookupError, UnicodeError) as exc:  # an encoding name or text Python cannot decode
+        raise XMLSyntax(path, 1, 1, f"cannot decode the document: {exc}") from None
+    tree = root.getroottree()
+    _refuse_entities(tree, parser, data, path)
+    return tree
+
+
+def document_text(data: bytes) -> str:
+    """The document as text, decoded as its byte-order mark or declaration says (else UTF-8).
+
+    For finding columns in the text as written; undecodable bytes become U+FFFD.
+    """
+    for mark, codec in _MARKS:
+        if data.startswith(mark):
+            return data[len(mark):].decode(codec, errors="replace")
+    if data.startswith((b"<\x00", b"\x00<")):
+        return data.decode("utf-16-le" if data[0] == 0x3C else "utf-16-be", errors="replace")
+    declared = _ENCODING.match(data)
+    if declared:
+        try:
+            return data.decode(declared.group(1).decode("ascii"), errors="replace")
+        except LookupError:
+            pass
+    return data.decode("utf-8", errors="replace")
+
+
+def _is_blank(data: bytes) -> bool:
+    if data.startswith((b"\xff\xfe", b"\xfe\xff")):
+        return not data.decode("utf-16", errors="replace").strip()
+    return not data.removeprefix(b"\xef\xbb\xbf").strip()
+
+
+def is_binary(data: bytes) -> bool:
+    """NUL or many other control bytes (which XML text cannot hold), and not UTF-16/32 text."""
+    head = data[:1024]
+    if head.startswith(_UNICODE_STARTS):
+        return False
+    controls = sum(1 for byte in head if byte < 0x20 and byte not in _TEXT_CONTROLS)
+    return b"\x00" in head or controls > max(8, len(head) // 50)
+
+
+def _refuse_entities(
+    tree: etree._ElementTree, parser: etree.XMLParser, data: bytes, path: str
+) -> None:
+    """Entities are never expanded (see :func:`safe_parser`); declaring them is refused.
+
+    Unexpanded references would read as empty text (libxml2 drops them from attribute values),
+    and xacro's parser (expat) would expand internal ones, so a document that declares entities
+    is not read at all, nor one that refers to entities of a DTD that is never loaded.
+    """
+    dtd = tree.docinfo.internalDTD
+    if dtd is not None and dtd.entities():
+        raise EntityRefused(path, _entity_line(data), 1, ENTITY_REFUSAL)
+    for entry in parser.error_log:
+        if entry.type_name in ("WAR_UNDECLARED_ENTITY", "ERR_UNDECLARED_ENTITY"):
+            reason = (f"{entry.message.strip()}: txtool loads no DTD and expands no entity; "
+                      "write the text itself")
+            raise EntityRefused(path, max(entry.line, 1), max(entry.column, 1), reason)
+
+
+def _entity_line(data: bytes) -> int:
+    """The line of the first entity declaration (1 when the encoding hides it)."""
+    index = data.find(b"<!ENTITY")
+    return data.count(b"\n", 0, index) + 1 if index >= 0 else 1
 
 
 def _movable_declaration(data: bytes) -> bytes:
@@ -125,8 +224,17 @@ def _movable_declaration(data: bytes) -> bytes:
 
 
 def _syntax_message(exc: etree.XMLSyntaxError) -> str:
-    message = str(exc.msg or exc)
-    return re.sub(r", line \d+, column \d+$", "", message).strip()
+    message = re.sub(r", line \d+, column \d+$", "", str(exc.msg or exc)).strip()
+    if "amplification" in message:
+        return ENTITY_REFUSAL
+    depth = re.match(r"Excessive depth in document: (\d+)", message)
+    if depth:
+        return f"elements nested more than {depth.group(1)} levels deep (a safety limit)"
+    if "XML_PARSE_HUGE" in message:
+        # libxml2's limits without huge_tree: 10 MB for one text or attribute value.
+        reason = message.split(",")[0].removeprefix("Resource limit exceeded: ")
+        return f"{reason.strip()}: a single text or attribute value over 10 MB (a safety limit)"
+    return message
 
 
 class XMLSyntax(InputError):
@@ -138,6 +246,10 @@ class XMLSyntax(InputError):
         self.line = line
         self.column = column
         self.reason = reason
+
+
+class EntityRefused(XMLSyntax):
+    """A document that declares entities, or refers to entities of a DTD (never loaded)."""
 
 
 @dataclass(frozen=True)

@@ -9,7 +9,7 @@ from typing import Any
 
 import click
 
-from txtool.xmlio import InputError, XacroOptions
+from txtool.xmlio import InputError, XacroOptions, is_xacro
 
 
 def _pairs(values: tuple[str, ...], option: str) -> tuple[tuple[str, str], ...]:
@@ -42,6 +42,46 @@ def xacro_options(function: Callable[..., Any]) -> Callable[..., Any]:
         return function(*args, xacro=options, **kwargs)
 
     return wrapper
+
+
+NO_XACRO_OPTION = click.option(
+    "--no-xacro", is_flag=True,
+    help="Never run xacro: read .xacro files as written (also TXTOOL_NO_XACRO=1, or "
+         "no-xacro = true in the configuration).",
+)
+
+
+def xacro_disabled(flag: bool, *paths: str | None) -> bool:
+    """Whether xacro must not run for these inputs.
+
+    ``--no-xacro``, ``TXTOOL_NO_XACRO`` or the configuration of any input turns it off for the
+    whole run. None of them can turn it back on: a pull request may edit the repository's
+    configuration, but not the runner's command line or environment.
+    """
+    from txtool.config import no_xacro_configured, no_xacro_from_environment
+
+    if no_xacro_from_environment() or flag:
+        return True
+    return any(no_xacro_configured(path) for path in paths if path is not None)
+
+
+def refuse_unexpanded(command: str, *paths: str | None) -> None:
+    """For commands that need a xacro file's expansion: one line and exit 2 under --no-xacro."""
+    for path in paths:
+        if path is not None and is_xacro(path):
+            raise InputError(f"{path}: {command} needs the xacro expansion, and xacro is off "
+                             "(--no-xacro, TXTOOL_NO_XACRO or no-xacro in the configuration); "
+                             "expand it with xacro first")
+
+
+def write_output(path: str, data: bytes) -> None:
+    """Replace ``path`` atomically; any failure is one line (the old file stays as it was)."""
+    from txtool.xmlio import write_atomic
+
+    try:
+        write_atomic(path, data)
+    except OSError as exc:
+        raise InputError(f"{path}: cannot write: {exc.strerror or exc}") from None
 
 
 def exit_on_input_error(function: Callable[..., int | None]) -> Callable[..., None]:

@@ -7,7 +7,13 @@ import sys
 
 import click
 
-from txtool.commands.common import exit_on_input_error, xacro_options
+from txtool.commands.common import (
+    NO_XACRO_OPTION,
+    exit_on_input_error,
+    write_output,
+    xacro_disabled,
+    xacro_options,
+)
 
 TARGETS = ("ros1", "ros2-p1", "ros2-p2", "bb")
 
@@ -24,21 +30,28 @@ TARGETS = ("ros1", "ros2-p1", "ros2-p2", "bb")
 @click.option("--hardware-plugin", default="mock_components/GenericSystem", show_default=True,
               help="<plugin> of a <ros2_control> block created for ROS 1 transmissions.")
 @click.option("--stdin-filename", help="Name to report for '-' (stdin).")
+@NO_XACRO_OPTION
 @xacro_options
 @exit_on_input_error
 def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_filename,
-            xacro) -> int:
+            no_xacro, xacro) -> int:
     """Convert the transmissions of INPUT to another dialect, keeping the rest of the document.
 
     The result is read back and converted back; anything that does not survive, or that the
     target loader would read differently, is reported. Exit 1 if anything would be lost
-    (unless --allow-lossy), 2 on unreadable input.
+    (unless --allow-lossy), 2 on unreadable input. A xacro INPUT is converted after expansion;
+    under --no-xacro its source is converted as written, ${...} kept.
     """
-    from txtool.xmlio import InputError, load, write_atomic
+    from txtool.xmlio import InputError, load
 
-    if output and path != "-" and _same_file(path, output) and not in_place:
+    in_place_target = bool(output) and path != "-" and _same_file(path, output)
+    if in_place_target and not in_place:
         raise InputError(f"{output}: is the input file; add --write to convert it in place")
-    source = load(path, xacro=xacro, stdin_name=stdin_filename)
+    expand = not xacro_disabled(no_xacro, path)
+    source = load(path, xacro=xacro, stdin_name=stdin_filename, expand=expand)
+    if in_place_target and source.expanded:
+        raise InputError(f"{path}: converting a xacro file in place would replace it with its "
+                         "expansion; use 'txtool migrate --write --to TARGET' (or --no-xacro)")
     if target == "bb":
         data, losses, notes = _bb(source)
     else:
@@ -55,7 +68,7 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_
                    "(use --allow-lossy to accept)", err=True)
         return 1
     if output:
-        write_atomic(output, data)
+        write_output(output, data)
     else:
         sys.stdout.flush()
         sys.stdout.buffer.write(data)
@@ -64,7 +77,11 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_
 
 
 def _same_file(a: str, b: str) -> bool:
-    return os.path.exists(b) and os.path.realpath(a) == os.path.realpath(b)
+    """Whether ``b`` names the file ``a`` (any spelling, symbolic or hard link)."""
+    try:
+        return os.path.samefile(a, b)
+    except OSError:  # either one missing or unreadable: not the same existing file
+        return False
 
 
 def _bb(source) -> tuple[bytes, list[str], list[str]]:

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import click
 
-from txtool.commands.common import xacro_options
+from txtool.commands.common import NO_XACRO_OPTION, refuse_unexpanded, xacro_disabled, xacro_options
+from txtool.xmlio import InputError
 
 
 @click.command("map")
@@ -20,6 +21,7 @@ from txtool.commands.common import xacro_options
               help="Four-bar effort map: ros2_control's (power-conserving) or ros_control's.")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text",
               show_default=True)
+@NO_XACRO_OPTION
 @xacro_options
 def command(
     file: str,
@@ -30,14 +32,23 @@ def command(
     effort: str | None,
     convention: str,
     fmt: str,
+    no_xacro: bool,
     xacro,
 ) -> None:
     """Map positions, velocities or efforts through transmission NAME of FILE.
 
     Values are comma-separated in role order (joint1,joint2 or actuator1,actuator2) and are
     printed in the same order, whatever order ros2_control gives the handles (by name).
+    A .xacro FILE is refused under --no-xacro.
     """
     from txtool.mechanics.mapcmd import render_text, run_map
+
+    try:
+        if xacro_disabled(no_xacro, file):
+            refuse_unexpanded("map", file)
+    except InputError as exc:
+        click.echo(f"txtool: {exc}", err=True)
+        raise SystemExit(2) from None
 
     outcome = run_map(file, name, to, position=position, velocity=velocity, effort=effort,
                       convention=convention, xacro=xacro)

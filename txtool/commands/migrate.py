@@ -38,9 +38,11 @@ def _mode(check: bool, diff: bool, write: bool) -> str:
               help="Convert even when something cannot be carried (it is still reported).")
 @click.option("--hardware-plugin", default="mock_components/GenericSystem", show_default=True,
               help="<plugin> of a <ros2_control> block created for ROS 1 transmissions.")
+@click.option("--no-xacro", is_flag=True,
+              help="Accepted for uniformity with the other commands: migrate never runs xacro.")
 @exit_on_input_error
 def command(paths, target, check, diff, write, select, ignore, config_path, allow_lossy,
-            hardware_plugin) -> int:
+            hardware_plugin, no_xacro) -> int:
     """Apply the fixable rules (and, with --to, the conversion) to files and folders in place.
 
     Folders are searched like validate does (*.urdf, *.xacro, robot *.xml). xacro files are

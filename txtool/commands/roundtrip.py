@@ -6,7 +6,13 @@ import json
 
 import click
 
-from txtool.commands.common import FORMAT_OPTION, exit_on_input_error, xacro_options
+from txtool.commands.common import (
+    FORMAT_OPTION,
+    NO_XACRO_OPTION,
+    exit_on_input_error,
+    xacro_disabled,
+    xacro_options,
+)
 
 
 @click.command("roundtrip")
@@ -14,9 +20,10 @@ from txtool.commands.common import FORMAT_OPTION, exit_on_input_error, xacro_opt
 @click.option("--against", metavar="OTHER",
               help="Instead, compare FILE's transmissions with OTHER's behaviourally.")
 @FORMAT_OPTION
+@NO_XACRO_OPTION
 @xacro_options
 @exit_on_input_error
-def command(path, against, output_format, xacro) -> int:
+def command(path, against, output_format, no_xacro, xacro) -> int:
     """Convert FILE through every dialect cycle and report what survives.
 
     Columns: reduction, offset, direction, roles, interfaces (field by field, floats bit for
@@ -25,9 +32,10 @@ def command(path, against, output_format, xacro) -> int:
     """
     from txtool.xmlio import load
 
-    source = load(path, xacro=xacro)
+    expand = not xacro_disabled(no_xacro, path, against)
+    source = load(path, xacro=xacro, expand=expand)
     if against:
-        return _against(source, load(against, xacro=xacro), output_format)
+        return _against(source, load(against, xacro=xacro, expand=expand), output_format)
     from txtool.roundtrip import roundtrip
 
     report = roundtrip(source)

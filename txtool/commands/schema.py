@@ -4,16 +4,20 @@ from __future__ import annotations
 
 import click
 
+from txtool.commands.common import exit_on_input_error, write_output
+
 
 @click.command("schema")
-@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write to a file.")
-def command(output) -> None:
+@click.option("-o", "--output", type=click.Path(dir_okay=False),
+              help="Write to a file (atomically).")
+@exit_on_input_error
+def command(output) -> int:
     """Print the JSON Schema of ``txtool show --format json`` (schemas/transmission.schema.json)."""
     from txtool.schema import schema_text
-    from txtool.xmlio import write_atomic
 
     text = schema_text()
     if output:
-        write_atomic(output, text.encode("utf-8"))
+        write_output(output, text.encode("utf-8"))
     else:
         click.echo(text, nl=False)
+    return 0

@@ -6,7 +6,13 @@ import json
 
 import click
 
-from txtool.commands.common import FORMAT_OPTION, exit_on_input_error, xacro_options
+from txtool.commands.common import (
+    FORMAT_OPTION,
+    NO_XACRO_OPTION,
+    exit_on_input_error,
+    xacro_disabled,
+    xacro_options,
+)
 
 
 @click.command("show")
@@ -15,15 +21,20 @@ from txtool.commands.common import FORMAT_OPTION, exit_on_input_error, xacro_opt
 @click.option("--actuator-limits", is_flag=True,
               help="Also map each joint's URDF limits into actuator space.")
 @click.option("--stdin-filename", help="Name to report for '-' (stdin).")
+@NO_XACRO_OPTION
 @xacro_options
 @exit_on_input_error
-def command(path, output_format, actuator_limits, stdin_filename, xacro) -> int:
-    """List the transmissions of FILE (URDF, xacro or a fragment; '-' for stdin)."""
+def command(path, output_format, actuator_limits, stdin_filename, no_xacro, xacro) -> int:
+    """List the transmissions of FILE (URDF, xacro or a fragment; '-' for stdin).
+
+    Under --no-xacro a .xacro file's transmissions are listed as written, ${...} included.
+    """
     from txtool.model import dump
     from txtool.reader import read_source
     from txtool.xmlio import load
 
-    source = load(path, xacro=xacro, stdin_name=stdin_filename)
+    expand = not xacro_disabled(no_xacro, path)
+    source = load(path, xacro=xacro, stdin_name=stdin_filename, expand=expand)
     transmissions = [f.transmission for f in read_source(source)]
     limits = _limits(source, transmissions) if actuator_limits else None
     if output_format == "json":

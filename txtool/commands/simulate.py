@@ -4,7 +4,14 @@ from __future__ import annotations
 
 import click
 
-from txtool.commands.common import FORMAT_OPTION, exit_on_input_error, xacro_options
+from txtool.commands.common import (
+    FORMAT_OPTION,
+    NO_XACRO_OPTION,
+    exit_on_input_error,
+    refuse_unexpanded,
+    xacro_disabled,
+    xacro_options,
+)
 from txtool.xmlio import XacroOptions
 
 
@@ -42,19 +49,23 @@ from txtool.xmlio import XacroOptions
               help="Plot tracking error and actuator effort (needs the 'plot' extra).")
 @click.option("--jobs", "-j", type=click.IntRange(min=1), default=1, show_default=True,
               help="Parallel processes for several configs.")
+@NO_XACRO_OPTION
 @xacro_options
 @exit_on_input_error
 def command(robot: str, configs: tuple[str, ...], params: str | None, bandwidth: float | None,
             duration: float | None, dt: float | None, tolerance: float | None,
             trajectory: str | None, interpolation: str, allow_saturation: bool, loader: str,
             convention: str, output_format: str, csv_path: str | None,
-            plot_path: str | None, jobs: int, xacro: XacroOptions) -> int:
+            plot_path: str | None, jobs: int, no_xacro: bool, xacro: XacroOptions) -> int:
     """Check a transmission config in closed loop against the robot's own.
 
     The plant uses ROBOT's transmissions; a computed-torque controller encodes its commands and
     decodes its measurements with each CANDIDATE's. Exit 0 when the tracking error stays within
-    --tolerance and no limit is exceeded, 1 when not, 2 on bad input.
+    --tolerance and no limit is exceeded, 1 when not, 2 on bad input. Under --no-xacro a
+    .xacro ROBOT or CANDIDATE is refused: the model needs the expanded robot.
     """
+    if xacro_disabled(no_xacro, robot, *configs):
+        refuse_unexpanded("simulate", robot, *configs)
     from txtool.simulate.app import main
     from txtool.simulate.run import Options
 

@@ -7,6 +7,7 @@ Joint values are sampled on a grid across each joint's limits (``JointInfo.posit
 from __future__ import annotations
 
 import itertools
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Literal
@@ -65,8 +66,16 @@ def invertibility(tmap: TransmissionMap) -> Invertibility:
 
 
 def _grid(ranges: Sequence[tuple[float, float]], per_axis: int) -> np.ndarray:
-    axes = [np.linspace(lo, hi, per_axis) for lo, hi in ranges]
+    axes = [_axis(lo, hi, per_axis) for lo, hi in ranges]
     return np.array(list(itertools.product(*axes)), dtype=float)
+
+
+def _axis(lo: float, hi: float, count: int) -> np.ndarray:
+    if math.isfinite(hi - lo):
+        return np.linspace(lo, hi, count)
+    # Limits such as +-1e308: the width overflows, a weighted mean of the two does not.
+    t = np.linspace(0.0, 1.0, count)
+    return lo * (1.0 - t) + hi * t
 
 
 def _info(joints: Mapping[str, JointInfo] | None, name: str) -> JointInfo | None:

@@ -34,7 +34,8 @@ class EquivalenceRow:
     a: str | None
     b: str | None
     status: Status
-    differences: dict[str, float] = field(default_factory=dict)  # max abs diff per quantity
+    # Max abs diff per quantity; None where it is not a finite number (values that overflow).
+    differences: dict[str, float | None] = field(default_factory=dict)
     reason: str = ""
 
 
@@ -133,23 +134,34 @@ def _compare_maps(
     samples = sample_joint_values(ma, joints, per_axis=5)
     # Samples come in ma.joints order; re-key them to sorted names for both maps.
     to_sorted = [ma.joints.index(n) for n in joint_names]
-    differences: dict[str, float] = {}
+    differences: dict[str, float | None] = {}
     reason = ""
     for quantity in QUANTITIES:
         x = samples[quantity][:, to_sorted]
         ya = _by_name(ma, quantity, x, joint_names, actuator_names)
         yb = _by_name(mb, quantity, x, joint_names, actuator_names)
-        diff = np.abs(ya - yb)
-        differences[quantity] = float(np.max(diff))
+        diff = _difference(ya, yb)
+        worst = float(np.max(diff))
+        differences[quantity] = worst if np.isfinite(worst) else None
         # Relative to each actuator's largest value over the samples: scale-free.
-        scale = np.maximum(np.abs(ya), np.abs(yb)).max(axis=0)
-        excess = diff - RTOL * scale
+        scale = np.fmax(np.abs(ya), np.abs(yb)).max(axis=0)
+        with np.errstate(invalid="ignore"):
+            excess = np.where(np.isinf(diff), np.inf, diff - RTOL * scale)
         if not reason and np.max(excess) > 0:
             row, col = np.unravel_index(int(np.argmax(excess)), excess.shape)
             at = ", ".join(f"{n}={x[row, i]:.6g}" for i, n in enumerate(joint_names))
             reason = (f"actuator '{actuator_names[col]}' {quantity} differs by "
                       f"{diff[row, col]:.6g} at joint values ({at})")
     return differences, reason
+
+
+def _difference(ya: np.ndarray, yb: np.ndarray) -> np.ndarray:
+    """``|ya - yb|``; 0 where both hold the same value (inf or nan included), inf where the
+    two differ and one is not finite (huge reductions overflow)."""
+    with np.errstate(all="ignore"):
+        diff = np.abs(ya - yb)
+    same = (ya == yb) | (np.isnan(ya) & np.isnan(yb))
+    return np.where(same, 0.0, np.where(np.isnan(diff), np.inf, diff))
 
 
 def _by_name(

@@ -20,7 +20,8 @@ from txtool.robot import JointInfo
 
 @dataclass(frozen=True)
 class ActuatorLimit:
-    """Limits of one actuator; a field is None when a joint it depends on has no such limit."""
+    """Limits of one actuator; a field is None when a joint it depends on has no such limit,
+    or when the limit is beyond the floating-point range (huge limits times huge reductions)."""
 
     actuator: str
     position: tuple[float, float] | None
@@ -87,7 +88,7 @@ def _interval(
     index: int,
 ) -> tuple[float, float] | None:
     values = _corner_values(tmap, quantity, boxes, needed, index)
-    if values is None:
+    if values is None or not np.isfinite(values).all():
         return None
     # + 0.0 turns -0.0 (a reversed zero bound) into 0.0.
     return (float(values.min()) + 0.0, float(values.max()) + 0.0)
@@ -101,4 +102,6 @@ def _magnitude(
     index: int,
 ) -> float | None:
     values = _corner_values(tmap, quantity, boxes, needed, index)
-    return None if values is None else float(np.abs(values).max())
+    if values is None or not np.isfinite(values).all():
+        return None
+    return float(np.abs(values).max())

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import io
 import json
+import math
 from dataclasses import dataclass, field
 
 from txtool.mechanics.maps import TransmissionMap, from_effective
@@ -93,6 +94,10 @@ def _run(
         if quantity in requested:
             given = _parse(quantity, requested[quantity] or "", len(source), t.name)
             values[quantity] = _map(tmap, to, quantity, given, source, target)
+            if not all(math.isfinite(v) for v in values[quantity]):
+                raise _Failure(f"--{quantity}: the result through transmission '{t.name}' is "
+                               "not a finite number (values or reductions too large or too "
+                               "small)")
     return MapOutcome(0, None, t.name, to, tuple(_names(tmap, to, source, True)),
                       tuple(_names(tmap, to, target, False)), values, convention)
 

@@ -122,7 +122,10 @@ class TransmissionMap:
         if x.ndim == 0 or x.shape[-1] != self.size:
             raise ValueError(f"transmission '{self.name}' maps {self.size} value(s) per sample, "
                              f"got shape {x.shape}")
-        return formula(x, self.actuator_reduction, self.joint_reduction, self.offset)
+        # Finite but huge (or tiny) values overflow to inf or nan; callers decide what a
+        # non-finite result means, and numpy's RuntimeWarnings would be noise on stderr.
+        with np.errstate(all="ignore"):
+            return formula(x, self.actuator_reduction, self.joint_reduction, self.offset)
 
 
 def _reductions_from_a(kind: str, a: np.ndarray) -> tuple[tuple[float, ...], tuple[float, ...]]:
