@@ -16,7 +16,7 @@ from functools import cached_property, lru_cache
 from lxml import etree
 
 from txtool.robot import local
-from txtool.xmlio import XACRO_NS, Source
+from txtool.xmlio import XACRO_NS, Source, document_text
 
 
 @dataclass(frozen=True)
@@ -281,8 +281,8 @@ def _pattern(text: str) -> re.Pattern[str]:
 
 @lru_cache(maxsize=2)
 def text_lines(data: bytes) -> list[str]:
-    """The lines of a document (shared by everything that places findings in it)."""
-    return data.decode("utf-8", errors="replace").splitlines()
+    """The lines of a document as written (shared by everything that places findings in it)."""
+    return document_text(data).splitlines()
 
 
 _NAME_ATTRIBUTE = re.compile(r"\bname\s*=\s*([\"'])(.*?)\1")

@@ -10,7 +10,6 @@ import codecs
 import os
 import re
 import sys
-import tempfile
 from contextvars import ContextVar
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -309,27 +308,48 @@ def _top_level(tree: etree._ElementTree, encoding: str) -> bytes:
 
 
 def write_atomic(path: str, data: bytes) -> None:
-    """Replace ``path`` with ``data`` via a temp file in the same folder (mode kept)."""
+    """Replace ``path`` with ``data``, or leave it byte for byte as it was.
+
+    The data goes to a temp file in the same folder, is flushed to disk, gets the old file's
+    mode (a new file: 0o666 less the umask, as ``open`` would) and is renamed over the target,
+    whose folder is then flushed too. A symbolic link is written through to its target. Any
+    failure removes the temp file and is an :class:`InputError`.
+    """
+    import tempfile
+
     target = os.path.realpath(path)
     folder = os.path.dirname(target) or "."
-    mode = None
-    if os.path.exists(target):
-        mode = os.stat(target).st_mode & 0o7777
+    temp = None
     try:
+        mode = os.stat(target).st_mode & 0o7777 if os.path.exists(target) else None
         handle, temp = tempfile.mkstemp(prefix=".txtool-", suffix=".tmp", dir=folder)
-    except OSError as exc:
-        raise InputError(f"{path}: cannot write: {exc.strerror or exc}") from None
-    try:
         with os.fdopen(handle, "wb") as out:
             out.write(data)
             out.flush()
             os.fsync(out.fileno())
-        os.chmod(temp, mode if mode is not None else 0o644 & ~_umask())
+        os.chmod(temp, mode if mode is not None else 0o666 & ~_umask())
         os.replace(temp, target)
-    except BaseException:
-        if os.path.exists(temp):
+        temp = None
+        _sync_folder(folder)
+    except OSError as exc:
+        raise InputError(f"{path}: cannot write: {exc.strerror or exc}") from None
+    finally:
+        if temp is not None and os.path.exists(temp):
             os.unlink(temp)
-        raise
+
+
+def _sync_folder(folder: str) -> None:
+    """Make the rename itself durable (a no-op where folders cannot be opened)."""
+    try:
+        handle = os.open(folder, os.O_RDONLY | getattr(os, "O_DIRECTORY", 0))
+    except OSError:
+        return
+    try:
+        os.fsync(handle)
+    except OSError:
+        pass  # some file systems refuse fsync on a folder; the data itself is already synced
+    finally:
+        os.close(handle)
 
 
 def _umask() -> int:

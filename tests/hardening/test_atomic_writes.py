@@ -174,11 +174,7 @@ def test_an_interrupt_while_writing_leaves_the_original_and_no_temporary_file(
     assert _snapshot(tmp_path) == before
 
 
-@pytest.mark.parametrize("umask", [
-    0o022, 0o077,
-    pytest.param(0o002, marks=pytest.mark.xfail(
-        strict=True, reason="xmlio.write_atomic creates new files 0o644 & ~umask")),
-])
+@pytest.mark.parametrize("umask", [0o022, 0o077, 0o002])
 @pytest.mark.parametrize("args", [
     ["convert", "demo.urdf", "--to", "ros2-p2", "-o", "new.urdf"],
     ["schema", "-o", "new.urdf"],

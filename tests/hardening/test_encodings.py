@@ -84,8 +84,6 @@ def test_convert_to_stdout_keeps_the_text(tmp_path, name):
     assert {j.get("name") for j in tree.iter("joint")} == {"gelenk_ä"}
 
 
-@pytest.mark.xfail(strict=True, reason="locate.Locator.lines decodes the document as UTF-8; "
-                   "xmlio.document_text decodes it as written")
 def test_utf16_positions_point_at_the_element(tmp_path):
     document = tmp_path / "robot.urdf"
     document.write_bytes(ENCODINGS["utf-16-le with BOM"])

@@ -74,16 +74,6 @@ def refuse_unexpanded(command: str, *paths: str | None) -> None:
                              "expand it with xacro first")
 
 
-def write_output(path: str, data: bytes) -> None:
-    """Replace ``path`` atomically; any failure is one line (the old file stays as it was)."""
-    from txtool.xmlio import write_atomic
-
-    try:
-        write_atomic(path, data)
-    except OSError as exc:
-        raise InputError(f"{path}: cannot write: {exc.strerror or exc}") from None
-
-
 def exit_on_input_error(function: Callable[..., int | None]) -> Callable[..., None]:
     """Run a command body; an :class:`InputError` is one line on stderr and exit 2."""
 

@@ -10,7 +10,6 @@ import click
 from txtool.commands.common import (
     NO_XACRO_OPTION,
     exit_on_input_error,
-    write_output,
     xacro_disabled,
     xacro_options,
 )
@@ -42,7 +41,7 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_
     (unless --allow-lossy), 2 on unreadable input. A xacro INPUT is converted after expansion;
     under --no-xacro its source is converted as written, ${...} kept.
     """
-    from txtool.xmlio import InputError, load
+    from txtool.xmlio import InputError, load, write_atomic
 
     in_place_target = bool(output) and path != "-" and _same_file(path, output)
     if in_place_target and not in_place:
@@ -68,7 +67,7 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_
                    "(use --allow-lossy to accept)", err=True)
         return 1
     if output:
-        write_output(output, data)
+        write_atomic(output, data)
     else:
         sys.stdout.flush()
         sys.stdout.buffer.write(data)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from txtool.commands.common import exit_on_input_error, write_output
+from txtool.commands.common import exit_on_input_error
 
 
 @click.command("schema")
@@ -14,10 +14,11 @@ from txtool.commands.common import exit_on_input_error, write_output
 def command(output) -> int:
     """Print the JSON Schema of ``txtool show --format json`` (schemas/transmission.schema.json)."""
     from txtool.schema import schema_text
+    from txtool.xmlio import write_atomic
 
     text = schema_text()
     if output:
-        write_output(output, text.encode("utf-8"))
+        write_atomic(output, text.encode("utf-8"))
     else:
         click.echo(text, nl=False)
     return 0
