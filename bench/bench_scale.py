@@ -53,7 +53,8 @@ def measure(command: list[str], path: Path) -> float:
     start = time.perf_counter()
     result = runner.invoke(cli, [*command, str(path)])
     elapsed = time.perf_counter() - start
-    if result.exit_code not in (0, 1):
+    crashed = result.exception is not None and not isinstance(result.exception, SystemExit)
+    if crashed or result.exit_code not in (0, 1):
         raise SystemExit(f"{' '.join(command)} {path}: exit {result.exit_code}: {result.output}")
     return elapsed
 

@@ -39,6 +39,13 @@ class LazyGroup(click.Group):
             return None
         return self._load(cmd_name)
 
+    def invoke(self, ctx: click.Context) -> object:
+        try:
+            return super().invoke(ctx)
+        except KeyboardInterrupt:  # not click's "Aborted!" and exit 1, the code of findings
+            click.echo("txtool: interrupted", err=True)
+            sys.exit(130)
+
     @staticmethod
     def _load(name: str) -> click.Command | None:
         module_name = f"txtool.commands.{name}"

@@ -45,13 +45,19 @@ class InputError(Exception):
     """A one-line, user-facing error: ``path[:line]: reason``. Exit code 2."""
 
 
+# What every lxml reader of txtool is given: no entities, no DTD, no network, no huge trees.
+SAFE_OPTIONS: dict[str, bool] = {
+    "resolve_entities": False,
+    "no_network": True,
+    "load_dtd": False,
+    "dtd_validation": False,
+    "huge_tree": False,
+}
+
+
 def safe_parser(*, recover: bool = False) -> etree.XMLParser:
     return etree.XMLParser(
-        resolve_entities=False,
-        no_network=True,
-        load_dtd=False,
-        dtd_validation=False,
-        huge_tree=False,
+        **SAFE_OPTIONS,
         remove_comments=False,
         remove_pis=False,
         strip_cdata=False,

@@ -99,3 +99,20 @@ def test_internal_error_before_any_file_names_none():
 def test_input_errors_are_not_internal_errors(tmp_path):
     code, out, err = txtool_with("", "show", str(tmp_path / "missing.urdf"))
     assert (code, out, err) == (2, "", f"txtool: {tmp_path / 'missing.urdf'}: no such file\n")
+
+
+INTERRUPTED_READER = """
+import txtool.reader
+
+def read_source(source, **options):
+    raise KeyboardInterrupt
+
+txtool.reader.read_source = read_source
+"""
+
+
+def test_ctrl_c_is_one_line_and_exit_130_not_the_findings_code(tmp_path):
+    document = tmp_path / "robot.urdf"
+    document.write_text(robot())
+    code, out, err = txtool_with(INTERRUPTED_READER, "show", str(document))
+    assert (code, out, err) == (130, "", "txtool: interrupted\n")

@@ -160,3 +160,13 @@ def test_auto_color_honours_no_color(monkeypatch):
     assert module.use_color("auto") is True
     monkeypatch.setenv("NO_COLOR", "1")
     assert module.use_color("auto") is False
+
+
+def test_a_folder_with_nothing_to_check_is_an_input_error_not_a_pass(validate, tmp_path):
+    (tmp_path / "robot.urdf").mkdir()  # a folder named like a file
+    write(tmp_path / "docs", "notes.txt", "no robot here")
+    for folder in ("robot.urdf", "docs"):
+        code, out, err = validate(str(tmp_path / folder))
+        assert (code, out) == (2, "")
+        assert err == (f"txtool: {tmp_path / folder}: no .urdf, .xacro or robot .xml file in "
+                       "this folder (or its subfolders)\n")

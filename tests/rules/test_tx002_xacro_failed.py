@@ -34,3 +34,18 @@ def test_argument_given_in_the_configuration_expands():
 
 def test_argument_with_default_passes():
     assert check(XACRO.format(declaration='<xacro:arg name="prefix" default=""/>'), filename="r.xacro", select=["TX002"]) == []
+
+
+INCLUDES = """
+<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="base"/>
+    <xacro:include filename="{name}"/>
+</robot>
+"""
+
+
+def test_a_missing_include_is_reported_at_the_include():
+    found = problems(INCLUDES.format(name="parts/missing_wheel.xacro"), filename="r.urdf.xacro",
+                     select=["TX002"])
+    assert [(p.line, p.column, p.code) for p in found] == [(3, 5, "TX002")]
+    assert "missing_wheel.xacro" in found[0].message

@@ -8,6 +8,8 @@ from pathlib import Path
 
 from lxml import etree
 
+from txtool.xmlio import SAFE_OPTIONS, InputError
+
 SUFFIXES = (".urdf", ".xacro")  # ``.urdf.xacro`` ends with ``.xacro``
 XML_ROOTS = frozenset({"robot", "ros2_control", "transmission"})
 
@@ -16,16 +18,24 @@ def expand_paths(paths: Iterable[str]) -> Iterator[str]:
     """Files to lint, in a stable order: given files as they are, folders searched recursively.
 
     A given file is always checked, whatever its name; a missing one is passed on so that
-    loading reports it. ``-`` (stdin) is passed on as well. Each file is produced once.
+    loading reports it. ``-`` (stdin) is passed on as well. Each file is produced once. A
+    folder holding nothing to check is an :class:`~txtool.xmlio.InputError`: a CI step given
+    the wrong folder must not pass silently.
     """
     seen: set[str] = set()
     for path in paths:
         found = _walk(path) if path != "-" and os.path.isdir(path) else iter([path])
+        empty = True
         for candidate in found:
+            empty = False
             key = candidate if candidate == "-" else os.path.realpath(candidate)
             if key not in seen:
                 seen.add(key)
                 yield candidate
+        if empty:
+            raise InputError(
+                f"{path}: no .urdf, .xacro or robot .xml file in this folder (or its subfolders)"
+            )
 
 
 def _walk(folder: str) -> Iterator[str]:
@@ -49,14 +59,7 @@ def root_tag(path: Path) -> str | None:
     """The local name of the root element, reading no further than it; None if unreadable."""
     try:
         with path.open("rb") as handle:
-            events = etree.iterparse(
-                handle,
-                events=("start",),
-                resolve_entities=False,
-                no_network=True,
-                load_dtd=False,
-                huge_tree=False,
-            )
+            events = etree.iterparse(handle, events=("start",), **SAFE_OPTIONS)
             for _, element in events:
                 tag = element.tag
                 return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else None

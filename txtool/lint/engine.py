@@ -25,7 +25,7 @@ from txtool.lint.suppress import parse as parse_suppressions
 from txtool.locate import text_lines
 from txtool.problem import Problem
 from txtool.rules import Rule, all_rules
-from txtool.xmlio import Source, XMLSyntax, is_xacro, parse_bytes, read_bytes
+from txtool.xmlio import Source, XMLSyntax, document_text, is_xacro, parse_bytes, read_bytes
 
 if TYPE_CHECKING:
     from txtool.config import Config
@@ -172,7 +172,11 @@ def _end_column(problem: Problem, lines: list[str]) -> int:
 
 
 def _xacro_position(data: bytes, reason: str) -> tuple[int, int]:
-    """Where the missing argument, package or property is used, else 1:1."""
+    """Where the missing argument, package or property is used, or the include of the file
+    that failed, else 1:1."""
+    include = _include_position(data, reason)
+    if include is not None:
+        return include
     quoted = re.search(r"'([^']+)'", reason)
     if not quoted:
         return 1, 1
@@ -183,10 +187,29 @@ def _xacro_position(data: bytes, reason: str) -> tuple[int, int]:
         pattern = rf"\$\(find\s+{name}\s*\)"
     else:
         pattern = rf"\$\{{[^}}]*\b{name}\b"
-    text = data.decode("utf-8", errors="replace")
+    return _first_match(data, pattern) or (1, 1)
+
+
+def _include_position(data: bytes, reason: str) -> tuple[int, int] | None:
+    """The ``<xacro:include>`` of a file the reason names (missing, or refused when read)."""
+    named = re.findall(r"'([^']+)'", reason) + re.findall(r"(\S+?):\d+:", reason)
+    for path in named:
+        base = re.escape(path.replace("\\", "/").rsplit("/", 1)[-1])
+        if not base:
+            continue
+        found = _first_match(
+            data, rf"<(?:[\w.-]+:)?include\b[^>]*filename\s*=\s*[\"'][^\"']*{base}[\"']"
+        )
+        if found is not None:
+            return found
+    return None
+
+
+def _first_match(data: bytes, pattern: str) -> tuple[int, int] | None:
+    text = document_text(data)
     match = re.search(pattern, text)
     if not match:
-        return 1, 1
+        return None
     line = text.count("\n", 0, match.start()) + 1
     column = match.start() - (text.rfind("\n", 0, match.start()) + 1) + 1
     return line, column
