@@ -126,8 +126,11 @@ def validate(model: type[Value], data: Any) -> Value:
 
 
 def dump(value: Any) -> Any:
-    """A model value as JSON-ready data."""
-    return adapter(type(value)).dump_python(value, mode="json")
+    """A model value as JSON-ready data; a NaN or infinite number is null (strict JSON has
+    neither, and the number's text as written is kept beside it)."""
+    import json
+
+    return json.loads(adapter(type(value)).dump_json(value))
 
 
 def json_schema(model: type) -> dict[str, Any]:

@@ -6,7 +6,6 @@ import json
 import textwrap
 from pathlib import Path
 
-import pytest
 from click.testing import CliRunner, Result
 
 from txtool.cli import cli
@@ -117,8 +116,6 @@ def test_roundtrip_against_reports_a_difference_that_overflows_as_null(tmp_path)
     assert row["differences"]["position"] is None
 
 
-@pytest.mark.xfail(strict=True, reason="show --format json dumps the canonical model with "
-                   "model_dump(mode='json'), which keeps nan/inf floats: json.dumps writes NaN")
 def test_show_json_of_a_ros1_nan_reduction_is_json(tmp_path):
     result, _ = run(tmp_path, """
         <robot name="r">
