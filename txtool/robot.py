@@ -7,6 +7,8 @@ URDF ``<joint>`` elements (type, limits, mimic, dynamics) and ROS 2 ``<ros2_cont
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -86,8 +88,37 @@ def children(element: etree._Element, name: str) -> list[etree._Element]:
     return list(element.iterchildren("{*}" + name))
 
 
+# While the linter reads and checks one document its tree does not change, and the same
+# children are asked for many times: inside ``indexed_children()`` each element's index is kept.
+# Elsewhere (fixes and conversions edit trees) nothing is kept.
+_INDEXES: dict[etree._Element, dict[str, list[etree._Element]]] | None = None
+
+
+@contextmanager
+def indexed_children() -> Iterator[None]:
+    """Keep :func:`child_index` answers for the duration (the trees must not change)."""
+    global _INDEXES
+    previous, _INDEXES = _INDEXES, {}
+    try:
+        yield
+    finally:
+        _INDEXES = previous
+
+
 def child_index(element: etree._Element) -> dict[str, list[etree._Element]]:
-    """Child elements by local name, in document order: one pass for many lookups."""
+    """Child elements by local name, in document order: one pass for many lookups.
+
+    The lists are shared: do not change them.
+    """
+    if _INDEXES is None:
+        return _child_index(element)
+    index = _INDEXES.get(element)
+    if index is None:
+        index = _INDEXES[element] = _child_index(element)
+    return index
+
+
+def _child_index(element: etree._Element) -> dict[str, list[etree._Element]]:
     index: dict[str, list[etree._Element]] = {}
     for child in element:
         tag = child.tag
@@ -96,8 +127,12 @@ def child_index(element: etree._Element) -> dict[str, list[etree._Element]]:
     return index
 
 
-def robot_joints(root: etree._Element) -> dict[str, JointInfo]:
-    """The URDF joints of a document (any depth, outside ``<ros2_control>``)."""
+def robot_joints(root: etree._Element, *, limits: bool = True) -> dict[str, JointInfo]:
+    """The URDF joints of a document (any depth, outside ``<ros2_control>``).
+
+    With ``limits=False`` only names, types and mimics are read (limits ``None``, dynamics 0):
+    the linter needs no more, and reading numbers for every joint of a robot costs.
+    """
     joints: dict[str, JointInfo] = {}
     for element in root.iter("{*}joint"):
         if _inside(element, ("ros2_control", "transmission")):
@@ -105,7 +140,15 @@ def robot_joints(root: etree._Element) -> dict[str, JointInfo]:
         name = element.get("name")
         if name is None or element.get("type") is None:
             continue
-        joints[name] = _joint_info(element, name)
+        if limits:
+            joints[name] = _joint_info(element, name)
+        else:
+            mimic = next(element.iterchildren("{*}mimic"), None)
+            joints[name] = JointInfo(
+                name=name, type=element.get("type", ""),
+                mimic=mimic.get("joint") if mimic is not None else None,
+                line=element.sourceline or 0,
+            )
     return joints
 
 

@@ -20,7 +20,8 @@ from txtool.xmlio import Source
 class LintContext:
     """One parsed document (after xacro expansion when the input is xacro).
 
-    ``found`` are the transmissions with their elements; ``joints`` the URDF joints;
+    ``found`` are the transmissions with their elements; ``joints`` the URDF joints (names,
+    types and mimics: their limits are not read);
     ``components`` the ``<ros2_control>`` elements. ``is_robot`` is False for bare
     fragments (a ``<transmission>`` or ``<ros2_control>`` root, or a xacro macro library
     without a robot), where cross-checks against the robot's joints do not apply.
@@ -45,7 +46,7 @@ class LintContext:
 
     @cached_property
     def joints(self) -> dict[str, JointInfo]:
-        return robot_joints(self.source.root)
+        return robot_joints(self.source.root, limits=False)
 
     @cached_property
     def components(self) -> list[Component]:

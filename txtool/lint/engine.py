@@ -24,6 +24,7 @@ from txtool.lint.context import LintContext
 from txtool.lint.suppress import parse as parse_suppressions
 from txtool.locate import text_lines
 from txtool.problem import Problem
+from txtool.robot import indexed_children
 from txtool.rules import Rule, all_rules
 from txtool.xmlio import Source, XMLSyntax, document_text, is_xacro, parse_bytes, read_bytes
 
@@ -37,7 +38,7 @@ _TAG_END = re.compile(r"<[^>]*>?")
 def lint_source(source: Source, config: Config | Settings | None = None) -> list[Problem]:
     """Problems of an already loaded document (expanded or not), sorted by position."""
     settings = as_settings(config)
-    return finish(run_rules(context_for(source, settings), settings), source, settings)
+    return finish(_checked(source, settings), source, settings)
 
 
 def lint_file(path: str, settings: Settings, *, stdin_name: str | None = None) -> list[Problem]:
@@ -55,7 +56,7 @@ def lint_file(path: str, settings: Settings, *, stdin_name: str | None = None) -
     source = Source(path=display, data=data, tree=tree)
     late = _late_declaration(display, data)
     if path == "-" or settings.no_xacro or not is_xacro(display):
-        return finish(late + run_rules(context_for(source, settings), settings), source, settings)
+        return finish(late + _checked(source, settings), source, settings)
     from txtool.xacro_support import XacroError, expand_xacro
 
     try:
@@ -63,10 +64,10 @@ def lint_file(path: str, settings: Settings, *, stdin_name: str | None = None) -
     except XacroError as exc:
         line, column = _xacro_position(data, exc.reason)
         failed = _pipeline(display, line, column, "TX002", f"xacro: {exc.reason}")
-        problems = [*late, failed, *run_rules(context_for(source, settings), settings)]
+        problems = [*late, failed, *_checked(source, settings)]
         return finish(problems, source, settings)
     full = Source(path=display, data=data, tree=expanded, expanded=True, source_tree=tree)
-    return finish(late + run_rules(context_for(full, settings), settings), full, settings)
+    return finish(late + _checked(full, settings), full, settings)
 
 
 def _late_declaration(path: str, data: bytes) -> list[Problem]:
@@ -103,12 +104,17 @@ def context_for(source: Source, settings: Settings) -> LintContext:
     return literal if literal.found else expanded
 
 
+def _checked(source: Source, settings: Settings) -> list[Problem]:
+    """Read a document and run the rules on it, each element's children indexed once."""
+    with indexed_children():
+        return run_rules(context_for(source, settings), settings)
+
+
 def run_rules(ctx: LintContext, settings: Settings) -> list[Problem]:
     """The problems of every enabled rule, as the rules made them (:func:`finish` stamps them)."""
     problems: list[Problem] = []
     if not ctx.found:
         return problems  # every rule is about transmissions
-    support.remember_children()
     try:
         for rule in all_rules().values():
             if rule.code in settings.enabled and rule.code not in PIPELINE_CODES:

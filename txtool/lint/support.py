@@ -62,32 +62,13 @@ def _memo(found: Found, what: str, compute: Callable[[Found], Any]) -> Any:
 
 def forget() -> None:
     """Drop the answers kept for the last document."""
-    global _CHILDREN
     _MEMO.clear()
-    _CHILDREN = None
-
-
-# Children by local name, per element, kept while the rules of one document run (the engine
-# calls remember_children() before them and forget() after): rules ask for the same children
-# many times. Fixes edit trees, so outside a rules run nothing is kept.
-_CHILDREN: dict[etree._Element, dict[str, list[etree._Element]]] | None = None
-
-
-def remember_children() -> None:
-    global _CHILDREN
-    _CHILDREN = {}
 
 
 def children(element: etree._Element, name: str) -> list[etree._Element]:
-    """Child elements named ``name`` in any namespace (like :func:`txtool.robot.children`)."""
-    if _CHILDREN is None:
-        return robot.children(element, name)
-    index = _CHILDREN.get(element)
-    if index is None:
-        index = _CHILDREN[element] = robot.child_index(element)
-    return list(index.get(name, ()))
-
-
+    """Child elements named ``name`` in any namespace (like :func:`txtool.robot.children`,
+    from the index the linter keeps while it checks a document)."""
+    return list(robot.child_index(element).get(name, ()))
 
 
 # xacro itself goes by the "xacro:" prefix; files use several namespace spellings.
