@@ -213,7 +213,7 @@ def rename(draw, root: etree._Element) -> str:
         return f"set {attribute}={value!r} on <{_local(element.tag)}>"
     element = _pick(draw, [e for e in elements if e is not root] or elements)
     old = _local(element.tag)
-    misspelt = draw(st.sampled_from([old[:-1] or "x", old.upper(), old + "s", old[::-1]]))
+    misspelt = draw(st.sampled_from([old[:-1] or "x", old.upper(), old + "s", old[0] + old]))
     element.tag = misspelt
     return f"misspell <{old}> as <{misspelt}>"
 
