@@ -59,6 +59,7 @@ INTERFACES = ("hardware_interface/EffortJointInterface", "PositionJointInterface
 ROLE_VALUES = ("joint1", "joint2", "actuator1", "actuator2", "joint3", "", " joint1", "JOINT1")
 ROOT_TAGS = ("robot", "ros2_control", "transmission", "sdf", "joint", "{http://www.ros.org/wiki/xacro}robot")
 WRAPPER_TAGS = ("group", "xacro_if", "robot", "transmission", "ros2_control", "joint")
+XACRO = "http://www.ros.org/wiki/xacro"
 XML_CHARACTERS = st.characters(exclude_categories=("Cs", "Cc"))
 ENCODINGS = (b"utf-8", b"latin-1", b"utf-16", b"ascii", b"no-such-codec", b"ebcdic-cp-us", b"")
 
@@ -270,6 +271,35 @@ def deep_nesting(draw, root: etree._Element) -> str:
     return f"nest <{_local(element.tag)}> in {depth} <{tag}>"
 
 
+def insert_comment(draw, root: etree._Element) -> str:
+    element = _pick_preferring(draw, _elements(root), MEMBER_TAGS)
+    text = draw(st.sampled_from([" note ", " txtool: disable-next-line TX106 ",
+                                 " txtool: disable-file ", "", "-"]))
+    comment = etree.Comment(text) if text != "-" else etree.Comment(" - ")
+    element.insert(draw(st.integers(0, len(element))), comment)
+    return f"comment {text!r} in <{_local(element.tag)}>"
+
+
+def xacro_wrap(draw, root: etree._Element) -> str:
+    """Put an element inside a xacro macro or conditional, and a ``${...}`` into a name."""
+    candidates = [e for e in _elements(root) if e is not root]
+    if not candidates:
+        return "xacro: nothing"
+    element = _pick_preferring(draw, candidates, ("transmission", "ros2_control"))
+    kind = draw(st.sampled_from(["macro", "if", "unless"]))
+    wrapper = etree.Element(f"{{{XACRO}}}{kind}", nsmap={"xacro": XACRO})
+    if kind == "macro":
+        wrapper.set("name", "m")
+        wrapper.set("params", "prefix")
+    else:
+        wrapper.set("value", draw(st.sampled_from(["true", "false", "${flag}", "$(arg a)"])))
+    element.addprevious(wrapper)
+    wrapper.append(element)
+    if element.get("name") is not None and draw(st.booleans()):
+        element.set("name", "${prefix}" + element.get("name"))
+    return f"xacro:{kind} around <{_local(element.tag)}>"
+
+
 def change_root(draw, tree: etree._ElementTree) -> tuple[etree._ElementTree, str]:
     root = tree.getroot()
     if draw(st.booleans()):
@@ -285,7 +315,7 @@ def change_root(draw, tree: etree._ElementTree) -> tuple[etree._ElementTree, str
 TreeMutation = Callable[..., str]
 TREE_MUTATIONS: tuple[TreeMutation, ...] = (
     delete_element, duplicate_element, swap_attribute_values, numeric_text, rename,
-    move_element, deep_nesting, retype,
+    move_element, deep_nesting, retype, insert_comment, xacro_wrap,
 )
 
 
@@ -314,7 +344,16 @@ def misplaced_declaration(draw, data: bytes) -> tuple[bytes, str]:
     return declaration + body, f"declaration {encoding!r}"
 
 
-BYTE_MUTATIONS = (truncate, insert_bytes, misplaced_declaration)
+def line_endings(draw, data: bytes) -> tuple[bytes, str]:
+    style = draw(st.sampled_from(["crlf", "cr", "one line", "tabs"]))
+    lines = data.replace(b"\r\n", b"\n").split(b"\n")
+    if style == "tabs":
+        return b"\n".join(line.replace(b"  ", b"\t") for line in lines), style
+    joiner = {"crlf": b"\r\n", "cr": b"\r", "one line": b""}[style]
+    return joiner.join(lines), style
+
+
+BYTE_MUTATIONS = (truncate, insert_bytes, misplaced_declaration, line_endings)
 
 
 @st.composite
@@ -408,8 +447,8 @@ KNOWN_NON_JSON_COMMANDS = ("show-json", "show-limits")
 def run_failure(command: str, path: str, result: Result, *, known: bool = False) -> str | None:
     """What is wrong with one in-process run (``None``: it ended the way txtool promises).
 
-    Every run exits 0, 1 or 2 with a message and no traceback; exit 2 is a ``txtool:`` line on
-    stderr; ``validate`` reports a file it could read as findings (exit 0 or 1), never exit 2;
+    Every run exits 0, 1 or 2 with a message and no traceback; exit 2 is a ``txtool: PATH`` line
+    on stderr naming the input; ``validate`` reports a file it could read as findings (exit 0 or 1), never exit 2;
     JSON output parses, strictly (no NaN). ``known`` lets the known failures above pass.
     """
     if result.exception is not None and not isinstance(result.exception, SystemExit):
@@ -421,10 +460,11 @@ def run_failure(command: str, path: str, result: Result, *, known: bool = False)
         return "a traceback in the output"
     if not output.strip():
         return f"exit {result.exit_code} without a message"
+    folder = str(Path(path).parent)  # the document, or the seed it is compared --against
     if result.exit_code == 2 and not any(
-        line.startswith("txtool: ") for line in result.stderr.splitlines()
+        line.startswith(f"txtool: {folder}") for line in result.stderr.splitlines()
     ):
-        return f"exit 2 without a 'txtool: ' line on stderr: {result.stderr[:300]!r}"
+        return f"exit 2 without naming the input: {result.stderr[:300]!r}"
     if command.startswith("validate") and result.exit_code == 2:
         return f"validate exit 2 on a readable file: {result.stderr[:300]!r}"
     if result.exit_code in (0, 1) and "json" in command:
