@@ -23,7 +23,7 @@ from hypothesis import strategies as st
 from lxml import etree
 
 from tests.corpus import CORPUS
-from txtool.xmlio import InputError, parse_bytes
+from txtool.xmlio import InputError, parse_bytes, safe_parser
 
 ROOT = Path(__file__).resolve().parents[2]
 FIXTURES = ROOT / "fixtures"
@@ -380,8 +380,8 @@ def documents(draw) -> FuzzDocument:
     return FuzzDocument(seed.name, seed.suffix, data, tuple(steps), names)
 
 
-MAP_NUMBERS = ("0", "1.5", "-2", "1e300", "-1e308", "5e-324", "nan", "inf", "1e309", "abc", "",
-               " 2 ", "-0", "0x10", "\u0663")
+MAP_NUMBERS = ("0", "1.5", "-2", "1e300", "-1e308", "5e-324", " 2 ", "-0", "3.25")
+MAP_JUNK = ("nan", "inf,1", "1e309", "abc", "", ",", "1,2,3", "0x10", "\u0663", "1;2")
 
 COMMANDS: dict[str, tuple[str, ...]] = {
     "show": ("show",),
@@ -409,12 +409,18 @@ def extra_arguments(draw, command: str, document: FuzzDocument) -> tuple[str, ..
         return (draw(st.sampled_from(["ros1", "ros2-p1", "ros2-p2"])),)
     if command != "map":
         return ()
-    name = draw(st.sampled_from([*document.transmission_names[:8], "no_such_trans", ""]))
-    arguments = ["-t", name, "--to", draw(st.sampled_from(["actuator", "joint"]))]
-    for option in ("--position", "--velocity", "--effort"):
-        if draw(st.booleans()):
-            values = draw(st.lists(st.sampled_from(MAP_NUMBERS), min_size=1, max_size=3))
-            arguments += [option, ",".join(values)]
+    names = list(document.transmission_names[:8])
+    if not names or draw(st.integers(0, 4)) == 0:
+        names = ["no_such_trans", ""]
+    arguments = ["-t", draw(st.sampled_from(names)),
+                 "--to", draw(st.sampled_from(["actuator", "joint"]))]
+    # Mostly one or two plain numbers, the counts a simple or coupled transmission takes.
+    numbers = st.lists(st.sampled_from(MAP_NUMBERS), min_size=1, max_size=2).map(",".join)
+    quantities = draw(st.sets(st.sampled_from(["--position", "--velocity", "--effort"]),
+                              max_size=3).map(sorted))
+    for option in quantities:
+        junk = draw(st.integers(0, 5)) == 0
+        arguments += [option, draw(st.sampled_from(MAP_JUNK) if junk else numbers)]
     if draw(st.booleans()):
         arguments += ["--effort-convention", "ros1"]
     if draw(st.booleans()):
@@ -449,7 +455,7 @@ def run_failure(command: str, path: str, result: Result, *, known: bool = False)
 
     Every run exits 0, 1 or 2 with a message and no traceback; exit 2 is a ``txtool: PATH`` line
     on stderr naming the input; ``validate`` reports a file it could read as findings (exit 0 or 1), never exit 2;
-    JSON output parses, strictly (no NaN). ``known`` lets the known failures above pass.
+    JSON output parses, strictly (no NaN); a conversion writes well-formed XML. ``known`` lets the known failures above pass.
     """
     if result.exception is not None and not isinstance(result.exception, SystemExit):
         return f"crash: {type(result.exception).__name__}: {result.exception}"
@@ -467,6 +473,11 @@ def run_failure(command: str, path: str, result: Result, *, known: bool = False)
         return f"exit 2 without naming the input: {result.stderr[:300]!r}"
     if command.startswith("validate") and result.exit_code == 2:
         return f"validate exit 2 on a readable file: {result.stderr[:300]!r}"
+    if result.exit_code == 0 and command.startswith("convert-ros"):
+        try:
+            etree.fromstring(result.stdout_bytes, safe_parser())
+        except etree.XMLSyntaxError as exc:
+            return f"convert wrote malformed XML: {exc}"
     if result.exit_code in (0, 1) and "json" in command:
         lenient = known and command in KNOWN_NON_JSON_COMMANDS
         try:
