@@ -102,11 +102,12 @@ def innermost_txtool_frame(exc: BaseException) -> str:
 def run_one(tally: Tally, command: str, document: FuzzDocument, extra: tuple[str, ...]) -> None:
     tally.examples += 1
     with tempfile.TemporaryDirectory() as folder:
-        path, argv = write_inputs(folder, command, document, extra)
+        run = write_inputs(folder, command, document, extra)
+        path, argv = run.path, run.argv
         signal.alarm(HANG_LIMIT)
         start = time.process_time()  # CPU time: other jobs on the machine do not count
         try:
-            result = CliRunner().invoke(cli, argv, catch_exceptions=True)
+            result = CliRunner().invoke(cli, argv, input=run.stdin, catch_exceptions=True)
         except Hang:
             tally.record(f"hang {command}", f"{command}: hang (> {HANG_LIMIT} s)", command,
                          argv, document, "")

@@ -399,6 +399,10 @@ COMMANDS: dict[str, tuple[str, ...]] = {
     "migrate-diff": ("migrate", "--diff"),
     "migrate-diff-to": ("migrate", "--diff", "--allow-lossy", "--to"),
     "map": ("map",),
+    # Standard input ("-"), reported under the --stdin-filename given.
+    "show-stdin": ("show", "--format", "json", "--stdin-filename"),
+    "validate-stdin": ("validate", "--format", "json", "--stdin-filename"),
+    "convert-stdin": ("convert", "--to", "ros2-p2", "--stdin-filename"),
 }
 
 
@@ -428,26 +432,35 @@ def extra_arguments(draw, command: str, document: FuzzDocument) -> tuple[str, ..
     return tuple(arguments)
 
 
+@dataclass(frozen=True)
+class Invocation:
+    path: str  # the document's path, or the name it is reported under when read from stdin
+    argv: list[str]
+    stdin: bytes | None = None
+
+
 def write_inputs(folder: str, command: str, document: FuzzDocument,
-                 extra: tuple[str, ...]) -> tuple[str, list[str]]:
-    """Write the document (and, for ``--against``, its seed) into ``folder``; returns the
-    document's path and the command line."""
+                 extra: tuple[str, ...]) -> Invocation:
+    """Write the document (and, for ``--against``, its seed) into ``folder``; the command line
+    that runs ``command`` on it."""
     path = str(Path(folder) / ("robot" + document.suffix))
-    Path(path).write_bytes(document.data)
     name, *options = COMMANDS[command]
+    if options[-1:] == ["--stdin-filename"]:
+        return Invocation(path, [name, "-", *options, path, *extra], document.data)
+    Path(path).write_bytes(document.data)
     if options[-1:] == ["--against"]:
         seed = next(s for s in seeds() if s.name == document.seed)
         other = Path(folder) / ("seed" + document.suffix)
         other.write_bytes(seed.data)
         extra = (str(other), *extra)
-    return path, [name, path, *options, *extra]
+    return Invocation(path, [name, path, *options, *extra])
 
 
 # Known failures rooted in modules outside the fuzz suite's fixes; each has a strict xfail test
 # in test_fuzz_regressions.py that flips once it is fixed (then drop it here). bench/fuzz.py
 # reports them all the same. ``show --format json`` dumps a ROS 1 value such as "nan" or "inf"
 # as NaN/Infinity, which is not JSON (txtool/commands/show.py, model_dump(mode="json")).
-KNOWN_NON_JSON_COMMANDS = ("show-json", "show-limits")
+KNOWN_NON_JSON_COMMANDS = ("show-json", "show-limits", "show-stdin")
 
 
 def run_failure(command: str, path: str, result: Result, *, known: bool = False) -> str | None:
@@ -473,7 +486,7 @@ def run_failure(command: str, path: str, result: Result, *, known: bool = False)
         return f"exit 2 without naming the input: {result.stderr[:300]!r}"
     if command.startswith("validate") and result.exit_code == 2:
         return f"validate exit 2 on a readable file: {result.stderr[:300]!r}"
-    if result.exit_code == 0 and command.startswith("convert-ros"):
+    if result.exit_code == 0 and command.startswith(("convert-ros", "convert-stdin")):
         try:
             etree.fromstring(result.stdout_bytes, safe_parser())
         except etree.XMLSyntaxError as exc:
