@@ -4,13 +4,12 @@ Run: ``python bench/fuzz.py [--examples N] [--seed S] [--command NAME ...] [--ou
 [--slow SECONDS]``.
 
 The documents are those of the fuzz tests (``tests/hardening/fuzz_inputs.py``: the fixtures and
-the shared corpus, mutated at tree and byte level); each example runs one command, chosen by
-hypothesis among ``--command`` (default: all of ``show``, ``show-json``, ``show-limits``,
-``validate``, ``validate-json``, ``convert-ros1``, ``convert-ros2-p1``, ``convert-ros2-p2``,
-``convert-bb``, ``roundtrip``, ``migrate-diff``, ``migrate-diff-to``, ``map``) in-process with
-click's ``CliRunner``, so that an internal error is an exception rather than the CLI's one-line
-``internal error`` message. Unlike the test suite the run is not derandomized (``--seed`` makes
-it repeatable) and does not stop at the first failure.
+the shared corpus, mutated at tree and byte level); each example runs one command line, chosen
+by hypothesis among ``--command`` (repeatable; default: every entry of ``COMMANDS`` there, e.g.
+``show-json``, ``validate``, ``convert-ros2-p2``, ``roundtrip-against-json``, ``migrate-diff-to``,
+``map``), in-process with click's ``CliRunner``, so that an internal error is an exception rather
+than the CLI's one-line ``internal error`` message. Unlike the test suite the run is not
+derandomized (``--seed`` makes it repeatable) and does not stop at the first failure.
 
 A failure is a run that does not end as txtool promises (see ``run_failure``: an exception, a
 warning, an exit code other than 0/1/2, a traceback, no message, ``validate`` exiting 2 on a
@@ -103,11 +102,12 @@ def innermost_txtool_frame(exc: BaseException) -> str:
 def run_one(tally: Tally, command: str, document: FuzzDocument, extra: tuple[str, ...]) -> None:
     tally.examples += 1
     with tempfile.TemporaryDirectory() as folder:
-        path, argv = write_inputs(folder, command, document, extra)
+        run = write_inputs(folder, command, document, extra)
+        path, argv = run.path, run.argv
         signal.alarm(HANG_LIMIT)
         start = time.process_time()  # CPU time: other jobs on the machine do not count
         try:
-            result = CliRunner().invoke(cli, argv, catch_exceptions=True)
+            result = CliRunner().invoke(cli, argv, input=run.stdin, catch_exceptions=True)
         except Hang:
             tally.record(f"hang {command}", f"{command}: hang (> {HANG_LIMIT} s)", command,
                          argv, document, "")

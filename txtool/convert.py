@@ -156,6 +156,11 @@ class _Placer:
         self.root = root
         self.hardware_plugin = hardware_plugin
         self.created: etree._Element | None = None
+        # Joint names declared per <ros2_control>, kept up to date by _declare: looking them up
+        # afresh for every transmission made a conversion quadratic in their number.
+        self._declared: dict[etree._Element, set[str]] = {}
+        self._last_joint: dict[etree._Element, etree._Element] = {}
+        self._components: list[etree._Element] | None = None  # None: look again
 
     def place(self, old: etree._Element, t: Transmission) -> None:
         component = enclosing_component(old)
@@ -194,6 +199,7 @@ class _Placer:
         component = self._component(t.name, old, *_indentation(old))
         component.tail = old.tail
         old.getparent().replace(old, component)
+        self._components = None
         for joint in t.joints:
             self._declare(component, joint)
         _append(component, self._build_inside(t, component, old))
@@ -212,11 +218,11 @@ class _Placer:
 
     def _component_for(self, t: Transmission) -> etree._Element:
         names = {j.name for j in t.joints}
-        for element in self.root.iter():
-            if local(element) == "ros2_control":
-                declared = {j.get("name") for j in children(element, "joint")}
-                if names <= declared:
-                    return element
+        if self._components is None:
+            self._components = list(self.root.iter("{*}ros2_control"))
+        for element in self._components:
+            if names <= self._joints_of(element):
+                return element
         if self.created is None:
             self.created = self._new_component()
         for joint in t.joints:
@@ -227,11 +233,19 @@ class _Placer:
         component = self._component(self.root.get("name", "robot"), self.root,
                                      *_child_indentation(self.root))
         _append(self.root, component)
+        self._components = None
         return component
 
+    def _joints_of(self, component: etree._Element) -> set[str]:
+        if component not in self._declared:
+            self._declared[component] = {j.get("name") for j in children(component, "joint")}
+        return self._declared[component]
+
     def _declare(self, component: etree._Element, joint) -> None:
-        if any(j.get("name") == joint.name for j in children(component, "joint")):
+        declared = self._joints_of(component)
+        if joint.name in declared:
             return
+        declared.add(joint.name)
         q = _qualifier(component)
         element = etree.Element(q("joint"), name=joint.name)
         for name in joint.interfaces:
@@ -240,14 +254,21 @@ class _Placer:
             etree.SubElement(element, q("state_interface"), name=name)
         indent, step = _child_indentation(component)
         dialects.pretty(element, indent, step)
-        declared = children(component, "joint") or children(component, "hardware")
-        if declared:
-            anchor = declared[-1]
+        anchor = self._anchor(component)
+        if anchor is not None:
             element.tail = anchor.tail
             anchor.tail = "\n" + _leading_space(anchor)
             anchor.addnext(element)
         else:
             _append(component, element)
+        self._last_joint[component] = element
+
+    def _anchor(self, component: etree._Element) -> etree._Element | None:
+        """The element a new joint declaration goes after: the last joint, else <hardware>."""
+        if component in self._last_joint:
+            return self._last_joint[component]
+        declared = children(component, "joint") or children(component, "hardware")
+        return declared[-1] if declared else None
 
 
 def _with_comments(new: etree._Element, old: etree._Element, indent: str,
@@ -300,10 +321,10 @@ def _leading_space(element: etree._Element) -> str:
 
 def _indentation(element: etree._Element) -> tuple[str, str]:
     indent = _leading_space(element)
-    kids = [c for c in element if isinstance(c.tag, str)]
+    first = next((c for c in element if isinstance(c.tag, str)), None)
     step = "  "
-    if kids:
-        inner = _leading_space(kids[0])
+    if first is not None:
+        inner = _leading_space(first)
         if inner.startswith(indent) and len(inner) > len(indent):
             step = inner[len(indent):]
     return indent, step
@@ -311,9 +332,9 @@ def _indentation(element: etree._Element) -> tuple[str, str]:
 
 def _child_indentation(parent: etree._Element) -> tuple[str, str]:
     outer, step = _indentation(parent)
-    kids = [c for c in parent if isinstance(c.tag, str)]
-    if kids:
-        return _leading_space(kids[-1]), step
+    last = next((c for c in reversed(parent) if isinstance(c.tag, str)), None)
+    if last is not None:
+        return _leading_space(last), step
     return outer + step, step
 
 
@@ -335,9 +356,8 @@ def _insert_before(anchor: etree._Element, element: etree._Element) -> None:
 
 
 def _append(parent: etree._Element, element: etree._Element) -> None:
-    kids = list(parent)
-    if kids:
-        last = kids[-1]
+    if len(parent):
+        last = parent[-1]
         element.tail = last.tail or ""
         last.tail = "\n" + _leading_space(last)
     else:

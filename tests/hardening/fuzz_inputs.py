@@ -23,7 +23,7 @@ from hypothesis import strategies as st
 from lxml import etree
 
 from tests.corpus import CORPUS
-from txtool.xmlio import InputError, parse_bytes
+from txtool.xmlio import InputError, parse_bytes, safe_parser
 
 ROOT = Path(__file__).resolve().parents[2]
 FIXTURES = ROOT / "fixtures"
@@ -59,6 +59,7 @@ INTERFACES = ("hardware_interface/EffortJointInterface", "PositionJointInterface
 ROLE_VALUES = ("joint1", "joint2", "actuator1", "actuator2", "joint3", "", " joint1", "JOINT1")
 ROOT_TAGS = ("robot", "ros2_control", "transmission", "sdf", "joint", "{http://www.ros.org/wiki/xacro}robot")
 WRAPPER_TAGS = ("group", "xacro_if", "robot", "transmission", "ros2_control", "joint")
+XACRO = "http://www.ros.org/wiki/xacro"
 XML_CHARACTERS = st.characters(exclude_categories=("Cs", "Cc"))
 ENCODINGS = (b"utf-8", b"latin-1", b"utf-16", b"ascii", b"no-such-codec", b"ebcdic-cp-us", b"")
 
@@ -213,7 +214,7 @@ def rename(draw, root: etree._Element) -> str:
         return f"set {attribute}={value!r} on <{_local(element.tag)}>"
     element = _pick(draw, [e for e in elements if e is not root] or elements)
     old = _local(element.tag)
-    misspelt = draw(st.sampled_from([old[:-1] or "x", old.upper(), old + "s", old[::-1]]))
+    misspelt = draw(st.sampled_from([old[:-1] or "x", old.upper(), old + "s", old[0] + old]))
     element.tag = misspelt
     return f"misspell <{old}> as <{misspelt}>"
 
@@ -270,6 +271,35 @@ def deep_nesting(draw, root: etree._Element) -> str:
     return f"nest <{_local(element.tag)}> in {depth} <{tag}>"
 
 
+def insert_comment(draw, root: etree._Element) -> str:
+    element = _pick_preferring(draw, _elements(root), MEMBER_TAGS)
+    text = draw(st.sampled_from([" note ", " txtool: disable-next-line TX106 ",
+                                 " txtool: disable-file ", "", "-"]))
+    comment = etree.Comment(text) if text != "-" else etree.Comment(" - ")
+    element.insert(draw(st.integers(0, len(element))), comment)
+    return f"comment {text!r} in <{_local(element.tag)}>"
+
+
+def xacro_wrap(draw, root: etree._Element) -> str:
+    """Put an element inside a xacro macro or conditional, and a ``${...}`` into a name."""
+    candidates = [e for e in _elements(root) if e is not root]
+    if not candidates:
+        return "xacro: nothing"
+    element = _pick_preferring(draw, candidates, ("transmission", "ros2_control"))
+    kind = draw(st.sampled_from(["macro", "if", "unless"]))
+    wrapper = etree.Element(f"{{{XACRO}}}{kind}", nsmap={"xacro": XACRO})
+    if kind == "macro":
+        wrapper.set("name", "m")
+        wrapper.set("params", "prefix")
+    else:
+        wrapper.set("value", draw(st.sampled_from(["true", "false", "${flag}", "$(arg a)"])))
+    element.addprevious(wrapper)
+    wrapper.append(element)
+    if element.get("name") is not None and draw(st.booleans()):
+        element.set("name", "${prefix}" + element.get("name"))
+    return f"xacro:{kind} around <{_local(element.tag)}>"
+
+
 def change_root(draw, tree: etree._ElementTree) -> tuple[etree._ElementTree, str]:
     root = tree.getroot()
     if draw(st.booleans()):
@@ -285,7 +315,7 @@ def change_root(draw, tree: etree._ElementTree) -> tuple[etree._ElementTree, str
 TreeMutation = Callable[..., str]
 TREE_MUTATIONS: tuple[TreeMutation, ...] = (
     delete_element, duplicate_element, swap_attribute_values, numeric_text, rename,
-    move_element, deep_nesting, retype,
+    move_element, deep_nesting, retype, insert_comment, xacro_wrap,
 )
 
 
@@ -314,7 +344,16 @@ def misplaced_declaration(draw, data: bytes) -> tuple[bytes, str]:
     return declaration + body, f"declaration {encoding!r}"
 
 
-BYTE_MUTATIONS = (truncate, insert_bytes, misplaced_declaration)
+def line_endings(draw, data: bytes) -> tuple[bytes, str]:
+    style = draw(st.sampled_from(["crlf", "cr", "one line", "tabs"]))
+    lines = data.replace(b"\r\n", b"\n").split(b"\n")
+    if style == "tabs":
+        return b"\n".join(line.replace(b"  ", b"\t") for line in lines), style
+    joiner = {"crlf": b"\r\n", "cr": b"\r", "one line": b""}[style]
+    return joiner.join(lines), style
+
+
+BYTE_MUTATIONS = (truncate, insert_bytes, misplaced_declaration, line_endings)
 
 
 @st.composite
@@ -341,8 +380,8 @@ def documents(draw) -> FuzzDocument:
     return FuzzDocument(seed.name, seed.suffix, data, tuple(steps), names)
 
 
-MAP_NUMBERS = ("0", "1.5", "-2", "1e300", "-1e308", "5e-324", "nan", "inf", "1e309", "abc", "",
-               " 2 ", "-0", "0x10", "\u0663")
+MAP_NUMBERS = ("0", "1.5", "-2", "1e300", "-1e308", "5e-324", " 2 ", "-0", "3.25")
+MAP_JUNK = ("nan", "inf,1", "1e309", "abc", "", ",", "1,2,3", "0x10", "\u0663", "1;2")
 
 COMMANDS: dict[str, tuple[str, ...]] = {
     "show": ("show",),
@@ -360,6 +399,10 @@ COMMANDS: dict[str, tuple[str, ...]] = {
     "migrate-diff": ("migrate", "--diff"),
     "migrate-diff-to": ("migrate", "--diff", "--allow-lossy", "--to"),
     "map": ("map",),
+    # Standard input ("-"), reported under the --stdin-filename given.
+    "show-stdin": ("show", "--format", "json", "--stdin-filename"),
+    "validate-stdin": ("validate", "--format", "json", "--stdin-filename"),
+    "convert-stdin": ("convert", "--to", "ros2-p2", "--stdin-filename"),
 }
 
 
@@ -370,12 +413,18 @@ def extra_arguments(draw, command: str, document: FuzzDocument) -> tuple[str, ..
         return (draw(st.sampled_from(["ros1", "ros2-p1", "ros2-p2"])),)
     if command != "map":
         return ()
-    name = draw(st.sampled_from([*document.transmission_names[:8], "no_such_trans", ""]))
-    arguments = ["-t", name, "--to", draw(st.sampled_from(["actuator", "joint"]))]
-    for option in ("--position", "--velocity", "--effort"):
-        if draw(st.booleans()):
-            values = draw(st.lists(st.sampled_from(MAP_NUMBERS), min_size=1, max_size=3))
-            arguments += [option, ",".join(values)]
+    names = list(document.transmission_names[:8])
+    if not names or draw(st.integers(0, 4)) == 0:
+        names = ["no_such_trans", ""]
+    arguments = ["-t", draw(st.sampled_from(names)),
+                 "--to", draw(st.sampled_from(["actuator", "joint"]))]
+    # Mostly one or two plain numbers, the counts a simple or coupled transmission takes.
+    numbers = st.lists(st.sampled_from(MAP_NUMBERS), min_size=1, max_size=2).map(",".join)
+    quantities = draw(st.sets(st.sampled_from(["--position", "--velocity", "--effort"]),
+                              max_size=3).map(sorted))
+    for option in quantities:
+        junk = draw(st.integers(0, 5)) == 0
+        arguments += [option, draw(st.sampled_from(MAP_JUNK) if junk else numbers)]
     if draw(st.booleans()):
         arguments += ["--effort-convention", "ros1"]
     if draw(st.booleans()):
@@ -383,34 +432,43 @@ def extra_arguments(draw, command: str, document: FuzzDocument) -> tuple[str, ..
     return tuple(arguments)
 
 
+@dataclass(frozen=True)
+class Invocation:
+    path: str  # the document's path, or the name it is reported under when read from stdin
+    argv: list[str]
+    stdin: bytes | None = None
+
+
 def write_inputs(folder: str, command: str, document: FuzzDocument,
-                 extra: tuple[str, ...]) -> tuple[str, list[str]]:
-    """Write the document (and, for ``--against``, its seed) into ``folder``; returns the
-    document's path and the command line."""
+                 extra: tuple[str, ...]) -> Invocation:
+    """Write the document (and, for ``--against``, its seed) into ``folder``; the command line
+    that runs ``command`` on it."""
     path = str(Path(folder) / ("robot" + document.suffix))
-    Path(path).write_bytes(document.data)
     name, *options = COMMANDS[command]
+    if options[-1:] == ["--stdin-filename"]:
+        return Invocation(path, [name, "-", *options, path, *extra], document.data)
+    Path(path).write_bytes(document.data)
     if options[-1:] == ["--against"]:
         seed = next(s for s in seeds() if s.name == document.seed)
         other = Path(folder) / ("seed" + document.suffix)
         other.write_bytes(seed.data)
         extra = (str(other), *extra)
-    return path, [name, path, *options, *extra]
+    return Invocation(path, [name, path, *options, *extra])
 
 
 # Known failures rooted in modules outside the fuzz suite's fixes; each has a strict xfail test
 # in test_fuzz_regressions.py that flips once it is fixed (then drop it here). bench/fuzz.py
 # reports them all the same. ``show --format json`` dumps a ROS 1 value such as "nan" or "inf"
 # as NaN/Infinity, which is not JSON (txtool/commands/show.py, model_dump(mode="json")).
-KNOWN_NON_JSON_COMMANDS = ("show-json", "show-limits")
+KNOWN_NON_JSON_COMMANDS = ("show-json", "show-limits", "show-stdin")
 
 
 def run_failure(command: str, path: str, result: Result, *, known: bool = False) -> str | None:
     """What is wrong with one in-process run (``None``: it ended the way txtool promises).
 
-    Every run exits 0, 1 or 2 with a message and no traceback; exit 2 is a ``txtool:`` line on
-    stderr; ``validate`` reports a file it could read as findings (exit 0 or 1), never exit 2;
-    JSON output parses, strictly (no NaN). ``known`` lets the known failures above pass.
+    Every run exits 0, 1 or 2 with a message and no traceback; exit 2 is a ``txtool: PATH`` line
+    on stderr naming the input; ``validate`` reports a file it could read as findings (exit 0 or 1), never exit 2;
+    JSON output parses, strictly (no NaN); a conversion writes well-formed XML. ``known`` lets the known failures above pass.
     """
     if result.exception is not None and not isinstance(result.exception, SystemExit):
         return f"crash: {type(result.exception).__name__}: {result.exception}"
@@ -421,12 +479,18 @@ def run_failure(command: str, path: str, result: Result, *, known: bool = False)
         return "a traceback in the output"
     if not output.strip():
         return f"exit {result.exit_code} without a message"
+    folder = str(Path(path).parent)  # the document, or the seed it is compared --against
     if result.exit_code == 2 and not any(
-        line.startswith("txtool: ") for line in result.stderr.splitlines()
+        line.startswith(f"txtool: {folder}") for line in result.stderr.splitlines()
     ):
-        return f"exit 2 without a 'txtool: ' line on stderr: {result.stderr[:300]!r}"
+        return f"exit 2 without naming the input: {result.stderr[:300]!r}"
     if command.startswith("validate") and result.exit_code == 2:
         return f"validate exit 2 on a readable file: {result.stderr[:300]!r}"
+    if result.exit_code == 0 and command.startswith(("convert-ros", "convert-stdin")):
+        try:
+            etree.fromstring(result.stdout_bytes, safe_parser())
+        except etree.XMLSyntaxError as exc:
+            return f"convert wrote malformed XML: {exc}"
     if result.exit_code in (0, 1) and "json" in command:
         lenient = known and command in KNOWN_NON_JSON_COMMANDS
         try:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import textwrap
+import time
 from pathlib import Path
 
 from click.testing import CliRunner, Result
@@ -129,3 +130,36 @@ def test_show_json_of_a_ros1_nan_reduction_is_json(tmp_path):
     assert result.exit_code == 0
     reduction = strict_json(result.stdout)["transmissions"][0]["actuators"][0]["mechanical_reduction"]
     assert reduction == {"value": None, "text": "nan"}
+
+
+def arm_with_transmissions(count: int) -> bytes:
+    joints = "\n".join(f'<joint name="j{i}" type="revolute"/>' for i in range(count))
+    transmissions = "\n".join(
+        f'<transmission name="t{i}"><type>transmission_interface/SimpleTransmission</type>'
+        f'<joint name="j{i}"><hardwareInterface>hardware_interface/EffortJointInterface'
+        f'</hardwareInterface></joint><actuator name="m{i}"><mechanicalReduction>{i + 1}'
+        "</mechanicalReduction></actuator></transmission>"
+        for i in range(count)
+    )
+    return f'<robot name="r">\n{joints}\n{transmissions}\n</robot>\n'.encode()
+
+
+def test_placing_converted_transmissions_takes_linear_time(monkeypatch):
+    # Each transmission moved into the new <ros2_control> listed every element of the document
+    # and every joint declared so far: 400 transmissions took 7 s.
+    from txtool import convert
+    from txtool.xmlio import Source, parse_bytes
+
+    monkeypatch.setattr(convert, "_check", lambda *args: [])  # the read-back is the reader's
+
+    def cpu_seconds(count: int) -> float:
+        data = arm_with_transmissions(count)
+        source = Source("arm.urdf", data, parse_bytes(data, "arm.urdf"))
+        start = time.process_time()
+        result = convert.convert_source(source, "ros2-p2")
+        elapsed = time.process_time() - start
+        assert result.data.count(b"<transmission ") == count and not result.losses
+        return elapsed
+
+    small, large = cpu_seconds(250), cpu_seconds(2000)
+    assert large < 30 * max(small, 0.01), (small, large)  # linear: 8x; it was over 100x
