@@ -39,15 +39,31 @@ class Locator:
         lines = self.lines
         if not 1 <= line <= len(lines):
             return 1
-        text = lines[line - 1]
-        starts = [match.start() for match in _tag_pattern(tag).finditer(text)]
-        if name is not None:
+        starts, by_name = self._tags_on(line, tag)
+        if name is not None and name in by_name:
+            return by_name[name] + 1
+        return starts[0] + 1 if starts else _first_text_column(lines[line - 1])
+
+    def _tags_on(self, line: int, tag: str) -> tuple[list[int], dict[str, int]]:
+        """Where ``<tag`` starts on ``line``, and the first start per ``name`` attribute: each
+        line is scanned once per tag, so even a document written on one line costs linear time."""
+        key = (line, tag)
+        found = self._tag_index.get(key)
+        if found is None:
+            text = self.lines[line - 1]
+            starts = [match.start() for match in _tag_pattern(tag).finditer(text)]
+            by_name: dict[str, int] = {}
             for start in starts:
                 end = text.find(">", start)
                 attribute = _NAME_ATTRIBUTE.search(text, start, end if end >= 0 else len(text))
-                if attribute is not None and attribute.group(2) == name:
-                    return start + 1
-        return starts[0] + 1 if starts else _first_text_column(text)
+                if attribute is not None:
+                    by_name.setdefault(attribute.group(2), start)
+            found = self._tag_index[key] = (starts, by_name)
+        return found
+
+    @cached_property
+    def _tag_index(self) -> dict[tuple[int, str], tuple[list[int], dict[str, int]]]:
+        return {}
 
     def position(self, element: etree._Element) -> Position:
         """Where ``element`` (of :attr:`Source.tree`) is written."""
@@ -72,8 +88,12 @@ class Locator:
         if not chain:
             return None, False
         transmission = chain[0]
-        candidates = self._source_transmissions()
-        best, exact = _match_named(candidates, transmission.get("name"))
+        name = transmission.get("name")
+        literal = self._transmissions_by_name.get(name) if name is not None else None
+        if literal is not None:
+            best, exact = literal, True
+        else:
+            best, exact = _match_named(self._source_transmissions, name)
         if best is None:
             return None, False
         for step in chain[1:]:
@@ -129,8 +149,16 @@ class Locator:
         tree = self.source.source_tree
         return list(tree.getroot().iter()) if tree is not None else []
 
+    @cached_property
     def _source_transmissions(self) -> list[etree._Element]:
         return [e for e in self._all_source if local(e) == "transmission"]
+
+    @cached_property
+    def _transmissions_by_name(self) -> dict[str, etree._Element]:
+        by_name: dict[str, etree._Element] = {}
+        for element in self._source_transmissions:
+            by_name.setdefault(element.get("name", ""), element)
+        return by_name
 
 
 def is_xacro_element(element: etree._Element) -> bool:

@@ -456,19 +456,12 @@ def write_inputs(folder: str, command: str, document: FuzzDocument,
     return Invocation(path, [name, path, *options, *extra])
 
 
-# Known failures rooted in modules outside the fuzz suite's fixes; each has a strict xfail test
-# in test_fuzz_regressions.py that flips once it is fixed (then drop it here). bench/fuzz.py
-# reports them all the same. ``show --format json`` dumps a ROS 1 value such as "nan" or "inf"
-# as NaN/Infinity, which is not JSON (txtool/commands/show.py, model_dump(mode="json")).
-KNOWN_NON_JSON_COMMANDS = ("show-json", "show-limits", "show-stdin")
-
-
-def run_failure(command: str, path: str, result: Result, *, known: bool = False) -> str | None:
+def run_failure(command: str, path: str, result: Result) -> str | None:
     """What is wrong with one in-process run (``None``: it ended the way txtool promises).
 
     Every run exits 0, 1 or 2 with a message and no traceback; exit 2 is a ``txtool: PATH`` line
     on stderr naming the input; ``validate`` reports a file it could read as findings (exit 0 or 1), never exit 2;
-    JSON output parses, strictly (no NaN); a conversion writes well-formed XML. ``known`` lets the known failures above pass.
+    JSON output parses, strictly (no NaN); a conversion writes well-formed XML.
     """
     if result.exception is not None and not isinstance(result.exception, SystemExit):
         return f"crash: {type(result.exception).__name__}: {result.exception}"
@@ -492,9 +485,8 @@ def run_failure(command: str, path: str, result: Result, *, known: bool = False)
         except etree.XMLSyntaxError as exc:
             return f"convert wrote malformed XML: {exc}"
     if result.exit_code in (0, 1) and "json" in command:
-        lenient = known and command in KNOWN_NON_JSON_COMMANDS
         try:
-            json.loads(result.stdout, parse_constant=None if lenient else _reject_constant)
+            json.loads(result.stdout, parse_constant=_reject_constant)
         except ValueError as exc:
             return f"invalid JSON output: {exc}"
     return None
