@@ -356,8 +356,8 @@ def _insert_before(anchor: etree._Element, element: etree._Element) -> None:
 
 
 def _append(parent: etree._Element, element: etree._Element) -> None:
-    if len(parent):
-        last = parent[-1]
+    last = next(parent.iterchildren(reversed=True), None)  # len(parent) walks every child
+    if last is not None:
         element.tail = last.tail or ""
         last.tail = "\n" + _leading_space(last)
     else:
