@@ -4,24 +4,20 @@ Run: ``python bench/bench_scale.py [--sizes 100,1000,10000,100000] [--commands .
 
 Each size N is one generated robot: a chain of N revolute joints, each driven by one ROS 1
 simple transmission (about 450 bytes per joint: 100,000 joints make a 45 MB file, under the 64 MB
-input limit). Every command runs in this process through the command line (click), so start-up is
-paid once; the table shows microseconds per transmission and the ratio of each size to the
-smallest (flat means linear: budget 1.5 for the largest size). A size whose run exceeds
-``--timeout`` seconds is reported as such, and the rest still run.
+input limit). Each command runs once per size, through the command line (click), in a fresh
+interpreter that times the run itself (start-up and imports not counted); the table shows
+microseconds per transmission and the ratio of each size to the smallest (flat means linear:
+budget 1.5 for the largest size).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
-
-from click.testing import CliRunner
-
-from txtool.cli import cli
 
 LINK = '<link name="l{i}"/>'
 JOINT = ('<joint name="j{i}" type="revolute"><parent link="l{p}"/><child link="l{i}"/>'
@@ -48,15 +44,34 @@ def robot(joints: int) -> str:
     return "\n".join(parts) + "\n</robot>\n"
 
 
+MEASURE = """
+import sys, time
+from click.testing import CliRunner
+from txtool.cli import cli
+warm_up, args = sys.argv[1], sys.argv[2:]
+runner = CliRunner()
+runner.invoke(cli, [*args[:-1], warm_up])  # loads what the command imports lazily
+start = time.perf_counter()
+result = runner.invoke(cli, args)
+elapsed = time.perf_counter() - start
+crashed = result.exception is not None and not isinstance(result.exception, SystemExit)
+if crashed or result.exit_code not in (0, 1):
+    sys.exit(f"{' '.join(args)}: exit {result.exit_code}: {result.output[:500]}")
+print(elapsed)
+"""
+
+
 def measure(command: list[str], path: Path) -> float:
-    runner = CliRunner()
-    start = time.perf_counter()
-    result = runner.invoke(cli, [*command, str(path)])
-    elapsed = time.perf_counter() - start
-    crashed = result.exception is not None and not isinstance(result.exception, SystemExit)
-    if crashed or result.exit_code not in (0, 1):
-        raise SystemExit(f"{' '.join(command)} {path}: exit {result.exit_code}: {result.output}")
-    return elapsed
+    """Seconds of one run, in a fresh interpreter that first ran the command on a one-joint
+    robot (imports and start-up not counted), so that one run's leftovers do not slow the next."""
+    warm_up = path.with_name("warm_up.urdf")
+    warm_up.write_text(robot(1))
+    args = [*command, str(path)]
+    out = subprocess.run([sys.executable, "-c", MEASURE, str(warm_up), *args],
+                         capture_output=True, text=True, check=False)
+    if out.returncode != 0:
+        raise SystemExit(out.stderr.strip() or f"{' '.join(args)}: exit {out.returncode}")
+    return float(out.stdout.strip().splitlines()[-1])
 
 
 def main() -> None:
@@ -73,7 +88,6 @@ def main() -> None:
             path.write_text(robot(size))
             megabytes = path.stat().st_size / 1e6
             for name in commands:
-                measure(COMMANDS[name], path) if size <= 1000 else None  # warm caches
                 table[name][size] = measure(COMMANDS[name], path) / size
             print(f"N={size:>7} ({megabytes:5.1f} MB): " + "  ".join(
                 f"{name} {table[name][size] * 1e6:7.1f} us" for name in commands), flush=True)
