@@ -15,8 +15,8 @@ from functools import cached_property, lru_cache
 
 from lxml import etree
 
-from txtool.robot import local
-from txtool.xmlio import XACRO_NS, Source, document_text
+from txtool.robot import is_xacro_element, local
+from txtool.xmlio import Source, text_lines
 
 
 @dataclass(frozen=True)
@@ -161,14 +161,6 @@ class Locator:
         return by_name
 
 
-def is_xacro_element(element: etree._Element) -> bool:
-    """A xacro directive or macro call (``xacro:`` prefix or the xacro namespace)."""
-    tag = element.tag
-    if not isinstance(tag, str):
-        return False
-    return element.prefix == "xacro" or tag.startswith(f"{{{XACRO_NS}}}")
-
-
 # xacro elements that produce no element where they stand.
 _SILENT = frozenset({"property", "arg", "macro"})
 
@@ -305,12 +297,6 @@ def _match_named(
 def _pattern(text: str) -> re.Pattern[str]:
     parts = re.split(r"\$\{[^}]*\}|\$\([^)]*\)", text)
     return re.compile(".*".join(re.escape(p) for p in parts), re.DOTALL)
-
-
-@lru_cache(maxsize=2)
-def text_lines(data: bytes) -> list[str]:
-    """The lines of a document as written (shared by everything that places findings in it)."""
-    return document_text(data).splitlines()
 
 
 _NAME_ATTRIBUTE = re.compile(r"\bname\s*=\s*([\"'])(.*?)\1")

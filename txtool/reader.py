@@ -14,14 +14,17 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from lxml import etree
 
-from txtool.locate import Locator
 from txtool.model import Dialect, Location, Member, Number, Transmission, kind_of, replace
 from txtool.numbers import parse_ros1, parse_ros2
 from txtool.robot import Component, child_index, children, component_of, local
 from txtool.xmlio import Source
+
+if TYPE_CHECKING:
+    from txtool.locate import Locator
 
 
 @dataclass(frozen=True)
@@ -38,7 +41,11 @@ def read_source(source: Source, *, locate: bool = True) -> list[Found]:
     With ``locate=False`` the model carries no locations (the linter places its findings from
     the elements, and finding columns for every member would cost more than the rules).
     """
-    locator = Locator(source) if locate else None
+    locator = None
+    if locate:
+        from txtool.locate import Locator
+
+        locator = Locator(source)
     components: dict[etree._Element, Component] = {}  # each read once, however many members
     return [
         Found(read_transmission(element, locator, components), element)

@@ -15,6 +15,7 @@ from functools import cached_property
 from lxml import etree
 
 from txtool.numbers import parse_strict
+from txtool.xmlio import XACRO_NS
 
 
 @dataclass(frozen=True)
@@ -81,6 +82,14 @@ def local(element: etree._Element) -> str:
     if not isinstance(tag, str):
         return ""
     return tag.rsplit("}", 1)[-1]
+
+
+def is_xacro_element(element: etree._Element) -> bool:
+    """A xacro directive or macro call (``xacro:`` prefix or the xacro namespace)."""
+    tag = element.tag
+    if not isinstance(tag, str):
+        return False
+    return element.prefix == "xacro" or tag.startswith(f"{{{XACRO_NS}}}")
 
 
 def children(element: etree._Element, name: str) -> list[etree._Element]:

@@ -12,6 +12,7 @@ import re
 import sys
 from contextvars import ContextVar
 from dataclasses import dataclass, field
+from functools import lru_cache
 from pathlib import Path
 
 from lxml import etree
@@ -161,6 +162,12 @@ def document_text(data: bytes) -> str:
         except LookupError:
             pass
     return data.decode("utf-8", errors="replace")
+
+
+@lru_cache(maxsize=2)
+def text_lines(data: bytes) -> list[str]:
+    """The lines of a document as written (shared by everything that places findings in it)."""
+    return document_text(data).splitlines()
 
 
 def _is_blank(data: bytes) -> bool:

@@ -5,15 +5,17 @@ from __future__ import annotations
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from lxml import etree
 
-from txtool.locate import Locator, Position
 from txtool.problem import Problem
 from txtool.reader import Found, read_source
 from txtool.robot import Component, JointInfo, components, local, robot_joints
 from txtool.xmlio import Source
+
+if TYPE_CHECKING:
+    from txtool.locate import Locator, Position
 
 
 @dataclass
@@ -42,6 +44,8 @@ class LintContext:
 
     @cached_property
     def locator(self) -> Locator:
+        from txtool.locate import Locator  # only a document with findings needs positions
+
         return Locator(self.source)
 
     @cached_property

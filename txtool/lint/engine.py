@@ -22,11 +22,18 @@ from txtool.config import Settings, resolve
 from txtool.lint import support
 from txtool.lint.context import LintContext
 from txtool.lint.suppress import parse as parse_suppressions
-from txtool.locate import text_lines
 from txtool.problem import Problem
 from txtool.robot import indexed_children
 from txtool.rules import Rule, all_rules
-from txtool.xmlio import Source, XMLSyntax, document_text, is_xacro, parse_bytes, read_bytes
+from txtool.xmlio import (
+    Source,
+    XMLSyntax,
+    document_text,
+    is_xacro,
+    parse_bytes,
+    read_bytes,
+    text_lines,
+)
 
 if TYPE_CHECKING:
     from txtool.config import Config

@@ -10,10 +10,9 @@ from lxml import etree
 
 from txtool import robot
 from txtool.lint.context import LintContext
-from txtool.locate import is_xacro_element
 from txtool.model import Member
 from txtool.reader import Found, enclosing_component
-from txtool.robot import JointInfo, local
+from txtool.robot import JointInfo, is_xacro_element, local
 
 # Transmission families with their own loaders (not ros_control's transmission_interface):
 # pr2_mechanism / ros_ethercat parse their own XML; franka_hw registers state/model interfaces.

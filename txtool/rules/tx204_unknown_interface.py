@@ -49,8 +49,7 @@ Passing example: ``<command_interface name="position"/>``.
 
 from __future__ import annotations
 
-import difflib
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.support import children, label, members
@@ -122,9 +121,9 @@ def _check_ros1(ctx: LintContext, found: Found) -> Iterator[Problem]:
 
 
 def _ros1_hint(text: str) -> str:
-    guess = difflib.get_close_matches(text, ROS1_INTERFACES, n=1, cutoff=0.5)
+    guess = _close_matches(text, ROS1_INTERFACES, n=1, cutoff=0.5)
     if not guess:
-        guess = difflib.get_close_matches(PREFIX + text, ROS1_INTERFACES, n=1, cutoff=0.5)
+        guess = _close_matches(PREFIX + text, ROS1_INTERFACES, n=1, cutoff=0.5)
     return f"; did you mean '{guess[0]}'?" if guess else ""
 
 
@@ -162,5 +161,11 @@ def _suggest(name: str, mapped: tuple[str, ...]) -> str | None:
         return key
     if _ROS1_TO_ROS2.get(key) in mapped:
         return _ROS1_TO_ROS2[key]
-    guess = difflib.get_close_matches(key, mapped, n=1, cutoff=0.85)
+    guess = _close_matches(key, mapped, n=1, cutoff=0.85)
     return guess[0] if guess else None
+
+
+def _close_matches(word: str, candidates: Iterable[str], *, n: int, cutoff: float) -> list[str]:
+    import difflib  # only for a misspelt interface
+
+    return difflib.get_close_matches(word, candidates, n=n, cutoff=cutoff)
