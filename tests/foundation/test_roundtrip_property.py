@@ -2,15 +2,18 @@
 
 from __future__ import annotations
 
+import json
 import math
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from lxml import etree
+from pydantic import ValidationError
 
 from txtool import dialects
 from txtool.convert import convert_source
-from txtool.model import Member, Number, Transmission, standard_type
+from txtool.model import Member, Number, Transmission, dump, standard_type, validate
 from txtool.numbers import format_float
 from txtool.reader import read_source
 from txtool.roundtrip import cycles_from
@@ -101,3 +104,31 @@ def test_every_cycle_is_the_identity(t):
                 a, b = getattr(before, field), getattr(after, field)
                 if a is not None and b is not None:
                     assert a.value.hex() == b.value.hex()
+
+
+@settings(max_examples=100, deadline=None)
+@given(transmissions())
+def test_the_json_of_show_is_the_model_through_its_schema(t):
+    """``show --format json`` data validates back into the very transmission it came from."""
+    read = read_one(document(t))
+    data = json.loads(json.dumps(dump(read)))  # what a user of the JSON gets
+    assert validate(Transmission, data) == read
+
+
+def test_the_schema_refuses_what_is_not_a_transmission():
+    data = dump(read_one(document(number_transmission())))
+    data["kind"] = "planetary"
+    with pytest.raises(ValidationError):
+        validate(Transmission, data)
+    del data["kind"]
+    data["gear"] = 3
+    with pytest.raises(ValidationError, match="gear"):
+        validate(Transmission, data)
+
+
+def number_transmission() -> Transmission:
+    return Transmission(
+        name="t", type=standard_type("simple"), kind="simple", dialect="ros1",
+        joints=(Member(name="j", interfaces=("hardware_interface/EffortJointInterface",)),),
+        actuators=(Member(name="m", mechanical_reduction=number(50.0)),),
+    )
