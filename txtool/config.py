@@ -281,18 +281,28 @@ class SettingsCache:
         self.overrides = overrides
         self.explicit = Path(explicit) if explicit else None
         self._by_file: dict[Path | None, Settings] = {}
+        self._by_folder: dict[str, Path | None] = {}
         check_overrides(overrides)
         no_xacro_from_environment()  # a bad value stops the run before any file is read
 
     def for_file(self, path: str) -> Settings:
         if self.explicit is not None:
             config_path: Path | None = self.explicit
+        elif path == "-":
+            config_path = find_config(Path.cwd())
+        elif os.path.islink(path):
+            config_path = find_config(Path(path).resolve().parent)  # where the file really is
         else:
-            folder = Path(path).resolve().parent if path != "-" else Path.cwd()
-            config_path = find_config(folder)
+            config_path = self._config_of_folder(os.path.dirname(os.path.abspath(path)))
         if config_path not in self._by_file:
             self._by_file[config_path] = self._settings(config_path)
         return self._by_file[config_path]
+
+    def _config_of_folder(self, folder: str) -> Path | None:
+        # Resolving every file's path costs a system call per path component; once per folder.
+        if folder not in self._by_folder:
+            self._by_folder[folder] = find_config(Path(folder).resolve())
+        return self._by_folder[folder]
 
     def _settings(self, config_path: Path | None) -> Settings:
         prefix = ""

@@ -21,6 +21,19 @@ def test_pyproject_table_is_found_upward_from_the_file(validate, tmp_path):
     assert code == 0 and "TX106" not in out and "TX102" in out
 
 
+def test_each_file_gets_its_own_folders_configuration_and_a_link_its_targets(validate, tmp_path):
+    write(tmp_path / "quiet" / ".txtool.toml", 'ignore = ["TX106"]\n')
+    quiet = write(tmp_path / "quiet" / "robot.urdf", BROKEN)
+    loud = write(tmp_path / "loud" / "robot.urdf", BROKEN)
+    (tmp_path / "loud" / "linked.urdf").symlink_to(quiet)
+    find_config.cache_clear()
+    linked = tmp_path / "loud" / "linked.urdf"
+    code, out, _ = validate(str(linked), str(loud), str(quiet))  # quiet: the same file again
+    tx106 = [line.split(":")[0] for line in out.splitlines() if "TX106" in line]
+    assert code == 1 and tx106 == [str(loud)]
+    assert "in 2 files" in out
+
+
 def test_txtool_toml_wins_and_a_pyproject_without_the_table_is_passed_over(validate, tmp_path):
     write(tmp_path / ".txtool.toml", 'select = ["TX106"]\n')
     write(tmp_path / "pkg" / "pyproject.toml", "[project]\nname = 'x'\n")

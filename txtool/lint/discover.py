@@ -22,13 +22,13 @@ def expand_paths(paths: Iterable[str]) -> Iterator[str]:
     folder holding nothing to check is an :class:`~txtool.xmlio.InputError`: a CI step given
     the wrong folder must not pass silently.
     """
-    seen: set[str] = set()
+    seen: set[object] = set()
     for path in paths:
         found = _walk(path) if path != "-" and os.path.isdir(path) else iter([path])
         empty = True
         for candidate in found:
             empty = False
-            key = candidate if candidate == "-" else os.path.realpath(candidate)
+            key = _identity(candidate)
             if key not in seen:
                 seen.add(key)
                 yield candidate
@@ -36,6 +36,17 @@ def expand_paths(paths: Iterable[str]) -> Iterator[str]:
             raise InputError(
                 f"{path}: no .urdf, .xacro or robot .xml file in this folder (or its subfolders)"
             )
+
+
+def _identity(path: str) -> object:
+    """The file itself (device and inode, through links), else the path as given."""
+    if path == "-":
+        return path
+    try:
+        status = os.stat(path)
+    except OSError:
+        return os.path.abspath(path)
+    return (status.st_dev, status.st_ino)
 
 
 def _walk(folder: str) -> Iterator[str]:
