@@ -329,7 +329,3 @@ class SettingsCache:
             no_xacro=settings.no_xacro,
             origin=settings.origin,
         )
-
-
-def default_settings() -> Settings:
-    return resolve(None)

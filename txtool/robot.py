@@ -93,7 +93,10 @@ def is_xacro_element(element: etree._Element) -> bool:
 
 
 def children(element: etree._Element, name: str) -> list[etree._Element]:
-    """Child elements named ``name`` in any namespace (or none)."""
+    """Child elements named ``name`` in any namespace (or none); from the kept index inside
+    :func:`indexed_children`."""
+    if _INDEXES is not None:
+        return list(child_index(element).get(name, ()))
     return list(element.iterchildren("{*}" + name))
 
 

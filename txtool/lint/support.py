@@ -8,11 +8,10 @@ from typing import Any
 
 from lxml import etree
 
-from txtool import robot
 from txtool.lint.context import LintContext
 from txtool.model import Member
 from txtool.reader import Found, enclosing_component
-from txtool.robot import JointInfo, is_xacro_element, local
+from txtool.robot import JointInfo, children, is_xacro_element, local
 
 # Transmission families with their own loaders (not ros_control's transmission_interface):
 # pr2_mechanism / ros_ethercat parse their own XML; franka_hw registers state/model interfaces.
@@ -62,12 +61,6 @@ def _memo(found: Found, what: str, compute: Callable[[Found], Any]) -> Any:
 def forget() -> None:
     """Drop the answers kept for the last document."""
     _MEMO.clear()
-
-
-def children(element: etree._Element, name: str) -> list[etree._Element]:
-    """Child elements named ``name`` in any namespace (like :func:`txtool.robot.children`,
-    from the index the linter keeps while it checks a document)."""
-    return list(robot.child_index(element).get(name, ()))
 
 
 # xacro itself goes by the "xacro:" prefix; files use several namespace spellings.
