@@ -13,8 +13,9 @@ import jsonschema
 import pytest
 
 from tests.lint.conftest import BROKEN
+from txtool.problem import Problem
 from txtool.reporters import Summary, render
-from txtool.reporters.json_format import schema_text
+from txtool.reporters.report_schema import Report, schema_text
 from txtool.reporters.sarif import artifact_uri, sarif_log
 from txtool.reporters.text import summary_line
 
@@ -50,6 +51,17 @@ def test_json_report_matches_golden_and_schema(report):
     assert out == golden("report.json", out)
     schema = json.loads((ROOT / "schemas" / "report.schema.json").read_text())
     jsonschema.Draft202012Validator(schema).validate(json.loads(out))
+    Report.model_validate_json(out)  # the models the schema is generated from
+
+
+@pytest.mark.parametrize("message", ["plain", "naïve \"quoted\" \\ back", "tab\there\nline",
+                                     "\x00\x1f\x7f control", "wide 関節 and 🦾"])
+def test_json_report_is_what_the_pydantic_models_write(message):
+    problem = Problem("a/ü.urdf", 3, 5, "TX105", message, severity="warning",
+                      name="invalid-number", fixable=None)
+    summary = Summary(1, 0, 1, 0)
+    written = render("json", [problem], summary)
+    assert written == Report.model_validate_json(written).model_dump_json(indent=2) + "\n"
 
 
 def test_github_report_matches_golden(report):
@@ -115,7 +127,7 @@ def test_the_schema_validation_can_fail():
 
 def test_checked_in_report_schema_is_current():
     checked_in = (ROOT / "schemas" / "report.schema.json").read_text()
-    assert checked_in == schema_text(), "run: python -m txtool.reporters.json_format > " \
+    assert checked_in == schema_text(), "run: python -m txtool.reporters.report_schema > " \
         "schemas/report.schema.json"
 
 

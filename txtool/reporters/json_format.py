@@ -1,89 +1,33 @@
-"""The ``json`` report; its pydantic models generate ``schemas/report.schema.json``.
+"""The ``json`` report, as described by ``schemas/report.schema.json``.
 
-Regenerate the checked-in schema with ``python -m txtool.reporters.json_format``.
+The schema comes from the pydantic models in :mod:`txtool.reporters.report_schema`; the
+report is plain ``json`` so that a run over many files does not load pydantic.
 """
 
 from __future__ import annotations
 
 import json
 from collections.abc import Sequence
-from typing import Any, Literal
-
-from pydantic import BaseModel, ConfigDict, Field
+from typing import Any
 
 from txtool.problem import Problem
 from txtool.reporters import Summary, end_of
 
 
-class ReportProblem(BaseModel):
-    """One finding; positions are 1-based, ``end_column`` is exclusive."""
-
-    model_config = ConfigDict(extra="forbid")
-
-    path: str = Field(description="The file as given on the command line (or --stdin-filename).")
-    line: int = Field(ge=1)
-    column: int = Field(ge=1)
-    end_line: int = Field(ge=1)
-    end_column: int = Field(ge=1)
-    severity: Literal["error", "warning", "info"]
-    code: str = Field(pattern=r"^TX\d{3}$", description="Stable rule code, e.g. TX105.")
-    name: str = Field(description="The rule's kebab-case name, e.g. invalid-number.")
-    message: str
-    fixable: bool = Field(description="Whether `txtool migrate` can fix it.")
-
-
-class ReportSummary(BaseModel):
-    model_config = ConfigDict(extra="forbid")
-
-    files: int = Field(ge=0, description="Files read.")
-    errors: int = Field(ge=0)
-    warnings: int = Field(ge=0)
-    infos: int = Field(ge=0)
-
-
-class Report(BaseModel):
-    """The output of ``txtool validate --format json``."""
-
-    model_config = ConfigDict(extra="forbid")
-
-    problems: list[ReportProblem]
-    summary: ReportSummary
-
-
-def report(problems: Sequence[Problem], summary: Summary) -> Report:
+def report(problems: Sequence[Problem], summary: Summary) -> dict[str, Any]:
+    """The report as JSON-ready data, keys in the schema's order."""
     rows = []
     for p in problems:
         end_line, end_column = end_of(p)
-        rows.append(
-            ReportProblem(
-                path=p.path, line=p.line, column=p.column, end_line=end_line,
-                end_column=end_column, severity=p.severity, code=p.code, name=p.name,
-                message=p.message, fixable=p.fixable,
-            )
-        )
-    return Report(
-        problems=rows,
-        summary=ReportSummary(
-            files=summary.files, errors=summary.errors, warnings=summary.warnings,
-            infos=summary.infos,
-        ),
-    )
+        rows.append({
+            "path": p.path, "line": p.line, "column": p.column, "end_line": end_line,
+            "end_column": end_column, "severity": p.severity, "code": p.code, "name": p.name,
+            "message": p.message, "fixable": bool(p.fixable),
+        })
+    totals = {"files": summary.files, "errors": summary.errors, "warnings": summary.warnings,
+              "infos": summary.infos}
+    return {"problems": rows, "summary": totals}
 
 
 def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False) -> str:
-    return report(problems, summary).model_dump_json(indent=2) + "\n"
-
-
-def report_schema() -> dict[str, Any]:
-    schema = Report.model_json_schema()
-    schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
-    schema["title"] = "txtool validate report (txtool validate --format json)"
-    return schema
-
-
-def schema_text() -> str:
-    return json.dumps(report_schema(), indent=2, sort_keys=True) + "\n"
-
-
-if __name__ == "__main__":
-    print(schema_text(), end="")
+    return json.dumps(report(problems, summary), indent=2, ensure_ascii=False) + "\n"

@@ -1,0 +1,63 @@
+"""The pydantic models of the ``json`` report; they generate ``schemas/report.schema.json``.
+
+Regenerate the checked-in schema with ``python -m txtool.reporters.report_schema``. The report
+itself is written by :mod:`txtool.reporters.json_format` without pydantic (loading pydantic
+costs more than checking many files); a test holds the two together.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field
+
+
+class ReportProblem(BaseModel):
+    """One finding; positions are 1-based, ``end_column`` is exclusive."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    path: str = Field(description="The file as given on the command line (or --stdin-filename).")
+    line: int = Field(ge=1)
+    column: int = Field(ge=1)
+    end_line: int = Field(ge=1)
+    end_column: int = Field(ge=1)
+    severity: Literal["error", "warning", "info"]
+    code: str = Field(pattern=r"^TX\d{3}$", description="Stable rule code, e.g. TX105.")
+    name: str = Field(description="The rule's kebab-case name, e.g. invalid-number.")
+    message: str
+    fixable: bool = Field(description="Whether `txtool migrate` can fix it.")
+
+
+class ReportSummary(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    files: int = Field(ge=0, description="Files read.")
+    errors: int = Field(ge=0)
+    warnings: int = Field(ge=0)
+    infos: int = Field(ge=0)
+
+
+class Report(BaseModel):
+    """The output of ``txtool validate --format json``."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    problems: list[ReportProblem]
+    summary: ReportSummary
+
+
+def report_schema() -> dict[str, Any]:
+    schema = Report.model_json_schema()
+    schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
+    schema["title"] = "txtool validate report (txtool validate --format json)"
+    return schema
+
+
+def schema_text() -> str:
+    return json.dumps(report_schema(), indent=2, sort_keys=True) + "\n"
+
+
+if __name__ == "__main__":
+    print(schema_text(), end="")
