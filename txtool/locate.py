@@ -29,6 +29,10 @@ class Position:
 class Locator:
     def __init__(self, source: Source) -> None:
         self.source = source
+        self._tag_index: dict[tuple[int, str], tuple[list[int], dict[str, int]]] = {}
+        # Several rules report at the same element; the keys keep the lxml proxies (and so
+        # their identities) alive.
+        self._positions: dict[etree._Element, Position] = {}
 
     @property
     def lines(self) -> list[str]:
@@ -61,12 +65,14 @@ class Locator:
             found = self._tag_index[key] = (starts, by_name)
         return found
 
-    @cached_property
-    def _tag_index(self) -> dict[tuple[int, str], tuple[list[int], dict[str, int]]]:
-        return {}
-
     def position(self, element: etree._Element) -> Position:
         """Where ``element`` (of :attr:`Source.tree`) is written."""
+        known = self._positions.get(element)
+        if known is None:
+            known = self._positions[element] = self._position(element)
+        return known
+
+    def _position(self, element: etree._Element) -> Position:
         if not self.source.expanded:
             line = element.sourceline or 1
             return Position(line, self.column(line, local(element), element.get("name")))

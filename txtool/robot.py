@@ -93,11 +93,19 @@ def is_xacro_element(element: etree._Element) -> bool:
 
 
 def children(element: etree._Element, name: str) -> list[etree._Element]:
-    """Child elements named ``name`` in any namespace (or none); from the kept index inside
-    :func:`indexed_children`."""
-    if _INDEXES is not None:
-        return list(child_index(element).get(name, ()))
-    return list(element.iterchildren("{*}" + name))
+    """Child elements named ``name`` in any namespace (or none).
+
+    Inside :func:`indexed_children` the list is the kept index's own: do not change it.
+    """
+    if _INDEXES is None:
+        return list(element.iterchildren("{*}" + name))
+    index = _INDEXES.get(element)  # child_index() inlined: the linter's most frequent call
+    if index is None:
+        index = _INDEXES[element] = _child_index(element)
+    return index.get(name, _NONE)
+
+
+_NONE: list[etree._Element] = []  # shared, never changed
 
 
 # While the linter reads and checks one document its tree does not change, and the same

@@ -18,6 +18,7 @@ from click.testing import CliRunner
 
 from tests.corpus import corpus_dir, corpus_file
 from tests.hardening.hostile_inputs import one_line_error, robot, run
+from txtool import xmlio
 from txtool.cli import cli
 from txtool.xmlio import document_text, parse_bytes
 
@@ -172,14 +173,14 @@ def test_an_unreadable_file_is_one_line(tmp_path, monkeypatch):
     document = tmp_path / "robot.urdf"
     document.write_text(GERMAN)
     if os.geteuid() == 0:  # root reads anything: make reading it fail as it would for a user
-        real = Path.read_bytes
+        real = open
 
-        def denied(self: Path) -> bytes:
-            if self == document:
-                raise PermissionError(13, "Permission denied", str(self))
-            return real(self)
+        def denied(file, *args, **kwargs):
+            if os.fspath(file) == str(document):
+                raise PermissionError(13, "Permission denied", str(file))
+            return real(file, *args, **kwargs)
 
-        monkeypatch.setattr(Path, "read_bytes", denied)
+        monkeypatch.setattr(xmlio, "open", denied, raising=False)
     else:
         document.chmod(0)
     expected = f"txtool: {document}: permission denied"

@@ -28,6 +28,7 @@ from tests.hardening.hostile_inputs import (
     robot,
     run,
 )
+from txtool import xmlio
 from txtool.xmlio import MAX_BYTES
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -341,15 +342,27 @@ def test_a_file_over_the_size_limit_is_refused_unread(tmp_path, monkeypatch):
     document = tmp_path / "huge.urdf"
     with document.open("wb") as handle:
         handle.truncate(MAX_BYTES + 1)  # sparse: nothing is written, nothing could be read
-    opened = []
-    real_open = Path.open
+    read = []
+    real_open = open
 
-    def watching_open(self, *args, **kwargs):
-        opened.append(self)
-        return real_open(self, *args, **kwargs)
+    class Unread:  # the size is asked of the open file; its content must not be read
+        def __init__(self, handle):
+            self.handle = handle
 
-    monkeypatch.setattr(Path, "open", watching_open)
-    monkeypatch.setattr(Path, "read_bytes", lambda self: pytest.fail(f"{self} was read"))
+        def __enter__(self):
+            return self
+
+        def __exit__(self, *exc_info):
+            self.handle.close()
+
+        def fileno(self):
+            return self.handle.fileno()
+
+        def read(self, *args):
+            read.append(self.handle.name)
+            return self.handle.read(*args)
+
+    monkeypatch.setattr(xmlio, "open", lambda *a, **k: Unread(real_open(*a, **k)), raising=False)
     reason = f"txtool: {document}: file is {MAX_BYTES + 1} bytes, larger than the {MAX_BYTES} limit"
     for args in (["show"], ["convert", "--to", "ros1"]):
         code, out, err = run(*args, str(document))
@@ -357,7 +370,7 @@ def test_a_file_over_the_size_limit_is_refused_unread(tmp_path, monkeypatch):
     code, out, err = run("validate", str(document))
     assert (code, one_line_error(err)) == (2, reason)
     assert out == "No problems in 0 files; 1 file could not be read.\n"
-    assert document not in opened
+    assert read == []
 
 
 def nested(depth: int) -> str:

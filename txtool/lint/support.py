@@ -145,8 +145,16 @@ class NumberRef:
         return f"{self.field} of {self.noun} '{self.member}'"
 
 
-def read_numbers(found: Found) -> Iterator[NumberRef]:
+def read_numbers(found: Found) -> list[NumberRef]:
     """The reduction and offset elements the transmission's loader reads (standard types)."""
+    return _memo(found, "read_numbers", _numbers)  # type: ignore[no-any-return]
+
+
+def _numbers(found: Found) -> list[NumberRef]:
+    return list(_each_number(found))
+
+
+def _each_number(found: Found) -> Iterator[NumberRef]:
     t = found.transmission
     if t.kind == "other" or (t.dialect == "ros1" and not typed_ros1(found)):
         return
