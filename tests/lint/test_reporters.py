@@ -14,7 +14,7 @@ import pytest
 
 from tests.lint.conftest import BROKEN
 from txtool.problem import Problem
-from txtool.reporters import Summary, render
+from txtool.reporters import Summary, json_format, render
 from txtool.reporters.report_schema import Report, schema_text
 from txtool.reporters.sarif import artifact_uri, sarif_log
 from txtool.reporters.text import summary_line
@@ -60,8 +60,10 @@ def test_json_report_is_what_the_pydantic_models_write(message):
     problem = Problem("a/ü.urdf", 3, 5, "TX105", message, severity="warning",
                       name="invalid-number", fixable=None)
     summary = Summary(1, 0, 1, 0)
-    written = render("json", [problem], summary)
-    assert written == Report.model_validate_json(written).model_dump_json(indent=2) + "\n"
+    for problems in ([], [problem], [problem, problem]):
+        written = render("json", problems, summary)
+        assert written == json.dumps(json_format.report(problems, summary), indent=2, ensure_ascii=False) + "\n"
+        assert written == Report.model_validate_json(written).model_dump_json(indent=2) + "\n"
 
 
 def test_github_report_matches_golden(report):

@@ -1,17 +1,34 @@
 """The ``json`` report, as described by ``schemas/report.schema.json``.
 
-The schema comes from the pydantic models in :mod:`txtool.reporters.report_schema`; the
-report is plain ``json`` so that a run over many files does not load pydantic.
+The schema comes from the pydantic models in :mod:`txtool.reporters.report_schema`; the report
+is written here without pydantic (loading it costs more than checking many files). The text
+is what ``json.dumps(report(...), indent=2, ensure_ascii=False)`` writes, built row by row
+with the C string encoder, which is several times faster for reports of thousands of problems;
+a test holds both, and pydantic's models, to the same bytes.
 """
 
 from __future__ import annotations
 
 import json
 from collections.abc import Sequence
+from json.encoder import encode_basestring  # type: ignore[attr-defined]
 from typing import Any
 
 from txtool.problem import Problem
 from txtool.reporters import Summary, end_of
+
+_ROW = """    {
+      "path": %s,
+      "line": %d,
+      "column": %d,
+      "end_line": %d,
+      "end_column": %d,
+      "severity": %s,
+      "code": %s,
+      "name": %s,
+      "message": %s,
+      "fixable": %s
+    }"""
 
 
 def report(problems: Sequence[Problem], summary: Summary) -> dict[str, Any]:
@@ -24,10 +41,24 @@ def report(problems: Sequence[Problem], summary: Summary) -> dict[str, Any]:
             "end_column": end_column, "severity": p.severity, "code": p.code, "name": p.name,
             "message": p.message, "fixable": bool(p.fixable),
         })
-    totals = {"files": summary.files, "errors": summary.errors, "warnings": summary.warnings,
-              "infos": summary.infos}
-    return {"problems": rows, "summary": totals}
+    return {"problems": rows, "summary": _totals(summary)}
+
+
+def _totals(summary: Summary) -> dict[str, int]:
+    return {"files": summary.files, "errors": summary.errors, "warnings": summary.warnings,
+            "infos": summary.infos}
 
 
 def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False) -> str:
-    return json.dumps(report(problems, summary), indent=2, ensure_ascii=False) + "\n"
+    totals = json.dumps({"summary": _totals(summary)}, indent=2)[2:]  # '"summary": {...}\n}'
+    if not problems:
+        return '{\n  "problems": [],\n' + totals + "\n"
+    rows = []
+    for p in problems:
+        end_line, end_column = end_of(p)
+        rows.append(_ROW % (
+            encode_basestring(p.path), p.line, p.column, end_line, end_column,
+            encode_basestring(p.severity), encode_basestring(p.code), encode_basestring(p.name),
+            encode_basestring(p.message), "true" if p.fixable else "false",
+        ))
+    return '{\n  "problems": [\n' + ",\n".join(rows) + "\n  ],\n" + totals + "\n"

@@ -30,6 +30,7 @@ def sarif_log(problems: Sequence[Problem]) -> dict[str, Any]:
 
     rules = list(all_rules().values())
     index = {rule.code: i for i, rule in enumerate(rules)}
+    uris: dict[str, str] = {}  # one per file, not per problem
     driver = {
         "name": "txtool",
         "semanticVersion": __version__,
@@ -42,7 +43,7 @@ def sarif_log(problems: Sequence[Problem]) -> dict[str, Any]:
             {
                 "tool": {"driver": driver},
                 "columnKind": "unicodeCodePoints",
-                "results": [_result(p, index) for p in problems],
+                "results": [_result(p, index, uris) for p in problems],
             }
         ],
     }
@@ -88,8 +89,11 @@ def _markdown(rule: Any) -> str:
     return "\n".join(out).replace("```xml\n\n", "```xml\n")
 
 
-def _result(problem: Problem, index: dict[str, int]) -> dict[str, Any]:
+def _result(problem: Problem, index: dict[str, int], uris: dict[str, str]) -> dict[str, Any]:
     end_line, end_column = end_of(problem)
+    uri = uris.get(problem.path)
+    if uri is None:
+        uri = uris[problem.path] = artifact_uri(problem.path)
     result: dict[str, Any] = {
         "ruleId": problem.code,
         "level": LEVELS.get(problem.severity, "error"),
@@ -97,7 +101,7 @@ def _result(problem: Problem, index: dict[str, int]) -> dict[str, Any]:
         "locations": [
             {
                 "physicalLocation": {
-                    "artifactLocation": {"uri": artifact_uri(problem.path)},
+                    "artifactLocation": {"uri": uri},
                     "region": {
                         "startLine": problem.line,
                         "startColumn": problem.column,
