@@ -20,7 +20,7 @@ from lxml import etree
 
 from txtool.model import Dialect, Location, Member, Number, Transmission, kind_of, replace
 from txtool.numbers import parse_ros1, parse_ros2
-from txtool.robot import Component, child_index, children, component_of, local
+from txtool.robot import Component, ancestor, child_index, children, component_of
 from txtool.xmlio import Source
 
 if TYPE_CHECKING:
@@ -63,32 +63,21 @@ def transmission_elements(root: etree._Element) -> list[etree._Element]:
 
 
 def _inside_transmission(element: etree._Element) -> bool:
-    parent = element.getparent()
-    while parent is not None:
-        if local(parent) == "transmission":
-            return True
-        parent = parent.getparent()
-    return False
+    return ancestor(element, "transmission") is not None
 
 
 def enclosing_component(element: etree._Element) -> etree._Element | None:
-    parent = element.getparent()
-    while parent is not None:
-        if local(parent) == "ros2_control":
-            return parent
-        parent = parent.getparent()
-    return None
+    """The nearest ``<ros2_control>`` ancestor, in any namespace."""
+    return ancestor(element, "ros2_control")
 
 
 def detect_dialect(element: etree._Element) -> Dialect:
     kids = child_index(element)
-    members = kids.get("joint", []) + kids.get("actuator", [])
-    ros2 = "plugin" in kids or any(m.get("role") is not None for m in members)
-    ros2 = ros2 or enclosing_component(element) is not None
-    if not ros2:
+    members = (*kids.get("joint", ()), *kids.get("actuator", ()))
+    role_attributes = any(m.get("role") is not None for m in members)
+    if not (role_attributes or "plugin" in kids or enclosing_component(element) is not None):
         return "ros1"
     role_elements = any(children(m, "role") for m in members)
-    role_attributes = any(m.get("role") is not None for m in members)
     return "ros2-p1" if role_elements and not role_attributes else "ros2-p2"
 
 
@@ -150,7 +139,7 @@ def _read_ros1(element: etree._Element, locator: Locator | None) -> Transmission
     kids = child_index(element)
     type_string = _ros1_type(element, kids)
     legacy = _number(_first_text(kids, "mechanicalReduction"), parse_ros1)
-    joints = tuple(_ros1_member(j, locator) for j in kids.get("joint", ()))
+    joints = tuple([_ros1_member(j, locator) for j in kids.get("joint", ())])
     actuators = [_ros1_member(a, locator) for a in kids.get("actuator", ())]
     if legacy is not None and len(actuators) == 1 and actuators[0].mechanical_reduction is None:
         # Pre-Hydro form: the reduction stands under <transmission>, meaning the actuator's.
@@ -170,11 +159,8 @@ def _read_ros1(element: etree._Element, locator: Locator | None) -> Transmission
 
 def _ros1_member(element: etree._Element, locator: Locator | None) -> Member:
     kids = child_index(element)
-    interfaces = tuple(
-        (text_of(h) or "").strip()
-        for h in kids.get("hardwareInterface", ())
-        if (text_of(h) or "").strip()
-    )
+    declared = kids.get("hardwareInterface")
+    interfaces = _stripped_texts(declared) if declared else ()
     role = _first_text(kids, "role")
     return Member(
         name=element.get("name", ""),
@@ -182,8 +168,14 @@ def _ros1_member(element: etree._Element, locator: Locator | None) -> Member:
         mechanical_reduction=_number(_first_text(kids, "mechanicalReduction"), parse_ros1),
         offset=_number(_first_text(kids, "offset"), parse_ros1),
         interfaces=interfaces,
-        location=_location(element, locator),
+        location=_location(element, locator) if locator is not None else None,
     )
+
+
+def _stripped_texts(elements: list[etree._Element]) -> tuple[str, ...]:
+    """The texts of ``elements``, stripped, without the empty ones."""
+    texts = [(e.text or "").strip() for e in elements]
+    return tuple([text for text in texts if text])
 
 
 def _read_ros2(

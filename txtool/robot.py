@@ -148,37 +148,61 @@ def _child_index(element: etree._Element) -> dict[str, list[etree._Element]]:
 
 
 def robot_joints(root: etree._Element, *, limits: bool = True) -> dict[str, JointInfo]:
-    """The URDF joints of a document (any depth, outside ``<ros2_control>``).
+    """The URDF joints of a document (see :func:`joint_elements`) by name.
 
-    With ``limits=False`` only names, types and mimics are read (limits ``None``, dynamics 0):
-    the linter needs no more, and reading numbers for every joint of a robot costs.
+    With ``limits=False`` only names, types and mimics are read (limits ``None``, dynamics 0).
     """
-    joints: dict[str, JointInfo] = {}
+    return {name: joint_info(element, limits=limits)
+            for name, element in joint_elements(root).items()}
+
+
+def joint_elements(root: etree._Element) -> dict[str, etree._Element]:
+    """The URDF ``<joint>`` elements of a document by name: any depth, outside
+    ``<ros2_control>`` and ``<transmission>``, with a name and a type (of a repeated name, the
+    last)."""
+    joints: dict[str, etree._Element] = {}
+    not_urdf = ("ros2_control", "transmission")
+    root_is_urdf = local(root) not in not_urdf
     for element in root.iter("{*}joint"):
-        if _inside(element, ("ros2_control", "transmission")):
+        if element.getparent() is root:  # where URDF joints stand: no walk needed
+            if not root_is_urdf:
+                continue
+        elif _inside(element, not_urdf):
             continue
         name = element.get("name")
-        if name is None or element.get("type") is None:
-            continue
-        if limits:
-            joints[name] = _joint_info(element, name)
-        else:
-            mimic = next(element.iterchildren("{*}mimic"), None)
-            joints[name] = JointInfo(
-                name=name, type=element.get("type", ""),
-                mimic=mimic.get("joint") if mimic is not None else None,
-                line=element.sourceline or 0,
-            )
+        if name is not None and element.get("type") is not None:
+            joints[name] = element
     return joints
 
 
+def joint_info(element: etree._Element, *, limits: bool = True) -> JointInfo:
+    """One ``<joint>`` element read; with ``limits=False`` its limits and dynamics are not."""
+    name = element.get("name", "")
+    if limits:
+        return _joint_info(element, name)
+    mimic = next(element.iterchildren("{*}mimic"), None)
+    return JointInfo(
+        name=name, type=element.get("type", ""),
+        mimic=mimic.get("joint") if mimic is not None else None,
+        line=element.sourceline or 0,
+    )
+
+
 def _inside(element: etree._Element, names: tuple[str, ...]) -> bool:
+    return any(ancestor(element, name) is not None for name in names)
+
+
+def ancestor(element: etree._Element, name: str) -> etree._Element | None:
+    """The nearest ancestor named ``name`` in any namespace (or none), else None."""
+    # A walk with string tests: lxml's iterancestors() costs more to set up than this.
+    qualified = "}" + name
     parent = element.getparent()
     while parent is not None:
-        if local(parent) in names:
-            return True
+        tag = parent.tag  # a parent is always an element: its tag is a string
+        if tag == name or tag.endswith(qualified):
+            return parent
         parent = parent.getparent()
-    return False
+    return None
 
 
 def _attr_number(element: etree._Element | None, key: str) -> float | None:

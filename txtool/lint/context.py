@@ -11,7 +11,7 @@ from lxml import etree
 
 from txtool.problem import Problem
 from txtool.reader import Found, read_source
-from txtool.robot import Component, JointInfo, components, local, robot_joints
+from txtool.robot import Component, JointInfo, components, joint_elements, joint_info, local
 from txtool.xmlio import Source
 
 if TYPE_CHECKING:
@@ -49,8 +49,8 @@ class LintContext:
         return Locator(self.source)
 
     @cached_property
-    def joints(self) -> dict[str, JointInfo]:
-        return robot_joints(self.source.root, limits=False)
+    def joints(self) -> Mapping[str, JointInfo]:
+        return Joints(joint_elements(self.source.root))
 
     @cached_property
     def components(self) -> list[Component]:
@@ -80,3 +80,27 @@ class LintContext:
 
     def transmissions(self) -> Iterator[Found]:
         return iter(self.found)
+
+
+class Joints(Mapping[str, JointInfo]):
+    """The robot's joints by name, each read when a rule first asks for it: rules look up the
+    few joints transmissions name, and a robot may have hundreds."""
+
+    def __init__(self, elements: dict[str, etree._Element]) -> None:
+        self._elements = elements
+        self._read: dict[str, JointInfo] = {}
+
+    def __getitem__(self, name: str) -> JointInfo:
+        info = self._read.get(name)
+        if info is None:
+            info = self._read[name] = joint_info(self._elements[name], limits=False)
+        return info
+
+    def __contains__(self, name: object) -> bool:
+        return name in self._elements
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._elements)
+
+    def __len__(self) -> int:
+        return len(self._elements)
