@@ -34,7 +34,7 @@ class Locator:
         # their identities) alive.
         self._positions: dict[etree._Element, Position] = {}
 
-    @property
+    @cached_property
     def lines(self) -> list[str]:
         return text_lines(self.source.data)
 

@@ -13,8 +13,8 @@ Numbers are parsed the way the detected loader parses them (see :mod:`txtool.num
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 from lxml import etree
 
@@ -29,10 +29,14 @@ if TYPE_CHECKING:
 
 @dataclass(frozen=True)
 class Found:
-    """A transmission and the element it was read from (in ``Source.tree``)."""
+    """A transmission and the element it was read from (in ``Source.tree``).
+
+    ``memo`` keeps answers that lint rules share (see :mod:`txtool.lint.support`).
+    """
 
     transmission: Transmission
     element: etree._Element
+    memo: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
 
 
 def read_source(source: Source, *, locate: bool = True) -> list[Found]:

@@ -19,7 +19,6 @@ import re
 from typing import TYPE_CHECKING
 
 from txtool.config import Settings, resolve
-from txtool.lint import support
 from txtool.lint.context import LintContext
 from txtool.lint.suppress import parse as parse_suppressions
 from txtool.problem import Problem
@@ -122,12 +121,9 @@ def run_rules(ctx: LintContext, settings: Settings) -> list[Problem]:
     problems: list[Problem] = []
     if not ctx.found:
         return problems  # every rule is about transmissions
-    try:
-        for rule in all_rules().values():
-            if rule.code in settings.enabled and rule.code not in PIPELINE_CODES:
-                problems.extend(rule.check(ctx))
-    finally:
-        support.forget()
+    for rule in all_rules().values():
+        if rule.code in settings.enabled and rule.code not in PIPELINE_CODES:
+            problems.extend(rule.check(ctx))
     return problems
 
 

@@ -42,25 +42,13 @@ def _members(found: Found) -> list[MemberRef]:
     return refs
 
 
-# Every rule asks the same questions of each transmission; the answers are kept for the
-# document being linted (the engine calls forget() after its rules ran). Entries hold
-# ``found`` itself, so its id() cannot be reused while they live.
-_MEMO: dict[tuple[int, str], tuple[Found, Any]] = {}
-
-
 def _memo(found: Found, what: str, compute: Callable[[Found], Any]) -> Any:
-    key = (id(found), what)
-    cached = _MEMO.get(key)
-    if cached is not None and cached[0] is found:
-        return cached[1]
-    value = compute(found)
-    _MEMO[key] = (found, value)
+    """Every rule asks the same questions of each transmission: answer each once."""
+    memo = found.memo
+    if what in memo:
+        return memo[what]
+    value = memo[what] = compute(found)
     return value
-
-
-def forget() -> None:
-    """Drop the answers kept for the last document."""
-    _MEMO.clear()
 
 
 # xacro itself goes by the "xacro:" prefix; files use several namespace spellings.
