@@ -5,7 +5,8 @@ Run: ``python bench/bench_simulate.py [ROBOT.urdf ...]``. Without arguments it m
 and, when present, ``fixtures/demo_robot.urdf``. For each robot it reports startup (imports,
 loading, model build and the loop's setup) separately, then the per-step wall time of the closed
 loop and of a bare ``rnea + aba`` loop over the same states on the same model, and their ratio.
-Best of ``REPEAT`` runs each.
+Best of ``REPEAT`` runs each. txtool is byte-compiled first, as installing it does (see
+``installed.py``).
 """
 
 from __future__ import annotations
@@ -15,6 +16,8 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+
+from installed import byte_compile
 
 REPEAT = 15
 ROOT = Path(__file__).resolve().parent.parent
@@ -110,6 +113,7 @@ def _bare(pin: object, model: object, data: object, qs: object, vs: object, accs
 
 
 def main(argv: list[str]) -> None:
+    byte_compile()
     paths = list(argv)
     with tempfile.TemporaryDirectory() as folder:
         if not paths:

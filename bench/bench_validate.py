@@ -13,6 +13,8 @@ Run: ``python bench/bench_validate.py [--files N] [--repeat R] [--synthetic]``.
 * **Imports.** The modules ``txtool validate`` loads must not include pinocchio, yourdfpy,
   trimesh or numpy.
 
+txtool is byte-compiled first, as installing it does (see ``installed.py``).
+
 Best of R runs for the many-files timings, median of R for the one-file timings (default 11).
 """
 
@@ -28,6 +30,8 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+
+from installed import byte_compile
 
 ROOT = Path(__file__).resolve().parent.parent
 CORPUS = ROOT.parent / "shared" / "corpus"
@@ -140,6 +144,7 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=11)
     parser.add_argument("--synthetic", action="store_true", help="generated arms, not the corpus")
     args = parser.parse_args()
+    byte_compile()
     with tempfile.TemporaryDirectory() as folder:
         robot = Path(folder) / "arm.urdf"
         robot.write_text(synthetic_arm())

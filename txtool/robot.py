@@ -189,7 +189,12 @@ def joint_info(element: etree._Element, *, limits: bool = True) -> JointInfo:
 
 
 def _inside(element: etree._Element, names: tuple[str, ...]) -> bool:
-    return any(ancestor(element, name) is not None for name in names)
+    parent = element.getparent()
+    while parent is not None:
+        if parent.tag.rpartition("}")[2] in names:  # a parent is an element: its tag is a str
+            return True
+        parent = parent.getparent()
+    return False
 
 
 def ancestor(element: etree._Element, name: str) -> etree._Element | None:

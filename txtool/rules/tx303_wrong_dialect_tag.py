@@ -43,12 +43,14 @@ from txtool.lint.context import LintContext
 from txtool.lint.support import children, label
 from txtool.problem import Problem
 from txtool.reader import Found
-from txtool.robot import local
+from txtool.robot import child_index, local
 
 CODE = "TX303"
 NAME = "wrong-dialect-tag"
 SEVERITY = "error"
 FIXABLE = False
+
+_ROS1_SPELLINGS = frozenset({"mechanicalReduction", "hardwareInterface", "hardware_interface"})
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
@@ -78,8 +80,11 @@ def _check_ros2(ctx: LintContext, found: Found) -> Iterator[Problem]:
             "ignores it and reads the type from <plugin>",
         )
     for owner in [found.element, *_members(found)]:
+        kids = child_index(owner)
+        if not _ROS1_SPELLINGS.intersection(kids):
+            continue
         where = _whose(found, owner)
-        for element in children(owner, "mechanicalReduction"):
+        for element in kids.get("mechanicalReduction", ()):
             yield ctx.problem(
                 CODE,
                 element,
@@ -87,7 +92,7 @@ def _check_ros2(ctx: LintContext, found: Found) -> Iterator[Problem]:
                 "<mechanical_reduction>, so the reduction silently becomes 1.0",
             )
         for spelling in ("hardwareInterface", "hardware_interface"):
-            for element in children(owner, spelling):
+            for element in kids.get(spelling, ()):
                 yield ctx.problem(
                     CODE,
                     element,
@@ -112,15 +117,18 @@ def _role_message(found: Found, member: etree._Element) -> str:
 
 def _check_ros1(ctx: LintContext, found: Found) -> Iterator[Problem]:
     for owner in [found.element, *_members(found)]:
+        kids = child_index(owner)
+        if "mechanical_reduction" not in kids and "hardware_interface" not in kids:
+            continue  # the common case: say nothing, build no message
         where = _whose(found, owner)
-        for element in children(owner, "mechanical_reduction"):
+        for element in kids.get("mechanical_reduction", ()):
             yield ctx.problem(
                 CODE,
                 element,
                 f"{where} uses the ROS 2 <mechanical_reduction>: ros_control reads only "
                 "<mechanicalReduction> and never sees this value",
             )
-        for element in children(owner, "hardware_interface"):
+        for element in kids.get("hardware_interface", ()):
             yield ctx.problem(
                 CODE,
                 element,
