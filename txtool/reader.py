@@ -12,7 +12,7 @@ Numbers are parsed the way the detected loader parses them (see :mod:`txtool.num
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -39,11 +39,18 @@ class Found:
     memo: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
 
 
-def read_source(source: Source, *, locate: bool = True) -> list[Found]:
+def read_source(
+    source: Source,
+    *,
+    locate: bool = True,
+    candidates: Iterable[etree._Element] | None = None,
+) -> list[Found]:
     """All transmissions of ``source`` in document order.
 
     With ``locate=False`` the model carries no locations (the linter places its findings from
     the elements, and finding columns for every member would cost more than the rules).
+    ``candidates`` are the tree's ``<transmission>`` elements in document order when the
+    caller has walked the tree already.
     """
     locator = None
     if locate:
@@ -53,14 +60,17 @@ def read_source(source: Source, *, locate: bool = True) -> list[Found]:
     components: dict[etree._Element, Component] = {}  # each read once, however many members
     return [
         Found(read_transmission(element, locator, components), element)
-        for element in transmission_elements(source.root)
+        for element in transmission_elements(source.root, candidates)
     ]
 
 
-def transmission_elements(root: etree._Element) -> list[etree._Element]:
-    """``<transmission>`` elements that are transmissions (not nested in another one)."""
+def transmission_elements(
+    root: etree._Element, candidates: Iterable[etree._Element] | None = None
+) -> list[etree._Element]:
+    """``<transmission>`` elements that are transmissions (not nested in another one), of
+    ``root`` or among its already collected ``candidates``."""
     found = []
-    for element in root.iter("{*}transmission"):
+    for element in root.iter("{*}transmission") if candidates is None else candidates:
         if not _inside_transmission(element):
             found.append(element)
     return found

@@ -7,7 +7,7 @@ URDF ``<joint>`` elements (type, limits, mimic, dynamics) and ROS 2 ``<ros2_cont
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import cached_property
@@ -156,14 +156,16 @@ def robot_joints(root: etree._Element, *, limits: bool = True) -> dict[str, Join
             for name, element in joint_elements(root).items()}
 
 
-def joint_elements(root: etree._Element) -> dict[str, etree._Element]:
+def joint_elements(
+    root: etree._Element, candidates: Iterable[etree._Element] | None = None
+) -> dict[str, etree._Element]:
     """The URDF ``<joint>`` elements of a document by name: any depth, outside
     ``<ros2_control>`` and ``<transmission>``, with a name and a type (of a repeated name, the
-    last)."""
+    last). ``candidates`` are the tree's ``<joint>`` elements when the caller has them."""
     joints: dict[str, etree._Element] = {}
     not_urdf = ("ros2_control", "transmission")
     root_is_urdf = local(root) not in not_urdf
-    for element in root.iter("{*}joint"):
+    for element in root.iter("{*}joint") if candidates is None else candidates:
         if element.getparent() is root:  # where URDF joints stand: no walk needed
             if not root_is_urdf:
                 continue
@@ -240,12 +242,13 @@ def _first(index: dict[str, list[etree._Element]], name: str) -> etree._Element 
     return found[0] if found else None
 
 
-def components(root: etree._Element) -> list[Component]:
-    """Every ``<ros2_control>`` element (the root itself for a bare fragment)."""
-    found = []
-    for element in root.iter("{*}ros2_control"):
-        found.append(component_of(element))
-    return found
+def components(
+    root: etree._Element, candidates: Iterable[etree._Element] | None = None
+) -> list[Component]:
+    """Every ``<ros2_control>`` element (the root itself for a bare fragment), or those
+    among ``candidates`` the caller collected."""
+    elements = root.iter("{*}ros2_control") if candidates is None else candidates
+    return [component_of(element) for element in elements]
 
 
 def component_of(element: etree._Element) -> Component:

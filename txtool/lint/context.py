@@ -18,6 +18,10 @@ if TYPE_CHECKING:
     from txtool.locate import Locator, Position
 
 
+_WALKED = ("transmission", "joint", "ros2_control")
+_WALKED_TAGS = tuple(f"{{*}}{name}" for name in _WALKED)
+
+
 @dataclass
 class LintContext:
     """One parsed document (after xacro expansion when the input is xacro).
@@ -40,7 +44,16 @@ class LintContext:
 
     def __post_init__(self) -> None:
         if not self.found:
-            self.found = read_source(self.source, locate=False)
+            candidates = self._walked["transmission"]
+            self.found = read_source(self.source, locate=False, candidates=candidates)
+
+    @cached_property
+    def _walked(self) -> dict[str, list[etree._Element]]:
+        """One walk of the tree for the elements rules look for at any depth."""
+        found: dict[str, list[etree._Element]] = {name: [] for name in _WALKED}
+        for element in self.source.root.iter(*_WALKED_TAGS):
+            found[element.tag.rpartition("}")[2]].append(element)
+        return found
 
     @cached_property
     def locator(self) -> Locator:
@@ -50,11 +63,11 @@ class LintContext:
 
     @cached_property
     def joints(self) -> Mapping[str, JointInfo]:
-        return Joints(joint_elements(self.source.root))
+        return Joints(joint_elements(self.source.root, self._walked["joint"]))
 
     @cached_property
     def components(self) -> list[Component]:
-        return components(self.source.root)
+        return components(self.source.root, self._walked["ros2_control"])
 
     @property
     def is_robot(self) -> bool:
