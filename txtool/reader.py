@@ -152,38 +152,45 @@ def _ros1_type(element: etree._Element, kids: dict[str, list[etree._Element]]) -
 def _read_ros1(element: etree._Element, locator: Locator | None) -> Transmission:
     kids = child_index(element)
     type_string = _ros1_type(element, kids)
-    legacy = _number(_first_text(kids, "mechanicalReduction"), parse_ros1)
+    kind = kind_of(type_string)
     joints = tuple([_ros1_member(j, locator) for j in kids.get("joint", ())])
     actuators = [_ros1_member(a, locator) for a in kids.get("actuator", ())]
-    if legacy is not None and len(actuators) == 1 and actuators[0].mechanical_reduction is None:
+    legacy = kids.get("mechanicalReduction")
+    if legacy and len(actuators) == 1 and actuators[0].mechanical_reduction is None:
         # Pre-Hydro form: the reduction stands under <transmission>, meaning the actuator's.
-        actuators[0] = replace(actuators[0], mechanical_reduction=legacy)
+        actuators[0] = replace(actuators[0], mechanical_reduction=_ros1_number(legacy[0]))
     return Transmission(
         name=element.get("name", ""),
         type=type_string,
-        kind=kind_of(type_string),
+        kind=kind,
         joints=joints,
         actuators=tuple(actuators),
-        parameters=_parameters(kids),
+        parameters=_parameters(kids) if "param" in kids else (),
         dialect="ros1",
-        location=_location(element, locator),
-        xml=_xml_if_custom(element, type_string),
+        location=_location(element, locator) if locator is not None else None,
+        xml=_xml(element) if kind == "other" else None,
     )
 
 
 def _ros1_member(element: etree._Element, locator: Locator | None) -> Member:
     kids = child_index(element)
     declared = kids.get("hardwareInterface")
-    interfaces = _stripped_texts(declared) if declared else ()
-    role = _first_text(kids, "role")
+    role = kids.get("role")
+    reduction = kids.get("mechanicalReduction")
+    offset = kids.get("offset")
     return Member(
         name=element.get("name", ""),
-        role=role.strip() if role is not None else None,
-        mechanical_reduction=_number(_first_text(kids, "mechanicalReduction"), parse_ros1),
-        offset=_number(_first_text(kids, "offset"), parse_ros1),
-        interfaces=interfaces,
+        role=(role[0].text or "").strip() if role else None,
+        mechanical_reduction=_ros1_number(reduction[0]) if reduction else None,
+        offset=_ros1_number(offset[0]) if offset else None,
+        interfaces=_stripped_texts(declared) if declared else (),
         location=_location(element, locator) if locator is not None else None,
     )
+
+
+def _ros1_number(element: etree._Element) -> Number:
+    text = element.text or ""
+    return Number(value=parse_ros1(text), text=text)
 
 
 def _stripped_texts(elements: list[etree._Element]) -> tuple[str, ...]:
@@ -254,6 +261,8 @@ def _parameters(kids: dict[str, list[etree._Element]]) -> tuple[tuple[str, str],
 
 
 def _xml_if_custom(element: etree._Element, type_string: str) -> str | None:
-    if kind_of(type_string) != "other":
-        return None
+    return _xml(element) if kind_of(type_string) == "other" else None
+
+
+def _xml(element: etree._Element) -> str:
     return etree.tostring(element, encoding="unicode", with_tail=False)
