@@ -84,12 +84,17 @@ class LintContext:
     def position(self, element: etree._Element) -> Position:
         return self.locator.position(element)
 
-    def problem(self, code: str, element: etree._Element, message: str) -> Problem:
-        """A problem at ``element``; marks positions only traced through xacro."""
+    def problem(
+        self, code: str, element: etree._Element, message: str, *, fixable: bool | None = None
+    ) -> Problem:
+        """A problem at ``element``; marks positions only traced through xacro.
+
+        ``fixable=False`` marks a finding the rule's fix declines by design.
+        """
         where = self.position(element)
         if where.expanded:
             message = f"{message} (after xacro expansion)"
-        return Problem(self.source.path, where.line, where.column, code, message)
+        return Problem(self.source.path, where.line, where.column, code, message, fixable=fixable)
 
     def transmissions(self) -> Iterator[Found]:
         return iter(self.found)

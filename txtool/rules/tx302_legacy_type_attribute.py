@@ -47,7 +47,6 @@ Passing example (what the fix writes)::
 
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Iterator
 
 from lxml import etree
@@ -75,10 +74,8 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         attribute = found.element.get("type")
         if found.transmission.dialect != "ros1" or attribute is None:
             continue
-        problem = ctx.problem(CODE, found.element, _message(found, attribute))
-        if not _fixed_by_us(found.element, attribute):
-            problem = dataclasses.replace(problem, fixable=False)
-        yield problem
+        fixable = None if _fixed_by_us(found.element, attribute) else False
+        yield ctx.problem(CODE, found.element, _message(found, attribute), fixable=fixable)
 
 
 def _fixed_by_us(transmission: etree._Element, attribute: str) -> bool:
