@@ -45,7 +45,7 @@ def use_color(mode: str) -> bool:
 @click.option("--stdin-filename", metavar="NAME",
               help="The name to report (and find the configuration by) for '-'.")
 @click.option("-j", "--jobs", type=click.IntRange(min=0), default=0, show_default=True,
-              help="Worker processes for many files (0: one per CPU; 1: no workers).")
+              help="Processes checking many files (0: one per CPU; 1: only this one).")
 @click.option("--color", type=click.Choice(["auto", "always", "never"]), default="auto",
               show_default=True, help="Colour the text output (NO_COLOR is honoured by auto).")
 @xacro_options

@@ -71,16 +71,15 @@ def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions) -> Lint
     return result
 
 
-# Below this many files per worker, starting the workers costs more than it saves.
+# Below this many files per process, forking costs more than it saves.
 MIN_FILES_PER_WORKER = 32
-_WORK: list[tuple[str, Settings]] = []  # what forked workers inherit (see _outcomes)
-_STDIN_NAME: str | None = None
 
 
 def worker_count(files: int, jobs: int) -> int:
-    """How many processes check ``files`` files: ``jobs``, or with 0 one per usable CPU, but
-    one when there are few files, and one where processes cannot be forked (only a fork
-    inherits the loaded modules cheaply) or threads are running (forking them is unsafe)."""
+    """How many processes (this one and its forks, see :mod:`txtool.lint.workers`) check
+    ``files`` files: ``jobs``, or with 0 one per usable CPU, but one when there are few files,
+    and one where processes cannot be forked (only a fork inherits the loaded modules cheaply)
+    or threads are running (forking them is unsafe)."""
     if jobs == 1 or sys.platform == "win32" or not hasattr(os, "fork"):
         return 1
     if threading.active_count() > 1:
@@ -94,25 +93,15 @@ def _outcomes(
     work: list[tuple[str, Settings]], options: LintOptions
 ) -> Iterator[list[Problem] | str]:
     """Each file's problems, or its input error as a string, in input order."""
-    global _WORK, _STDIN_NAME
     workers = worker_count(len(work), options.jobs)
+    stdin_name = options.stdin_filename
     if workers == 1 or any(path == "-" for path, _ in work):
         for index in range(len(work)):
-            yield _lint_one(index, work, options.stdin_filename)
+            yield _lint_one(index, work, stdin_name)
         return
-    import multiprocessing
+    from txtool.lint.workers import forked_map
 
-    _WORK, _STDIN_NAME = work, options.stdin_filename
-    try:
-        with multiprocessing.get_context("fork").Pool(workers) as pool:
-            chunk = max(1, min(64, len(work) // (workers * 8)))
-            yield from pool.imap(_lint_forked, range(len(work)), chunksize=chunk)
-    finally:
-        _WORK, _STDIN_NAME = [], None
-
-
-def _lint_forked(index: int) -> list[Problem] | str:
-    return _lint_one(index, _WORK, _STDIN_NAME)
+    yield from forked_map(lambda index: _lint_one(index, work, stdin_name), len(work), workers)
 
 
 def _lint_one(

@@ -1,0 +1,80 @@
+"""forked_map: every result once, in order, whatever the forks do."""
+
+from __future__ import annotations
+
+import os
+import time
+
+import pytest
+
+from txtool.lint.workers import MAX_CHUNKS, chunk_size, forked_map
+
+
+def no_children_left() -> bool:
+    try:
+        os.waitpid(-1, os.WNOHANG)
+    except ChildProcessError:
+        return True
+    return False
+
+
+def test_results_come_in_order_from_several_processes():
+    def slow_square(index):
+        time.sleep(0.001)  # long enough for every process to take chunks
+        return index * index, os.getpid()
+
+    results = list(forked_map(slow_square, 300, 3))
+    assert [value for value, _ in results] == [i * i for i in range(300)]
+    assert os.getpid() in {pid for _, pid in results}
+    assert len({pid for _, pid in results}) > 1
+    assert no_children_left()
+
+
+def test_large_results_do_not_block_the_forks():
+    text = "x" * 20_000  # a fork's results are far larger than a pipe's buffer
+    assert list(forked_map(lambda index: (index, text), 400, 2)) == [(i, text) for i in range(400)]
+    assert no_children_left()
+
+
+def test_chunks_a_fork_never_reported_are_computed_here():
+    parent = os.getpid()
+
+    def dies_in_a_fork(index):
+        if os.getpid() != parent:
+            os._exit(3)
+        time.sleep(0.0005)
+        return index
+
+    assert list(forked_map(dies_in_a_fork, 200, 3)) == list(range(200))
+    assert no_children_left()
+
+
+def test_an_error_in_a_fork_is_raised_here():
+    def fails_on_seven(index):
+        if index == 7:
+            raise ValueError("seven")
+        return index
+
+    with pytest.raises(ValueError, match="seven"):
+        list(forked_map(fails_on_seven, 100, 2))
+    assert no_children_left()
+
+
+def test_ctrl_c_here_stops_the_forks():
+    parent = os.getpid()
+
+    def interrupted(index):
+        time.sleep(0.001)
+        if os.getpid() == parent and index >= 40:
+            raise KeyboardInterrupt
+        return index
+
+    with pytest.raises(KeyboardInterrupt):
+        list(forked_map(interrupted, 2000, 3))
+    assert no_children_left()
+
+
+def test_chunk_numbers_fit_a_pipe_buffer():
+    for count in (1, 10, 1000, 4096, 10**6, 10**7):
+        assert -(-count // chunk_size(count)) <= MAX_CHUNKS
+    assert chunk_size(1000) == 4
