@@ -48,16 +48,24 @@ def test_validate_of_xacro_imports_nothing_heavy(tmp_path):
     assert [name for name in HEAVY if name in probe["loaded"]] == []
 
 
-@pytest.mark.parametrize("output_format", ["text", "github", "sarif"])
-def test_validate_without_configuration_never_builds_pydantic_models(tmp_path, output_format):
-    """pydantic's model machinery costs more than linting a file: only a configuration with
-    rule options and the json format (validated against its schema) need it."""
+@pytest.mark.parametrize("output_format", ["text", "json", "github", "sarif"])
+def test_validate_without_configuration_never_loads_pydantic(tmp_path, output_format):
+    """pydantic costs more than linting a file: only a configuration with rule options needs
+    it (the json report is written without it, see tests/lint/test_reporters.py)."""
     robot = tmp_path / "robot.urdf"
     robot.write_text(BROKEN)
     probe = subprocess.run(
-        [sys.executable, "-c", PROBE.replace('name.split(".")[0]', "name"), "validate",
-         "--format", output_format, str(robot)],
+        [sys.executable, "-c", PROBE, "validate", "--format", output_format, str(robot)],
         capture_output=True, text=True, timeout=120, cwd=tmp_path,
     )
     loaded = json.loads(probe.stderr.strip().splitlines()[-1])["loaded"]
-    assert "pydantic.main" not in loaded and "pydantic.fields" not in loaded
+    assert "pydantic" not in loaded
+
+
+def test_many_files_are_shared_without_multiprocessing(tmp_path):
+    """Forks share the files (txtool.lint.workers); multiprocessing's pool costs about 15 ms."""
+    for index in range(80):
+        (tmp_path / f"robot_{index:02d}.urdf").write_text(BROKEN)
+    probe = run_validate("--jobs", "2", "--format", "json", str(tmp_path))
+    assert probe["code"] == 1
+    assert "multiprocessing" not in probe["loaded"] and "pydantic" not in probe["loaded"]
