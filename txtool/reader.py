@@ -12,7 +12,7 @@ Numbers are parsed the way the detected loader parses them (see :mod:`txtool.num
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -122,12 +122,6 @@ def _first_text(kids: dict[str, list[etree._Element]], name: str) -> str | None:
     """:func:`first_child_text` over a :func:`~txtool.robot.child_index`."""
     found = kids.get(name)
     return text_of(found[0]) if found else None
-
-
-def _number(text: str | None, parse: Callable[[str | None], float | None]) -> Number | None:
-    if text is None:
-        return None
-    return Number(value=parse(text), text=text)
 
 
 def _location(element: etree._Element, locator: Locator | None) -> Location | None:

@@ -147,13 +147,9 @@ def _child_index(element: etree._Element) -> dict[str, list[etree._Element]]:
     return index
 
 
-def robot_joints(root: etree._Element, *, limits: bool = True) -> dict[str, JointInfo]:
-    """The URDF joints of a document (see :func:`joint_elements`) by name.
-
-    With ``limits=False`` only names, types and mimics are read (limits ``None``, dynamics 0).
-    """
-    return {name: joint_info(element, limits=limits)
-            for name, element in joint_elements(root).items()}
+def robot_joints(root: etree._Element) -> dict[str, JointInfo]:
+    """The URDF joints of a document (see :func:`joint_elements`) by name, limits included."""
+    return {name: joint_info(element) for name, element in joint_elements(root).items()}
 
 
 def joint_elements(
