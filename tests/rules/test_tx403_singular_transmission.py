@@ -1,6 +1,13 @@
 from __future__ import annotations
 
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
 from tests.rules.helpers import check, problems
+from txtool.mechanics.linear import singular
+from txtool.reader import read_source
+from txtool.semantics import NotLoadable, effective
+from txtool.xmlio import Source, parse_bytes
 
 ROS1 = """
 <robot name="r">
@@ -58,3 +65,31 @@ def test_ros2_four_bar_with_an_underflowing_determinant_fires():
     found = problems(xml, select=["TX403"])
     assert [(p.line, p.column) for p in found] == [(4, 3)]
     assert "determinant 0" in found[0].message
+
+
+@given(st.floats(allow_nan=True, allow_infinity=True), st.sampled_from(["ros1", "ros2"]))
+@settings(max_examples=200, deadline=None)
+def test_a_loadable_simple_transmission_is_never_singular(reduction, dialect):
+    """The rule skips simple transmissions unread: a 1x1 map that loads is never singular."""
+    xml = (SIMPLE_ROS1 if dialect == "ros1" else SIMPLE_ROS2).format(n=repr(reduction))
+    found = read_source(Source("r.urdf", xml.encode(), parse_bytes(xml.encode(), "r.urdf")))
+    try:
+        loaded = effective(found[0].transmission)
+    except NotLoadable:
+        return
+    assert singular(loaded, max_condition=1.0000001) is None
+
+
+SIMPLE_ROS1 = """<robot name="r"><transmission name="t">
+  <type>transmission_interface/SimpleTransmission</type>
+  <joint name="j"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+  </joint>
+  <actuator name="m"><mechanicalReduction>{n}</mechanicalReduction></actuator>
+</transmission></robot>"""
+SIMPLE_ROS2 = """<robot name="r"><ros2_control name="hw" type="system">
+  <joint name="j"><command_interface name="effort"/></joint>
+  <transmission name="t"><plugin>transmission_interface/SimpleTransmission</plugin>
+    <joint name="j" role="joint1"><mechanical_reduction>{n}</mechanical_reduction></joint>
+    <actuator name="m" role="actuator1"/>
+  </transmission>
+</ros2_control></robot>"""

@@ -73,8 +73,8 @@ def check(ctx: LintContext) -> Iterator[Problem]:
     max_condition = options.max_condition if options else MAX_CONDITION
     for found in ctx.transmissions():
         t = found.transmission
-        if t.kind == "other" or _has_unknown_number(ctx, t):
-            continue
+        if t.kind in ("other", "simple") or _has_unknown_number(ctx, t):
+            continue  # a loadable simple map is one finite, non-zero number: never singular
         try:
             loaded = effective(t)
         except NotLoadable:
