@@ -7,7 +7,8 @@ import time
 
 import pytest
 
-from txtool.lint.workers import MAX_CHUNKS, chunk_size, forked_map
+from txtool.lint import workers
+from txtool.lint.workers import MAX_CHUNKS, _queue, chunk_size, forked_map
 
 
 def no_children_left() -> bool:
@@ -78,3 +79,19 @@ def test_chunk_numbers_fit_a_pipe_buffer():
     for count in (1, 10, 1000, 4096, 10**6, 10**7):
         assert -(-count // chunk_size(count)) <= MAX_CHUNKS
     assert chunk_size(1000) == 4
+
+
+def test_records_a_pipe_cannot_hold_are_refused_without_blocking():
+    assert _queue(b"\0" * (1 << 22)) is None  # more than any pipe buffer holds
+    queue = _queue(b"\1\0\0\0")
+    assert queue is not None
+    try:
+        assert os.read(queue, 8) == b"\1\0\0\0" and os.read(queue, 8) == b""  # then the end
+    finally:
+        os.close(queue)
+
+
+def test_without_a_queue_everything_is_computed_here(monkeypatch):
+    monkeypatch.setattr(workers, "_queue", lambda records: None)
+    results = list(forked_map(lambda index: (index, os.getpid()), 100, 3))
+    assert results == [(i, os.getpid()) for i in range(100)]

@@ -7,7 +7,8 @@
   pickled on the way in and a fork starts in about a millisecond.
 * Indices go out in small chunks through one pipe that every process reads as it becomes free,
   so a process that drew large files simply takes fewer chunks. All chunk numbers are written
-  before the first fork; there are at most :data:`MAX_CHUNKS`, which fit the pipe's buffer.
+  before the first fork, so that no read can take part of one; there are at most
+  :data:`MAX_CHUNKS`, which fit the pipe's buffer (else nothing is shared).
 * This process works through chunks too; each fork pickles its results once, when the pipe is
   empty, and exits. A chunk whose results never arrive (a fork that died) is computed here, so
   an error in ``function`` surfaces in this process, as it would without forks.
@@ -25,7 +26,7 @@ import signal
 from collections.abc import Callable, Iterator
 from typing import Any
 
-MAX_CHUNKS = 1024  # 4 bytes each: they fit a pipe's buffer (4 KB at least)
+MAX_CHUNKS = 1024  # 4 bytes each: 4 KB, what a pipe holds at the least on Linux
 _WIDTH = 4
 
 
@@ -38,9 +39,11 @@ def forked_map(function: Callable[[int], Any], count: int, processes: int) -> It
     """``function(i)`` for ``i`` in ``range(count)``, in order, from ``processes`` processes."""
     size = chunk_size(count)
     starts = range(0, count, size)
-    queue, feed = os.pipe()
-    os.write(feed, b"".join(start.to_bytes(_WIDTH, "little") for start in starts))
-    os.close(feed)  # readers see the end of the queue once it is empty
+    queue = _queue(b"".join(start.to_bytes(_WIDTH, "little") for start in starts))
+    if queue is None:  # a pipe too small to hold them: no sharing
+        for start in starts:
+            yield from _chunk(function, start, size, count)
+        return
     children: list[tuple[int, int]] = []
     finished = False
     try:
@@ -62,6 +65,27 @@ def forked_map(function: Callable[[int], Any], count: int, processes: int) -> It
         if part is None:  # a fork died before reporting it
             part = _chunk(function, start, size, count)
         yield from part
+
+
+def _queue(records: bytes) -> int | None:
+    """The read end of a pipe that holds ``records`` and nothing more will be written to.
+
+    Every record is in the pipe before anyone reads, so a read of one record's width never
+    returns part of one, however many processes read. None when the pipe's buffer cannot hold
+    them all (Linux's holds at least 4 KB).
+    """
+    queue, feed = os.pipe()
+    try:
+        os.set_blocking(feed, False)
+        written = os.write(feed, records) if records else 0
+    except BlockingIOError:
+        written = -1
+    finally:
+        os.close(feed)
+    if written != len(records):
+        os.close(queue)
+        return None
+    return queue
 
 
 def _fork(function: Callable[[int], Any], queue: int, size: int, count: int) -> tuple[int, int]:
