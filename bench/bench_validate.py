@@ -144,14 +144,15 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=11)
     parser.add_argument("--synthetic", action="store_true", help="generated arms, not the corpus")
     args = parser.parse_args()
-    byte_compile()
+    package = byte_compile()
     with tempfile.TemporaryDirectory() as folder:
         robot = Path(folder) / "arm.urdf"
         robot.write_text(synthetic_arm())
         single = one_file(robot, args.repeat)
         heavy = imported(robot)
     many = many_files(args.files, max(3, args.repeat // 2), args.synthetic)
-    print(f"cpus: {os.cpu_count()}  python: {sys.version.split()[0]}")
+    print(f"cpus: {os.cpu_count()}  python: {sys.version.split()[0]}  "
+          f"txtool: {package} (byte-compiled)")
     print(f"one file: validate {single['validate_s'] * 1000:.0f} ms, imports "
           f"{single['baseline_s'] * 1000:.0f} ms, ratio {single['ratio']:.2f} (budget 1.5)")
     print(f"{many['files']} files ({many['megabytes']:.1f} MB, {many['kinds']} distinct): "
