@@ -140,9 +140,3 @@ def _robot_model(path: str, model: pin.Model, joints: tuple[str, ...],
         friction.append(max(joint.friction, 0.0))
     arrays = (np.array(v, dtype=float) for v in (lower, upper, effort, velocity, damping, friction))
     return RobotModel(path, model, joints, tuple(kinds), info, *arrays, mimic=mimic)
-
-
-def symmetric_mass(model: pin.Model, data: pin.Data, q: np.ndarray) -> np.ndarray:
-    """``crba`` fills the upper triangle only."""
-    upper = pin.crba(model, data, q)
-    return np.triu(upper) + np.triu(upper, 1).T
