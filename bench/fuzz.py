@@ -22,7 +22,7 @@ and what went wrong); for each kind the first one is saved in
     $ python bench/fuzz.py --examples 20000 --out /tmp/fuzz
     ...
     3 kind(s) of failure in 20000 example(s), 41.3 examples/s:
-      [000] x12 convert-ros1: crash: ValueError: ... (txtool/translate.py:120)
+      [000] x12 convert-ros1: crash: ValueError: ... (txtool/dialects/translate.py:120)
 """
 
 from __future__ import annotations

@@ -9,8 +9,8 @@ import pytest
 from lxml import etree
 
 from tests.corpus import corpus_file
-from txtool.reader import read_source
-from txtool.xmlio import load
+from txtool.dialects.read import read_source
+from txtool.io.load import load
 
 ROOT = Path(__file__).resolve().parent.parent
 FIXTURES = ROOT / "fixtures"

@@ -95,4 +95,4 @@ def internal_error_line(exc: BaseException) -> str:
 
 def _xmlio_if_loaded() -> ModuleType | None:
     # Not imported here: commands that read no file (--version, rules, schema) skip lxml.
-    return sys.modules.get("txtool.xmlio")
+    return sys.modules.get("txtool.io.xmlio")

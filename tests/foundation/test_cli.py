@@ -8,7 +8,7 @@ import subprocess
 import sys
 
 from txtool import __version__
-from txtool.schema import schema_text
+from txtool.model.schema import schema_text
 
 
 def test_version(run):

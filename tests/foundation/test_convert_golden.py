@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from lxml import etree
 
-from txtool.reader import read_source
-from txtool.xmlio import Source, parse_bytes
+from txtool.dialects.read import read_source
+from txtool.io.xmlio import Source, parse_bytes
 
 
 def _read(data: bytes) -> list:

@@ -5,10 +5,10 @@ from __future__ import annotations
 import pytest
 
 from tests.corpus import corpus_file, corpus_names
-from txtool.convert import convert_source
-from txtool.reader import read_source
-from txtool.robot import local
-from txtool.xmlio import InputError, load
+from txtool.dialects.read import read_source
+from txtool.io.load import load
+from txtool.io.xmlio import InputError, local
+from txtool.transform.convert import convert_source
 
 
 def _load(name: str):

@@ -12,13 +12,13 @@ from lxml import etree
 from pydantic import ValidationError
 
 from txtool import dialects
-from txtool.convert import convert_source
-from txtool.model import Member, Number, Transmission, dump, standard_type, validate
-from txtool.numbers import format_float
-from txtool.reader import read_source
-from txtool.roundtrip import cycles_from
-from txtool.views import view
-from txtool.xmlio import Source, parse_bytes
+from txtool.dialects.read import read_source
+from txtool.io.xmlio import Source, parse_bytes
+from txtool.model.core import Member, Number, Transmission, dump, standard_type, validate
+from txtool.model.numbers import format_float
+from txtool.transform.convert import convert_source
+from txtool.transform.roundtrip import cycles_from
+from txtool.views.tables import view
 
 reductions = st.one_of(
     st.floats(min_value=1e-300, max_value=1e300),

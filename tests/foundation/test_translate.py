@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import pytest
 
-from txtool.convert import convert_source
-from txtool.reader import read_source
-from txtool.xmlio import Source, parse_bytes
+from txtool.dialects.read import read_source
+from txtool.io.xmlio import Source, parse_bytes
+from txtool.transform.convert import convert_source
 
 ROS1_SIMPLE = b"""<robot name="r">
   <transmission name="t">

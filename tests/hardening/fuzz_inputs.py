@@ -23,7 +23,7 @@ from hypothesis import strategies as st
 from lxml import etree
 
 from tests.corpus import CORPUS
-from txtool.xmlio import InputError, parse_bytes, safe_parser
+from txtool.io.xmlio import InputError, parse_bytes, safe_parser
 
 ROOT = Path(__file__).resolve().parents[2]
 FIXTURES = ROOT / "fixtures"

@@ -147,8 +147,8 @@ def arm_with_transmissions(count: int) -> bytes:
 def test_placing_converted_transmissions_takes_linear_time(monkeypatch):
     # Each transmission moved into the new <ros2_control> listed every element of the document
     # and every joint declared so far: 400 transmissions took 7 s.
-    from txtool import convert
-    from txtool.xmlio import Source, parse_bytes
+    from txtool.io.xmlio import Source, parse_bytes
+    from txtool.transform import convert
 
     monkeypatch.setattr(convert, "_check", lambda *args: [])  # the read-back is the reader's
 

@@ -28,8 +28,8 @@ from tests.hardening.hostile_inputs import (
     robot,
     run,
 )
-from txtool import xmlio
-from txtool.xmlio import MAX_BYTES
+from txtool.io import xmlio
+from txtool.io.xmlio import MAX_BYTES
 
 ROOT = Path(__file__).resolve().parents[2]
 SUFFIXES = (".urdf", ".urdf.xacro")

@@ -31,12 +31,12 @@ def txtool_with(sabotage: str, *args: str) -> tuple[int, str, str]:
 
 
 BROKEN_READER = """
-import txtool.reader
+import txtool.dialects.read
 
 def read_source(source):
     raise RuntimeError("reader broke\\n  on purpose")
 
-txtool.reader.read_source = read_source
+txtool.dialects.read.read_source = read_source
 """
 
 
@@ -84,12 +84,12 @@ def test_the_file_named_is_the_one_being_read(tmp_path):
 
 def test_internal_error_before_any_file_names_none():
     sabotage = """
-        import txtool.schema
+        import txtool.model.schema
 
         def schema_text():
             raise ValueError("schema broke")
 
-        txtool.schema.schema_text = schema_text
+        txtool.model.schema.schema_text = schema_text
     """
     code, out, err = txtool_with(sabotage, "schema")
     assert (code, out) == (2, "")
@@ -102,12 +102,12 @@ def test_input_errors_are_not_internal_errors(tmp_path):
 
 
 INTERRUPTED_READER = """
-import txtool.reader
+import txtool.dialects.read
 
 def read_source(source, **options):
     raise KeyboardInterrupt
 
-txtool.reader.read_source = read_source
+txtool.dialects.read.read_source = read_source
 """
 
 

@@ -18,8 +18,8 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from txtool import xacro_support
 from txtool.cli import cli
+from txtool.io import xacro as xacro_support
 
 ROBOT = """\
 <?xml version="1.0"?>

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from tests.lint.conftest import BROKEN, WARNING_ONLY
-from txtool.config import Config, ConfigError, find_config, load_config, resolve
+from txtool.lint.config import Config, ConfigError, find_config, load_config, resolve
 
 
 def write(path, text):

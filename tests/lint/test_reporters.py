@@ -13,7 +13,7 @@ import jsonschema
 import pytest
 
 from tests.lint.conftest import BROKEN
-from txtool.problem import Problem
+from txtool.lint.problem import Problem
 from txtool.reporters import Summary, json_format, render
 from txtool.reporters.report_schema import Report, schema_text
 from txtool.reporters.sarif import artifact_uri, sarif_log

@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 from tests.rules.helpers import problems, snippet
-from txtool.config import resolve
+from txtool.io.load import load
 from txtool.lint.api import lint_source
-from txtool.xmlio import load
+from txtool.lint.config import resolve
 
 MACRO = """
 <robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">

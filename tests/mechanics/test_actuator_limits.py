@@ -6,7 +6,7 @@ import pytest
 
 from txtool.mechanics.limits import ActuatorLimit, actuator_limits
 from txtool.mechanics.maps import from_parameters
-from txtool.robot import JointInfo
+from txtool.model.robot import JointInfo
 
 
 def simple(reduction: float, offset: float = 0.0):  # type: ignore[no-untyped-def]

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from txtool.bb import elixir_float, export_bb
-from txtool.model import Transmission
-from txtool.reader import read_source
-from txtool.robot import robot_joints
-from txtool.xmlio import load
+from txtool.dialects.read import read_source
+from txtool.io.load import load
+from txtool.model.core import Transmission
+from txtool.model.robot import robot_joints
+from txtool.transform.bb import elixir_float, export_bb
 
 ROBOT = """<robot name="r">
   <joint name="shoulder" type="revolute"><limit lower="-1" upper="1" velocity="1" effort="1"/>

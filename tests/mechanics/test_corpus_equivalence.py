@@ -5,11 +5,12 @@ from __future__ import annotations
 import pytest
 
 from tests.corpus import corpus_file, corpus_names
-from txtool.convert import convert_source
+from txtool.dialects.read import read_source
+from txtool.io.load import load
+from txtool.io.xmlio import InputError, Source, parse_bytes
 from txtool.mechanics.equivalence import compare
-from txtool.reader import read_source
-from txtool.robot import robot_joints
-from txtool.xmlio import InputError, Source, load, parse_bytes
+from txtool.model.robot import robot_joints
+from txtool.transform.convert import convert_source
 
 
 @pytest.mark.parametrize("target", ["ros2-p1", "ros2-p2", "ros1"])

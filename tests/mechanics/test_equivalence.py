@@ -6,11 +6,11 @@ from pathlib import Path
 
 import pytest
 
+from txtool.dialects.read import read_source
+from txtool.io.load import load
 from txtool.mechanics.equivalence import compare
-from txtool.model import Transmission
-from txtool.reader import read_source
-from txtool.robot import JointInfo
-from txtool.xmlio import load
+from txtool.model.core import Transmission
+from txtool.model.robot import JointInfo
 
 
 def read(tmp_path: Path, name: str, body: str) -> list[Transmission]:

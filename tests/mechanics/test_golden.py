@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from txtool.mechanics import ZeroReduction, from_effective, from_parameters
-from txtool.semantics import Effective
+from txtool.model.semantics import Effective
 
 TOL = 1e-12
 

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from txtool.mechanics import from_effective, linear
-from txtool.semantics import Effective
+from txtool.model.semantics import Effective
 
 
 def eff(kind: str, ar: tuple, jr: tuple, off: tuple | None = None) -> Effective:
@@ -97,7 +97,7 @@ def test_unknown_convention_is_rejected() -> None:
 
 
 def test_linear_does_not_import_numpy() -> None:
-    code = ("import sys; import txtool.mechanics.linear; import txtool.bb; "
+    code = ("import sys; import txtool.mechanics.linear; import txtool.transform.bb; "
             "print('numpy' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"

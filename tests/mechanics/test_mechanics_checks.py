@@ -7,8 +7,8 @@ import pytest
 
 from txtool.mechanics import checks
 from txtool.mechanics.maps import TransmissionMap, from_parameters
-from txtool.model import Member, Number, Transmission
-from txtool.robot import JointInfo
+from txtool.model.core import Member, Number, Transmission
+from txtool.model.robot import JointInfo
 
 
 def num(value: float) -> Number:

@@ -309,7 +309,7 @@ def test_migrate_imports_nothing_heavy(write, tmp_path):
 
 
 def test_a_file_that_cannot_be_written_is_one_line_and_exit_2(run, write, monkeypatch):
-    from txtool import migrate
+    from txtool.transform import migrate
 
     def refuse(path: str, data: bytes) -> None:
         raise PermissionError(13, "Permission denied")
@@ -325,7 +325,7 @@ def test_a_file_that_cannot_be_written_is_one_line_and_exit_2(run, write, monkey
 
 
 def test_a_file_changed_on_disk_meanwhile_is_not_overwritten(write, monkeypatch):
-    from txtool import migrate
+    from txtool.transform import migrate
 
     path = write("robot.urdf", ROBOT)
     real = migrate.migrate_file

@@ -9,9 +9,9 @@ from pathlib import Path
 import pytest
 
 from tests.corpus import corpus_file, corpus_names
+from txtool.dialects.read import transmission_elements
+from txtool.io.xmlio import parse_bytes
 from txtool.lint.api import LintOptions, lint_paths
-from txtool.reader import transmission_elements
-from txtool.xmlio import parse_bytes
 
 NAMES = [n for n in corpus_names() if n.endswith((".xacro", ".urdf")) or n.startswith("<")]
 NOTHING = "nothing to do (1 file(s) checked)\n"

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import textwrap
 
-from txtool.migrate import MigrateOptions, migrate_file, splice, unified_diff
+from txtool.io.xmlio import parse_bytes, serialize
 from txtool.rules import all_rules
-from txtool.xmlio import parse_bytes, serialize
+from txtool.transform.migrate import MigrateOptions, migrate_file, splice, unified_diff
 
 FIXES = [rule for rule in all_rules().values() if rule.fixable]
 

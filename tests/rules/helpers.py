@@ -14,7 +14,7 @@ quotes. Options:
 ``xacro_args``, ``no_xacro``
     as the configuration keys ``xacro-args`` and ``no-xacro``.
 
-``problems(xml, **options)`` returns the :class:`~txtool.problem.Problem` values themselves,
+``problems(xml, **options)`` returns the :class:`~txtool.lint.problem.Problem` values themselves,
 for assertions on messages and severities.
 """
 
@@ -25,10 +25,10 @@ import textwrap
 from pathlib import Path
 from typing import Any
 
-from txtool.config import Config, resolve
+from txtool.io.xmlio import parse_bytes, serialize
+from txtool.lint.config import Config, resolve
 from txtool.lint.engine import lint_file
-from txtool.problem import Problem
-from txtool.xmlio import parse_bytes, serialize
+from txtool.lint.problem import Problem
 
 
 def snippet(xml: str) -> str:

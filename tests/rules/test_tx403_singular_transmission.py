@@ -4,10 +4,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from tests.rules.helpers import check, problems
+from txtool.dialects.read import read_source
+from txtool.io.xmlio import Source, parse_bytes
 from txtool.mechanics.linear import singular
-from txtool.reader import read_source
-from txtool.semantics import NotLoadable, effective
-from txtool.xmlio import Source, parse_bytes
+from txtool.model.semantics import NotLoadable, effective
 
 ROS1 = """
 <robot name="r">

@@ -9,10 +9,10 @@ import pinocchio as pin
 import pytest
 
 from tests.simulate.robots import arm_ros1, pendulum, planar_two_link, write
+from txtool.io.load import load
 from txtool.mechanics.inertia import reflected_inertia
 from txtool.simulate.model import build
 from txtool.simulate.run import Options, prepare, simulate_one
-from txtool.xmlio import load
 
 G = 9.81
 

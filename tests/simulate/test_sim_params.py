@@ -5,9 +5,9 @@ from __future__ import annotations
 import pytest
 
 from tests.simulate.robots import arm_ros1, write
+from txtool.io.xmlio import InputError
 from txtool.simulate.params import load_params
 from txtool.simulate.run import Options, prepare
-from txtool.xmlio import InputError
 
 GOOD = """bandwidth = 30.0
 duration = 2.0

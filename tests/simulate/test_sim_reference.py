@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from tests.simulate.robots import arm_ros1, write
+from txtool.io.xmlio import InputError
 from txtool.simulate.reference import (
     default_motion,
     from_table,
@@ -14,7 +15,6 @@ from txtool.simulate.reference import (
     step_times,
 )
 from txtool.simulate.run import Options, prepare, simulate_one
-from txtool.xmlio import InputError
 
 JOINTS = ("a", "b")
 

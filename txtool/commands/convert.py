@@ -41,7 +41,8 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_
     (unless --allow-lossy), 2 on unreadable input. A xacro INPUT is converted after expansion;
     under --no-xacro its source is converted as written, ${...} kept.
     """
-    from txtool.xmlio import InputError, load, write_atomic
+    from txtool.io.load import load
+    from txtool.io.xmlio import InputError, write_atomic
 
     in_place_target = bool(output) and path != "-" and _same_file(path, output)
     if in_place_target and not in_place:
@@ -54,7 +55,7 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_
     if target == "bb":
         data, losses, notes = _bb(source)
     else:
-        from txtool.convert import convert_source
+        from txtool.transform.convert import convert_source
 
         result = convert_source(source, target, hardware_plugin=hardware_plugin)
         data, losses, notes = result.data, result.losses, result.notes
@@ -84,9 +85,9 @@ def _same_file(a: str, b: str) -> bool:
 
 
 def _bb(source) -> tuple[bytes, list[str], list[str]]:
-    from txtool.bb import export_bb
-    from txtool.reader import read_source
-    from txtool.robot import robot_joints
+    from txtool.dialects.read import read_source
+    from txtool.model.robot import robot_joints
+    from txtool.transform.bb import export_bb
 
     exported = export_bb([f.transmission for f in read_source(source)],
                          robot_joints(source.root))

@@ -11,7 +11,7 @@ from txtool.commands.common import exit_on_input_error
 @exit_on_input_error
 def command() -> int:
     """Show, convert, round-trip, validate and simulate the bundled demo robot."""
-    from txtool.demo import run_demo
-    from txtool.render import console
+    from txtool.commands.demo_runner import run_demo
+    from txtool.views.render import console
 
     return run_demo(console())

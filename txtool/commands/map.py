@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from txtool.commands.common import NO_XACRO_OPTION, refuse_unexpanded, xacro_disabled, xacro_options
-from txtool.xmlio import InputError
+from txtool.io.xmlio import InputError
 
 
 @click.command("map")

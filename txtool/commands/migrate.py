@@ -51,7 +51,7 @@ def command(paths, target, check, diff, write, select, ignore, config_path, allo
     Exit codes: 0 nothing to do (or all written), 1 changes pending (--check, --diff) or a
     conversion refused for losses, 2 usage, configuration or input error.
     """
-    from txtool.migrate import MigrateOptions, migrate_paths
+    from txtool.transform.migrate import MigrateOptions, migrate_paths
 
     options = MigrateOptions(
         mode=_mode(check, diff, write),  # type: ignore[arg-type]

@@ -30,13 +30,13 @@ def command(path, against, output_format, no_xacro, xacro) -> int:
     bit) and whether the first conversion drives the actuators exactly like the original.
     Exit 1 if any cycle loses something or changes behaviour.
     """
-    from txtool.xmlio import load
+    from txtool.io.load import load
 
     expand = not xacro_disabled(no_xacro, path, against)
     source = load(path, xacro=xacro, expand=expand)
     if against:
         return _against(source, load(against, xacro=xacro, expand=expand), output_format)
-    from txtool.roundtrip import roundtrip
+    from txtool.transform.roundtrip import roundtrip
 
     report = roundtrip(source)
     if output_format == "json":
@@ -49,8 +49,8 @@ def command(path, against, output_format, no_xacro, xacro) -> int:
 def _print_table(report) -> None:
     from rich.table import Table
 
-    from txtool.render import console
-    from txtool.views import FIELDS
+    from txtool.views.render import console
+    from txtool.views.tables import FIELDS
 
     table = Table(title=f"{report.path}: round trips", title_justify="left")
     for column in ("transmission", "cycle", *FIELDS, "equivalent"):
@@ -74,9 +74,9 @@ def _print_table(report) -> None:
 
 
 def _against(a, b, output_format) -> int:
+    from txtool.dialects.read import read_source
     from txtool.mechanics.equivalence import compare
-    from txtool.reader import read_source
-    from txtool.robot import robot_joints
+    from txtool.model.robot import robot_joints
 
     report = compare([f.transmission for f in read_source(a)],
                      [f.transmission for f in read_source(b)], robot_joints(a.root))
@@ -88,7 +88,7 @@ def _against(a, b, output_format) -> int:
     else:
         from rich.table import Table
 
-        from txtool.render import console
+        from txtool.views.render import console
 
         table = Table(title=f"{a.path} against {b.path}", title_justify="left")
         for column in ("joints", a.path, b.path, "status", "reason"):

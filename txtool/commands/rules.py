@@ -16,8 +16,8 @@ from txtool.commands.common import exit_on_input_error
 @exit_on_input_error
 def command(code: str | None, output_format: str) -> int:
     """List every rule, or show the documentation of CODE (a code such as TX105, or a name)."""
+    from txtool.io.xmlio import InputError
     from txtool.rules import UnknownRule, all_rules, get
-    from txtool.xmlio import InputError
 
     if code is None:
         rules = list(all_rules().values())

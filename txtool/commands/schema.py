@@ -13,8 +13,8 @@ from txtool.commands.common import exit_on_input_error
 @exit_on_input_error
 def command(output) -> int:
     """Print the JSON Schema of ``txtool show --format json`` (schemas/transmission.schema.json)."""
-    from txtool.schema import schema_text
-    from txtool.xmlio import write_atomic
+    from txtool.io.xmlio import write_atomic
+    from txtool.model.schema import schema_text
 
     text = schema_text()
     if output:

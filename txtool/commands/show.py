@@ -29,9 +29,9 @@ def command(path, output_format, actuator_limits, stdin_filename, no_xacro, xacr
 
     Under --no-xacro a .xacro file's transmissions are listed as written, ${...} included.
     """
-    from txtool.model import dump
-    from txtool.reader import read_source
-    from txtool.xmlio import load
+    from txtool.dialects.read import read_source
+    from txtool.io.load import load
+    from txtool.model.core import dump
 
     expand = not xacro_disabled(no_xacro, path)
     source = load(path, xacro=xacro, stdin_name=stdin_filename, expand=expand)
@@ -47,8 +47,8 @@ def command(path, output_format, actuator_limits, stdin_filename, no_xacro, xacr
             ]
         click.echo(json.dumps(data, indent=2))
         return 0
-    from txtool.render import console as make_console
-    from txtool.render import limits_table, transmissions_table
+    from txtool.views.render import console as make_console
+    from txtool.views.render import limits_table, transmissions_table
 
     console = make_console()
     console.print(transmissions_table(transmissions, f"{source.path}: "
@@ -61,8 +61,8 @@ def command(path, output_format, actuator_limits, stdin_filename, no_xacro, xacr
 def _limits(source, transmissions):
     from txtool.mechanics.limits import actuator_limits
     from txtool.mechanics.maps import from_transmission
-    from txtool.robot import robot_joints
-    from txtool.semantics import NotLoadable
+    from txtool.model.robot import robot_joints
+    from txtool.model.semantics import NotLoadable
 
     joints = robot_joints(source.root)
     rows = []

@@ -12,7 +12,7 @@ from txtool.commands.common import (
     xacro_disabled,
     xacro_options,
 )
-from txtool.xmlio import XacroOptions
+from txtool.io.xmlio import XacroOptions
 
 
 @click.command("simulate")

@@ -5,7 +5,7 @@ from __future__ import annotations
 from lxml import etree
 
 from txtool.dialects import ros1, ros2
-from txtool.model import Dialect, Transmission
+from txtool.model.core import Dialect, Transmission
 
 
 def build(

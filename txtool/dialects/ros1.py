@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from lxml import etree
 
-from txtool.model import Member, Number, Transmission
+from txtool.model.core import Member, Number, Transmission
 
 
 def write(t: Transmission, dialect: str = "ros1") -> etree._Element:

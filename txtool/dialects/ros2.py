@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from lxml import etree
 
-from txtool.model import Member, Number, Transmission
+from txtool.model.core import Member, Number, Transmission
 
 
 def write(t: Transmission, dialect: str = "ros2-p2") -> etree._Element:

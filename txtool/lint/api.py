@@ -8,11 +8,11 @@ import threading
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
-from txtool.config import Overrides, Settings, SettingsCache
+from txtool.io.xmlio import InputError, XacroOptions
+from txtool.lint.config import Overrides, Settings, SettingsCache
 from txtool.lint.discover import expand_paths
 from txtool.lint.engine import lint_file, lint_source
-from txtool.problem import Problem
-from txtool.xmlio import InputError, XacroOptions
+from txtool.lint.problem import Problem
 
 __all__ = ["LintOptions", "LintResult", "exit_code", "lint_paths", "lint_source"]
 
@@ -48,7 +48,7 @@ def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions) -> Lint
     """Lint files, folders (recursively) and ``-``.
 
     A file that cannot be read is recorded in ``errors`` and the others are still checked; a
-    bad configuration or rule selection raises :class:`~txtool.config.ConfigError`. Many
+    bad configuration or rule selection raises :class:`~txtool.lint.config.ConfigError`. Many
     files are shared among worker processes (see :func:`worker_count`); the result is the
     same, in the same order, as when one process checks them all.
     """

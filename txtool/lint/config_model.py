@@ -1,4 +1,6 @@
-"""The configuration file's model (``[tool.txtool]`` or ``.txtool.toml``), see :mod:`txtool.config`.
+"""The configuration file's model (``[tool.txtool]`` or ``.txtool.toml``).
+
+Read by :mod:`txtool.lint.config`.
 
 Kept apart so that a run without a configuration file never builds it.
 """
@@ -9,7 +11,7 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field
 
-from txtool.problem import Severity
+from txtool.lint.problem import Severity
 
 
 class Config(BaseModel):

@@ -9,13 +9,13 @@ from typing import TYPE_CHECKING, Any
 
 from lxml import etree
 
-from txtool.problem import Problem
-from txtool.reader import Found, read_source
-from txtool.robot import Component, JointInfo, components, joint_elements, joint_info, local
-from txtool.xmlio import Source
+from txtool.dialects.read import Found, read_source
+from txtool.io.xmlio import Source, local
+from txtool.lint.problem import Problem
+from txtool.model.robot import Component, JointInfo, components, joint_elements, joint_info
 
 if TYPE_CHECKING:
-    from txtool.locate import Locator, Position
+    from txtool.io.locate import Locator, Position
 
 
 _WALKED = ("transmission", "joint", "ros2_control")
@@ -57,7 +57,7 @@ class LintContext:
 
     @cached_property
     def locator(self) -> Locator:
-        from txtool.locate import Locator  # only a document with findings needs positions
+        from txtool.io.locate import Locator  # only a document with findings needs positions
 
         return Locator(self.source)
 

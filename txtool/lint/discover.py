@@ -8,7 +8,7 @@ from pathlib import Path
 
 from lxml import etree
 
-from txtool.xmlio import SAFE_OPTIONS, InputError
+from txtool.io.xmlio import SAFE_OPTIONS, InputError
 
 SUFFIXES = (".urdf", ".xacro")  # ``.urdf.xacro`` ends with ``.xacro``
 XML_ROOTS = frozenset({"robot", "ros2_control", "transmission"})
@@ -19,7 +19,7 @@ def expand_paths(paths: Iterable[str]) -> Iterator[str]:
 
     A given file is always checked, whatever its name; a missing one is passed on so that
     loading reports it. ``-`` (stdin) is passed on as well. Each file is produced once. A
-    folder holding nothing to check is an :class:`~txtool.xmlio.InputError`: a CI step given
+    folder holding nothing to check is an :class:`~txtool.io.xmlio.InputError`: a CI step given
     the wrong folder must not pass silently.
     """
     seen: set[object] = set()

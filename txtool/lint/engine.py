@@ -4,7 +4,7 @@ Which tree the rules see:
 
 * a plain file: the file as parsed;
 * a xacro file whose expansion contains transmissions: the expansion (positions traced back to
-  the file as written, see :mod:`txtool.locate`);
+  the file as written, see :mod:`txtool.io.locate`);
 * a xacro macro library (the expansion has no transmission, the file has some inside macros),
   a xacro file read from stdin or with xacro turned off, or one whose expansion failed (TX002):
   the file as written, in *literal* mode, where values containing ``${...}``/``$(...)`` are
@@ -18,13 +18,7 @@ from __future__ import annotations
 import re
 from typing import TYPE_CHECKING
 
-from txtool.config import Settings, resolve
-from txtool.lint.context import LintContext
-from txtool.lint.suppress import parse as parse_suppressions
-from txtool.problem import Problem
-from txtool.robot import indexed_children
-from txtool.rules import Rule, all_rules
-from txtool.xmlio import (
+from txtool.io.xmlio import (
     Source,
     XMLSyntax,
     document_text,
@@ -33,9 +27,15 @@ from txtool.xmlio import (
     read_bytes,
     text_lines,
 )
+from txtool.lint.config import Settings, resolve
+from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
+from txtool.lint.suppress import parse as parse_suppressions
+from txtool.model.robot import indexed_children
+from txtool.rules import Rule, all_rules
 
 if TYPE_CHECKING:
-    from txtool.config import Config
+    from txtool.lint.config import Config
 
 PIPELINE_CODES = frozenset({"TX001", "TX002", "TX003"})
 _TAG_END = re.compile(r"<[^>]*>?")
@@ -50,7 +50,7 @@ def lint_source(source: Source, config: Config | Settings | None = None) -> list
 def lint_file(path: str, settings: Settings, *, stdin_name: str | None = None) -> list[Problem]:
     """Problems of one file (or ``-``); malformed XML and failed xacro are findings.
 
-    Raises :class:`~txtool.xmlio.InputError` when the file cannot be read.
+    Raises :class:`~txtool.io.xmlio.InputError` when the file cannot be read.
     """
     display, data = read_bytes(path, stdin_name=stdin_name)
     try:
@@ -63,7 +63,7 @@ def lint_file(path: str, settings: Settings, *, stdin_name: str | None = None) -
     late = _late_declaration(display, data)
     if path == "-" or settings.no_xacro or not is_xacro(display):
         return finish(late + _checked(source, settings), source, settings)
-    from txtool.xacro_support import XacroError, expand_xacro
+    from txtool.io.xacro import XacroError, expand_xacro
 
     try:
         expanded = expand_xacro(path, display, settings.xacro)

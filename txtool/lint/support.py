@@ -8,10 +8,11 @@ from typing import Any
 
 from lxml import etree
 
+from txtool.dialects.read import Found, enclosing_component
+from txtool.io.xmlio import is_xacro_element, local
 from txtool.lint.context import LintContext
-from txtool.model import Member
-from txtool.reader import Found, enclosing_component
-from txtool.robot import JointInfo, children, is_xacro_element, local
+from txtool.model.core import Member
+from txtool.model.robot import JointInfo, children
 
 # Transmission families with their own loaders (not ros_control's transmission_interface):
 # pr2_mechanism / ros_ethercat parse their own XML; franka_hw registers state/model interfaces.

@@ -13,7 +13,7 @@ import re
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
-from txtool.problem import Problem
+from txtool.lint.problem import Problem
 
 _MARK = b"txtool:"
 _DIRECTIVE = re.compile(

@@ -16,9 +16,9 @@ import numpy as np
 
 from txtool.mechanics import linear
 from txtool.mechanics.maps import TransmissionMap, from_transmission
-from txtool.model import Transmission
-from txtool.robot import JointInfo
-from txtool.semantics import NotLoadable
+from txtool.model.core import Transmission
+from txtool.model.robot import JointInfo
+from txtool.model.semantics import NotLoadable
 
 ROUND_TRIP_TOL = 1e-12
 POWER_TOL = 1e-12

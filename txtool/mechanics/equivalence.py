@@ -2,7 +2,7 @@
 
 Transmissions are paired by the set of their joint names. For each pair the same joint
 positions, velocities and efforts are mapped to actuator space through each config's loaded
-maps (:mod:`txtool.semantics`), and the results are compared per joint and actuator NAME:
+maps (:mod:`txtool.model.semantics`), and the results are compared per joint and actuator NAME:
 ros2_control orders handles by name, so a conversion that keeps the numbers but lists the
 members in another order can bind a parameter to a different joint.
 """
@@ -17,9 +17,9 @@ import numpy as np
 
 from txtool.mechanics.checks import sample_joint_values
 from txtool.mechanics.maps import TransmissionMap, from_effective
-from txtool.model import Transmission
-from txtool.robot import JointInfo
-from txtool.semantics import NotLoadable, effective
+from txtool.model.core import Transmission
+from txtool.model.robot import JointInfo
+from txtool.model.semantics import NotLoadable, effective
 
 Status = Literal["equivalent", "differs", "missing", "not loadable"]
 QUANTITIES = ("position", "velocity", "effort")

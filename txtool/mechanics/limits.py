@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from txtool.mechanics.maps import TransmissionMap
-from txtool.robot import JointInfo
+from txtool.model.robot import JointInfo
 
 
 @dataclass(frozen=True)

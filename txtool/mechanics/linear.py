@@ -12,7 +12,7 @@ import math
 from collections.abc import Sequence
 from typing import Literal
 
-from txtool.semantics import Effective
+from txtool.model.semantics import Effective
 
 Convention = Literal["ros2", "ros1"]
 CONVENTIONS: tuple[str, ...] = ("ros2", "ros1")

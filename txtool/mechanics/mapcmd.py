@@ -16,11 +16,12 @@ import json
 import math
 from dataclasses import dataclass, field
 
+from txtool.io.load import load
+from txtool.io.xmlio import InputError, XacroOptions
 from txtool.mechanics.maps import TransmissionMap, from_effective
-from txtool.model import Member, Transmission
-from txtool.numbers import format_float, parse_strict
-from txtool.semantics import ROLES_ACTUATOR, ROLES_JOINT, NotLoadable, effective
-from txtool.xmlio import InputError, XacroOptions, load
+from txtool.model.core import Member, Transmission
+from txtool.model.numbers import format_float, parse_strict
+from txtool.model.semantics import ROLES_ACTUATOR, ROLES_JOINT, NotLoadable, effective
 
 QUANTITIES = ("position", "velocity", "effort")
 
@@ -103,7 +104,7 @@ def _run(
 
 
 def _find(path: str, name: str, xacro: XacroOptions | None) -> Transmission:
-    from txtool.reader import read_source
+    from txtool.dialects.read import read_source
 
     found = [f.transmission for f in read_source(load(path, xacro=xacro or XacroOptions()))]
     for t in found:

@@ -14,8 +14,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from txtool.mechanics import linear
-from txtool.model import Transmission
-from txtool.semantics import Effective, NotLoadable, effective
+from txtool.model.core import Transmission
+from txtool.model.semantics import Effective, NotLoadable, effective
 
 KINDS = ("simple", "differential", "four_bar")
 EFFORT_ALIASES = ("effort", "torque", "force")

@@ -10,7 +10,7 @@ import importlib
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from txtool.problem import Problem
+from txtool.lint.problem import Problem
 
 FORMATS: dict[str, str] = {
     "text": "text",

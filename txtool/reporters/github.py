@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from txtool.problem import Problem
+from txtool.lint.problem import Problem
 from txtool.reporters import Summary, end_of
 
 LEVELS = {"error": "error", "warning": "warning", "info": "notice"}

@@ -14,7 +14,7 @@ from collections.abc import Sequence
 from json.encoder import encode_basestring  # type: ignore[attr-defined]
 from typing import Any
 
-from txtool.problem import Problem
+from txtool.lint.problem import Problem
 from txtool.reporters import Summary, end_of
 
 _ROW = """    {

@@ -14,7 +14,7 @@ from typing import Any
 from urllib.parse import quote
 
 from txtool import __version__
-from txtool.problem import Problem
+from txtool.lint.problem import Problem
 from txtool.reporters import Summary, end_of
 
 SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from txtool.problem import Problem
+from txtool.lint.problem import Problem
 from txtool.reporters import Summary
 
 STYLES = {"error": "bold red", "warning": "yellow", "info": "cyan"}

@@ -14,13 +14,13 @@ from functools import lru_cache
 from types import ModuleType
 from typing import TYPE_CHECKING, Any
 
-from txtool.problem import SEVERITIES, Severity
+from txtool.lint.problem import SEVERITIES, Severity
 
 if TYPE_CHECKING:
     from lxml import etree
 
     from txtool.lint.context import LintContext
-    from txtool.problem import Problem
+    from txtool.lint.problem import Problem
 
 RULE_MODULES: tuple[str, ...] = (
     # TX0xx: the document itself (produced by the pipeline)

@@ -22,7 +22,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
-from txtool.problem import Problem
+from txtool.lint.problem import Problem
 
 CODE = "TX003"
 NAME = "unused-suppression"

@@ -28,8 +28,8 @@ from collections.abc import Iterator
 from lxml import etree
 
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import children, label
-from txtool.problem import Problem
 
 CODE = "TX100"
 NAME = "missing-name"

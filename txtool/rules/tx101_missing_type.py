@@ -29,8 +29,8 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import label, type_element
-from txtool.problem import Problem
 
 CODE = "TX101"
 NAME = "missing-type"

@@ -37,9 +37,9 @@ from functools import cache, lru_cache
 from typing import Any
 
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import KNOWN_FAMILIES, label, type_element
-from txtool.model import STANDARD_TYPES, TYPE_PREFIX
-from txtool.problem import Problem
+from txtool.model.core import STANDARD_TYPES, TYPE_PREFIX
 
 CODE = "TX102"
 NAME = "unknown-type"

@@ -31,10 +31,10 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from txtool.dialects.read import Found, enclosing_component
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import label, opaque, typed_ros1
-from txtool.problem import Problem
-from txtool.reader import Found, enclosing_component
 
 CODE = "TX103"
 NAME = "wrong-member-count"

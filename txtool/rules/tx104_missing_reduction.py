@@ -33,8 +33,8 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import children, label, members, opaque, typed_ros1
-from txtool.problem import Problem
 
 CODE = "TX104"
 NAME = "missing-reduction"

@@ -29,9 +29,9 @@ import math
 from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import label, read_numbers
-from txtool.numbers import format_float, parse_ros1, parse_ros2, parse_strict
-from txtool.problem import Problem
+from txtool.model.numbers import format_float, parse_ros1, parse_ros2, parse_strict
 
 CODE = "TX105"
 NAME = "invalid-number"

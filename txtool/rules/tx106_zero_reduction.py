@@ -24,9 +24,9 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import label, read_numbers
-from txtool.numbers import parse_ros1, parse_ros2
-from txtool.problem import Problem
+from txtool.model.numbers import parse_ros1, parse_ros2
 
 CODE = "TX106"
 NAME = "zero-reduction"

@@ -32,10 +32,10 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import MemberRef, children, label, members, opaque, typed_ros1
-from txtool.problem import Problem
-from txtool.reader import Found
 
 CODE = "TX107"
 NAME = "bad-role"

@@ -22,10 +22,10 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import loader_group, parsed, scope
-from txtool.problem import Problem
-from txtool.reader import Found
 
 CODE = "TX108"
 NAME = "duplicate-name"

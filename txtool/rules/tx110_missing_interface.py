@@ -27,10 +27,10 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import children, label, loaded_by_ros_control, members, opaque, typed_ros1
-from txtool.problem import Problem
-from txtool.reader import Found
 
 CODE = "TX110"
 NAME = "missing-interface"

@@ -43,10 +43,10 @@ from collections.abc import Iterable, Iterator
 
 from lxml import etree
 
+from txtool.dialects.read import Found, enclosing_component
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import children, label, opaque
-from txtool.problem import Problem
-from txtool.reader import Found, enclosing_component
 
 CODE = "TX200"
 NAME = "unknown-joint"

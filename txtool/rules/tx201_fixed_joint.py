@@ -37,10 +37,10 @@ from collections.abc import Iterator
 
 from lxml import etree
 
+from txtool.dialects.read import enclosing_component
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import children, label, robot_joints_of_transmissions
-from txtool.problem import Problem
-from txtool.reader import enclosing_component
 
 CODE = "TX201"
 NAME = "fixed-joint"

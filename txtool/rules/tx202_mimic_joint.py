@@ -36,8 +36,8 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import label, robot_joints_of_transmissions
-from txtool.problem import Problem
 
 CODE = "TX202"
 NAME = "mimic-joint"

@@ -50,10 +50,10 @@ from collections.abc import Iterator
 
 from lxml import etree
 
+from txtool.dialects.read import Found, enclosing_component
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import children, label, loaded_by_ros_control, members, opaque
-from txtool.problem import Problem
-from txtool.reader import Found, enclosing_component
 
 CODE = "TX203"
 NAME = "interface-mismatch"

@@ -51,10 +51,10 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
 
+from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import children, label, members
-from txtool.problem import Problem
-from txtool.reader import Found
 from txtool.rules.tx203_interface_mismatch import component_joint, declared_interfaces
 
 CODE = "TX204"

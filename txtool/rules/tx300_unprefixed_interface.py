@@ -40,11 +40,11 @@ from collections.abc import Iterator
 
 from lxml import etree
 
+from txtool.dialects.read import detect_dialect, ros1_type, text_of, transmission_elements
+from txtool.io.xmlio import local
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import OWN_LOADER_FAMILIES, children, label, loaded_by_ros_control
-from txtool.problem import Problem
-from txtool.reader import detect_dialect, ros1_type, text_of, transmission_elements
-from txtool.robot import local
 from txtool.rules.tx204_unknown_interface import PREFIX, unprefixed_registered
 
 CODE = "TX300"

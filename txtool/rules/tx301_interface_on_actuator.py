@@ -55,7 +55,9 @@ from collections.abc import Iterator
 
 from lxml import etree
 
+from txtool.dialects.read import detect_dialect, ros1_type, text_of, transmission_elements
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import (
     OWN_LOADER_FAMILIES,
     children,
@@ -63,8 +65,6 @@ from txtool.lint.support import (
     label,
     loaded_by_ros_control,
 )
-from txtool.problem import Problem
-from txtool.reader import detect_dialect, ros1_type, text_of, transmission_elements
 from txtool.rules.tx302_legacy_type_attribute import insert_child
 
 CODE = "TX301"

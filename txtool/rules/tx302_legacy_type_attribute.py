@@ -51,10 +51,10 @@ from collections.abc import Iterator
 
 from lxml import etree
 
+from txtool.dialects.read import Found, detect_dialect, first_child_text, transmission_elements
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import children, label
-from txtool.problem import Problem
-from txtool.reader import Found, detect_dialect, first_child_text, transmission_elements
 
 CODE = "TX302"
 NAME = "legacy-type-attribute"

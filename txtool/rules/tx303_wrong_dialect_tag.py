@@ -39,11 +39,12 @@ from collections.abc import Iterator
 
 from lxml import etree
 
+from txtool.dialects.read import Found
+from txtool.io.xmlio import local
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import children, label
-from txtool.problem import Problem
-from txtool.reader import Found
-from txtool.robot import child_index, local
+from txtool.model.robot import child_index
 
 CODE = "TX303"
 NAME = "wrong-dialect-tag"

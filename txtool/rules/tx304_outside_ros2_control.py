@@ -33,11 +33,11 @@ from collections.abc import Iterator
 
 from lxml import etree
 
+from txtool.dialects.read import enclosing_component
+from txtool.io.xmlio import local
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import is_xacro, label
-from txtool.problem import Problem
-from txtool.reader import enclosing_component
-from txtool.robot import local
 
 CODE = "TX304"
 NAME = "outside-ros2-control"

@@ -38,10 +38,10 @@ from collections.abc import Iterator
 
 from lxml import etree
 
+from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import children, label, members
-from txtool.problem import Problem
-from txtool.reader import Found
 
 CODE = "TX400"
 NAME = "ignored-value"

@@ -39,10 +39,10 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import children, label
-from txtool.model import Member
-from txtool.problem import Problem
-from txtool.semantics import ROLES_ACTUATOR, ROLES_JOINT
+from txtool.model.core import Member
+from txtool.model.semantics import ROLES_ACTUATOR, ROLES_JOINT
 
 CODE = "TX401"
 NAME = "role-order-mismatch"

@@ -3,7 +3,7 @@
 What it checks
     For a loadable standard transmission, the matrix ``A`` with
     ``actuator velocity = A · joint velocity``, built from the reductions the ROS loader
-    actually binds (:func:`txtool.semantics.effective`), must be invertible and well
+    actually binds (:func:`txtool.model.semantics.effective`), must be invertible and well
     conditioned: its 2-norm condition number at most ``max-condition``. Transmissions the
     loader refuses (a zero or non-numeric reduction) are TX106's and other rules' business.
 
@@ -43,11 +43,11 @@ from functools import cache
 from typing import Any
 
 from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
 from txtool.lint.support import label
 from txtool.mechanics.linear import MAX_CONDITION, condition_number, singular
-from txtool.model import Transmission
-from txtool.problem import Problem
-from txtool.semantics import NotLoadable, effective
+from txtool.model.core import Transmission
+from txtool.model.semantics import NotLoadable, effective
 
 CODE = "TX403"
 NAME = "singular-transmission"

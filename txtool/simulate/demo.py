@@ -9,12 +9,13 @@ from rich.console import Console
 from rich.markup import escape
 from rich.rule import Rule
 
-from txtool.reader import read_source
-from txtool.robot import children
-from txtool.semantics import loader_of
+from txtool.dialects.read import read_source
+from txtool.io.load import load
+from txtool.io.xmlio import InputError, serialize
+from txtool.model.robot import children
+from txtool.model.semantics import loader_of
 from txtool.simulate import report
 from txtool.simulate.run import Options, simulate_one
-from txtool.xmlio import InputError, load, serialize
 
 DEMO_ROBOT = Path(__file__).resolve().parents[2] / "fixtures" / "demo_robot.urdf"
 

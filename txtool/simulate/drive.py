@@ -13,14 +13,14 @@ from dataclasses import dataclass, field
 import numpy as np
 from lxml import etree
 
+from txtool.dialects.read import Found, read_source
+from txtool.io.xmlio import InputError, Source, local
 from txtool.mechanics.inertia import reflected_inertia
 from txtool.mechanics.maps import TransmissionMap, from_transmission
-from txtool.numbers import parse_strict
-from txtool.reader import Found, read_source
-from txtool.robot import children, local
-from txtool.semantics import NotLoadable, loader_of
+from txtool.model.numbers import parse_strict
+from txtool.model.robot import children
+from txtool.model.semantics import NotLoadable, loader_of
 from txtool.simulate.model import RobotModel
-from txtool.xmlio import InputError, Source
 
 DRAKE_TAGS = ("rotor_inertia", "gear_ratio")
 

@@ -19,8 +19,8 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from txtool.robot import JointInfo, robot_joints
-from txtool.xmlio import InputError, Source, serialize
+from txtool.io.xmlio import InputError, Source, serialize
+from txtool.model.robot import JointInfo, robot_joints
 
 MOVING = ("revolute", "continuous", "prismatic")
 

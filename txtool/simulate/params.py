@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from txtool.xmlio import InputError
+from txtool.io.xmlio import InputError
 
 if sys.version_info >= (3, 11):
     import tomllib

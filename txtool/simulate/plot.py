@@ -8,8 +8,8 @@ from __future__ import annotations
 import importlib.util
 import math
 
+from txtool.io.xmlio import InputError
 from txtool.simulate.result import RunResult
-from txtool.xmlio import InputError
 
 SUFFIXES = (".png", ".svg")
 

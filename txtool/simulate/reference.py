@@ -14,8 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from txtool.numbers import parse_strict
-from txtool.xmlio import InputError
+from txtool.io.xmlio import InputError
+from txtool.model.numbers import parse_strict
 
 CONTINUOUS_RANGE = (-1.0, 1.0)
 

@@ -9,11 +9,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from txtool.io.load import load
+from txtool.io.xmlio import InputError, XacroOptions
 from txtool.simulate import loop, reference, result, setup
 from txtool.simulate.drive import Drive, read_drive
 from txtool.simulate.model import RobotModel, build
 from txtool.simulate.params import Params, load_params
-from txtool.xmlio import InputError, XacroOptions, load
 
 DEFAULTS = {"bandwidth": 20.0, "duration": 5.0, "dt": 0.001, "tolerance": 0.01}
 MAX_STEPS = 20_000_000

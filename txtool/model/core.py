@@ -2,7 +2,7 @@
 
 Every reader produces these values and every writer consumes them. Values are stored where the
 document wrote them (a joint's reduction on the joint, an actuator's on the actuator); what a
-ROS loader actually uses from them is the business of :mod:`txtool.semantics`.
+ROS loader actually uses from them is the business of :mod:`txtool.model.semantics`.
 
 The classes are frozen dataclasses whose schema is pydantic's: :func:`validate`, :func:`dump`
 and :func:`json_schema` go through a pydantic ``TypeAdapter``. pydantic's model machinery is

@@ -14,7 +14,7 @@ import math
 from dataclasses import dataclass
 from typing import Literal
 
-from txtool.model import Member, Number, Transmission
+from txtool.model.core import Member, Number, Transmission
 
 Loader = Literal["ros1", "ros2"]
 ROLES_JOINT = ("joint1", "joint2")

@@ -7,13 +7,14 @@ from pathlib import Path
 from rich.console import Console
 from rich.rule import Rule
 
-from txtool.convert import convert_source
-from txtool.reader import read_source
-from txtool.render import transmissions_table
-from txtool.roundtrip import roundtrip
-from txtool.xmlio import InputError, Source, load, parse_bytes
+from txtool.dialects.read import read_source
+from txtool.io.load import load
+from txtool.io.xmlio import InputError, Source, parse_bytes
+from txtool.transform.convert import convert_source
+from txtool.transform.roundtrip import roundtrip
+from txtool.views.render import transmissions_table
 
-FIXTURES = Path(__file__).resolve().parent.parent / "fixtures"
+FIXTURES = Path(__file__).resolve().parents[2] / "fixtures"
 DEMO_ROBOT = FIXTURES / "demo_robot.urdf"
 BROKEN_ROBOT = FIXTURES / "broken_robot.urdf"
 

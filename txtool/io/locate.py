@@ -15,8 +15,7 @@ from functools import cached_property, lru_cache
 
 from lxml import etree
 
-from txtool.robot import is_xacro_element, local
-from txtool.xmlio import Source, text_lines
+from txtool.io.xmlio import Source, is_xacro_element, local, text_lines
 
 
 @dataclass(frozen=True)

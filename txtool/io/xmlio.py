@@ -271,24 +271,6 @@ class XacroOptions:
     pkg_paths: tuple[tuple[str, str], ...] = ()
 
 
-def load(
-    path: str,
-    *,
-    xacro: XacroOptions | None = None,
-    stdin_name: str | None = None,
-    expand: bool = True,
-) -> Source:
-    """Load one input; ``.xacro`` files are expanded in-process unless ``expand`` is False."""
-    display, data = read_bytes(path, stdin_name=stdin_name)
-    tree = parse_bytes(data, display)
-    if not (expand and is_xacro(display) and path != "-"):
-        return Source(path=display, data=data, tree=tree)
-    from txtool.xacro_support import expand_xacro
-
-    expanded = expand_xacro(path, display, xacro or XacroOptions())
-    return Source(path=display, data=data, tree=expanded, expanded=True, source_tree=tree)
-
-
 def serialize(tree: etree._ElementTree, original: bytes | None = None) -> bytes:
     """Write a tree back, keeping the original XML declaration text when there was one."""
     encoding = "utf-8"
@@ -369,3 +351,19 @@ def _umask() -> int:
     current = os.umask(0)
     os.umask(current)
     return current
+
+
+def local(element: etree._Element) -> str:
+    """Tag without namespace; '' for comments and processing instructions."""
+    tag = element.tag
+    if not isinstance(tag, str):
+        return ""
+    return tag.rsplit("}", 1)[-1]
+
+
+def is_xacro_element(element: etree._Element) -> bool:
+    """A xacro directive or macro call (``xacro:`` prefix or the xacro namespace)."""
+    tag = element.tag
+    if not isinstance(tag, str):
+        return False
+    return element.prefix == "xacro" or tag.startswith(f"{{{XACRO_NS}}}")

@@ -13,10 +13,10 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
-from txtool.model import Transmission
-from txtool.numbers import format_float
-from txtool.robot import JointInfo
-from txtool.semantics import NotLoadable, effective
+from txtool.model.core import Transmission
+from txtool.model.numbers import format_float
+from txtool.model.robot import JointInfo
+from txtool.model.semantics import NotLoadable, effective
 
 
 @dataclass(frozen=True)

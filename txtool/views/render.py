@@ -6,7 +6,7 @@ from collections.abc import Sequence
 
 from rich.table import Table
 
-from txtool.model import Number, Transmission
+from txtool.model.core import Number, Transmission
 
 
 def _number(number: Number | None) -> str:

@@ -14,8 +14,8 @@ from functools import cached_property
 
 from lxml import etree
 
-from txtool.numbers import parse_strict
-from txtool.xmlio import XACRO_NS
+from txtool.io.xmlio import local
+from txtool.model.numbers import parse_strict
 
 
 @dataclass(frozen=True)
@@ -74,22 +74,6 @@ class Component:
         for joint in self.joints:
             by_name.setdefault(joint.name, joint)  # the first of a repeated name, as before
         return by_name
-
-
-def local(element: etree._Element) -> str:
-    """Tag without namespace; '' for comments and processing instructions."""
-    tag = element.tag
-    if not isinstance(tag, str):
-        return ""
-    return tag.rsplit("}", 1)[-1]
-
-
-def is_xacro_element(element: etree._Element) -> bool:
-    """A xacro directive or macro call (``xacro:`` prefix or the xacro namespace)."""
-    tag = element.tag
-    if not isinstance(tag, str):
-        return False
-    return element.prefix == "xacro" or tag.startswith(f"{{{XACRO_NS}}}")
 
 
 def children(element: etree._Element, name: str) -> list[etree._Element]:

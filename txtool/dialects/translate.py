@@ -17,8 +17,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from txtool.model import Dialect, Member, Number, Transmission, replace, standard_type
-from txtool.numbers import format_float, parse_ros1, parse_ros2
+from txtool.model.core import Dialect, Member, Number, Transmission, replace, standard_type
+from txtool.model.numbers import format_float, parse_ros1, parse_ros2
 
 ROS1_INTERFACE = {
     "position": "hardware_interface/PositionJointInterface",

@@ -18,8 +18,8 @@ from functools import lru_cache
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from txtool.problem import Severity
-from txtool.xmlio import InputError, XacroOptions
+from txtool.io.xmlio import InputError, XacroOptions
+from txtool.lint.problem import Severity
 
 if TYPE_CHECKING:
     from txtool.lint.config_model import Config

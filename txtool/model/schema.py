@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 
-from txtool.model import Document, json_schema
+from txtool.model.core import Document, json_schema
 
 SCHEMA_FILES = {"transmission.schema.json": Document}
 

@@ -23,16 +23,16 @@ from typing import Literal
 
 from lxml import etree
 
-from txtool.config import Overrides, SettingsCache
-from txtool.convert import DEFAULT_HARDWARE_PLUGIN, convert_source
+from txtool.dialects.read import transmission_elements
+from txtool.io.xmlio import InputError, Source, parse_bytes, read_bytes, serialize, write_atomic
+from txtool.lint.config import Overrides, SettingsCache
 from txtool.lint.discover import expand_paths
+from txtool.lint.problem import Problem
 from txtool.lint.suppress import Suppressions
 from txtool.lint.suppress import parse as parse_suppressions
-from txtool.model import Dialect
-from txtool.problem import Problem
-from txtool.reader import transmission_elements
+from txtool.model.core import Dialect
 from txtool.rules import Rule, all_rules
-from txtool.xmlio import InputError, Source, parse_bytes, read_bytes, serialize, write_atomic
+from txtool.transform.convert import DEFAULT_HARDWARE_PLUGIN, convert_source
 
 Mode = Literal["check", "diff", "write"]
 _ENCODING = re.compile(rb"""^\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
@@ -124,7 +124,7 @@ def migrate_paths(paths: Iterable[str], options: MigrateOptions) -> Report:
     """Migrate files and folders (searched like ``validate`` does); writes in ``write`` mode.
 
     Every file's configuration is resolved before any file is touched, so a bad configuration
-    (:class:`~txtool.config.ConfigError`, exit 2) stops the run with nothing written.
+    (:class:`~txtool.lint.config.ConfigError`, exit 2) stops the run with nothing written.
     """
     report = Report(mode=options.mode)
     for path, rules in _plan(paths, options):

@@ -22,7 +22,7 @@ from typing import Any
 
 from lxml import etree
 
-from txtool.xmlio import (
+from txtool.io.xmlio import (
     ENTITY_REFUSAL,
     EntityRefused,
     InputError,

@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from txtool.model import Member, Number, Transmission
-from txtool.translate import interface_kind
+from txtool.dialects.translate import interface_kind
+from txtool.model.core import Member, Number, Transmission
 
 FIELDS = ("reduction", "offset", "direction", "roles", "interfaces")
 

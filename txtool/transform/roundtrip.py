@@ -12,12 +12,12 @@ from __future__ import annotations
 import itertools
 from dataclasses import dataclass, field
 
-from txtool.convert import convert_source
-from txtool.model import DIALECTS, Dialect, Transmission
-from txtool.reader import read_source
-from txtool.robot import robot_joints
-from txtool.views import FIELDS, differences, surviving
-from txtool.xmlio import Source, parse_bytes
+from txtool.dialects.read import read_source
+from txtool.io.xmlio import Source, parse_bytes
+from txtool.model.core import DIALECTS, Dialect, Transmission
+from txtool.model.robot import robot_joints
+from txtool.transform.convert import convert_source
+from txtool.views.tables import FIELDS, differences, surviving
 
 
 @dataclass(frozen=True)

@@ -16,13 +16,13 @@ from dataclasses import dataclass, field
 from lxml import etree
 
 from txtool import dialects
-from txtool.model import Dialect, Transmission
-from txtool.reader import enclosing_component, read_source
-from txtool.robot import children, local
-from txtool.semantics import NotLoadable, effective
-from txtool.translate import family, is_expression, translate
-from txtool.views import differences
-from txtool.xmlio import Source, parse_bytes, serialize
+from txtool.dialects.read import enclosing_component, read_source
+from txtool.dialects.translate import family, is_expression, translate
+from txtool.io.xmlio import Source, local, parse_bytes, serialize
+from txtool.model.core import Dialect, Transmission
+from txtool.model.robot import children
+from txtool.model.semantics import NotLoadable, effective
+from txtool.views.tables import differences
 
 DEFAULT_HARDWARE_PLUGIN = "mock_components/GenericSystem"
 KNOWN_CHILDREN = {

@@ -7,7 +7,7 @@ The dialect is detected per transmission, so one file may mix them:
 * ``ros2-p1``: inside ``<ros2_control>`` (or carrying ``<plugin>``), roles as ``<role>`` elements.
 * ``ros2-p2``: inside ``<ros2_control>``, roles as ``role=`` attributes (what ros2_control parses).
 
-Numbers are parsed the way the detected loader parses them (see :mod:`txtool.numbers`).
+Numbers are parsed the way the detected loader parses them (see :mod:`txtool.model.numbers`).
 """
 
 from __future__ import annotations
@@ -18,13 +18,13 @@ from typing import TYPE_CHECKING, Any
 
 from lxml import etree
 
-from txtool.model import Dialect, Location, Member, Number, Transmission, kind_of, replace
-from txtool.numbers import parse_ros1, parse_ros2
-from txtool.robot import Component, ancestor, child_index, children, component_of
-from txtool.xmlio import Source
+from txtool.io.xmlio import Source
+from txtool.model.core import Dialect, Location, Member, Number, Transmission, kind_of, replace
+from txtool.model.numbers import parse_ros1, parse_ros2
+from txtool.model.robot import Component, ancestor, child_index, children, component_of
 
 if TYPE_CHECKING:
-    from txtool.locate import Locator
+    from txtool.io.locate import Locator
 
 
 @dataclass(frozen=True)
@@ -54,7 +54,7 @@ def read_source(
     """
     locator = None
     if locate:
-        from txtool.locate import Locator
+        from txtool.io.locate import Locator
 
         locator = Locator(source)
     components: dict[etree._Element, Component] = {}  # each read once, however many members
@@ -119,7 +119,7 @@ def first_child_text(element: etree._Element, name: str) -> str | None:
 
 
 def _first_text(kids: dict[str, list[etree._Element]], name: str) -> str | None:
-    """:func:`first_child_text` over a :func:`~txtool.robot.child_index`."""
+    """:func:`first_child_text` over a :func:`~txtool.model.robot.child_index`."""
     found = kids.get(name)
     return text_of(found[0]) if found else None
 

@@ -1,0 +1,1 @@
+"""Transforms that produce documents: conversion between dialects, migration, round trips, BB."""

@@ -1,0 +1,1 @@
+"""Views of transmissions: rich tables and the field-by-field comparison."""
