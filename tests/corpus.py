@@ -13,6 +13,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
 CORPUS = ROOT.parent / "shared" / "corpus"
+WORKSPACE = ROOT.parent / "shared" / "workspace"
 
 
 def corpus_dir() -> Path:
@@ -40,3 +41,13 @@ def corpus_file(name: str) -> Path:
 
 def corpus_files() -> list[Path]:
     return [corpus_dir() / name for name in corpus_names()]
+
+
+def workspace_dir() -> Path:
+    """The shared ROS package tree (``src/rrbot_description``), read in place."""
+    if (WORKSPACE / "src").is_dir():
+        return WORKSPACE
+    reason = f"workspace not found at {WORKSPACE} (expected ../shared/workspace)"
+    if os.environ.get("TXTOOL_REQUIRE_CORPUS") == "1":
+        pytest.fail(reason + " and TXTOOL_REQUIRE_CORPUS=1")
+    pytest.skip(reason)

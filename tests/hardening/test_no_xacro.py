@@ -116,10 +116,13 @@ def _names(out: str) -> list[str]:
     return [t["name"] for t in json.loads(out)["transmissions"]]
 
 
-def test_expansion_has_a_visible_effect(run, robot):
+def test_expansion_has_a_visible_effect(run, robot, monkeypatch):
+    for variable in ("AMENT_PREFIX_PATH", "ROS_PACKAGE_PATH", "CMAKE_PREFIX_PATH"):
+        monkeypatch.delenv(variable, raising=False)
     assert run("show", str(robot)) == (2, "", (
-        f"txtool: {robot}:1: xacro: package 'arm_description' not found (give --pkg-dir DIR "
-        "or --pkg-path arm_description:=DIR)\n"))
+        f"txtool: {robot}:1: xacro: package 'arm_description' not found (looked in: "
+        "AMENT_PREFIX_PATH (unset); ROS_PACKAGE_PATH (unset); CMAKE_PREFIX_PATH (unset)); "
+        "give --pkg-dir DIR or --pkg-path arm_description:=DIR\n"))
 
 
 def test_show_lists_the_transmissions_as_written(run, robot, off):

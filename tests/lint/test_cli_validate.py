@@ -168,5 +168,6 @@ def test_a_folder_with_nothing_to_check_is_an_input_error_not_a_pass(validate, t
     for folder in ("robot.urdf", "docs"):
         code, out, err = validate(str(tmp_path / folder))
         assert (code, out) == (2, "")
-        assert err == (f"txtool: {tmp_path / folder}: no .urdf, .xacro or robot .xml file in "
-                       "this folder (or its subfolders)\n")
+        assert err == (f"txtool: {tmp_path / folder}: no .urdf, .xacro or robot .xml file to "
+                       "check in this folder (or its subfolders, leaving out ignored and "
+                       "excluded ones)\n")

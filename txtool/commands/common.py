@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import functools
+import os
 import sys
 from collections.abc import Callable
 from typing import Any
@@ -34,10 +35,12 @@ def xacro_options(function: Callable[..., Any]) -> Callable[..., Any]:
                   help="Where one package is, for $(find NAME) (repeatable).")
     @functools.wraps(function)
     def wrapper(*args: Any, xacro_args, pkg_dirs, pkg_paths, **kwargs: Any) -> Any:
-        options = XacroOptions(
+        options = XacroOptions(  # folders relative to where the command runs, not to the file
             args=_pairs(xacro_args, "--xacro-arg"),
-            pkg_dirs=tuple(pkg_dirs),
-            pkg_paths=_pairs(pkg_paths, "--pkg-path"),
+            pkg_dirs=tuple(os.path.abspath(d) for d in pkg_dirs),
+            pkg_paths=tuple(
+                (name, os.path.abspath(d)) for name, d in _pairs(pkg_paths, "--pkg-path")
+            ),
         )
         return function(*args, xacro=options, **kwargs)
 

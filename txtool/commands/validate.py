@@ -48,10 +48,18 @@ def use_color(mode: str) -> bool:
               help="Processes checking many files (0: one per CPU; 1: only this one).")
 @click.option("--color", type=click.Choice(["auto", "always", "never"]), default="auto",
               show_default=True, help="Colour the text output (NO_COLOR is honoured by auto).")
+@click.option("--exclude", multiple=True, metavar="PATTERN",
+              help="gitignore-style pattern of files and folders that folder walks pass over, "
+                   "relative to this folder; replaces the configuration's exclude (repeatable).")
+@click.option("--extend-exclude", multiple=True, metavar="PATTERN",
+              help="Like --exclude, but kept beside the configuration's exclude (repeatable).")
+@click.option("--respect-gitignore/--no-respect-gitignore", default=None,
+              help="Pass over what .gitignore files ignore in folder walks [default: respect].")
 @xacro_options
 @exit_on_input_error
 def command(paths, output_format, select, ignore, strict, exit_zero, config_path, no_xacro,
-            stdin_filename, jobs, color, xacro) -> int:
+            stdin_filename, jobs, color, exclude, extend_exclude, respect_gitignore,
+            xacro) -> int:
     """Check transmissions in files and folders (*.urdf, *.xacro, robot *.xml; '-' is stdin).
 
     Exit codes: 0 nothing at the failing level, 1 findings at it (errors; warnings too with
@@ -70,6 +78,9 @@ def command(paths, output_format, select, ignore, strict, exit_zero, config_path
         strict=strict,
         exit_zero=exit_zero,
         jobs=jobs,
+        exclude=exclude or None,
+        extend_exclude=extend_exclude,
+        respect_gitignore=respect_gitignore,
     )
     result = lint_paths(list(paths) or ["."], options)
     for error in result.errors:

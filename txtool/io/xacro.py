@@ -1,7 +1,6 @@
 """In-process xacro expansion with the ``xacro`` package: no ROS install needed.
 
-``$(find pkg)`` is resolved from ``--pkg-path name:=DIR`` and from folders given with
-``--pkg-dir`` (a package is a sub-folder named like it, or one whose ``package.xml`` names it).
+``$(find pkg)`` is resolved as in a ROS workspace, without flags: see :mod:`txtool.io.packages`.
 
 xacro parses with ``xml.dom.minidom`` (expat), which expands internal entities. Every file it
 reads, the top file and each ``<xacro:include>``, is first checked with a bare expat parser and
@@ -22,6 +21,7 @@ from typing import Any
 
 from lxml import etree
 
+from txtool.io.packages import PackageNotFound, find_package
 from txtool.io.xmlio import (
     ENTITY_REFUSAL,
     EntityRefused,
@@ -44,34 +44,13 @@ class XacroError(InputError):
         self.reason = reason
 
 
-def find_package(name: str, options: XacroOptions) -> str:
-    for pkg, folder in options.pkg_paths:
-        if pkg == name:
-            return folder
-    for root in options.pkg_dirs:
-        candidate = Path(root) / name
-        if candidate.is_dir():
-            return str(candidate)
-        for manifest in sorted(Path(root).glob("*/package.xml")):
-            if f"<name>{name}</name>" in manifest.read_text(errors="replace"):
-                return str(manifest.parent)
-    raise XacroPackageMissing(name)
-
-
-class XacroPackageMissing(Exception):
-    def __init__(self, name: str) -> None:
-        super().__init__(
-            f"package '{name}' not found (give --pkg-dir DIR or --pkg-path {name}:=DIR)"
-        )
-
-
 def expand_xacro(path: str, display: str, options: XacroOptions) -> etree._ElementTree:
     """Expand ``path`` and parse the result safely."""
     import xacro
     from xacro import substitution_args
 
     def eval_find(pkg: str) -> str:
-        return find_package(pkg, options)
+        return find_package(pkg, near=path, pkg_paths=options.pkg_paths, pkg_dirs=options.pkg_dirs)
 
     saved_find, saved_parse = substitution_args._eval_find, xacro.parse
     substitution_args._eval_find = eval_find
@@ -176,7 +155,7 @@ def _root_cause(exc: BaseException) -> BaseException:
 def _xacro_reason(exc: BaseException) -> str:
     from xacro import substitution_args
 
-    if isinstance(exc, XacroPackageMissing | UnsafeXML):
+    if isinstance(exc, PackageNotFound | UnsafeXML):
         return str(exc)
     if isinstance(exc, substitution_args.ArgException):
         return f"missing argument '{exc}' (give --xacro-arg {exc}:=VALUE)"

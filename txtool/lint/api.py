@@ -30,6 +30,9 @@ class LintOptions:
     strict: bool = False
     exit_zero: bool = False
     jobs: int = 0  # worker processes; 0: one per usable CPU when there are enough files
+    exclude: tuple[str, ...] | None = None  # replaces the configuration's exclude
+    extend_exclude: tuple[str, ...] = ()
+    respect_gitignore: bool | None = None  # None: as configured (default True)
 
 
 @dataclass
@@ -54,11 +57,12 @@ def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions) -> Lint
     """
     overrides = Overrides(
         select=options.select, ignore=options.ignore, xacro=options.xacro,
-        no_xacro=options.no_xacro,
+        no_xacro=options.no_xacro, exclude=options.exclude,
+        extend_exclude=options.extend_exclude, respect_gitignore=options.respect_gitignore,
     )
     settings = SettingsCache(overrides, options.config)
     work: list[tuple[str, Settings]] = []
-    for path in expand_paths(paths):
+    for path in expand_paths(paths, skip=settings.excluded, gitignore=settings.respects_gitignore):
         where = options.stdin_filename if path == "-" and options.stdin_filename else path
         work.append((path, settings.for_file(where)))  # a ConfigError stops the run
     result = LintResult()

@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from txtool.io.xmlio import InputError, XacroOptions
+from txtool.lint.patterns import Excludes
 from txtool.lint.problem import Severity
 
 if TYPE_CHECKING:
@@ -61,6 +62,11 @@ class Values:
     pkg_dirs: list[str] | tuple[str, ...] = ()
     pkg_paths: dict[str, str] = field(default_factory=dict)
     no_xacro: bool = False
+    exclude: list[str] | tuple[str, ...] = ()
+    extend_exclude: list[str] | tuple[str, ...] = ()
+    respect_gitignore: bool = True
+    per_file_ignores: dict[str, list[str]] = field(default_factory=dict)
+    per_file_xacro_args: dict[str, dict[str, str]] = field(default_factory=dict)
 
     @classmethod
     def of(cls, config: Config | None) -> Values:
@@ -79,6 +85,25 @@ class Settings:
     xacro: XacroOptions
     no_xacro: bool
     origin: str = "<defaults>"
+    excludes: Excludes = field(default_factory=lambda: Excludes(".", ()))
+    respect_gitignore: bool = True
+    # (pattern, codes no longer run, xacro arguments added) for files matching the pattern
+    per_file: tuple[tuple[str, frozenset[str], tuple[tuple[str, str], ...]], ...] = ()
+
+    def for_path(self, path: str) -> Settings:
+        """These settings with the per-file entries whose pattern matches ``path`` applied."""
+        if not self.per_file or path == "-":
+            return self
+        disabled: set[str] = set()
+        args = dict(self.xacro.args)
+        for pattern, codes, extra in self.per_file:
+            if Excludes(self.excludes.base, (pattern,)).matches(path, False):
+                disabled |= codes
+                args.update(extra)
+        if not disabled and args == dict(self.xacro.args):
+            return self
+        xacro = dataclasses.replace(self.xacro, args=tuple(args.items()))
+        return dataclasses.replace(self, enabled=self.enabled - disabled, xacro=xacro)
 
 
 def load_config(path: Path) -> Config:
@@ -192,7 +217,19 @@ def resolve(
         options[_exact(code, rules, origin, f"{prefix}rules.{code}")] = _options(
             rules[code.upper()], values, origin, f"{prefix}rules.{code.upper()}"
         )
-    folder = base or Path(".")
+    folder = (base or Path(".")).absolute()  # relative folders are the config file's
+    per_file = tuple(
+        (
+            pattern,
+            frozenset(_expand(codes, rules, origin, f"{prefix}per-file-ignores.{pattern}")),
+            tuple(config.per_file_xacro_args.get(pattern, {}).items()),
+        )
+        for pattern, codes in config.per_file_ignores.items()
+    ) + tuple(
+        (pattern, frozenset(), tuple(args.items()))
+        for pattern, args in config.per_file_xacro_args.items()
+        if pattern not in config.per_file_ignores
+    )
     return Settings(
         enabled=frozenset(selected - ignored),
         severity={code.upper(): level for code, level in config.severity.items()},
@@ -204,6 +241,9 @@ def resolve(
         ),
         no_xacro=config.no_xacro,
         origin=origin,
+        excludes=Excludes(str(folder), (*config.exclude, *config.extend_exclude)),
+        respect_gitignore=config.respect_gitignore,
+        per_file=per_file,
     )
 
 
@@ -248,6 +288,9 @@ class Overrides:
     ignore: tuple[str, ...] = ()
     xacro: XacroOptions = XacroOptions()
     no_xacro: bool = False
+    exclude: tuple[str, ...] | None = None  # --exclude replaces the configuration's exclude
+    extend_exclude: tuple[str, ...] = ()
+    respect_gitignore: bool | None = None
 
 
 def merged(config: Config | None, overrides: Overrides) -> Values:
@@ -259,6 +302,12 @@ def merged(config: Config | None, overrides: Overrides) -> Values:
         ignore=[*values.ignore, *overrides.ignore],
         xacro_args={**values.xacro_args, **dict(overrides.xacro.args)},
         no_xacro=values.no_xacro or overrides.no_xacro or no_xacro_from_environment(),
+        exclude=values.exclude if overrides.exclude is None else (),
+        respect_gitignore=(
+            values.respect_gitignore
+            if overrides.respect_gitignore is None
+            else overrides.respect_gitignore
+        ),
     )
 
 
@@ -282,6 +331,9 @@ class SettingsCache:
         self.explicit = Path(explicit) if explicit else None
         self._by_file: dict[Path | None, Settings] = {}
         self._by_folder: dict[str, Path | None] = {}
+        self._cli_excludes = Excludes(
+            os.getcwd(), (*(overrides.exclude or ()), *overrides.extend_exclude)
+        )
         check_overrides(overrides)
         no_xacro_from_environment()  # a bad value stops the run before any file is read
 
@@ -296,7 +348,17 @@ class SettingsCache:
             config_path = self._config_of_folder(os.path.dirname(os.path.abspath(path)))
         if config_path not in self._by_file:
             self._by_file[config_path] = self._settings(config_path)
-        return self._by_file[config_path]
+        return self._by_file[config_path].for_path(path)
+
+    def excluded(self, path: str, is_folder: bool) -> bool:
+        """Whether a folder walk passes over ``path``: the command line's ``--exclude`` and
+        ``--extend-exclude`` (relative to the current folder), then its configuration's."""
+        if self._cli_excludes.matches(path, is_folder):
+            return True
+        return self.for_file(path).excludes.matches(path, is_folder)
+
+    def respects_gitignore(self, folder: str) -> bool:
+        return self.for_file(os.path.join(folder, "-.urdf")).respect_gitignore
 
     def _config_of_folder(self, folder: str) -> Path | None:
         # Resolving every file's path costs a system call per path component; once per folder.
@@ -321,11 +383,4 @@ class SettingsCache:
             pkg_dirs=extra.pkg_dirs + settings.xacro.pkg_dirs,
             pkg_paths=extra.pkg_paths + settings.xacro.pkg_paths,
         )
-        return Settings(
-            enabled=settings.enabled,
-            severity=settings.severity,
-            options=settings.options,
-            xacro=xacro,
-            no_xacro=settings.no_xacro,
-            origin=settings.origin,
-        )
+        return dataclasses.replace(settings, xacro=xacro)

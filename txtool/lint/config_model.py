@@ -33,3 +33,21 @@ class Config(BaseModel):
     pkg_dirs: list[str] = Field(default_factory=list, alias="pkg-dirs")
     pkg_paths: dict[str, str] = Field(default_factory=dict, alias="pkg-paths")
     no_xacro: bool = Field(default=False, alias="no-xacro")
+    exclude: list[str] = Field(
+        default_factory=list,
+        description="gitignore-style patterns, relative to this file's folder, that folder "
+        "walks pass over (--exclude replaces them).",
+    )
+    extend_exclude: list[str] = Field(
+        default_factory=list, alias="extend-exclude",
+        description="More patterns to pass over, kept when --exclude is given.",
+    )
+    respect_gitignore: bool = Field(default=True, alias="respect-gitignore")
+    per_file_ignores: dict[str, list[str]] = Field(
+        default_factory=dict, alias="per-file-ignores",
+        description="Pattern -> rule codes or prefixes not run on matching files.",
+    )
+    per_file_xacro_args: dict[str, dict[str, str]] = Field(
+        default_factory=dict, alias="per-file-xacro-args",
+        description="Pattern -> xacro arguments for matching files (over xacro-args).",
+    )

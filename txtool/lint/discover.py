@@ -1,30 +1,52 @@
-"""Which files ``txtool validate`` checks when given folders."""
+"""Which files ``txtool validate`` checks when given folders.
+
+In a folder, recursively: ``*.urdf``, ``*.xacro`` and ``.xml`` files whose root is a robot
+description. Passed over, as ruff and colcon do: hidden folders; folders holding
+``COLCON_IGNORE``, ``AMENT_IGNORE`` or ``CATKIN_IGNORE`` (colcon's ``build/``, ``install/`` and
+``log/`` carry one); what ``.gitignore`` files ignore (unless told not to); and what an exclude
+pattern names (see :class:`Excludes`). A file named on the command line is always checked.
+"""
 
 from __future__ import annotations
 
 import os
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 
 from lxml import etree
 
+from txtool.io.packages import is_ignored
 from txtool.io.xmlio import SAFE_OPTIONS, InputError
+from txtool.lint.patterns import Excludes
 
 SUFFIXES = (".urdf", ".xacro")  # ``.urdf.xacro`` ends with ``.xacro``
 XML_ROOTS = frozenset({"robot", "ros2_control", "transmission"})
 
+# (path, is_folder) -> True when the path found in a folder walk must be passed over.
+Skip = Callable[[str, bool], bool]
 
-def expand_paths(paths: Iterable[str]) -> Iterator[str]:
+
+def expand_paths(
+    paths: Iterable[str],
+    *,
+    skip: Skip | None = None,
+    gitignore: Callable[[str], bool] = lambda folder: True,
+) -> Iterator[str]:
     """Files to lint, in a stable order: given files as they are, folders searched recursively.
 
-    A given file is always checked, whatever its name; a missing one is passed on so that
-    loading reports it. ``-`` (stdin) is passed on as well. Each file is produced once. A
-    folder holding nothing to check is an :class:`~txtool.io.xmlio.InputError`: a CI step given
-    the wrong folder must not pass silently.
+    ``skip`` passes over what a folder walk finds (exclude patterns); ``gitignore`` says per
+    folder given whether its walk respects ``.gitignore``. A given file is always checked,
+    whatever its name and patterns; a missing one is passed on so that loading reports it.
+    ``-`` (stdin) is passed on as well. Each file is produced once. A folder holding nothing to
+    check is an :class:`~txtool.io.xmlio.InputError`: a CI step given the wrong folder must not
+    pass silently.
     """
     seen: set[object] = set()
     for path in paths:
-        found = _walk(path) if path != "-" and os.path.isdir(path) else iter([path])
+        if path != "-" and os.path.isdir(path):
+            found = _walk(path, skip, GitIgnores(path) if gitignore(path) else None)
+        else:
+            found = iter([path])
         empty = True
         for candidate in found:
             empty = False
@@ -34,7 +56,8 @@ def expand_paths(paths: Iterable[str]) -> Iterator[str]:
                 yield candidate
         if empty:
             raise InputError(
-                f"{path}: no .urdf, .xacro or robot .xml file in this folder (or its subfolders)"
+                f"{path}: no .urdf, .xacro or robot .xml file to check in this folder (or its "
+                "subfolders, leaving out ignored and excluded ones)"
             )
 
 
@@ -49,13 +72,68 @@ def _identity(path: str) -> object:
     return (status.st_dev, status.st_ino)
 
 
-def _walk(folder: str) -> Iterator[str]:
+def _walk(folder: str, skip: Skip | None, gitignores: GitIgnores | None) -> Iterator[str]:
     for root, dirs, files in os.walk(folder):
-        dirs[:] = sorted(d for d in dirs if not d.startswith("."))
+        if is_ignored(root) and root != folder:
+            dirs[:] = []
+            continue
+        kept = []
+        for name in sorted(dirs):
+            path = os.path.join(root, name)
+            if name.startswith(".") or is_ignored(path):
+                continue
+            if gitignores is not None and gitignores.ignored(path, True):
+                continue
+            if skip is not None and skip(path, True):
+                continue
+            kept.append(name)
+        dirs[:] = kept
         for name in sorted(files):
             path = os.path.join(root, name)
-            if is_candidate(path):
+            if not is_candidate(path):
+                continue
+            if gitignores is not None and gitignores.ignored(path, False):
+                continue
+            if skip is None or not skip(path, False):
                 yield path
+
+
+class GitIgnores:
+    """The ``.gitignore`` files that apply in a repository, read once per folder.
+
+    A folder's own ``.gitignore`` applies to what lies below it, together with those of its
+    ancestors up to the repository's top (the folder holding ``.git``); outside a repository
+    only the folders walked count.
+    """
+
+    def __init__(self, start: str) -> None:
+        self._by_folder: dict[str, tuple[Excludes, ...]] = {}
+        start = os.path.abspath(start)
+        self._top = next(
+            (str(f) for f in (Path(start), *Path(start).parents) if (f / ".git").exists()), start
+        )
+
+    def ignored(self, path: str, is_folder: bool) -> bool:
+        folder = os.path.dirname(os.path.abspath(path))
+        return any(rules.matches(path, is_folder) for rules in self._rules(folder))
+
+    def _rules(self, folder: str) -> tuple[Excludes, ...]:
+        if folder not in self._by_folder:
+            parent = os.path.dirname(folder)
+            inherited: tuple[Excludes, ...] = ()
+            if folder != self._top and parent != folder:
+                inherited = self._rules(parent)
+            self._by_folder[folder] = inherited + _own_gitignore(folder)
+        return self._by_folder[folder]
+
+
+def _own_gitignore(folder: str) -> tuple[Excludes, ...]:
+    try:
+        text = Path(folder, ".gitignore").read_text(encoding="utf-8", errors="replace")
+    except OSError:
+        return ()
+    lines = tuple(line for line in text.splitlines() if line.strip())
+    return (Excludes(folder, lines),) if lines else ()
 
 
 def is_candidate(path: str) -> bool:

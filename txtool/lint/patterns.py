@@ -1,0 +1,35 @@
+"""gitignore-style path patterns, for exclusions and per-file settings (pathspec, loaded lazily)."""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from typing import Any
+
+
+@dataclass(frozen=True)
+class Excludes:
+    """gitignore-style patterns relative to ``base``: a pattern without ``/`` matches a name
+    at any depth, one with ``/`` is anchored at ``base``, ``dir/`` matches folders only."""
+
+    base: str
+    patterns: tuple[str, ...]
+
+    def matches(self, path: str, is_folder: bool) -> bool:
+        if not self.patterns:
+            return False
+        relative = os.path.relpath(os.path.abspath(path), self.base)
+        if relative.startswith(".."):
+            return False
+        return _spec(self.patterns).match_file(relative + ("/" if is_folder else ""))
+
+
+def _spec(patterns: tuple[str, ...]):
+    import pathspec  # only folder walks with patterns need it
+
+    return _SPECS.get(patterns) or _SPECS.setdefault(
+        patterns, pathspec.GitIgnoreSpec.from_lines(patterns)
+    )
+
+
+_SPECS: dict[tuple[str, ...], Any] = {}
