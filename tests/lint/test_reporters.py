@@ -13,7 +13,7 @@ import jsonschema
 import pytest
 
 from tests.lint.conftest import BROKEN
-from txtool.lint.problem import Problem
+from txtool.lint.problem import InputFailure, Problem
 from txtool.reporters import Summary, json_format, render
 from txtool.reporters.report_schema import Report, schema_text
 from txtool.reporters.sarif import artifact_uri, sarif_log
@@ -83,6 +83,7 @@ def _stable(log: dict) -> dict:
         result["ruleIndex"] = index[result["ruleId"]]
     run["tool"]["driver"]["rules"] = rules
     run["tool"]["driver"]["semanticVersion"] = "<version>"
+    run["originalUriBaseIds"]["%SRCROOT%"]["uri"] = "file:///<working folder>/"
     return log
 
 
@@ -142,7 +143,8 @@ def test_artifact_uris_are_relative_with_forward_slashes(tmp_path, monkeypatch):
 
 def test_summary_line():
     assert summary_line(Summary(1, 0, 0, 0)) == "No problems in 1 file."
-    assert summary_line(Summary(3, 2, 1, 0, unreadable=1)) == (
+    failure = InputFailure("gone.urdf", "gone.urdf: no such file")
+    assert summary_line(Summary(3, 2, 1, 0, failures=(failure,))) == (
         "Found 2 errors, 1 warning in 3 files; 1 file could not be read."
     )
 
@@ -150,3 +152,64 @@ def test_summary_line():
 def test_formatters_are_pure_functions_of_the_problems():
     assert render("json", [], Summary(0, 0, 0, 0)) == render("json", [], Summary(0, 0, 0, 0))
     assert render("github", [], Summary(2, 0, 0, 0)) == ""
+
+
+@pytest.fixture
+def with_unreadable(validate, tmp_path, monkeypatch):
+    """A good file, a broken one and one that does not exist: machine reports keep all three."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "urdf").mkdir()
+    (tmp_path / "urdf" / "robot.urdf").write_text(SNIPPET)
+    with (tmp_path / "urdf" / "huge.urdf").open("wb") as handle:
+        handle.truncate(65 * 1024 * 1024)  # sparse: over the size cap, refused unread
+
+    def run(output_format: str) -> tuple[int, str, str]:
+        return validate("--format", output_format, "urdf/robot.urdf", "urdf/huge.urdf",
+                        "urdf/missing.urdf")
+
+    return run
+
+
+def test_json_report_lists_the_files_that_could_not_be_read(with_unreadable):
+    code, out, err = with_unreadable("json")
+    report = json.loads(out)
+    assert code == 2
+    assert [e["path"] for e in report["errors"]] == ["urdf/huge.urdf", "urdf/missing.urdf"]
+    assert all(e["message"].startswith(e["path"] + ":") for e in report["errors"])
+    assert err.splitlines() == [f"txtool: {e['message']}" for e in report["errors"]]
+    schema = json.loads((ROOT / "schemas" / "report.schema.json").read_text())
+    jsonschema.Draft202012Validator(schema).validate(report)
+
+
+def test_sarif_records_unreadable_files_as_failed_execution(with_unreadable, tmp_path):
+    code, out, _ = with_unreadable("sarif")
+    log = json.loads(out)
+    run = log["runs"][0]
+    assert code == 2
+    invocation = run["invocations"][0]
+    assert invocation["executionSuccessful"] is False
+    notes = invocation["toolExecutionNotifications"]
+    assert [n["locations"][0]["physicalLocation"]["artifactLocation"] for n in notes] == [
+        {"uri": "urdf/huge.urdf", "uriBaseId": "%SRCROOT%"},
+        {"uri": "urdf/missing.urdf", "uriBaseId": "%SRCROOT%"}]
+    assert all(n["level"] == "error" and n["message"]["text"] for n in notes)
+    assert run["originalUriBaseIds"]["%SRCROOT%"]["uri"] == tmp_path.as_uri() + "/"
+    location = run["results"][0]["locations"][0]["physicalLocation"]["artifactLocation"]
+    assert location == {"uri": "urdf/robot.urdf", "uriBaseId": "%SRCROOT%"}
+    jsonschema.Draft4Validator(sarif_schema()).validate(log)
+
+
+def test_sarif_of_a_clean_run_is_successful(report):
+    _, out = report("sarif")
+    assert json.loads(out)["runs"][0]["invocations"] == [
+        {"executionSuccessful": True, "toolExecutionNotifications": []}]
+
+
+def test_github_annotates_unreadable_files(with_unreadable):
+    code, out, _ = with_unreadable("github")
+    assert code == 2
+    assert out.splitlines()[-2:] == [
+        "::error file=urdf/huge.urdf,title=txtool::urdf/huge.urdf: file is 68157440 bytes, "
+        "larger than the 67108864 limit",
+        "::error file=urdf/missing.urdf,title=txtool::urdf/missing.urdf: no such file",
+    ]

@@ -84,9 +84,9 @@ def command(paths, output_format, select, ignore, strict, exit_zero, config_path
     )
     result = lint_paths(list(paths) or ["."], options)
     for error in result.errors:
-        click.echo(f"txtool: {error}", err=True)
+        click.echo(f"txtool: {error.message}", err=True)
     fmt = output_format or default_format()
-    summary = Summary.of(result.problems, result.files, unreadable=len(result.errors))
+    summary = Summary.of(result.problems, result.files, failures=result.errors)
     report = render(fmt, result.problems, summary, color=fmt == "text" and use_color(color))
     click.echo(report, nl=False, color=True)
     return exit_code(result, options)

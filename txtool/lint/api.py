@@ -12,7 +12,7 @@ from txtool.io.xmlio import InputError, XacroOptions
 from txtool.lint.config import Overrides, Settings, SettingsCache
 from txtool.lint.discover import expand_paths
 from txtool.lint.engine import lint_file, lint_source
-from txtool.lint.problem import Problem
+from txtool.lint.problem import InputFailure, Problem
 
 __all__ = ["LintOptions", "LintResult", "exit_code", "lint_paths", "lint_source"]
 
@@ -41,7 +41,7 @@ class LintResult:
 
     problems: list[Problem] = field(default_factory=list)
     files: int = 0
-    errors: list[str] = field(default_factory=list)
+    errors: list[InputFailure] = field(default_factory=list)
 
     def count(self, severity: str) -> int:
         return sum(1 for p in self.problems if p.severity == severity)
@@ -67,7 +67,7 @@ def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions) -> Lint
         work.append((path, settings.for_file(where)))  # a ConfigError stops the run
     result = LintResult()
     for outcome in _outcomes(work, options):
-        if isinstance(outcome, str):
+        if isinstance(outcome, InputFailure):
             result.errors.append(outcome)
             continue
         result.files += 1
@@ -95,8 +95,8 @@ def worker_count(files: int, jobs: int) -> int:
 
 def _outcomes(
     work: list[tuple[str, Settings]], options: LintOptions
-) -> Iterator[list[Problem] | str]:
-    """Each file's problems, or its input error as a string, in input order."""
+) -> Iterator[list[Problem] | InputFailure]:
+    """Each file's problems, or why it could not be read, in input order."""
     workers = worker_count(len(work), options.jobs)
     stdin_name = options.stdin_filename
     if workers == 1 or any(path == "-" for path, _ in work):
@@ -110,12 +110,13 @@ def _outcomes(
 
 def _lint_one(
     index: int, work: list[tuple[str, Settings]], stdin_name: str | None
-) -> list[Problem] | str:
+) -> list[Problem] | InputFailure:
     path, settings = work[index]
     try:
         return lint_file(path, settings, stdin_name=stdin_name)
     except InputError as exc:
-        return str(exc)
+        shown = stdin_name if path == "-" and stdin_name else path
+        return InputFailure(shown, str(exc))
 
 
 def exit_code(result: LintResult, options: LintOptions) -> int:

@@ -30,6 +30,7 @@ from txtool.io.xmlio import (
 from txtool.lint.config import Settings, resolve
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
+from txtool.lint.suppress import Suppressions
 from txtool.lint.suppress import parse as parse_suppressions
 from txtool.model.robot import indexed_children
 from txtool.rules import Rule, all_rules
@@ -37,7 +38,7 @@ from txtool.rules import Rule, all_rules
 if TYPE_CHECKING:
     from txtool.lint.config import Config
 
-PIPELINE_CODES = frozenset({"TX001", "TX002", "TX003"})
+PIPELINE_CODES = frozenset({"TX001", "TX002", "TX003", "TX004"})
 _TAG_END = re.compile(r"<[^>]*>?")
 
 
@@ -133,6 +134,7 @@ def finish(problems: list[Problem], source: Source, settings: Settings) -> list[
     suppressions = parse_suppressions(source.data)
     if suppressions:
         kept = [p for p in kept if not suppressions.suppressed(p)]
+        kept += _invalid_suppressions(suppressions, source.path, settings)
         if "TX003" in settings.enabled:
             for directive, code in suppressions.unused(settings.enabled):
                 what = f"'{directive.kind} {code}'" if code else f"'{directive.kind}'"
@@ -145,6 +147,22 @@ def finish(problems: list[Problem], source: Source, settings: Settings) -> list[
     rules = all_rules()
     lines = text_lines(source.data)
     return sorted(_stamped(p, rules[p.code], settings, lines) for p in kept)
+
+
+def _invalid_suppressions(
+    suppressions: Suppressions, path: str, settings: Settings
+) -> list[Problem]:
+    """TX004: misspelt directives, tokens that are not codes, and codes of no rule."""
+    if "TX004" not in settings.enabled:
+        return []
+    rules = all_rules()
+    found = [_pipeline(path, bad.line, bad.column, "TX004", bad.reason)
+             for bad in suppressions.invalid]
+    for directive in suppressions.directives:
+        for code in sorted(directive.codes - rules.keys()):
+            message = f"suppression names '{code}', which is no rule: see `txtool rules`"
+            found.append(_pipeline(path, directive.line, directive.column, "TX004", message))
+    return found
 
 
 def _stamped(problem: Problem, rule: Rule, settings: Settings, lines: list[str]) -> Problem:

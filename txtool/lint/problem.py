@@ -6,6 +6,15 @@ from dataclasses import dataclass, field
 from typing import Literal
 
 Severity = Literal["error", "warning", "info"]
+
+
+@dataclass(frozen=True)
+class InputFailure:
+    """A file that could not be checked: its path and the one-line message (``path[:line]:
+    reason``) that says why. It fails the run with exit 2; machine reports keep it."""
+
+    path: str
+    message: str
 SEVERITIES: tuple[Severity, ...] = ("error", "warning", "info")
 
 

@@ -16,10 +16,9 @@ from dataclasses import dataclass, field
 from txtool.lint.problem import Problem
 
 _MARK = b"txtool:"
-_DIRECTIVE = re.compile(
-    rb"<!--\s*txtool:\s*(disable-next-line|disable-line|disable-file)\b(.*?)-->", re.DOTALL
-)
-_CODE = re.compile(r"\bTX\d{3}\b", re.IGNORECASE)
+KINDS = ("disable-next-line", "disable-line", "disable-file")
+_DIRECTIVE = re.compile(rb"<!--\s*txtool:\s*([\w-]*)(.*?)-->", re.DOTALL)
+_CODE = re.compile(r"^TX\d{3}$", re.IGNORECASE)
 
 
 @dataclass
@@ -37,12 +36,23 @@ class Directive:
         return not self.codes or problem.code in self.codes
 
 
+@dataclass(frozen=True)
+class Invalid:
+    """A ``txtool:`` comment that silences nothing as written: a misspelt directive or a
+    token that is not a rule code (``reason`` says which)."""
+
+    line: int
+    column: int
+    reason: str
+
+
 @dataclass
 class Suppressions:
     directives: list[Directive] = field(default_factory=list)
+    invalid: list[Invalid] = field(default_factory=list)
 
     def __bool__(self) -> bool:
-        return bool(self.directives)
+        return bool(self.directives or self.invalid)
 
     def suppressed(self, problem: Problem) -> bool:
         """Whether a directive silences ``problem`` (and remember that it was used)."""
@@ -69,14 +79,32 @@ def parse(data: bytes) -> Suppressions:
     """The suppression comments of a document (cheap when there are none)."""
     if _MARK not in data:
         return Suppressions()
-    directives = []
+    found = Suppressions()
     for match in _DIRECTIVE.finditer(data):
         start_line = data.count(b"\n", 0, match.start()) + 1
         end_line = start_line + match.group(0).count(b"\n")
         column = match.start() - (data.rfind(b"\n", 0, match.start()) + 1) + 1
-        kind = match.group(1).decode()
+        kind = match.group(1).decode("utf-8", "replace")
+        if kind not in KINDS:
+            found.invalid.append(Invalid(start_line, column, _misspelt(kind)))
+            continue
         target = {"disable-next-line": end_line + 1, "disable-line": start_line}.get(kind)
         reason_free = match.group(2).decode("utf-8", "replace").split(";", 1)[0]
-        codes = frozenset(code.upper() for code in _CODE.findall(reason_free))
-        directives.append(Directive(kind, start_line, column, target, codes))
-    return Suppressions(directives)
+        tokens = [t for t in re.split(r"[\s,]+", reason_free) if t]
+        bad = [t for t in tokens if not _CODE.match(t)]
+        if bad:
+            found.invalid.append(Invalid(
+                start_line, column, f"'{bad[0]}' is not a rule code (write TXnnn; a reason goes "
+                "after ';')",
+            ))
+        codes = frozenset(t.upper() for t in tokens if _CODE.match(t))
+        found.directives.append(Directive(kind, start_line, column, target, codes))
+    return found
+
+
+def _misspelt(kind: str) -> str:
+    import difflib
+
+    near = difflib.get_close_matches(kind, KINDS, n=1)
+    hint = f"did you mean '{near[0]}'?" if near else "use " + ", ".join(KINDS)
+    return f"unknown directive 'txtool: {kind}': {hint}"

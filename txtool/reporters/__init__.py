@@ -10,7 +10,7 @@ import importlib
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from txtool.lint.problem import Problem
+from txtool.lint.problem import InputFailure, Problem
 
 FORMATS: dict[str, str] = {
     "text": "text",
@@ -26,14 +26,20 @@ class Summary:
     errors: int
     warnings: int
     infos: int
-    unreadable: int = 0  # files that could not be read (reported on stderr)
+    failures: tuple[InputFailure, ...] = ()  # files that could not be read
+
+    @property
+    def unreadable(self) -> int:
+        return len(self.failures)
 
     @classmethod
-    def of(cls, problems: Sequence[Problem], files: int, *, unreadable: int = 0) -> Summary:
+    def of(
+        cls, problems: Sequence[Problem], files: int, *, failures: Sequence[InputFailure] = ()
+    ) -> Summary:
         def count(level: str) -> int:
             return sum(1 for p in problems if p.severity == level)
 
-        return cls(files, count("error"), count("warning"), count("info"), unreadable)
+        return cls(files, count("error"), count("warning"), count("info"), tuple(failures))
 
 
 def render(

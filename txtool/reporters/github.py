@@ -33,4 +33,8 @@ def annotation(problem: Problem) -> str:
 
 
 def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False) -> str:
-    return "".join(annotation(p) + "\n" for p in problems)
+    failures = (
+        f"::error file={_property(f.path)},title=txtool::{_data(f.message)}\n"
+        for f in summary.failures
+    )
+    return "".join(annotation(p) + "\n" for p in problems) + "".join(failures)

@@ -41,7 +41,8 @@ def report(problems: Sequence[Problem], summary: Summary) -> dict[str, Any]:
             "end_column": end_column, "severity": p.severity, "code": p.code, "name": p.name,
             "message": p.message, "fixable": bool(p.fixable),
         })
-    return {"problems": rows, "summary": _totals(summary)}
+    errors = [{"path": f.path, "message": f.message} for f in summary.failures]
+    return {"problems": rows, "errors": errors, "summary": _totals(summary)}
 
 
 def _totals(summary: Summary) -> dict[str, int]:
@@ -50,7 +51,8 @@ def _totals(summary: Summary) -> dict[str, int]:
 
 
 def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False) -> str:
-    totals = json.dumps({"summary": _totals(summary)}, indent=2)[2:]  # '"summary": {...}\n}'
+    tail = {"errors": report((), summary)["errors"], "summary": _totals(summary)}
+    totals = json.dumps(tail, indent=2, ensure_ascii=False)[2:]  # '"errors": ...\n}'
     if not problems:
         return '{\n  "problems": [],\n' + totals + "\n"
     rows = []

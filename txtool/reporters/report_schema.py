@@ -30,6 +30,15 @@ class ReportProblem(BaseModel):
     fixable: bool = Field(description="Whether `txtool migrate` can fix it.")
 
 
+class ReportError(BaseModel):
+    """A file that could not be checked (the run exits 2)."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    path: str = Field(description="The file as given on the command line (or --stdin-filename).")
+    message: str = Field(description="The one-line reason, as printed on stderr.")
+
+
 class ReportSummary(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
@@ -45,6 +54,7 @@ class Report(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     problems: list[ReportProblem]
+    errors: list[ReportError] = Field(description="Files that could not be read or checked.")
     summary: ReportSummary
 
 

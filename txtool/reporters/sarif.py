@@ -1,7 +1,10 @@
 """SARIF 2.1.0 for GitHub code scanning: every registered rule, one result per problem.
 
-Paths become relative URIs with forward slashes (relative to the working folder when they
-are absolute and inside it), so results stay stable across checkouts.
+Paths become URIs relative to ``%SRCROOT%`` (the working folder, given in
+``originalUriBaseIds``) with forward slashes, so code scanning maps them onto the repository
+and results stay stable across checkouts; a file outside the working folder keeps an absolute
+``file://`` URI. Files that could not be read are ``toolExecutionNotifications`` of the
+invocation, which is then not ``executionSuccessful``.
 """
 
 from __future__ import annotations
@@ -14,18 +17,21 @@ from typing import Any
 from urllib.parse import quote
 
 from txtool import __version__
-from txtool.lint.problem import Problem
+from txtool.lint.problem import InputFailure, Problem
 from txtool.reporters import Summary, end_of
 
 SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
+SRCROOT = "%SRCROOT%"
 LEVELS = {"error": "error", "warning": "warning", "info": "note"}
 
 
 def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False) -> str:
-    return json.dumps(sarif_log(problems), indent=2) + "\n"
+    return json.dumps(sarif_log(problems, summary.failures), indent=2) + "\n"
 
 
-def sarif_log(problems: Sequence[Problem]) -> dict[str, Any]:
+def sarif_log(
+    problems: Sequence[Problem], failures: Sequence[InputFailure] = ()
+) -> dict[str, Any]:
     from txtool.rules import all_rules
 
     rules = list(all_rules().values())
@@ -42,6 +48,8 @@ def sarif_log(problems: Sequence[Problem]) -> dict[str, Any]:
         "runs": [
             {
                 "tool": {"driver": driver},
+                "invocations": [_invocation(failures, uris)],
+                "originalUriBaseIds": {SRCROOT: {"uri": Path(os.getcwd()).as_uri() + "/"}},
                 "columnKind": "unicodeCodePoints",
                 "results": [_result(p, index, uris) for p in problems],
             }
@@ -89,11 +97,33 @@ def _markdown(rule: Any) -> str:
     return "\n".join(out).replace("```xml\n\n", "```xml\n")
 
 
+def _invocation(failures: Sequence[InputFailure], uris: dict[str, str]) -> dict[str, Any]:
+    return {
+        "executionSuccessful": not failures,
+        "toolExecutionNotifications": [
+            {
+                "level": "error",
+                "message": {"text": failure.message},
+                "locations": [
+                    {"physicalLocation": {"artifactLocation": _artifact(failure.path, uris)}}
+                ],
+            }
+            for failure in failures
+        ],
+    }
+
+
+def _artifact(path: str, uris: dict[str, str]) -> dict[str, str]:
+    uri = uris.get(path)
+    if uri is None:
+        uri = uris[path] = artifact_uri(path)
+    if uri.startswith("file:"):
+        return {"uri": uri}
+    return {"uri": uri, "uriBaseId": SRCROOT}
+
+
 def _result(problem: Problem, index: dict[str, int], uris: dict[str, str]) -> dict[str, Any]:
     end_line, end_column = end_of(problem)
-    uri = uris.get(problem.path)
-    if uri is None:
-        uri = uris[problem.path] = artifact_uri(problem.path)
     result: dict[str, Any] = {
         "ruleId": problem.code,
         "level": LEVELS.get(problem.severity, "error"),
@@ -101,7 +131,7 @@ def _result(problem: Problem, index: dict[str, int], uris: dict[str, str]) -> di
         "locations": [
             {
                 "physicalLocation": {
-                    "artifactLocation": {"uri": uri},
+                    "artifactLocation": _artifact(problem.path, uris),
                     "region": {
                         "startLine": problem.line,
                         "startColumn": problem.column,
