@@ -14,6 +14,9 @@ import click
 
 from txtool import __version__
 
+# Commands whose output rich may colour: each gets --color (see commands.common.with_color).
+COLOURING = frozenset({"show", "roundtrip", "demo", "simulate"})
+
 COMMAND_MODULES = (
     "show",
     "convert",
@@ -33,6 +36,18 @@ class LazyGroup(click.Group):
 
     def list_commands(self, ctx: click.Context) -> list[str]:
         return sorted(name for name in COMMAND_MODULES if self._load(name) is not None)
+
+    def resolve_command(
+        self, ctx: click.Context, args: list[str]
+    ) -> tuple[str | None, click.Command | None, list[str]]:
+        name = args[0] if args else ""
+        if name and not name.startswith("-") and name not in COMMAND_MODULES:
+            import difflib
+
+            near = difflib.get_close_matches(name, COMMAND_MODULES, n=1)
+            if near:
+                ctx.fail(f"No such command '{name}'. Did you mean '{near[0]}'?")
+        return super().resolve_command(ctx, args)
 
     def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
         if cmd_name not in COMMAND_MODULES:
@@ -55,7 +70,12 @@ class LazyGroup(click.Group):
             if exc.name == module_name:
                 return None
             raise
-        return module.command
+        command: click.Command = module.command
+        if name in COLOURING:
+            from txtool.commands.common import with_color
+
+            with_color(command)
+        return command
 
 
 @click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})

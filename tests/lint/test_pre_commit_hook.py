@@ -25,7 +25,7 @@ def test_hook_entry_accepts_the_staged_files_as_arguments(tmp_path):
     (hook,) = yaml.safe_load(HOOKS.read_text())
     program, *args = shlex.split(hook["entry"])
     robot = tmp_path / "robot.urdf"
-    robot.write_text('<robot name="r"/>\n')
+    robot.write_text('<robot name="r"><transmission name="t"/></robot>\n')
     result = CliRunner().invoke(cli, [*args, str(robot), str(robot)])
     assert program == "txtool"
-    assert (result.exit_code, result.stdout) == (0, "No problems in 1 file.\n")
+    assert (result.exit_code, result.stdout.splitlines()[-1]) == (1, "Found 1 error in 1 file.")

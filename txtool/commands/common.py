@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import os
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from typing import Any
 
 import click
@@ -75,6 +76,62 @@ def refuse_unexpanded(command: str, *paths: str | None) -> None:
             raise InputError(f"{path}: {command} needs the xacro expansion, and xacro is off "
                              "(--no-xacro, TXTOOL_NO_XACRO or no-xacro in the configuration); "
                              "expand it with xacro first")
+
+
+COLOR_MODES = ("auto", "always", "never")
+
+
+def color_wanted(mode: str, stream_is_terminal: bool) -> bool:
+    """``--color``: ``auto`` colours a terminal unless ``NO_COLOR`` is set (non-empty);
+    ``FORCE_COLOR`` colours a pipe too; ``NO_COLOR`` wins over it, as rich has it."""
+    if mode != "auto":
+        return mode == "always"
+    if os.environ.get("NO_COLOR") or os.environ.get("TERM") == "dumb":
+        return False
+    return bool(os.environ.get("FORCE_COLOR")) or stream_is_terminal
+
+
+@contextlib.contextmanager
+def color_environment(mode: str) -> Iterator[None]:
+    """Tell rich what ``--color`` chose, through the variables every rich console reads
+    (``never`` also sets ``TERM=dumb``: NO_COLOR alone still lets rich write bold and italic)."""
+    if mode == "auto":
+        yield
+        return
+    saved = {name: os.environ.get(name) for name in ("NO_COLOR", "FORCE_COLOR", "TERM")}
+    if mode == "always":
+        os.environ.pop("NO_COLOR", None)
+        os.environ["FORCE_COLOR"] = "1"
+    else:
+        os.environ.pop("FORCE_COLOR", None)
+        os.environ.update(NO_COLOR="1", TERM="dumb")
+    try:
+        yield
+    finally:
+        for name, value in saved.items():
+            if value is None:
+                os.environ.pop(name, None)
+            else:
+                os.environ[name] = value
+
+
+def with_color(command: click.Command) -> None:
+    """Give a command that colours through rich a ``--color auto|always|never`` option."""
+    if any(param.name == "color" for param in command.params) or command.callback is None:
+        return
+    command.params.append(click.Option(
+        ["--color"], type=click.Choice(COLOR_MODES), default="auto", show_default=True,
+        help="Colour the output: auto colours a terminal unless NO_COLOR is set "
+             "(FORCE_COLOR colours a pipe too).",
+    ))
+    callback = command.callback
+
+    @functools.wraps(callback)
+    def coloured(*args: Any, color: str = "auto", **kwargs: Any) -> Any:
+        with color_environment(color):
+            return callback(*args, **kwargs)
+
+    command.callback = coloured
 
 
 def exit_on_input_error(function: Callable[..., int | None]) -> Callable[..., None]:

@@ -7,7 +7,7 @@ import sys
 
 import click
 
-from txtool.commands.common import exit_on_input_error, xacro_options
+from txtool.commands.common import COLOR_MODES, color_wanted, exit_on_input_error, xacro_options
 
 FORMATS = ("text", "json", "github", "sarif")
 
@@ -20,12 +20,8 @@ def default_format() -> str:
     return "github" if os.environ.get("GITHUB_ACTIONS") == "true" else "text"
 
 
-def use_color(mode: str) -> bool:
-    if mode != "auto":
-        return mode == "always"
-    if os.environ.get("NO_COLOR") or os.environ.get("TERM") == "dumb":
-        return False
-    return sys.stdout.isatty()
+def use_color(mode: str, output_file: str | None = None) -> bool:
+    return color_wanted(mode, output_file is None and sys.stdout.isatty())
 
 
 @click.command("validate")
@@ -46,8 +42,15 @@ def use_color(mode: str) -> bool:
               help="The name to report (and find the configuration by) for '-'.")
 @click.option("-j", "--jobs", type=click.IntRange(min=0), default=0, show_default=True,
               help="Processes checking many files (0: one per CPU; 1: only this one).")
-@click.option("--color", type=click.Choice(["auto", "always", "never"]), default="auto",
-              show_default=True, help="Colour the text output (NO_COLOR is honoured by auto).")
+@click.option("--color", type=click.Choice(COLOR_MODES), default="auto", show_default=True,
+              help="Colour the text output: auto colours a terminal unless NO_COLOR is set "
+                   "(FORCE_COLOR colours a pipe too).")
+@click.option("-o", "--output-file", type=click.Path(dir_okay=False), metavar="FILE",
+              help="Write the report to FILE (replaced whole, atomically) instead of stdout.")
+@click.option("-q", "--quiet", is_flag=True,
+              help="Text format: print the findings only, no summary line.")
+@click.option("--statistics", is_flag=True,
+              help="Text format: count the findings per rule instead of listing them.")
 @click.option("--exclude", multiple=True, metavar="PATTERN",
               help="gitignore-style pattern of files and folders that folder walks pass over, "
                    "relative to this folder; replaces the configuration's exclude (repeatable).")
@@ -58,15 +61,15 @@ def use_color(mode: str) -> bool:
 @xacro_options
 @exit_on_input_error
 def command(paths, output_format, select, ignore, strict, exit_zero, config_path, no_xacro,
-            stdin_filename, jobs, color, exclude, extend_exclude, respect_gitignore,
-            xacro) -> int:
+            stdin_filename, jobs, color, output_file, quiet, statistics, exclude,
+            extend_exclude, respect_gitignore, xacro) -> int:
     """Check transmissions in files and folders (*.urdf, *.xacro, robot *.xml; '-' is stdin).
 
     Exit codes: 0 nothing at the failing level, 1 findings at it (errors; warnings too with
     --strict; infos never), 2 usage, configuration or input error.
     """
     from txtool.lint.api import LintOptions, exit_code, lint_paths
-    from txtool.reporters import Summary, render
+    from txtool.reporters import Summary
 
     options = LintOptions(
         select=_codes(select) or None,
@@ -86,7 +89,25 @@ def command(paths, output_format, select, ignore, strict, exit_zero, config_path
     for error in result.errors:
         click.echo(f"txtool: {error.message}", err=True)
     fmt = output_format or default_format()
+    if (quiet or statistics) and fmt != "text":
+        raise click.UsageError(f"--quiet and --statistics go with --format text, not {fmt}")
     summary = Summary.of(result.problems, result.files, failures=result.errors)
-    report = render(fmt, result.problems, summary, color=fmt == "text" and use_color(color))
-    click.echo(report, nl=False, color=True)
+    colored = fmt == "text" and use_color(color, output_file)
+    report = _report(fmt, result.problems, summary, colored, quiet, statistics)
+    if output_file is None:
+        click.echo(report, nl=False, color=True)
+    else:
+        from txtool.io.xmlio import write_atomic
+
+        write_atomic(output_file, report.encode("utf-8"))
     return exit_code(result, options)
+
+
+def _report(fmt: str, problems, summary, colored: bool, quiet: bool, statistics: bool) -> str:
+    from txtool.reporters import render, text
+
+    if statistics:
+        return text.statistics(problems, summary)
+    if quiet:
+        return text.render_quiet(problems, color=colored)
+    return render(fmt, problems, summary, color=colored)

@@ -66,7 +66,7 @@ def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions) -> Lint
         where = options.stdin_filename if path == "-" and options.stdin_filename else path
         work.append((path, settings.for_file(where)))  # a ConfigError stops the run
     result = LintResult()
-    for outcome in _outcomes(work, options):
+    for outcome in _outcomes(work, options, paths):
         if isinstance(outcome, InputFailure):
             result.errors.append(outcome)
             continue
@@ -94,26 +94,29 @@ def worker_count(files: int, jobs: int) -> int:
 
 
 def _outcomes(
-    work: list[tuple[str, Settings]], options: LintOptions
+    work: list[tuple[str, Settings]], options: LintOptions, given: tuple[str, ...] | list[str] = ()
 ) -> Iterator[list[Problem] | InputFailure]:
     """Each file's problems, or why it could not be read, in input order."""
     workers = worker_count(len(work), options.jobs)
     stdin_name = options.stdin_filename
+    named = frozenset(given)
     if workers == 1 or any(path == "-" for path, _ in work):
         for index in range(len(work)):
-            yield _lint_one(index, work, stdin_name)
+            yield _lint_one(index, work, stdin_name, named)
         return
     from txtool.lint.workers import forked_map
 
-    yield from forked_map(lambda index: _lint_one(index, work, stdin_name), len(work), workers)
+    yield from forked_map(
+        lambda index: _lint_one(index, work, stdin_name, named), len(work), workers
+    )
 
 
 def _lint_one(
-    index: int, work: list[tuple[str, Settings]], stdin_name: str | None
+    index: int, work: list[tuple[str, Settings]], stdin_name: str | None, named: frozenset[str]
 ) -> list[Problem] | InputFailure:
     path, settings = work[index]
     try:
-        return lint_file(path, settings, stdin_name=stdin_name)
+        return lint_file(path, settings, stdin_name=stdin_name, named=path in named)
     except InputError as exc:
         shown = stdin_name if path == "-" and stdin_name else path
         return InputFailure(shown, str(exc))

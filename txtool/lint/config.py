@@ -129,6 +129,11 @@ def load_config(path: Path) -> Config:
             table = {key: value for key, value in table.items() if key != SIMULATE_TABLE}
     if not isinstance(table, dict):
         raise ConfigError(f"{path}: key '{prefix.rstrip('.')}': expected a table")
+    if path.name != PYPROJECT and isinstance(table.get("tool"), dict) and "txtool" in table["tool"]:
+        raise ConfigError(
+            f"{path}: key 'tool.txtool': this file takes txtool's keys at its top level, as "
+            f"{CONFIG_FILE} does; [tool.txtool] is read only from a file named {PYPROJECT}"
+        )
     from pydantic import ValidationError
 
     from txtool.lint.config_model import Config

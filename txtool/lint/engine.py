@@ -19,6 +19,7 @@ import re
 from typing import TYPE_CHECKING
 
 from txtool.io.xmlio import (
+    InputError,
     Source,
     XMLSyntax,
     document_text,
@@ -38,7 +39,7 @@ from txtool.rules import Rule, all_rules
 if TYPE_CHECKING:
     from txtool.lint.config import Config
 
-PIPELINE_CODES = frozenset({"TX001", "TX002", "TX003", "TX004"})
+PIPELINE_CODES = frozenset({"TX001", "TX002", "TX003", "TX004", "TX005"})
 _TAG_END = re.compile(r"<[^>]*>?")
 
 
@@ -48,11 +49,40 @@ def lint_source(source: Source, config: Config | Settings | None = None) -> list
     return finish(_checked(source, settings), source, settings)
 
 
-def lint_file(path: str, settings: Settings, *, stdin_name: str | None = None) -> list[Problem]:
+def lint_file(
+    path: str, settings: Settings, *, stdin_name: str | None = None, named: bool = False
+) -> list[Problem]:
     """Problems of one file (or ``-``); malformed XML and failed xacro are findings.
 
-    Raises :class:`~txtool.io.xmlio.InputError` when the file cannot be read.
+    A file ``named`` on the command line that holds no transmission gets TX005 (a file found
+    in a folder walk, such as an included fragment, does not). Raises
+    :class:`~txtool.io.xmlio.InputError` when the file cannot be read.
     """
+    problems = _lint_file(path, settings, stdin_name)
+    if named and "TX005" in settings.enabled and not problems:
+        return _no_transmission(path, stdin_name, settings)
+    return problems
+
+
+def _no_transmission(path: str, stdin_name: str | None, settings: Settings) -> list[Problem]:
+    display, data = read_bytes(path, stdin_name=stdin_name)
+    try:
+        source = Source(path=display, data=data, tree=parse_bytes(data, display))
+        if not settings.no_xacro and is_xacro(display) and path != "-":
+            from txtool.io.xacro import expand_xacro
+
+            tree = expand_xacro(path, display, settings.xacro)
+            source = Source(path=display, data=data, tree=tree, expanded=True,
+                            source_tree=source.tree)
+    except InputError:  # with TX001/TX002 turned off: nothing more to say
+        return []
+    if context_for(source, settings).found:
+        return []
+    message = "no <transmission> in this file: nothing to check"
+    return finish([_pipeline(display, 1, 1, "TX005", message)], source, settings)
+
+
+def _lint_file(path: str, settings: Settings, stdin_name: str | None) -> list[Problem]:
     display, data = read_bytes(path, stdin_name=stdin_name)
     try:
         tree = parse_bytes(data, display)

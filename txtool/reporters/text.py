@@ -46,7 +46,28 @@ def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False
     return _render_rich(problems, summary)
 
 
-def _render_rich(problems: Sequence[Problem], summary: Summary) -> str:
+def render_quiet(problems: Sequence[Problem], *, color: bool = False) -> str:
+    """The findings alone, no summary line (``validate -q``)."""
+    if not problems:
+        return ""
+    if not color:
+        return "".join(line_of(p) + "\n" for p in problems)
+    return _render_rich(problems, None)
+
+
+def statistics(problems: Sequence[Problem], summary: Summary) -> str:
+    """``validate --statistics``: one row per rule, most frequent first, then the summary."""
+    counts: dict[tuple[str, str, str], int] = {}
+    for p in problems:
+        key = (p.code, p.name, p.severity)
+        counts[key] = counts.get(key, 0) + 1
+    rows = sorted(counts.items(), key=lambda item: (-item[1], item[0][0]))
+    width = max((len(str(n)) for _, n in rows), default=1)
+    lines = [f"{n:>{width}}  {code}  {severity:<7}  {name}" for (code, name, severity), n in rows]
+    return "\n".join([*lines, summary_line(summary)]) + "\n"
+
+
+def _render_rich(problems: Sequence[Problem], summary: Summary | None) -> str:
     import io
 
     from rich.console import Console
@@ -71,6 +92,7 @@ def _render_rich(problems: Sequence[Problem], summary: Summary) -> str:
                 p.message,
             )
         )
-    failed = summary.errors or summary.warnings or summary.infos
-    console.print(Text(summary_line(summary), style="bold" if failed else "green"))
+    if summary is not None:
+        failed = summary.errors or summary.warnings or summary.infos
+        console.print(Text(summary_line(summary), style="bold" if failed else "green"))
     return out.getvalue()

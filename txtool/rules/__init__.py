@@ -28,6 +28,7 @@ RULE_MODULES: tuple[str, ...] = (
     "tx002_xacro_failed",
     "tx003_unused_suppression",
     "tx004_invalid_suppression",
+    "tx005_no_transmission",
     # TX1xx: one transmission as its loader reads it
     "tx100_missing_name",
     "tx101_missing_type",
