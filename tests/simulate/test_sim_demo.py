@@ -7,14 +7,13 @@ import io
 from rich.console import Console
 
 from tests.simulate.robots import arm_ros1, write
-from txtool.simulate.demo import DEMO_ROBOT, demo_runs, flipped_copy
+from txtool.io.resources import shipped
+from txtool.simulate.demo import demo_runs, flipped_copy
 from txtool.simulate.run import Options, simulate_one
 
 
-def test_demo_runs_pass_then_fail_naming_the_joint(tmp_path):
-    robot = DEMO_ROBOT if DEMO_ROBOT.is_file() else tmp_path / "arm.urdf"
-    if not DEMO_ROBOT.is_file():
-        write(tmp_path, "arm.urdf", arm_ros1())
+def test_demo_runs_pass_then_fail_naming_the_joint():
+    robot = shipped("fixtures", "demo_robot.urdf")
     out = io.StringIO()
     demo_runs(Console(file=out, width=120), robot)
     text = out.getvalue()

@@ -78,6 +78,14 @@ def refuse_unexpanded(command: str, *paths: str | None) -> None:
                              "expand it with xacro first")
 
 
+def require_extra(module: str, extra: str, what: str) -> None:
+    """One line and exit 2 when an optional dependency is not installed."""
+    import importlib.util
+
+    if importlib.util.find_spec(module) is None:
+        raise InputError(f"{what} needs the '{extra}' extra: pip install 'txtool[{extra}]'")
+
+
 COLOR_MODES = ("auto", "always", "never")
 
 

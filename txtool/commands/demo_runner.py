@@ -1,7 +1,9 @@
-"""``txtool demo``: a tour of txtool on the bundled example robot (``fixtures/``)."""
+"""``txtool demo``: a tour of txtool on the bundled example robot (``fixtures/``, shipped
+inside the wheel too)."""
 
 from __future__ import annotations
 
+import importlib.util
 from pathlib import Path
 
 from rich.console import Console
@@ -9,24 +11,22 @@ from rich.rule import Rule
 
 from txtool.dialects.read import read_source
 from txtool.io.load import load
+from txtool.io.resources import shipped
 from txtool.io.xmlio import InputError, Source, parse_bytes
 from txtool.transform.convert import convert_source
 from txtool.transform.roundtrip import roundtrip
 from txtool.views.render import transmissions_table
 
-FIXTURES = Path(__file__).resolve().parents[2] / "fixtures"
-DEMO_ROBOT = FIXTURES / "demo_robot.urdf"
-BROKEN_ROBOT = FIXTURES / "broken_robot.urdf"
-
 
 def run_demo(console: Console) -> int:
-    if not DEMO_ROBOT.is_file():
-        raise InputError(f"{DEMO_ROBOT}: demo robot not found (run txtool from a source checkout)")
-    robot = load(str(DEMO_ROBOT))
+    robot = load(str(shipped("fixtures", "demo_robot.urdf")))
     _show(console, robot)
     _convert(console, robot)
     _roundtrip(console, robot)
     _validate(console, robot)
+    if importlib.util.find_spec("pinocchio") is None:
+        raise InputError("the demo's simulation step needs the 'sim' extra: "
+                         "pip install 'txtool[sim]'")
     _simulate(console)
     console.print(Rule("done"))
     return 0
@@ -71,7 +71,7 @@ def _roundtrip(console: Console, robot: Source) -> None:
 def _validate(console: Console, robot: Source) -> None:
     from txtool.lint.engine import lint_source
 
-    for source in (robot, load(str(BROKEN_ROBOT))):
+    for source in (robot, load(str(shipped("fixtures", "broken_robot.urdf")))):
         console.print(Rule(f"txtool validate {Path(source.path).name}"))
         problems = lint_source(source)
         for p in problems:

@@ -9,6 +9,7 @@ from txtool.commands.common import (
     NO_XACRO_OPTION,
     exit_on_input_error,
     refuse_unexpanded,
+    require_extra,
     xacro_disabled,
     xacro_options,
 )
@@ -64,6 +65,7 @@ def command(robot: str, configs: tuple[str, ...], params: str | None, bandwidth:
     --tolerance and no limit is exceeded, 1 when not, 2 on bad input. Under --no-xacro a
     .xacro ROBOT or CANDIDATE is refused: the model needs the expanded robot.
     """
+    require_extra("pinocchio", "sim", "txtool simulate")
     if xacro_disabled(no_xacro, robot, *configs):
         refuse_unexpanded("simulate", robot, *configs)
     from txtool.simulate.app import main

@@ -11,18 +11,17 @@ from rich.rule import Rule
 
 from txtool.dialects.read import read_source
 from txtool.io.load import load
+from txtool.io.resources import shipped
 from txtool.io.xmlio import InputError, serialize
 from txtool.model.robot import children
 from txtool.model.semantics import loader_of
 from txtool.simulate import report
 from txtool.simulate.run import Options, simulate_one
 
-DEMO_ROBOT = Path(__file__).resolve().parents[2] / "fixtures" / "demo_robot.urdf"
-
 
 def demo_runs(console: Console, robot: Path | None = None) -> None:
     """Simulate the demo robot with its own config (passes), then with one sign flipped (fails)."""
-    path = robot or DEMO_ROBOT
+    path = robot or shipped("fixtures", "demo_robot.urdf")
     shown = _display(path)
     console.print(Rule(f"txtool simulate {shown}"))
     own = simulate_one(Options(robot=str(path), keep_series=False), None, label=shown)

@@ -1,0 +1,158 @@
+"""The GitHub Action's script and both pre-commit hooks, run the way CI and pre-commit run them."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import shlex
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+from click.testing import CliRunner
+
+from tests.lint.conftest import BROKEN, CLEAN
+from txtool import __version__
+from txtool.cli import cli
+
+ROOT = Path(__file__).resolve().parents[2]
+SCRIPT = ROOT / ".github" / "txtool-action.sh"
+LEGACY = """<robot name="r">
+  <joint name="j" type="revolute"><limit effort="1" velocity="1" lower="-1" upper="1"/></joint>
+  <transmission name="t" type="transmission_interface/SimpleTransmission">
+    <joint name="j"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
+  </transmission>
+</robot>
+"""
+
+
+def action_step(step: str, cwd: Path, **env: str) -> subprocess.CompletedProcess[str]:
+    """Run one step of action.yml's script with a PATH whose txtool is this checkout's."""
+    bin_dir = Path(sys.executable).parent
+    variables = {**os.environ, "PATH": f"{bin_dir}{os.pathsep}{os.environ['PATH']}", **env}
+    variables.pop("GITHUB_ACTIONS", None)
+    return subprocess.run(["bash", str(SCRIPT), step], cwd=cwd, env=variables,
+                          capture_output=True, text=True, timeout=120)
+
+
+@pytest.fixture
+def repo(tmp_path) -> Path:
+    (tmp_path / "urdf").mkdir()
+    (tmp_path / "urdf" / "broken.urdf").write_text(BROKEN)
+    (tmp_path / "urdf" / "clean.urdf").write_text(CLEAN)
+    return tmp_path
+
+
+def test_action_is_a_composite_action_calling_its_script():
+    action = yaml.safe_load((ROOT / "action.yml").read_text())
+    assert action["runs"]["using"] == "composite"
+    assert set(action["inputs"]) == {"paths", "args", "sarif-file", "version", "python-version"}
+    scripts = [step["run"] for step in action["runs"]["steps"] if "run" in step]
+    assert scripts == [f'bash "$TXTOOL_ACTION_PATH/.github/txtool-action.sh" {step}'
+                       for step in ("install", "validate")]
+    assert action["outputs"]["exit-code"]["value"] == "${{ steps.validate.outputs.exit-code }}"
+
+
+def test_action_validate_annotates_and_reports_its_exit_code(repo, tmp_path):
+    output = tmp_path / "github_output"
+    done = action_step("validate", repo, TXTOOL_PATHS="urdf", TXTOOL_ARGS="--select TX1",
+                       GITHUB_OUTPUT=str(output))
+    assert done.returncode == 1
+    lines = done.stdout.splitlines()
+    assert lines and all(line.startswith("::") for line in lines)
+    assert all("file=urdf/broken.urdf" in line for line in lines)
+    assert all(re.search(r"title=TX1\d\d ", line) for line in lines)
+    assert output.read_text() == "exit-code=1\n"
+
+
+def test_action_writes_sarif_and_still_annotates(repo, tmp_path):
+    done = action_step("validate", repo, TXTOOL_PATHS="urdf/clean.urdf urdf/broken.urdf",
+                       TXTOOL_SARIF="out/txtool.sarif")
+    assert done.returncode == 2  # the folder for the SARIF file does not exist
+    assert "out/txtool.sarif" in done.stderr
+    (repo / "out").mkdir()
+    done = action_step("validate", repo, TXTOOL_PATHS="urdf/clean.urdf urdf/broken.urdf",
+                       TXTOOL_SARIF="out/txtool.sarif")
+    assert done.returncode == 1
+    log = json.loads((repo / "out" / "txtool.sarif").read_text())
+    assert {r["locations"][0]["physicalLocation"]["artifactLocation"]["uri"]
+            for r in log["runs"][0]["results"]} == {"urdf/broken.urdf"}
+    assert done.stdout.startswith("::")
+
+
+def test_action_on_a_clean_tree_passes(repo):
+    (repo / "urdf" / "broken.urdf").unlink()
+    done = action_step("validate", repo)
+    assert (done.returncode, done.stdout, done.stderr) == (0, "", "")
+
+
+def test_action_install_asks_pip_for_the_requirement(tmp_path):
+    fake = tmp_path / "bin"
+    fake.mkdir()
+    log = tmp_path / "pip.log"
+    (fake / "python").write_text(f'#!/bin/sh\necho "$@" >> {log}\n')
+    (fake / "python").chmod(0o755)
+    env = {"PATH": f"{fake}{os.pathsep}{os.environ['PATH']}"}
+    for version, expected in (("txtool==0.1.0", "txtool==0.1.0"), ("", str(ROOT))):
+        subprocess.run(["bash", str(SCRIPT), "install"], env={
+            **os.environ, **env, "TXTOOL_VERSION": version, "TXTOOL_ACTION_PATH": str(ROOT)},
+            check=True, timeout=60)
+        assert log.read_text().splitlines()[-1] == (
+            f"-m pip install --quiet --disable-pip-version-check {expected}")
+
+
+def hooks() -> dict[str, dict]:
+    return {hook["id"]: hook for hook in yaml.safe_load((ROOT / ".pre-commit-hooks.yaml").read_text())}
+
+
+def run_hook(hook_id: str, *files: Path) -> tuple[int, str]:
+    program, *args = shlex.split(hooks()[hook_id]["entry"])
+    assert program == "txtool"
+    result = CliRunner().invoke(cli, [*args, *map(str, files)])
+    return result.exit_code, result.output
+
+
+def test_both_hooks_run_on_urdf_xacro_and_xml_files():
+    for hook in hooks().values():
+        assert hook["language"] == "python"
+        assert hook["types_or"] == ["urdf", "xacro", "xml"]
+    assert set(hooks()) == {"txtool-validate", "txtool-migrate"}
+
+
+def test_validate_hook_checks_a_file_staged_twice_once(tmp_path):
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(BROKEN)
+    code, out = run_hook("txtool-validate", robot, robot)
+    assert code == 1 and out.splitlines()[-1].endswith(" in 1 file.")
+
+
+def test_migrate_hook_fixes_staged_files_in_place(tmp_path):
+    """pre-commit then stops the commit because a file changed, for the user to review."""
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(LEGACY)
+    code, _ = run_hook("txtool-migrate", robot)
+    assert code == 0
+    fixed = robot.read_text()
+    assert "<type>transmission_interface/SimpleTransmission</type>" in fixed
+    assert run_hook("txtool-migrate", robot)[0] == 0 and robot.read_text() == fixed
+    assert run_hook("txtool-validate", robot)[0] == 0
+
+
+def test_hooks_leave_xml_that_is_no_robot_alone(tmp_path):
+    package = tmp_path / "package.xml"
+    text = "<?xml version=\"1.0\"?>\n<package>\n  <name>my_robot</name>\n</package>\n"
+    package.write_text(text)
+    assert run_hook("txtool-migrate", package)[0] == 0
+    assert package.read_text() == text
+    code, out = run_hook("txtool-validate", package)
+    assert code == 0 and "TX005" in out
+
+
+def test_readme_rev_is_the_tag_of_this_version():
+    readme = (ROOT / "README.md").read_text()
+    revs = set(re.findall(r"rev: (v\S+)", readme)) | set(re.findall(r"txtool/txtool@(v\S+)", readme))
+    assert revs == {f"v{__version__}"}
