@@ -1,3 +1,185 @@
-"""txtool: lint, convert and verify robot transmission configurations."""
+"""txtool: lint, convert and verify robot transmission configurations.
+
+The command line is ``txtool``; this module is the small API for scripts. Importing it is
+cheap: each function imports what it needs when called (``simulate`` alone loads Pinocchio).
+
+>>> import txtool
+>>> [p.code for p in txtool.validate(["fixtures/broken_robot.urdf"])][:2]  # doctest: +SKIP
+['TX106', 'TX102']
+>>> [t.name for t in txtool.read("fixtures/demo_robot.urdf")]  # doctest: +SKIP
+['shoulder_trans', 'elbow_trans']
+>>> txtool.convert("fixtures/demo_robot.urdf", to="ros2-p2").losses  # doctest: +SKIP
+[]
+
+Bad input raises :class:`InputError` with the one-line message the CLI prints.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 __version__ = "0.1.0"
+
+if TYPE_CHECKING:
+    from txtool.io.xmlio import InputError, Source, XacroOptions
+    from txtool.lint.problem import Problem
+    from txtool.model.core import Dialect, Transmission
+
+__all__ = [
+    "Conversion",
+    "InputError",
+    "Problem",
+    "Transmission",
+    "__version__",
+    "convert",
+    "read",
+    "simulate",
+    "validate",
+]
+
+_LAZY = {
+    "InputError": "txtool.io.xmlio",
+    "Problem": "txtool.lint.problem",
+    "Transmission": "txtool.model.core",
+}
+
+
+def __getattr__(name: str) -> Any:
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'txtool' has no attribute {name!r}")
+    import importlib
+
+    return getattr(importlib.import_module(module), name)
+
+
+def validate(
+    paths: str | Iterable[str],
+    *,
+    select: Sequence[str] | None = None,
+    ignore: Sequence[str] = (),
+    config: str | None = None,
+    no_xacro: bool = False,
+    xacro_args: Mapping[str, str] | None = None,
+    pkg_dirs: Sequence[str] = (),
+    pkg_paths: Mapping[str, str] | None = None,
+    jobs: int = 1,
+) -> list[Problem]:
+    """Lint files and folders as ``txtool validate`` does; the findings in report order.
+
+    ``select``/``ignore`` take rule codes or prefixes; the configuration file that applies to
+    each file is found as on the command line unless ``config`` names one. A file that cannot
+    be read raises :class:`InputError` (the CLI's exit 2).
+    """
+    from txtool.lint.api import LintOptions, lint_paths
+
+    given = [paths] if isinstance(paths, str) else list(paths)
+    options = LintOptions(
+        select=tuple(select) if select is not None else None,
+        ignore=tuple(ignore),
+        config=config,
+        xacro=_xacro_options(xacro_args, pkg_dirs, pkg_paths),
+        no_xacro=no_xacro,
+        jobs=jobs,
+    )
+    result = lint_paths(given or ["."], options)
+    if result.errors:
+        from txtool.io.xmlio import InputError
+
+        raise InputError(result.errors[0].message)
+    return result.problems
+
+
+def read(
+    path_or_text: str,
+    *,
+    expand: bool = True,
+    xacro_args: Mapping[str, str] | None = None,
+    pkg_dirs: Sequence[str] = (),
+    pkg_paths: Mapping[str, str] | None = None,
+) -> list[Transmission]:
+    """The transmissions of a file (xacro expanded unless ``expand`` is False) or of XML text
+    (a string starting with ``<``), in document order, in txtool's canonical model."""
+    from txtool.dialects.read import read_source
+
+    source = _source(path_or_text, expand, _xacro_options(xacro_args, pkg_dirs, pkg_paths))
+    return [found.transmission for found in read_source(source)]
+
+
+@dataclass(frozen=True)
+class Conversion:
+    """What :func:`convert` made: the document's new ``text`` (``data`` in its own encoding),
+    what could not be carried over (``losses``: the CLI exits 1 on them unless told to allow
+    them) and what a reader should know (``notes``)."""
+
+    text: str
+    data: bytes
+    losses: list[str] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    converted: int = 0
+
+    @property
+    def lossless(self) -> bool:
+        return not self.losses
+
+
+def convert(
+    source: str,
+    *,
+    to: Dialect,
+    expand: bool = True,
+    xacro_args: Mapping[str, str] | None = None,
+    pkg_dirs: Sequence[str] = (),
+    pkg_paths: Mapping[str, str] | None = None,
+) -> Conversion:
+    """Convert a file or XML text to ``to`` (``"ros1"``, ``"ros2-p1"`` or ``"ros2-p2"``) as
+    ``txtool convert`` does, keeping every byte it need not change; nothing is written."""
+    from txtool.io.xmlio import document_text
+    from txtool.transform.convert import convert_source
+
+    loaded = _source(source, expand, _xacro_options(xacro_args, pkg_dirs, pkg_paths))
+    done = convert_source(loaded, to)
+    return Conversion(
+        text=document_text(done.data), data=done.data, losses=list(done.losses),
+        notes=list(done.notes), converted=done.converted,
+    )
+
+
+def simulate(robot: str, configs: Sequence[str] = (), **options: Any) -> list[Any]:
+    """Run ``txtool simulate ROBOT --config ...`` and return one result per config (the robot's
+    own when ``configs`` is empty); each has ``passed`` and ``reasons``. ``options`` are those
+    of :class:`txtool.simulate.run.Options` (``duration``, ``dt``, ``tolerance``, ...). Needs
+    the ``sim`` extra (Pinocchio)."""
+    from txtool.simulate.run import Options, simulate_one
+
+    settings = Options(robot=robot, configs=tuple(configs), keep_series=False, **options)
+    return [simulate_one(settings, config) for config in (configs or (None,))]
+
+
+def _xacro_options(
+    args: Mapping[str, str] | None,
+    pkg_dirs: Sequence[str],
+    pkg_paths: Mapping[str, str] | None,
+) -> XacroOptions:
+    import os
+
+    from txtool.io.xmlio import XacroOptions
+
+    return XacroOptions(
+        args=tuple((args or {}).items()),
+        pkg_dirs=tuple(os.path.abspath(d) for d in pkg_dirs),
+        pkg_paths=tuple((n, os.path.abspath(d)) for n, d in (pkg_paths or {}).items()),
+    )
+
+
+def _source(path_or_text: str, expand: bool, xacro: XacroOptions) -> Source:
+    if path_or_text.lstrip().startswith("<"):
+        from txtool.io.xmlio import Source, parse_bytes
+
+        data = path_or_text.encode("utf-8")
+        return Source(path="<string>", data=data, tree=parse_bytes(data, "<string>"))
+    from txtool.io.load import load
+
+    return load(path_or_text, xacro=xacro, expand=expand)

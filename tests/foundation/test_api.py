@@ -1,0 +1,93 @@
+"""The scripting API: ``import txtool`` and call validate, read, convert and simulate."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import txtool
+
+FIXTURES = Path(__file__).resolve().parents[2] / "fixtures"
+BROKEN = str(FIXTURES / "broken_robot.urdf")
+DEMO = str(FIXTURES / "demo_robot.urdf")
+SNIPPET = """<robot name="r">
+  <transmission name="t">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m"><mechanicalReduction>-50</mechanicalReduction></actuator>
+  </transmission>
+</robot>
+"""
+
+
+def test_importing_txtool_loads_nothing_heavy():
+    code = ("import sys, txtool; heavy = [m for m in ('lxml', 'pydantic', 'numpy', 'rich', "
+            "'click', 'pinocchio') if m in sys.modules]; print(heavy)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout
+    assert out.strip() == "[]"
+
+
+def test_validate_returns_the_findings_the_cli_prints():
+    from click.testing import CliRunner
+
+    from txtool.cli import cli
+
+    problems = txtool.validate([BROKEN])
+    assert problems and all(isinstance(p, txtool.Problem) for p in problems)
+    printed = CliRunner().invoke(cli, ["validate", "-q", BROKEN]).stdout.splitlines()
+    assert [f"{p.path}:{p.line}:{p.column}: {p.severity} {p.code}" for p in problems] == [
+        " ".join(line.split()[:3]) for line in printed]
+    assert txtool.validate(BROKEN, select=["TX106"]) == [p for p in problems if p.code == "TX106"]
+
+
+def test_validate_raises_input_error_for_an_unreadable_file(tmp_path):
+    with pytest.raises(txtool.InputError, match="missing.urdf"):
+        txtool.validate([str(tmp_path / "missing.urdf")])
+
+
+def test_read_a_file_and_text():
+    names = [t.name for t in txtool.read(DEMO)]
+    assert names and all(isinstance(t, txtool.Transmission) for t in txtool.read(DEMO))
+    (t,) = txtool.read(SNIPPET)
+    assert (t.name, t.kind, t.dialect) == ("t", "simple", "ros1")
+    assert [a.name for a in t.actuators] == ["m"]
+
+
+def test_convert_returns_text_and_losses():
+    done = txtool.convert(SNIPPET, to="ros2-p2")
+    assert isinstance(done, txtool.Conversion) and done.lossless and done.converted == 1
+    assert "<ros2_control" in done.text and done.data == done.text.encode("utf-8")
+    (back,) = txtool.read(done.text)
+    assert back.dialect == "ros2-p2"
+    assert txtool.convert(txtool.convert(DEMO, to="ros2-p1").text, to="ros1").converted >= 1
+
+
+def test_convert_of_bad_input_raises_input_error():
+    with pytest.raises(txtool.InputError):
+        txtool.convert("<robot><transmission></robot>", to="ros2-p2")
+
+
+def test_simulate_returns_one_result_per_config(tmp_path):
+    pytest.importorskip("pinocchio")
+    (own,) = txtool.simulate(DEMO, duration=0.5)
+    assert own.passed and own.reasons == []
+    flipped = tmp_path / "flipped.urdf"
+    from txtool.simulate.demo import flipped_copy
+
+    flipped, _ = flipped_copy(DEMO, tmp_path)
+    (bad,) = txtool.simulate(DEMO, [str(flipped)], duration=0.5)
+    assert not bad.passed and bad.reasons
+
+
+def test_the_api_is_what_all_says():
+    assert sorted(txtool.__all__) == sorted(
+        ["Conversion", "InputError", "Problem", "Transmission", "__version__", "convert", "read",
+         "simulate", "validate"])
+    for name in txtool.__all__:
+        assert getattr(txtool, name) is not None
+    with pytest.raises(AttributeError):
+        txtool.nothing  # noqa: B018
