@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 
+import pytest
 from click.testing import CliRunner
 
 from txtool.cli import cli
@@ -29,8 +30,17 @@ def test_one_rule_prints_its_docstring_by_code_or_name():
     code, out, _ = run("tx106")
     assert code == 0
     assert out.startswith("TX106 zero-reduction (default severity: error)\n\n")
-    assert "Failing example::" in out and "Passing example::" in out
+    assert "Failing example:\n" in out and "Passing example:\n" in out
+    assert "``" not in out and "::\n" not in out  # no reStructuredText on screen
+    assert "-0 and 0.0 count as zero" in out
     assert run("zero-reduction")[1] == out
+
+
+@pytest.mark.parametrize("code", list(all_rules()))
+def test_no_rule_shows_markup_on_screen(code):
+    out = run(code)[1]
+    assert "``" not in out and ":func:`" not in out and ":mod:`" not in out
+    assert "::\n" not in out
 
 
 def test_unknown_rule_is_exit_2():

@@ -17,6 +17,7 @@ from txtool.commands.common import exit_on_input_error
 def command(code: str | None, output_format: str) -> int:
     """List every rule, or show the documentation of CODE (a code such as TX105, or a name)."""
     from txtool.io.xmlio import InputError
+    from txtool.lint.ruledoc import plain
     from txtool.rules import UnknownRule, all_rules, get
 
     if code is None:
@@ -42,5 +43,5 @@ def command(code: str | None, output_format: str) -> int:
         rule = rules[0]
         fixable = ", fixable by 'txtool migrate'" if rule.fixable else ""
         click.echo(f"{rule.code} {rule.name} (default severity: {rule.severity}{fixable})\n")
-        click.echo(rule.doc)
+        click.echo(plain(rule.doc))
     return 0

@@ -18,6 +18,7 @@ from urllib.parse import quote
 
 from txtool import __version__
 from txtool.lint.problem import InputFailure, Problem
+from txtool.lint.ruledoc import markdown, plain
 from txtool.reporters import Summary, end_of
 
 SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
@@ -64,7 +65,7 @@ def _rule(rule: Any) -> dict[str, Any]:
         "name": rule.name,
         "shortDescription": {"text": rule.summary},
         "fullDescription": {"text": _first_paragraphs(doc)},
-        "help": {"text": doc, "markdown": _markdown(rule)},
+        "help": {"text": plain(doc), "markdown": markdown(rule)},
         "defaultConfiguration": {"level": LEVELS[rule.severity]},
         "properties": {"tags": ["ros", "transmission"]},
     }
@@ -75,26 +76,6 @@ def _first_paragraphs(doc: str) -> str:
     prose = doc.split("Failing example", 1)[0].split("Options (", 1)[0]
     paragraphs = [" ".join(p.split()) for p in prose.split("\n\n") if p.strip()]
     return "\n\n".join(paragraphs)
-
-
-def _markdown(rule: Any) -> str:
-    """The docstring with its ``Example::`` blocks as fenced XML."""
-    out = [f"**{rule.code} {rule.name}**", ""]
-    fenced = False
-    for line in rule.doc.splitlines():
-        if fenced and line.strip() and not line.startswith("    "):
-            while out[-1] == "":
-                out.pop()
-            out += ["```", ""]
-            fenced = False
-        if line.rstrip().endswith("::") and not fenced:
-            out += [line.rstrip()[:-1], "", "```xml"]
-            fenced = True
-            continue
-        out.append(line[4:] if fenced else line)
-    if fenced:
-        out.append("```")
-    return "\n".join(out).replace("```xml\n\n", "```xml\n")
 
 
 def _invocation(failures: Sequence[InputFailure], uris: dict[str, str]) -> dict[str, Any]:
