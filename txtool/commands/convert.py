@@ -29,11 +29,19 @@ TARGETS = ("ros1", "ros2-p1", "ros2-p2", "bb")
 @click.option("--hardware-plugin", default="mock_components/GenericSystem", show_default=True,
               help="<plugin> of a <ros2_control> block created for ROS 1 transmissions.")
 @click.option("--stdin-filename", help="Name to report for '-' (stdin).")
+# --- Beam Bots (--to bb) options ---
+@click.option("--bb-direction", type=click.Choice(["reversed", "negative-reduction"]),
+              default="reversed", show_default=True,
+              help="bb: write a reversed joint as 'reversed? true' or as a negative reduction "
+                   "(which BB's URDF exporter keeps).")
+@click.option("--bb-topology", is_flag=True,
+              help="bb: write a whole 'topology do ... end' of the robot's links and joints.")
+# --- end of Beam Bots options ---
 @NO_XACRO_OPTION
 @xacro_options
 @exit_on_input_error
 def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_filename,
-            no_xacro, xacro) -> int:
+            bb_direction, bb_topology, no_xacro, xacro) -> int:
     """Convert the transmissions of INPUT to another dialect, keeping the rest of the document.
 
     The result is read back and converted back; anything that does not survive, or that the
@@ -53,7 +61,7 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_
         raise InputError(f"{path}: converting a xacro file in place would replace it with its "
                          "expansion; use 'txtool migrate --write --to TARGET' (or --no-xacro)")
     if target == "bb":
-        data, losses, notes = _bb(source)
+        data, losses, notes = _bb(source, bb_direction, bb_topology)
     else:
         from txtool.transform.convert import convert_source
 
@@ -84,11 +92,8 @@ def _same_file(a: str, b: str) -> bool:
         return False
 
 
-def _bb(source) -> tuple[bytes, list[str], list[str]]:
-    from txtool.dialects.read import read_source
-    from txtool.model.robot import robot_joints
+def _bb(source, direction: str, topology: bool) -> tuple[bytes, list[str], list[str]]:
     from txtool.transform.bb import export_bb
 
-    exported = export_bb([f.transmission for f in read_source(source)],
-                         robot_joints(source.root))
-    return exported.text.encode("utf-8"), list(exported.not_representable), []
+    exported = export_bb(source, direction=direction, topology=topology)  # type: ignore[arg-type]
+    return exported.text.encode("utf-8"), exported.losses, exported.notes
