@@ -120,8 +120,17 @@ def test_actuator_named_like_a_link(tmp_path: Path) -> None:
     """Names are unique across links, joints, sensors and actuators
     (lib/bb/dsl/uniqueness_transformer.ex:7-11 @107cca2)."""
     assert refused(tmp_path, robot(ros1("t", "shoulder", "arm", "9"))) == [
-        "transmission 't': actuator :arm is already the name of a link, joint or actuator (BB "
-        "needs unique names); named it :arm_2"]
+        "transmission 't': actuator :arm is already the name of a link or joint (BB needs link, "
+        "joint and actuator names unique); named it :arm_2"]
+
+
+def test_actuator_name_used_twice(tmp_path: Path) -> None:
+    # open_manipulator's omy_f3m.urdf names the gripper's actuators like the arm's
+    body = ros1("t1", "shoulder", "actuator1", "9") + ros1("t2", "slide", "actuator1", "3")
+    assert refused(tmp_path, robot(body)) == [
+        "transmission 't2': actuator :actuator1 is already the name of the actuator of "
+        "transmission 't1' (BB needs link, joint and actuator names unique); named it "
+        ":actuator1_2"]
 
 
 @pytest.mark.parametrize("kind, what", [
@@ -142,3 +151,9 @@ def test_zero_reduction_is_not_exported(tmp_path: Path) -> None:
     # BB would accept reduction 0.0 and raise ArithmeticError dividing by it at run time
     assert refused(tmp_path, robot(ros1("t", "shoulder", "m", "0"))) == [
         "transmission 't': not loadable: reduction ratio cannot be zero"]
+
+
+def test_member_without_a_name(tmp_path: Path) -> None:
+    # ros_control's parser_test_invalid.urdf: <actuator name=""> and <joint name="">
+    assert refused(tmp_path, robot(ros1("t", "shoulder", "", "9"))) == [
+        "transmission 't': a joint or actuator without a name (ros_control's parser refuses it)"]

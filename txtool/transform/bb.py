@@ -103,6 +103,7 @@ class _Collector:
         self.names = names
         self.losses = losses
         self.taken = names.taken()
+        self.actuators: dict[str, str] = {}  # BB actuator name -> its transmission
 
     def collect(self, found: Sequence[Found]) -> list[Attachment]:
         result = []
@@ -150,6 +151,10 @@ class _Collector:
         if not t.joints:
             self._lose(t.name, "a simple transmission without a joint has nothing to drive")
             return False
+        if any(not m.name.strip() for m in (*t.joints, *t.actuators)):
+            self._lose(t.name, "a joint or actuator without a name (ros_control's parser "
+                               "refuses it)")
+            return False
         if len(t.joints) > 1 or len(t.actuators) > 1:
             self._lose(t.name, f"a simple transmission joins one joint and one actuator, this "
                                f"has {len(t.joints)} and {len(t.actuators)}"
@@ -175,15 +180,21 @@ class _Collector:
     def _actuator_atom(self, transmission: str, joint: str, actuator: str | None) -> str:
         if actuator is None:
             wanted = atom_name(joint) + "_motor"
-            self._lose(transmission, f"no actuator: named it :{wanted} (BB needs a name; "
+            self._lose(transmission, f"no actuator: named it {elixir_atom(wanted)} (BB "
+                                     "needs a name; "
                                      "ros2_control calls it 'actuator1')")
         else:
             wanted = atom_name(actuator)
         name = unique_name(wanted, self.taken)
         if name != wanted:
-            self._lose(transmission, f"actuator :{wanted} is already the name of a link, joint "
-                                     f"or actuator (BB needs unique names); named it :{name}")
+            owner = self.actuators.get(wanted)
+            holder = (f"the actuator of transmission '{owner}'" if owner is not None
+                      else "a link or joint")
+            self._lose(transmission, f"actuator {elixir_atom(wanted)} is already the name of "
+                                     f"{holder} (BB needs link, joint and actuator names "
+                                     f"unique); named it {elixir_atom(name)}")
         self.taken.add(name)
+        self.actuators[name] = transmission
         return name
 
     def _lose(self, transmission: str, reason: str) -> None:
