@@ -62,7 +62,7 @@ def test_fixed_joint(tmp_path: Path) -> None:
 @pytest.mark.parametrize("joints, expected", [
     ('<joint name="shoulder" role="joint1"/><joint name="slide" role="joint1"/>',
      "transmission 't': a simple transmission joins one joint and one actuator, this has 2 "
-     "and 1; exported for the first joint"),
+     "and 1; its first joint and actuator are exported"),
     ("", "transmission 't': a simple transmission without a joint has nothing to drive"),
 ])
 def test_simple_transmission_with_two_joints_or_none(tmp_path: Path, joints: str,

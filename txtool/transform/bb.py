@@ -4,9 +4,9 @@ inside the ``joint``, as BB's main branch defines it.
 Facts from beam-bots/bb (Apache-2.0), PR #110 squash-merged as 23b6bde:
 
 * The ``transmission`` entity is an option of ``actuator`` and ``sensor``, not of ``joint``
-  (``lib/bb/dsl.ex:209-247`` and ``:274-282``; ``documentation/dsls/DSL-BB.md`` "joint > actuator
-  > transmission"). Fields: ``reduction`` (float, default 1.0), ``offset`` (angle or length),
-  ``reversed?`` (default false) (``lib/bb/dsl/transmission.ex:13-17``).
+  (``lib/bb/dsl.ex:209-247`` and ``:274-282``; ``documentation/dsls/DSL-BB.md:36-44``, "joint >
+  actuator > transmission"). Fields: ``reduction`` (float, default 1.0), ``offset`` (angle or
+  length), ``reversed?`` (default false) (``lib/bb/dsl/transmission.ex:13-17``).
 * ``motor = sign * reduction * (joint - offset)``, velocity ``sign * reduction * joint``, effort
   ``sign * joint / reduction``, ``sign = -1`` when ``reversed?`` (``lib/bb/transmission.ex:29-34``,
   ``:46-47``, ``:84-85``): ros2_control's SimpleTransmission with reduction ``sign * reduction``,
@@ -16,7 +16,8 @@ Facts from beam-bots/bb (Apache-2.0), PR #110 squash-merged as 23b6bde:
   ``:92-106``).
 * BB's URDF exporter writes a ``<transmission>`` only for a reduction other than 1.0, and only the
   reduction: ``reversed?`` and ``offset`` are lost, and no ``<hardwareInterface>`` is written
-  (``lib/bb/urdf/exporter.ex`` @330b7c6, ``build_transmission_elements/2``).
+  (``lib/bb/urdf/exporter.ex:35`` and ``build_transmission_elements/2``, read at @330b7c6,
+  before the transmission moved into the actuator).
 
 Units are CLDR names as BB's ``~u`` sigil takes them (``radian``, ``meter``), written in plain
 decimal form like BB's importer writes them.
@@ -159,7 +160,7 @@ class _Collector:
             self._lose(t.name, f"a simple transmission joins one joint and one actuator, this "
                                f"has {len(t.joints)} and {len(t.actuators)}"
                                + (" (ros_control refuses it)" if t.dialect == "ros1" else
-                                  "; exported for the first joint"))
+                                  "; its first joint and actuator are exported"))
             return t.dialect != "ros1"
         return True
 
