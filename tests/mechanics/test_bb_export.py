@@ -169,3 +169,21 @@ def test_number_literals() -> None:
     # inside ~u(...) plain decimals, as BB's importer writes them
     assert [decimal_text(v) for v in (0.5, -0.25, 1e-05, 2.0, 1.5e20)] == [
         "0.5", "-0.25", "0.00001", "2", "150000000000000000000"]
+
+
+def test_bb_options_need_the_bb_target(tmp_path: Path) -> None:
+    path = tmp_path / "robot.urdf"
+    path.write_text(robot(THREE))
+    result = CliRunner().invoke(cli, ["convert", str(path), "--to", "ros1", "--bb-topology"])
+    assert (result.exit_code, result.stdout, result.stderr) == (
+        2, "", "txtool: --bb-direction and --bb-topology apply to --to bb only\n")
+
+
+def test_bb_output_never_replaces_the_input(tmp_path: Path) -> None:
+    path = tmp_path / "robot.urdf"
+    path.write_text(robot(THREE))
+    result = CliRunner().invoke(cli, ["convert", str(path), "--to", "bb", "-o", str(path),
+                                      "--write"])
+    assert (result.exit_code, result.stderr) == (
+        2, f"txtool: {path}: is the input file; --to bb writes Elixir, not a robot\n")
+    assert path.read_text() == robot(THREE)

@@ -31,9 +31,8 @@ TARGETS = ("ros1", "ros2-p1", "ros2-p2", "bb")
 @click.option("--stdin-filename", help="Name to report for '-' (stdin).")
 # --- Beam Bots (--to bb) options ---
 @click.option("--bb-direction", type=click.Choice(["reversed", "negative-reduction"]),
-              default="reversed", show_default=True,
-              help="bb: write a reversed joint as 'reversed? true' or as a negative reduction "
-                   "(which BB's URDF exporter keeps).")
+              help="bb: write a reversed joint as 'reversed? true' (default) or as a negative "
+                   "reduction (which BB's URDF exporter keeps).")
 @click.option("--bb-topology", is_flag=True,
               help="bb: write a whole 'topology do ... end' of the robot's links and joints.")
 # --- end of Beam Bots options ---
@@ -52,7 +51,11 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_
     from txtool.io.load import load
     from txtool.io.xmlio import InputError, write_atomic
 
+    if target != "bb" and (bb_direction or bb_topology):
+        raise InputError("--bb-direction and --bb-topology apply to --to bb only")
     in_place_target = bool(output) and path != "-" and _same_file(path, output)
+    if target == "bb" and in_place_target:
+        raise InputError(f"{output}: is the input file; --to bb writes Elixir, not a robot")
     if in_place_target and not in_place:
         raise InputError(f"{output}: is the input file; add --write to convert it in place")
     expand = not xacro_disabled(no_xacro, path)
@@ -61,7 +64,7 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_
         raise InputError(f"{path}: converting a xacro file in place would replace it with its "
                          "expansion; use 'txtool migrate --write --to TARGET' (or --no-xacro)")
     if target == "bb":
-        data, losses, notes = _bb(source, bb_direction, bb_topology)
+        data, losses, notes = _bb(source, bb_direction or "reversed", bb_topology)
     else:
         from txtool.transform.convert import convert_source
 
