@@ -9,12 +9,16 @@ continuous joints and a length on prismatic ones (lib/bb/dsl/validate_limit_unit
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 from click.testing import CliRunner
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from txtool.cli import cli
-from txtool.transform.bb import decimal_text, elixir_float
+from txtool.io.xmlio import Source, parse_bytes
+from txtool.transform.bb import DIRECTIONS, decimal_text, elixir_float, export_bb
 
 LINKS = """<link name="base"/><link name="arm"/><link name="slider"/><link name="rim"/>"""
 JOINTS = """
@@ -187,3 +191,27 @@ def test_bb_output_never_replaces_the_input(tmp_path: Path) -> None:
     assert (result.exit_code, result.stderr) == (
         2, f"txtool: {path}: is the input file; --to bb writes Elixir, not a robot\n")
     assert path.read_text() == robot(THREE)
+
+
+NONZERO = st.floats(min_value=1e-6, max_value=1e6).flatmap(
+    lambda v: st.sampled_from((v, -v)))
+
+
+@settings(max_examples=60, deadline=None)
+@given(n=NONZERO, o=st.floats(min_value=-10, max_value=10), direction=st.sampled_from(DIRECTIONS))
+def test_the_bb_block_moves_the_motor_as_ros_does(n: float, o: float, direction) -> None:
+    """Read back, BB's ``sign * reduction * (joint - offset)`` (lib/bb/transmission.ex:46-47)
+    equals ros_control's ``n * (joint - offset)`` exactly, in either direction form."""
+    xml = robot(ros1("t", "shoulder", "m", repr(n), repr(o))).encode()
+    text = export_bb(Source("r.urdf", xml, parse_bytes(xml, "r.urdf")), direction=direction).text
+    found = re.search(r"^ +reduction (\S+)$", text, re.M)
+    r = float(found.group(1)) if found else 1.0  # a bare actuator: identity
+    found = re.search(r"^ +offset ~u\((\S+) radian\)$", text, re.M)
+    off = float(found.group(1)) if found else 0.0
+    sign = -1.0 if "reversed? true" in text else 1.0
+    if direction == "reversed":
+        assert r > 0 and (sign < 0) == (n < 0)
+    else:
+        assert sign == 1.0 and (r < 0) == (n < 0)
+    for joint in (-1.0, 0.3, 2.0):
+        assert sign * r * (joint - off) == n * (joint - o)
