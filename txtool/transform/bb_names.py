@@ -16,7 +16,7 @@ Cited from beam-bots/bb (Apache-2.0):
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from lxml import etree
 
@@ -52,6 +52,7 @@ class UrdfJoint:
     parent: str | None
     child: str | None
     element: etree._Element
+    bb_name: str = ""  # its name in BB
 
 
 @dataclass
@@ -86,7 +87,7 @@ def robot_names(root: etree._Element) -> RobotNames:
             renamed = unique_name(joint.name + "_joint", used)
         used.add(renamed)
         names.joints.setdefault(joint.name, atom_name(renamed))
-        names.urdf_joints.append(joint)
+        names.urdf_joints.append(replace(joint, bb_name=atom_name(renamed)))
     return names
 
 

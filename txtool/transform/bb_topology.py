@@ -93,7 +93,7 @@ class _Writer:
             body += [inner + line for line in actuator_lines(a, self.direction)]
         if joint.child in self.names.links:
             body += self.link(joint.child, depth + 1)
-        return [f"{pad}joint {elixir_atom(self.names.joints[joint.name])} do", *body, pad + "end"]
+        return [f"{pad}joint {elixir_atom(joint.bb_name)} do", *body, pad + "end"]
 
 
 def _block(name: str, entries: list[str], pad: str) -> list[str]:
