@@ -34,7 +34,7 @@ def test_topology_nests_links_joints_and_actuators(tmp_path: Path) -> None:
     code, out, err = convert(tmp_path, ROBOT.format(body=body), "--bb-topology")
     assert (code, "error" in err) == (0, False)
     assert out == """\
-# BB topology: links, joints and actuators (visuals, collisions, inertia and dynamics: mix bb.from_urdf)
+# BB topology: links, joints and actuators (visuals, collisions, inertia, dynamics and mimic sensors: mix bb.from_urdf)
 topology do
   link :world do
     joint :base_joint do

@@ -59,8 +59,8 @@ def render_topology(
         by_joint.setdefault(a.joint, []).append(a)
     writer = _Writer(names, children_of, by_joint, direction)
     lines = ["topology do", *writer.link(roots[0], 1), "end"]
-    header = ("# BB topology: links, joints and actuators (visuals, collisions, inertia and "
-              "dynamics: mix bb.from_urdf)\n")
+    header = ("# BB topology: links, joints and actuators (visuals, collisions, inertia, "
+              "dynamics and mimic sensors: mix bb.from_urdf)\n")
     return header + "\n".join(lines) + "\n"
 
 
