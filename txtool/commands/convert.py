@@ -29,11 +29,18 @@ TARGETS = ("ros1", "ros2-p1", "ros2-p2", "bb")
 @click.option("--hardware-plugin", default="mock_components/GenericSystem", show_default=True,
               help="<plugin> of a <ros2_control> block created for ROS 1 transmissions.")
 @click.option("--stdin-filename", help="Name to report for '-' (stdin).")
+# --- Beam Bots (--to bb) options ---
+@click.option("--bb-direction", type=click.Choice(["reversed", "negative-reduction"]),
+              help="bb: write a reversed joint as 'reversed? true' (default) or as a negative "
+                   "reduction (which BB's URDF exporter keeps).")
+@click.option("--bb-topology", is_flag=True,
+              help="bb: write a whole 'topology do ... end' of the robot's links and joints.")
+# --- end of Beam Bots options ---
 @NO_XACRO_OPTION
 @xacro_options
 @exit_on_input_error
 def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_filename,
-            no_xacro, xacro) -> int:
+            bb_direction, bb_topology, no_xacro, xacro) -> int:
     """Convert the transmissions of INPUT to another dialect, keeping the rest of the document.
 
     The result is read back and converted back; anything that does not survive, or that the
@@ -44,7 +51,11 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_
     from txtool.io.load import load
     from txtool.io.xmlio import InputError, write_atomic
 
+    if target != "bb" and (bb_direction or bb_topology):
+        raise InputError("--bb-direction and --bb-topology apply to --to bb only")
     in_place_target = bool(output) and path != "-" and _same_file(path, output)
+    if target == "bb" and in_place_target:
+        raise InputError(f"{output}: is the input file; --to bb writes Elixir, not a robot")
     if in_place_target and not in_place:
         raise InputError(f"{output}: is the input file; add --write to convert it in place")
     expand = not xacro_disabled(no_xacro, path)
@@ -53,7 +64,7 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_
         raise InputError(f"{path}: converting a xacro file in place would replace it with its "
                          "expansion; use 'txtool migrate --write --to TARGET' (or --no-xacro)")
     if target == "bb":
-        data, losses, notes = _bb(source)
+        data, losses, notes = _bb(source, bb_direction or "reversed", bb_topology)
     else:
         from txtool.transform.convert import convert_source
 
@@ -84,11 +95,8 @@ def _same_file(a: str, b: str) -> bool:
         return False
 
 
-def _bb(source) -> tuple[bytes, list[str], list[str]]:
-    from txtool.dialects.read import read_source
-    from txtool.model.robot import robot_joints
+def _bb(source, direction: str, topology: bool) -> tuple[bytes, list[str], list[str]]:
     from txtool.transform.bb import export_bb
 
-    exported = export_bb([f.transmission for f in read_source(source)],
-                         robot_joints(source.root))
-    return exported.text.encode("utf-8"), list(exported.not_representable), []
+    exported = export_bb(source, direction=direction, topology=topology)  # type: ignore[arg-type]
+    return exported.text.encode("utf-8"), exported.losses, exported.notes

@@ -77,14 +77,18 @@ def _against(a, b, output_format) -> int:
     from txtool.dialects.read import read_source
     from txtool.mechanics.equivalence import compare
     from txtool.model.robot import robot_joints
+    from txtool.transform.bb_roundtrip import bb_drops
 
-    report = compare([f.transmission for f in read_source(a)],
-                     [f.transmission for f in read_source(b)], robot_joints(a.root))
+    a_transmissions = [f.transmission for f in read_source(a)]
+    b_found = read_source(b)
+    report = compare(a_transmissions, [f.transmission for f in b_found], robot_joints(a.root))
+    bb_dropped = bb_drops(a_transmissions, b_found)  # B written by Beam Bots' URDF exporter
     if output_format == "json":
         rows = [{"joints": list(r.joints), "a": r.a, "b": r.b, "status": r.status,
                  "differences": r.differences, "reason": r.reason} for r in report.rows]
         click.echo(json.dumps({"a": a.path, "b": b.path, "equivalent": report.equivalent,
-                               "transmissions": rows}, indent=2))
+                               "transmissions": rows, "bb_exporter_dropped": bb_dropped},
+                              indent=2))
     else:
         from rich.table import Table
 
@@ -97,4 +101,6 @@ def _against(a, b, output_format) -> int:
             status = r.status if r.status == "equivalent" else f"[red]{r.status}[/red]"
             table.add_row(", ".join(r.joints), r.a or "-", r.b or "-", status, r.reason)
         console().print(table)
-    return 0 if report.equivalent else 1
+        for line in bb_dropped:
+            click.echo(f"BB dropped: {line}")
+    return 0 if report.equivalent and not bb_dropped else 1
