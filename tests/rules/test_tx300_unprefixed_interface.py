@@ -26,7 +26,7 @@ AFTER = """
       <hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>
     </joint>
     <actuator name="m">
-      <hardwareInterface> EffortJointInterface </hardwareInterface>
+      <hardwareInterface> hardware_interface/EffortJointInterface </hardwareInterface>
       <mechanicalReduction>1</mechanicalReduction>
     </actuator>
   </transmission>
@@ -46,12 +46,14 @@ def test_unprefixed_interface_warns_on_the_joint_only():
 
 def test_prefixed_interfaces_pass():
     assert check(AFTER, select=["TX300"]) == []
+    assert check(AFTER.replace("hardware_interface/EffortJointInterface", "EffortJointInterface"),
+                 select=["TX300"]) == []  # an actuator's interface is never read
 
 
 def test_fix_prepends_the_prefix_and_is_idempotent():
     text, first, second = fixed(rule, BEFORE)
     assert text == snippet(AFTER)
-    assert (first, second) == (1, 0)
+    assert (first, second) == (2, 0)  # the actuator's copy is prefixed too
 
 
 def test_fix_keeps_xacro_expressions_verbatim():

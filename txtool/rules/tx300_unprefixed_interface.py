@@ -13,14 +13,15 @@ Why
     (ros-controls/ros_control transmission_interface/src/transmission_interface_loader.cpp
     :169-183 @0a09467). With no valid interface left it refuses the transmission: TX205
     reports that as an error. An actuator's ``<hardwareInterface>`` is never read by
-    ros_control, so it is neither reported nor fixed.
+    ros_control, so it is not reported.
     gazebo_ros_control accepts both spellings but warns "Deprecated syntax, please prepend
     'hardware_interface/'" (gazebo_ros_pkgs#550), so a robot can work in simulation and fail
     on the real hardware.
 
 Fix
-    Prepends ``hardware_interface/``, keeping the whitespace around the name. Names holding
-    xacro expressions are left as written.
+    Prepends ``hardware_interface/``, keeping the whitespace around the name, in the joints
+    and in the actuators too, so the two spellings stay alike (older gazebo_ros_control falls
+    back to the actuator's). Names holding xacro expressions are left as written.
 
     Transmission families with loaders of their own (``pr2_mechanism_model/``,
     ``sr_mechanism_model/``) are neither reported nor fixed.
@@ -58,10 +59,10 @@ FIXABLE = True
 
 
 def _unprefixed(
-    transmission: etree._Element,
+    transmission: etree._Element, nouns: tuple[str, ...] = ("joint",)
 ) -> Iterator[tuple[etree._Element, etree._Element, str]]:
-    """(joint, hardwareInterface element, name) for each unprefixed registered name."""
-    for member in children(transmission, "joint"):
+    """(member, hardwareInterface element, name) for each unprefixed registered name."""
+    for member in [m for noun in nouns for m in children(transmission, noun)]:
         for element in children(member, "hardwareInterface"):
             text = (text_of(element) or "").strip()
             if text and unprefixed_registered(text):
@@ -90,7 +91,7 @@ def fix(root: etree._Element) -> int:
             continue
         if ros1_type(transmission).startswith(OWN_LOADER_FAMILIES):
             continue
-        for _, element, text in list(_unprefixed(transmission)):
+        for _, element, text in list(_unprefixed(transmission, ("joint", "actuator"))):
             element.text = (element.text or "").replace(text, PREFIX + text, 1)
             fixed += 1
     return fixed
