@@ -44,3 +44,10 @@ def test_declaration_first_or_no_declaration_passes():
 def test_a_comment_before_the_declaration_is_still_tx001():
     found = problems("<!-- licence -->\n<?xml version='1.0'?>\n" + BODY, select=["TX001", "TX004"])
     assert [(p.line, p.column, p.code, p.severity) for p in found] == [(2, 1, "TX001", "error")]
+
+
+def test_a_byte_order_mark_then_spaces_is_read_too(tmp_path):
+    from txtool.io.xmlio import parse_bytes
+
+    data = b"\xef\xbb\xbf \r\n<?xml version='1.0' encoding='UTF-8'?>\r\n" + BODY.encode()
+    assert parse_bytes(data, "r.urdf").getroot().get("name") == "r"

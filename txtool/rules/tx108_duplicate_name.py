@@ -5,8 +5,8 @@ overwrites the earlier with a warning; its own loader test allows this on purpos
 (ros-controls/ros_control transmission_interface/test/transmission_interface_loader_test.cpp
 :230-243 @3e1dd9d, "We allow to overwrite an existing transmission in the same way a hardware
 interface can be overwritten"). ros2_control's parser appends every ``<transmission>`` to the
-component's list without comparing names (hardware_interface/src/component_parser.cpp,
-parse_resource_from_xml @157446a), so both load too; it bites only where something looks a
+component's list without comparing names (hardware_interface/src/component_parser.cpp:611-614
+@157446a), so both load too; it bites only where something looks a
 transmission up by name (a hardware plugin, logs) and finds one of them. Names are compared
 per loader: ROS 1 transmissions with each other, ROS 2 transmissions within one
 ``<ros2_control>`` component. In a literal xacro file, transmissions in different macros or

@@ -7,10 +7,11 @@ any other name in that namespace is a typo, not a plugin someone installed. ros_
 with "Failed to load transmission 'T'. Unsupported type" (ros-controls/ros_control
 transmission_interface/src/transmission_interface_loader.cpp:139-147 @0a09467; the loader test
 ``UnsupportedTransmissionType``, transmission_interface/test/transmission_interface_loader_test
-.cpp:125-135 @3e1dd9d) and stops loading the transmissions after it (:126-129). ros2_control's
-parser copies any text (hardware_interface/src/component_parser.cpp, parse_transmission_from_xml
-@157446a), but the hardware plugin's pluginlib lookup of the loader fails, so the transmission
-never exists. A near-miss gets a suggestion. Types in other namespaces are TX102's business.
+.cpp:125-135 @3e1dd9d) and stops loading the transmissions after it (loader .cpp:126-129).
+ros2_control's parser copies any text (hardware_interface/src/component_parser.cpp:480-481
+@157446a), but the hardware plugin's pluginlib lookup of the loader fails, so the
+transmission never exists. A near-miss gets a suggestion. Types in other namespaces are
+TX102's business.
 
 Failing example::
 
