@@ -140,6 +140,15 @@ class NumberRef:
         return loader_text(self.element)
 
 
+_NODES = etree.XPath("node()")
+_TEXTS = etree.XPath("text()")
+
+
+def all_text(element: etree._Element) -> str:
+    """Every text node of the element itself (CDATA included, comments and children not)."""
+    return "".join(str(node) for node in _TEXTS(element))
+
+
 def loader_text(element: etree._Element) -> str | None:
     """The text TinyXML's ``GetText()`` gives the loaders: the element's first child node when
     it is text (CDATA counts as text), else None.
@@ -149,7 +158,7 @@ def loader_text(element: etree._Element) -> str | None:
     comment or CDATA section is not a node for TinyXML (tinyxml2 ``XMLDocument::Identify`` skips
     it), so it does not count.
     """
-    nodes = element.xpath("node()")
+    nodes = _NODES(element)
     while nodes:
         first = nodes[0]
         if not isinstance(first, str):

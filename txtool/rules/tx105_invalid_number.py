@@ -37,6 +37,7 @@ Passing example::
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
@@ -70,6 +71,9 @@ def _shown(text: str | None) -> str:
 
 
 def _ros1(text: str | None) -> str | None:
+    plain = parse_ros2(text)
+    if plain is not None and abs(plain) >= sys.float_info.min:
+        return None  # a plain number in the range of a double (the common case)
     read = stod(text)
     if read.out_of_range:
         return (

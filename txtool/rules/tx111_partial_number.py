@@ -34,7 +34,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import NumberRef, label, read_numbers
+from txtool.lint.support import NumberRef, all_text, label, read_numbers
 from txtool.model.numbers import C_SPACE, format_float, parse_ros1, parse_ros2, stod
 
 CODE = "TX111"
@@ -60,7 +60,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
 
 def _split(number: NumberRef, text: str | None, ros1: bool) -> str | None:
     """The loader reads the first text node only; the element holds more text after it."""
-    whole = "".join(str(node) for node in number.element.xpath("text()")).strip(C_SPACE)
+    whole = all_text(number.element).strip(C_SPACE)
     if text is None or whole == text.strip(C_SPACE):
         return None
     value = (parse_ros1 if ros1 else parse_ros2)(text)
@@ -74,8 +74,10 @@ def _split(number: NumberRef, text: str | None, ros1: bool) -> str | None:
 
 
 def _prefix(text: str | None, default: str) -> str | None:
+    if parse_ros2(text) is not None:
+        return None  # a plain number (the common case)
     read = stod(text)
-    if read.value is None or read.special or parse_ros2(text) is not None:
+    if read.value is None or read.special:
         return None
     rest = read.rest.strip(C_SPACE)
     how = f"ignores '{rest}' after it" if rest else "reads it as hexadecimal"
