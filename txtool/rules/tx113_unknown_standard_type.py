@@ -2,16 +2,17 @@
 
 ros_control registers exactly ``transmission_interface/SimpleTransmission``,
 ``transmission_interface/DifferentialTransmission`` and
-``transmission_interface/FourBarLinkageTransmission`` with pluginlib, and so does ros2_control;
-any other name in that namespace is a typo, not a plugin someone installed. ros_control fails
-with "Failed to load transmission 'T'. Unsupported type" (ros-controls/ros_control
-transmission_interface/src/transmission_interface_loader.cpp:139-147 @0a09467; the loader test
-``UnsupportedTransmissionType``, transmission_interface/test/transmission_interface_loader_test
-.cpp:125-135 @3e1dd9d) and stops loading the transmissions after it (loader .cpp:126-129).
-ros2_control's parser copies any text (hardware_interface/src/component_parser.cpp:480-481
-@157446a), but the hardware plugin's pluginlib lookup of the loader fails, so the
-transmission never exists. A near-miss gets a suggestion. Types in other namespaces are
-TX102's business.
+``transmission_interface/FourBarLinkageTransmission`` with pluginlib (ros-controls/ros_control
+transmission_interface/ros_control_plugins.xml:4-28 @23284e8), and so does ros2_control: any
+other name in that namespace is a typo, not a plugin someone installed. ros_control fails
+with "Failed to load transmission 'T'. Unsupported type" (transmission_interface/src/
+transmission_interface_loader.cpp:139-147 @0a09467; loader test ``UnsupportedTransmissionType``,
+transmission_interface/test/transmission_interface_loader_test.cpp:125-135 @3e1dd9d) and stops
+loading the transmissions after it (transmission_interface_loader.cpp:126-129).
+ros2_control's parser copies any text (ros-controls/ros2_control
+hardware_interface/src/component_parser.cpp:480-481 @157446a), but the hardware plugin's
+pluginlib lookup of the loader fails, so the transmission never exists. A near-miss gets a
+suggestion. Types in other namespaces are TX102's business.
 
 Failing example::
 
