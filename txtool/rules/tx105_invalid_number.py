@@ -15,12 +15,14 @@ hardware_interface/src/component_parser.cpp:134-161 @157446a; hardware_interface
 lexical_casts.cpp:28-52 @146eb98).
 
 Both read the text TinyXML's ``GetText()`` returns: the first text node only, so
-``5<!-- x -->0`` reads as 5. Text that Python reads as a number but C++ does not counts as
-C++ has it: Arabic-Indic digits, a no-break space before the number and ``1_000`` are not
-numbers there. Only values the loader reads are checked (ROS 1: actuator reductions, joint
-offsets, and joint reductions of coupled types; ROS 2: joint reductions and offsets, and
-actuator reductions of coupled types). Values containing ``${...}`` in a literal xacro file are
-unknown and not checked.
+``5<!-- x -->0`` reads as 5 (TX111). Text that Python reads as a number but C++ does not
+counts as C++ has it: Arabic-Indic digits and a no-break space before the number are no
+number for either loader, and ``1_000`` is none for ros2_control (``std::stod`` reads 1).
+
+Only values the loader reads are checked (ROS 1: actuator reductions, joint offsets, and joint
+reductions of coupled types; ROS 2: joint reductions and offsets, and actuator reductions of
+coupled types). Values containing ``${...}`` in a literal xacro file are unknown and not
+checked.
 
 Failing example::
 

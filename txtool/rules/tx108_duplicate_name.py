@@ -6,11 +6,11 @@ overwrites the earlier with a warning; its own loader test allows this on purpos
 :230-243 @3e1dd9d, "We allow to overwrite an existing transmission in the same way a hardware
 interface can be overwritten"). ros2_control's parser appends every ``<transmission>`` to the
 component's list without comparing names (hardware_interface/src/component_parser.cpp:611-614
-@157446a), so both load too; it bites only where something looks a
-transmission up by name (a hardware plugin, logs) and finds one of them. Names are compared
-per loader: ROS 1 transmissions with each other, ROS 2 transmissions within one
-``<ros2_control>`` component. In a literal xacro file, transmissions in different macros or
-under ``xacro:if``/``xacro:unless`` are not compared, nor names containing ``${...}``.
+@157446a), so both load too; it bites only where something looks a transmission up by name
+(a hardware plugin, logs) and finds one of them. Names are compared per loader: ROS 1
+transmissions with each other, ROS 2 transmissions within one ``<ros2_control>`` component.
+In a literal xacro file, transmissions in different macros or under
+``xacro:if``/``xacro:unless`` are not compared, nor names containing ``${...}``.
 
 Failing example::
 

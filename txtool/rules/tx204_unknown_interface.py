@@ -7,9 +7,8 @@ What it checks
       ``hardware_interface/{Position,Velocity,Effort}JointInterface`` and
       ``hardware_interface/BiDirectional{Position,Velocity,Effort}JointInterface``
       (ros-controls/ros_control transmission_interface/ros_control_plugins.xml:30-92
-      @23284e8). A
-      registered name written without the prefix is TX300's business; anything else is
-      reported here with the nearest registered name. ``<hardwareInterface>`` in an
+      @23284e8). A registered name written without the prefix is TX300's business; anything
+      else is reported here with the nearest registered name. ``<hardwareInterface>`` in an
       ``<actuator>`` is never read by the loader, so it is not checked.
     * ROS 2: the interfaces the enclosing ``<ros2_control>`` component declares for a
       transmission joint. Transmissions map ``position``, ``velocity`` and ``effort``
