@@ -51,3 +51,12 @@ def test_a_byte_order_mark_then_spaces_is_read_too(tmp_path):
 
     data = b"\xef\xbb\xbf \r\n<?xml version='1.0' encoding='UTF-8'?>\r\n" + BODY.encode()
     assert parse_bytes(data, "r.urdf").getroot().get("name") == "r"
+
+
+def test_xacro_itself_refuses_it_so_a_xacro_file_also_gets_tx002():
+    xacro = BODY.replace('<robot name="r">',
+                         '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">')
+    found = problems("\n  <?xml version='1.0'?>\n" + xacro, filename="r.urdf.xacro",
+                     select=["TX002", "TX004"])
+    assert [(p.code, p.severity) for p in found] == [("TX002", "error"), ("TX004", "warning")]
+    assert "XML or text declaration not at start of entity" in found[0].message
