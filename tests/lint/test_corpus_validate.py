@@ -1,8 +1,10 @@
-"""Every corpus file validates (exit 0 or 1, never 2 or a crash) with its documented defects.
+"""Every corpus file validates (exit 0 or 1, never 2 or a crash) with its reviewed findings.
 
-MANIFEST.tsv describes each file's quirks and intended defects; EXPECTED encodes them: for the
-transmission rules (TX0xx/TX1xx) the exact count per code, for the cross-check, dialect and
-ignored-value rules (TX2xx-TX4xx) the set of codes.
+MANIFEST.tsv describes each file's quirks and intended defects; EXPECTED encodes the findings a
+robotics engineer reviewed, with the reason: for the transmission rules (TX0xx/TX1xx) the exact
+count per code, for the cross-check, dialect and ignored-value rules (TX2xx-TX4xx) the set of
+codes. The exit code follows: a file fails only with an error, and an error means its loader
+refuses it (the reason says why).
 """
 
 from __future__ import annotations

@@ -9,7 +9,10 @@ What it checks
       (ros-controls/ros_control transmission_interface/ros_control_plugins.xml:30-92
       @23284e8). A registered name written without the prefix is TX300's business; anything
       else is reported here with the nearest registered name. ``<hardwareInterface>`` in an
-      ``<actuator>`` is never read by the loader, so it is not checked.
+      ``<actuator>`` is optional for the parser and never looked up by the loader, which
+      takes the first joint's list (transmission_interface/src/transmission_parser.cpp
+      :221-241 @14e64ea; transmission_interface_loader.cpp:152 @0a09467), so it is not
+      checked.
     * ROS 2: the interfaces the enclosing ``<ros2_control>`` component declares for a
       transmission joint. Transmissions map ``position``, ``velocity`` and ``effort``
       (Simple and Differential also ``torque``, ``force`` and ``absolute_position`` on
