@@ -68,3 +68,12 @@ def test_ros2_one_mapped_interface_is_enough():
     interfaces = '<command_interface name="position"/><state_interface name="temperature"/>'
     assert check(ROS2.format(interfaces=interfaces, plugin="SimpleTransmission"),
                  select=["TX205"]) == []
+
+
+def test_ros1_only_a_misspelt_interface_is_refused_with_the_nearest_name():
+    # YuMi's grippers (corpus): 'hardware_interface/EffortJoinInterface' is their only interface.
+    xml = ROS1.format(type=SIMPLE, interface="hardware_interface/EffortJoinInterface")
+    found = problems(xml, select=["TX204", "TX205"])
+    assert [(p.code, p.severity) for p in found] == [("TX205", "error"), ("TX204", "warning")]
+    assert "did you mean 'hardware_interface/EffortJointInterface'?" in found[0].message
+    assert "with no valid interface left it refuses the transmission: TX205" in found[1].message

@@ -61,5 +61,6 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         yield ctx.problem(
             CODE,
             element,
-            f"{label(found)} has type '{text}', not a transmission_interface type: {effect}{hint}",
+            f"{label(found)} has type '{text}', not one of the three transmission_interface "
+            f"types: {effect}{hint}",
         )

@@ -125,8 +125,15 @@ def _check_ros1(ctx: LintContext, found: Found) -> Iterator[Problem]:
     for ref in members(found):
         if ref.noun != "joint":
             continue  # ros_control never reads an actuator's <hardwareInterface>
-        for element in children(ref.element, "hardwareInterface"):
-            text = (element.text or "").strip()
+        elements = children(ref.element, "hardwareInterface")
+        texts = [(element.text or "").strip() for element in elements]
+        effect = (
+            "ros_control warns and loads the transmission without it"
+            if any(registered(text) for text in texts)
+            else "ros_control warns and drops it (with no valid interface left it refuses the "
+            "transmission: TX205)"
+        )
+        for element, text in zip(elements, texts, strict=True):
             if not text or ctx.unknown(text):
                 continue
             if text in ROS1_INTERFACES or unprefixed_registered(text):
@@ -135,12 +142,12 @@ def _check_ros1(ctx: LintContext, found: Found) -> Iterator[Problem]:
                 CODE,
                 element,
                 f"hardware interface '{text}' of {ref.noun} '{ref.member.name}' in "
-                f"{label(found)} is not a ros_control interface: ros_control warns and loads "
-                f"the transmission without it{_ros1_hint(text)}",
+                f"{label(found)} is not a ros_control interface: {effect}{ros1_hint(text)}",
             )
 
 
-def _ros1_hint(text: str) -> str:
+def ros1_hint(text: str) -> str:
+    """``; did you mean 'X'?`` with the nearest registered ROS 1 interface, or ``""``."""
     guess = _close_matches(text, ROS1_INTERFACES, n=1, cutoff=0.5)
     if not guess:
         guess = _close_matches(PREFIX + text, ROS1_INTERFACES, n=1, cutoff=0.5)

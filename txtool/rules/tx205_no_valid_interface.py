@@ -69,6 +69,7 @@ from txtool.rules.tx204_unknown_interface import (
     PREFIX,
     ROS2_INTERFACES,
     registered,
+    ros1_hint,
     ros2_joint_interfaces,
     unprefixed_registered,
 )
@@ -111,7 +112,7 @@ def _check_ros1(ctx: LintContext, found: Found) -> Iterator[Problem]:
         f"; write '{fixes[0]}' (gazebo_ros_control accepts the unprefixed name with a "
         "deprecation warning, ros_control does not)"
         if fixes
-        else ""
+        else ros1_hint(names[0])
     )
     yield ctx.problem(
         CODE,
