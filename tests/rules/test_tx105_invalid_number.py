@@ -150,3 +150,18 @@ def test_ros2_skips_an_element_whose_first_node_is_a_comment():
         "</mechanical_reduction>", "</mechanical_reduction><mechanical_reduction>4"
         "</mechanical_reduction>", 1)
     assert check(xml, select=["TX105"]) == []
+
+
+def test_ros2_whitespace_only_element_has_no_text_so_the_next_one_is_read():
+    # tinyxml2 keeps no whitespace-only text node: GetText() is null and the parser goes on to
+    # the next <mechanical_reduction> (component_parser.cpp:145-146 @157446a).
+    xml = ROS2.format(reduction="  ", offset="0").replace(
+        "</mechanical_reduction>", "</mechanical_reduction><mechanical_reduction>4"
+        "</mechanical_reduction>", 1)
+    assert check(xml, select=["TX105"]) == []
+
+
+def test_ros1_whitespace_only_element_is_refused_as_empty():
+    found = problems(ROS1.format(offset="0", reduction="   "), select=["TX105"])
+    assert [(p.code, p.severity) for p in found] == [("TX105", "error")]
+    assert "is empty, not a number" in found[0].message

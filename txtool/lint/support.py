@@ -154,19 +154,15 @@ def loader_text(element: etree._Element) -> str | None:
     it is text (CDATA counts as text), else None.
 
     A number split by a comment or CDATA section (``5<!-- x -->0``) is read up to the split only,
-    and an element that starts with a comment has no text at all. Whitespace standing before a
-    comment or CDATA section is not a node for TinyXML (tinyxml2 ``XMLDocument::Identify`` skips
-    it), so it does not count.
+    and an element that starts with a comment has no text at all. Whitespace alone is not a
+    node for TinyXML (tinyxml2 ``XMLDocument::Identify`` skips it before the next node or end
+    tag; TinyXML 1 drops blank text), so it does not count.
     """
-    nodes = _NODES(element)
-    while nodes:
-        first = nodes[0]
-        if not isinstance(first, str):
+    for node in _NODES(element):
+        if not isinstance(node, str):
             return None
-        if len(nodes) > 1 and not first.strip(C_SPACE):
-            nodes = nodes[1:]
-            continue
-        return str(first)
+        if node.strip(C_SPACE):
+            return str(node)
     return None
 
 
