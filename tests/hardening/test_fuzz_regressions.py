@@ -82,10 +82,12 @@ def test_map_whose_result_overflows_is_a_one_line_error(tmp_path):
 
 
 def test_map_through_reductions_whose_product_underflows_is_a_one_line_error(tmp_path):
-    # 5e-324 * 5e-324 is 0.0: a division by zero in the four-bar formulas.
+    # jr0 * ar0 = 1e-200 * 1e-200 is 0.0: a division by zero in the four-bar formulas.
+    # (Subnormal text such as 5e-324 is refused by ros_control's std::stod as out of range.)
     xml = HUGE_DIFFERENTIAL.replace("DifferentialTransmission", "FourBarLinkageTransmission")
-    xml = xml.replace("1e308</mechanicalReduction>", "5e-324</mechanicalReduction>")
-    result, _ = run(tmp_path, xml.format(reduction="5e-324"), "map", "-t", "t", "--to", "joint",
+    xml = xml.replace("<role>joint1</role>",
+                      "<role>joint1</role><mechanicalReduction>1e-200</mechanicalReduction>")
+    result, _ = run(tmp_path, xml.format(reduction="1e-200"), "map", "-t", "t", "--to", "joint",
                     "--velocity", "1,1")
     assert result.exit_code == 2 and "is not a finite number" in result.stderr
 

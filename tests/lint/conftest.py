@@ -13,14 +13,14 @@ BROKEN = """<robot name="r">
     <actuator name="m"><mechanicalReduction>0</mechanicalReduction></actuator>
   </transmission>
   <transmission name="u">
-    <type>transmission_interface/SimpleTansmission</type>
+    <type>SimpleTansmission</type>
   </transmission>
 </robot>
 """
 WARNING_ONLY = BROKEN.replace(">0<", ">50<")
 CLEAN = WARNING_ONLY.replace(
     """  <transmission name="u">
-    <type>transmission_interface/SimpleTansmission</type>
+    <type>SimpleTansmission</type>
   </transmission>
 """,
     "",

@@ -149,7 +149,7 @@ def test_hooks_leave_xml_that_is_no_robot_alone(tmp_path):
     assert run_hook("txtool-migrate", package)[0] == 0
     assert package.read_text() == text
     code, out = run_hook("txtool-validate", package)
-    assert code == 0 and "TX005" in out
+    assert code == 0 and "TX006" in out
 
 
 def test_readme_rev_is_the_tag_of_this_version():

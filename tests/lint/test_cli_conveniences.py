@@ -122,7 +122,7 @@ def test_a_named_file_without_transmissions_says_so(tmp_path):
     code, out, _ = invoke("validate", str(path))
     assert code == 0
     assert out.splitlines() == [
-        f"{path}:1:1: info TX005 no-transmission: no <transmission> in this file: "
+        f"{path}:1:1: info TX006 no-transmission: no <transmission> in this file: "
         "nothing to check",
         "Found 1 info in 1 file."]
 

@@ -106,7 +106,7 @@ def test_xacro_args_and_package_folders_relative_to_the_config(validate, tmp_pat
 </robot>
 """)
     find_config.cache_clear()
-    assert validate(str(robot)) == (0, f"{robot}:1:1: info TX005 no-transmission: no <transmission> in this file: nothing to check\nFound 1 info in 1 file.\n", "")  # expanded: the package and the argument found
+    assert validate(str(robot)) == (0, f"{robot}:1:1: info TX006 no-transmission: no <transmission> in this file: nothing to check\nFound 1 info in 1 file.\n", "")  # expanded: the package and the argument found
     empty = write(tmp_path / "empty.toml", "")
     code, out, _ = validate("--config", str(empty), str(robot))
     assert code == 1 and "TX002 xacro-failed: xacro: package 'my_pkg' not found" in out
@@ -116,7 +116,7 @@ def test_no_xacro_checks_the_file_as_written(validate, tmp_path):
     write(tmp_path / ".txtool.toml", "no-xacro = true\n")
     robot = write(tmp_path / "r.urdf.xacro", '<robot name="r"><link name="$(arg x)"/></robot>\n')
     find_config.cache_clear()
-    assert validate(str(robot)) == (0, f"{robot}:1:1: info TX005 no-transmission: no <transmission> in this file: nothing to check\nFound 1 info in 1 file.\n", "")
+    assert validate(str(robot)) == (0, f"{robot}:1:1: info TX006 no-transmission: no <transmission> in this file: nothing to check\nFound 1 info in 1 file.\n", "")
     (tmp_path / ".txtool.toml").unlink()
     find_config.cache_clear()
     assert "TX002" in validate(str(robot))[1]

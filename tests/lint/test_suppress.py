@@ -24,7 +24,7 @@ def fill(file: str = "", next: str = "", same: str = "") -> str:
 
 
 def test_unsuppressed_finding_is_reported():
-    assert check(fill(), select=["TX106"]) == [(8, 24, "TX106")]
+    assert check(fill(), select=["TX106"]) == [(8, 24, "TX106", "error")]
 
 
 def test_disable_next_line():
@@ -33,7 +33,7 @@ def test_disable_next_line():
 
 def test_disable_next_line_of_another_code_does_not_silence():
     found = check(fill(next="<!-- txtool: disable-next-line TX105 -->"))
-    assert found == [(7, 5, "TX003"), (8, 24, "TX106")]
+    assert found == [(7, 5, "TX003", "info"), (8, 24, "TX106", "error")]
 
 
 def test_disable_line_and_a_reason():
@@ -51,7 +51,7 @@ def test_directive_without_codes_silences_everything_on_its_line():
 
 def test_ordinary_comments_are_not_directives():
     assert check(fill(next="<!-- txtool disable TX106 -->"), select=["TX106"]) == [
-        (8, 24, "TX106")
+        (8, 24, "TX106", "error")
     ]
 
 

@@ -1,6 +1,7 @@
 """Run the lint pipeline on an inline XML snippet, the way ``txtool validate`` would.
 
-``check(xml, **options)`` returns sorted ``(line, column, code)`` triples. The snippet is
+``check(xml, **options)`` returns sorted ``(line, column, code, severity)`` tuples, so every
+rule test pins the severity a finding is reported with. The snippet is
 dedented and one leading newline is dropped, so line 1 is the first line after the opening
 quotes. Options:
 
@@ -45,8 +46,8 @@ def problems(xml: str, *, filename: str = "robot.urdf", **options: Any) -> list[
         return lint_file(str(path), settings)
 
 
-def check(xml: str, **options: Any) -> list[tuple[int, int, str]]:
-    return sorted((p.line, p.column, p.code) for p in problems(xml, **options))
+def check(xml: str, **options: Any) -> list[tuple[int, int, str, str]]:
+    return sorted((p.line, p.column, p.code, p.severity) for p in problems(xml, **options))
 
 
 def fixed(rule: Any, xml: str) -> tuple[str, int, int]:

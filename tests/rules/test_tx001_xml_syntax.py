@@ -13,7 +13,7 @@ def test_malformed_xml_is_a_finding_at_the_parser_position():
 
 def test_declaration_after_a_comment_is_reported_but_the_file_is_still_checked():
     xml = '<!-- licence -->\n<?xml version="1.0"?>\n<robot name="r">\n  <transmission/>\n</robot>\n'
-    assert check(xml, select=["TX001", "TX100"]) == [(2, 1, "TX001"), (4, 3, "TX100")]
+    assert check(xml, select=["TX001", "TX100"]) == [(2, 1, "TX001", "error"), (4, 3, "TX100", "error")]
 
 
 def test_well_formed_xml_passes():

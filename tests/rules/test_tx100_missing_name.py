@@ -16,14 +16,14 @@ ROS1 = """
 
 def test_transmission_without_name_fires_at_the_transmission():
     xml = ROS1.format(name="", joint=' name="j"')
-    assert check(xml, select=["TX100"]) == [(2, 3, "TX100")]
+    assert check(xml, select=["TX100"]) == [(2, 3, "TX100", "error")]
     assert "ros_control skips it" in problems(xml, select=["TX100"])[0].message
 
 
 def test_empty_joint_name_fires_at_the_joint():
     xml = ROS1.format(name=' name="t"', joint=' name=""')
     found = problems(xml, select=["TX100"])
-    assert [(p.line, p.column, p.code) for p in found] == [(4, 5, "TX100")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(4, 5, "TX100", "error")]
     assert "skips this joint" in found[0].message
 
 

@@ -17,12 +17,12 @@ ROS2 = """
 
 def test_ros2_without_plugin_fires_at_the_transmission():
     found = problems(ROS2.format(plugin=""), select=["TX101"])
-    assert [(p.line, p.column, p.code) for p in found] == [(4, 5, "TX101")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(4, 5, "TX101", "error")]
     assert "Missing <plugin> tag" in found[0].message
 
 
 def test_ros2_empty_plugin_fires_at_the_plugin():
-    assert check(ROS2.format(plugin="<plugin> </plugin>"), select=["TX101"]) == [(5, 7, "TX101")]
+    assert check(ROS2.format(plugin="<plugin> </plugin>"), select=["TX101"]) == [(5, 7, "TX101", "error")]
 
 
 def test_ros1_empty_type_fires_even_with_the_legacy_attribute():
@@ -33,7 +33,7 @@ def test_ros1_empty_type_fires_even_with_the_legacy_attribute():
       </transmission>
     </robot>
     """
-    assert check(xml, select=["TX101"]) == [(3, 5, "TX101")]
+    assert check(xml, select=["TX101"]) == [(3, 5, "TX101", "error")]
 
 
 def test_ros1_legacy_attribute_alone_is_left_to_tx302():

@@ -18,14 +18,14 @@ ROS1 = f"""
 def test_ros1_simple_with_two_joints_fires_at_the_transmission():
     xml = ROS1.format(type="SimpleTransmission", more=f'<joint name="b">{IFACE}</joint>')
     found = problems(xml, select=["TX103"])
-    assert [(p.line, p.column, p.code) for p in found] == [(2, 3, "TX103")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(2, 3, "TX103", "error")]
     assert "2 joints and 1 actuator" in found[0].message
     assert "ros_control needs exactly 1 joint and 1 actuator" in found[0].message
 
 
 def test_ros1_differential_with_one_of_each_fires():
     assert check(ROS1.format(type="DifferentialTransmission", more=""), select=["TX103"]) == [
-        (2, 3, "TX103")
+        (2, 3, "TX103", "error")
     ]
 
 

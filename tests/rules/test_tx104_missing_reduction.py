@@ -18,7 +18,7 @@ XML = """
 
 def test_actuator_without_reduction_fires_at_the_actuator():
     found = problems(XML.format(legacy="", reduction=""), select=["TX104"])
-    assert [(p.line, p.column, p.code) for p in found] == [(8, 5, "TX104")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(8, 5, "TX104", "error")]
     assert "ros_control refuses the transmission" in found[0].message
 
 

@@ -34,14 +34,49 @@ ROS2 = """
 
 def test_ros1_word_reduction_fires_at_the_element():
     found = problems(ROS1.format(offset="0", reduction="fifty"), select=["TX105"])
-    assert [(p.line, p.column, p.code) for p in found] == [(8, 24, "TX105")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(8, 24, "TX105", "error")]
     assert "'fifty', not a number: ros_control refuses" in found[0].message
 
 
-def test_ros1_trailing_junk_says_stod_reads_the_leading_number():
-    found = problems(ROS1.format(offset="0", reduction="50abc"), select=["TX105"])
-    assert [(p.line, p.column) for p in found] == [(8, 24)]
-    assert "std::stod reads 50 and ignores the rest" in found[0].message
+def test_ros1_trailing_junk_loads_so_tx105_stays_silent():
+    # std::stod takes the valid prefix: transmission_loader.cpp:60 @63b6afd (TX111 warns).
+    assert check(ROS1.format(offset="0", reduction="50abc"), select=["TX105"]) == []
+
+
+@pytest.mark.parametrize("reduction", ["1.8e308", "-1e309", "1e-400", "1e-310"])
+def test_ros1_out_of_range_is_refused_not_mapped_to_inf(reduction):
+    # std::stod throws std::out_of_range on ERANGE; the loader catches std::logic_error and
+    # refuses: transmission_loader.cpp:60-65 @63b6afd.
+    found = problems(ROS1.format(offset="0", reduction=reduction), select=["TX105"])
+    assert check(ROS1.format(offset="0", reduction=reduction), select=["TX105"]) == [
+        (8, 24, "TX105", "error")
+    ]
+    assert "out of the range of a double" in found[0].message
+    assert "refuses the transmission" in found[0].message
+    assert "inf" not in found[0].message
+
+
+@pytest.mark.parametrize(
+    "reduction",
+    ["\u0665\u0660", "\u00a050", "\u200350", "", "<!-- fifty -->50"],
+    ids=["arabic-indic-digits", "no-break-space", "em-space", "empty", "comment-first"],
+)
+def test_ros1_text_python_reads_but_cpp_does_not_is_refused(reduction):
+    # Python's float() accepts Arabic-Indic digits and strips Unicode spaces; strtod does not.
+    # A comment first leaves GetText() null: std::string(nullptr) throws std::logic_error.
+    found = problems(ROS1.format(offset="0", reduction=reduction), select=["TX105"])
+    assert [(p.code, p.severity) for p in found] == [("TX105", "error")]
+    assert "not a number: ros_control refuses the transmission" in found[0].message
+
+
+def test_ros1_hexadecimal_is_a_number_for_stod():
+    assert check(ROS1.format(offset="0", reduction="0x10"), select=["TX105", "TX106"]) == []
+
+
+def test_ros1_zero_prefix_is_zero_for_tx106():
+    assert check(ROS1.format(offset="0", reduction="0abc"), select=["TX105", "TX106"]) == [
+        (8, 24, "TX106", "error")
+    ]
 
 
 def test_ros1_inf_offset_fires():
@@ -61,7 +96,7 @@ def test_ros2_invalid_numbers_say_the_silent_default(reduction, offset, where, d
 
 
 def test_ros2_trailing_junk_is_not_accepted():
-    assert check(ROS2.format(reduction="50abc", offset="0"), select=["TX105"]) == [(7, 9, "TX105")]
+    assert check(ROS2.format(reduction="50abc", offset="0"), select=["TX105"]) == [(7, 9, "TX105", "error")]
 
 
 def test_plain_numbers_pass():
@@ -90,3 +125,43 @@ def test_literal_xacro_expressions_are_unknown():
     </robot>
     """
     assert check(xml, filename="lib.xacro", select=["TX105"]) == []
+
+
+@pytest.mark.parametrize(
+    "reduction",
+    ["\u0665\u0660", "\u00a050", "5_0", "0x10", "1.8e308", "inf", "50abc"],
+)
+def test_ros2_reads_the_whole_stripped_text_or_uses_the_default(reduction):
+    # component_parser.cpp:134-161 @157446a, lexical_casts.cpp:28-52 @146eb98: the whole text
+    # in the classic locale, failure returns the default.
+    found = problems(ROS2.format(reduction=reduction, offset="0"), select=["TX105"])
+    assert [(p.code, p.severity) for p in found] == [("TX105", "error")]
+    assert "ros2_control silently uses 1.0" in found[0].message
+
+
+def test_ros2_surrounding_c_whitespace_is_stripped():
+    assert check(ROS2.format(reduction="\n   50\t ", offset="+0.5"), select=["TX105"]) == []
+
+
+def test_ros2_skips_an_element_whose_first_node_is_a_comment():
+    # GetText() is null for it, so get_parameter_value_or goes on to the next element
+    # (component_parser.cpp:145-146 @157446a).
+    xml = ROS2.format(reduction="<!-- x -->fifty", offset="0").replace(
+        "</mechanical_reduction>", "</mechanical_reduction><mechanical_reduction>4"
+        "</mechanical_reduction>", 1)
+    assert check(xml, select=["TX105"]) == []
+
+
+def test_ros2_whitespace_only_element_has_no_text_so_the_next_one_is_read():
+    # tinyxml2 keeps no whitespace-only text node: GetText() is null and the parser goes on to
+    # the next <mechanical_reduction> (component_parser.cpp:145-146 @157446a).
+    xml = ROS2.format(reduction="  ", offset="0").replace(
+        "</mechanical_reduction>", "</mechanical_reduction><mechanical_reduction>4"
+        "</mechanical_reduction>", 1)
+    assert check(xml, select=["TX105"]) == []
+
+
+def test_ros1_whitespace_only_element_is_refused_as_empty():
+    found = problems(ROS1.format(offset="0", reduction="   "), select=["TX105"])
+    assert [(p.code, p.severity) for p in found] == [("TX105", "error")]
+    assert "is empty, not a number" in found[0].message

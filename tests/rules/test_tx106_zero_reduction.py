@@ -33,7 +33,7 @@ ROS2 = """
 
 
 def test_ros1_zero_actuator_reduction_fires_at_the_element():
-    assert check(ROS1.format(value="0"), select=["TX106"]) == [(7, 24, "TX106")]
+    assert check(ROS1.format(value="0"), select=["TX106"]) == [(7, 24, "TX106", "error")]
 
 
 def test_ros1_negative_zero_counts_as_zero():
@@ -44,7 +44,7 @@ def test_ros1_negative_zero_counts_as_zero():
 
 def test_ros2_zero_coupled_actuator_reduction_fires():
     found = problems(ROS2.format(value="0"), select=["TX106"])
-    assert [(p.line, p.column, p.code) for p in found] == [(8, 9, "TX106")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(8, 9, "TX106", "error")]
     assert "ros2_control's loader fails" in found[0].message
 
 

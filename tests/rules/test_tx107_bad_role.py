@@ -28,13 +28,13 @@ ROS1 = f"""
 )
 def test_ros1_coupled_roles_fire_at_the_role(a, b, where, words):
     found = problems(ROS1.format(a=a, b=b), select=["TX107"])
-    assert [(p.line, p.column, p.code) for p in found] == [(*where, "TX107")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(*where, "TX107", "error")]
     assert words in found[0].message
 
 
 def test_ros1_missing_role_fires_at_the_joint():
     xml = ROS1.format(a="joint1", b="joint2").replace("<role>joint2</role>", "")
-    assert check(xml, select=["TX107"]) == [(5, 5, "TX107")]
+    assert check(xml, select=["TX107"]) == [(5, 5, "TX107", "error")]
 
 
 def test_ros1_valid_roles_in_any_order_pass():

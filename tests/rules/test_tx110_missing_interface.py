@@ -19,7 +19,7 @@ STANDARD = "transmission_interface/SimpleTransmission"
 
 def test_joint_without_interface_fires_at_the_joint():
     found = problems(XML.format(type=STANDARD, joint=""), select=["TX110"])
-    assert [(p.line, p.column, p.code) for p in found] == [(4, 5, "TX110")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(4, 5, "TX110", "error")]
     assert "(only its actuator names one): ros_control skips the joint" in found[0].message
 
 

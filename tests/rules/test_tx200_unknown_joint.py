@@ -40,7 +40,7 @@ ROS1 = """
 
 def test_ros2_joint_missing_from_the_component_fires():
     found = problems(ROS2.format(joint="joint31415"), select=["TX200"])
-    assert [(p.line, p.column, p.code) for p in found] == [(12, 7, "TX200")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(12, 7, "TX200", "error")]
     assert "not a <joint> of <ros2_control> 'RRBot'" in found[0].message
     assert "ros2_control throws" in found[0].message
 
@@ -59,12 +59,12 @@ def test_ros2_component_check_applies_to_a_bare_fragment():
       </transmission>
     </ros2_control>
     """
-    assert check(xml, select=["TX200"]) == [(5, 5, "TX200")]
+    assert check(xml, select=["TX200"]) == [(5, 5, "TX200", "error")]
 
 
 def test_ros1_joint_missing_from_the_robot_fires():
     found = problems(ROS1.format(joint="elbw"), select=["TX200"])
-    assert [(p.line, p.column, p.code) for p in found] == [(9, 5, "TX200")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(9, 5, "TX200", "error")]
     assert "joint 'elbw' of transmission 't' is not a <joint> of the robot" in found[0].message
 
 
@@ -108,4 +108,4 @@ def test_xacro_names_are_matched_as_patterns():
 
 def test_xacro_pattern_does_not_hide_an_unrelated_literal_name():
     xml = MACRO_LIBRARY.replace("{joint}", "elbow")
-    assert check(xml, select=["TX200"], filename="hw.xacro") == [(7, 9, "TX200")]
+    assert check(xml, select=["TX200"], filename="hw.xacro") == [(7, 9, "TX200", "error")]

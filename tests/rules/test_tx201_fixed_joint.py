@@ -23,7 +23,7 @@ SIMPLE = "transmission_interface/SimpleTransmission"
 
 def test_transmission_on_a_fixed_joint_fires():
     found = problems(ROBOT.format(kind="fixed", type=SIMPLE), select=["TX201"])
-    assert [(p.line, p.column, p.code) for p in found] == [(9, 5, "TX201")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(9, 5, "TX201", "error")]
     assert "joint 'mount' of transmission 't' is a fixed joint" in found[0].message
     assert found[0].severity == "error"
 
@@ -53,5 +53,5 @@ def test_ros2_transmission_on_a_fixed_joint_fires():
     </robot>
     """
     found = problems(xml, select=["TX201"])
-    assert [(p.line, p.column, p.code) for p in found] == [(9, 7, "TX201")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(9, 7, "TX201", "error")]
     assert "Fixed joints do not make sense in ros2_control" in found[0].message

@@ -29,7 +29,7 @@ ROBOT = """
 
 def test_transmission_on_a_mimic_joint_warns():
     found = problems(ROBOT.format(joint="finger_right"), select=["TX202"])
-    assert [(p.line, p.column, p.code) for p in found] == [(16, 5, "TX202")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(16, 5, "TX202", "warning")]
     assert "joint 'finger_right' of transmission 't' mimics 'finger_left'" in found[0].message
     assert found[0].severity == "warning"
 

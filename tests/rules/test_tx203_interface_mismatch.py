@@ -24,7 +24,7 @@ EFFORT = "<hardwareInterface>hardware_interface/EffortJointInterface</hardwareIn
 
 def test_ros1_joints_with_different_interfaces_fire_at_the_second():
     found = problems(ROS1.format(second=POSITION), select=["TX203"])
-    assert [(p.line, p.column, p.code) for p in found] == [(8, 3, "TX203")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(8, 3, "TX203", "error")]
     assert "joint 'roll' of transmission 'wrist' lists hardware interfaces" in found[0].message
     assert "ros_control refuses" in found[0].message
 
@@ -51,7 +51,7 @@ ROS2 = """
 
 def test_ros2_component_joint_without_interfaces_fires():
     found = problems(ROS2.format(interfaces=""), select=["TX203"])
-    assert [(p.line, p.column, p.code) for p in found] == [(6, 5, "TX203")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(6, 5, "TX203", "error")]
     assert "has no command or state interface in <ros2_control> 'hw'" in found[0].message
 
 

@@ -34,9 +34,11 @@ AFTER = """
 """
 
 
-def test_unprefixed_interfaces_warn_on_joint_and_actuator():
+def test_unprefixed_interface_warns_on_the_joint_only():
+    # ros_control reads interfaces from joints only: transmission_interface_loader.cpp:152
+    # @0a09467 takes the first joint's list; the actuator's is never looked up.
     found = problems(BEFORE, select=["TX300"])
-    assert [(p.line, p.column, p.code) for p in found] == [(5, 7, "TX300"), (8, 7, "TX300")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(5, 7, "TX300", "warning")]
     assert found[0].severity == "warning" and found[0].fixable
     assert "'PositionJointInterface' of joint 'j' in transmission 't'" in found[0].message
     assert "write 'hardware_interface/PositionJointInterface'" in found[0].message
@@ -44,12 +46,14 @@ def test_unprefixed_interfaces_warn_on_joint_and_actuator():
 
 def test_prefixed_interfaces_pass():
     assert check(AFTER, select=["TX300"]) == []
+    assert check(AFTER.replace("hardware_interface/EffortJointInterface", "EffortJointInterface"),
+                 select=["TX300"]) == []  # an actuator's interface is never read
 
 
 def test_fix_prepends_the_prefix_and_is_idempotent():
     text, first, second = fixed(rule, BEFORE)
     assert text == snippet(AFTER)
-    assert (first, second) == (2, 0)
+    assert (first, second) == (2, 0)  # the actuator's copy is prefixed too
 
 
 def test_fix_keeps_xacro_expressions_verbatim():

@@ -34,7 +34,7 @@ AFTER = """
 
 def test_interface_only_on_the_actuator_warns_at_the_joint():
     found = problems(BEFORE, select=["TX301"])
-    assert [(p.line, p.column, p.code) for p in found] == [(4, 5, "TX301")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(4, 5, "TX301", "warning")]
     assert "joint 'joint1' of transmission 'tran1' has no <hardwareInterface>" in found[0].message
     assert "only actuator 'motor1' has" in found[0].message
     assert found[0].severity == "warning" and found[0].fixable
@@ -115,7 +115,7 @@ def test_actuators_that_disagree_are_reported_but_not_fixed():
         <hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface></actuator>
     </transmission>
     """
-    assert check(xml, select=["TX301"]) == [(3, 3, "TX301"), (4, 3, "TX301")]
+    assert check(xml, select=["TX301"]) == [(3, 3, "TX301", "warning"), (4, 3, "TX301", "warning")]
     text, first, _ = fixed(rule, xml)
     assert (text, first) == (snippet(xml), 0)
 

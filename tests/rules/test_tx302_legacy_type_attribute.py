@@ -30,7 +30,7 @@ LEGACY_FIXED = """
 
 def test_legacy_attribute_warns_at_the_transmission():
     found = problems(LEGACY, select=["TX302"])
-    assert [(p.line, p.column, p.code) for p in found] == [(2, 3, "TX302")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(2, 3, "TX302", "warning")]
     assert "legacy type=\"SimpleTransmission\" attribute" in found[0].message
     assert "No type element found" in found[0].message
     assert found[0].severity == "warning" and found[0].fixable
@@ -144,7 +144,7 @@ def test_fix_on_real_robots():
         "ros2_control_test_assets__diffbot_urdf.urdf": (2, []),
         "husky__wheel.urdf.xacro": (1, []),
         "urdf_sim_tutorial__12-gripper.urdf.xacro": (2, []),
-        "pr2__base.transmission.xacro": (0, [(6, 5, "TX302"), (15, 5, "TX302")]),
+        "pr2__base.transmission.xacro": (0, [(6, 5, "TX302", "warning"), (15, 5, "TX302", "warning")]),
     }
     for name, (fixes, remaining) in expected.items():
         text, first, second = fixed(rule, corpus_file(name).read_text())

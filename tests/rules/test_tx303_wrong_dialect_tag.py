@@ -19,7 +19,7 @@ ROS2 = """
 def test_ros2_mechanical_reduction_in_ros1_spelling_fires():
     body = "<mechanicalReduction>50</mechanicalReduction>"
     found = problems(ROS2.format(body=body), select=["TX303"])
-    assert [(p.line, p.column, p.code) for p in found] == [(7, 7, "TX303")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(7, 7, "TX303", "error")]
     assert "joint 'joint1' of transmission 't' uses the ROS 1 <mechanicalReduction>" in (
         found[0].message
     )
@@ -29,7 +29,7 @@ def test_ros2_mechanical_reduction_in_ros1_spelling_fires():
 def test_ros2_hardware_interface_elements_fire():
     body = ("<hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>"
             "<hardware_interface>position</hardware_interface>")
-    assert check(ROS2.format(body=body), select=["TX303"]) == [(7, 7, "TX303"), (7, 87, "TX303")]
+    assert check(ROS2.format(body=body), select=["TX303"]) == [(7, 7, "TX303", "error"), (7, 87, "TX303", "error")]
 
 
 def test_ros2_correct_spelling_passes():
@@ -75,7 +75,7 @@ def test_ros1_mechanical_reduction_in_ros2_spelling_fires():
     </transmission>
     """
     found = problems(xml, select=["TX303"])
-    assert [(p.line, p.column, p.code) for p in found] == [(6, 22, "TX303")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(6, 22, "TX303", "error")]
     assert "ros_control reads only <mechanicalReduction>" in found[0].message
 
 

@@ -26,7 +26,7 @@ LINKS = """
 def test_top_level_ros1_transmission_beside_a_component_warns():
     xml = "<robot name=\"r\">" + LINKS + ROS1_TRANSMISSION + COMPONENT + "\n</robot>\n"
     found = problems(xml, select=["TX304"])
-    assert [(p.line, p.column, p.code) for p in found] == [(5, 3, "TX304")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(5, 3, "TX304", "warning")]
     assert "ROS 1 transmission 'wheel_trans' stands outside every <ros2_control>" in (
         found[0].message
     )

@@ -23,7 +23,7 @@ def test_ros2_simple_actuator_reduction_and_offset_are_never_read():
         actuator="<mechanical_reduction>50</mechanical_reduction><offset>1</offset>", joint=""
     )
     found = problems(xml, select=["TX400"])
-    assert [(p.line, p.column, p.code) for p in found] == [(6, 7, "TX400"), (6, 54, "TX400")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(6, 7, "TX400", "warning"), (6, 54, "TX400", "warning")]
     assert "<mechanical_reduction> of actuator 'm' in transmission 't' is never read" in (
         found[0].message
     )

@@ -23,7 +23,7 @@ def test_the_converted_ros1_four_bar_keeps_bar_before_foo_and_fires():
     # (index 0 by name) although its role says joint2.
     joints = BAR.format(role="joint2") + FOO.format(role="joint1")
     found = problems(COUPLED.format(joints=joints), select=["TX401"])
-    assert [(p.line, p.column, p.code) for p in found] == [(6, 5, "TX401")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(6, 5, "TX401", "error")]
     assert "the joint roles (joint2, joint1) run against the XML and name order" in (
         found[0].message
     )

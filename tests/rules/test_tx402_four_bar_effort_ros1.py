@@ -15,7 +15,7 @@ ROS1 = """
 
 def test_ros1_four_bar_gets_an_info():
     found = problems(ROS1.format(type="FourBarLinkageTransmission"), select=["TX402"])
-    assert [(p.line, p.column, p.code) for p in found] == [(1, 1, "TX402")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(1, 1, "TX402", "info")]
     assert found[0].severity == "info"
     assert "ros_control#523" in found[0].message and "PR #1837" in found[0].message
 

@@ -26,7 +26,7 @@ ROS1 = """
 
 def test_badly_conditioned_differential_fires_with_its_condition_number():
     found = problems(ROS1.format(a1="1", a2="1e-13"), select=["TX403"])
-    assert [(p.line, p.column, p.code) for p in found] == [(2, 3, "TX403")]
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(2, 3, "TX403", "error")]
     # A = [[1, 1], [1e-13, -1e-13]]: singular values sqrt(2) and sqrt(2)*1e-13.
     assert "condition number 1e+13" in found[0].message
     assert "transmission 'diff'" in found[0].message
@@ -40,7 +40,7 @@ def test_max_condition_option_tightens_the_check():
     xml = ROS1.format(a1="1", a2="0.001")  # condition number 1000
     assert check(xml, select=["TX403"]) == []
     assert check(xml, select=["TX403"], rules={"TX403": {"max-condition": 100}}) == [
-        (2, 3, "TX403")
+        (2, 3, "TX403", "error")
     ]
 
 

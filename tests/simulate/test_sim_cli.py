@@ -119,7 +119,9 @@ def test_input_errors_exit_2_with_one_line(tmp_path, arm, args, message):
 def test_plot_without_matplotlib_says_how_to_get_it(tmp_path, arm, monkeypatch):
     import txtool.simulate.plot as plot
 
-    monkeypatch.setattr(plot.importlib.util, "find_spec", lambda name: None)
+    real = plot.importlib.util.find_spec
+    monkeypatch.setattr(plot.importlib.util, "find_spec",
+                        lambda name, *a: None if name == "matplotlib" else real(name, *a))
     code, out, err = txtool(arm, "--plot", str(tmp_path / "p.png"))
     assert code == 2 and out == ""
     assert "needs matplotlib" in err and "txtool[plot]" in err

@@ -202,8 +202,8 @@ def _near_file(name: str, near: str, search: Search) -> str | None:
         if own == name:
             return str(manifest.parent)
     roots = workspace_roots(near)
-    if not roots and manifest is not None:
-        roots = [str(manifest.parent.parent)]  # the package's siblings
+    if not roots and manifest is not None and len(manifest.parent.parts) > 2:
+        roots = [str(manifest.parent.parent)]  # the package's siblings (never all of /)
     for root in roots:
         search.looked.append(f"the packages below {root}")
         hit = packages_below(root).get(name)

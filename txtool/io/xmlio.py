@@ -21,6 +21,8 @@ XACRO_SUFFIXES = (".xacro",)
 MAX_BYTES = 64 * 1024 * 1024
 
 _DECLARATION = re.compile(rb"^\s*<\?xml[^>]*\?>")
+# Whitespace (and nothing else) before the XML declaration: see _movable_declaration.
+LEADING_SPACE_DECLARATION = re.compile(rb"(?:\xef\xbb\xbf)?([ \t\r\n]+)<\?xml[ \t\r\n]")
 _ENCODING = re.compile(rb"""^\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
 # Byte-order marks, and how the first "<" looks in UTF-16/32 text that has none.
 _UNICODE_STARTS = (
@@ -211,15 +213,18 @@ def _entity_line(data: bytes) -> int:
 
 
 def _movable_declaration(data: bytes) -> bytes:
-    """Blank out an XML declaration that stands after a comment, keeping line numbers.
+    """Blank out an XML declaration that does not start the document, keeping line numbers.
 
-    Some published URDFs prepend a licence comment before ``<?xml ...?>``; libxml2 rejects
-    that. The declaration carries nothing a transmission needs beyond its encoding, which
-    we honour by decoding first.
+    Some published URDFs prepend a licence comment before ``<?xml ...?>``, others a blank line
+    or spaces; libxml2 rejects both, while tinyxml2 (urdfdom, ros2_control) skips whitespace
+    before the declaration. The declaration carries nothing a transmission needs beyond its
+    encoding, which we honour by decoding first.
     """
     head = data[:4096]
     index = head.find(b"<?xml")
-    if index <= 0 or not head[:index].strip():
+    if index <= 0:
+        return data
+    if not head[:index].strip() and not LEADING_SPACE_DECLARATION.match(head):
         return data
     match = re.compile(rb"<\?xml[^>]*\?>").search(data, index)
     if match is None:

@@ -39,7 +39,7 @@ from txtool.rules import Rule, all_rules
 if TYPE_CHECKING:
     from txtool.lint.config import Config
 
-PIPELINE_CODES = frozenset({"TX001", "TX002", "TX003", "TX004", "TX005"})
+PIPELINE_CODES = frozenset({"TX001", "TX002", "TX003", "TX005", "TX006"})
 _TAG_END = re.compile(r"<[^>]*>?")
 
 
@@ -54,12 +54,12 @@ def lint_file(
 ) -> list[Problem]:
     """Problems of one file (or ``-``); malformed XML and failed xacro are findings.
 
-    A file ``named`` on the command line that holds no transmission gets TX005 (a file found
+    A file ``named`` on the command line that holds no transmission gets TX006 (a file found
     in a folder walk, such as an included fragment, does not). Raises
     :class:`~txtool.io.xmlio.InputError` when the file cannot be read.
     """
     problems = _lint_file(path, settings, stdin_name)
-    if named and "TX005" in settings.enabled and not problems:
+    if named and "TX006" in settings.enabled and not problems:
         return _no_transmission(path, stdin_name, settings)
     return problems
 
@@ -79,7 +79,7 @@ def _no_transmission(path: str, stdin_name: str | None, settings: Settings) -> l
     if context_for(source, settings).found:
         return []
     message = "no <transmission> in this file: nothing to check"
-    return finish([_pipeline(display, 1, 1, "TX005", message)], source, settings)
+    return finish([_pipeline(display, 1, 1, "TX006", message)], source, settings)
 
 
 def _lint_file(path: str, settings: Settings, stdin_name: str | None) -> list[Problem]:
@@ -182,16 +182,16 @@ def finish(problems: list[Problem], source: Source, settings: Settings) -> list[
 def _invalid_suppressions(
     suppressions: Suppressions, path: str, settings: Settings
 ) -> list[Problem]:
-    """TX004: misspelt directives, tokens that are not codes, and codes of no rule."""
-    if "TX004" not in settings.enabled:
+    """TX005: misspelt directives, tokens that are not codes, and codes of no rule."""
+    if "TX005" not in settings.enabled:
         return []
     rules = all_rules()
-    found = [_pipeline(path, bad.line, bad.column, "TX004", bad.reason)
+    found = [_pipeline(path, bad.line, bad.column, "TX005", bad.reason)
              for bad in suppressions.invalid]
     for directive in suppressions.directives:
         for code in sorted(directive.codes - rules.keys()):
             message = f"suppression names '{code}', which is no rule: see `txtool rules`"
-            found.append(_pipeline(path, directive.line, directive.column, "TX004", message))
+            found.append(_pipeline(path, directive.line, directive.column, "TX005", message))
     return found
 
 

@@ -12,6 +12,7 @@ from txtool.dialects.read import Found, enclosing_component
 from txtool.io.xmlio import is_xacro_element, local
 from txtool.lint.context import LintContext
 from txtool.model.core import Member
+from txtool.model.numbers import C_SPACE
 from txtool.model.robot import JointInfo, children
 
 # Transmission families with their own loaders (not ros_control's transmission_interface):
@@ -133,6 +134,37 @@ class NumberRef:
     def describe(self) -> str:
         return f"{self.field} of {self.noun} '{self.member}'"
 
+    @property
+    def text(self) -> str | None:
+        """The text the loader parses (see :func:`loader_text`)."""
+        return loader_text(self.element)
+
+
+_NODES = etree.XPath("node()")
+_TEXTS = etree.XPath("text()")
+
+
+def all_text(element: etree._Element) -> str:
+    """Every text node of the element itself (CDATA included, comments and children not)."""
+    return "".join(str(node) for node in _TEXTS(element))
+
+
+def loader_text(element: etree._Element) -> str | None:
+    """The text TinyXML's ``GetText()`` gives the loaders: the element's first child node when
+    it is text (CDATA counts as text), else None.
+
+    A number split by a comment or CDATA section (``5<!-- x -->0``) is read up to the split only,
+    and an element that starts with a comment has no text at all. Whitespace alone is not a
+    node for TinyXML (tinyxml2 ``XMLDocument::Identify`` skips it before the next node or end
+    tag; TinyXML 1 drops blank text), so it does not count.
+    """
+    for node in _NODES(element):
+        if not isinstance(node, str):
+            return None
+        if node.strip(C_SPACE):
+            return str(node)
+    return None
+
 
 def read_numbers(found: Found) -> list[NumberRef]:
     """The reduction and offset elements the transmission's loader reads (standard types)."""
@@ -172,8 +204,9 @@ def _number_element(member: etree._Element, tag: str, ros1: bool) -> etree._Elem
     if not found:
         return None
     if not ros1:
-        # ros2_control takes the first element with non-null text.
-        return next((e for e in found if e.text is not None), found[0])
+        # ros2_control takes the first element whose GetText() is not null
+        # (ros2_control hardware_interface/src/component_parser.cpp:134-161 @157446a).
+        return next((e for e in found if loader_text(e) is not None), found[0])
     return found[0]
 
 

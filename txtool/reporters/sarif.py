@@ -64,7 +64,7 @@ def _rule(rule: Any) -> dict[str, Any]:
         "id": rule.code,
         "name": rule.name,
         "shortDescription": {"text": rule.summary},
-        "fullDescription": {"text": _first_paragraphs(doc)},
+        "fullDescription": {"text": _first_paragraphs(plain(doc))},
         "help": {"text": plain(doc), "markdown": markdown(rule)},
         "defaultConfiguration": {"level": LEVELS[rule.severity]},
         "properties": {"tags": ["ros", "transmission"]},

@@ -1,13 +1,14 @@
-"""A transmission type that is not a standard one, with a suggestion for near-misses.
+"""A transmission type outside ``transmission_interface/`` that txtool does not know.
 
-Both loaders look the type up by its exact pluginlib name:
-``transmission_interface/SimpleTransmission``, ``transmission_interface/DifferentialTransmission``
-or ``transmission_interface/FourBarLinkageTransmission``. A misspelt name (``SimpleTansmission``,
-a missing or wrong ``transmission_interface/`` prefix) makes ros_control fail with
-"Unsupported type"; ros2_control's parser accepts any text, so the mistake only shows when the
-hardware plugin looks for a loader. Types of known custom families (``pr2_mechanism_model/``,
+Both loaders look the type up by its exact pluginlib name
+(ros-controls/ros_control transmission_interface/src/transmission_interface_loader.cpp:139-147
+@0a09467: "Unsupported type"). A type in another namespace may be a plugin installed on the
+robot, so it is a warning: a near-miss of a standard name (``SimpleTransmission`` without its
+``transmission_interface/`` prefix) gets a suggestion; other custom types are reported once,
+since txtool cannot check them. Types of known custom families (``pr2_mechanism_model/``,
 ``sr_mechanism_model/``, ``franka_hw/``, plus the ``known-families`` option) are not
-reported; other custom types are reported once, since txtool cannot check them.
+reported. A type under ``transmission_interface/`` that is not one of the three standard ones
+can be no plugin at all: TX113's business (an error).
 
 Applies to ``<type>`` (ROS 1) and ``<plugin>`` (ROS 2); the pre-Hydro ``type=`` attribute
 alone is TX302's business.
@@ -20,7 +21,7 @@ Options (``[tool.txtool.rules.TX102]``):
 Failing example::
 
     <transmission name="t">
-      <plugin>transmission_interface/SimpleTansmission</plugin>
+      <plugin>SimpleTransmission</plugin>
     </transmission>
 
 Passing example::
@@ -71,17 +72,14 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         if element is None:
             continue
         text = (element.text or "").strip()
-        if not text or ctx.unknown(text) or text in STANDARD_NAMES or text.startswith(families):
-            continue
-        ros1 = found.transmission.dialect == "ros1"
+        if not text or ctx.unknown(text) or text.startswith((*families, TYPE_PREFIX)):
+            continue  # transmission_interface/...: TX113
         suggestion = nearest_standard(text)
         if suggestion is not None:
-            effect = (
-                "ros_control fails with \"Unsupported type\""
-                if ros1
-                else "ros2_control parses it but finds no loader for it"
+            message = (
+                f"{label(found)} has type '{text}': no loader knows it unless a plugin of that "
+                f"name is installed; did you mean '{suggestion}'?"
             )
-            message = f"{label(found)} has type '{text}' ({effect}); did you mean '{suggestion}'?"
         else:
             message = (
                 f"{label(found)} has type '{text}', not a standard transmission_interface type: "

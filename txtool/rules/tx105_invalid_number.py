@@ -1,14 +1,28 @@
-"""A reduction or offset the loader reads that is not a finite number.
+"""A reduction or offset the loader refuses, or reads as a value that is not a finite number.
 
-ros_control (ROS 1) parses with ``std::stod``: text without a leading number (``fifty``, an
-empty element) makes it refuse the transmission; ``inf`` and ``nan`` are accepted and poison
-every value the transmission maps; trailing junk is silently dropped (``50abc`` reads as 50).
-ros2_control parses the whole stripped text and, on any failure (junk, ``inf``, ``nan``,
-empty), **silently** uses the default: 1.0 for ``<mechanical_reduction>``, 0.0 for
-``<offset>``. Only values the loader reads are checked (ROS 1: actuator reductions, joint
-offsets, and joint reductions of coupled types; ROS 2: joint reductions and offsets, and
-actuator reductions of coupled types). Values containing ``${...}`` in a literal xacro file
-are unknown and not checked.
+ros_control (ROS 1) converts with ``std::stod(element->GetText())`` and catches
+``std::logic_error`` (ros-controls/ros_control transmission_interface/src/transmission_loader.cpp
+:60-61, :95-96, :130-131 @63b6afd): text without a leading number (``fifty``, an empty
+element, one that starts with a comment), and a number outside the range of a double
+(``1.8e308``, ``1e-400``: ``std::out_of_range``), make it refuse the transmission; ``inf``
+and ``nan`` are accepted and poison every value the transmission maps. A valid number followed
+by other text loads as that number: TX111's business.
+
+ros2_control parses the whole stripped text in the classic locale and, on any failure (junk,
+``inf``, ``nan``, out of range, empty), **silently** uses the default: 1.0 for
+``<mechanical_reduction>``, 0.0 for ``<offset>`` (ros-controls/ros2_control
+hardware_interface/src/component_parser.cpp:134-161 @157446a; hardware_interface/src/
+lexical_casts.cpp:28-52 @146eb98).
+
+Both read the text TinyXML's ``GetText()`` returns: the first text node only, so
+``5<!-- x -->0`` reads as 5 (TX111). Text that Python reads as a number but C++ does not
+counts as C++ has it: Arabic-Indic digits and a no-break space before the number are no
+number for either loader, and ``1_000`` is none for ros2_control (``std::stod`` reads 1).
+
+Only values the loader reads are checked (ROS 1: actuator reductions, joint offsets, and joint
+reductions of coupled types; ROS 2: joint reductions and offsets, and actuator reductions of
+coupled types). Values containing ``${...}`` in a literal xacro file are unknown and not
+checked.
 
 Failing example::
 
@@ -25,13 +39,13 @@ Passing example::
 
 from __future__ import annotations
 
-import math
+import sys
 from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.support import label, read_numbers
-from txtool.model.numbers import format_float, parse_ros1, parse_ros2, parse_strict
+from txtool.model.numbers import C_SPACE, parse_ros2, stod
 
 CODE = "TX105"
 NAME = "invalid-number"
@@ -42,8 +56,8 @@ FIXABLE = False
 def check(ctx: LintContext) -> Iterator[Problem]:
     for found in ctx.transmissions():
         for number in read_numbers(found):
-            text = number.element.text
-            if ctx.unknown(text):
+            text = number.text
+            if ctx.unknown(text) or ctx.unknown(number.element.text):
                 continue
             if found.transmission.dialect == "ros1":
                 problem = _ros1(text)
@@ -54,18 +68,26 @@ def check(ctx: LintContext) -> Iterator[Problem]:
                 yield ctx.problem(CODE, number.element, message)
 
 
+def _shown(text: str | None) -> str:
+    return f"'{text.strip(C_SPACE)}'" if text and text.strip(C_SPACE) else "empty"
+
+
 def _ros1(text: str | None) -> str | None:
-    value = parse_ros1(text)
-    if value is None:
-        shown = f"'{text}'" if text and text.strip() else "empty"
-        return f"is {shown}, not a number: ros_control refuses the transmission"
-    if not math.isfinite(value):
-        shown = (text or "").strip()
-        return f"is '{shown}': ros_control accepts it and maps every value to inf or nan"
-    if parse_strict(text) is None:
+    plain = parse_ros2(text)
+    if plain is not None and abs(plain) >= sys.float_info.min:
+        return None  # a plain number in the range of a double (the common case)
+    read = stod(text)
+    if read.out_of_range:
         return (
-            f"is '{(text or '').strip()}', not a plain number: ros_control's std::stod reads "
-            f"{format_float(value)} and ignores the rest"
+            f"is '{read.read}', out of the range of a double: std::stod throws "
+            "std::out_of_range and ros_control refuses the transmission"
+        )
+    if read.value is None:
+        return f"is {_shown(text)}, not a number: ros_control refuses the transmission"
+    if read.special:
+        return (
+            f"is '{read.read}': ros_control accepts it and every value the transmission maps "
+            "becomes inf or nan"
         )
     return None
 
@@ -73,5 +95,4 @@ def _ros1(text: str | None) -> str | None:
 def _ros2(text: str | None, default: str) -> str | None:
     if parse_ros2(text) is not None:
         return None
-    shown = f"'{text.strip()}'" if text and text.strip() else "empty"
-    return f"is {shown}, not a finite number: ros2_control silently uses {default}"
+    return f"is {_shown(text)}, not a finite number: ros2_control silently uses {default}"

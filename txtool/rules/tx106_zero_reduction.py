@@ -40,7 +40,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         for number in read_numbers(found):
             if number.field != "reduction" or ctx.unknown(number.element.text):
                 continue
-            value = (parse_ros1 if ros1 else parse_ros2)(number.element.text)
+            value = (parse_ros1 if ros1 else parse_ros2)(number.text)
             if value != 0.0:
                 continue
             effect = (

@@ -1,11 +1,16 @@
-"""Two transmissions with the same name, for the same loader.
+"""Two transmissions with the same name, for the same loader: both load, a warning.
 
-ros_control registers transmission handles by name, so the later transmission replaces the
-earlier one; ros2_control keeps both in the component's list but anything that looks a
-transmission up by name (hardware plugins, logs) sees only one. Names are compared per
-loader: ROS 1 transmissions with each other, ROS 2 transmissions within one
-``<ros2_control>`` component. In a literal xacro file, transmissions in different macros or
-under ``xacro:if``/``xacro:unless`` are not compared, nor names containing ``${...}``.
+ros_control loads both and registers the transmission handles by name, so the later one
+overwrites the earlier with a warning; its own loader test allows this on purpose
+(ros-controls/ros_control transmission_interface/test/transmission_interface_loader_test.cpp
+:230-243 @3e1dd9d, "We allow to overwrite an existing transmission in the same way a hardware
+interface can be overwritten"). ros2_control's parser appends every ``<transmission>`` to the
+component's list without comparing names (hardware_interface/src/component_parser.cpp:611-614
+@157446a), so both load too; it bites only where something looks a transmission up by name
+(a hardware plugin, logs) and finds one of them. Names are compared per loader: ROS 1
+transmissions with each other, ROS 2 transmissions within one ``<ros2_control>`` component.
+In a literal xacro file, transmissions in different macros or under
+``xacro:if``/``xacro:unless`` are not compared, nor names containing ``${...}``.
 
 Failing example::
 
@@ -29,7 +34,7 @@ from txtool.lint.support import loader_group, parsed, scope
 
 CODE = "TX108"
 NAME = "duplicate-name"
-SEVERITY = "error"
+SEVERITY = "warning"
 FIXABLE = False
 
 
@@ -46,9 +51,10 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             continue
         line = ctx.position(first[key].element).line
         effect = (
-            "ros_control registers transmissions by name and the later one replaces it"
+            "ros_control loads both and the later one overwrites the handles of the earlier"
             if found.transmission.dialect == "ros1"
-            else "anything that looks transmissions up by name sees only one of them"
+            else "ros2_control loads both; a plugin that looks transmissions up by name finds "
+            "only one of them"
         )
         yield ctx.problem(
             CODE, found.element, f"transmission name '{name}' is already used on line {line}: "

@@ -1,11 +1,18 @@
-"""A joint or actuator that appears in more than one transmission of the same loader.
+"""A joint or actuator in more than one transmission of the same loader: both load, a warning.
 
-Each transmission maps its actuators' values onto its joints and back; two transmissions on
-the same joint (or actuator) both write its position, velocity and effort, so the last one
-to run wins and commands are split between two actuators. Neither ros_control nor
-ros2_control rejects this. Compared as for TX108 (per loader, per ``<ros2_control>``
-component, xacro-aware); custom types are skipped, since some (``franka_hw/...``) list joints
-on purpose that standard transmissions also drive.
+Neither loader rejects it: ros_control resolves each transmission's members on its own
+(transmission_interface/src/transmission_interface_loader.cpp:39-86 @0a09467), and
+ros2_control's parser appends transmissions and their members without comparing them
+(hardware_interface/src/component_parser.cpp:474-507, :611-614 @157446a). Its own test robot
+shares joints between a differential and a four-bar transmission (ros2_control_test_assets
+``minimal_robot_hardware_resources``, in the corpus), and ros2_control never applies
+transmissions itself: the hardware plugin does. It bites when both transmissions are
+applied in the same direction: two transmissions writing one joint (actuator to joint) or
+one actuator (joint to actuator) overwrite each other, and the one applied last wins.
+Reading one shared actuator into several joints (a motor that drives coupled fingers) is a
+legitimate design. Compared as for TX108 (per loader, per ``<ros2_control>`` component,
+xacro-aware); custom types are skipped, since some (``franka_hw/...``) list joints on
+purpose that standard transmissions also drive.
 
 Failing example::
 
@@ -29,7 +36,7 @@ from txtool.lint.support import label, loader_group, members, parsed, scope
 
 CODE = "TX109"
 NAME = "shared-member"
-SEVERITY = "error"
+SEVERITY = "warning"
 FIXABLE = False
 
 
@@ -60,5 +67,6 @@ def check(ctx: LintContext) -> Iterator[Problem]:
                 CODE,
                 ref.element,
                 f"{ref.noun} '{name}' of {label(found)} is also in {label(first)} (line {line}): "
-                "both transmissions write its values",
+                f"both load, but where both are applied the one applied last overwrites the "
+                f"{ref.noun}'s {'state' if ref.noun == 'joint' else 'command'}",
             )

@@ -2,7 +2,8 @@
 
 ros_control's transmission parser needs at least one non-empty ``<hardwareInterface>`` in
 every ``<joint>`` of a transmission ("No valid hardware interface element found in joint
-'J'."); the joint is skipped, and a transmission left without joints is not loaded ("Failed
+'J'.", ros-controls/ros_control transmission_interface/src/transmission_parser.cpp:155-175
+@14e64ea); the joint is skipped, and a transmission left without joints is not loaded ("Failed
 to load joints for transmission 'T'."). Since ROS Indigo an interface written only in the
 ``<actuator>`` does not count (ros_control#177); gazebo_ros_control still tolerated that with
 a warning. Transmissions of families with their own loaders (``pr2_mechanism_model/``,

@@ -1,30 +1,41 @@
-"""An interface name the transmission loader does not know.
+"""An interface name the transmission loader does not know, beside ones it does: a warning.
 
 What it checks
-    * ROS 1: every ``<hardwareInterface>`` of a joint or actuator of a standard transmission
-      must be one of the names ros_control registers with pluginlib:
+    * ROS 1: every ``<hardwareInterface>`` of a ``<joint>`` of a standard transmission must be
+      one of the names ros_control registers with pluginlib:
       ``hardware_interface/JointStateInterface``,
       ``hardware_interface/{Position,Velocity,Effort}JointInterface`` and
-      ``hardware_interface/BiDirectional{Position,Velocity,Effort}JointInterface``. A
-      registered name written without the prefix is TX300's business; anything else is
-      reported here with the nearest registered name.
+      ``hardware_interface/BiDirectional{Position,Velocity,Effort}JointInterface``
+      (ros-controls/ros_control transmission_interface/ros_control_plugins.xml:30-92
+      @23284e8). A registered name written without the prefix is TX300's business; anything
+      else is reported here with the nearest registered name. ``<hardwareInterface>`` in an
+      ``<actuator>`` is optional for the parser and never looked up by the loader, which
+      takes the first joint's list (transmission_interface/src/transmission_parser.cpp
+      :221-241 @14e64ea; transmission_interface_loader.cpp:152 @0a09467), so it is not
+      checked.
     * ROS 2: the interfaces the enclosing ``<ros2_control>`` component declares for a
       transmission joint. Transmissions map ``position``, ``velocity`` and ``effort``
       (Simple and Differential also ``torque``, ``force`` and ``absolute_position`` on
       ros2_control master). A declared name that is close to one of those (``Position``,
       ``efort``, ``hardware_interface/EffortJointInterface``) is reported with the
-      suggestion; so is a joint none of whose interfaces the transmission can map. Other
-      extra interfaces (``acceleration``, ``max_velocity``) are fine: the transmission just
-      skips them.
+      suggestion. Other extra interfaces (``acceleration``, ``max_velocity``) are fine: the
+      transmission just skips them.
 
-    Custom transmission types and names holding xacro expressions are not checked.
+    Custom transmission types and names holding xacro expressions are not checked. When no
+    usable interface is left, the loader refuses the transmission: TX205 reports that as an
+    error.
 
 Why
-    ros_control looks each joint interface up as a pluginlib class; an unknown name gives
-    "Failed to process the 'X' hardware interface for transmission 'T'", and with no valid
-    name left the transmission fails to load. ros2_control's transmissions silently skip
-    every handle whose interface name they do not map, so a misspelt name means the joint is
-    never transmitted, without any error.
+    ros_control follows a best-effort policy: it looks each interface of the first joint up
+    as a pluginlib class, warns "Failed to process the 'X' hardware interface for
+    transmission 'T'" for an unknown name and goes on with the others
+    (ros-controls/ros_control transmission_interface/src/transmission_interface_loader.cpp
+    :169-183 @0a09467; the loader test ``UnsupportedHwInterfaceType`` loads a transmission
+    with one unsupported interface beside a valid one, transmission_interface/test/
+    transmission_interface_loader_test.cpp:153-160 @3e1dd9d). The transmission loads, but
+    without that interface. ros2_control's transmissions silently skip every handle whose
+    interface name they do not map, so a misspelt name means that interface is never
+    transmitted.
 
 Failing example (ROS 1)::
 
@@ -51,15 +62,17 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
 
+from lxml import etree
+
 from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import children, label, members
+from txtool.lint.support import MemberRef, children, label, members
 from txtool.rules.tx203_interface_mismatch import component_joint, declared_interfaces
 
 CODE = "TX204"
 NAME = "unknown-interface"
-SEVERITY = "error"
+SEVERITY = "warning"
 FIXABLE = False
 
 PREFIX = "hardware_interface/"
@@ -103,10 +116,24 @@ def unprefixed_registered(text: str) -> bool:
     return PREFIX + text in ROS1_INTERFACES
 
 
+def registered(text: str) -> bool:
+    """A name ros_control's pluginlib lookup finds (exactly as written, after stripping)."""
+    return text in ROS1_INTERFACES
+
+
 def _check_ros1(ctx: LintContext, found: Found) -> Iterator[Problem]:
     for ref in members(found):
-        for element in children(ref.element, "hardwareInterface"):
-            text = (element.text or "").strip()
+        if ref.noun != "joint":
+            continue  # ros_control never reads an actuator's <hardwareInterface>
+        elements = children(ref.element, "hardwareInterface")
+        texts = [(element.text or "").strip() for element in elements]
+        effect = (
+            "ros_control warns and loads the transmission without it"
+            if any(registered(text) for text in texts)
+            else "ros_control warns and drops it (with no valid interface left it refuses the "
+            "transmission: TX205)"
+        )
+        for element, text in zip(elements, texts, strict=True):
             if not text or ctx.unknown(text):
                 continue
             if text in ROS1_INTERFACES or unprefixed_registered(text):
@@ -115,12 +142,12 @@ def _check_ros1(ctx: LintContext, found: Found) -> Iterator[Problem]:
                 CODE,
                 element,
                 f"hardware interface '{text}' of {ref.noun} '{ref.member.name}' in "
-                f"{label(found)} is not a ros_control interface: the pluginlib lookup fails "
-                f"and the interface is dropped{_ros1_hint(text)}",
+                f"{label(found)} is not a ros_control interface: {effect}{ros1_hint(text)}",
             )
 
 
-def _ros1_hint(text: str) -> str:
+def ros1_hint(text: str) -> str:
+    """``; did you mean 'X'?`` with the nearest registered ROS 1 interface, or ``""``."""
     guess = _close_matches(text, ROS1_INTERFACES, n=1, cutoff=0.5)
     if not guess:
         guess = _close_matches(PREFIX + text, ROS1_INTERFACES, n=1, cutoff=0.5)
@@ -128,16 +155,11 @@ def _ros1_hint(text: str) -> str:
 
 
 def _check_ros2(ctx: LintContext, found: Found) -> Iterator[Problem]:
-    t = found.transmission
-    mapped = ROS2_INTERFACES[t.kind]
-    for ref in members(found):
-        pair = component_joint(ctx, found, ref.member.name) if ref.noun == "joint" else None
-        names = declared_interfaces(pair[1]) if pair is not None else []
-        if pair is None or not names or any(ctx.unknown(name) for name in names):
-            continue
+    mapped = ROS2_INTERFACES[found.transmission.kind]
+    for ref, _component, names in ros2_joint_interfaces(ctx, found):
         where = f"joint '{ref.member.name}' of {label(found)}"
-        near = [(name, _suggest(name, mapped)) for name in names if name not in mapped]
-        for name, guess in near:
+        for name in names:
+            guess = _suggest(name, mapped) if name not in mapped else None
             if guess is not None:
                 yield ctx.problem(
                     CODE,
@@ -145,14 +167,18 @@ def _check_ros2(ctx: LintContext, found: Found) -> Iterator[Problem]:
                     f"interface '{name}' of {where} is not one a transmission maps: "
                     f"ros2_control silently skips it; did you mean '{guess}'?",
                 )
-        if not any(name in mapped for name in names) and all(g is None for _, g in near):
-            yield ctx.problem(
-                CODE,
-                ref.element,
-                f"{where} declares only {', '.join(names)} in <ros2_control> "
-                f"'{pair[0].get('name', '')}'; a {t.kind} transmission maps "
-                f"{', '.join(mapped)}, so ros2_control transmits nothing for it",
-            )
+
+
+def ros2_joint_interfaces(
+    ctx: LintContext, found: Found
+) -> Iterator[tuple[MemberRef, etree._Element, list[str]]]:
+    """(joint, its ``<ros2_control>``, the interface names it declares there), when knowable."""
+    for ref in members(found):
+        pair = component_joint(ctx, found, ref.member.name) if ref.noun == "joint" else None
+        names = declared_interfaces(pair[1]) if pair is not None else []
+        if pair is None or not names or any(ctx.unknown(name) for name in names):
+            continue
+        yield ref, pair[0], names
 
 
 def _suggest(name: str, mapped: tuple[str, ...]) -> str | None:

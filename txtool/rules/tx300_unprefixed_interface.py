@@ -1,7 +1,7 @@
 """A ROS 1 hardware interface without ``hardware_interface/``.
 
 What it checks
-    A ``<hardwareInterface>`` of a ROS 1 joint or actuator written as a registered interface
+    A ``<hardwareInterface>`` of a ROS 1 joint written as a registered interface
     name without its namespace: ``PositionJointInterface`` instead of
     ``hardware_interface/PositionJointInterface`` (likewise Velocity, Effort, JointState and
     the BiDirectional ones).
@@ -9,14 +9,19 @@ What it checks
 Why
     ros_control looks the name up as a pluginlib class, and only the prefixed names are
     registered: it warns "Failed to process the 'PositionJointInterface' hardware interface
-    for transmission 'T'" and, with no valid interface left, fails to load the transmission.
+    for transmission 'T'" and loads the transmission with its other interfaces
+    (ros-controls/ros_control transmission_interface/src/transmission_interface_loader.cpp
+    :169-183 @0a09467). With no valid interface left it refuses the transmission: TX205
+    reports that as an error. An actuator's ``<hardwareInterface>`` is never read by
+    ros_control, so it is not reported.
     gazebo_ros_control accepts both spellings but warns "Deprecated syntax, please prepend
     'hardware_interface/'" (gazebo_ros_pkgs#550), so a robot can work in simulation and fail
     on the real hardware.
 
 Fix
-    Prepends ``hardware_interface/``, keeping the whitespace around the name. Names holding
-    xacro expressions are left as written.
+    Prepends ``hardware_interface/``, keeping the whitespace around the name, in the joints
+    and in the actuators too, so the two spellings stay alike (older gazebo_ros_control falls
+    back to the actuator's). Names holding xacro expressions are left as written.
 
     Transmission families with loaders of their own (``pr2_mechanism_model/``,
     ``sr_mechanism_model/``) are neither reported nor fixed.
@@ -54,10 +59,10 @@ FIXABLE = True
 
 
 def _unprefixed(
-    transmission: etree._Element,
+    transmission: etree._Element, nouns: tuple[str, ...] = ("joint",)
 ) -> Iterator[tuple[etree._Element, etree._Element, str]]:
     """(member, hardwareInterface element, name) for each unprefixed registered name."""
-    for member in children(transmission, "joint") + children(transmission, "actuator"):
+    for member in [m for noun in nouns for m in children(transmission, noun)]:
         for element in children(member, "hardwareInterface"):
             text = (text_of(element) or "").strip()
             if text and unprefixed_registered(text):
@@ -74,8 +79,8 @@ def check(ctx: LintContext) -> Iterator[Problem]:
                 element,
                 f"hardware interface '{text}' of {local(member)} '{member.get('name', '')}' in "
                 f"{label(found)} lacks the '{PREFIX}' prefix: "
-                "ros_control cannot find it ('Failed to process the hardware interface'); "
-                f"write '{PREFIX}{text}'",
+                "ros_control does not find it ('Failed to process the hardware interface') and "
+                f"drops it; write '{PREFIX}{text}'",
             )
 
 
@@ -86,7 +91,7 @@ def fix(root: etree._Element) -> int:
             continue
         if ros1_type(transmission).startswith(OWN_LOADER_FAMILIES):
             continue
-        for _, element, text in list(_unprefixed(transmission)):
+        for _, element, text in list(_unprefixed(transmission, ("joint", "actuator"))):
             element.text = (element.text or "").replace(text, PREFIX + text, 1)
             fixed += 1
     return fixed

@@ -26,7 +26,7 @@ from collections.abc import Iterator
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 
-CODE = "TX005"
+CODE = "TX006"
 NAME = "no-transmission"
 SEVERITY = "info"
 FIXABLE = False

@@ -22,7 +22,7 @@ from collections.abc import Iterator
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 
-CODE = "TX004"
+CODE = "TX005"
 NAME = "invalid-suppression"
 SEVERITY = "warning"
 FIXABLE = False

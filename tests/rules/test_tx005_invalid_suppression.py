@@ -27,20 +27,20 @@ XML = """
     ("disable-next-line TX10", "'TX10' is not a rule code (write TXnnn; a reason goes after ';')"),
 ])
 def test_a_directive_that_cannot_work_as_written_is_a_warning(directive, reason):
-    found = [p for p in problems(XML.format(directive=directive)) if p.code == "TX004"]
+    found = [p for p in problems(XML.format(directive=directive)) if p.code == "TX005"]
     assert [(p.line, p.column, p.code, p.severity, p.message) for p in found] == [
-        (6, 5, "TX004", "warning", reason)]
+        (6, 5, "TX005", "warning", reason)]
 
 
 def test_a_misspelt_directive_silences_nothing():
     codes = {p.code for p in problems(XML.format(directive="disable-nextline TX106"))}
-    assert codes == {"TX004", "TX106"}
+    assert codes == {"TX005", "TX106"}
 
 
 def test_a_code_of_no_rule_is_named():
     found = problems(XML.format(directive="disable-next-line TX106, TX999"))
     assert [(p.code, p.message) for p in found] == [
-        ("TX004", "suppression names 'TX999', which is no rule: see `txtool rules`")]
+        ("TX005", "suppression names 'TX999', which is no rule: see `txtool rules`")]
 
 
 def test_a_valid_directive_with_a_reason_passes():
@@ -48,4 +48,4 @@ def test_a_valid_directive_with_a_reason_passes():
 
 
 def test_tx004_can_be_ignored():
-    assert check(XML.format(directive="disable-nextline TX106"), ignore=["TX004", "TX106"]) == []
+    assert check(XML.format(directive="disable-nextline TX106"), ignore=["TX005", "TX106"]) == []

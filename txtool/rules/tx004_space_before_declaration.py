@@ -1,0 +1,51 @@
+"""Whitespace before the ``<?xml ...?>`` declaration: ROS loads it, strict XML tools do not.
+
+The XML specification requires the declaration to be the very first thing in the document.
+tinyxml2, which urdfdom and ros2_control's component parser use, skips leading whitespace
+before it (``XMLDocument::Parse`` calls ``SkipWhiteSpace`` first), so ROS loads such a file.
+Strict parsers refuse it: expat ("XML or text declaration not at start of entity", used by
+xacro and Python's xml modules), libxml2 (lxml, xmllint) and most editors' XML validation.
+txtool reads the document anyway (the declaration only carries the encoding) and warns. Remove
+the blank lines or spaces before ``<?xml``.
+
+Failing example::
+
+      <?xml version="1.0"?>
+    <robot name="r">...</robot>
+
+Passing example::
+
+    <?xml version="1.0"?>
+    <robot name="r">...</robot>
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from txtool.io.xmlio import LEADING_SPACE_DECLARATION
+from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
+
+CODE = "TX004"
+NAME = "space-before-declaration"
+SEVERITY = "warning"
+FIXABLE = False
+
+
+def check(ctx: LintContext) -> Iterator[Problem]:
+    data = ctx.source.data
+    match = LEADING_SPACE_DECLARATION.match(data)
+    if match is None:
+        return
+    index = match.end(1)
+    line = data.count(b"\n", 0, index) + 1
+    column = index - (data.rfind(b"\n", 0, index) + 1) + 1
+    yield Problem(
+        ctx.source.path,
+        line,
+        column,
+        CODE,
+        "whitespace before the XML declaration: tinyxml2 (urdfdom, ros2_control) skips it and "
+        "loads the file, but strict XML parsers (xacro's expat, libxml2) reject it; remove it",
+    )

@@ -1,0 +1,88 @@
+"""A number the loader reads only part of: text after it, hexadecimal, or split by a comment.
+
+ros_control converts reductions and offsets with ``std::stod`` (ros-controls/ros_control
+transmission_interface/src/transmission_loader.cpp:60, :95, :130 @63b6afd), which takes the
+longest valid prefix and ignores the rest: ``50abc`` and ``5_0`` load as 50 and 5, ``0x10``
+as 16. The transmission loads, so this is a warning, but the value is not what the file seems
+to say, and ros2_control reads the same text as no number at all: after a port it silently
+uses the default, 1.0 for a reduction and 0.0 for an offset (ros-controls/ros2_control
+hardware_interface/src/component_parser.cpp:152-155 @157446a). Trailing C whitespace is
+harmless and not reported.
+
+Both loaders read the text TinyXML's ``GetText()`` returns, the element's first text node
+(component_parser.cpp:145; transmission_loader.cpp:60), so a number split by a comment or a
+CDATA section (``5<!-- gear -->0``) is read up to the split only: reported for both
+dialects.
+
+Failing example::
+
+    <actuator name="m">
+      <mechanicalReduction>50abc</mechanicalReduction>
+    </actuator>
+
+Passing example::
+
+    <actuator name="m">
+      <mechanicalReduction>50</mechanicalReduction>
+    </actuator>
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+
+from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
+from txtool.lint.support import NumberRef, all_text, label, read_numbers
+from txtool.model.numbers import C_SPACE, format_float, parse_ros1, parse_ros2, stod
+
+CODE = "TX111"
+NAME = "partial-number"
+SEVERITY = "warning"
+FIXABLE = False
+
+
+def check(ctx: LintContext) -> Iterator[Problem]:
+    for found in ctx.transmissions():
+        ros1 = found.transmission.dialect == "ros1"
+        for number in read_numbers(found):
+            text = number.text
+            if ctx.unknown(text) or ctx.unknown(number.element.text):
+                continue
+            default = "0.0" if number.field == "offset" else "1.0"
+            message = _split(number, text, ros1) or (_prefix(text, default) if ros1 else None)
+            if message:
+                yield ctx.problem(
+                    CODE, number.element, f"{number.describe()} of {label(found)} {message}"
+                )
+
+
+def _split(number: NumberRef, text: str | None, ros1: bool) -> str | None:
+    """The loader reads the first text node only; the element holds more text after it."""
+    whole = all_text(number.element).strip(C_SPACE)
+    if text is None or whole == text.strip(C_SPACE):
+        return None
+    value = (parse_ros1 if ros1 else parse_ros2)(text)
+    if value is None or not math.isfinite(value):
+        return None  # refused or defaulted: TX105
+    loader = "ros_control" if ros1 else "ros2_control"
+    return (
+        f"is split by a comment or CDATA section: {loader} reads only the text before it, "
+        f"'{text.strip(C_SPACE)}' ({format_float(value)}), not '{whole}'"
+    )
+
+
+def _prefix(text: str | None, default: str) -> str | None:
+    if parse_ros2(text) is not None:
+        return None  # a plain number (the common case)
+    read = stod(text)
+    if read.value is None or read.special:
+        return None
+    rest = read.rest.strip(C_SPACE)
+    how = f"ignores '{rest}' after it" if rest else "reads it as hexadecimal"
+    return (
+        f"is '{(text or '').strip(C_SPACE)}': ros_control's std::stod reads "
+        f"{format_float(read.value)} and {how}; ros2_control would not read it and silently "
+        f"use {default}"
+    )

@@ -1,0 +1,54 @@
+"""A ROS 2 transmission joint or actuator whose ``read_only`` is not ``true`` or ``false``.
+
+ros2_control reads the attribute with ``parse_bool``, which lower-cases the text (ASCII) and
+accepts exactly ``true`` or ``false``; anything else, including surrounding spaces, ``1`` or
+``yes``, throws "Input string : 'x' is not a valid boolean value. Expected 'true' or 'false'."
+(ros-controls/ros2_control hardware_interface/src/lexical_casts.cpp:64-83 @146eb98). The
+exception leaves the component parser, so the whole ``robot_description`` fails to load. A
+missing attribute is fine (the default is false).
+
+Failing example::
+
+    <actuator name="joint1_motor" role="actuator1" read_only="yes"/>
+
+Passing example::
+
+    <actuator name="joint1_motor" role="actuator1" read_only="True"/>
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
+from txtool.lint.support import label, members
+
+CODE = "TX112"
+NAME = "invalid-read-only"
+SEVERITY = "error"
+FIXABLE = False
+
+_BOOLEANS = ("true", "false")
+
+
+def valid_bool(text: str) -> bool:
+    """What ``hardware_interface::parse_bool`` accepts: true/false in any ASCII case."""
+    return text.isascii() and text.lower() in _BOOLEANS
+
+
+def check(ctx: LintContext) -> Iterator[Problem]:
+    for found in ctx.transmissions():
+        if found.transmission.dialect == "ros1":
+            continue
+        for ref in members(found):
+            value = ref.element.get("read_only")
+            if value is None or ctx.unknown(value) or valid_bool(value):
+                continue
+            yield ctx.problem(
+                CODE,
+                ref.element,
+                f"{ref.noun} '{ref.member.name}' of {label(found)} has read_only=\"{value}\": "
+                "ros2_control's parse_bool accepts only true or false (any case) and throws, "
+                "so the robot description fails to load",
+            )

@@ -1,0 +1,66 @@
+"""A type under ``transmission_interface/`` that is not one of the three standard ones.
+
+ros_control registers exactly ``transmission_interface/SimpleTransmission``,
+``transmission_interface/DifferentialTransmission`` and
+``transmission_interface/FourBarLinkageTransmission`` with pluginlib (ros-controls/ros_control
+transmission_interface/ros_control_plugins.xml:4-28 @23284e8), and so does ros2_control: any
+other name in that namespace is a typo, not a plugin someone installed. ros_control fails
+with "Failed to load transmission 'T'. Unsupported type" (transmission_interface/src/
+transmission_interface_loader.cpp:139-147 @0a09467; loader test ``UnsupportedTransmissionType``,
+transmission_interface/test/transmission_interface_loader_test.cpp:125-135 @3e1dd9d) and stops
+loading the transmissions after it (transmission_interface_loader.cpp:126-129).
+ros2_control's parser copies any text (ros-controls/ros2_control
+hardware_interface/src/component_parser.cpp:480-481 @157446a), but the hardware plugin's
+pluginlib lookup of the loader fails, so the transmission never exists. A near-miss gets a
+suggestion. Types in other namespaces are TX102's business.
+
+Failing example::
+
+    <transmission name="t">
+      <plugin>transmission_interface/SimpleTansmission</plugin>
+    </transmission>
+
+Passing example::
+
+    <transmission name="t">
+      <plugin>transmission_interface/SimpleTransmission</plugin>
+    </transmission>
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
+from txtool.lint.support import label, type_element
+from txtool.model.core import TYPE_PREFIX
+from txtool.rules.tx102_unknown_type import STANDARD_NAMES, nearest_standard
+
+CODE = "TX113"
+NAME = "unknown-standard-type"
+SEVERITY = "error"
+FIXABLE = False
+
+
+def check(ctx: LintContext) -> Iterator[Problem]:
+    for found in ctx.transmissions():
+        element = type_element(found)
+        if element is None:
+            continue
+        text = (element.text or "").strip()
+        if not text.startswith(TYPE_PREFIX) or text in STANDARD_NAMES or ctx.unknown(text):
+            continue
+        effect = (
+            "ros_control refuses it (\"Unsupported type\")"
+            if found.transmission.dialect == "ros1"
+            else "ros2_control parses it, but no transmission loader has that name"
+        )
+        suggestion = nearest_standard(text)
+        hint = f"; did you mean '{suggestion}'?" if suggestion else ""
+        yield ctx.problem(
+            CODE,
+            element,
+            f"{label(found)} has type '{text}', not one of the three transmission_interface "
+            f"types: {effect}{hint}",
+        )

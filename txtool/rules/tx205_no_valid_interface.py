@@ -1,0 +1,138 @@
+"""A transmission left with no interface its loader can use: the loader refuses it.
+
+What it checks
+    * ROS 1: the ``<hardwareInterface>`` names of the transmission's joints (the loader reads
+      the first joint's; the others must list the same set, TX203), when none of them is a
+      name ros_control registers (``hardware_interface/PositionJointInterface`` and the
+      others listed under TX204). The usual cause is the unprefixed ``PositionJointInterface``
+      or ``EffortJointInterface`` that gazebo_ros_control accepts with a deprecation warning.
+    * ROS 2: a transmission joint whose ``<joint>`` in the enclosing ``<ros2_control>``
+      declares interfaces, none of which the transmission maps (``position``, ``velocity``,
+      ``effort``; Simple and Differential also ``torque``, ``force``, ``absolute_position``).
+
+    Custom transmission types, families with loaders of their own and names holding xacro
+    expressions are not checked.
+
+Why
+    ros_control warns for each name its pluginlib lookup does not find and, when no interface
+    is left, logs "Failed to load transmission 'T'. It contains no valid hardware
+    interfaces." and returns false (ros-controls/ros_control transmission_interface/src/
+    transmission_interface_loader.cpp:169-194 @0a09467; the loader test
+    ``UnsupportedHwInterfaceType``, transmission_interface/test/
+    transmission_interface_loader_test.cpp:143-151 @3e1dd9d); loading stops at that
+    transmission (:126-129). ros2_control's transmissions get no handle they can map, and
+    ``configure`` throws "None of the provided joint handles are valid or from the required
+    interfaces".
+
+Failing example (ROS 1)::
+
+    <joint name="j1">
+      <hardwareInterface>PositionJointInterface</hardwareInterface>
+    </joint>
+
+Passing example::
+
+    <joint name="j1">
+      <hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>
+    </joint>
+
+Failing example (ROS 2)::
+
+    <ros2_control name="HW" type="system">
+      <joint name="j1"><command_interface name="Position"/></joint>
+      <transmission name="t">
+        <plugin>transmission_interface/SimpleTransmission</plugin>
+        <joint name="j1" role="joint1"/>
+      </transmission>
+    </ros2_control>
+
+Passing example: ``<command_interface name="position"/>``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from txtool.dialects.read import Found
+from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
+from txtool.lint.support import (
+    MemberRef,
+    children,
+    label,
+    loaded_by_ros_control,
+    members,
+    opaque,
+    typed_ros1,
+)
+from txtool.rules.tx204_unknown_interface import (
+    PREFIX,
+    ROS2_INTERFACES,
+    registered,
+    ros1_hint,
+    ros2_joint_interfaces,
+    unprefixed_registered,
+)
+
+CODE = "TX205"
+NAME = "no-valid-interface"
+SEVERITY = "error"
+FIXABLE = False
+
+
+def check(ctx: LintContext) -> Iterator[Problem]:
+    for found in ctx.transmissions():
+        if found.transmission.kind == "other":
+            continue
+        if found.transmission.dialect == "ros1":
+            if typed_ros1(found) and loaded_by_ros_control(found):
+                yield from _check_ros1(ctx, found)
+        else:
+            yield from _check_ros2(ctx, found)
+
+
+def _interfaces(ref: MemberRef) -> list[str]:
+    texts = ((h.text or "").strip() for h in children(ref.element, "hardwareInterface"))
+    return [text for text in texts if text]
+
+
+def _check_ros1(ctx: LintContext, found: Found) -> Iterator[Problem]:
+    joints = [ref for ref in members(found) if ref.noun == "joint" and _interfaces(ref)]
+    if not joints or any(opaque(ctx, ref.element) for ref in joints):
+        return
+    lists = [_interfaces(ref) for ref in joints]
+    if len({frozenset(names) for names in lists}) > 1:
+        return  # joints with different interfaces: TX203
+    names = lists[0]
+    if any(ctx.unknown(name) or registered(name) for name in names):
+        return
+    shown = ", ".join(f"'{name}'" for name in names)
+    fixes = [PREFIX + name for name in names if unprefixed_registered(name)]
+    advice = (
+        f"; write '{fixes[0]}' (gazebo_ros_control accepts the unprefixed name with a "
+        "deprecation warning, ros_control does not)"
+        if fixes
+        else ros1_hint(names[0])
+    )
+    yield ctx.problem(
+        CODE,
+        joints[0].element,
+        f"{label(found)} names no hardware interface ros_control knows ({shown}): ros_control "
+        f"refuses it (\"It contains no valid hardware interfaces\"){advice}",
+    )
+
+
+def _check_ros2(ctx: LintContext, found: Found) -> Iterator[Problem]:
+    kind = found.transmission.kind
+    mapped = ROS2_INTERFACES[kind]
+    for ref, component, names in ros2_joint_interfaces(ctx, found):
+        if any(name in mapped for name in names):
+            continue
+        yield ctx.problem(
+            CODE,
+            ref.element,
+            f"joint '{ref.member.name}' of {label(found)} declares only {', '.join(names)} in "
+            f"<ros2_control> '{component.get('name', '')}'; a {kind} transmission maps "
+            f"{', '.join(mapped)}, so configuring it throws (\"None of the provided joint "
+            "handles are valid\")",
+        )
