@@ -1,9 +1,10 @@
 """Which effort map a transmission runs: the one of the loader that reads its file.
 
-Only the four-bar linkage differs. ros2_control replaced its effort map by a power-conserving
-one (ros-controls/ros2_control PR #1837, fixing issue #1746); ros_control kept the old one
-(ros-controls/ros_control transmission_interface/include/transmission_interface/
-four_bar_linkage_transmission.h, ``actuatorToJointEffort``; issue #523 is open). A ROS 1 file is
+Only the four-bar linkage differs. ros_control computes joint efforts as
+``jr[1] * (e_a[1] * ar[1] - e_a[0] * ar[0] * jr[0])`` (ros-controls/ros_control
+transmission_interface/include/transmission_interface/four_bar_linkage_transmission.h:241-242
+@133d768, ``actuatorToJointEffort``; issue #523 is open); ros2_control replaced that by a
+power-conserving map (ros-controls/ros2_control PR #1837, fixing issue #1746). A ROS 1 file is
 loaded by ros_control and a ROS 2 one by ros2_control, so each runs its own loader's map unless
 the user asks for the other (``--effort-convention``). Pure Python: the linter may import it.
 """
