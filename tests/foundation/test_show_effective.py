@@ -207,3 +207,25 @@ def test_corpus_json_fits_the_schema_and_text_fits_100_columns(run, name):
     code, out, _ = run("show", str(path), "--effective")
     assert code == 0
     assert [line for line in out.splitlines()[1:] if len(line) > 100] == []
+
+
+def test_simple_transmissions_name_what_their_loader_ignores_or_invents(run, tmp_path):
+    ros1, ros2 = effective(run, write(tmp_path, """
+        <transmission name="r1"><type>transmission_interface/SimpleTransmission</type>
+          <joint name="a"><mechanicalReduction>9</mechanicalReduction><offset>0.25</offset>
+            <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+          <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator></transmission>
+        <ros2_control name="hw" type="system"><joint name="b"/>
+          <transmission name="r2"><plugin>transmission_interface/SimpleTransmission</plugin>
+            <joint name="b" role="joint1"><mechanical_reduction>3</mechanical_reduction></joint>
+          </transmission></ros2_control>"""))
+    (slot,) = ros1["slots"]
+    assert (slot["actuator_reduction"], slot["joint_offset"], slot["not_read"]) == (
+        50.0, 0.25, ["joint_reduction"])
+    assert ros1["notes"] == ["joint 'a' reduction is ignored: ros_control's simple transmission "
+                             "reads the actuator's"]
+    (slot,) = ros2["slots"]
+    assert (slot["joint_reduction"], slot["actuator"], slot["not_read"]) == (
+        3.0, "actuator1", ["actuator_reduction"])
+    assert ros2["notes"] == ["no <actuator>: the hardware plugin names the actuator handle "
+                             "('actuator1' stands in here)"]

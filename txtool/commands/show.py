@@ -37,13 +37,13 @@ def command(path, output_format, effective, actuator_limits, stdin_filename, no_
     """
     from txtool.dialects.read import read_source
     from txtool.io.load import load
-    from txtool.views.effective import binding_of
+    from txtool.views.effective import bindings_of
 
     expand = not xacro_disabled(no_xacro, path)
     source = load(path, xacro=xacro, stdin_name=stdin_filename, expand=expand)
     found = read_source(source)
     transmissions = [f.transmission for f in found]
-    bindings = [binding_of(f) for f in found]
+    bindings = bindings_of(found)
     limits = _limits(source, transmissions) if actuator_limits else None
     if output_format == "json":
         from txtool.model.binding import ShownTransmission

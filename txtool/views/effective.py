@@ -35,11 +35,19 @@ from txtool.model.semantics import Effective, NotLoadable, effective, loader_of
 ADDED_ACTUATOR = "actuator1"
 
 
-def binding_of(found: Found) -> Binding:
-    """The binding of a transmission read from ``found.element`` (its component matters)."""
-    element = enclosing_component(found.element)
-    component = component_of(element) if element is not None else None
-    return binding(found.transmission, component)
+def bindings_of(found: Sequence[Found]) -> list[Binding]:
+    """The binding of each transmission read from ``found`` (its component matters)."""
+    components: dict[object, Component] = {}  # each <ros2_control> read once
+    result = []
+    for item in found:
+        element = enclosing_component(item.element)
+        component = None
+        if element is not None:
+            component = components.get(element)
+            if component is None:
+                component = components[element] = component_of(element)
+        result.append(binding(item.transmission, component))
+    return result
 
 
 def binding(t: Transmission, component: Component | None = None) -> Binding:
@@ -170,6 +178,9 @@ def _notes(t: Transmission, slots: tuple[Slot, ...], loader: str, in_component: 
     if added:
         notes.append(f"ros2_control's parser appends actuator '{added[0]}' (reduction 1, "
                      "offset 0) to a transmission of an actuator component")
+    elif loader == "ros2" and not t.actuators:
+        notes.append(f"no <actuator>: the hardware plugin names the actuator handle "
+                     f"('{slots[0].actuator}' stands in here)")
     if loader == "ros2" and not in_component:
         notes.append("not inside a <ros2_control> element here: ros2_control reads it only "
                      "where it ends up inside one")
