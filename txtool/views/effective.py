@@ -55,19 +55,10 @@ def binding(t: Transmission, component: Component | None = None) -> Binding:
     loader = loader_of(t)
     component_type = component.type if loader == "ros2" and component is not None else None
     added = (ADDED_ACTUATOR,) if component_type == "actuator" else ()
-    refusal = _parser_refusal(t, component) if loader == "ros2" else None
-    if t.kind == "other" and not refusal and t.type.strip().startswith(TYPE_PREFIX):
-        # Both loaders resolve the type through pluginlib, whose transmission_interface/
-        # classes are the three standard ones (ros2_control_plugins.xml, ros_control_plugins.xml).
-        refusal = (f"no transmission plugin is named '{t.type.strip()}' (transmission_interface "
-                   "has SimpleTransmission, DifferentialTransmission and "
-                   "FourBarLinkageTransmission)")
-    if t.kind == "other" and not refusal:
-        return Binding(loader=loader, loadable=None, component_type=component_type,
-                       reason=f"type '{t.type}' is not a standard transmission: a plugin, "
-                              "if one is installed, decides what it binds")
-    if refusal:
-        return Binding(loader=loader, loadable=False, reason=refusal,
+    refused = _unbound(t, component if loader == "ros2" else None)
+    if refused is not None:
+        loadable, reason = refused
+        return Binding(loader=loader, loadable=loadable, reason=reason,
                        component_type=component_type)
     try:
         eff = effective(t)
@@ -86,6 +77,23 @@ def binding(t: Transmission, component: Component | None = None) -> Binding:
         added_actuators=added,
         notes=tuple(_notes(t, slots, loader, component is not None, added)),
     )
+
+
+def _unbound(t: Transmission, component: Component | None) -> tuple[bool | None, str] | None:
+    """(loadable, reason) for what no standard loader binds: refused (False) or unknown."""
+    refusal = _parser_refusal(t, component)
+    if refusal:
+        return False, refusal
+    if t.kind != "other":
+        return None
+    if t.type.strip().startswith(TYPE_PREFIX):
+        # Both loaders resolve the type through pluginlib, whose transmission_interface/
+        # classes are the three standard ones (ros2_control_plugins.xml, ros_control_plugins.xml).
+        return False, (f"no transmission plugin is named '{t.type.strip()}' "
+                       "(transmission_interface has SimpleTransmission, "
+                       "DifferentialTransmission and FourBarLinkageTransmission)")
+    return None, (f"type '{t.type}' is not a standard transmission: a plugin, if one is "
+                  "installed, decides what it binds")
 
 
 def _parser_refusal(t: Transmission, component: Component | None) -> str | None:
@@ -173,7 +181,7 @@ def _notes(t: Transmission, slots: tuple[Slot, ...], loader: str, in_component: 
             if data != source:
                 notes.append(f"{noun} '{data}' is mapped with the parameters written on "
                              f"'{source}' ({why})")
-    notes.extend(_unparsed(t) if loader == "ros2" else [])
+    notes.extend(_unparsed(t, slots) if loader == "ros2" else [])
     notes.extend(_ignored(t, loader))
     if added:
         notes.append(f"ros2_control's parser appends actuator '{added[0]}' (reduction 1, "
@@ -187,13 +195,20 @@ def _notes(t: Transmission, slots: tuple[Slot, ...], loader: str, in_component: 
     return notes
 
 
-def _unparsed(t: Transmission) -> list[str]:
+def _unparsed(t: Transmission, slots: tuple[Slot, ...]) -> list[str]:
+    """ros2_control's silent defaults for text that is not a number, on the fields it reads."""
     notes = []
-    for member in (*t.joints, *t.actuators):
-        for field, number, default in (("mechanical_reduction", member.mechanical_reduction, 1),
-                                       ("offset", member.offset, 0)):
-            if number is not None and number.value is None:
-                notes.append(f"'{member.name}' {field} {(number.text or '').strip()!r} is not a "
+    for slot in slots:
+        joint = _by_name(t.joints, slot.joint_parameters_of)
+        actuator = next((a for a in t.actuators if a.name == slot.actuator_parameters_of), None)
+        for field, member, tag, number, default in (
+            ("joint_reduction", joint, "mechanical_reduction", joint.mechanical_reduction, 1),
+            ("joint_offset", joint, "offset", joint.offset, 0),
+            ("actuator_reduction", actuator, "mechanical_reduction",
+             actuator.mechanical_reduction if actuator else None, 1),
+        ):
+            if field in slot.defaults and member is not None and number is not None:
+                notes.append(f"'{member.name}' {tag} {(number.text or '').strip()!r} is not a "
                              f"number: ros2_control silently uses {default}")
     return notes
 
@@ -284,7 +299,8 @@ def _table(b: Binding):
                   width=None)
     for column, justify in (("#", "right"), ("joint", "left"), ("reduction", "right"),
                             ("offset", "right"), ("actuator", "left"), ("reduction", "right")):
-        table.add_column(column, justify=justify)  # type: ignore[arg-type]
+        # Names wrap rather than lose their end to an ellipsis.
+        table.add_column(column, justify=justify, overflow="fold")  # type: ignore[arg-type]
     for s in b.slots:
         table.add_row(
             str(s.index),
