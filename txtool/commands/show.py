@@ -37,22 +37,15 @@ def command(path, output_format, effective, actuator_limits, stdin_filename, no_
     """
     from txtool.dialects.read import read_source
     from txtool.io.load import load
-    from txtool.views.effective import bindings_of
+    from txtool.views.effective import bindings_of, shown_json
 
     expand = not xacro_disabled(no_xacro, path)
     source = load(path, xacro=xacro, stdin_name=stdin_filename, expand=expand)
     found = read_source(source)
     transmissions = [f.transmission for f in found]
-    bindings = bindings_of(found)
     limits = _limits(source, transmissions) if actuator_limits else None
     if output_format == "json":
-        from txtool.model.binding import ShownTransmission
-        from txtool.model.core import dump
-
-        data: dict = {"transmissions": [
-            dump(ShownTransmission(**_fields(t), effective=b))
-            for t, b in zip(transmissions, bindings, strict=True)
-        ]}
+        data: dict = {"transmissions": shown_json(transmissions, bindings_of(found))}
         if limits is not None:
             data["actuator_limits"] = [
                 {"transmission": t, "actuator": a, "position": lim.position,
@@ -68,8 +61,7 @@ def command(path, output_format, effective, actuator_limits, stdin_filename, no_
     if effective:
         from txtool.views.effective import effective_text
 
-        click.echo(effective_text(source.path, list(zip(transmissions, bindings, strict=True))),
-                   nl=False)
+        click.echo(effective_text(source.path, transmissions, bindings_of(found)), nl=False)
     else:
         console.print(transmissions_table(transmissions, f"{source.path}: "
                                           f"{len(transmissions)} transmission(s)"))
@@ -94,9 +86,3 @@ def _limits(source, transmissions):
         for limit in actuator_limits(tmap, joints):
             rows.append((t.name, limit.actuator, limit))
     return rows
-
-
-def _fields(t) -> dict:
-    import dataclasses
-
-    return {f.name: getattr(t, f.name) for f in dataclasses.fields(t)}

@@ -235,7 +235,22 @@ DATA = {"xml": "data in XML order", "name": "handles sorted by name"}
 WIDTH = 100
 
 
-def effective_text(path: str, items: Sequence[tuple[Transmission, Binding]]) -> str:
+def shown_json(transmissions: Sequence[Transmission], bindings: Sequence[Binding]) -> list:
+    """Each transmission as written plus its ``effective`` binding, as JSON-ready data."""
+    import dataclasses
+
+    from txtool.model.binding import ShownTransmission
+    from txtool.model.core import dump
+
+    return [
+        dump(ShownTransmission(**{f.name: getattr(t, f.name) for f in dataclasses.fields(t)},
+                               effective=b))
+        for t, b in zip(transmissions, bindings, strict=True)
+    ]
+
+
+def effective_text(path: str, transmissions: Sequence[Transmission],
+                   bindings: Sequence[Binding]) -> str:
     """The effective view as plain text, at most 100 columns wide."""
     import io
 
@@ -244,8 +259,8 @@ def effective_text(path: str, items: Sequence[tuple[Transmission, Binding]]) -> 
     buffer = io.StringIO()
     out = Console(file=buffer, width=WIDTH, color_system=None, highlight=False)
     out.print(path, soft_wrap=True, markup=False)
-    out.print(f"{len(items)} transmission(s), as their loaders bind them", markup=False)
-    for t, b in items:
+    out.print(f"{len(transmissions)} transmission(s), as their loaders bind them", markup=False)
+    for t, b in zip(transmissions, bindings, strict=True):
         out.print()
         for line in _block(t, b):
             if isinstance(line, str):
