@@ -71,3 +71,13 @@ def test_effort_convention_needs_against(tmp_path):
     a, _ = pair(tmp_path)
     assert run(a, "--effort-convention", "ros2") == (
         2, "", "txtool: --effort-convention applies to --against only\n")
+
+
+def test_text_says_which_effort_maps_ran(tmp_path):
+    a, b = pair(tmp_path)
+    code, out, err = run(a, "--against", b)
+    assert (code, err) == (1, "")
+    assert out.splitlines()[-1] == "efforts: each file through its own loader's maps"
+    code, out, err = run(a, "--against", b, "--effort-convention", "ros1")
+    assert (code, err) == (0, "")
+    assert out.splitlines()[-1] == "efforts: ros1 maps for both (--effort-convention)"

@@ -104,5 +104,8 @@ def _against(a, b, output_format, convention) -> int:
         for r in report.rows:
             status = r.status if r.status == "equivalent" else f"[red]{r.status}[/red]"
             table.add_row(", ".join(r.joints), r.a or "-", r.b or "-", status, r.reason)
-        console().print(table)
+        out = console()
+        out.print(table)
+        out.print("efforts: " + (f"{convention} maps for both (--effort-convention)" if convention
+                                 else "each file through its own loader's maps"), markup=False)
     return 0 if report.equivalent else 1
