@@ -7,8 +7,8 @@ ros2_control orders handles by name, so a conversion that keeps the numbers but 
 members in another order can bind a parameter to a different joint.
 
 Each side maps efforts with its own loader's four-bar map (:mod:`txtool.mechanics.convention`)
-unless a convention is imposed on both: a ROS 1 four-bar and its ROS 2 conversion then differ
-in effort, as ros_control and ros2_control do.
+unless one convention is imposed on both. By default, therefore, a ROS 1 four-bar and its ROS 2
+conversion differ in effort, as ros_control and ros2_control do.
 """
 
 from __future__ import annotations

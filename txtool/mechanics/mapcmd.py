@@ -6,7 +6,9 @@ role, so the two agree; ros2_control binds parameters in XML order but orders th
 NAME. A value given for role ``joint1`` goes to the handle of the member that has that role,
 and ros2_control then applies whatever parameters sit at that handle's name-sorted index.
 Where roles are missing or not ``joint1``/``joint2`` (ros2_control does not check them), XML
-order stands in for role order.
+order stands in for role order. ros_control fills its data vectors in XML order
+(:mod:`txtool.views.effective`); where that differs from the role order, this module still
+follows the roles, as :func:`txtool.model.semantics.effective` does.
 
 Efforts go through the four-bar map of the file's own loader (ros_control's for a ROS 1
 transmission, ros2_control's for a ROS 2 one) unless ``convention`` names one.
