@@ -387,6 +387,7 @@ COMMANDS: dict[str, tuple[str, ...]] = {
     "show": ("show",),
     "show-json": ("show", "--format", "json"),
     "show-limits": ("show", "--actuator-limits", "--format", "json"),
+    "show-effective": ("show", "--effective"),
     "validate": ("validate",),
     "validate-json": ("validate", "--format", "json"),
     "convert-ros1": ("convert", "--to", "ros1"),

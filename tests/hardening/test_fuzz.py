@@ -26,7 +26,7 @@ from tests.hardening.fuzz_inputs import (
 )
 from txtool.cli import cli
 
-EXAMPLES_PER_COMMAND = 120  # x 18 commands: 2,160 examples
+EXAMPLES_PER_COMMAND = 120  # x 19 commands: 2,280 examples
 
 
 @pytest.mark.parametrize("command", sorted(COMMANDS))

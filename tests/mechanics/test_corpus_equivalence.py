@@ -26,6 +26,16 @@ def test_lossless_conversions_are_equivalent(name, target):
     converted = Source(source.path, result.data, parse_bytes(result.data, source.path))
     before = [f.transmission for f in read_source(source) if f.transmission.kind != "other"]
     after = [f.transmission for f in read_source(converted) if f.transmission.kind != "other"]
-    report = compare(before, after, robot_joints(source.root))
-    for row in report.rows:
-        assert row.status in ("equivalent", "not loadable"), (row.a, row.reason)
+    joints = robot_joints(source.root)
+    for convention in ("ros2", "ros1"):  # the same maths on both sides
+        for row in compare(before, after, joints, convention=convention).rows:
+            assert row.status in ("equivalent", "not loadable"), (convention, row.a, row.reason)
+    # Each side with its own loader's maths: only a four-bar crossing between ros_control and
+    # ros2_control changes, and only in effort.
+    kinds = {t.name: t.kind for t in before}
+    crosses = (before[0].dialect == "ros1") != (target == "ros1") if before else False
+    for row in compare(before, after, joints).rows:
+        if row.status == "differs":
+            assert crosses and kinds[row.a] == "four_bar", (row.a, row.reason)
+            assert row.differences["position"] == row.differences["velocity"] == 0.0
+            assert " effort differs by " in row.reason

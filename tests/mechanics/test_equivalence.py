@@ -116,9 +116,11 @@ def test_four_bar_is_equivalent_when_name_order_matches_roles(tmp_path: Path) ->
     names = {"j1": "a_joint", "j2": "b_joint", "a1": "a_motor", "a2": "b_motor"}
     a = read(tmp_path, "a.urdf", FOUR_BAR_ROS1.format(**names))
     b = read(tmp_path, "b.urdf", four_bar_ros2(("a_joint", "a_motor"), ("b_joint", "b_motor")))
-    assert compare(a, b).equivalent
-    # ros_control's four-bar effort map is another formula: "native" compares what each runs.
-    (row,) = compare(a, b, convention="native").rows
+    assert compare(a, b, convention="ros2").equivalent
+    assert compare(a, b, convention="ros1").equivalent
+    # By default each side runs its own loader's four-bar effort map, and ros_control's is
+    # another formula (four_bar_linkage_transmission.h, actuatorToJointEffort).
+    (row,) = compare(a, b).rows
     assert row.status == "differs"
     assert row.differences["position"] == 0.0
     # At joint efforts (-1, -1): ros2_control gives b_motor -1/(-50*-2) = -0.01, ros_control

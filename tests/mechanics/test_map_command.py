@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
+from tests.corpus import corpus_file
 from txtool.cli import cli
 from txtool.mechanics.maps import from_parameters
 
@@ -146,7 +147,9 @@ def test_negative_values_without_equals_sign() -> None:
     np.testing.assert_allclose(json.loads(out)["velocity"], [3, 5], rtol=0, atol=1e-12)
 
 
-def test_ros1_effort_convention_flag(tmp_path: Path) -> None:
+def test_effort_convention_follows_the_file_loader(tmp_path: Path) -> None:
+    # The four-bar golden vector (ar 10,-20; jr -2,4; actuator efforts 3,5): ros_control's map
+    # gives joint efforts (-60, -160), ros2_control's power-conserving one (-160, -400).
     path = write(tmp_path, """<transmission name="fb">
       <type>transmission_interface/FourBarLinkageTransmission</type>
       <actuator name="m1"><role>actuator1</role><mechanicalReduction>10</mechanicalReduction>
@@ -159,8 +162,34 @@ def test_ros1_effort_convention_flag(tmp_path: Path) -> None:
       <offset>4</offset><hardwareInterface>hardware_interface/EffortJointInterface
       </hardwareInterface></joint></transmission>""")
     base = [path, "-t", "fb", "--to", "joint", "--effort", "3,5", "--format", "json"]
-    assert json.loads(run(*base)[1]) == {"effort": [-160.0, -400.0]}
-    assert json.loads(run(*base, "--effort-convention", "ros1")[1]) == {"effort": [-60.0, -160.0]}
+    assert run(*base) == (0, '{"effort": [-60.0, -160.0]}\n', "")
+    assert run(*base, "--effort-convention", "ros1") == (0, '{"effort": [-60.0, -160.0]}\n', "")
+    assert run(*base, "--effort-convention", "ros2") == (0, '{"effort": [-160.0, -400.0]}\n', "")
+
+
+CORPUS_ROS1 = "ros_control__four_bar_linkage_transmission_loader_full.urdf"
+CORPUS_ROS2 = "ros2_control_test_assets__minimal_robot_hardware_resources.urdf"
+
+
+@pytest.mark.parametrize(("name", "transmission", "override", "efforts", "caption"), [
+    # ar (50, -50), jr (2, -2) in both loader test robots; actuator efforts (1, 1).
+    (CORPUS_ROS1, "four_bar_linkage_trans", None, ("100", "300"),
+     "ros1 (ros_control's map, from the file's loader)"),
+    (CORPUS_ROS1, "four_bar_linkage_trans", "ros2", ("50", "100"),
+     "ros2 (ros2_control's map, from --effort-convention)"),
+    (CORPUS_ROS2, "four_bar_transmission", None, ("50", "100"),
+     "ros2 (ros2_control's map, from the file's loader)"),
+    (CORPUS_ROS2, "four_bar_transmission", "ros1", ("100", "300"),
+     "ros1 (ros_control's map, from --effort-convention)"),
+])
+def test_corpus_four_bars_map_efforts_as_their_loader(name, transmission, override, efforts,
+                                                      caption) -> None:
+    args = [str(corpus_file(name)), "-t", transmission, "--to", "joint", "--effort", "1,1"]
+    code, out, err = run(*args, *(["--effort-convention", override] if override else []))
+    assert (code, err) == (0, "")
+    row = next(line for line in out.splitlines() if "effort" in line and "│" in line)
+    assert tuple(cell.strip() for cell in row.split("│")[2:4]) == efforts
+    assert out.splitlines()[-1] == f"effort convention: {caption}"
 
 
 def test_command_module_does_not_import_numpy() -> None:

@@ -17,8 +17,8 @@ from txtool.io.xmlio import InputError
 @click.option("--velocity", metavar="V[,V]", help="Velocities, in role order.")
 @click.option("--effort", metavar="V[,V]", help="Efforts (torques or forces), in role order.")
 @click.option("--effort-convention", "convention", type=click.Choice(["ros2", "ros1"]),
-              default="ros2", show_default=True,
-              help="Four-bar effort map: ros2_control's (power-conserving) or ros_control's.")
+              help="Four-bar effort map: ros2_control's (power-conserving) or ros_control's. "
+                   "Default: that of the loader reading FILE's transmission.")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text",
               show_default=True)
 @NO_XACRO_OPTION
@@ -30,7 +30,7 @@ def command(
     position: str | None,
     velocity: str | None,
     effort: str | None,
-    convention: str,
+    convention: str | None,
     fmt: str,
     no_xacro: bool,
     xacro,

@@ -19,11 +19,14 @@ from txtool.commands.common import (
 @click.argument("path", metavar="FILE")
 @click.option("--against", metavar="OTHER",
               help="Instead, compare FILE's transmissions with OTHER's behaviourally.")
+@click.option("--effort-convention", "convention", type=click.Choice(["ros2", "ros1"]),
+              help="With --against: map four-bar efforts of both files with ros2_control's "
+                   "or ros_control's map (default: each file with its own loader's).")
 @FORMAT_OPTION
 @NO_XACRO_OPTION
 @xacro_options
 @exit_on_input_error
-def command(path, against, output_format, no_xacro, xacro) -> int:
+def command(path, against, convention, output_format, no_xacro, xacro) -> int:
     """Convert FILE through every dialect cycle and report what survives.
 
     Columns: reduction, offset, direction, roles, interfaces (field by field, floats bit for
@@ -31,11 +34,15 @@ def command(path, against, output_format, no_xacro, xacro) -> int:
     Exit 1 if any cycle loses something or changes behaviour.
     """
     from txtool.io.load import load
+    from txtool.io.xmlio import InputError
 
+    if convention and not against:
+        raise InputError("--effort-convention applies to --against only")
     expand = not xacro_disabled(no_xacro, path, against)
     source = load(path, xacro=xacro, expand=expand)
     if against:
-        return _against(source, load(against, xacro=xacro, expand=expand), output_format)
+        return _against(source, load(against, xacro=xacro, expand=expand), output_format,
+                        convention)
     from txtool.transform.roundtrip import roundtrip
 
     report = roundtrip(source)
@@ -73,7 +80,7 @@ def _print_table(report) -> None:
               "or change behaviour[/red]")
 
 
-def _against(a, b, output_format) -> int:
+def _against(a, b, output_format, convention) -> int:
     from txtool.dialects.read import read_source
     from txtool.mechanics.equivalence import compare
     from txtool.model.robot import robot_joints
@@ -81,7 +88,8 @@ def _against(a, b, output_format) -> int:
 
     a_transmissions = [f.transmission for f in read_source(a)]
     b_found = read_source(b)
-    report = compare(a_transmissions, [f.transmission for f in b_found], robot_joints(a.root))
+    report = compare(a_transmissions, [f.transmission for f in b_found], robot_joints(a.root),
+                     convention=convention)
     bb_dropped = bb_drops(a_transmissions, b_found)  # B written by Beam Bots' URDF exporter
     if output_format == "json":
         rows = [{"joints": list(r.joints), "a": r.a, "b": r.b, "status": r.status,
@@ -100,7 +108,10 @@ def _against(a, b, output_format) -> int:
         for r in report.rows:
             status = r.status if r.status == "equivalent" else f"[red]{r.status}[/red]"
             table.add_row(", ".join(r.joints), r.a or "-", r.b or "-", status, r.reason)
-        console().print(table)
+        out = console()
+        out.print(table)
+        out.print("efforts: " + (f"{convention} maps for both (--effort-convention)" if convention
+                                 else "each file through its own loader's maps"), markup=False)
         for line in bb_dropped:
             click.echo(f"BB dropped: {line}")
     return 0 if report.equivalent and not bb_dropped else 1

@@ -18,27 +18,34 @@ from txtool.commands.common import (
 @click.command("show")
 @click.argument("path", metavar="FILE")
 @FORMAT_OPTION
+@click.option("--effective", is_flag=True,
+              help="Show what each loader binds: parameters after its silent defaults, in its "
+                   "index order, beside the joint and actuator it maps there.")
 @click.option("--actuator-limits", is_flag=True,
               help="Also map each joint's URDF limits into actuator space.")
 @click.option("--stdin-filename", help="Name to report for '-' (stdin).")
 @NO_XACRO_OPTION
 @xacro_options
 @exit_on_input_error
-def command(path, output_format, actuator_limits, stdin_filename, no_xacro, xacro) -> int:
+def command(path, output_format, effective, actuator_limits, stdin_filename, no_xacro,
+            xacro) -> int:
     """List the transmissions of FILE (URDF, xacro or a fragment; '-' for stdin).
 
-    Under --no-xacro a .xacro file's transmissions are listed as written, ${...} included.
+    The JSON gives each transmission as written and, under "effective", what its loader
+    binds (see --effective). Under --no-xacro a .xacro file's transmissions are listed as
+    written, ${...} included.
     """
     from txtool.dialects.read import read_source
     from txtool.io.load import load
-    from txtool.model.core import dump
+    from txtool.views.effective import bindings_of, shown_json
 
     expand = not xacro_disabled(no_xacro, path)
     source = load(path, xacro=xacro, stdin_name=stdin_filename, expand=expand)
-    transmissions = [f.transmission for f in read_source(source)]
+    found = read_source(source)
+    transmissions = [f.transmission for f in found]
     limits = _limits(source, transmissions) if actuator_limits else None
     if output_format == "json":
-        data = {"transmissions": [dump(t) for t in transmissions]}
+        data: dict = {"transmissions": shown_json(transmissions, bindings_of(found))}
         if limits is not None:
             data["actuator_limits"] = [
                 {"transmission": t, "actuator": a, "position": lim.position,
@@ -51,8 +58,13 @@ def command(path, output_format, actuator_limits, stdin_filename, no_xacro, xacr
     from txtool.views.render import limits_table, transmissions_table
 
     console = make_console()
-    console.print(transmissions_table(transmissions, f"{source.path}: "
-                                      f"{len(transmissions)} transmission(s)"))
+    if effective:
+        from txtool.views.effective import effective_text
+
+        click.echo(effective_text(source.path, transmissions, bindings_of(found)), nl=False)
+    else:
+        console.print(transmissions_table(transmissions, f"{source.path}: "
+                                          f"{len(transmissions)} transmission(s)"))
     if limits is not None:
         console.print(limits_table(limits))
     return 0

@@ -5,6 +5,10 @@ positions, velocities and efforts are mapped to actuator space through each conf
 maps (:mod:`txtool.model.semantics`), and the results are compared per joint and actuator NAME:
 ros2_control orders handles by name, so a conversion that keeps the numbers but lists the
 members in another order can bind a parameter to a different joint.
+
+Each side maps efforts with its own loader's four-bar map (:mod:`txtool.mechanics.convention`)
+unless one convention is imposed on both. By default, therefore, a ROS 1 four-bar and its ROS 2
+conversion differ in effort, as ros_control and ros2_control do.
 """
 
 from __future__ import annotations
@@ -16,6 +20,7 @@ from typing import Literal
 import numpy as np
 
 from txtool.mechanics.checks import sample_joint_values
+from txtool.mechanics.convention import effort_convention
 from txtool.mechanics.maps import TransmissionMap, from_effective
 from txtool.model.core import Transmission
 from txtool.model.robot import JointInfo
@@ -57,13 +62,12 @@ def compare(
     b: Sequence[Transmission],
     joints: Mapping[str, JointInfo] | None = None,
     *,
-    convention: str = "ros2",
+    convention: str | None = None,
 ) -> EquivalenceReport:
     """Compare two configs; ``joints`` gives the sampling ranges (URDF limits).
 
-    ``convention`` is the effort convention of both sides (``ros2`` or ``ros1``), or
-    ``native`` for the one each side's loader uses (then every ROS 1 four-bar differs from
-    its ROS 2 conversion in effort).
+    ``convention`` (``ros2`` or ``ros1``) imposes one effort convention on both sides; by
+    default each side uses its own loader's.
     """
     unused = list(b)
     rows = []
@@ -86,9 +90,8 @@ def _joint_set(t: Transmission) -> tuple[str, ...]:
     return tuple(sorted({j.name for j in t.joints}))
 
 
-def _load(t: Transmission, convention: str) -> TransmissionMap:
-    eff = effective(t)
-    return from_effective(eff, eff.loader if convention == "native" else convention)
+def _load(t: Transmission, convention: str | None) -> TransmissionMap:
+    return from_effective(effective(t), effort_convention(t, convention))
 
 
 def compare_pair(
@@ -96,7 +99,7 @@ def compare_pair(
     tb: Transmission,
     joints: Mapping[str, JointInfo] | None = None,
     *,
-    convention: str = "ros2",
+    convention: str | None = None,
 ) -> EquivalenceRow:
     key = _joint_set(ta)
     maps = []

@@ -6,7 +6,12 @@ role, so the two agree; ros2_control binds parameters in XML order but orders th
 NAME. A value given for role ``joint1`` goes to the handle of the member that has that role,
 and ros2_control then applies whatever parameters sit at that handle's name-sorted index.
 Where roles are missing or not ``joint1``/``joint2`` (ros2_control does not check them), XML
-order stands in for role order.
+order stands in for role order. ros_control fills its data vectors in XML order
+(:mod:`txtool.views.effective`); where that differs from the role order, this module still
+follows the roles, as :func:`txtool.model.semantics.effective` does.
+
+Efforts go through the four-bar map of the file's own loader (ros_control's for a ROS 1
+transmission, ros2_control's for a ROS 2 one) unless ``convention`` names one.
 """
 
 from __future__ import annotations
@@ -18,12 +23,14 @@ from dataclasses import dataclass, field
 
 from txtool.io.load import load
 from txtool.io.xmlio import InputError, XacroOptions
+from txtool.mechanics.convention import effort_convention, source_of
 from txtool.mechanics.maps import TransmissionMap, from_effective
 from txtool.model.core import Member, Transmission
 from txtool.model.numbers import format_float, parse_strict
 from txtool.model.semantics import ROLES_ACTUATOR, ROLES_JOINT, NotLoadable, effective
 
 QUANTITIES = ("position", "velocity", "effort")
+_LOADERS = {"ros1": "ros_control's", "ros2": "ros2_control's"}
 
 
 @dataclass(frozen=True)
@@ -38,6 +45,7 @@ class MapOutcome:
     outputs: tuple[str, ...] = ()  # output member names, role order
     values: dict[str, list[float]] = field(default_factory=dict)
     convention: str = "ros2"
+    convention_source: str = ""
 
     def to_json(self) -> str:
         return json.dumps(self.values)
@@ -55,10 +63,13 @@ def run_map(
     position: str | None = None,
     velocity: str | None = None,
     effort: str | None = None,
-    convention: str = "ros2",
+    convention: str | None = None,
     xacro: XacroOptions | None = None,
 ) -> MapOutcome:
-    """Load ``path``, find ``transmission`` and map the given comma-separated values."""
+    """Load ``path``, find ``transmission`` and map the given comma-separated values.
+
+    ``convention`` (``ros1``/``ros2``) overrides the effort convention of the file's loader.
+    """
     try:
         return _run(path, transmission, to, {"position": position, "velocity": velocity,
                                              "effort": effort}, convention, xacro)
@@ -73,7 +84,7 @@ def _run(
     name: str,
     to: str,
     raw: dict[str, str | None],
-    convention: str,
+    convention: str | None,
     xacro: XacroOptions | None,
 ) -> MapOutcome:
     if to not in ("actuator", "joint"):
@@ -82,9 +93,10 @@ def _run(
     if not requested:
         raise _Failure("nothing to map: give --position, --velocity or --effort")
     t = _find(path, name, xacro)
+    chosen = effort_convention(t, convention)
     try:
         eff = effective(t)
-        tmap = from_effective(eff, convention)
+        tmap = from_effective(eff, chosen)
     except NotLoadable as exc:
         raise _Failure(f"transmission '{t.name}' cannot be loaded: {exc}") from None
     joints = _role_order(t.joints, ROLES_JOINT, tmap.joints)
@@ -100,7 +112,8 @@ def _run(
                                "not a finite number (values or reductions too large or too "
                                "small)")
     return MapOutcome(0, None, t.name, to, tuple(_names(tmap, to, source, True)),
-                      tuple(_names(tmap, to, target, False)), values, convention)
+                      tuple(_names(tmap, to, target, False)), values, chosen,
+                      source_of(convention))
 
 
 def _find(path: str, name: str, xacro: XacroOptions | None) -> Transmission:
@@ -176,8 +189,10 @@ def render_text(outcome: MapOutcome) -> str:
         table.add_column(f"{dst} '{name}'", justify="right")
     for quantity, values in outcome.values.items():
         table.add_row(quantity, *(_show(v) for v in values))
-    if "effort" in outcome.values:
-        table.caption = f"effort convention: {outcome.convention}"
     buffer = io.StringIO()
-    Console(file=buffer, width=100, color_system=None, highlight=False).print(table)
+    console = Console(file=buffer, width=100, color_system=None, highlight=False)
+    console.print(table)
+    if "effort" in outcome.values:
+        console.print(f"effort convention: {outcome.convention} ({_LOADERS[outcome.convention]} "
+                      f"map, from {outcome.convention_source})", markup=False)
     return buffer.getvalue()

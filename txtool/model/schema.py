@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import json
 
-from txtool.model.core import Document, json_schema
+from txtool.model.binding import ShowDocument
+from txtool.model.core import json_schema
 
-SCHEMA_FILES = {"transmission.schema.json": Document}
+SCHEMA_FILES = {"transmission.schema.json": ShowDocument}
 
 
-def schema_text(model: type = Document) -> str:
+def schema_text(model: type = ShowDocument) -> str:
     schema = json_schema(model)
     schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
     schema["title"] = "txtool transmissions (txtool show --format json)"
