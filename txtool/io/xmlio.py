@@ -20,7 +20,7 @@ XACRO_NS = "http://www.ros.org/wiki/xacro"
 XACRO_SUFFIXES = (".xacro",)
 MAX_BYTES = 64 * 1024 * 1024
 
-_DECLARATION = re.compile(rb"^\s*<\?xml[^>]*\?>")
+_DECLARATION = re.compile(rb"^(?:\xef\xbb\xbf)?\s*<\?xml[^>]*\?>")  # after a UTF-8 BOM too
 _ENCODING = re.compile(rb"""^\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
 # Byte-order marks, and how the first "<" looks in UTF-16/32 text that has none.
 _UNICODE_STARTS = (
