@@ -145,3 +145,17 @@ def test_proposal_1_and_2_differ_only_in_the_role_lines():
         b"<actuator name='m'  role='actuator1' read_only='true'/>",
         b'<actuator name="m" role="actuator1" read_only="true"/>').replace(
         b"<joint name='j' role='joint1'>", b'<joint name="j" role="joint1">')
+
+
+def test_a_declaration_after_a_comment_is_not_written_again():
+    # shadow_robot's motor URDF puts its licence before <?xml ...?>: malformed for expat.
+    data = (b"<!-- licence -->\n<?xml version=\"1.0\"?>\n<robot name='r'>\n"
+            b"  <transmission name='t'>\n"
+            b"    <type>transmission_interface/SimpleTransmission</type>\n"
+            b"    <joint name='j'><hardwareInterface>hardware_interface/EffortJointInterface"
+            b"</hardwareInterface></joint>\n"
+            b"    <actuator name='m'><mechanicalReduction>2</mechanicalReduction></actuator>\n"
+            b"  </transmission>\n</robot>\n")
+    out = convert(data, "ros2-p2")
+    assert out.startswith(b"<!-- licence -->\n<robot name='r'>\n  <ros2_control")
+    etree.fromstring(out)  # well-formed for a strict parser
