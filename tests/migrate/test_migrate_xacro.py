@@ -140,27 +140,54 @@ CUSTOM = """
 """
 
 
-def test_a_lossy_conversion_is_refused_unless_allowed(run, write):
+def test_a_custom_type_is_left_as_written_with_a_warning_not_refused(run, write):
+    # Nothing of the document is lost: the custom transmission stays byte for byte.
     path = write("panda.urdf", CUSTOM)
-    code, out, err = run("migrate", "--diff", "--to", "ros2-p2", "panda.urdf")
-    assert (code, out) == (1, "")
-    assert err == (
-        "error: panda.urdf: transmission 'state': custom type 'franka_hw/FrankaStateInterface' "
-        "cannot be carried to ros2-p2; left as written\n"
-        "refused panda.urdf: 1 item(s) would be lost; not changed (use --allow-lossy to accept)\n"
-        "1 file(s) refused (losses; see --allow-lossy)\n"
-    )
-    code, out, err = run("migrate", "--write", "--to", "ros2-p2", "--allow-lossy", "panda.urdf")
+    code, out, err = run("migrate", "--write", "--to", "ros2-p2", "panda.urdf")
     assert (code, out) == (0, "")
-    assert err.startswith("warning: panda.urdf: transmission 'state': custom type")
-    assert err.endswith("changed panda.urdf (1 transmission(s) to ros2-p2)\n1 file(s) changed\n")
-    assert "<ros2_control" in path.read_text() and "franka_hw/FrankaStateInterface" in (
-        path.read_text())
-    # What is left cannot be converted, but nothing would change: reported, not refused.
+    assert err == (
+        "warning: panda.urdf: transmission 'state': custom type 'franka_hw/FrankaStateInterface' "
+        "is not converted (txtool knows only the standard types); left as written, in ros1 form\n"
+        "changed panda.urdf (1 transmission(s) to ros2-p2)\n1 file(s) changed\n"
+    )
+    text = path.read_text()
+    assert "<ros2_control" in text
+    assert CUSTOM.split("</transmission>\n", 1)[1].lstrip("\n") in text  # the custom one, as is
     code, out, err = run("migrate", "--check", "--to", "ros2-p2", "panda.urdf")
     assert (code, out) == (0, "")
-    assert err.startswith("warning: panda.urdf: transmission 'state': custom type")
     assert err.endswith("nothing to do (1 file(s) checked)\n")
+
+
+READ_ONLY = """
+<robot name="r">
+  <ros2_control name="hw" type="system">
+    <hardware><plugin>my/Hw</plugin></hardware>
+    <joint name="j"><command_interface name="position"/></joint>
+    <transmission name="t">
+      <plugin>transmission_interface/SimpleTransmission</plugin>
+      <actuator name="m" role="actuator1" read_only="true"/>
+      <joint name="j" role="joint1"><mechanical_reduction>2</mechanical_reduction></joint>
+    </transmission>
+  </ros2_control>
+</robot>
+"""
+
+
+def test_a_lossy_conversion_is_refused_unless_allowed(run, write):
+    path = write("robot.urdf", READ_ONLY)
+    before = path.read_bytes()
+    code, out, err = run("migrate", "--write", "--to", "ros1", "robot.urdf")
+    assert (code, out) == (1, "")
+    assert err == (
+        "error: robot.urdf: actuator 'm': read_only has no place in ROS 1\n"
+        "refused robot.urdf: 1 item(s) would be lost; not changed (use --allow-lossy to accept)\n"
+        "1 file(s) refused (losses; see --allow-lossy)\n"
+    )
+    assert path.read_bytes() == before
+    code, out, err = run("migrate", "--write", "--to", "ros1", "--allow-lossy", "robot.urdf")
+    assert (code, out) == (0, "")
+    assert err.startswith("warning: robot.urdf: actuator 'm': read_only has no place in ROS 1\n")
+    assert "<type>transmission_interface/SimpleTransmission</type>" in path.read_text()
 
 
 def test_to_ros1_moves_transmissions_out_of_ros2_control(run, write):

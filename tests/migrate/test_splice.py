@@ -6,7 +6,8 @@ import textwrap
 
 from txtool.io.xmlio import parse_bytes, serialize
 from txtool.rules import all_rules
-from txtool.transform.migrate import MigrateOptions, migrate_file, splice, unified_diff
+from txtool.transform.migrate import MigrateOptions, migrate_file, unified_diff
+from txtool.transform.splice import splice
 
 FIXES = [rule for rule in all_rules().values() if rule.fixable]
 
@@ -91,3 +92,18 @@ def test_a_missing_final_newline_is_marked_in_the_diff():
         "-<a/>\n\\ No newline at end of file\n"
         "+<b/>\n\\ No newline at end of file\n"
     )
+
+
+def test_cr_line_endings_and_a_byte_order_mark_are_kept(tmp_path):
+    path = tmp_path / "robot.urdf"
+    text = ("<?xml version='1.0'?>\r<robot name='r'>\r  <link name='a'></link>\r"
+            "  <transmission name='t'>\r"
+            "    <type>transmission_interface/SimpleTransmission</type>\r"
+            "    <joint name='j'><hardwareInterface>EffortJointInterface</hardwareInterface>"
+            "</joint>\r    <actuator name='m'><mechanicalReduction>2</mechanicalReduction>"
+            "</actuator>\r  </transmission>\r</robot>\r")
+    path.write_bytes(b"\xef\xbb\xbf" + text.encode())
+    data = migrate_file(str(path), FIXES, MigrateOptions()).data
+    assert data == b"\xef\xbb\xbf" + text.replace(
+        "<joint name='j'><hardwareInterface>EffortJointInterface",
+        '<joint name="j"><hardwareInterface>hardware_interface/EffortJointInterface').encode()

@@ -70,6 +70,8 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_
 
         result = convert_source(source, target, hardware_plugin=hardware_plugin)
         data, losses, notes = result.data, result.losses, result.notes
+        for left in result.warnings:
+            click.echo(f"warning: {left}", err=True)
     for note in notes:
         click.echo(f"note: {note}", err=True)
     for loss in losses:

@@ -33,6 +33,7 @@ class Translation:
     transmission: Transmission
     losses: list[str] = field(default_factory=list)  # information that does not survive
     notes: list[str] = field(default_factory=list)  # changes that keep behaviour
+    warnings: list[str] = field(default_factory=list)  # to look at, though nothing is lost
 
 
 def family(dialect: Dialect) -> str:
@@ -158,11 +159,24 @@ def _simple_to_ros2(t: Transmission, result: Translation) -> tuple[tuple[Member,
 
 def _ros2_joint(joint: Member, result: Translation) -> Member:
     commands, states = ros2_interfaces(joint.interfaces)
-    unknown = [i for i in joint.interfaces if interface_kind(i) is None]
-    if unknown:
+    expressions = [i for i in joint.interfaces if "${" in i or "$(" in i]
+    if expressions:
         result.losses.append(
-            f"joint '{joint.name}': hardware interface(s) {', '.join(unknown)} have no "
-            "ros2_control equivalent"
+            f"joint '{joint.name}': hardware interface {', '.join(expressions)} is a xacro "
+            "expression, from which no ros2_control command interface can be derived; convert "
+            "the expanded robot, or write the interface"
+        )
+    unknown = [i for i in joint.interfaces
+               if interface_kind(i) is None and i not in expressions]
+    if unknown:
+        # ros_control loads no provider for such a name: it skips it, and refuses the
+        # transmission when no valid one remains (transmission_interface_loader.cpp,
+        # TransmissionInterfaceLoader::load: "It contains no valid hardware interfaces").
+        # Nothing that loads is lost, but a misspelt name (TX204) deserves a look.
+        refused = " (ros_control refuses this transmission)" if not commands else ""
+        result.warnings.append(
+            f"joint '{joint.name}': hardware interface(s) {', '.join(unknown)} are not ones "
+            f"ros_control knows{refused}; no ros2_control command interface for them"
         )
     return replace(
         joint,

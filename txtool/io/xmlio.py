@@ -20,7 +20,7 @@ XACRO_NS = "http://www.ros.org/wiki/xacro"
 XACRO_SUFFIXES = (".xacro",)
 MAX_BYTES = 64 * 1024 * 1024
 
-_DECLARATION = re.compile(rb"^\s*<\?xml[^>]*\?>")
+_DECLARATION = re.compile(rb"^(?:\xef\xbb\xbf)?\s*<\?xml[^>]*\?>")  # after a UTF-8 BOM too
 # Whitespace (and nothing else) before the XML declaration: see _movable_declaration.
 LEADING_SPACE_DECLARATION = re.compile(rb"(?:\xef\xbb\xbf)?([ \t\r\n]+)<\?xml[ \t\r\n]")
 _ENCODING = re.compile(rb"""^\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")

@@ -1,28 +1,29 @@
 """Convert the transmissions of a whole document, keeping everything else as written.
 
-Only transmissions whose dialect differs from the target are rewritten; comments, other
-elements, attribute order, namespaces and the XML declaration are untouched. ROS 1 -> ROS 2
-moves each transmission into the ``<ros2_control>`` that declares its joints (or a new one);
-ROS 2 -> ROS 1 moves it out to the top level, just before its ``<ros2_control>``.
-Every conversion is checked by reading the result back and converting it back.
+Only transmissions whose dialect differs from the target are rewritten, and the bytes are
+spliced into the original text (:mod:`txtool.transform.splice`), so every line the conversion
+does not change stays as written. Where converted transmissions go is
+:mod:`txtool.transform.placement`. Every conversion is checked by reading the result back and
+converting it back.
 """
 
 from __future__ import annotations
 
 import copy
-from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 from lxml import etree
 
-from txtool import dialects
-from txtool.dialects.read import enclosing_component, read_source
+from txtool.dialects.read import Found, enclosing_component, read_source
 from txtool.dialects.translate import family, is_expression, translate
 from txtool.io.xmlio import Source, local, parse_bytes, serialize
 from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
 from txtool.model.semantics import NotLoadable, effective
-from txtool.views.tables import differences
+from txtool.transform.placement import Placer
+from txtool.transform.splice import rewrite
+from txtool.views.tables import FIELDS, view
 
 DEFAULT_HARDWARE_PLUGIN = "mock_components/GenericSystem"
 KNOWN_CHILDREN = {
@@ -45,16 +46,19 @@ class Conversion:
     target: Dialect
     losses: list[str] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)  # to look at; nothing is lost
     converted: int = 0
 
 
 def convert_source(
     source: Source, target: Dialect, *, hardware_plugin: str = DEFAULT_HARDWARE_PLUGIN
 ) -> Conversion:
+    """Convert ``source``; the bytes are spliced into ``source.data`` (see
+    :mod:`txtool.transform.splice`) unless ``source`` is a xacro expansion."""
     tree = copy.deepcopy(source.tree)
     originals = read_source(Source(source.path, source.data, tree))
     result = Conversion(data=b"", target=target)
-    placer = _Placer(tree.getroot(), hardware_plugin)
+    placer = Placer(tree.getroot(), hardware_plugin)
     for found in originals:
         t = found.transmission
         if t.dialect == target or t.kind == "other" and family(t.dialect) == family(target):
@@ -65,30 +69,53 @@ def convert_source(
                 "top-level ROS 1 transmission; convert the robot description that holds it"
             )
             continue
+        if t.kind == "other":
+            result.warnings.append(
+                f"transmission '{t.name}': custom type '{t.type}' is not converted (txtool "
+                f"knows only the standard types); left as written, in {family(t.dialect)} form"
+            )
+            continue
         translation = translate(t, target)
         result.losses.extend(translation.losses)
         result.notes.extend(translation.notes)
-        if t.kind == "other":
-            continue
-        result.losses.extend(_unknown_children(found.element, t, target))
+        result.warnings.extend(translation.warnings)
+        carried = _other_children(found.element, t, target, result)
         _behaviour(t, translation.transmission, result)
-        placer.place(found.element, translation.transmission)
+        placer.place(found.element, translation.transmission, carried)
         result.converted += 1
-    result.data = serialize(tree, source.data)
-    result.losses.extend(_check(source, result, originals))
+    placer.finish()
+    result.notes.extend(placer.notes)
+    if source.expanded:
+        result.data = serialize(tree, source.data)
+    else:
+        result.data = rewrite(source.data, source.tree, tree)
+    _check(source, result, originals)
     return result
 
 
-def _unknown_children(element: etree._Element, t: Transmission, target: Dialect) -> list[str]:
+def _other_children(element: etree._Element, t: Transmission, target: Dialect,
+                    result: Conversion) -> dict[tuple[str, str | None], list[etree._Element]]:
+    """Children that neither dialect reads are carried as written (both loaders skip elements
+    they do not know); one that the target loader would read (its own spelling, written in the
+    other dialect) is dropped: carrying it would change what the target loads."""
     known = KNOWN_CHILDREN[family(t.dialect)]
-    lost = []
+    theirs = KNOWN_CHILDREN[family(target)]
+    carried: dict[tuple[str, str | None], list[etree._Element]] = {}
     for parent in [element, *children(element, "joint"), *children(element, "actuator")]:
-        allowed = known["transmission" if parent is element else local(parent)]
+        kind = "transmission" if parent is element else local(parent)
+        owner = f"{kind} '{parent.get('name', '')}'"
         for child in parent:
-            if isinstance(child.tag, str) and local(child) not in allowed:
-                owner = f"{local(parent)} '{parent.get('name', '')}'"
-                lost.append(f"{owner}: <{local(child)}> has no place in {target}; dropped")
-    return lost
+            name = local(child)
+            if not isinstance(child.tag, str) or name in known[kind]:
+                continue
+            if name in theirs[kind]:
+                result.losses.append(f"{owner}: <{name}> is not read in {family(t.dialect)} "
+                                     f"but would be in {target}; dropped")
+                continue
+            carried.setdefault((kind, parent.get("name")), []).append(child)
+            result.notes.append(f"{owner}: <{name}> is read by neither loader; carried as "
+                                "written")
+    return carried
 
 
 def _behaviour(before: Transmission, after: Transmission, result: Conversion) -> None:
@@ -113,9 +140,13 @@ def _behaviour(before: Transmission, after: Transmission, result: Conversion) ->
         return
     if old.joints != new.joints:
         reason = (f"joints {', '.join(new.joints)} take the values written for "
-                  f"{', '.join(old.joints)} (ros2_control orders handles by name; see TX401)")
+                  f"{', '.join(old.joints)} (ros2_control orders handles by name, not by role; "
+                  "see TX401). To convert it, rename the joints so that the joint1 name sorts "
+                  "before the joint2 name (likewise actuator1 before actuator2), then convert "
+                  "again; --allow-lossy writes it as it is")
     else:
-        reason = "the loaded reductions or offsets differ"
+        reason = ("the loaded reductions or offsets differ (if the actuators' names sort "
+                  "against their roles, rename them so that actuator1's sorts first)")
     result.losses.append(
         f"transmission '{before.name}': behaves differently under {new.loader}: {reason}"
     )
@@ -133,234 +164,91 @@ def _same_binding(old, new) -> bool:
     return all(getattr(old, f) == getattr(new, f) for f in fields)
 
 
-def _check(source: Source, result: Conversion, originals) -> list[str]:
-    """Read the output back, convert it back, and compare with the original."""
+def _check(source: Source, result: Conversion, originals: list[Found]) -> None:
+    """Read the output back, convert it back, and compare with the original: on what the
+    transmission itself defines (a value it leaves out is not judged, and interfaces that an
+    existing ``<ros2_control>`` declares besides its own are a note, not a loss)."""
     tree = parse_bytes(result.data, source.path)
-    written = {f.transmission.name: f.transmission for f in read_source(
-        Source(source.path, result.data, tree))}
-    problems = []
+    written: dict[tuple[str, bool], list[Found]] = {}
+    for found in read_source(Source(source.path, result.data, tree)):
+        key = (found.transmission.name, found.transmission.kind == "other")
+        written.setdefault(key, []).append(found)
     for found in originals:
         t = found.transmission
-        if t.kind == "other" or t.name not in written:
+        queue = written.get((t.name, t.kind == "other"))
+        if not queue:
             continue
-        back = translate(written[t.name], t.dialect).transmission
-        for diff in differences(t, back):
-            problems.append(f"transmission '{t.name}' did not survive the round trip: {diff}")
-    return problems
+        out = queue.pop(0)  # same-named transmissions keep their order
+        if t.kind == "other":
+            continue
+        back = translate(out.transmission, t.dialect).transmission
+        lost = judge(t, back)
+        if enclosing_component(out.element) is not None:
+            lost.pop("interfaces", None)
+            _interfaces(t, *_defined(view(t)["interfaces"], view(back)["interfaces"]), result)
+        for key, change in lost.items():
+            result.losses.append(f"transmission '{t.name}' did not survive the round trip: "
+                                 f"{key}: {change}")
 
 
-class _Placer:
-    """Puts converted elements where their target dialect expects them."""
-
-    def __init__(self, root: etree._Element, hardware_plugin: str) -> None:
-        self.root = root
-        self.hardware_plugin = hardware_plugin
-        self.created: etree._Element | None = None
-        # Joint names declared per <ros2_control>, kept up to date by _declare: looking them up
-        # afresh for every transmission made a conversion quadratic in their number.
-        self._declared: dict[etree._Element, set[str]] = {}
-        self._last_joint: dict[etree._Element, etree._Element] = {}
-        self._components: list[etree._Element] | None = None  # None: look again
-
-    def place(self, old: etree._Element, t: Transmission) -> None:
-        component = enclosing_component(old)
-        moving_out = t.dialect == "ros1" and component is not None
-        moving_in = t.dialect != "ros1" and component is None and old.getparent() is not None
-        if moving_out and component.getparent() is not None:
-            _remove(old)
-            _insert_before(component, self._build(t, component, old))
-        elif moving_in and old.getparent() is self.root and local(self.root) == "robot":
-            component = self._component_for(t)
-            _remove(old)
-            _append(component, self._build_inside(t, component, old))
-        elif moving_in and local(self.root) == "robot":
-            # Inside a xacro macro or conditional: a <ros2_control> of its own, in place,
-            # so that the transmission stays in the scope of its ${...} parameters.
-            self._wrap_in_place(old, t)
-        else:
-            new = self._build(t, old, old)
-            new.tail = old.tail
-            if old.getparent() is None:
-                _become(old, new)  # a bare <transmission> fragment
-            else:
-                old.getparent().replace(old, new)
-
-    def _component(self, name: str, like: etree._Element, indent: str,
-                   step: str) -> etree._Element:
-        """A ``<ros2_control type="system">`` with its ``<hardware><plugin>``."""
-        q = _qualifier(like)
-        component = etree.Element(q("ros2_control"), name=name, type="system")
-        hardware = etree.SubElement(component, q("hardware"))
-        etree.SubElement(hardware, q("plugin")).text = self.hardware_plugin
-        dialects.pretty(component, indent, step)
-        return component
-
-    def _wrap_in_place(self, old: etree._Element, t: Transmission) -> None:
-        component = self._component(t.name, old, *_indentation(old))
-        component.tail = old.tail
-        old.getparent().replace(old, component)
-        self._components = None
-        for joint in t.joints:
-            self._declare(component, joint)
-        _append(component, self._build_inside(t, component, old))
-
-    def _build(self, t: Transmission, sibling: etree._Element,
-               old: etree._Element) -> etree._Element:
-        indent, step = _indentation(sibling)
-        return _with_comments(dialects.build(t, t.dialect, indent=indent, step=step,
-                                             namespace=_namespace(sibling)), old, indent, step)
-
-    def _build_inside(self, t: Transmission, parent: etree._Element,
-                      old: etree._Element) -> etree._Element:
-        indent, step = _child_indentation(parent)
-        return _with_comments(dialects.build(t, t.dialect, indent=indent, step=step,
-                                             namespace=_namespace(parent)), old, indent, step)
-
-    def _component_for(self, t: Transmission) -> etree._Element:
-        names = {j.name for j in t.joints}
-        if self._components is None:
-            self._components = list(self.root.iter("{*}ros2_control"))
-        for element in self._components:
-            if names <= self._joints_of(element):
-                return element
-        if self.created is None:
-            self.created = self._new_component()
-        for joint in t.joints:
-            self._declare(self.created, joint)
-        return self.created
-
-    def _new_component(self) -> etree._Element:
-        component = self._component(self.root.get("name", "robot"), self.root,
-                                     *_child_indentation(self.root))
-        _append(self.root, component)
-        self._components = None
-        return component
-
-    def _joints_of(self, component: etree._Element) -> set[str]:
-        if component not in self._declared:
-            self._declared[component] = {j.get("name") for j in children(component, "joint")}
-        return self._declared[component]
-
-    def _declare(self, component: etree._Element, joint) -> None:
-        declared = self._joints_of(component)
-        if joint.name in declared:
-            return
-        declared.add(joint.name)
-        q = _qualifier(component)
-        element = etree.Element(q("joint"), name=joint.name)
-        for name in joint.interfaces:
-            etree.SubElement(element, q("command_interface"), name=name)
-        for name in joint.state_interfaces:
-            etree.SubElement(element, q("state_interface"), name=name)
-        indent, step = _child_indentation(component)
-        dialects.pretty(element, indent, step)
-        anchor = self._anchor(component)
-        if anchor is not None:
-            element.tail = anchor.tail
-            anchor.tail = "\n" + _leading_space(anchor)
-            anchor.addnext(element)
-        else:
-            _append(component, element)
-        self._last_joint[component] = element
-
-    def _anchor(self, component: etree._Element) -> etree._Element | None:
-        """The element a new joint declaration goes after: the last joint, else <hardware>."""
-        if component in self._last_joint:
-            return self._last_joint[component]
-        declared = children(component, "joint") or children(component, "hardware")
-        return declared[-1] if declared else None
+def judge(before: Transmission, after: Transmission) -> dict[str, str]:
+    """The fields of ``before`` that ``after`` (its round trip) does not keep, as
+    ``before -> after`` texts: judged on what ``before`` itself defines. A value it leaves
+    out is not judged (a missing ROS 1 reduction comes back as ros2_control's 1.0), a joint
+    that names no valid interface may come back state-only, and command interfaces that a
+    ``<ros2_control>`` block declares besides its own are kept, not lost."""
+    a_view, b_view = view(before), view(after)
+    lost = {}
+    for key in ("kind", *FIELDS):
+        a, b = _defined(a_view[key], b_view[key])
+        if key == "interfaces":
+            a, b = _without_state(a), _without_state(b)
+            if all(kinds <= b.get(joint, frozenset()) for joint, kinds in a.items()):
+                continue
+        if not _same(a, b):
+            lost[key] = f"{_show(a)} -> {_show(b)}"
+    return lost
 
 
-def _with_comments(new: etree._Element, old: etree._Element, indent: str,
-                   step: str) -> etree._Element:
-    """Carry the comments of the old element: under the same joint or actuator when they
-    stood there, else at the top of the transmission."""
-    targets = {(local(m), m.get("name")): m for m in new if isinstance(m.tag, str)}
-    for parent in [old, *children(old, "joint"), *children(old, "actuator")]:
-        target = new if parent is old else targets.get((local(parent), parent.get("name")), new)
-        comments = [etree.Comment(c.text) for c in parent if isinstance(c, etree._Comment)]
-        for position, comment in enumerate(comments):
-            if target is new:
-                new.insert(position, comment)
-            else:
-                target.append(comment)
-    if any(isinstance(c, etree._Comment) for c in new.iter()):
-        dialects.pretty(new, indent, step)
-    return new
+def _defined(a: Any, b: Any) -> tuple[Any, Any]:
+    """Both views without the members whose value the original leaves undefined."""
+    if not isinstance(a, dict) or not isinstance(b, dict):
+        return a, b
+    keep = {k for k, v in a.items() if v is not None}
+    return ({k: v for k, v in a.items() if k in keep},
+            {k: v for k, v in b.items() if k in keep or k not in a})
 
 
-def _namespace(element: etree._Element) -> str | None:
-    tag = element.tag
-    return tag[1:].split("}", 1)[0] if isinstance(tag, str) and tag.startswith("{") else None
+def _without_state(kinds: dict) -> dict:
+    """A joint that names no command interface comes back as state-only: the same."""
+    return {joint: names - {"state"} for joint, names in kinds.items()}
 
 
-def _become(old: etree._Element, new: etree._Element) -> None:
-    """Give the root element ``new``'s content, keeping its place among top-level comments."""
-    old.tag = new.tag
-    old.attrib.clear()
-    old.attrib.update(new.attrib)
-    old.text = new.text
-    for child in list(old):
-        old.remove(child)
-    old.extend(list(new))
+def _interfaces(t: Transmission, a: dict, b: dict, result: Conversion) -> None:
+    for joint, kinds in a.items():
+        back = b.get(joint, frozenset()) - {"state"}
+        kinds = kinds - {"state"}
+        if kinds - back:
+            result.losses.append(
+                f"joint '{joint}': transmission '{t.name}' names {_show(kinds)} but the "
+                f"<ros2_control> that declares the joint commands {_show(back) or 'nothing'}; "
+                "add the missing command interface there (txtool does not change a hardware "
+                "declaration)")
+        elif back - kinds:
+            result.notes.append(
+                f"joint '{joint}': its <ros2_control> declaration also commands "
+                f"{_show(back - kinds)}, which transmission '{t.name}' does not name; kept")
 
 
-def _qualifier(like: etree._Element) -> Callable[[str], str]:
-    """Tag names in the default namespace of ``like`` (some URDFs declare one)."""
-    ns = _namespace(like)
-    return (lambda tag: f"{{{ns}}}{tag}") if ns else (lambda tag: tag)
+def _same(x: Any, y: Any) -> bool:
+    if isinstance(x, dict) and isinstance(y, dict):
+        return x.keys() == y.keys() and all(_same(x[k], y[k]) for k in x)
+    return repr(x) == repr(y) if isinstance(x, float) or isinstance(y, float) else x == y
 
 
-def _leading_space(element: etree._Element) -> str:
-    previous = element.getprevious()
-    text = previous.tail if previous is not None else (
-        element.getparent().text if element.getparent() is not None else "")
-    text = text or ""
-    return text.rsplit("\n", 1)[-1] if "\n" in text else ""
-
-
-def _indentation(element: etree._Element) -> tuple[str, str]:
-    indent = _leading_space(element)
-    first = next((c for c in element if isinstance(c.tag, str)), None)
-    step = "  "
-    if first is not None:
-        inner = _leading_space(first)
-        if inner.startswith(indent) and len(inner) > len(indent):
-            step = inner[len(indent):]
-    return indent, step
-
-
-def _child_indentation(parent: etree._Element) -> tuple[str, str]:
-    outer, step = _indentation(parent)
-    last = next((c for c in reversed(parent) if isinstance(c.tag, str)), None)
-    if last is not None:
-        return _leading_space(last), step
-    return outer + step, step
-
-
-def _remove(element: etree._Element) -> None:
-    parent = element.getparent()
-    previous = element.getprevious()
-    if element.getnext() is None:
-        # The last child's tail carries the indentation of the parent's closing tag.
-        if previous is not None:
-            previous.tail = element.tail
-        else:
-            parent.text = element.tail
-    parent.remove(element)
-
-
-def _insert_before(anchor: etree._Element, element: etree._Element) -> None:
-    element.tail = "\n" + _leading_space(anchor)
-    anchor.addprevious(element)
-
-
-def _append(parent: etree._Element, element: etree._Element) -> None:
-    last = next(parent.iterchildren(reversed=True), None)  # len(parent) walks every child
-    if last is not None:
-        element.tail = last.tail or ""
-        last.tail = "\n" + _leading_space(last)
-    else:
-        indent, _ = _indentation(parent)
-        element.tail = "\n" + indent
-    parent.append(element)
+def _show(value: Any) -> str:
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{k}: {_show(v)}" for k, v in value.items()) + "}"
+    if isinstance(value, frozenset | set):
+        return "{" + ", ".join(sorted(value)) + "}"
+    return repr(value)

@@ -33,6 +33,7 @@ from txtool.lint.suppress import parse as parse_suppressions
 from txtool.model.core import Dialect
 from txtool.rules import Rule, all_rules
 from txtool.transform.convert import DEFAULT_HARDWARE_PLUGIN, convert_source
+from txtool.transform.splice import splice
 
 Mode = Literal["check", "diff", "write"]
 _ENCODING = re.compile(rb"""^\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
@@ -64,6 +65,7 @@ class FileResult:
     target: Dialect | None = None
     losses: list[str] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
     refused: bool = False
     unwritten: bool = False  # the write failed
 
@@ -159,6 +161,8 @@ def _error(report: Report, message: str) -> None:
 def _record(report: Report, result: FileResult, options: MigrateOptions) -> None:
     for note in result.notes:
         report.messages.append(f"note: {result.path}: {note}")
+    for left in result.warnings:
+        report.messages.append(f"warning: {result.path}: {left}")
     level = "error" if result.refused else "warning"
     for loss in result.losses:
         report.messages.append(f"{level}: {result.path}: {loss}")
@@ -232,6 +236,7 @@ def _convert(result: FileResult, data: bytes, rules: Sequence[Rule],
         result.refused = True
         return data
     result.notes.extend(conversion.notes)
+    result.warnings.extend(conversion.warnings)
     result.losses.extend(conversion.losses)
     result.converted = conversion.converted
     tree = parse_bytes(conversion.data, result.path)
@@ -316,116 +321,6 @@ def _silenced(element: etree._Element, code: str, suppressions: Suppressions) ->
         for directive in suppressions.directives
         for line in lines or {0}
     )
-
-
-# Minimal rewriting -----------------------------------------------------------------------------
-
-
-def splice(original: bytes, baseline: bytes, migrated: bytes) -> bytes:
-    """``migrated``, with the lines the migration left alone taken verbatim from ``original``.
-
-    ``baseline`` is ``original`` parsed and serialized unchanged and ``migrated`` the migrated
-    tree serialized the same way, so ``baseline`` differs from ``original`` only in formatting
-    (quotes, spaces and line breaks inside tags, character references) and from ``migrated``
-    only by the migration. ``original`` and ``baseline`` are cut into the same blocks, each
-    ending with the line where a node (element start tag, comment) ends; a block whose lines
-    the migration did not touch is copied from ``original``, the rest comes from ``migrated``
-    with the line ending of ``original``. When the result would not parse to the migrated
-    document, the serialized document is returned instead.
-    """
-    if migrated == baseline:
-        return original
-    if baseline == original:
-        return migrated
-    try:
-        merged = _merge(original, baseline, migrated)
-    except InputError:
-        return migrated
-    return merged if _same_document(merged, migrated) else migrated
-
-
-def _merge(original: bytes, baseline: bytes, migrated: bytes) -> bytes:
-    o, b, n = (text.splitlines(keepends=True) for text in (original, baseline, migrated))
-    cuts = _cuts(parse_bytes(original, "<original>"), parse_bytes(baseline, "<baseline>"))
-    cuts.append((len(b), len(o)))
-    in_n = _matches([_key(line) for line in b], [_key(line) for line in n])
-    newline = _newline(original)
-    out: list[bytes] = []
-    pn = pb = po = 0
-    for eb, eo in cuts:
-        block = range(pb, eb)
-        if block and _untouched(block, in_n):
-            out += _lines(n[pn : in_n[pb]], newline) + o[po:eo]
-            pn = in_n[eb - 1] + 1
-        pb, po = eb, eo
-    out += _lines(n[pn:], newline)
-    return b"".join(out)
-
-
-def _cuts(original: etree._ElementTree, baseline: etree._ElementTree) -> list[tuple[int, int]]:
-    """(baseline line, original line) pairs, both increasing, where the same node ends."""
-    cuts: list[tuple[int, int]] = []
-    nodes = _nodes(baseline), _nodes(original)
-    if len(nodes[0]) != len(nodes[1]):
-        raise InputError("the baseline is not a serialization of the original")
-    for first, second in zip(*nodes, strict=True):
-        b, o = first.sourceline, second.sourceline
-        if b is None or o is None:
-            continue
-        if cuts and b == cuts[-1][0]:
-            cuts[-1] = (b, max(o, cuts[-1][1]))  # a break inside a start tag, not in baseline
-        elif not cuts or (b > cuts[-1][0] and o > cuts[-1][1]):
-            cuts.append((b, o))
-    return cuts
-
-
-def _nodes(tree: etree._ElementTree) -> list[etree._Element]:
-    root = tree.getroot()
-    before = list(root.itersiblings(preceding=True))[::-1]
-    return [*before, *root.iter(), *root.itersiblings()]
-
-
-def _untouched(block: range, in_n: dict[int, int]) -> bool:
-    """Whether the migration kept every line of ``block`` and put nothing between them."""
-    if any(i not in in_n for i in block):
-        return False
-    return in_n[block[-1]] - in_n[block[0]] == len(block) - 1
-
-
-def _key(line: bytes) -> bytes:
-    return line.rstrip(b"\r\n")
-
-
-def _matches(a: list[bytes], b: list[bytes]) -> dict[int, int]:
-    """Index in ``b`` of each line of ``a`` that the longest matching alignment pairs."""
-    matcher = difflib.SequenceMatcher(None, a, b, autojunk=False)
-    pairs: dict[int, int] = {}
-    for block in matcher.get_matching_blocks():
-        for k in range(block.size):
-            pairs[block.a + k] = block.b + k
-    return pairs
-
-
-def _lines(lines: list[bytes], newline: bytes) -> list[bytes]:
-    return [_key(line) + newline if line != _key(line) else line for line in lines]
-
-
-def _newline(data: bytes) -> bytes:
-    crlf = data.count(b"\r\n")
-    return b"\r\n" if crlf and crlf * 2 >= data.count(b"\n") else b"\n"
-
-
-def _same_document(a: bytes, b: bytes) -> bool:
-    try:
-        first = parse_bytes(a, "<merged>")
-        second = parse_bytes(b, "<migrated>")
-    except InputError:
-        return False
-    return _canonical(first) == _canonical(second)
-
-
-def _canonical(tree: etree._ElementTree) -> bytes:
-    return etree.tostring(tree, method="c14n")
 
 
 # Diff ------------------------------------------------------------------------------------------

@@ -2,7 +2,8 @@
 
 For every transmission and every cycle that starts from its dialect (``ros1 -> ros2-p2 ->
 ros1``, ``ros1 -> ros2-p1 -> ros2-p2 -> ros1``, ...), the whole document is converted through
-the cycle, read back, and compared field by field with the original (floats bit for bit).
+the cycle, read back, and compared field by field with the original (floats bit for bit), on
+what the original defines (:func:`txtool.transform.convert.judge`).
 Each first leg is also checked numerically: the converted config must drive the actuators
 exactly like the original (:mod:`txtool.mechanics.equivalence`).
 """
@@ -16,8 +17,8 @@ from txtool.dialects.read import read_source
 from txtool.io.xmlio import Source, parse_bytes
 from txtool.model.core import DIALECTS, Dialect, Transmission
 from txtool.model.robot import robot_joints
-from txtool.transform.convert import convert_source
-from txtool.views.tables import FIELDS, differences, surviving
+from txtool.transform.convert import convert_source, judge
+from txtool.views.tables import FIELDS
 
 
 @dataclass(frozen=True)
@@ -80,8 +81,22 @@ def roundtrip(source: Source) -> RoundTripReport:
     return report
 
 
-def _by_name(source: Source) -> dict[str, Transmission]:
-    return {f.transmission.name: f.transmission for f in read_source(source)}
+_Key = tuple[str, bool]
+
+
+def _by_name(source: Source) -> dict[_Key, list[Transmission]]:
+    """Standard and custom transmissions by name; same-named ones in document order (the
+    order conversions keep among them)."""
+    found: dict[_Key, list[Transmission]] = {}
+    for f in read_source(source):
+        found.setdefault((f.transmission.name, f.transmission.kind == "other"), []).append(
+            f.transmission)
+    return found
+
+
+def _take(found: dict[_Key, list[Transmission]], name: str) -> Transmission | None:
+    same = found.get((name, False))
+    return same.pop(0) if same else None
 
 
 def _cycles(source: Source, start: Dialect, group: list[Transmission], joints) -> list[CycleRow]:
@@ -90,23 +105,24 @@ def _cycles(source: Source, start: Dialect, group: list[Transmission], joints) -
     rows = []
     for cycle in cycles_from(start):
         current = source
-        first_leg: dict[str, Transmission] = {}
+        first_leg: dict[_Key, list[Transmission]] = {}
         for step in cycle[1:]:
             current = _reconvert(current, step)
             if not first_leg:
                 first_leg = _by_name(current)
         final = _by_name(current)
         for t in group:
-            back = final.get(t.name)
+            back = _take(final, t.name)
+            converted = _take(first_leg, t.name)
             if back is None:
                 rows.append(CycleRow(t.name, cycle, dict.fromkeys(FIELDS, False), "n/a: lost",
                                      ("the transmission is missing after the cycle",)))
                 continue
-            converted = first_leg.get(t.name)
             equivalence = compare_pair(t, converted, joints) if converted else None
+            lost = judge(t, back)
             rows.append(CycleRow(
-                t.name, cycle, surviving(t, back), _verdict(equivalence),
-                tuple(differences(t, back)),
+                t.name, cycle, {key: key not in lost for key in FIELDS}, _verdict(equivalence),
+                tuple(f"{key}: {change}" for key, change in lost.items()),
             ))
     return rows
 

@@ -1,0 +1,414 @@
+"""Where converted transmissions go, so that converting back puts everything where it was.
+
+ROS 1 -> ROS 2: top-level transmissions move into the ``<ros2_control>`` that declares their
+joints; the others into one block that txtool generates, which takes the place of the first of
+them. Transmissions that stood together keep the blank lines between them inside that block.
+ROS 2 -> ROS 1: a block that is exactly what txtool generates for its transmissions is replaced
+by them, at its place; from any other block they move out to stand just before it.
+Removing an element removes its lines and keeps the blank lines around it.
+"""
+
+from __future__ import annotations
+
+import copy
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from lxml import etree
+
+from txtool import dialects
+from txtool.dialects.read import detect_dialect, enclosing_component
+from txtool.dialects.translate import translate
+from txtool.io.xmlio import local
+from txtool.model.core import Dialect, Member, Transmission, replace
+from txtool.model.robot import children
+
+Carried = dict[tuple[str, str | None], list[etree._Element]]
+
+
+@dataclass
+class _Move:
+    old: etree._Element
+    new: Transmission
+    carried: Carried | None = None
+
+
+class Placer:
+    """Puts converted elements where their target dialect expects them; call :meth:`finish`
+    once every transmission has been placed."""
+
+    def __init__(self, root: etree._Element, hardware_plugin: str) -> None:
+        self.root = root
+        self.hardware_plugin = hardware_plugin
+        self.notes: list[str] = []
+        self._into_new: list[_Move] = []
+        self._out_of: dict[etree._Element, list[_Move]] = {}
+        self._components: list[etree._Element] | None = None
+        self._declared: dict[etree._Element, set[str]] = {}
+
+    def place(self, old: etree._Element, t: Transmission, carried: Carried | None = None
+              ) -> None:
+        """Place the conversion ``t`` of ``old``; ``carried``: children of ``old`` (by
+        owner) that go along as written."""
+        move = _Move(old, t, carried)
+        component = enclosing_component(old)
+        moving_out = t.dialect == "ros1" and component is not None
+        moving_in = (t.dialect != "ros1" and component is None and old.getparent() is not None
+                     and detect_dialect(old) == "ros1")
+        if moving_out and component.getparent() is not None:
+            self._out_of.setdefault(component, []).append(move)
+        elif moving_in and old.getparent() is self.root and local(self.root) == "robot":
+            existing = self._component_for(t)
+            if existing is None:
+                self._into_new.append(move)
+            else:
+                cut(old)
+                append(existing, self._build(move, *child_indentation(existing), existing))
+        elif moving_in:
+            # Inside a xacro macro or conditional (or a file whose root is not a <robot>): a
+            # <ros2_control> of its own, in place, so that the transmission stays in the scope
+            # of its ${...} parameters.
+            self._wrap_in_place(move)
+        elif t.dialect != "ros1" and detect_dialect(old) != "ros1":
+            restyle_roles(old, t.dialect)  # Proposal 1 <-> 2: only the roles change
+        else:
+            new = self._build(move, *indentation(old), old)
+            new.tail = old.tail
+            if old.getparent() is None:
+                _become(old, new)  # a bare <transmission> fragment
+            else:
+                old.getparent().replace(old, new)
+
+    def finish(self) -> None:
+        if self._into_new:
+            self._generate(self._into_new)
+        for component, moves in self._out_of.items():
+            if self._is_generated(component, moves):
+                self._ungenerate(component, moves)
+                self.notes.append(
+                    f"<ros2_control name=\"{component.get('name')}\"> is what txtool generates "
+                    "for its transmissions; replaced by them"
+                )
+                continue
+            for move in moves:
+                cut(move.old)
+                new = self._build(move, *indentation(component), component)
+                new.tail = "\n" + leading_space(component)
+                component.addprevious(new)
+
+    # ROS 1 -> ROS 2 ----------------------------------------------------------------------
+
+    def _generate(self, moves: list[_Move]) -> None:
+        first = moves[0].old
+        indent, step = indentation(first)
+        block = self._block(self.root.get("name", "robot"), self.hardware_plugin, moves,
+                            first, indent, step)
+        runs = _runs([m.old for m in moves])
+        for run in runs[1:]:
+            for old in run:
+                cut(old)
+        inner = [t for t in block if local(t) == "transmission"]
+        for position, old in enumerate(runs[0][:-1]):
+            inner[position].tail = _reindent(old.tail, indent + step)
+        block.tail = runs[0][-1].tail
+        for old in runs[0][1:]:
+            old.getparent().remove(old)
+        first.getparent().replace(first, block)
+        self._components = None
+
+    def _block(self, name: str, plugin: str, moves: list[_Move], like: etree._Element,
+               indent: str, step: str) -> etree._Element:
+        """A ``<ros2_control type="system">`` block declaring the joints of the converted
+        transmissions and holding them, as txtool generates it."""
+        q = _qualifier(like)
+        block = etree.Element(q("ros2_control"), name=name, type="system")
+        hardware = etree.SubElement(block, q("hardware"))
+        etree.SubElement(hardware, q("plugin")).text = plugin
+        seen: set[str] = set()
+        for move in moves:
+            for joint in move.new.joints:
+                if joint.name not in seen:
+                    seen.add(joint.name)
+                    block.append(_declaration(q, joint))
+        dialects.pretty(block, indent, step)
+        for move in moves:
+            append(block, self._build(move, indent + step, step, like))
+        return block
+
+    def _component_for(self, t: Transmission) -> etree._Element | None:
+        names = {j.name for j in t.joints}
+        if self._components is None:
+            self._components = list(self.root.iter("{*}ros2_control"))
+        for element in self._components:
+            if names <= self._joints_of(element):
+                return element
+        return None
+
+    def _joints_of(self, component: etree._Element) -> set[str]:
+        if component not in self._declared:
+            self._declared[component] = {j.get("name") for j in children(component, "joint")}
+        return self._declared[component]
+
+    def _wrap_in_place(self, move: _Move) -> None:
+        old = move.old
+        indent, step = indentation(old)
+        block = self._block(move.new.name, self.hardware_plugin, [move], old, indent, step)
+        block.tail = old.tail
+        old.getparent().replace(old, block)
+        self._components = None
+
+    # ROS 2 -> ROS 1 ----------------------------------------------------------------------
+
+    def _is_generated(self, component: etree._Element, moves: list[_Move]) -> bool:
+        inside = [e for e in component.iter("{*}transmission") if e is not component]
+        names = {self.root.get("name", "robot")}  # a block for the document
+        if len(moves) == 1:
+            names.add(moves[0].new.name)  # a block wrapped around one, in a xacro macro
+        if [m.old for m in moves] != inside or component.get("name") not in names:
+            return False
+        plugins = [p for h in children(component, "hardware") for p in children(h, "plugin")]
+        if len(plugins) != 1 or not plugins[0].text:
+            return False
+        dialect = detect_dialect(moves[0].old)
+        generating = [self._generating(move, dialect) for move in moves]
+        if any(t is None for t in generating):
+            return False
+        forward = [_Move(m.old, translate(t, dialect).transmission, m.carried)
+                   for m, t in zip(moves, generating, strict=True) if t is not None]
+        expected = self._block(component.get("name"), plugins[0].text, forward, component,
+                               "", "")
+        if _shape(expected, comments=False) != _shape(component, comments=False):
+            return False
+        for move, t in zip(moves, generating, strict=True):
+            move.new = t or move.new
+        return True
+
+    def _generating(self, move: _Move, dialect: Dialect) -> Transmission | None:
+        """The ROS 1 transmission from which txtool generates exactly ``move.old``: the
+        conversion itself, or the same without the reduction it had to write (ROS 1 requires
+        one; ros2_control reads a missing one as 1.0)."""
+        t = move.new
+        candidates = [t]
+        if t.kind == "simple" and t.actuators and t.actuators[0].mechanical_reduction:
+            bare = replace(t.actuators[0], mechanical_reduction=None)
+            candidates.append(replace(t, actuators=(bare, *t.actuators[1:])))
+        want = _shape(move.old, comments=False)
+        for candidate in candidates:
+            built = self._build(_Move(move.old, translate(candidate, dialect).transmission,
+                                      move.carried), "", "", move.old)
+            if _shape(built, comments=False) == want:
+                return candidate
+        return None
+
+    def _ungenerate(self, component: etree._Element, moves: list[_Move]) -> None:
+        indent, _ = indentation(component)
+        step = _step(component)
+        parent = component.getparent()
+        news = [self._build(m, indent, step, component) for m in moves]
+        for move, new in zip(moves, news, strict=True):
+            new.tail = _reindent(move.old.tail, indent)
+        news[-1].tail = component.tail
+        anchor = component
+        for new in news:
+            anchor.addnext(new)
+            anchor = new
+        parent.remove(component)
+
+    # Building ----------------------------------------------------------------------------
+
+    def _build(self, move: _Move, indent: str, step: str,
+               like: etree._Element) -> etree._Element:
+        """The converted element at ``indent``, in the namespace of ``like``, with the
+        comments and carried children of the old one."""
+        t = move.new
+        new = dialects.build(t, t.dialect, indent=indent, step=step, namespace=_namespace(like))
+        for (kind, name), elements in (move.carried or {}).items():
+            owner = new if kind == "transmission" else next(
+                (m for m in children(new, kind) if m.get("name") == name), new)
+            owner.extend(copy.deepcopy(e) for e in elements)
+        with_comments(new, move.old)
+        dialects.pretty(new, indent, step)
+        return new
+
+
+def restyle_roles(element: etree._Element, dialect: Dialect) -> None:
+    """Roles as ``role=`` attributes (Proposal 2) or ``<role>`` elements (Proposal 1), in
+    place: the rest of the transmission stays as written."""
+    for member in [*children(element, "joint"), *children(element, "actuator")]:
+        if dialect == "ros2-p2":
+            roles = children(member, "role")
+            if roles and member.get("role") is None:
+                _set_after_name(member, "role", (roles[0].text or "").strip())
+            for role in roles:
+                cut(role)
+            if roles and len(member) == 0 and not (member.text or "").strip():
+                member.text = None  # <x/> again
+        elif member.get("role") is not None:
+            role = etree.Element(member.tag.replace("}" + local(member), "}role")
+                                 if "}" in member.tag else "role")
+            role.text = member.attrib.pop("role")
+            _insert_first(member, role)
+
+
+def _set_after_name(element: etree._Element, name: str, value: str) -> None:
+    items = list(element.attrib.items())
+    at = next((i + 1 for i, (key, _) in enumerate(items) if key == "name"), len(items))
+    items.insert(at, (name, value))
+    element.attrib.clear()
+    element.attrib.update(items)
+
+
+def _insert_first(parent: etree._Element, child: etree._Element) -> None:
+    indent, step = indentation(parent)
+    first = next(iter(parent), None)
+    if first is None:
+        child.tail = "\n" + indent
+    else:
+        child.tail = parent.text if parent.text and parent.text.strip() == "" else None
+    parent.text = "\n" + (leading_space(first) if first is not None else indent + step)
+    parent.insert(0, child)
+
+
+def _declaration(q: Callable[[str], str], joint: Member) -> etree._Element:
+    element = etree.Element(q("joint"), name=joint.name)
+    for name in joint.interfaces:
+        etree.SubElement(element, q("command_interface"), name=name)
+    for name in joint.state_interfaces:
+        etree.SubElement(element, q("state_interface"), name=name)
+    return element
+
+
+def _shape(element: etree._Element, *, comments: bool = True) -> tuple:
+    """Tags, attributes, stripped texts and children: the element without its layout.
+    ``comments=False`` leaves out the comments inside transmissions (carried, not generated)."""
+    kids = []
+    for child in element:
+        if isinstance(child, etree._Comment):
+            if comments or local(element) != "transmission" and not _in_transmission(element):
+                kids.append(("#comment", child.text))
+            continue
+        if isinstance(child.tag, str):
+            kids.append(_shape(child, comments=comments))
+    return (element.tag, dict(element.attrib), (element.text or "").strip(), tuple(kids))
+
+
+def _in_transmission(element: etree._Element) -> bool:
+    return any(local(a) == "transmission" for a in element.iterancestors())
+
+
+def _runs(elements: list[etree._Element]) -> list[list[etree._Element]]:
+    """Elements that stand together (siblings with only whitespace between them). The first
+    run is replaced by the generated block, which keeps the blank lines between them."""
+    runs: list[list[etree._Element]] = []
+    for element in elements:
+        if runs and element.getprevious() is runs[-1][-1]:
+            runs[-1].append(element)
+        else:
+            runs.append([element])
+    return runs
+
+
+def cut(element: etree._Element) -> None:
+    """Remove ``element`` with the lines it stands on: the whitespace that starts its line
+    goes with it, its tail stays (so the blank lines on either side are kept)."""
+    parent = element.getparent()
+    previous = element.getprevious()
+    before = (previous.tail if previous is not None else parent.text) or ""
+    head, newline, indent = before.rpartition("\n")
+    tail = element.tail or ""
+    joined = head + tail if newline and not indent.strip() and tail.startswith(("\n", "\r")) \
+        else before + tail
+    if previous is not None:
+        previous.tail = joined
+    else:
+        parent.text = joined
+    parent.remove(element)
+
+
+def append(parent: etree._Element, element: etree._Element) -> None:
+    last = next(parent.iterchildren(reversed=True), None)  # len(parent) walks every child
+    if last is not None:
+        element.tail = last.tail or ""
+        last.tail = "\n" + leading_space(last)
+    else:
+        indent, _ = indentation(parent)
+        element.tail = "\n" + indent
+    parent.append(element)
+
+
+def _reindent(tail: str | None, indent: str) -> str:
+    """``tail`` with the indentation of its last line replaced by ``indent``."""
+    head, newline, _ = (tail or "").rpartition("\n")
+    return head + newline + indent if newline else "\n" + indent
+
+
+def with_comments(new: etree._Element, old: etree._Element, indent: str | None = None,
+                  step: str | None = None) -> etree._Element:
+    """Carry the comments of the old element: under the same joint or actuator when they
+    stood there, else at the top of the transmission."""
+    targets = {(local(m), m.get("name")): m for m in new if isinstance(m.tag, str)}
+    for parent in [old, *children(old, "joint"), *children(old, "actuator")]:
+        target = new if parent is old else targets.get((local(parent), parent.get("name")), new)
+        comments = [etree.Comment(c.text) for c in parent if isinstance(c, etree._Comment)]
+        for position, comment in enumerate(comments):
+            if target is new:
+                new.insert(position, comment)
+            else:
+                target.append(comment)
+    if indent is not None and step is not None and any(
+            isinstance(c, etree._Comment) for c in new.iter()):
+        dialects.pretty(new, indent, step)
+    return new
+
+
+def _namespace(element: etree._Element) -> str | None:
+    tag = element.tag
+    return tag[1:].split("}", 1)[0] if isinstance(tag, str) and tag.startswith("{") else None
+
+
+def _become(old: etree._Element, new: etree._Element) -> None:
+    """Give the root element ``new``'s content, keeping its place among top-level comments."""
+    old.tag = new.tag
+    old.attrib.clear()
+    old.attrib.update(new.attrib)
+    old.text = new.text
+    for child in list(old):
+        old.remove(child)
+    old.extend(list(new))
+
+
+def _qualifier(like: etree._Element) -> Callable[[str], str]:
+    """Tag names in the default namespace of ``like`` (some URDFs declare one)."""
+    ns = _namespace(like)
+    return (lambda tag: f"{{{ns}}}{tag}") if ns else (lambda tag: tag)
+
+
+def leading_space(element: etree._Element) -> str:
+    previous = element.getprevious()
+    text = previous.tail if previous is not None else (
+        element.getparent().text if element.getparent() is not None else "")
+    text = text or ""
+    return text.rsplit("\n", 1)[-1] if "\n" in text else ""
+
+
+def indentation(element: etree._Element) -> tuple[str, str]:
+    indent = leading_space(element)
+    return indent, _step(element)
+
+
+def _step(element: etree._Element) -> str:
+    indent = leading_space(element)
+    first = next((c for c in element if isinstance(c.tag, str)), None)
+    if first is not None:
+        inner = leading_space(first)
+        if inner.startswith(indent) and len(inner) > len(indent):
+            return inner[len(indent):]
+    return "  "
+
+
+def child_indentation(parent: etree._Element) -> tuple[str, str]:
+    outer, step = indentation(parent)
+    last = next((c for c in reversed(parent) if isinstance(c.tag, str)), None)
+    if last is not None:
+        return leading_space(last), step
+    return outer + step, step

@@ -1,0 +1,210 @@
+"""The one writer of every command that rewrites a document (``convert``, ``migrate``).
+
+A command changes a parsed tree; :func:`rewrite` turns the change back into bytes by text
+splicing: only the lines that hold a changed node are written anew, every other line keeps its
+original bytes. So the byte-order mark, the XML declaration, line endings (LF, CRLF or CR),
+attribute order and quoting, ``<x></x>`` against ``<x/>``, character references, comments and
+blank lines stay as written wherever the command did not change them. Atomic writing of the
+result is :func:`txtool.io.xmlio.write_atomic`.
+"""
+
+from __future__ import annotations
+
+import codecs
+import difflib
+import re
+
+from lxml import etree
+
+from txtool.io.xmlio import InputError, parse_bytes, serialize
+
+_LATE_DECLARATION = re.compile(rb"<\?xml\s[^>]*\?>[ \t]*(\r\n|\r|\n)?")
+
+
+def rewrite(original: bytes, before: etree._ElementTree, after: etree._ElementTree) -> bytes:
+    """``after`` as bytes, spliced into ``original`` (the text ``before`` was parsed from)."""
+    return splice(original, serialize(before, original), serialize(after, original))
+
+
+def splice(original: bytes, baseline: bytes, changed: bytes) -> bytes:
+    """``changed``, with the lines the change left alone taken verbatim from ``original``.
+
+    ``baseline`` is ``original`` parsed and serialized unchanged and ``changed`` the changed
+    tree serialized the same way, so ``baseline`` differs from ``original`` only in formatting
+    (quotes, spaces and line breaks inside tags, character references) and from ``changed``
+    only by the change. ``original`` and ``baseline`` are cut into the same blocks, each
+    ending with the line where a node (element start tag, comment) ends; a block whose lines
+    the change did not touch is copied from ``original``, the rest comes from ``changed``
+    with the line ending of ``original``. When the result would not parse to the changed
+    document, the serialized document is returned instead.
+    """
+    if changed == baseline:
+        return original
+    if baseline == original:
+        return changed
+    for fine in (True, False):
+        try:
+            merged = _merge(original, baseline, changed, fine=fine)
+        except InputError:
+            return changed
+        if _same_document(merged, changed):
+            return _without_late_declaration(_keep_ends(original, merged))
+    return changed
+
+
+def _merge(original: bytes, baseline: bytes, changed: bytes, *, fine: bool) -> bytes:
+    """Each line of ``changed``, or the original text of the lines it stands for.
+
+    A block the change left whole is copied as written; with ``fine``, so is every kept line
+    of a changed block that has as many lines in the original as in the baseline (its lines
+    then correspond one to one: the end tags before a changed node keep their text).
+    """
+    o, b, n = (text.splitlines(keepends=True) for text in (original, baseline, changed))
+    cuts = _cuts(parse_bytes(_lf(o), "<original>"), parse_bytes(_lf(b), "<baseline>"))
+    cuts.append((len(b), len(o)))
+    in_n = _matches([_key(line) for line in b], [_key(line) for line in n])
+    written: dict[int, list[bytes]] = {}
+    pb = po = 0
+    for eb, eo in cuts:
+        if not fine:
+            _keep_whole(range(pb, eb), o[po:eo], in_n, written)
+        else:
+            top, bottom = _alike_ends(b[pb:eb], o[po:eo])
+            for k in [*range(top), *range(eb - pb - bottom, eb - pb)]:
+                if pb + k in in_n:  # the block's first and last lines that read alike
+                    written[in_n[pb + k]] = [o[po + k] if k < top else o[eo - (eb - pb - k)]]
+            _keep_whole(range(pb + top, eb - bottom), o[po + top:eo - bottom], in_n, written)
+        pb, po = eb, eo
+    newline = _newline(o)
+    out: list[bytes] = []
+    for index, line in enumerate(n):
+        out += written[index] if index in written else _lines([line], newline)
+    return b"".join(out)
+
+
+def _keep_whole(block: range, original: list[bytes], in_n: dict[int, int],
+                written: dict[int, list[bytes]]) -> None:
+    """The original lines of a block that the change left whole."""
+    if block and _untouched(block, in_n):
+        written.update((in_n[i], []) for i in block)
+        written[in_n[block[0]]] = original
+
+
+def _alike_ends(baseline: list[bytes], original: list[bytes]) -> tuple[int, int]:
+    """How many lines at the top and at the bottom of a block read alike in both texts (the
+    same but for quotes and spacing: the same nodes, line for line)."""
+    if len(baseline) == len(original):
+        return len(baseline), 0
+    most = min(len(baseline), len(original))
+    top = 0
+    while top < most and _alike(baseline[top], original[top]):
+        top += 1
+    bottom = 0
+    while bottom < most - top and _alike(baseline[-1 - bottom], original[-1 - bottom]):
+        bottom += 1
+    return top, bottom
+
+
+def _alike(first: bytes, second: bytes) -> bool:
+    def plain(line: bytes) -> bytes:
+        return re.sub(rb"\s+", b" ", line.replace(b"'", b'"')).strip()
+
+    return plain(first) == plain(second)
+
+
+def _lf(lines: list[bytes]) -> bytes:
+    """The text with every line ending as LF: libxml2 counts no line at a bare CR."""
+    return b"".join(_key(line) + b"\n" if line != _key(line) else line for line in lines)
+
+
+def _cuts(original: etree._ElementTree, baseline: etree._ElementTree) -> list[tuple[int, int]]:
+    """(baseline line, original line) pairs, both increasing, where the same node ends."""
+    cuts: list[tuple[int, int]] = []
+    nodes = _nodes(baseline), _nodes(original)
+    if len(nodes[0]) != len(nodes[1]):
+        raise InputError("the baseline is not a serialization of the original")
+    for first, second in zip(*nodes, strict=True):
+        b, o = first.sourceline, second.sourceline
+        if b is None or o is None:
+            continue
+        if cuts and b == cuts[-1][0]:
+            cuts[-1] = (b, max(o, cuts[-1][1]))  # a break inside a start tag, not in baseline
+        elif not cuts or (b > cuts[-1][0] and o > cuts[-1][1]):
+            cuts.append((b, o))
+    return cuts
+
+
+def _nodes(tree: etree._ElementTree) -> list[etree._Element]:
+    root = tree.getroot()
+    before = list(root.itersiblings(preceding=True))[::-1]
+    return [*before, *root.iter(), *root.itersiblings()]
+
+
+def _untouched(block: range, in_n: dict[int, int]) -> bool:
+    """Whether the change kept every line of ``block`` and put nothing between them."""
+    if any(i not in in_n for i in block):
+        return False
+    return in_n[block[-1]] - in_n[block[0]] == len(block) - 1
+
+
+def _key(line: bytes) -> bytes:
+    return line.rstrip(b"\r\n")
+
+
+def _matches(a: list[bytes], b: list[bytes]) -> dict[int, int]:
+    """Index in ``b`` of each line of ``a`` that the longest matching alignment pairs."""
+    matcher = difflib.SequenceMatcher(None, a, b, autojunk=False)
+    pairs: dict[int, int] = {}
+    for block in matcher.get_matching_blocks():
+        for k in range(block.size):
+            pairs[block.a + k] = block.b + k
+    return pairs
+
+
+def _lines(lines: list[bytes], newline: bytes) -> list[bytes]:
+    return [_key(line) + newline if line != _key(line) else line for line in lines]
+
+
+def _newline(lines: list[bytes]) -> bytes:
+    """The line ending most lines of the original end with (LF when none does)."""
+    counts = {b"\r\n": 0, b"\r": 0, b"\n": 0}
+    for line in lines:
+        ending = line[len(_key(line)):]
+        if ending in counts:
+            counts[ending] += 1
+    best = max(counts, key=lambda ending: counts[ending])
+    return best if counts[best] else b"\n"
+
+
+def _keep_ends(original: bytes, merged: bytes) -> bytes:
+    """A UTF-8 byte-order mark and a final line ending stay even when the first or the last
+    line was rewritten."""
+    if original.startswith(codecs.BOM_UTF8) and not merged.startswith(codecs.BOM_UTF8):
+        merged = codecs.BOM_UTF8 + merged
+    last = original.splitlines(keepends=True)[-1:]
+    ending = last[0][len(_key(last[0])):] if last else b""
+    if ending and _key(merged) == merged:
+        merged += ending
+    return merged
+
+
+def _without_late_declaration(data: bytes) -> bytes:
+    """An XML declaration after a comment (some published URDFs put a licence first) makes
+    the document malformed for strict parsers; txtool reads it, but never writes it."""
+    late = _LATE_DECLARATION.search(data)
+    if late is None or not data[:late.start()].strip(codecs.BOM_UTF8 + b" \t\r\n"):
+        return data
+    return data[:late.start()] + data[late.end():]
+
+
+def _same_document(a: bytes, b: bytes) -> bool:
+    try:
+        first = parse_bytes(a, "<merged>")
+        second = parse_bytes(b, "<changed>")
+    except InputError:
+        return False
+    return _canonical(first) == _canonical(second)
+
+
+def _canonical(tree: etree._ElementTree) -> bytes:
+    return etree.tostring(tree, method="c14n")
