@@ -193,3 +193,61 @@ def joint_range(kind: str, lower: float, upper: float) -> tuple[float, float]:
     if kind == "continuous" or not (math.isfinite(lower) and math.isfinite(upper)):
         return CONTINUOUS_RANGE
     return lower, upper
+
+
+def follow(ref: Reference, joints: tuple[str, ...],
+           followers: dict[str, tuple[str, float, float]]) -> Reference:
+    """Mimic joints simulated as independent DoFs track ``multiplier * leader + offset``."""
+    if not followers:
+        return ref
+    q, qd, qdd = ref.q.copy(), ref.qd.copy(), ref.qdd.copy()
+    for name, (leader, multiplier, offset) in followers.items():
+        f, lead = joints.index(name), joints.index(leader)
+        q[:, f] = multiplier * ref.q[:, lead] + offset
+        qd[:, f] = multiplier * ref.qd[:, lead]
+        qdd[:, f] = multiplier * ref.qdd[:, lead]
+    return Reference(ref.time, q, qd, qdd, ref.source)
+
+
+def saturate(ref: Reference, joints: tuple[str, ...], lower: np.ndarray, upper: np.ndarray,
+             velocity: np.ndarray, dt: float) -> tuple[Reference, list[str]]:
+    """The setpoint as computed_torque_controllers makes it: ``q_sp = saturate(q_cmd)``.
+
+    ros_control's ``PositionJointSaturationHandle::enforceLimits`` clamps each command to
+    ``[max(prev - vmax dt, lower), min(prev + vmax dt, upper)]`` (``prev``: the last setpoint),
+    and the setpoint velocity is ``(q_sp - prev) / dt``. Where that changes the command, the
+    velocity is that difference and the acceleration feed-forward is 0 (the controller has
+    none); elsewhere the analytic values stay. Returns the setpoint and one note per joint.
+    """
+    step = velocity * dt
+    slack = 1e-9 + 1e-9 * np.abs(ref.q).max(initial=0.0)
+    over_position = (ref.q < lower - slack) | (ref.q > upper + slack)
+    over_speed = np.abs(ref.qd) > velocity * (1 + 1e-9)
+    if not (over_position.any() or over_speed.any()):
+        return ref, []
+    q = np.empty_like(ref.q)
+    previous = np.clip(ref.q[0], lower, upper)
+    q[0] = previous
+    for k in range(1, len(ref.q)):
+        previous = np.clip(ref.q[k], np.maximum(previous - step, lower),
+                           np.minimum(previous + step, upper))
+        q[k] = previous
+    changed = np.abs(q - ref.q) > slack
+    changed[1:] |= changed[:-1].copy()
+    qd, qdd = ref.qd.copy(), ref.qdd.copy()
+    difference = np.vstack([np.zeros(len(joints)), np.diff(q, axis=0) / dt])
+    qd[changed], qdd[changed] = difference[changed], 0.0
+    notes = []
+    for v, name in enumerate(joints):
+        if over_position[:, v].any():
+            first = ref.time[int(np.argmax(over_position[:, v]))]
+            notes.append(f"reference: joint '{name}' goes outside its position limits "
+                         f"[{lower[v]:.4g}, {upper[v]:.4g}] from t={first:.3f} s; the setpoint "
+                         "is saturated as computed_torque_controllers does (q_sp = "
+                         "saturate(q_cmd))")
+        if over_speed[:, v].any():
+            peak = float(np.abs(ref.qd[:, v]).max())
+            notes.append(f"reference: joint '{name}' moves at up to {peak:.4g}, beyond its "
+                         f"velocity limit {velocity[v]:.4g}; the setpoint is rate-limited as "
+                         "computed_torque_controllers does")
+    return Reference(ref.time, q, qd, qdd, ref.source), notes
