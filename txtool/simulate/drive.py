@@ -49,6 +49,7 @@ class Drive:
         default_factory=list)
     notes: list[str] = field(default_factory=list)  # transmissions left out, and why
     skipped: dict[str, str] = field(default_factory=dict)  # transmission name -> why
+    names: tuple[str, ...] = ()  # every transmission read (simulated or not)
 
     @property
     def na(self) -> int:
@@ -98,6 +99,7 @@ def read_drive(source: Source, robot: RobotModel, *, loader: str = "auto",
     if found and not maps:
         notes.append("no transmission can be simulated: every joint is driven directly")
     drive.notes, drive.skipped = notes, skipped
+    drive.names = tuple(item.transmission.name for item in found)
     return drive
 
 

@@ -22,7 +22,7 @@ import numpy as np
 from txtool.simulate.reference import Reference, minimum_jerk, step_times
 
 MARGIN = 0.8  # a reference peak may use this share of a speed or effort limit
-LAG_SHARE = 0.25  # share of the tolerance the predicted lag of a damped light link may use
+LAG_SHARE = 0.15  # share of the tolerance the predicted lag of a damped light link may use
 LONGEST_MOVE = 30.0  # s: the default run grows to at most 2 x this
 SAMPLES = 120  # points of the unit profile where the dynamics are evaluated
 GRID = 1.03  # ratio between move times tried

@@ -107,6 +107,10 @@ def prepare(options: Options, config: str | None, label: str | None = None) -> P
                           skip=options.skip)
     else:
         ctrl = plant
+    unknown = sorted(set(options.skip) - set(plant.names) - set(ctrl.names))
+    if unknown:
+        raise InputError(f"--skip: no transmission named {', '.join(map(repr, unknown))} in "
+                         f"{options.robot}" + (f" or {config}" if config else ""))
     params = load_params(options.params, options.robot)
     params.check_names(set(plant.actuators) | set(ctrl.actuators), set(robot.joints),
                        options.robot)
