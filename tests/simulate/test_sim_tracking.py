@@ -6,7 +6,6 @@ import numpy as np
 import pytest
 
 from tests.simulate.robots import arm_both, arm_ros1, arm_ros2, pendulum, write
-from txtool.io.xmlio import InputError
 from txtool.simulate.run import Options, simulate_one
 
 

@@ -141,7 +141,10 @@ def _move_time(limits: Limits, qd: np.ndarray, qdd: np.ndarray, parts: Parts,
             k = int(np.argmax(values))
             names = limits.actuators if "actuator" in what else limits.joints
             candidates.append((float(values[k]), what.format(names[k])))
-    move, binding = max(candidates, key=lambda c: c[0])
+    move, binding = candidates[0]
+    for value, what in candidates[1:]:  # the first named wins a tie (a joint, its actuator)
+        if value > move * (1 + 1e-9):
+            move, binding = value, what
     quadratic, linear, static = parts
     limit = MARGIN * limits.actuator_effort
     hopeless = np.abs(static @ limits.eff_j2a.T).max(axis=0) > limit  # no move time helps

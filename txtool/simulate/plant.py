@@ -139,7 +139,8 @@ def _impulses(G: np.ndarray, w_free: np.ndarray, b: np.ndarray, mode: np.ndarray
     stuck = mode == 0
     if np.any(stuck):
         slide = ~stuck
-        p[stuck] = np.linalg.solve(G[stuck][:, stuck], w_free[stuck] - G[stuck][:, slide] @ p[slide])
+        held = G[stuck]
+        p[stuck] = np.linalg.solve(held[:, stuck], w_free[stuck] - held[:, slide] @ p[slide])
     return p
 
 

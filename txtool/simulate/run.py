@@ -238,6 +238,12 @@ def _judge(p: Prepared, series: result.Series) -> result.RunResult:
         reasons.append(f"joint '{name}': the config cannot measure it")
     reasons += result.verdict_reasons(series, joints, actuators, s.tolerance,
                                       options.allow_saturation)
+    saturated = [n.split("'")[1] for n in p.reference_notes if n.startswith("reference: joint")]
+    if reasons and saturated:
+        names = ", ".join(f"'{j}'" for j in dict.fromkeys(saturated))
+        reasons.insert(0, f"the reference exceeds the limits of joint {names} and was saturated "
+                          "(see the notes): the failures may come from the reference, not the "
+                          "config")
     return result.RunResult(
         robot=options.robot, config="", dt=s.dt, steps=plan.steps, duration=duration,
         reference="", joints=joints, actuators=actuators, reasons=reasons, notes=[],
