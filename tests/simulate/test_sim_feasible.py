@@ -35,8 +35,8 @@ def test_a_given_duration_shrinks_the_motion_instead(tmp_path):
     assert run.passed, run.reasons
     assert run.duration == 4.0
     share = MARGIN * 0.5 * 2.0 / (1.875 * 1.5)
-    assert f"joint 'shoulder' moves {100 * share:.0f}% of the default amplitude to stay " \
-           "within its limits at 2 s per move" in run.notes
+    assert ("to stay within the limits at 2 s per move, joints move this share of the default "
+            f"amplitude: 'shoulder' {100 * share:.0f}%") in run.notes
     assert np.ptp(run.series.q_ref[:, 0]) == pytest.approx(1.5 * share, rel=1e-3)
 
 

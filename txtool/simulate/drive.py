@@ -23,6 +23,7 @@ from txtool.model.semantics import NotLoadable, loader_of
 from txtool.simulate.model import RobotModel
 
 DRAKE_TAGS = ("rotor_inertia", "gear_ratio")
+GROUP = 3  # transmissions left out for one reason that are listed in one note
 
 
 @dataclass
@@ -78,6 +79,7 @@ def read_drive(source: Source, robot: RobotModel, *, loader: str = "auto",
     """
     found, notes = _select(source.path, read_source(source), loader)
     skipped: dict[str, str] = {}
+    where: dict[str, str] = {}
     maps, kept = [], []
     owner: dict[str, str] = {}
     taken: set[str] = set()
@@ -85,9 +87,7 @@ def read_drive(source: Source, robot: RobotModel, *, loader: str = "auto",
         t = item.transmission
         why = _why_not(item, robot, owner, taken, convention, skip)
         if isinstance(why, str):
-            skipped[t.name] = why
-            notes.append(f"{_where(source.path, item)}: transmission '{t.name}' is not "
-                         f"simulated: {why}")
+            skipped[t.name], where[t.name] = why, _where(source.path, item)
             continue
         for joint in why.joints:
             owner[joint] = t.name
@@ -96,11 +96,27 @@ def read_drive(source: Source, robot: RobotModel, *, loader: str = "auto",
         kept.append(item)
     drive = assemble(source.path, maps, robot, kept)
     drive.drake = read_drake_tags(source.path, kept)
+    notes += _skip_notes(source.path, skipped, where)
     if found and not maps:
         notes.append("no transmission can be simulated: every joint is driven directly")
     drive.notes, drive.skipped = notes, skipped
     drive.names = tuple(item.transmission.name for item in found)
     return drive
+
+
+def _skip_notes(path: str, skipped: dict[str, str], where: dict[str, str]) -> list[str]:
+    """One note per transmission left out; one per reason when three or more share it."""
+    by_reason: dict[str, list[str]] = {}
+    for name, why in skipped.items():
+        by_reason.setdefault(why, []).append(name)
+    notes = []
+    for why, names in by_reason.items():
+        if len(names) < GROUP:
+            notes += [f"{where[n]}: transmission '{n}' is not simulated: {why}" for n in names]
+        else:
+            notes.append(f"{path}: {len(names)} transmissions are not simulated: {why}: "
+                         + ", ".join(names))
+    return notes
 
 
 def _why_not(item: Found, robot: RobotModel, owner: dict[str, str], taken: set[str],

@@ -93,9 +93,10 @@ def plan_motion(ranges: list[tuple[float, float]], limits: Limits, dynamics: Dyn
         chosen = max(move, needed)
         return Plan(chosen, amplitude, binding if chosen > move else "", tuple(notes), weak)
     scale = _amplitude_scale(limits, qd, qdd, parts, tolerance, longest)
-    for v in np.nonzero(scale < 1.0)[0]:
-        notes.append(f"joint '{limits.joints[v]}' moves {100 * scale[v]:.0f}% of the default "
-                     f"amplitude to stay within its limits at {longest:g} s per move")
+    shrunk = [f"'{limits.joints[v]}' {100 * scale[v]:.0f}%" for v in np.nonzero(scale < 1)[0]]
+    if shrunk:
+        notes.append(f"to stay within the limits at {longest:g} s per move, joints move this "
+                     "share of the default amplitude: " + ", ".join(shrunk))
     return Plan(longest, amplitude * scale, "", tuple(notes), weak)
 
 
