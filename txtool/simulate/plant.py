@@ -73,8 +73,10 @@ class Dynamics:
         if self.block is None:
             inverse = pin.computeMinverse(self.model, self.data, q)
         else:
-            mass = pin.crba(self.model, self.data, q)
-            mass = np.triu(mass) + np.triu(mass, 1).T + self.block
+            mass = pin.crba(self.model, self.data, q).copy()  # its upper triangle is filled
+            lower = np.tril_indices(len(v), -1)
+            mass[lower] = mass.T[lower]
+            mass += self.block
             if self.friction is None:
                 return v + h * np.linalg.solve(mass, rhs)
             inverse = np.linalg.inv(mass)
@@ -89,31 +91,33 @@ class Dynamics:
         (``p_i = b_i sign(w_i)``); the guess starts from the last step and is corrected until
         consistent. Projected Gauss-Seidel settles the rare case where that cycles.
         """
-        rows = np.nonzero(bound > 0)[0]
+        rows = np.flatnonzero(bound > 0)
         b = bound[rows]
-        G = inverse[rows][:, rows]
+        columns = inverse[:, rows]
+        G = columns[rows]
         w_free = free[rows]
         mode = self.mode if len(self.mode) == len(rows) else np.sign(w_free)
-        if not np.any(mode == 0):  # all sliding: the common case, no solve
-            p = b * mode
-            w = w_free - G @ p
-            if np.array_equal(np.sign(w), mode):
-                return free - inverse[:, rows] @ p
         for _ in range(ACTIVE_SET_ROUNDS):
-            p = _impulses(G, w_free, b, mode)
+            p = b * mode
+            stuck = np.flatnonzero(mode == 0)
+            if stuck.size:
+                slide = np.flatnonzero(mode)
+                held = G[stuck]
+                p[stuck] = np.linalg.solve(held[:, stuck],
+                                           w_free[stuck] - held[:, slide] @ p[slide])
             w = w_free - G @ p
-            stuck = mode == 0
-            new = mode.copy()
-            new[stuck & (np.abs(p) > b)] = np.sign(p[stuck & (np.abs(p) > b)])
-            new[~stuck & (np.sign(w) != mode)] = 0.0
-            if np.array_equal(new, mode):
+            breaks_free = stuck[np.abs(p[stuck]) > b[stuck]]
+            stops = np.flatnonzero((w * mode <= 0) & (mode != 0))
+            if not (breaks_free.size or stops.size):
                 break
-            mode = new
+            mode = mode.copy()
+            mode[breaks_free] = np.sign(p[breaks_free])
+            mode[stops] = 0.0
         else:
             p = self._gauss_seidel(G, w_free, b)
             mode = np.where(np.abs(p) < b, 0.0, np.sign(p))
         self.mode = mode
-        velocity = free - inverse[:, rows] @ p
+        velocity = free - columns @ p
         velocity[rows[mode == 0]] = 0.0  # sticking: exactly at rest, not round-off
         return velocity
 
@@ -130,18 +134,6 @@ class Dynamics:
             if change <= PGS_TOL * (1.0 + float(b.max())):
                 break
         return p
-
-
-def _impulses(G: np.ndarray, w_free: np.ndarray, b: np.ndarray, mode: np.ndarray
-              ) -> np.ndarray:
-    """Impulses for a guess: sliding joints take ``b * mode``, stuck ones what holds them."""
-    p = b * mode
-    stuck = mode == 0
-    if np.any(stuck):
-        slide = ~stuck
-        held = G[stuck]
-        p[stuck] = np.linalg.solve(held[:, stuck], w_free[stuck] - held[:, slide] @ p[slide])
-    return p
 
 
 def substeps_for(dt: float, damping: np.ndarray, inertia: np.ndarray) -> tuple[int, int | None]:
