@@ -5,9 +5,9 @@ the same move time ``T``. With ``s(tau)`` the unit profile, the reference is
 ``q = low + d s(t/T)``, ``qd = d s'/T``, ``qdd = d s''/T^2``; so joint and actuator speeds
 scale with ``1/T`` and the torque ``tau = (M qdd + C qd) / T^2 + D qd / T + g + F sign(qd)``
 (each term computed once at ``T = 1`` on the unit profile) is checked for any ``T`` without
-more dynamics. The smallest ``T`` that keeps every joint and actuator speed, every actuator
-effort (through the plant's effort map) and the tracking lag of heavily damped light links
-within ``MARGIN`` of its limit is chosen. When the run's length is fixed (``--duration`` or
+more dynamics. The smallest ``T`` that keeps every joint and actuator speed and every actuator
+effort (through the plant's effort map) within ``MARGIN`` of its limit, and the predicted
+tracking lag of heavily damped light joints within ``LAG_SHARE`` of the tolerance, is chosen. When the run's length is fixed (``--duration`` or
 the params file), amplitudes shrink instead; a joint whose gravity and friction alone exceed
 its actuator's limit is held still. Every such choice is a note.
 """
@@ -48,12 +48,12 @@ class Limits:
 
 
 @dataclass(frozen=True)
-class Plan:
+class Motion:
     move: float  # seconds per move (the run is two moves)
     amplitude: np.ndarray  # per joint, share of the 25%..75% move
     binding: str  # what set the move time
     notes: tuple[str, ...]
-    cannot_hold: tuple[str, ...] = ()  # actuators too weak for gravity and friction at rest
+    cannot_hold: tuple[str, ...] = ()  # why actuators cannot hold their joints at rest
 
 
 def unit_profile(ranges: list[tuple[float, float]], amplitude: np.ndarray
@@ -75,7 +75,7 @@ def _ends(ranges: list[tuple[float, float]], amplitude: np.ndarray
 
 
 def plan_motion(ranges: list[tuple[float, float]], limits: Limits, dynamics: Dynamics,
-                move: float, fixed: bool, tolerance: float) -> Plan:
+                move: float, fixed: bool, tolerance: float) -> Motion:
     """The move time and amplitudes; ``move`` is the default (or, with ``fixed``, the only)."""
     amplitude = np.ones(len(ranges))
     notes = []
@@ -91,13 +91,13 @@ def plan_motion(ranges: list[tuple[float, float]], limits: Limits, dynamics: Dyn
     needed, binding = _move_time(limits, qd, qdd, parts, tolerance, move)
     if needed <= longest:
         chosen = max(move, needed)
-        return Plan(chosen, amplitude, binding if chosen > move else "", tuple(notes), weak)
+        return Motion(chosen, amplitude, binding if chosen > move else "", tuple(notes), weak)
     scale = _amplitude_scale(limits, qd, qdd, parts, tolerance, longest)
     shrunk = [f"'{limits.joints[v]}' {100 * scale[v]:.0f}%" for v in np.nonzero(scale < 1)[0]]
     if shrunk:
         notes.append(f"to stay within the limits at {longest:g} s per move, joints move this "
                      "share of the default amplitude: " + ", ".join(shrunk))
-    return Plan(longest, amplitude * scale, "", tuple(notes), weak)
+    return Motion(longest, amplitude * scale, "", tuple(notes), weak)
 
 
 def _cannot_hold(limits: Limits, static: np.ndarray) -> tuple[str, ...]:
@@ -185,22 +185,22 @@ def _amplitude_scale(limits: Limits, qd: np.ndarray, qdd: np.ndarray, parts: Par
     return scale
 
 
-def sample(ranges: list[tuple[float, float]], plan: Plan, dt: float) -> Reference:
-    """The reference of ``plan`` at every control step (two moves: up, then back)."""
-    t = step_times(2 * plan.move, dt)
-    low, high = _ends(ranges, plan.amplitude)
+def sample(ranges: list[tuple[float, float]], motion: Motion, dt: float) -> Reference:
+    """The reference of ``motion`` at every control step (two moves: up, then back)."""
+    t = step_times(2 * motion.move, dt)
+    low, high = _ends(ranges, motion.amplitude)
     q, qd, qdd = (np.zeros((len(t), len(ranges))) for _ in range(3))
-    second = t >= plan.move
+    second = t >= motion.move
     for i in range(len(ranges)):
-        up = minimum_jerk(t, 0.0, plan.move, low[i], high[i])
-        down = minimum_jerk(t, plan.move, 2 * plan.move, high[i], low[i])
+        up = minimum_jerk(t, 0.0, motion.move, low[i], high[i])
+        down = minimum_jerk(t, motion.move, 2 * motion.move, high[i], low[i])
         for target, a, b in zip((q, qd, qdd), up, down, strict=True):
             target[:, i] = np.where(second, b, a)
-    return Reference(t, q, qd, qdd, describe(plan))
+    return Reference(t, q, qd, qdd, describe(motion))
 
 
-def describe(plan: Plan) -> str:
-    text = f"minimum-jerk 25% -> 75% -> 25% of each range, {plan.move:.3g} s per move"
-    if plan.binding:
-        text += f" (slowed for {plan.binding})"
+def describe(motion: Motion) -> str:
+    text = f"minimum-jerk 25% -> 75% -> 25% of each range, {motion.move:.3g} s per move"
+    if motion.binding:
+        text += f" (slowed for {motion.binding})"
     return text
