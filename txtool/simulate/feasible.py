@@ -7,9 +7,10 @@ scale with ``1/T`` and the torque ``tau = (M qdd + C qd) / T^2 + D qd / T + g + 
 (each term computed once at ``T = 1`` on the unit profile) is checked for any ``T`` without
 more dynamics. The smallest ``T`` that keeps every joint and actuator speed and every actuator
 effort (through the plant's effort map) within ``MARGIN`` of its limit, and the predicted
-tracking lag of heavily damped light joints within ``LAG_SHARE`` of the tolerance, is chosen. When the run's length is fixed (``--duration`` or
-the params file), amplitudes shrink instead; a joint whose gravity and friction alone exceed
-its actuator's limit is held still. Every such choice is a note.
+tracking lag of heavily damped light joints within ``LAG_SHARE`` of the tolerance, is chosen.
+When the run's length is fixed (``--duration`` or the params file), amplitudes shrink
+instead; a joint whose gravity and friction alone exceed its actuator's limit is held still.
+Every such choice is a note.
 """
 
 from __future__ import annotations
