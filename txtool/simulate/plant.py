@@ -148,9 +148,21 @@ def substeps_for(dt: float, damping: np.ndarray, inertia: np.ndarray) -> tuple[i
 
 
 def smallest_inertia(model: pin.Model, configs: np.ndarray) -> np.ndarray:
-    """Per DoF, the smallest mass-matrix diagonal (armature included) over ``configs``."""
+    """Per DoF, the smallest effective inertia ``1 / (M^-1)_jj`` over ``configs``.
+
+    That is the inertia a joint's own torque meets when the other joints are free to move
+    (armature included); it is at most the diagonal ``M_jj`` and smaller where joints couple.
+    """
     data = model.createData()
     smallest = np.full(model.nv, math.inf)
+    lower = np.tril_indices(model.nv, -1)
     for q in configs:
-        smallest = np.minimum(smallest, np.diag(pin.crba(model, data, q)))
+        mass = pin.crba(model, data, q).copy()
+        mass[lower] = mass.T[lower]
+        with np.errstate(divide="ignore"):
+            try:
+                effective = 1.0 / np.diag(np.linalg.inv(mass))
+            except np.linalg.LinAlgError:
+                effective = np.diag(mass)
+        smallest = np.minimum(smallest, effective)
     return smallest
