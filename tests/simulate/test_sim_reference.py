@@ -7,8 +7,8 @@ import pytest
 
 from tests.simulate.robots import arm_ros1, write
 from txtool.io.xmlio import InputError
+from txtool.simulate.feasible import Motion, sample
 from txtool.simulate.reference import (
-    default_motion,
     from_table,
     minimum_jerk,
     read_csv,
@@ -37,7 +37,7 @@ def test_minimum_jerk_rest_to_rest():
 
 
 def test_default_motion_spans_25_to_75_percent_and_back():
-    ref = default_motion([(-2.0, 2.0), (0.0, 1.0)], 4.0, 0.001)
+    ref = sample([(-2.0, 2.0), (0.0, 1.0)], Motion(2.0, np.ones(2), "", ()), 0.001)
     assert len(ref.time) == 4001
     assert np.allclose(ref.q[0], [-1.0, 0.25]) and np.allclose(ref.q[-1], [-1.0, 0.25])
     assert np.allclose(ref.q[2000], [1.0, 0.75])

@@ -6,7 +6,6 @@ import numpy as np
 import pytest
 
 from tests.simulate.robots import arm_both, arm_ros1, arm_ros2, pendulum, write
-from txtool.io.xmlio import InputError
 from txtool.simulate.run import Options, simulate_one
 
 
@@ -73,9 +72,14 @@ def test_too_small_effort_limit_names_the_actuator_and_the_first_violation(tmp_p
     assert not any(r.startswith("actuator") for r in allowed.reasons)
 
 
-def test_speed_limit(tmp_path, arm):
+def test_speed_limit_shrinks_the_default_motion_and_fails_a_faster_trajectory(tmp_path, arm):
     params = write(tmp_path, "p.toml", "[actuators.m_left]\nvelocity_limit = 10.0\n")
     run = run_with(tmp_path, arm, None, params=params, duration=2.0)
+    assert run.passed, run.reasons
+    assert run.actuators["m_left"].peak_velocity <= 10.0
+    assert any("share of the default amplitude: " in n and "'elbow'" in n for n in run.notes)
+    fast = write(tmp_path, "fast.csv", "time,elbow\n0,0\n0.5,1\n1,0\n")
+    run = run_with(tmp_path, arm, None, params=params, trajectory=fast)
     assert any(r.startswith("actuator 'm_left': speed") for r in run.reasons)
 
 
@@ -109,6 +113,7 @@ def test_unstable_gains_fail_without_a_traceback(tmp_path, arm):
     run = run_with(tmp_path, arm, None, bandwidth=3000.0, duration=1.0, params=params)
     assert not run.passed
     assert run.reasons[0].startswith("the simulation diverged at t=")
+    assert "its gains are too high for --dt 0.001 (kd*dt + kp*dt^2/2 = 10.5" in run.reasons[0]
     assert all(np.isfinite(j.max_error) for j in run.joints.values())
 
 
@@ -120,20 +125,27 @@ def test_damping_friction_and_integral_terms(tmp_path):
     assert run.passed, run.reasons
 
 
-def test_file_with_both_dialects_needs_a_loader_choice(tmp_path):
+def test_file_with_both_dialects_simulates_the_ros2_ones_by_default(tmp_path):
     robot = write(tmp_path, "both.urdf", arm_both())
-    with pytest.raises(InputError, match="both ROS 1 and ROS 2 transmissions.*--loader"):
-        simulate_one(Options(robot=robot), None)
+    run = simulate_one(Options(robot=robot, duration=1.0), None)
+    assert run.passed, run.reasons
+    assert "has both ROS 1 and ROS 2 transmissions: the ROS 2 ones are simulated " \
+           "(--loader ros1 for the others)" in run.notes
     for loader in ("ros1", "ros2"):
-        assert simulate_one(Options(robot=robot, loader=loader, duration=1.0), None).steps == 1000
+        run = simulate_one(Options(robot=robot, loader=loader, duration=1.0), None)
+        assert run.passed and not any("both ROS 1" in note for note in run.notes)
 
 
-def test_transmission_on_an_unknown_joint_is_an_input_error(tmp_path, arm):
+def test_config_transmission_on_an_unknown_joint_fails_naming_it(tmp_path, arm):
     bad = write(tmp_path, "bad.urdf", arm_ros1().replace('<joint name="shoulder">',
                                                          '<joint name="shoulderr">'))
-    with pytest.raises(InputError, match=r"bad\.urdf:\d+: transmission 't_shoulder': joint "
-                                         r"'shoulderr' is not a joint of the robot"):
-        simulate_one(Options(robot=arm), bad)
+    run = simulate_one(Options(robot=arm, duration=1.0), bad)
+    assert (
+        "actuator 'm_shoulder' of the robot gets no command from the config (its transmission "
+        "'t_shoulder' is not simulated in the config: joint 'shoulderr' is not a joint of the "
+        "robot)") in run.reasons
+    assert any(note.startswith(f"config: {bad}:") and "'t_shoulder' is not simulated" in note
+               for note in run.notes)
 
 
 def test_ros1_four_bar_effort_map_shows_with_the_loader_convention(tmp_path):

@@ -48,6 +48,8 @@ from txtool.io.xmlio import XacroOptions
               help="Write the time series (PATH.N.csv per config when several).")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False), metavar="PATH.png|.svg",
               help="Plot tracking error and actuator effort (needs the 'plot' extra).")
+@click.option("--skip", "skip", multiple=True, metavar="TRANSMISSION",
+              help="Leave this transmission out (its joints are driven directly); repeatable.")
 @click.option("--jobs", "-j", type=click.IntRange(min=1), default=1, show_default=True,
               help="Parallel processes for several configs.")
 @NO_XACRO_OPTION
@@ -57,7 +59,8 @@ def command(robot: str, configs: tuple[str, ...], params: str | None, bandwidth:
             duration: float | None, dt: float | None, tolerance: float | None,
             trajectory: str | None, interpolation: str, allow_saturation: bool, loader: str,
             convention: str, output_format: str, csv_path: str | None,
-            plot_path: str | None, jobs: int, no_xacro: bool, xacro: XacroOptions) -> int:
+            plot_path: str | None, skip: tuple[str, ...], jobs: int, no_xacro: bool,
+            xacro: XacroOptions) -> int:
     """Check a transmission config in closed loop against the robot's own.
 
     The plant uses ROBOT's transmissions; a computed-torque controller encodes its commands and
@@ -75,7 +78,7 @@ def command(robot: str, configs: tuple[str, ...], params: str | None, bandwidth:
         robot=robot, configs=configs, params=params, bandwidth=bandwidth, duration=duration,
         dt=dt, tolerance=tolerance, trajectory=trajectory, interpolation=interpolation,
         allow_saturation=allow_saturation, loader=loader, convention=convention, xacro=xacro,
-        jobs=jobs,
+        jobs=jobs, skip=skip,
     )
     _, code = main(options, output=output_format, csv_path=csv_path, plot_path=plot_path)
     return code

@@ -23,6 +23,7 @@ from txtool.model.semantics import NotLoadable, loader_of
 from txtool.simulate.model import RobotModel
 
 DRAKE_TAGS = ("rotor_inertia", "gear_ratio")
+GROUP = 3  # transmissions left out for one reason that are listed in one note
 
 
 @dataclass
@@ -47,6 +48,9 @@ class Drive:
     # Per block: DoF indices, actuator indices, the map (None for a direct actuator).
     blocks: list[tuple[list[int], list[int], TransmissionMap | None]] = field(
         default_factory=list)
+    notes: list[str] = field(default_factory=list)  # transmissions left out, and why
+    skipped: dict[str, str] = field(default_factory=dict)  # transmission name -> why
+    names: tuple[str, ...] = ()  # every transmission read (simulated or not)
 
     @property
     def na(self) -> int:
@@ -66,31 +70,95 @@ class Drive:
 
 
 def read_drive(source: Source, robot: RobotModel, *, loader: str = "auto",
-               convention: str = "ros2") -> Drive:
-    """The drive of ``source``'s transmissions on ``robot``'s joints."""
-    found = _select(source.path, read_source(source), loader)
-    maps = []
+               convention: str = "ros2", skip: tuple[str, ...] = ()) -> Drive:
+    """The drive of ``source``'s transmissions on ``robot``'s joints.
+
+    A transmission that cannot be simulated (``--skip``, a custom type or a loader refusal, a
+    joint that is mimic, fixed, locked, absent or already driven, an actuator already taken)
+    is left out with a note; its joints are driven directly.
+    """
+    found, notes = _select(source.path, read_source(source), loader)
+    skipped: dict[str, str] = {}
+    where: dict[str, str] = {}
+    maps, kept = [], []
+    owner: dict[str, str] = {}
+    taken: set[str] = set()
     for item in found:
         t = item.transmission
-        conv = "ros1" if convention == "loader" and loader_of(t) == "ros1" else "ros2"
-        try:
-            maps.append(from_transmission(t, conv))
-        except NotLoadable as exc:
-            raise InputError(f"{_where(source.path, item)}: transmission '{t.name}' cannot be "
-                             f"loaded: {exc}") from None
-    drive = assemble(source.path, maps, robot, found)
-    drive.drake = read_drake_tags(source.path, found)
+        why = _why_not(item, robot, owner, taken, convention, skip)
+        if isinstance(why, str):
+            skipped[t.name], where[t.name] = why, _where(source.path, item)
+            continue
+        for joint in why.joints:
+            owner[joint] = t.name
+        taken.update(why.actuators)
+        maps.append(why)
+        kept.append(item)
+    drive = assemble(source.path, maps, robot, kept)
+    drive.drake = read_drake_tags(source.path, kept)
+    notes += _skip_notes(source.path, skipped, where)
+    if found and not maps:
+        notes.append("no transmission can be simulated: every joint is driven directly")
+    drive.notes, drive.skipped = notes, skipped
+    drive.names = tuple(item.transmission.name for item in found)
     return drive
 
 
-def _select(path: str, found: list[Found], loader: str) -> list[Found]:
+def _skip_notes(path: str, skipped: dict[str, str], where: dict[str, str]) -> list[str]:
+    """One note per transmission left out; one per reason when three or more share it."""
+    by_reason: dict[str, list[str]] = {}
+    for name, why in skipped.items():
+        by_reason.setdefault(why, []).append(name)
+    notes = []
+    for why, names in by_reason.items():
+        if len(names) < GROUP:
+            notes += [f"{where[n]}: transmission '{n}' is not simulated: {why}" for n in names]
+        else:
+            notes.append(f"{path}: {len(names)} transmissions are not simulated: {why}: "
+                         + ", ".join(names))
+    return notes
+
+
+def _why_not(item: Found, robot: RobotModel, owner: dict[str, str], taken: set[str],
+             convention: str, skip: tuple[str, ...]) -> TransmissionMap | str:
+    """The transmission's map, or why it cannot be simulated."""
+    t = item.transmission
+    if t.name in skip:
+        return "skipped with --skip"
+    conv = "ros1" if convention == "loader" and loader_of(t) == "ros1" else "ros2"
+    try:
+        tmap = from_transmission(t, conv)
+    except NotLoadable as exc:
+        return f"{exc}"
+    for joint in tmap.joints:
+        if joint in robot.joints:
+            if joint in owner:
+                return f"joint '{joint}' is already driven by transmission '{owner[joint]}'"
+            continue
+        info = robot.info.get(joint)
+        if info is None:
+            return f"joint '{joint}' is not a joint of the robot"
+        if joint in robot.mimic:
+            return (f"joint '{joint}' is a mimic joint (it follows its leader "
+                    f"'{info.mimic}' and takes no transmission)")
+        if joint in robot.locked:
+            return f"joint '{joint}' is locked (it moves no mass)"
+        return f"joint '{joint}' is a {info.type} joint"
+    for actuator in tmap.actuators:
+        if actuator in taken:
+            return f"actuator '{actuator}' is already driven by another transmission"
+    return tmap
+
+
+def _select(path: str, found: list[Found], loader: str) -> tuple[list[Found], list[str]]:
     loaders = {loader_of(f.transmission) for f in found}
     if loader == "auto":
         if len(loaders) > 1:
-            raise InputError(f"{path}: has both ROS 1 and ROS 2 transmissions; choose one with "
-                             "--loader ros1|ros2")
-        return found
-    return [f for f in found if loader_of(f.transmission) == loader]
+            note = ("has both ROS 1 and ROS 2 transmissions: the ROS 2 ones are simulated "
+                    "(--loader ros1 for the others)")
+            return [f for f in found if loader_of(f.transmission) == "ros2"], [note]
+        return found, []
+    return [f for f in found if loader_of(f.transmission) == loader], []
 
 
 def _where(path: str, item: Found | None) -> str:
@@ -125,14 +193,8 @@ def assemble(path: str, maps: list[TransmissionMap], robot: RobotModel,
 def _joint_index(where: str, robot: RobotModel, tmap: TransmissionMap, joint: str,
                  owner: dict[str, str]) -> int:
     if joint not in robot.joints:
-        info = robot.info.get(joint)
-        if info is None:
-            why = "is not a joint of the robot"
-        elif joint in robot.mimic:
-            why = "is a mimic joint (it follows its leader and takes no transmission)"
-        else:
-            why = f"is a {info.type} joint"
-        raise InputError(f"{where}: transmission '{tmap.name}': joint '{joint}' {why}")
+        raise InputError(f"{where}: transmission '{tmap.name}': joint '{joint}' is not a "
+                         "moving joint of the model")
     if joint in owner:
         raise InputError(f"{where}: joint '{joint}' is in transmissions '{owner[joint]}' and "
                          f"'{tmap.name}'")

@@ -8,9 +8,12 @@ Everything linear is folded into a few matrices that act on one history row per 
 readings the plant produces with the robot's maps), the acceleration command
 ``qdd_ref + kp e + kd e_dot`` (``ff = qdd_ref + kp q_ref + kd v_ref`` is precomputed) and, when
 needed, an actuator-effort bias (damping and friction compensation, off-diagonal rotor inertia).
-``PD @ row`` is the plant's joint effort from the applied actuator efforts minus joint damping,
-and ``Phi @ row`` is the semi-implicit Euler step. So a step costs one ``rnea``, one ``aba``, four
-small matrix products, a clip and a few views, with no Python loop over transmissions.
+``PD @ row`` is the plant's joint effort from the applied actuator efforts (minus joint damping
+on the fast path), and ``Phi @ row`` is the semi-implicit Euler step. So a step costs one
+``rnea``, one ``aba``, four small matrix products, a clip and a few views, with no Python loop
+over transmissions. Damping is implicit there through the plant's armature (see
+:mod:`txtool.simulate.plant`); friction, sub-steps and coupled inertia go through
+:meth:`plant.Dynamics.advance`.
 """
 
 from __future__ import annotations
@@ -22,8 +25,8 @@ import numpy as np
 import pinocchio as pin
 
 from txtool.simulate.model import RobotModel
+from txtool.simulate.plant import Dynamics
 
-FRICTION_SPEED = 0.01  # rad/s (m/s) below which Coulomb friction is linear in speed
 CHUNK = 500
 
 
@@ -55,7 +58,7 @@ class Plan:
     ctrl: tuple[pin.Model, pin.Data]
     plant_block: np.ndarray | None  # off-diagonal rotor inertia (or mimic): crba + solve
     ctrl_block: np.ndarray | None
-    plant_friction: np.ndarray | None
+    dynamics: Dynamics
     bias: bool
     q_ref: np.ndarray
     ki: np.ndarray | None = None
@@ -108,8 +111,7 @@ def run(plan: Plan, progress: Callable[[int], None] | None = None) -> Plan:
 
 
 def _steps(plan: Plan, start: int, stop: int) -> None:
-    general = plan.ki is not None or plan.robot.has_continuous \
-        or plan.plant_friction is not None or plan.plant_block is not None
+    general = plan.ki is not None or plan.robot.has_continuous or not plan.dynamics.simple
     (_general_steps if general else _fast_steps)(plan, start, stop)
 
 
@@ -157,18 +159,17 @@ def _fast_steps(plan: Plan, start: int, stop: int) -> None:
 
 
 def _general_steps(plan: Plan, start: int, stop: int) -> None:
-    """Every feature: integral term, continuous joints, Coulomb friction, crba + solve."""
+    """Every feature: integral term, continuous joints, the plant's friction and sub-steps."""
     robot, nv = plan.robot, plan.robot.nv
-    rows, H, C, PD, Phi = plan.rows, plan.H, plan.C, plan.PD, plan.Phi
+    rows, H, C, PD = plan.rows, plan.H, plan.C, plan.PD
     limit = plan.limit
-    (cm, cdata), (pm, pdata) = plan.ctrl, plan.plant
+    cm, cdata = plan.ctrl
     out, tj = np.empty(H.shape[0]), np.empty(nv)
     xh, vh, acc, bias = out[:nv], out[nv : 2 * nv], out[2 * nv : 3 * nv], out[3 * nv :]
     A = rows[:, plan.slots["a"]]
-    config = _configurer(robot) if robot.has_continuous else None
+    config = configurer(robot) if robot.has_continuous else None
     qh = np.zeros(robot.model.nq) if config else xh
-    qp = np.zeros(robot.model.nq)
-    friction, block = plan.plant_friction, plan.plant_block
+    advance = plan.dynamics.advance
     ki, i_limit, z = plan.ki, plan.i_limit, plan.extras.setdefault("z", np.zeros(nv))
     ctrl_block, dt, q_ref = plan.ctrl_block, plan.dt, plan.q_ref
     for row, x, v, ta, sat, nxt, k in _views(plan, start, stop):
@@ -187,21 +188,12 @@ def _general_steps(plan: Plan, start: int, stop: int) -> None:
             ta += bias
         np.clip(ta, -limit, limit, out=sat)
         np.dot(PD, row, out=tj)
-        if friction is not None:
-            tj -= friction * np.clip(v / FRICTION_SPEED, -1.0, 1.0)
-        if config is not None:
-            config(x, qp)
-            x = qp
-        if block is None:
-            A[k] = pin.aba(pm, pdata, x, v, tj)
-        else:
-            mass = pin.crba(pm, pdata, x)
-            mass = np.triu(mass) + np.triu(mass, 1).T + block
-            A[k] = np.linalg.solve(mass, tj - pin.nonLinearEffects(pm, pdata, x, v))
-        np.dot(Phi, row, out=nxt)
+        advance(x, v, tj, nxt)
+        np.subtract(nxt[nv:], v, out=A[k])
+        A[k] /= dt
 
 
-def _configurer(robot: RobotModel) -> Callable[[np.ndarray, np.ndarray], None]:
+def configurer(robot: RobotModel) -> Callable[[np.ndarray, np.ndarray], None]:
     plain_q, plain_v, cos_q, cont_v = robot.config_indices()
     sin_q = cos_q + 1
 

@@ -9,18 +9,19 @@ leader inside Pinocchio (``mimic=True``); they have no DoF of their own and no t
 from __future__ import annotations
 
 import contextlib
+import copy
 import math
 import os
 import sys
 import tempfile
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import pinocchio as pin
 
 from txtool.io.xmlio import InputError, Source, serialize
-from txtool.model.robot import JointInfo, robot_joints
+from txtool.model.robot import JointInfo, joint_elements, robot_joints
 
 MOVING = ("revolute", "continuous", "prismatic")
 
@@ -39,6 +40,9 @@ class RobotModel:
     damping: np.ndarray
     friction: np.ndarray
     mimic: tuple[str, ...]
+    followers: dict[str, tuple[str, float, float]] = field(default_factory=dict)
+    locked: dict[str, tuple[str, ...]] = field(default_factory=dict)  # joint -> massless links
+    notes: list[str] = field(default_factory=list)
 
     @property
     def nv(self) -> int:
@@ -83,25 +87,130 @@ def build(source: Source) -> RobotModel:
                              "simulate supports fixed-base robots with 1-DoF joints")
     mimic = tuple(n for n, j in info.items() if j.mimic is not None and j.type in MOVING)
     text = serialize(source.tree).decode("utf-8")
-    with captured_stderr() as said:
-        try:
-            model = pin.buildModelFromXML(text, bool(mimic))
-        except (RuntimeError, ValueError) as exc:
-            model = None
-            error = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+    notes: list[str] = []
+    followers: dict[str, tuple[str, float, float]] = {}
+    model, why = _pinocchio(text, bool(mimic))
+    if model is None and mimic:
+        model, _ = _pinocchio(text, False)
+        if model is not None:
+            followers = _followers(source, mimic, info)
+            notes.append(f"pinocchio cannot place the mimic joints ({why}): they move as "
+                         "independent joints whose reference follows their leader: "
+                         + ", ".join(followers))
+            mimic = ()
     if model is None:
-        detail = next((line.removeprefix("Error:").strip() for line in said
-                       if line.startswith("Error:")), error)
-        raise InputError(f"{source.path}: pinocchio cannot build the model: {detail}")
-    joints: list[str] = []
-    for name, joint in zip(model.names[1:], model.joints[1:], strict=True):
-        if joint.nv == 0:
-            continue  # a mimic joint
-        joints.append(name)
+        raise InputError(f"{source.path}: pinocchio cannot build the model: {why}")
+    locked = _massless(model, source)
+    if locked:
+        model = _locked_model(source, set(locked), bool(mimic))
+        for joint, links in locked.items():
+            notes.append(f"joint '{joint}' moves only links without mass or inertia "
+                         f"({', '.join(links)}): it is locked and not simulated")
+    joints = [name for name, joint in zip(model.names[1:], model.joints[1:], strict=True)
+              if joint.nv > 0]  # a mimic joint has no DoF of its own
     if not joints:
         raise InputError(f"{source.path}: the robot has no moving joints")
     order = sorted(joints, key=lambda n: model.joints[model.getJointId(n)].idx_v)
-    return _robot_model(source.path, model, tuple(order), info, mimic)
+    robot = _robot_model(source.path, model, tuple(order), info, mimic)
+    robot.followers = {k: f for k, f in followers.items() if k in robot.joints
+                       and f[0] in robot.joints}
+    robot.locked, robot.notes = locked, notes
+    return robot
+
+
+def _pinocchio(text: str, mimic: bool) -> tuple[pin.Model | None, str]:
+    """The model, or None and the first line of Pinocchio's (or urdfdom's) complaint."""
+    with captured_stderr() as said:
+        try:
+            return pin.buildModelFromXML(text, mimic), ""
+        except (RuntimeError, ValueError) as exc:
+            error = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+    detail = next((line.removeprefix("Error:").strip() for line in said
+                   if line.startswith("Error:")), error)
+    return None, detail
+
+
+def _followers(source: Source, mimic: tuple[str, ...], info: dict[str, JointInfo]
+               ) -> dict[str, tuple[str, float, float]]:
+    """Mimic joint -> (leader, multiplier, offset), as URDF ``<mimic>`` gives them."""
+    elements = joint_elements(source.root)
+    result = {}
+    for name in mimic:
+        tag = next(elements[name].iterchildren("{*}mimic"), None)
+        leader = info[name].mimic
+        if tag is None or leader is None:
+            continue
+        multiplier = _number(tag.get("multiplier"), 1.0)
+        offset = _number(tag.get("offset"), 0.0)
+        result[name] = (leader, multiplier, offset)
+    return result
+
+
+def _number(text: str | None, default: float) -> float:
+    try:
+        value = float(text) if text is not None else default
+    except ValueError:
+        return default
+    return value if math.isfinite(value) else default
+
+
+def _massless(model: pin.Model, source: Source) -> dict[str, tuple[str, ...]]:
+    """Joints whose moving links have no mass and no inertia: their mass-matrix entry is 0."""
+    data = model.createData()
+    mass = pin.crba(model, data, pin.neutral(model))
+    found = {}
+    for joint_id in range(1, model.njoints):
+        joint = model.joints[joint_id]
+        if joint.nv == 0 or mass[joint.idx_v, joint.idx_v] > 0.0:
+            continue
+        if any(model.inertias[j].mass > 0 for j in _subtree(model, joint_id)):
+            continue
+        name = model.names[joint_id]
+        found[name] = _links_moved(source, name)
+    return found
+
+
+def _subtree(model: pin.Model, joint_id: int) -> list[int]:
+    return [j for j in range(joint_id, model.njoints)
+            if joint_id in _ancestors(model, j)]
+
+
+def _ancestors(model: pin.Model, joint_id: int) -> set[int]:
+    seen = set()
+    while joint_id > 0:
+        seen.add(joint_id)
+        joint_id = model.parents[joint_id]
+    return seen
+
+
+def _links_moved(source: Source, joint: str) -> tuple[str, ...]:
+    """The links downstream of ``joint`` in the URDF (its child and everything fixed below)."""
+    elements = joint_elements(source.root)
+    below: dict[str, list[str]] = {}
+    for element in elements.values():
+        parent, child = element.find("{*}parent"), element.find("{*}child")
+        if parent is not None and child is not None:
+            below.setdefault(parent.get("link", ""), []).append(child.get("link", ""))
+    child = elements[joint].find("{*}child")
+    stack = [child.get("link", "")] if child is not None else []
+    links: list[str] = []
+    while stack:
+        link = stack.pop()
+        links.append(link)
+        stack.extend(below.get(link, []))
+    return tuple(links)
+
+
+def _locked_model(source: Source, locked: set[str], mimic: bool) -> pin.Model:
+    tree = copy.deepcopy(source.tree)
+    for name, element in joint_elements(tree.getroot()).items():
+        if name in locked:
+            element.set("type", "fixed")
+    model, why = _pinocchio(serialize(tree).decode("utf-8"), mimic)
+    if model is None:
+        raise InputError(f"{source.path}: pinocchio cannot build the model with "
+                         f"{', '.join(sorted(locked))} locked: {why}")
+    return model
 
 
 @contextlib.contextmanager

@@ -1,9 +1,10 @@
 """Reference motions sampled at every control step: positions, velocities, accelerations.
 
-The default motion takes every actuated joint from 25% to 75% of its position range and back
-with minimum-jerk profiles (analytic derivatives). A CSV trajectory is interpolated linearly
+The default motion (minimum-jerk profiles, analytic derivatives) is planned in
+:mod:`txtool.simulate.feasible`. A CSV trajectory is interpolated linearly
 (piecewise-constant velocity, zero acceleration) or with a cubic spline whose end velocities are
-zero, so the reference starts at rest like the plant.
+zero, so the reference starts at rest like the plant. Either is then saturated to the joint limits
+as the controller would (:func:`saturate`).
 """
 
 from __future__ import annotations
@@ -45,22 +46,6 @@ def minimum_jerk(t: np.ndarray, t0: float, t1: float, a: float, b: float
     qd = np.where(inside, d * (30 * s**2 - 60 * s**3 + 30 * s**4) / span, 0.0)
     qdd = np.where(inside, d * (60 * s - 180 * s**2 + 120 * s**3) / span**2, 0.0)
     return q, qd, qdd
-
-
-def default_motion(ranges: list[tuple[float, float]], duration: float, dt: float) -> Reference:
-    """25% -> 75% over the first half of ``duration``, back to 25% over the second."""
-    t = step_times(duration, dt)
-    half = t[-1] / 2
-    n = len(ranges)
-    q, qd, qdd = (np.zeros((len(t), n)) for _ in range(3))
-    for i, (lo, hi) in enumerate(ranges):
-        low, high = lo + 0.25 * (hi - lo), lo + 0.75 * (hi - lo)
-        up = minimum_jerk(t, 0.0, half, low, high)
-        down = minimum_jerk(t, half, t[-1], high, low)
-        second = t >= half
-        for target, a, b in zip((q, qd, qdd), up, down, strict=True):
-            target[:, i] = np.where(second, b, a)
-    return Reference(t, q, qd, qdd, "minimum-jerk 25% -> 75% -> 25% of each range")
 
 
 @dataclass(frozen=True)
@@ -193,3 +178,65 @@ def joint_range(kind: str, lower: float, upper: float) -> tuple[float, float]:
     if kind == "continuous" or not (math.isfinite(lower) and math.isfinite(upper)):
         return CONTINUOUS_RANGE
     return lower, upper
+
+
+def follow(ref: Reference, joints: tuple[str, ...],
+           followers: dict[str, tuple[str, float, float]]) -> Reference:
+    """Mimic joints simulated as independent DoFs track ``multiplier * leader + offset``."""
+    if not followers:
+        return ref
+    q, qd, qdd = ref.q.copy(), ref.qd.copy(), ref.qdd.copy()
+    for name, (leader, multiplier, offset) in followers.items():
+        f, lead = joints.index(name), joints.index(leader)
+        q[:, f] = multiplier * ref.q[:, lead] + offset
+        qd[:, f] = multiplier * ref.qd[:, lead]
+        qdd[:, f] = multiplier * ref.qdd[:, lead]
+    return Reference(ref.time, q, qd, qdd, ref.source)
+
+
+def saturate(ref: Reference, joints: tuple[str, ...], lower: np.ndarray, upper: np.ndarray,
+             velocity: np.ndarray, dt: float) -> tuple[Reference, list[str]]:
+    """The setpoint as computed_torque_controllers makes it: ``q_sp = saturate(q_cmd)``.
+
+    ros_control's ``PositionJointSaturationHandle::enforceLimits`` clamps each command to
+    ``[max(prev - vmax dt, lower), min(prev + vmax dt, upper)]`` (``prev``: the last setpoint),
+    and the setpoint velocity is ``(q_sp - prev) / dt``. Where that changes the command, the
+    velocity is that difference and the acceleration feed-forward the next one's change over
+    ``dt`` (what makes the plant land on the next setpoint); elsewhere the analytic values
+    stay. Meeting a limit at speed thus asks for a large effort for one step, as it would.
+    Returns the setpoint and one note per saturated joint.
+    """
+    step = velocity * dt
+    slack = 1e-9 + 1e-9 * np.abs(ref.q).max(initial=0.0)
+    over_position = (ref.q < lower - slack) | (ref.q > upper + slack)
+    over_speed = np.abs(ref.qd) > velocity * (1 + 1e-9)
+    if not (over_position.any() or over_speed.any()):
+        return ref, []
+    q = np.empty_like(ref.q)
+    previous = np.clip(ref.q[0], lower, upper)
+    q[0] = previous
+    for k in range(1, len(ref.q)):
+        previous = np.clip(ref.q[k], np.maximum(previous - step, lower),
+                           np.minimum(previous + step, upper))
+        q[k] = previous
+    changed = np.abs(q - ref.q) > slack
+    changed[1:] |= changed[:-1].copy()
+    changed[:-1] |= changed[1:].copy()
+    qd, qdd = ref.qd.copy(), ref.qdd.copy()
+    speed = np.vstack([np.zeros(len(joints)), np.diff(q, axis=0) / dt])
+    acceleration = np.vstack([np.diff(speed, axis=0) / dt, np.zeros(len(joints))])
+    qd[changed], qdd[changed] = speed[changed], acceleration[changed]
+    notes = []
+    for v, name in enumerate(joints):
+        if over_position[:, v].any():
+            first = ref.time[int(np.argmax(over_position[:, v]))]
+            notes.append(f"reference: joint '{name}' goes outside its position limits "
+                         f"[{lower[v]:.4g}, {upper[v]:.4g}] from t={first:.3f} s; the setpoint "
+                         "is saturated as computed_torque_controllers does (q_sp = "
+                         "saturate(q_cmd))")
+        if over_speed[:, v].any():
+            peak = float(np.abs(ref.qd[:, v]).max())
+            notes.append(f"reference: joint '{name}' moves at up to {peak:.4g}, beyond its "
+                         f"velocity limit {velocity[v]:.4g}; the setpoint is rate-limited as "
+                         "computed_torque_controllers does")
+    return Reference(ref.time, q, qd, qdd, ref.source), notes

@@ -11,7 +11,7 @@ import numpy as np
 
 from txtool.io.load import load
 from txtool.io.xmlio import InputError, XacroOptions
-from txtool.simulate import loop, reference, result, setup
+from txtool.simulate import feasible, loop, reference, result, setup
 from txtool.simulate.drive import Drive, read_drive
 from txtool.simulate.model import RobotModel, build
 from txtool.simulate.params import Params, load_params
@@ -42,6 +42,7 @@ class Options:
     xacro: XacroOptions = field(default_factory=XacroOptions)
     jobs: int = 1
     keep_series: bool = True
+    skip: tuple[str, ...] = ()  # transmission names left out (joints driven directly)
 
 
 @dataclass(frozen=True)
@@ -86,6 +87,9 @@ class Prepared:
     effort_limit: np.ndarray
     speed_limit: np.ndarray
     setup_s: float
+    reference_notes: list[str] = field(default_factory=list)
+    cannot_hold: list[str] = field(default_factory=list)  # the robot, not the config, is short
+    gains: loop.Controller | None = None
 
 
 def prepare(options: Options, config: str | None, label: str | None = None) -> Prepared:
@@ -93,29 +97,44 @@ def prepare(options: Options, config: str | None, label: str | None = None) -> P
     started = time.perf_counter()
     source = load(options.robot, xacro=options.xacro)
     robot = build(source)
-    plant = read_drive(source, robot, loader=options.loader, convention="ros2")
+    plant = read_drive(source, robot, loader=options.loader, convention="ros2",
+                       skip=options.skip)
     if config is not None:
         ctrl = read_drive(load(config, xacro=options.xacro), robot, loader=options.loader,
-                          convention=options.convention)
+                          convention=options.convention, skip=options.skip)
     elif options.convention == "loader":
-        ctrl = read_drive(source, robot, loader=options.loader, convention="loader")
+        ctrl = read_drive(source, robot, loader=options.loader, convention="loader",
+                          skip=options.skip)
     else:
         ctrl = plant
+    unknown = sorted(set(options.skip) - set(plant.names) - set(ctrl.names))
+    if unknown:
+        raise InputError(f"--skip: no transmission named {', '.join(map(repr, unknown))} in "
+                         f"{options.robot}" + (f" or {config}" if config else ""))
     params = load_params(options.params, options.robot)
     params.check_names(set(plant.actuators) | set(ctrl.actuators), set(robot.joints),
                        options.robot)
     run_settings = settings(options, params)
-    ref, duration = _reference(options, robot, run_settings)
     binding = setup.bind(plant, ctrl)
     rotor = (setup.rotor_inertias(plant.actuators, params, plant, ctrl),
              setup.rotor_inertias(ctrl.actuators, params, plant, ctrl))
     effort_limit, speed_limit = setup.actuator_limits(robot, plant, params)
     gains = setup.controller(robot, params, run_settings.bandwidth)
+    inertia = plant.reflected_inertia(rotor[0])
+    if options.trajectory is None:
+        fixed = options.duration is not None or "duration" in params.run
+        limits = setup.motion_limits(robot, plant, inertia, gains, effort_limit, speed_limit,
+                                     run_settings.dt)
+        ref, duration, ref_notes, weak = _default_reference(
+            robot, run_settings, limits, setup.reference_dynamics(robot, inertia), fixed)
+    else:
+        ref, duration, ref_notes = _reference(options, robot, run_settings)
+        weak = []
     plan = setup.build_plan(robot, plant, ctrl, binding, rotor, effort_limit, gains, ref,
                             run_settings.dt)
     return Prepared(options, config, label or (config if config is not None else options.robot),
                     robot, plant, ctrl, binding, plan, ref, run_settings, duration, effort_limit,
-                    speed_limit, time.perf_counter() - started)
+                    speed_limit, time.perf_counter() - started, ref_notes, weak, gains)
 
 
 def simulate_one(options: Options, config: str | None, label: str | None = None,
@@ -132,10 +151,12 @@ def finish(p: Prepared, loop_s: float) -> result.RunResult:
     """Metrics, reasons and notes of a prepared run whose loop has run."""
     with np.errstate(all="ignore"):  # a diverged run may hold huge values
         series = _series(p.plan, p.robot, p.plant, p.ref, p.effort_limit, p.speed_limit)
-        run = _judge(p.options, series, p.plan, p.binding, p.settings, p.duration)
+        run = _judge(p, series)
     run.config = p.label
     run.reference = p.ref.source
-    run.notes = _notes(p.robot, p.plant, p.ctrl, p.config is not None)
+    run.notes = _notes(p.robot, p.plant, p.ctrl, p.config is not None) + p.reference_notes
+    if p.plan.dynamics.note:
+        run.notes.append(p.plan.dynamics.note)
     run.timings = {"setup_s": p.setup_s, "loop_s": loop_s,
                    "step_us": 1e6 * loop_s / max(p.plan.done, 1)}
     if not p.options.keep_series:
@@ -143,12 +164,29 @@ def finish(p: Prepared, loop_s: float) -> result.RunResult:
     return run
 
 
+def _ranges(robot: RobotModel) -> list[tuple[float, float]]:
+    return [reference.joint_range(k, lo, hi)
+            for k, lo, hi in zip(robot.kinds, robot.lower, robot.upper, strict=True)]
+
+
+def _default_reference(robot: RobotModel, s: Settings, limits: feasible.Limits,
+                       dynamics: feasible.Dynamics, fixed: bool
+                       ) -> tuple[reference.Reference, float, list[str], list[str]]:
+    """The minimum-jerk motion, slowed (or, with a fixed duration, shrunk) to be feasible."""
+    ranges = _ranges(robot)
+    chosen = feasible.plan_motion(ranges, limits, dynamics, s.duration / 2, fixed, s.tolerance)
+    ref = feasible.sample(ranges, chosen, s.dt)
+    ref = reference.follow(ref, robot.joints, robot.followers)
+    ref, notes = reference.saturate(ref, robot.joints, robot.lower, robot.upper,
+                                    robot.velocity, s.dt)
+    return ref, float(ref.time[-1]), list(chosen.notes) + notes, list(chosen.cannot_hold)
+
+
 def _reference(options: Options, robot: RobotModel, s: Settings
-               ) -> tuple[reference.Reference, float]:
-    ranges = [reference.joint_range(k, lo, hi)
-              for k, lo, hi in zip(robot.kinds, robot.lower, robot.upper, strict=True)]
-    if options.trajectory is None:
-        return reference.default_motion(ranges, s.duration, s.dt), s.duration
+               ) -> tuple[reference.Reference, float, list[str]]:
+    """The reference from ``--trajectory``, saturated to the joint limits as the controller does."""
+    assert options.trajectory is not None
+    ranges = _ranges(robot)
     table = reference.read_csv(options.trajectory, set(robot.joints))
     duration = s.duration
     if options.duration is None and len(table.time) > 1:
@@ -157,7 +195,12 @@ def _reference(options: Options, robot: RobotModel, s: Settings
         raise InputError(f"{options.trajectory}: more than {MAX_STEPS} steps at --dt {s.dt:g}")
     hold = np.array([(lo + hi) / 2 for lo, hi in ranges])
     t = reference.step_times(duration, s.dt)
-    return reference.from_table(table, robot.joints, hold, t, options.interpolation), duration
+    ref = reference.from_table(table, robot.joints, hold, t, options.interpolation)
+    given = {f: lead for f, lead in robot.followers.items() if f not in table.joints}
+    ref = reference.follow(ref, robot.joints, given)
+    ref, notes = reference.saturate(ref, robot.joints, robot.lower, robot.upper,
+                                    robot.velocity, s.dt)
+    return ref, duration, notes
 
 
 def _series(plan: loop.Plan, robot: RobotModel, plant: Drive, ref: reference.Reference,
@@ -177,22 +220,30 @@ def _series(plan: loop.Plan, robot: RobotModel, plant: Drive, ref: reference.Ref
     )
 
 
-def _judge(options: Options, series: result.Series, plan: loop.Plan, binding: setup.Binding,
-           s: Settings, duration: float) -> result.RunResult:
+def _judge(p: Prepared, series: result.Series) -> result.RunResult:
+    options, plan, binding, s, duration = p.options, p.plan, p.binding, p.settings, p.duration
+    plant, ctrl = p.plant, p.ctrl
     joints = result.joint_stats(series)
     actuators = result.actuator_stats(series)
-    reasons = []
+    reasons = [] if options.allow_saturation else list(p.cannot_hold)
     if plan.diverged_at is not None:
-        reasons.append(f"the simulation diverged at t={plan.diverged_at * s.dt:.3f} s "
-                       "(a singular mass matrix or an unstable loop)")
+        cause = setup.divergence_cause(plan, p.gains) if p.gains is not None else ""
+        reasons.append(f"the simulation diverged at t={plan.diverged_at * s.dt:.3f} s: {cause}")
     for name in binding.unbound:
         reasons.append(f"actuator '{name}' of the config is not an actuator of the robot")
     for name in binding.uncommanded:
-        reasons.append(f"actuator '{name}' of the robot gets no command from the config")
+        why = _skipped_cause(name, plant, ctrl)
+        reasons.append(f"actuator '{name}' of the robot gets no command from the config{why}")
     for name in binding.unobserved:
         reasons.append(f"joint '{name}': the config cannot measure it")
     reasons += result.verdict_reasons(series, joints, actuators, s.tolerance,
                                       options.allow_saturation)
+    saturated = [n.split("'")[1] for n in p.reference_notes if n.startswith("reference: joint")]
+    if reasons and saturated:
+        names = ", ".join(f"'{j}'" for j in dict.fromkeys(saturated))
+        reasons.insert(0, f"the reference exceeds the limits of joint {names} and was saturated "
+                          "(see the notes): the failures may come from the reference, not the "
+                          "config")
     return result.RunResult(
         robot=options.robot, config="", dt=s.dt, steps=plan.steps, duration=duration,
         reference="", joints=joints, actuators=actuators, reasons=reasons, notes=[],
@@ -200,8 +251,17 @@ def _judge(options: Options, series: result.Series, plan: loop.Plan, binding: se
     )
 
 
+def _skipped_cause(actuator: str, plant: Drive, ctrl: Drive) -> str:
+    """Why the config does not command ``actuator``, when the config left its transmission out."""
+    name = plant.transmission_of[plant.actuators.index(actuator)]
+    why = ctrl.skipped.get(name)
+    return f" (its transmission '{name}' is not simulated in the config: {why})" if why else ""
+
+
 def _notes(robot: RobotModel, plant: Drive, ctrl: Drive, candidate: bool) -> list[str]:
-    notes = []
+    notes = list(robot.notes) + plant.notes
+    if candidate:
+        notes += [f"config: {note}" for note in ctrl.notes]
     if plant.direct:
         notes.append("driven directly (no transmission in the robot, identity map): "
                      + ", ".join(plant.direct))

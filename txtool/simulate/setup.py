@@ -3,16 +3,23 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+import pinocchio as pin
 
 from txtool.mechanics.limits import actuator_limits as implied_limits
 from txtool.simulate.drive import Drive
-from txtool.simulate.loop import Controller, Plan, layout, make_model
+from txtool.simulate.feasible import Limits, Parts
+from txtool.simulate.loop import Controller, Plan, configurer, layout, make_model
 from txtool.simulate.model import RobotModel
 from txtool.simulate.params import Params
-from txtool.simulate.reference import Reference
+from txtool.simulate.plant import Dynamics, smallest_inertia, substeps_for
+from txtool.simulate.reference import Reference, joint_range
+
+SAMPLES = 20  # reference poses where the plant's stiffness is measured
+TINY_INERTIA = 1e-12
 
 
 @dataclass(frozen=True)
@@ -115,9 +122,7 @@ def build_plan(robot: RobotModel, plant: Drive, ctrl: Drive, binding: Binding,
     F -= gains.kp[:, None] * E[:nv] + gains.kd[:, None] * E[nv:]
     C = binding.S.T @ ctrl.eff_j2a
     ctrl_model, ctrl_block = make_model(robot, ctrl.reflected_inertia(rotor[1]))
-    plant_model, plant_block = make_model(robot, plant.reflected_inertia(rotor[0]))
-    if plant_block is None and robot.mimic:
-        plant_block = np.zeros((nv, nv))  # aba does not take mimic joints: crba + solve
+    dynamics = plant_dynamics(robot, plant.reflected_inertia(rotor[0]), ref, dt)
     bias_rows = np.diag(gains.damping) @ E[nv:]
     if ctrl_block is not None:
         bias_rows = bias_rows + ctrl_block @ F
@@ -125,18 +130,40 @@ def build_plan(robot: RobotModel, plant: Drive, ctrl: Drive, binding: Binding,
         bias_rows[:, s["fric"]] += np.eye(nv)
     bias = bool(np.any(bias_rows))
     H = np.vstack([E, F, C @ bias_rows] if bias else [E, F])
+    use_ki = bool(np.any(gains.ki))
+    general = use_ki or robot.has_continuous or not dynamics.simple
     PD = np.zeros((nv, width))
     PD[:, s["sat"]] = plant.eff_a2j
-    PD[:, s["v"]] = -np.diag(robot.damping)
-    friction = robot.friction if np.any(robot.friction) else None
-    use_ki = bool(np.any(gains.ki))
+    if not general:  # the fast loop: damping explicit in PD, implicit through the armature
+        PD[:, s["v"]] = -np.diag(robot.damping)
     return Plan(
         robot=robot, dt=dt, steps=steps, rows=rows, slots=s, H=H, C=C, PD=PD,
         Phi=_euler(s, width, nv, dt), limit=limit,
-        plant=(plant_model, plant_model.createData()), ctrl=(ctrl_model, ctrl_model.createData()),
-        plant_block=plant_block, ctrl_block=ctrl_block, plant_friction=friction, bias=bias,
+        plant=(dynamics.model, dynamics.data), ctrl=(ctrl_model, ctrl_model.createData()),
+        plant_block=dynamics.block, ctrl_block=ctrl_block, dynamics=dynamics, bias=bias,
         q_ref=ref.q, ki=gains.ki if use_ki else None, i_limit=gains.i_limit if use_ki else None,
     )
+
+
+def plant_dynamics(robot: RobotModel, inertia: np.ndarray, ref: Reference, dt: float
+                   ) -> Dynamics:
+    """The plant's integrator: rotor inertia, implicit damping, friction, sub-steps."""
+    model, block = make_model(robot, inertia)
+    if block is None and robot.mimic:
+        block = np.zeros((robot.nv, robot.nv))  # aba does not take mimic joints: crba + solve
+    samples = ref.q[:: max(1, len(ref.q) // SAMPLES)]
+    smallest = smallest_inertia(model, robot.config(samples))
+    substeps, stiffest = substeps_for(dt, robot.damping, smallest)
+    model.armature = model.armature + (dt / substeps) * robot.damping
+    friction = robot.friction.copy() if np.any(robot.friction) else None
+    config = configurer(robot) if robot.has_continuous else None
+    dynamics = Dynamics(model, model.createData(), dt, substeps, robot.damping.copy(), friction,
+                        block, config, robot.model.nq)
+    if substeps > 1 and stiffest is not None:
+        rate = robot.damping[stiffest] / smallest[stiffest]
+        dynamics.note = (f"plant: {substeps} sub-steps per control step (joint "
+                         f"'{robot.joints[stiffest]}': damping / inertia = {rate:.4g} 1/s)")
+    return dynamics
 
 
 def _rows(s: dict[str, slice], width: int, ref: Reference, gains: Controller) -> np.ndarray:
@@ -178,3 +205,60 @@ def _euler(s: dict[str, slice], width: int, nv: int, dt: float) -> np.ndarray:
     phi[nv:, s["v"]] = eye
     phi[nv:, s["a"]] = dt * eye
     return phi
+
+
+def reference_dynamics(robot: RobotModel, inertia: np.ndarray
+                       ) -> Callable[[np.ndarray, np.ndarray, np.ndarray], Parts]:
+    """The plant's joint torques along reference rows, split as :mod:`feasible` needs them."""
+    model, block = make_model(robot, inertia)
+    data = model.createData()
+
+    def parts(x: np.ndarray, xd: np.ndarray, xdd: np.ndarray) -> Parts:
+        zero = np.zeros(robot.nv)
+        gravity, quadratic = np.zeros_like(x), np.zeros_like(x)
+        for k, q in enumerate(robot.config(x)):
+            gravity[k] = pin.rnea(model, data, q, zero, zero)
+            quadratic[k] = pin.rnea(model, data, q, xd[k], xdd[k]) - gravity[k]
+        if block is not None:
+            quadratic += xdd @ block.T
+        static = gravity + robot.friction * np.sign(xd)
+        return quadratic, robot.damping * xd, static
+
+    return parts
+
+
+def motion_limits(robot: RobotModel, plant: Drive, inertia: np.ndarray, gains: Controller,
+                  effort: np.ndarray, speed: np.ndarray, dt: float) -> Limits:
+    """What the default motion must respect; ``inertia``: the plant's reflected rotor inertia."""
+    model, _ = make_model(robot, inertia)
+    ranges = np.array([joint_range(k, lo, hi)
+                       for k, lo, hi in zip(robot.kinds, robot.lower, robot.upper, strict=True)])
+    poses = np.array([ranges[:, 0] + share * (ranges[:, 1] - ranges[:, 0])
+                      for share in (0.25, 0.5, 0.75)])
+    smallest = smallest_inertia(model, robot.config(poses))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        lag = np.nan_to_num(dt * robot.damping / smallest / gains.kp, nan=0.0, posinf=0.0)
+    return Limits(robot.joints, robot.velocity, plant.vel_j2a, plant.eff_j2a, plant.actuators,
+                  speed, effort, lag)
+
+
+def divergence_cause(plan: Plan, gains: Controller) -> str:
+    """Which joint ran away first and the likeliest reason, from the last finite rows."""
+    end = max((plan.diverged_at or 0) - 1, 0)
+    start = max(end - 20, 0)
+    x = plan.rows[start : end + 1, plan.slots["x"]]
+    error = np.abs(x - plan.q_ref[start : end + 1])
+    growth = np.nan_to_num(error[-1] - error[0], nan=np.inf, posinf=np.inf)
+    v = int(np.argmax(growth))
+    joint = plan.robot.joints[v]
+    dt = plan.dt
+    stability = gains.kd[v] * dt + gains.kp[v] * dt**2 / 2
+    if stability >= 2.0:  # Jury's test on the discrete loop: kd*dt + kp*dt^2/2 < 2
+        return (f"joint '{joint}' ran away first; its gains are too high for --dt {dt:g} "
+                f"(kd*dt + kp*dt^2/2 = {stability:.3g}; the discrete loop needs < 2)")
+    mass = smallest_inertia(plan.dynamics.model, plan.robot.config(plan.q_ref[[0, end]]))[v]
+    if mass < TINY_INERTIA:
+        return (f"joint '{joint}' ran away first; its inertia is {mass:.3g} (links without "
+                "mass or inertia and no rotor inertia)")
+    return (f"joint '{joint}' ran away first (an unstable loop: the config's maps reverse or "
+            "amplify its feedback)")

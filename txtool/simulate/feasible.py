@@ -1,0 +1,207 @@
+"""A default motion the robot can follow: time-scaled to its velocity and effort limits.
+
+Every joint moves from 25% to 75% of its range and back with minimum-jerk profiles, all with
+the same move time ``T``. With ``s(tau)`` the unit profile, the reference is
+``q = low + d s(t/T)``, ``qd = d s'/T``, ``qdd = d s''/T^2``; so joint and actuator speeds
+scale with ``1/T`` and the torque ``tau = (M qdd + C qd) / T^2 + D qd / T + g + F sign(qd)``
+(each term computed once at ``T = 1`` on the unit profile) is checked for any ``T`` without
+more dynamics. The smallest ``T`` that keeps every joint and actuator speed and every actuator
+effort (through the plant's effort map) within ``MARGIN`` of its limit, and the predicted
+tracking lag of heavily damped light joints within ``LAG_SHARE`` of the tolerance, is chosen.
+When the run's length is fixed (``--duration`` or the params file), amplitudes shrink
+instead; a joint whose gravity and friction alone exceed its actuator's limit is held still.
+Every such choice is a note.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from txtool.simulate.reference import Reference, minimum_jerk, step_times
+
+MARGIN = 0.8  # a reference peak may use this share of a speed or effort limit
+LAG_SHARE = 0.15  # share of the tolerance the predicted lag of a damped light link may use
+LONGEST_MOVE = 30.0  # s: the default run grows to at most 2 x this
+SAMPLES = 120  # points of the unit profile where the dynamics are evaluated
+GRID = 1.03  # ratio between move times tried
+
+Parts = tuple[np.ndarray, np.ndarray, np.ndarray]
+# (q, qd, qdd) rows -> joint torques (M qdd + C qd, D qd, g + F sign qd): what scales with
+# 1/T^2, with 1/T, and not at all
+Dynamics = Callable[[np.ndarray, np.ndarray, np.ndarray], Parts]
+
+
+@dataclass(frozen=True)
+class Limits:
+    """What the default motion must respect, per joint (nv) and per plant actuator (na)."""
+
+    joints: tuple[str, ...]
+    velocity: np.ndarray  # joint velocity limits (inf: none)
+    vel_j2a: np.ndarray  # (na, nv) plant velocity map
+    eff_j2a: np.ndarray  # (na, nv) plant effort map
+    actuators: tuple[str, ...]
+    actuator_speed: np.ndarray
+    actuator_effort: np.ndarray
+    lag: np.ndarray  # per joint: predicted lag per unit reference acceleration (s^2)
+
+
+@dataclass(frozen=True)
+class Motion:
+    move: float  # seconds per move (the run is two moves)
+    amplitude: np.ndarray  # per joint, share of the 25%..75% move
+    binding: str  # what set the move time
+    notes: tuple[str, ...]
+    cannot_hold: tuple[str, ...] = ()  # why actuators cannot hold their joints at rest
+
+
+def unit_profile(ranges: list[tuple[float, float]], amplitude: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(q, q', q'') on SAMPLES points of the up move then the down move, for T = 1."""
+    tau = np.linspace(0.0, 1.0, SAMPLES)
+    low, high = _ends(ranges, amplitude)
+    up = minimum_jerk(tau[:, None], 0.0, 1.0, low, high)
+    down = minimum_jerk(tau[:, None], 0.0, 1.0, high, low)
+    return tuple(np.vstack([a, b]) for a, b in zip(up, down, strict=True))  # type: ignore[return-value]
+
+
+def _ends(ranges: list[tuple[float, float]], amplitude: np.ndarray
+          ) -> tuple[np.ndarray, np.ndarray]:
+    lo = np.array([r[0] for r in ranges])
+    hi = np.array([r[1] for r in ranges])
+    middle, half = (lo + hi) / 2, 0.25 * (hi - lo) * amplitude
+    return middle - half, middle + half
+
+
+def plan_motion(ranges: list[tuple[float, float]], limits: Limits, dynamics: Dynamics,
+                move: float, fixed: bool, tolerance: float) -> Motion:
+    """The move time and amplitudes; ``move`` is the default (or, with ``fixed``, the only)."""
+    amplitude = np.ones(len(ranges))
+    notes = []
+    q, qd, qdd = unit_profile(ranges, amplitude)
+    still = _held_still(limits, dynamics(q, qd, qdd)[2])
+    for v, why in still.items():
+        amplitude[v] = 0.0
+        notes.append(f"joint '{limits.joints[v]}' is held still: {why}")
+    q, qd, qdd = unit_profile(ranges, amplitude)
+    parts = dynamics(q, qd, qdd)
+    weak = _cannot_hold(limits, parts[2])
+    longest = move if fixed else max(move, LONGEST_MOVE)
+    needed, binding = _move_time(limits, qd, qdd, parts, tolerance, move)
+    if needed <= longest:
+        chosen = max(move, needed)
+        return Motion(chosen, amplitude, binding if chosen > move else "", tuple(notes), weak)
+    scale = _amplitude_scale(limits, qd, qdd, parts, tolerance, longest)
+    shrunk = [f"'{limits.joints[v]}' {100 * scale[v]:.0f}%" for v in np.nonzero(scale < 1)[0]]
+    if shrunk:
+        notes.append(f"to stay within the limits at {longest:g} s per move, joints move this "
+                     "share of the default amplitude: " + ", ".join(shrunk))
+    return Motion(longest, amplitude * scale, "", tuple(notes), weak)
+
+
+def _cannot_hold(limits: Limits, static: np.ndarray) -> tuple[str, ...]:
+    """Why actuators cannot hold the robot still on the reference (gravity, friction)."""
+    effort = np.abs(static @ limits.eff_j2a.T).max(axis=0)
+    reasons = []
+    for a in np.nonzero(effort > limits.actuator_effort)[0]:
+        joints = ", ".join(f"'{limits.joints[v]}'" for v in np.nonzero(limits.eff_j2a[a])[0])
+        reasons.append(f"actuator '{limits.actuators[a]}': holding joint {joints} against "
+                       f"gravity needs {effort[a]:.4g}, beyond its effort limit "
+                       f"{limits.actuator_effort[a]:.4g} (the URDF may lack a counterbalance "
+                       "or spring)")
+    return tuple(reasons)
+
+
+def _held_still(limits: Limits, static: np.ndarray) -> dict[int, str]:
+    """Joints whose actuator cannot even hold gravity and Coulomb friction along the path."""
+    effort = np.abs(static @ limits.eff_j2a.T).max(axis=0)
+    held: dict[int, str] = {}
+    for a in np.nonzero(effort > MARGIN * limits.actuator_effort)[0]:
+        percent = 100 * effort[a] / limits.actuator_effort[a]
+        for v in np.nonzero(limits.eff_j2a[a])[0]:
+            held.setdefault(int(v), f"gravity and friction alone need {percent:.0f}% of "
+                                    f"actuator '{limits.actuators[a]}''s effort limit")
+    return held
+
+
+def _move_time(limits: Limits, qd: np.ndarray, qdd: np.ndarray, parts: Parts,
+               tolerance: float, start: float) -> tuple[float, str]:
+    """The shortest move time (at least ``start``) within every limit, and what binds it."""
+    speed = np.abs(qd).max(axis=0)
+    candidates = [(start, "")]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        joint = speed / (MARGIN * limits.velocity)
+        actuator = np.abs(qd @ limits.vel_j2a.T).max(axis=0) / (MARGIN * limits.actuator_speed)
+        lag = np.sqrt(limits.lag * np.abs(qdd).max(axis=0) / (LAG_SHARE * tolerance))
+    for values, what in ((joint, "joint '{}' velocity limit"),
+                         (actuator, "actuator '{}' speed limit"),
+                         (lag, "the lag of damped light joint '{}'")):
+        values = np.nan_to_num(values, nan=0.0, posinf=0.0)
+        if len(values) and values.max() > 0:
+            k = int(np.argmax(values))
+            names = limits.actuators if "actuator" in what else limits.joints
+            candidates.append((float(values[k]), what.format(names[k])))
+    move, binding = candidates[0]
+    for value, what in candidates[1:]:  # the first named wins a tie (a joint, its actuator)
+        if value > move * (1 + 1e-9):
+            move, binding = value, what
+    quadratic, linear, static = parts
+    limit = MARGIN * limits.actuator_effort
+    hopeless = np.abs(static @ limits.eff_j2a.T).max(axis=0) > limit  # no move time helps
+    for _ in range(400):
+        effort = np.abs((quadratic / move**2 + linear / move + static) @ limits.eff_j2a.T)
+        over = (effort.max(axis=0) > limit) & ~hopeless
+        if not over.any():
+            return move, binding
+        move *= GRID
+        binding = f"actuator '{limits.actuators[int(np.argmax(over))]}' effort limit"
+    return move, binding
+
+
+def _amplitude_scale(limits: Limits, qd: np.ndarray, qdd: np.ndarray, parts: Parts,
+                     tolerance: float, move: float) -> np.ndarray:
+    """Per joint, the share of the default amplitude that fits in ``move`` seconds."""
+    nv = qd.shape[1]
+    scale = np.ones(nv)
+    speed, accel = np.abs(qd).max(axis=0) / move, np.abs(qdd).max(axis=0) / move**2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        scale = np.minimum(scale, np.nan_to_num(MARGIN * limits.velocity / speed, nan=1.0))
+        lag = LAG_SHARE * tolerance / (limits.lag * accel)
+        scale = np.minimum(scale, np.nan_to_num(lag, nan=1.0, posinf=1.0))
+    quadratic, linear, static = parts
+    hopeless = np.abs(static @ limits.eff_j2a.T).max(axis=0) > MARGIN * limits.actuator_effort
+    for _ in range(200):
+        a_speed = np.abs((qd * scale) @ limits.vel_j2a.T).max(axis=0) / move
+        effort = np.abs(((quadratic / move**2 + linear / move) * scale + static)
+                        @ limits.eff_j2a.T).max(axis=0)
+        over = (a_speed > MARGIN * limits.actuator_speed) \
+            | ((effort > MARGIN * limits.actuator_effort) & ~hopeless)
+        if not over.any():
+            break
+        joints = np.nonzero(np.abs(limits.vel_j2a[over]).sum(axis=0)
+                            + np.abs(limits.eff_j2a[over]).sum(axis=0))[0]
+        scale[joints] *= 0.95
+    return scale
+
+
+def sample(ranges: list[tuple[float, float]], motion: Motion, dt: float) -> Reference:
+    """The reference of ``motion`` at every control step (two moves: up, then back)."""
+    t = step_times(2 * motion.move, dt)
+    low, high = _ends(ranges, motion.amplitude)
+    q, qd, qdd = (np.zeros((len(t), len(ranges))) for _ in range(3))
+    second = t >= motion.move
+    for i in range(len(ranges)):
+        up = minimum_jerk(t, 0.0, motion.move, low[i], high[i])
+        down = minimum_jerk(t, motion.move, 2 * motion.move, high[i], low[i])
+        for target, a, b in zip((q, qd, qdd), up, down, strict=True):
+            target[:, i] = np.where(second, b, a)
+    return Reference(t, q, qd, qdd, describe(motion))
+
+
+def describe(motion: Motion) -> str:
+    text = f"minimum-jerk 25% -> 75% -> 25% of each range, {motion.move:.3g} s per move"
+    if motion.binding:
+        text += f" (slowed for {motion.binding})"
+    return text
