@@ -44,6 +44,8 @@ class Drive:
     direct: tuple[str, ...]
     maps: list[TransmissionMap] = field(default_factory=list)
     drake: dict[str, dict[str, tuple[float, int]]] = field(default_factory=dict)
+    # ROS 2 transmissions: (joints, actuators) in XML order, the order of their parameters.
+    xml_order: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = field(default_factory=dict)
     # Per block: DoF indices, actuator indices, the map (None for a direct actuator).
     blocks: list[tuple[list[int], list[int], TransmissionMap | None]] = field(
         default_factory=list)
@@ -80,6 +82,9 @@ def read_drive(source: Source, robot: RobotModel, *, loader: str = "auto",
                              f"loaded: {exc}") from None
     drive = assemble(source.path, maps, robot, found)
     drive.drake = read_drake_tags(source.path, found)
+    drive.xml_order = {f.transmission.name: (tuple(j.name for j in f.transmission.joints),
+                                             tuple(a.name for a in f.transmission.actuators))
+                       for f in found if loader_of(f.transmission) == "ros2"}
     return drive
 
 

@@ -11,10 +11,11 @@ import numpy as np
 
 from txtool.io.load import load
 from txtool.io.xmlio import InputError, XacroOptions
-from txtool.simulate import loop, reference, result, setup
+from txtool.simulate import checks, loop, reference, result, setup
 from txtool.simulate.drive import Drive, read_drive
 from txtool.simulate.model import RobotModel, build
 from txtool.simulate.params import Params, load_params
+from txtool.simulate.sensing import Sensing
 
 DEFAULTS = {"bandwidth": 20.0, "duration": 5.0, "dt": 0.001, "tolerance": 0.01}
 MAX_STEPS = 20_000_000
@@ -42,6 +43,8 @@ class Options:
     xacro: XacroOptions = field(default_factory=XacroOptions)
     jobs: int = 1
     keep_series: bool = True
+    delay: bool = True  # one control period between read and write (sensing.py)
+    encoder_counts: int | None = None
 
 
 @dataclass(frozen=True)
@@ -112,7 +115,7 @@ def prepare(options: Options, config: str | None, label: str | None = None) -> P
     effort_limit, speed_limit = setup.actuator_limits(robot, plant, params)
     gains = setup.controller(robot, params, run_settings.bandwidth)
     plan = setup.build_plan(robot, plant, ctrl, binding, rotor, effort_limit, gains, ref,
-                            run_settings.dt)
+                            run_settings.dt, Sensing(options.delay, options.encoder_counts))
     return Prepared(options, config, label or (config if config is not None else options.robot),
                     robot, plant, ctrl, binding, plan, ref, run_settings, duration, effort_limit,
                     speed_limit, time.perf_counter() - started)
@@ -136,6 +139,8 @@ def finish(p: Prepared, loop_s: float) -> result.RunResult:
     run.config = p.label
     run.reference = p.ref.source
     run.notes = _notes(p.robot, p.plant, p.ctrl, p.config is not None)
+    checks.judge(run, series, p.plant, p.ctrl, p.binding.S, p.config is not None,
+                 p.plan.encoder, p.plan.delay)
     run.timings = {"setup_s": p.setup_s, "loop_s": loop_s,
                    "step_us": 1e6 * loop_s / max(p.plan.done, 1)}
     if not p.options.keep_series:
