@@ -215,7 +215,8 @@ def _same_as(T: np.ndarray, motors: list[str]) -> str:
                    if not _close(T[k, k], 1.0)]
         return f"; the same as {' and '.join(changed)}" if changed else ""
     p = _permutation(T)
-    if p is not None and np.any(p != np.arange(len(p))):
+    if p is not None and np.any(p != np.arange(len(p))) \
+            and all(_close(T[k, p[k]], 1.0) for k in range(len(p))):
         moved = [m for k, m in enumerate(motors) if p[k] != k]
         return f"; the same as swapping actuators {_list(moved)}"
     return ""
