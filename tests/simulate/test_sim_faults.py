@@ -69,6 +69,9 @@ FAULTS = {
         "actuators 'm_left' and 'm_right' swapped in the config's transmission 't_wrist' "
         "('m_left' reads 'm_right'; 'm_right' reads 'm_left')",
     ]),
+    # ar (30, 20), jr (1, 1): ros2_control applies A^T = [30 20; 0 20] to the actuator efforts
+    # that ros_control's inverse of [30 0; -30 20] computed (four_bar_linkage_transmission.h
+    # :241-242 and :309-310 at 133d768c), so K = [30 20; 0 20] [30 0; -30 20]^-1 = [2 1; 1 1].
     "ROS 1 four-bar effort on a ROS 2 robot": (
         four_bar_ros2, lambda: arm_ros1(kind="FourBarLinkageTransmission"),
         {"convention": "loader", "duration": 4.0}, [

@@ -223,6 +223,17 @@ def _same_as(T: np.ndarray, motors: list[str]) -> str:
 
 
 def _effort(ctrl: Drive, names: list[str], K: np.ndarray) -> str:
+    """An effort map that is not the transpose of the velocity map, e.g. ROS 1's four-bar.
+
+    ros_control computes ``tau_j1 = nj1 na1 tau_a1``, ``tau_j2 = nj2 (na2 tau_a2 - nj1 na1
+    tau_a1)`` (ros-controls/ros_control transmission_interface/include/transmission_interface/
+    four_bar_linkage_transmission.h:241-242 actuatorToJointEffort, :309-310 the inverse, at
+    133d768c). ros2_control's four_bar_linkage_transmission.hpp had the same lines (:298-300
+    and :340-341 at 057d3673) until PR #1837 made them ``A^T``: ``tau_j1 = nj1 na1 tau_a1 + na2
+    tau_a2``, ``tau_j2 = nj2 na2 tau_a2`` (its test/four_bar_linkage_transmission_test.cpp
+    WhiteBoxTest.MoveBothJoints expects (-160, -400) from tau_a (3, 5), ar (10, -20), jr
+    (-2, 4) at 15c1af27; ROS 1 gives (-60, -160)). :mod:`txtool.mechanics.maps` has both.
+    """
     ros1 = [m.name for m in ctrl.maps if m.kind == "four_bar" and m.convention == "ros1"
             and set(m.joints) & set(names)]
     applied = f"applied torque = {_matrix(K)} x commanded, joints {_list(names)}"
