@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from tests.simulate.robots import arm_ros1, pendulum, write
+from tests.simulate.robots import arm_ros1, pendulum, planar_two_link, write
 from txtool.cli import cli
 from txtool.simulate import loop
 from txtool.simulate.run import Options, prepare, simulate_one
@@ -102,3 +102,21 @@ def test_cli_options_for_the_loop(tmp_path):
     bad = CliRunner().invoke(cli, ["simulate", robot, "--encoder-counts", "0"])
     assert bad.exit_code == 2
     assert "Invalid value for '--encoder-counts': 0 is not in the range x>=1." in bad.stderr
+
+
+def test_a_prismatic_joint_driven_directly_has_a_linear_actuator_not_quantised(tmp_path):
+    text = planar_two_link(1, 1, 0.5, 0.2, 0.2, 0.01, 0.01).replace(
+        'name="q2" type="revolute"', 'name="q2" type="prismatic"').replace(
+        'lower="-3" upper="3" effort="100" velocity="5"/></joint>\n</robot>',
+        'lower="0" upper="0.2" effort="100" velocity="5"/></joint>\n</robot>')
+    robot = write(tmp_path, "slide.urdf", text)
+    p = prepare(Options(robot=robot, duration=0.5, encoder_counts=16), None)
+    loop.run(p.plan)
+    reading = p.plan.rows[:-1, p.plan.slots["enc"]]
+    true = p.plan.rows[:-1, p.plan.slots["x"]]
+    assert np.array_equal(reading[:, 1], true[:, 1])  # the slide: exact, in metres
+    counts = reading[:, 0] / (2 * math.pi / 16)
+    assert np.allclose(counts, np.rint(counts), rtol=0, atol=1e-9) and np.ptp(counts) >= 3
+    run = simulate_one(Options(robot=robot, duration=0.5, encoder_counts=16), None)
+    assert ("encoders of 16 counts per actuator revolution; velocity by finite differences; "
+            "not quantised (linear): q2") in run.notes

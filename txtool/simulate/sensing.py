@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from txtool.io.xmlio import InputError
 from txtool.simulate.drive import Drive
 from txtool.simulate.model import RobotModel
 
@@ -34,7 +35,7 @@ class Sensing:
 
     def __post_init__(self) -> None:
         if self.counts is not None and self.counts < 1:
-            raise ValueError(f"encoder counts must be at least 1, got {self.counts}")
+            raise InputError(f"--encoder-counts: must be at least 1, got {self.counts}")
 
 
 @dataclass(frozen=True)
@@ -54,11 +55,6 @@ class Encoder:
     @property
     def linear(self) -> np.ndarray:
         return self.step == 0
-
-    def quantise(self, positions: np.ndarray) -> np.ndarray:
-        """Actuator positions rounded to whole counts (unchanged where ``step`` is 0)."""
-        scale = np.where(self.linear, 1.0, self.step)
-        return np.where(self.linear, positions, np.rint(positions / scale) * scale)
 
     def reader(self, rows: np.ndarray, position: slice, speed: slice, dt: float) -> Reader:
         """``read(row, x, v, k)``: fill row ``k``'s reading from the plant's ``x`` (and ``v``).
