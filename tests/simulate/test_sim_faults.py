@@ -77,8 +77,8 @@ FAULTS = {
         {"convention": "loader", "duration": 4.0}, [
             "transmission 't_wrist': the config's effort map is ros_control's (ROS 1) four-bar "
             "map, which does not conserve power (ros_control#523), while the robot's is the "
-            "power-conserving one of ros2_control (PR #1837): applied torque = [2 1; 1 1] x "
-            "commanded, joints 'elbow' and 'wrist'",
+            "power-conserving one of ros2_control (PR #1837): the applied torques of 'elbow' "
+            "and 'wrist' are [2 1; 1 1] times the commanded ones",
         ]),
     "ROS 2 XML order": (arm_ros2, ros2_joints_in_other_xml_order, {}, [
         "joint 'elbow': offset off by -0.1 rad in the config's transmission 't_wrist' "

@@ -134,7 +134,7 @@ def _position(plant: Drive, ctrl: Drive, joints: list[int], G: np.ndarray, T: np
     if (by_actuator := _permutation(T)) is not None:
         return [_swapped("actuators", motors, T, by_actuator, ctrl, names[0])]
     return [f"{_in(ctrl, names[0])}: joints {_list(names)} are coupled differently from the "
-            f"robot's (position estimate = {_matrix(G)} x)"]
+            f"robot's (its position estimates are {_matrix(G)} times the true positions)"]
 
 
 def _kinds(plant: Drive, ctrl: Drive, names: list[str]) -> list[str]:
@@ -236,7 +236,7 @@ def _effort(ctrl: Drive, names: list[str], K: np.ndarray) -> str:
     """
     ros1 = [m.name for m in ctrl.maps if m.kind == "four_bar" and m.convention == "ros1"
             and set(m.joints) & set(names)]
-    applied = f"applied torque = {_matrix(K)} x commanded, joints {_list(names)}"
+    applied = f"the applied torques of {_list(names)} are {_matrix(K)} times the commanded ones"
     if ros1:
         return (f"transmission '{ros1[0]}': the config's effort map is ros_control's (ROS 1) "
                 "four-bar map, which does not conserve power (ros_control#523), while the "
