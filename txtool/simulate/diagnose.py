@@ -93,19 +93,18 @@ def _groups(c: Comparison, plant: Drive, ctrl: Drive) -> list[list[int]]:
 
 def _group_causes(c: Comparison, plant: Drive, ctrl: Drive, joints: list[int],
                   actuators: list[int], units: tuple[str, ...]) -> list[str]:
-    G = c.G[np.ix_(joints, joints)]
-    if np.any(np.all(G == 0, axis=1)):
-        return []  # a joint the candidate cannot measure: the binding reasons say why
     names = [plant.joints[v] for v in joints]
     kinds = _kinds(plant, ctrl, names)
-    if kinds:
-        return kinds
+    G = c.G[np.ix_(joints, joints)]
+    if kinds or np.any(np.all(G == 0, axis=1)):
+        return kinds  # a joint the candidate cannot measure: the binding reasons say why
     T = c.T[np.ix_(actuators, actuators)]
     K = c.K[np.ix_(joints, joints)]
-    permuted = None if _diagonal(G) else _permutation(G)
     out = _position(plant, ctrl, joints, G, T, [plant.actuators[i] for i in actuators])
     # Offsets that travel with swapped joints are not a difference of their own.
-    carried = np.eye(len(joints)) if permuted is None else _pattern(G).astype(float)
+    by_joint = None if _diagonal(G) else _permutation(G)
+    swapped = by_joint is not None and _unit(G, by_joint)
+    carried = _pattern(G).astype(float) if swapped else np.eye(len(joints))
     offset = c.offset[joints] - carried @ c.robot_offset[joints]
     for k, v in enumerate(joints):
         if abs(offset[k]) > OFFSET_TOLERANCE:
@@ -121,20 +120,29 @@ def _group_causes(c: Comparison, plant: Drive, ctrl: Drive, joints: list[int],
 
 def _position(plant: Drive, ctrl: Drive, joints: list[int], G: np.ndarray, T: np.ndarray,
               motors: list[str]) -> list[str]:
-    """Joint factors, swapped joints, actuator factors, swapped actuators: the first that fits."""
+    """The simplest reading that fits: joint factors, a plain joint swap, actuator factors,
+    a scaled joint swap, an actuator swap; else the matrix."""
     names = [plant.joints[v] for v in joints]
     if _diagonal(G):
         return [_joint_factor(plant, ctrl, v, G[k, k]) for k, v in enumerate(joints)
                 if not _close(G[k, k], 1.0)]
-    if (by_joint := _permutation(G)) is not None:
+    by_joint = _permutation(G)
+    if by_joint is not None and _unit(G, by_joint):
         return [_swapped("joints", names, G, by_joint, ctrl, names[0]) + _same_as(T, motors)]
     if _diagonal(T):
         return [_actuator_factor(plant, ctrl, motors[k], T[k, k]) for k in range(len(motors))
                 if not _close(T[k, k], 1.0)]
+    if by_joint is not None:
+        return [_swapped("joints", names, G, by_joint, ctrl, names[0])]
     if (by_actuator := _permutation(T)) is not None:
         return [_swapped("actuators", motors, T, by_actuator, ctrl, names[0])]
     return [f"{_in(ctrl, names[0])}: joints {_list(names)} are coupled differently from the "
             f"robot's (its position estimates are {_matrix(G)} times the true positions)"]
+
+
+def _unit(M: np.ndarray, p: np.ndarray) -> bool:
+    """The permutation ``p`` of ``M`` moves values without scaling them."""
+    return all(_close(M[k, p[k]], 1.0) for k in range(len(p)))
 
 
 def _kinds(plant: Drive, ctrl: Drive, names: list[str]) -> list[str]:
@@ -179,13 +187,13 @@ def _permutation(M: np.ndarray) -> np.ndarray | None:
 def _joint_factor(plant: Drive, ctrl: Drive, v: int, gain: float) -> str:
     """Joint ``v`` is read as ``gain * x``: the candidate's reduction is ``1/gain`` times."""
     joint = plant.joints[v]
-    values = _values(plant, ctrl, joint, "joint")
+    values = _values(plant, ctrl, joint, "joint", 1.0 / gain)
     return f"joint '{joint}': {_factor(1.0 / gain)} in {_in(ctrl, joint)}{values}"
 
 
 def _actuator_factor(plant: Drive, ctrl: Drive, actuator: str, gain: float) -> str:
     """The candidate expects actuator readings ``gain`` times the robot's: so is its reduction."""
-    values = _values(plant, ctrl, actuator, "actuator")
+    values = _values(plant, ctrl, actuator, "actuator", gain)
     owner = _owner(ctrl, actuator)
     where = f"the config's transmission '{owner}'" if owner else "the config"
     return f"actuator '{actuator}': {_factor(gain)} in {where}{values}"
@@ -215,8 +223,7 @@ def _same_as(T: np.ndarray, motors: list[str]) -> str:
                    if not _close(T[k, k], 1.0)]
         return f"; the same as {' and '.join(changed)}" if changed else ""
     p = _permutation(T)
-    if p is not None and np.any(p != np.arange(len(p))) \
-            and all(_close(T[k, p[k]], 1.0) for k in range(len(p))):
+    if p is not None and np.any(p != np.arange(len(p))) and _unit(T, p):
         moved = [m for k, m in enumerate(motors) if p[k] != k]
         return f"; the same as swapping actuators {_list(moved)}"
     return ""
@@ -269,23 +276,26 @@ def _xml_order(plant: Drive, ctrl: Drive, names: list[str]) -> list[str]:
     return hints
 
 
-def _values(plant: Drive, ctrl: Drive, name: str, side: str) -> str:
+def _values(plant: Drive, ctrl: Drive, name: str, side: str, factor: float) -> str:
+    """Both reductions, when they differ by ``factor`` (else the parameters do not say it)."""
     mine, theirs = _reduction(ctrl, name, side), _reduction(plant, name, side)
-    if mine is None or theirs is None:
+    if mine is None or theirs is None or not _close(mine, factor * theirs):
         return ""
     return f" (reduction {mine:.6g}, the robot's {theirs:.6g})"
 
 
 def _reduction(drive: Drive, name: str, side: str) -> float | None:
-    """A simple transmission's reduction (either side), or a coupled one's on ``side``."""
+    """The reduction that scales ``name``'s reading: a simple transmission's product, a coupled
+    one's on ``side`` (the four-bar's first actuator and joint only act as ``ar1 jr1``)."""
     for tmap in drive.maps:
         members = tmap.joints if side == "joint" else tmap.actuators
         if name not in members:
             continue
-        if tmap.kind == "simple":
-            return tmap.actuator_reduction[0] * tmap.joint_reduction[0]
+        ar, jr = tmap.actuator_reduction, tmap.joint_reduction
         k = members.index(name)
-        return (tmap.joint_reduction if side == "joint" else tmap.actuator_reduction)[k]
+        if tmap.kind == "simple" or (tmap.kind == "four_bar" and k == 0):
+            return ar[0] * jr[0]
+        return (jr if side == "joint" else ar)[k]
     return 1.0 if name in drive.direct else None
 
 
