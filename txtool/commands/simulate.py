@@ -43,6 +43,12 @@ from txtool.io.xmlio import XacroOptions
               default="ros2", show_default=True,
               help="Controller effort maps: ros2_control's (power-conserving) for every config, "
                    "or each config's own loader's (ROS 1 four-bar: ros_control's).")
+@click.option("--delay/--no-delay", default=True, show_default=True,
+              help="One control period between reading the state and applying the effort "
+                   "(read -> update -> write, as in ros2_control).")
+@click.option("--encoder-counts", type=click.IntRange(min=1), metavar="N",
+              help="Quantise actuator positions to N counts per revolution; velocity by finite "
+                   "differences (default: exact readings).")
 @FORMAT_OPTION
 @click.option("--csv", "csv_path", type=click.Path(dir_okay=False), metavar="PATH",
               help="Write the time series (PATH.N.csv per config when several).")
@@ -58,7 +64,8 @@ from txtool.io.xmlio import XacroOptions
 def command(robot: str, configs: tuple[str, ...], params: str | None, bandwidth: float | None,
             duration: float | None, dt: float | None, tolerance: float | None,
             trajectory: str | None, interpolation: str, allow_saturation: bool, loader: str,
-            convention: str, output_format: str, csv_path: str | None,
+            convention: str, delay: bool, encoder_counts: int | None,
+            output_format: str, csv_path: str | None,
             plot_path: str | None, skip: tuple[str, ...], jobs: int, no_xacro: bool,
             xacro: XacroOptions) -> int:
     """Check a transmission config in closed loop against the robot's own.
@@ -78,7 +85,7 @@ def command(robot: str, configs: tuple[str, ...], params: str | None, bandwidth:
         robot=robot, configs=configs, params=params, bandwidth=bandwidth, duration=duration,
         dt=dt, tolerance=tolerance, trajectory=trajectory, interpolation=interpolation,
         allow_saturation=allow_saturation, loader=loader, convention=convention, xacro=xacro,
-        jobs=jobs, skip=skip,
+        jobs=jobs, skip=skip, delay=delay, encoder_counts=encoder_counts,
     )
     _, code = main(options, output=output_format, csv_path=csv_path, plot_path=plot_path)
     return code

@@ -45,6 +45,8 @@ class Drive:
     direct: tuple[str, ...]
     maps: list[TransmissionMap] = field(default_factory=list)
     drake: dict[str, dict[str, tuple[float, int]]] = field(default_factory=dict)
+    # ROS 2 transmissions: (joints, actuators) in XML order, the order of their parameters.
+    xml_order: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = field(default_factory=dict)
     # Per block: DoF indices, actuator indices, the map (None for a direct actuator).
     blocks: list[tuple[list[int], list[int], TransmissionMap | None]] = field(
         default_factory=list)
@@ -96,6 +98,9 @@ def read_drive(source: Source, robot: RobotModel, *, loader: str = "auto",
         kept.append(item)
     drive = assemble(source.path, maps, robot, kept)
     drive.drake = read_drake_tags(source.path, kept)
+    drive.xml_order = {f.transmission.name: (tuple(j.name for j in f.transmission.joints),
+                                             tuple(a.name for a in f.transmission.actuators))
+                       for f in kept if loader_of(f.transmission) == "ros2"}
     notes += _skip_notes(source.path, skipped, where)
     if found and not maps:
         notes.append("no transmission can be simulated: every joint is driven directly")

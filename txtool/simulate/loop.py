@@ -2,7 +2,8 @@
 
 Everything linear is folded into a few matrices that act on one history row per step::
 
-    row = [x | v | 1 | a | ff | (q_ref v_ref) | (friction ff) | tau_a demanded | tau_a applied]
+    row = [x | v | 1 | a | ff | (q_ref v_ref) | (friction ff) | (readings) | tau_a demanded
+           | tau_a applied]
 
 ``H @ row`` gives the controller's joint estimates (decoded with the candidate from the actuator
 readings the plant produces with the robot's maps), the acceleration command
@@ -14,6 +15,10 @@ on the fast path), and ``Phi @ row`` is the semi-implicit Euler step. So a step 
 over transmissions. Damping is implicit there through the plant's armature (see
 :mod:`txtool.simulate.plant`); friction, sub-steps and coupled inertia go through
 :meth:`plant.Dynamics.advance`.
+
+With ``plan.delay`` the clipped demand of row ``k`` becomes the applied effort of row ``k + 1``
+(read -> update -> write, see :mod:`txtool.simulate.sensing`). With an encoder, the estimates
+are decoded from the quantised actuator readings in the row instead of from ``x`` and ``v``.
 """
 
 from __future__ import annotations
@@ -26,6 +31,7 @@ import pinocchio as pin
 
 from txtool.simulate.model import RobotModel
 from txtool.simulate.plant import Dynamics
+from txtool.simulate.sensing import Encoder
 
 CHUNK = 500
 
@@ -63,6 +69,8 @@ class Plan:
     q_ref: np.ndarray
     ki: np.ndarray | None = None
     i_limit: np.ndarray | None = None
+    delay: bool = False  # the effort computed at step k acts from step k + 1 (sensing.py)
+    encoder: Encoder | None = None  # quantised readings in the "enc"/"encv" slots
     diverged_at: int | None = None
     done: int = 0
     extras: dict[str, object] = field(default_factory=dict)
@@ -71,12 +79,15 @@ class Plan:
         return self.rows[:, self.slots[name]]
 
 
-def layout(nv: int, na: int, *, unobserved: bool, friction_ff: bool) -> dict[str, slice]:
+def layout(nv: int, na: int, *, unobserved: bool, friction_ff: bool,
+           encoder: bool = False) -> dict[str, slice]:
     sizes = [("x", nv), ("v", nv), ("one", 1), ("a", nv), ("ff", nv)]
     if unobserved:
         sizes += [("qref", nv), ("vref", nv)]
     if friction_ff:
         sizes.append(("fric", nv))
+    if encoder:
+        sizes += [("enc", na), ("encv", na)]  # actuator readings: counts, finite differences
     sizes += [("ta", na), ("sat", na)]
     slots, start = {}, 0
     for name, size in sizes:
@@ -96,6 +107,8 @@ def make_model(robot: RobotModel, inertia: np.ndarray) -> tuple[pin.Model, np.nd
 def run(plan: Plan, progress: Callable[[int], None] | None = None) -> Plan:
     """Advance ``plan`` to its last step (or to divergence); ``progress(steps_done)``."""
     with np.errstate(all="ignore"):
+        if plan.delay and plan.done == 0 and plan.steps > 0:
+            _first_step_with_delay(plan)
         while plan.done < plan.steps:
             stop = min(plan.done + CHUNK, plan.steps)
             _steps(plan, plan.done, stop)
@@ -110,21 +123,38 @@ def run(plan: Plan, progress: Callable[[int], None] | None = None) -> Plan:
     return plan
 
 
+def _first_step_with_delay(plan: Plan) -> None:
+    """Step 0 as if the loop had been holding the start: its own command acts at once too.
+
+    The command of step 0 is then also the one that acts during step 1 (written to row 1).
+    """
+    plan.delay = False
+    try:
+        _steps(plan, 0, 1)
+    finally:
+        plan.delay = True
+    sat = plan.slots["sat"]
+    plan.rows[1, sat] = plan.rows[0, sat]
+    plan.done = 1
+
+
 def _steps(plan: Plan, start: int, stop: int) -> None:
-    general = plan.ki is not None or plan.robot.has_continuous or not plan.dynamics.simple
+    general = plan.ki is not None or plan.robot.has_continuous or plan.encoder is not None \
+        or not plan.dynamics.simple
     (_general_steps if general else _fast_steps)(plan, start, stop)
 
 
 def _views(plan: Plan, start: int, stop: int) -> zip:
-    """Per step: the history row, its x, v, demanded and applied effort, the next [x v], k.
+    """Per step: the history row, its x, v, demanded effort, where the clipped demand goes
+    (this row's applied effort, or the next row's with ``plan.delay``), the next [x v], k.
 
     Iterating 2-D column views yields each step's 1-D views more cheaply than indexing.
     """
     rows, s, two = plan.rows, plan.slots, 2 * plan.robot.nv
-    span = slice(start, stop)
+    span, lag = slice(start, stop), int(plan.delay)
     return zip(rows[span], rows[span, s["x"]], rows[span, s["v"]], rows[span, s["ta"]],
-               rows[span, s["sat"]], rows[start + 1 : stop + 1, :two], range(start, stop),
-               strict=True)
+               rows[start + lag : stop + lag, s["sat"]], rows[start + 1 : stop + 1, :two],
+               range(start, stop), strict=True)
 
 
 def _fast_steps(plan: Plan, start: int, stop: int) -> None:
@@ -172,7 +202,12 @@ def _general_steps(plan: Plan, start: int, stop: int) -> None:
     advance = plan.dynamics.advance
     ki, i_limit, z = plan.ki, plan.i_limit, plan.extras.setdefault("z", np.zeros(nv))
     ctrl_block, dt, q_ref = plan.ctrl_block, plan.dt, plan.q_ref
+    read = None
+    if plan.encoder is not None:
+        read = plan.encoder.reader(rows, plan.slots["enc"], plan.slots["encv"], dt)
     for row, x, v, ta, sat, nxt, k in _views(plan, start, stop):
+        if read is not None:
+            read(row, x, v, k)
         np.dot(H, row, out=out)
         if ki is not None:
             z += dt * (q_ref[k] - xh)

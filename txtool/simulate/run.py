@@ -11,10 +11,11 @@ import numpy as np
 
 from txtool.io.load import load
 from txtool.io.xmlio import InputError, XacroOptions
-from txtool.simulate import feasible, loop, reference, result, setup
+from txtool.simulate import checks, feasible, loop, reference, result, setup
 from txtool.simulate.drive import Drive, read_drive
 from txtool.simulate.model import RobotModel, build
 from txtool.simulate.params import Params, load_params
+from txtool.simulate.sensing import Sensing
 
 DEFAULTS = {"bandwidth": 20.0, "duration": 5.0, "dt": 0.001, "tolerance": 0.01}
 MAX_STEPS = 20_000_000
@@ -43,6 +44,8 @@ class Options:
     jobs: int = 1
     keep_series: bool = True
     skip: tuple[str, ...] = ()  # transmission names left out (joints driven directly)
+    delay: bool = True  # one control period between read and write (sensing.py)
+    encoder_counts: int | None = None
 
 
 @dataclass(frozen=True)
@@ -131,7 +134,7 @@ def prepare(options: Options, config: str | None, label: str | None = None) -> P
         ref, duration, ref_notes = _reference(options, robot, run_settings)
         weak = []
     plan = setup.build_plan(robot, plant, ctrl, binding, rotor, effort_limit, gains, ref,
-                            run_settings.dt)
+                            run_settings.dt, Sensing(options.delay, options.encoder_counts))
     return Prepared(options, config, label or (config if config is not None else options.robot),
                     robot, plant, ctrl, binding, plan, ref, run_settings, duration, effort_limit,
                     speed_limit, time.perf_counter() - started, ref_notes, weak, gains)
@@ -157,6 +160,8 @@ def finish(p: Prepared, loop_s: float) -> result.RunResult:
     run.notes = _notes(p.robot, p.plant, p.ctrl, p.config is not None) + p.reference_notes
     if p.plan.dynamics.note:
         run.notes.append(p.plan.dynamics.note)
+    checks.judge(run, series, p.plant, p.ctrl, p.binding.S, p.config is not None,
+                 p.plan.encoder, p.plan.delay)
     run.timings = {"setup_s": p.setup_s, "loop_s": loop_s,
                    "step_us": 1e6 * loop_s / max(p.plan.done, 1)}
     if not p.options.keep_series:

@@ -17,6 +17,7 @@ from txtool.simulate.model import RobotModel
 from txtool.simulate.params import Params
 from txtool.simulate.plant import Dynamics, smallest_inertia, substeps_for
 from txtool.simulate.reference import Reference, joint_range
+from txtool.simulate.sensing import Sensing, encoder
 
 SAMPLES = 20  # reference poses where the plant's stiffness is measured
 TINY_INERTIA = 1e-12
@@ -107,12 +108,14 @@ def controller(robot: RobotModel, params: Params, bandwidth: float) -> Controlle
 
 def build_plan(robot: RobotModel, plant: Drive, ctrl: Drive, binding: Binding,
                rotor: tuple[np.ndarray, np.ndarray], limit: np.ndarray, gains: Controller,
-               ref: Reference, dt: float) -> Plan:
+               ref: Reference, dt: float, sensing: Sensing | None = None) -> Plan:
     """``rotor`` = (per robot actuator, per candidate actuator) rotor inertias."""
     nv, na = robot.nv, plant.na
+    sensing = sensing or Sensing(delay=False)
     unobserved = [robot.joints.index(j) for j in binding.unobserved]
     friction_ff = bool(np.any(gains.friction))
-    s = layout(nv, na, unobserved=bool(unobserved), friction_ff=friction_ff)
+    s = layout(nv, na, unobserved=bool(unobserved), friction_ff=friction_ff,
+               encoder=sensing.counts is not None)
     width = s["sat"].stop
     steps = len(ref.time) - 1
     rows = _rows(s, width, ref, gains)
@@ -142,6 +145,7 @@ def build_plan(robot: RobotModel, plant: Drive, ctrl: Drive, binding: Binding,
         plant=(dynamics.model, dynamics.data), ctrl=(ctrl_model, ctrl_model.createData()),
         plant_block=dynamics.block, ctrl_block=ctrl_block, dynamics=dynamics, bias=bias,
         q_ref=ref.q, ki=gains.ki if use_ki else None, i_limit=gains.i_limit if use_ki else None,
+        delay=sensing.delay, encoder=encoder(sensing.counts, plant, robot),
     )
 
 
@@ -184,9 +188,14 @@ def _estimates(s: dict[str, slice], width: int, nv: int, plant: Drive, ctrl: Dri
                S: np.ndarray, unobserved: list[int]) -> np.ndarray:
     """Rows mapping a history row to the controller's [position; velocity] estimates."""
     E = np.zeros((2 * nv, width))
-    E[:nv, s["x"]] = ctrl.pos_a2j @ S @ plant.pos_j2a
-    E[:nv, s["one"]] = (ctrl.pos_a2j @ S @ plant.pos_j2a_c + ctrl.pos_a2j_c)[:, None]
-    E[nv:, s["v"]] = ctrl.vel_a2j @ S @ plant.vel_j2a
+    if "enc" in s:  # from the encoder readings (sensing.py) rather than the plant's state
+        E[:nv, s["enc"]] = ctrl.pos_a2j @ S
+        E[:nv, s["one"]] = ctrl.pos_a2j_c[:, None]
+        E[nv:, s["encv"]] = ctrl.vel_a2j @ S
+    else:
+        E[:nv, s["x"]] = ctrl.pos_a2j @ S @ plant.pos_j2a
+        E[:nv, s["one"]] = (ctrl.pos_a2j @ S @ plant.pos_j2a_c + ctrl.pos_a2j_c)[:, None]
+        E[nv:, s["v"]] = ctrl.vel_a2j @ S @ plant.vel_j2a
     for v in unobserved:
         E[v, :] = 0.0
         E[nv + v, :] = 0.0
