@@ -25,22 +25,22 @@ def markdown(rule: Any, *, heading: str = "**") -> str:
     title = f"{rule.code} {rule.name}"
     out = [f"# {title}" if heading == "#" else f"**{title}**", ""]
     fenced = False
-    for line in rule.doc.splitlines():
+    for line in _inline(rule.doc).splitlines():  # literals may span lines
         if fenced and line.strip() and not line.startswith("    "):
             while out[-1] == "":
                 out.pop()
             out += ["```", ""]
             fenced = False
         if line.rstrip().endswith("::") and not fenced:
-            out += [_inline(line.rstrip()[:-1]), "", "```xml"]
+            out += [line.rstrip()[:-1], "", "```xml"]
             fenced = True
             continue
-        out.append(line[4:] if fenced else _inline(line))
+        out.append(line[4:] if fenced else line)
     if fenced:
         out.append("```")
     return "\n".join(out).replace("```xml\n\n", "```xml\n")
 
 
-def _inline(line: str) -> str:
-    line = _ROLE.sub(lambda m: f"`{m.group(1).rsplit('.', 1)[-1]}`", line)
-    return _LITERAL.sub(r"`\1`", line)
+def _inline(text: str) -> str:
+    text = _ROLE.sub(lambda m: f"`{m.group(1).rsplit('.', 1)[-1]}`", text)
+    return _LITERAL.sub(r"`\1`", text)

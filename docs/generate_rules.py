@@ -1,11 +1,13 @@
-"""mkdocs hook: one page per lint rule, generated from the rule modules' docstrings (the rule
-catalogue in ``rules/index.md`` links them), as ruff's documentation is made."""
+"""One page per lint rule, generated from the rule modules' docstrings, and the catalogue
+``docs/rules/index.md`` that links them, as ruff's documentation is made.
+
+Run ``python docs/generate_rules.py`` after changing a rule; a test holds the pages current.
+"""
 
 from __future__ import annotations
 
 import sys
 from pathlib import Path
-from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
@@ -34,12 +36,17 @@ def rule_pages() -> dict[str, str]:
     return pages
 
 
-def on_files(files: Any, config: Any) -> Any:
-    from mkdocs.structure.files import File
+def write(folder: Path) -> None:
+    """Write the pages into ``folder`` (``docs/``), removing pages of rules that are gone."""
+    pages = rule_pages()
+    rules = folder / "rules"
+    rules.mkdir(exist_ok=True)
+    for old in rules.glob("TX*.md"):
+        if f"rules/{old.name}" not in pages:
+            old.unlink()
+    for path, content in pages.items():
+        (folder / path).write_text(content, encoding="utf-8")
 
-    for path, content in rule_pages().items():
-        existing = files.get_file_from_path(path)
-        if existing is not None:
-            files.remove(existing)
-        files.append(File.generated(config, path, content=content))
-    return files
+
+if __name__ == "__main__":
+    write(Path(__file__).resolve().parent)
