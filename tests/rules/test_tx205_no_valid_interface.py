@@ -77,3 +77,21 @@ def test_ros1_only_a_misspelt_interface_is_refused_with_the_nearest_name():
     assert [(p.code, p.severity) for p in found] == [("TX205", "error"), ("TX204", "warning")]
     assert "did you mean 'hardware_interface/EffortJointInterface'?" in found[0].message
     assert "with no valid interface left it refuses the transmission: TX205" in found[1].message
+
+
+def test_a_ros1_leftover_beside_ros2_control_is_read_by_no_loader():
+    """OMY-F3M keeps ROS 1 transmissions beside its <ros2_control> block: TX304 only."""
+    xml = """<robot name="r">
+  <joint name="j" type="revolute"><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <transmission name="t">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j"><hardwareInterface>PositionJointInterface</hardwareInterface></joint>
+    <actuator name="m"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>
+  <ros2_control name="hw" type="system"><joint name="j"><command_interface name="position"/></joint></ros2_control>
+</robot>
+"""
+    assert sorted((code, severity) for _, _, code, severity in check(xml)) == [
+        ("TX300", "warning"), ("TX304", "warning")]
+    alone = xml.replace('<ros2_control name="hw" type="system"><joint name="j"><command_interface name="position"/></joint></ros2_control>\n', "")
+    assert ("TX205", "error") in [(code, severity) for _, _, code, severity in check(alone)]

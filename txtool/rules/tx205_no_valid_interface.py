@@ -11,7 +11,9 @@ What it checks
       ``effort``; Simple and Differential also ``torque``, ``force``, ``absolute_position``).
 
     Custom transmission types, families with loaders of their own and names holding xacro
-    expressions are not checked.
+    expressions are not checked; nor is a ROS 1 transmission outside every ``<ros2_control>``
+    block of a document that has such blocks: the robot's loader is then ros2_control, which
+    never reads it (TX304 says so), so nothing refuses it.
 
 Why
     ros_control warns for each name its pluginlib lookup does not find and, when no interface
@@ -53,7 +55,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from txtool.dialects.read import Found
+from txtool.dialects.read import Found, enclosing_component
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.support import (
@@ -85,6 +87,8 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         if found.transmission.kind == "other":
             continue
         if found.transmission.dialect == "ros1":
+            if ctx.components and enclosing_component(found.element) is None:
+                continue  # a ROS 2 robot's leftover: no loader reads it (TX304)
             if typed_ros1(found) and loaded_by_ros_control(found):
                 yield from _check_ros1(ctx, found)
         else:
