@@ -145,18 +145,24 @@ def test_no_temporary_file_is_a_one_line_error(run, tmp_path, monkeypatch, write
     assert _snapshot(tmp_path) == before
 
 
-@pytest.mark.skipif(not hasattr(os, "geteuid") or os.geteuid() == 0,
-                    reason="root writes into read-only folders")
 @pytest.mark.parametrize("writer", WRITERS)
-def test_a_read_only_folder_is_a_one_line_error(run, tmp_path, writer):
+@pytest.mark.parametrize("step", ["create the temporary file", "rename it over the target"])
+def test_a_read_only_folder_is_a_one_line_error(run, tmp_path, monkeypatch, writer, step):
+    """A folder the user may not write into refuses the temporary file, and a sticky folder
+    refuses the rename over another user's file. Both are injected: root writes anywhere, and
+    CI runs as root."""
     args, target = WRITERS[writer](tmp_path)
     before = _snapshot(tmp_path)
-    tmp_path.chmod(0o555)
-    try:
-        assert run(*args) == (2, "", _failure(writer, target, "Permission denied"))
-    finally:
-        tmp_path.chmod(0o755)
-    assert _snapshot(tmp_path) == before
+
+    def denied(*_: object, **__: object) -> None:
+        raise PermissionError(errno.EACCES, "Permission denied")
+
+    if step.startswith("create"):
+        monkeypatch.setattr(tempfile, "mkstemp", denied)
+    else:
+        monkeypatch.setattr(os, "replace", denied)
+    assert run(*args) == (2, "", _failure(writer, target, "Permission denied"))
+    assert _snapshot(tmp_path) == before  # same bytes, and no temporary file left
 
 
 @pytest.mark.parametrize("writer", WRITERS)

@@ -11,14 +11,16 @@ import pytest
 from tests.lint.conftest import BROKEN
 
 HEAVY = ("pinocchio", "pin", "yourdfpy", "trimesh", "numpy", "scipy", "matplotlib")
+# Only what txtool loads counts, not what ran before it (coverage, when measuring subprocesses).
 PROBE = """
 import json, sys
+before = set(sys.modules)
 from txtool.cli import cli
 try:
     cli.main(sys.argv[1:], prog_name="txtool", standalone_mode=True)
 except SystemExit as exc:
     code = exc.code
-loaded = sorted({name.split(".")[0] for name in sys.modules})
+loaded = sorted({name.split(".")[0] for name in set(sys.modules) - before})
 print(json.dumps({"code": code, "loaded": loaded}), file=sys.stderr)
 """
 

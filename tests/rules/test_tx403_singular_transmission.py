@@ -70,8 +70,13 @@ def test_ros2_four_bar_with_an_underflowing_determinant_fires():
 @given(st.floats(allow_nan=True, allow_infinity=True), st.sampled_from(["ros1", "ros2"]))
 @settings(max_examples=200, deadline=None)
 def test_a_loadable_simple_transmission_is_never_singular(reduction, dialect):
-    """The rule skips simple transmissions unread: a 1x1 map that loads is never singular."""
+    """Linting a simple transmission with any reduction never reports TX403.
+
+    A 1x1 map that loads is one finite, non-zero number (the rule skips simple transmissions
+    for that reason); one that does not load is TX105's or TX106's to report.
+    """
     xml = (SIMPLE_ROS1 if dialect == "ros1" else SIMPLE_ROS2).format(n=repr(reduction))
+    assert [p.code for p in problems(xml, select=["TX403"])] == []
     found = read_source(Source("r.urdf", xml.encode(), parse_bytes(xml.encode(), "r.urdf")))
     try:
         loaded = effective(found[0].transmission)
