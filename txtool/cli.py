@@ -31,6 +31,48 @@ COMMAND_MODULES = (
 )
 
 
+# Shown at the end of each command's --help ("\b" keeps click from re-wrapping the lines).
+EXAMPLES: dict[str, tuple[str, ...]] = {
+    "validate": (
+        "txtool validate .                       # a repository or workspace",
+        "txtool validate urdf/ --select TX1 --strict",
+        "txtool validate --format sarif -o txtool.sarif .",
+        "xacro -o - robot.urdf.xacro | txtool validate - --stdin-filename robot.urdf",
+    ),
+    "show": (
+        "txtool show robot.urdf",
+        "txtool show robot.urdf.xacro --effective   # what each loader binds",
+        "txtool show robot.urdf --format json --actuator-limits",
+    ),
+    "convert": (
+        "txtool convert robot.urdf --to ros2-p2 -o robot.ros2.urdf",
+        "txtool convert robot.urdf --to ros2-p1 -o robot.urdf --write   # in place",
+        "txtool convert robot.urdf --to bb --bb-topology",
+    ),
+    "migrate": (
+        "txtool migrate urdf/ --diff",
+        "txtool migrate urdf/ --check          # CI: exit 1 when a fix is pending",
+        "txtool migrate urdf/ --to ros2-p2 --write",
+    ),
+    "roundtrip": (
+        "txtool roundtrip robot.urdf",
+        "txtool roundtrip robot.urdf --against robot.ros2.urdf",
+    ),
+    "map": (
+        "txtool map robot.urdf -t elbow_trans --to actuator --position 0.5",
+        "txtool map robot.urdf -t wrist_trans --to joint --effort 1,1 --format json",
+    ),
+    "simulate": (
+        "txtool simulate robot.urdf                       # the robot's own config",
+        "txtool simulate robot.urdf --config candidate.urdf --plot run.png",
+        "txtool simulate robot.urdf --params controllers.yaml --format json",
+    ),
+    "rules": ("txtool rules", "txtool rules TX106", "txtool rules zero-reduction --format json"),
+    "schema": ("txtool schema -o transmission.schema.json",),
+    "demo": ("txtool demo",),
+}
+
+
 class LazyGroup(click.Group):
     """Loads a command's module only when that command runs (or help lists it)."""
 
@@ -71,6 +113,9 @@ class LazyGroup(click.Group):
                 return None
             raise
         command: click.Command = module.command
+        if name in EXAMPLES and not command.epilog:
+            lines = "\n".join(f"  $ {example}" for example in EXAMPLES[name])
+            command.epilog = f"\b\nExamples:\n{lines}"
         if name in COLOURING:
             from txtool.commands.common import with_color
 

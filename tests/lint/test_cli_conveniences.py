@@ -142,3 +142,21 @@ def test_a_config_file_with_a_tool_txtool_table_is_explained(tmp_path, broken):
     assert err == (f"txtool: {config}: key 'tool.txtool': this file takes txtool's keys at its "
                    "top level, as .txtool.toml does; [tool.txtool] is read only from a file "
                    "named pyproject.toml\n")
+
+
+def test_every_help_page_carries_examples_that_use_real_options():
+    import shlex
+
+    from txtool.cli import COMMAND_MODULES, EXAMPLES
+
+    assert set(EXAMPLES) == set(COMMAND_MODULES)
+    for name in COMMAND_MODULES:
+        code, out, _ = invoke(name, "--help")
+        assert code == 0 and "Examples:\n" in out and f"  $ txtool {name}" in out, name
+        command = cli.get_command(None, name)
+        known = {opt for param in command.params for opt in (*param.opts, *param.secondary_opts)}
+        for example in EXAMPLES[name]:
+            words = shlex.split(example.split("  #")[0])
+            assert words[:2] == ["txtool", name], example
+            unknown = [w for w in words if w.startswith("-") and w != "-" and w not in known]
+            assert unknown == [], (example, unknown)
