@@ -37,7 +37,7 @@ EXAMPLES: dict[str, tuple[str, ...]] = {
         "txtool validate .                       # a repository or workspace",
         "txtool validate urdf/ --select TX1 --strict",
         "txtool validate --format sarif -o txtool.sarif .",
-        "xacro -o - robot.urdf.xacro | txtool validate - --stdin-filename robot.urdf",
+        "txtool validate - --stdin-filename urdf/robot.urdf < generated.urdf",
     ),
     "show": (
         "txtool show robot.urdf",

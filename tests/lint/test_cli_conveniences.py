@@ -156,7 +156,7 @@ def test_every_help_page_carries_examples_that_use_real_options():
         command = cli.get_command(None, name)
         known = {opt for param in command.params for opt in (*param.opts, *param.secondary_opts)}
         for example in EXAMPLES[name]:
-            words = shlex.split(example.split("  #")[0])
+            words = shlex.split(example.split("  #")[0].split(" < ")[0])
             assert words[:2] == ["txtool", name], example
             unknown = [w for w in words if w.startswith("-") and w != "-" and w not in known]
             assert unknown == [], (example, unknown)
