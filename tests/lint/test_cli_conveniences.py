@@ -160,3 +160,13 @@ def test_every_help_page_carries_examples_that_use_real_options():
             assert words[:2] == ["txtool", name], example
             unknown = [w for w in words if w.startswith("-") and w != "-" and w not in known]
             assert unknown == [], (example, unknown)
+
+
+def test_convert_of_a_file_without_transmissions_says_so(tmp_path):
+    path = tmp_path / "links.urdf"
+    text = '<robot name="r"><link name="base"/></robot>\n'
+    path.write_text(text)
+    code, out, err = invoke("convert", str(path), "--to", "ros2-p2")
+    assert (code, out) == (0, text)
+    assert err == (f"txtool: {path}: 0 transmissions converted (the document has no "
+                   "transmission)\n")
