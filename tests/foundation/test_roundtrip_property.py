@@ -25,7 +25,9 @@ reductions = st.one_of(
     st.floats(min_value=-1e300, max_value=-1e-300),
     st.sampled_from([1.0, -1.0, 2.2250738585072014e-308, 1e-12, 1e15, -50.0, 325.949]),
 )
-offsets = st.one_of(st.floats(allow_nan=False, allow_infinity=False, width=64),
+# std::stod refuses subnormal values (glibc reports the underflow): ros_control cannot load them
+offsets = st.one_of(st.floats(allow_nan=False, allow_infinity=False, allow_subnormal=False,
+                              width=64),
                     st.sampled_from([0.0, 0.5, -math.pi]))
 interfaces = st.sampled_from(["position", "velocity", "effort"])
 

@@ -72,7 +72,7 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_
         data, losses, notes = result.data, result.losses, result.notes
         for left in result.warnings:
             click.echo(f"warning: {left}", err=True)
-        if not result.converted:
+        if not result.converted and not result.losses:
             click.echo(f"txtool: {source.path}: 0 transmissions converted "
                        f"({_found(source, target)})", err=True)
     for note in notes:
