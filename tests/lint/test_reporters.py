@@ -149,8 +149,26 @@ def test_summary_line():
     )
 
 
-def test_formatters_are_pure_functions_of_the_problems():
-    assert render("json", [], Summary(0, 0, 0, 0)) == render("json", [], Summary(0, 0, 0, 0))
+@pytest.mark.parametrize("output_format", ["text", "json", "github", "sarif"])
+def test_formatters_are_pure_functions_of_the_problems(output_format, tmp_path, monkeypatch):
+    """Same problems, same text: the environment, the clock and earlier calls change nothing
+    (SARIF alone names the working folder, as %SRCROOT%), and the input is left as it was."""
+    problems = [
+        Problem("urdf/a.urdf", 3, 5, "TX106", "zero", severity="error", name="zero-reduction",
+                fixable=False),
+        Problem("urdf/b.urdf", 1, 1, "TX003", "unused", severity="info",
+                name="unused-suppression", fixable=False),
+    ]
+    summary = Summary.of(problems, 2)
+    kept = list(problems)
+    first = render(output_format, problems, summary)
+    render(output_format, problems[:1], Summary.of(problems[:1], 1))  # an earlier, other call
+    monkeypatch.setenv("GITHUB_ACTIONS", "true")
+    monkeypatch.setenv("NO_COLOR", "1")
+    monkeypatch.setenv("TZ", "Asia/Tokyo")
+    again = render(output_format, problems, summary)
+    assert again == first and problems == kept
+    assert "urdf/a.urdf" in first and "TX106" in first and "TX003" in first
     assert render("github", [], Summary(2, 0, 0, 0)) == ""
 
 
