@@ -176,9 +176,12 @@ def test_swapped_simple_transmissions_name_joints_and_actuators(tmp_path):
 def test_a_self_check_that_fails_on_limits_blames_no_transmission(tmp_path):
     robot = write(tmp_path, "arm.urdf", arm_ros1())
     params = write(tmp_path, "p.toml", "[actuators.m_left]\nvelocity_limit = 10.0\n")
-    own = simulate_one(Options(robot=robot, params=params, duration=2.0), None)
+    # the default motion is slowed to the limit; this trajectory is not (m_left: 30 x elbow)
+    fast = write(tmp_path, "fast.csv", "time,elbow\n0,0\n1,0.5\n2,0\n")
+    own = simulate_one(Options(robot=robot, params=params, trajectory=fast), None)
     assert not own.passed and not causes(own)
+    assert any(r.startswith("actuator 'm_left'") for r in own.reasons), own.reasons
     copy = write(tmp_path, "copy.urdf", arm_ros1())
-    run = simulate_one(Options(robot=robot, params=params, duration=2.0), copy)
+    run = simulate_one(Options(robot=robot, params=params, trajectory=fast), copy)
     assert causes(run) == ["not the transmissions: the config's maps equal the robot's (look "
                            "at the gains, the limits or the reference)"]

@@ -127,7 +127,7 @@ def prepare(options: Options, config: str | None, label: str | None = None) -> P
     if options.trajectory is None:
         fixed = options.duration is not None or "duration" in params.run
         limits = setup.motion_limits(robot, plant, inertia, gains, effort_limit, speed_limit,
-                                     run_settings.dt)
+                                     run_settings.dt, options.delay)
         ref, duration, ref_notes, weak = _default_reference(
             robot, run_settings, limits, setup.reference_dynamics(robot, inertia), fixed)
     else:

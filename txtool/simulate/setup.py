@@ -16,7 +16,7 @@ from txtool.simulate.loop import Controller, Plan, configurer, layout, make_mode
 from txtool.simulate.model import RobotModel
 from txtool.simulate.params import Params
 from txtool.simulate.plant import Dynamics, smallest_inertia, substeps_for
-from txtool.simulate.reference import Reference, joint_range
+from txtool.simulate.reference import Reference
 from txtool.simulate.sensing import Sensing, encoder
 
 SAMPLES = 20  # reference poses where the plant's stiffness is measured
@@ -237,18 +237,25 @@ def reference_dynamics(robot: RobotModel, inertia: np.ndarray
 
 
 def motion_limits(robot: RobotModel, plant: Drive, inertia: np.ndarray, gains: Controller,
-                  effort: np.ndarray, speed: np.ndarray, dt: float) -> Limits:
+                  effort: np.ndarray, speed: np.ndarray, dt: float, delay: bool) -> Limits:
     """What the default motion must respect; ``inertia``: the plant's reflected rotor inertia."""
-    model, _ = make_model(robot, inertia)
-    ranges = np.array([joint_range(k, lo, hi)
-                       for k, lo, hi in zip(robot.kinds, robot.lower, robot.upper, strict=True)])
-    poses = np.array([ranges[:, 0] + share * (ranges[:, 1] - ranges[:, 0])
-                      for share in (0.25, 0.5, 0.75)])
-    smallest = smallest_inertia(model, robot.config(poses))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        lag = np.nan_to_num(dt * robot.damping / smallest / gains.kp, nan=0.0, posinf=0.0)
+    model, block = make_model(robot, inertia)
+    data = model.createData()
+    lower = np.tril_indices(robot.nv, -1)
+
+    def inverse_mass(x: np.ndarray) -> np.ndarray:
+        inverses = np.empty((len(x), robot.nv, robot.nv))
+        for k, q in enumerate(robot.config(x)):
+            mass = pin.crba(model, data, q).copy()
+            mass[lower] = mass.T[lower]
+            if block is not None:
+                mass += block
+            inverses[k] = np.linalg.pinv(mass)
+        return inverses
+
     return Limits(robot.joints, robot.velocity, plant.vel_j2a, plant.eff_j2a, plant.actuators,
-                  speed, effort, lag)
+                  speed, effort, dt, delay, gains.kp, gains.kd, robot.damping,
+                  inverse_mass)
 
 
 def divergence_cause(plan: Plan, gains: Controller) -> str:
