@@ -101,7 +101,7 @@ def test_bad_params_key_is_one_line_exit_2(tmp_path, arm):
         (["{arm}", "--dt", "2", "--duration", "1"], "--dt: 2 s is longer than the run"),
         (["{arm}", "--tolerance", "-1"], "--tolerance: must be a positive number"),
         (["{arm}", "--trajectory", "{tmp}/none.csv"], "none.csv: no such file"),
-        (["{arm}", "--plot", "{tmp}/x.pdf"], "--plot writes .png or .svg files"),
+        (["{arm}", "--plot", "{tmp}/x.jpg"], "--plot writes .png, .svg or .pdf files"),
         (["{bad_xml}"], "bad.urdf:1:"),
         (["{no_links}"], "pinocchio cannot build the model: No link elements found"),
     ],

@@ -63,12 +63,13 @@ def main(options: Options, *, output: str = "text", csv_path: str | None = None,
     finally:
         progress.close()
     if output == "json":
-        console.file.write(json.dumps(report.document(runs), indent=2) + "\n")
+        console.file.write(json.dumps(report.document(runs), indent=2,
+                                      ensure_ascii=False) + "\n")
     else:
         report.render_text(runs, console)
-    for index, run in enumerate(runs, 1):
-        if csv_path is not None:
+    if csv_path is not None:
+        for index, run in enumerate(runs, 1):
             report.write_csv(run, report.numbered(csv_path, index, len(runs)))
-        if plot_path is not None:
-            plot.plot(run, report.numbered(plot_path, index, len(runs)))
+    if plot_path is not None:
+        plot.plot(runs, plot_path)
     return runs, exit_code(runs)

@@ -11,7 +11,7 @@ import numpy as np
 
 from txtool.io.load import load
 from txtool.io.xmlio import InputError, XacroOptions
-from txtool.simulate import loop, reference, result, setup
+from txtool.simulate import gains, loop, reference, result, setup
 from txtool.simulate.drive import Drive, read_drive
 from txtool.simulate.model import RobotModel, build
 from txtool.simulate.params import Params, load_params
@@ -29,7 +29,7 @@ class Options:
     robot: str
     configs: tuple[str, ...] = ()
     labels: tuple[str, ...] = ()  # display names for configs (default: their paths)
-    params: str | None = None
+    params: str | tuple[str, ...] | None = None
     bandwidth: float | None = None
     duration: float | None = None
     dt: float | None = None
@@ -86,6 +86,8 @@ class Prepared:
     effort_limit: np.ndarray
     speed_limit: np.ndarray
     setup_s: float
+    gains: dict[str, result.GainsUsed] = field(default_factory=dict)
+    notes: tuple[str, ...] = ()
 
 
 def prepare(options: Options, config: str | None, label: str | None = None) -> Prepared:
@@ -110,12 +112,15 @@ def prepare(options: Options, config: str | None, label: str | None = None) -> P
     rotor = (setup.rotor_inertias(plant.actuators, params, plant, ctrl),
              setup.rotor_inertias(ctrl.actuators, params, plant, ctrl))
     effort_limit, speed_limit = setup.actuator_limits(robot, plant, params)
-    gains = setup.controller(robot, params, run_settings.bandwidth)
-    plan = setup.build_plan(robot, plant, ctrl, binding, rotor, effort_limit, gains, ref,
+    params, inertia = gains.in_acceleration(params, robot, plant, rotor[0], ref.q[0])
+    controller = setup.controller(robot, params, run_settings.bandwidth)
+    plan = setup.build_plan(robot, plant, ctrl, binding, rotor, effort_limit, controller, ref,
                             run_settings.dt)
     return Prepared(options, config, label or (config if config is not None else options.robot),
                     robot, plant, ctrl, binding, plan, ref, run_settings, duration, effort_limit,
-                    speed_limit, time.perf_counter() - started)
+                    speed_limit, time.perf_counter() - started,
+                    gains.used(robot, params, controller, run_settings.bandwidth, inertia),
+                    params.notes)
 
 
 def simulate_one(options: Options, config: str | None, label: str | None = None,
@@ -135,7 +140,8 @@ def finish(p: Prepared, loop_s: float) -> result.RunResult:
         run = _judge(p.options, series, p.plan, p.binding, p.settings, p.duration)
     run.config = p.label
     run.reference = p.ref.source
-    run.notes = _notes(p.robot, p.plant, p.ctrl, p.config is not None)
+    run.notes = _notes(p.robot, p.plant, p.ctrl, p.config is not None) + list(p.notes)
+    run.gains, run.tolerance = p.gains, p.settings.tolerance
     run.timings = {"setup_s": p.setup_s, "loop_s": loop_s,
                    "step_us": 1e6 * loop_s / max(p.plan.done, 1)}
     if not p.options.keep_series:
