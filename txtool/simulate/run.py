@@ -235,26 +235,5 @@ def candidates(options: Options) -> list[tuple[str | None, str | None]]:
     return list(zip(options.configs, labels, strict=True))
 
 
-def execute(options: Options, progress: Progress | None = None) -> list[result.RunResult]:
-    """All runs, in the order of the configs; several run in ``options.jobs`` processes."""
-    pairs = candidates(options)
-    if len(pairs) == 1 or options.jobs <= 1:
-        return [simulate_one(options, c, label, progress if len(pairs) == 1 else None)
-                for c, label in pairs]
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor
-
-    context = multiprocessing.get_context("spawn")
-    with ProcessPoolExecutor(max_workers=min(options.jobs, len(pairs)),
-                             mp_context=context) as pool:
-        futures = [pool.submit(simulate_one, options, c, label) for c, label in pairs]
-        results = []
-        for done, future in enumerate(futures, 1):
-            results.append(future.result())
-            if progress is not None:
-                progress(done, len(futures))
-        return results
-
-
 def exit_code(runs: list[result.RunResult]) -> int:
     return 0 if all(run.passed for run in runs) else 1
