@@ -15,6 +15,7 @@ import json
 import pytest
 from click.testing import CliRunner
 
+from tests.corpus import corpus_file
 from tests.simulate.robots import arm_ros1, pendulum, write
 from txtool.cli import cli
 
@@ -225,3 +226,69 @@ def test_bad_yaml_is_one_line_exit_2(tmp_path, swing, text, message):
     code, out, err = simulate(robot, "--params", path)
     assert (code, out) == (2, "")
     assert err.count("\n") == 1 and err.startswith("txtool: ") and message in err, err
+
+
+# The layout of IFL-CAMP/iiwa_stack iiwa_control/config/iiwa_control.yaml (ROS 1): alternative
+# controllers for the same joints in one file; two joints and the gains abridged.
+IIWA_CONTROL = """\
+  joint_state_controller:
+    type: joint_state_controller/JointStateController
+    publish_rate: 50
+  EffortJointInterface_J1_controller:
+    type: effort_controllers/JointPositionController
+    joint: iiwa_joint_1
+    pid: {p: 800.0, i: 0, d: 80.0, i_clamp_min: -10000, i_clamp_max: 10000}
+  EffortJointInterface_trajectory_controller:
+    type: effort_controllers/JointTrajectoryController
+    joints: [iiwa_joint_1, iiwa_joint_7]
+    gains:
+      iiwa_joint_1: {p: 500,  d: 30, i: 15, i_clamp: 30}
+      iiwa_joint_7: {p: 17,  d: 2, i: 2.5, i_clamp: 10}
+    constraints:
+      goal_time: 0.5
+  VelocityJointInterface_trajectory_controller:
+    type: velocity_controllers/JointTrajectoryController
+    joints: [iiwa_joint_1]
+    gains:
+      iiwa_joint_1: {p: 500,  d: 30, i: 15, i_clamp: 30}
+"""
+
+
+def test_a_file_of_alternative_controllers_and_picking_one(tmp_path):
+    robot = str(corpus_file("iiwa_stack__iiwa14.urdf"))
+    yaml_path = write(tmp_path, "iiwa_control.yaml", IIWA_CONTROL)
+    doc = gains_of(tmp_path, robot, yaml_path, duration="0.1")
+    gains, notes = doc["gains"], doc["notes"]
+    assert gains["iiwa_joint_1"]["source"]["key"] == "EffortJointInterface_J1_controller.pid"
+    assert gains["iiwa_joint_7"]["source"]["line"] == 13
+    assert gains["iiwa_joint_4"]["source"] == {"default": "bandwidth", "bandwidth": 20.0}
+    assert f"{yaml_path}:8: gains of 'EffortJointInterface_trajectory_controller' for " \
+           "iiwa_joint_1 not used: an earlier controller in the file gives them (pick one " \
+           "with iiwa_control.yaml#EffortJointInterface_trajectory_controller)" in notes
+    assert f"{yaml_path}:16: gains of 'VelocityJointInterface_trajectory_controller' not " \
+           "used: a velocity_controllers/JointTrajectoryController does not output a joint " \
+           "effort" in notes
+    picked = gains_of(tmp_path, robot, yaml_path + "#EffortJointInterface_trajectory_controller",
+                      duration="0.1")
+    assert picked["gains"]["iiwa_joint_1"]["source"]["line"] == 12
+    code, out, err = simulate(robot, "--params", yaml_path + "#J9")
+    assert (code, out) == (2, "")
+    assert err == (f"txtool: {yaml_path}: no controller 'J9' with gains (there are: "
+                   "EffortJointInterface_J1_controller, EffortJointInterface_trajectory_"
+                   "controller, VelocityJointInterface_trajectory_controller)\n")
+
+
+def test_gains_too_stiff_for_the_step_are_named(tmp_path):
+    """Joint 7 of the iiwa is light: its effort gains d = 2 N·m·s/rad over M_ii = 0.001 kg·m²
+    give kd = 2000 1/s, and kd·dt = 2 at 1 kHz: the semi-implicit Euler loop oscillates."""
+    robot = str(corpus_file("iiwa_stack__iiwa14.urdf"))
+    yaml_path = write(tmp_path, "iiwa_control.yaml", IIWA_CONTROL)
+    doc = gains_of(tmp_path, robot, yaml_path, duration="0.5")
+    stiff = [n for n in doc["notes"] if n.startswith("gains too stiff")]
+    assert stiff == ["gains too stiff for --dt 0.001 s, the loop cannot be stable (it needs "
+                     "kd·dt < 2 and kp·dt² + 2·kd·dt < 4): iiwa_joint_7 (kp·dt² 0.017, kd·dt 2)"]
+    assert doc["verdict"] == "fail"
+    code, out, err = simulate(robot, "--params", yaml_path, "--dt", "0.0002", "--format", "json")
+    doc = json.loads(out)
+    assert (code, err) == (0, "") and doc["verdict"] == "pass"
+    assert not any(n.startswith("gains too stiff") for n in doc["notes"])

@@ -52,8 +52,9 @@ def _over(value: float | None, m: float) -> float | None:
 
 
 def used(robot: RobotModel, params: Params, ctrl: Controller, bandwidth: float,
-         inertia: dict[str, float]) -> dict[str, GainsUsed]:
-    """Per joint: the gains the controller runs with, their source, the M_ii used (if any)."""
+         inertia: dict[str, float], dt: float) -> tuple[dict[str, GainsUsed], list[str]]:
+    """Per joint: the gains the controller runs with, their source, the M_ii used (if any);
+    and a note naming the joints whose gains are too stiff for ``dt``."""
     table = {}
     for v, joint in enumerate(robot.joints):
         given = params.joints.get(joint)
@@ -64,4 +65,21 @@ def used(robot: RobotModel, params: Params, ctrl: Controller, bandwidth: float,
             units=robot.units(joint), source=given.source if given is not None else None,
             bandwidth=bandwidth if given is None or None in (given.kp, given.kd) else None,
             inertia=inertia.get(joint))
-    return table
+    return table, too_stiff(table, dt)
+
+
+def too_stiff(table: dict[str, GainsUsed], dt: float) -> list[str]:
+    """Joints whose error dynamics the loop's step makes unstable.
+
+    With the model exact, the error obeys ``e'' = -kp e - kd e'``; the semi-implicit Euler step
+    turns that into ``z^2 - (2 - kp dt^2 - kd dt) z + (1 - kd dt)``, whose roots stay inside the
+    unit circle only when ``kd dt < 2`` and ``kp dt^2 + 2 kd dt < 4`` (Jury's test). A delay or
+    a model error only shrinks that region, so gains outside it cannot track.
+    """
+    stiff = [f"{name} (kp·dt² {g.kp * dt * dt:.3g}, kd·dt {g.kd * dt:.3g})"
+             for name, g in table.items()
+             if g.kd * dt >= 2 or g.kp * dt * dt + 2 * g.kd * dt >= 4]
+    if not stiff:
+        return []
+    return [f"gains too stiff for --dt {dt:g} s, the loop cannot be stable (it needs kd·dt < 2 "
+            f"and kp·dt² + 2·kd·dt < 4): " + ", ".join(stiff)]

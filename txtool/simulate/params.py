@@ -41,6 +41,7 @@ JOINT_KEYS = ("kp", "kd", "ki", "i_clamp")
 RUN_KEYS = ("bandwidth", "dt", "duration", "tolerance")
 POSITIVE = ("effort_limit", "velocity_limit", "bandwidth", "dt", "duration", "tolerance")
 SECTION = ("tool", "txtool", "simulate")
+YAML_SUFFIXES = (".yaml", ".yml")
 
 
 @dataclass(frozen=True)
@@ -124,13 +125,18 @@ def load_params(explicit: str | tuple[str, ...] | None, robot_path: str) -> Para
     return parse_params(data, path, text, prefix="tool.txtool.simulate.")
 
 
-def load_file(path: str) -> Params:
-    """One ``--params`` file: controller YAML by its suffix, else TOML."""
+def load_file(given: str) -> Params:
+    """One ``--params`` file: controller YAML by its suffix (``FILE.yaml#NAME``: only controller
+    NAME), else TOML."""
+    path, only = given, None
+    base, mark, name = given.rpartition("#")
+    if mark and base.lower().endswith(YAML_SUFFIXES) and not Path(given).exists():
+        path, only = base, name
     text = _read(path)
-    if path.lower().endswith((".yaml", ".yml")):
+    if path.lower().endswith(YAML_SUFFIXES):
         from txtool.simulate.yaml_gains import parse_yaml
 
-        return parse_yaml(text, path)
+        return parse_yaml(text, path, only)
     return parse_params(_toml(text, path), path, text)
 
 

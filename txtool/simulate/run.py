@@ -116,11 +116,11 @@ def prepare(options: Options, config: str | None, label: str | None = None) -> P
     controller = setup.controller(robot, params, run_settings.bandwidth)
     plan = setup.build_plan(robot, plant, ctrl, binding, rotor, effort_limit, controller, ref,
                             run_settings.dt)
+    used, stiff = gains.used(robot, params, controller, run_settings.bandwidth, inertia,
+                             run_settings.dt)
     return Prepared(options, config, label or (config if config is not None else options.robot),
                     robot, plant, ctrl, binding, plan, ref, run_settings, duration, effort_limit,
-                    speed_limit, time.perf_counter() - started,
-                    gains.used(robot, params, controller, run_settings.bandwidth, inertia),
-                    params.notes)
+                    speed_limit, time.perf_counter() - started, used, params.notes + tuple(stiff))
 
 
 def simulate_one(options: Options, config: str | None, label: str | None = None,

@@ -23,6 +23,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import yaml
@@ -69,8 +70,12 @@ class _Controller:
     layout: str  # "joints" | "gains" | "pid"
 
 
-def parse_yaml(text: str, path: str) -> Params:
-    """The gains of every controller in the file, checked, as :class:`Params`."""
+def parse_yaml(text: str, path: str, only: str | None = None) -> Params:
+    """The gains of every controller in the file (or of controller ``only``) as :class:`Params`.
+
+    When two controllers give gains for one joint (a ROS 1 file often holds alternatives), the
+    first one's are used and a note names the other; ``FILE.yaml#NAME`` picks one.
+    """
     data, lines = _load(text, path)
     source = _File(path, lines)
     if not isinstance(data, dict):
@@ -82,21 +87,33 @@ def parse_yaml(text: str, path: str) -> Params:
     notes: list[str] = []
     unusable: list[str] = []
     found = list(_controllers(data, (), False))
+    if only is not None:
+        names = [c.name for c in found]
+        found = [c for c in found if c.name == only]
+        if not found:
+            raise InputError(f"{path}: no controller '{only}' with gains (there are: "
+                             f"{', '.join(names) or 'none'})")
     for ctrl in found:
         per, fmt, why = _kind(ctrl, types.get(ctrl.name))
+        line = source.line(ctrl.keys)
+        at = f"{path}:{line}" if line else path
         if per is None:
             unusable.append(f"'{ctrl.name}' {why}")
-            notes.append(f"{path}: gains of '{ctrl.name}' not used: {why}")
+            notes.append(f"{at}: gains of '{ctrl.name}' not used: {why}")
             continue
+        taken: list[str] = []
         for joint, keys, values in _entries(ctrl, source):
             gains = _gains(source, keys, values, ctrl.ros2, per, fmt, notes)
             dotted = f"joints.{key_of(joint)}"
             if dotted in where:
-                notes.append(f"{source.where(keys)}: ignored, joint '{joint}' has gains at "
-                             f"{where[dotted]}")
+                taken.append(joint)
                 continue
             joints[joint] = gains
             where[dotted] = source.where(keys)
+        if taken:
+            notes.append(f"{at}: gains of '{ctrl.name}' for "
+                         f"{', '.join(taken)} not used: an earlier controller in the file gives "
+                         f"them (pick one with {Path(path).name}#{ctrl.name})")
     if not found:
         raise InputError(f"{path}: no controller gains found (expected <ns>: {{joints: "
                          "{<joint>: {p, i, d}}}, or gains: {<joint>: {p, i, d}})")
