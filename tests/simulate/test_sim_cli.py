@@ -30,7 +30,7 @@ def test_own_config_passes(arm):
     code, out, err = txtool(arm)
     assert (code, err) == (0, "")
     assert "PASS: largest tracking error" in out
-    assert "m_shoulder" in out and "t_wrist" in out and "limit margin" in out
+    assert "m_shoulder" in out and "t_wrist" in out and "margin" in out
 
 
 def test_flipped_candidate_fails_naming_the_joint(tmp_path, arm):

@@ -96,11 +96,12 @@ def _table(title: str) -> Table:
 
 
 def _groups(items: dict[str, Any], units: Callable[[Any], str]) -> list[tuple[str, list[str]]]:
-    """Names grouped by units, in first-seen order."""
+    """Names grouped by units: rotary (rad) first, then linear (m), then mixed."""
     groups: dict[str, list[str]] = {}
     for name, item in items.items():
         groups.setdefault(units(item), []).append(name)
-    return list(groups.items())
+    order = {"rad": 0, "m": 1}
+    return sorted(groups.items(), key=lambda kv: order.get(kv[0], 2))
 
 
 def joint_tables(run: RunResult) -> list[Table]:
@@ -111,8 +112,8 @@ def joint_tables(run: RunResult) -> list[Table]:
         table = _table(f"{kind} ({units})")
         table.add_column("joint", overflow="fold")
         table.add_column("transmission", overflow="fold")
-        for name in (f"max error\n({units})", f"RMS error\n({units})", "max at\n(s)",
-                     f"limit margin\n({units})"):
+        for name in (f"max\nerror\n({units})", f"RMS\nerror\n({units})", "max\nat\n(s)",
+                     f"limit\nmargin\n({units})"):
             table.add_column(name, justify="right")
         for name in names:
             j = run.joints[name]
@@ -135,16 +136,15 @@ def actuator_tables(run: RunResult) -> list[Table]:
         for name in (f"peak\neffort\n({effort})", f"RMS\neffort\n({effort})",
                      f"effort\nlimit\n({effort})", "peak\n% of\nlimit",
                      f"peak\nspeed\n({speed})", f"speed\nlimit\n({speed})",
-                     "peak\n% of\nlimit", "time\nsatu-\nrated", "first\nover\n(s)"):
+                     "peak\n% of\nlimit", "time\nsatu-\nrated"):
             table.add_column(name, justify="right")
         for name in names:
             a = run.actuators[name]
-            over = "-" if a.first_violation is None else f"{a.first_violation:.3f}"
             table.add_row(
                 escape(name), _num(a.peak_effort, 3), _num(a.rms_effort, 3),
-                _num(a.effort_limit, 3), _pct(a.peak_effort, a.effort_limit),
-                _num(a.peak_velocity, 3), _num(a.velocity_limit, 3),
-                _pct(a.peak_velocity, a.velocity_limit), _share(a.saturated_fraction), over,
+                _num(a.effort_limit), _pct(a.peak_effort, a.effort_limit),
+                _num(a.peak_velocity, 3), _num(a.velocity_limit),
+                _pct(a.peak_velocity, a.velocity_limit), _share(a.saturated_fraction),
             )
         tables.append(table)
     return tables
