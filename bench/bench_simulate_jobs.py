@@ -8,7 +8,11 @@ Two measurements, the settings alternated within each round and the best of ``RE
   can change;
 - ``forced``: the same with forks even when the machine looks busy (``idle_cpus`` patched to
   all usable CPUs), to show what a fork costs or saves;
-- ``command``: the whole ``txtool simulate`` command in a fresh interpreter, as a user sees it.
+- ``command``: the whole ``txtool simulate`` command in a fresh interpreter, as a user sees it;
+- ``cpu``: with forks forced and ``-j 2``, the CPU time of this process and of its fork. On a
+  busy machine wall times mostly show the others' load; on idle CPUs a run takes about as long
+  as its busiest process, so ``max(this, fork)`` against ``-j 1``'s CPU time is what ``-j 2``
+  gains, and ``this + fork`` against it is what forking costs.
 
 The 1-minute load average is printed before and after: on a busy machine ``--jobs`` falls back
 to fewer processes, and the figures mostly show the others' load.
@@ -17,6 +21,7 @@ to fewer processes, and the figures mostly show the others' load.
 from __future__ import annotations
 
 import os
+import resource
 import subprocess
 import sys
 import time
@@ -50,6 +55,16 @@ def forced(robot: str, configs: int, jobs_asked: int) -> float:
         jobs.idle_cpus = idle
 
 
+def cpu_split(robot: str, configs: int, jobs_asked: int) -> tuple[float, float]:
+    """(CPU seconds of this process, of its forks) for one forced run."""
+    before = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    forced(robot, configs, jobs_asked)
+    after = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    used = [a.ru_utime + a.ru_stime - b.ru_utime - b.ru_stime
+            for a, b in zip(after, before, strict=True)]
+    return used[0], used[1]
+
+
 def command(robot: str, configs: int, jobs: int) -> float:
     args = [sys.executable, "-m", "txtool", "simulate", robot, "-j", str(jobs)]
     for _ in range(configs):
@@ -74,6 +89,15 @@ def main(robots: list[str]) -> None:
                         best[j] = min(best[j], measure(robot, configs, j))
                 cells = " | ".join(f"{1000 * best[j]:.0f} ms" for j in JOBS)
                 print(f"| {Path(robot).name} | {configs} | {name} | {cells} |", flush=True)
+    print("\n| robot | configs | -j 1 CPU | -j 2: this + fork CPU | busiest |")
+    print("|---|---|---|---|---|")
+    for robot in robots:
+        for configs in CONFIGS[1:]:
+            one = min(sum(cpu_split(robot, configs, 1)) for _ in range(REPEAT))
+            split = min((cpu_split(robot, configs, 2) for _ in range(REPEAT)), key=max)
+            print(f"| {Path(robot).name} | {configs} | {1000 * one:.0f} ms | "
+                  f"{1000 * split[0]:.0f} + {1000 * split[1]:.0f} ms | "
+                  f"{1000 * max(split):.0f} ms |", flush=True)
     print(f"load average {os.getloadavg()[0]:.2f}")
 
 

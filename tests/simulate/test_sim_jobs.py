@@ -61,6 +61,15 @@ def test_a_bad_config_is_the_same_one_line_error_with_forks(tmp_path, forks):
     assert (code, out) == (2, "") and err.count("\n") == 1 and "bad.urdf:1:" in err
 
 
+def test_runs_shorter_than_a_fork_stay_in_one_process(tmp_path, forks):
+    robot = write(tmp_path, "arm.urdf", arm_ros1())
+    args = [robot, "--config", robot, "--config", robot, "--format", "json", "-j", "2"]
+    short = simulate(*args, "--duration", "0.1")
+    assert forks == [] and len(json.loads(short[1])["runs"]) == 2
+    simulate(*args, "--duration", "2")
+    assert forks == [(2, 2)]
+
+
 @pytest.mark.parametrize(
     ("jobs_asked", "configs", "idle", "expected"),
     [(1, 4, 2, 1), (2, 1, 2, 1), (2, 4, 2, 2), (4, 4, 2, 2), (4, 3, 8, 3), (4, 4, 1, 1)],

@@ -4,9 +4,10 @@ A fork inherits the loaded modules (numpy, pinocchio, this package), so a worker
 few milliseconds, where a fresh interpreter takes 0.3-0.5 s to import them: the reason an
 earlier spawn-based pool made ``-j 2`` slower than ``-j 1``. Configs go out one at a time
 (:func:`txtool.lint.workers.forked_map`), this process works too, and the results come back in
-the order of the configs. There are never more processes than configs or idle CPUs (a machine
-that is already busy gains nothing from more), and without ``os.fork`` (Windows) the configs
-run one after the other.
+the order of the configs. The first config is prepared before any fork, so the first call's
+costs are paid once. There are never more processes than configs or idle CPUs (a machine that
+is already busy gains nothing from more); runs whose loop takes less than a fork costs, and
+every run where ``os.fork`` is missing (Windows), go one after the other.
 """
 
 from __future__ import annotations
@@ -15,7 +16,9 @@ import os
 
 from txtool.lint.workers import forked_map
 from txtool.simulate.result import RunResult
-from txtool.simulate.run import Options, Progress, candidates, simulate_one
+from txtool.simulate.run import Options, Prepared, Progress, candidates, complete, prepare
+
+MIN_LOOP_S = 0.005  # a fork costs about 10 ms of CPU: shorter runs go one after the other
 
 
 def usable_cpus() -> int:
@@ -43,18 +46,26 @@ def processes_for(jobs: int, configs: int) -> int:
     return max(1, min(jobs, configs, idle_cpus()))
 
 
+def loop_seconds(p: Prepared) -> float:
+    """A rough cost of a prepared run's loop (README, "Performance": about 4 + 0.6 nv µs a step)."""
+    return p.plan.steps * (4.0 + 0.6 * p.robot.nv) * 1e-6
+
+
 def execute(options: Options, progress: Progress | None = None) -> list[RunResult]:
     """All runs, in the order of the configs, from up to ``options.jobs`` processes."""
     pairs = candidates(options)
+    first = prepare(options, *pairs[0])  # also pays the first call's costs once, before forks
     if len(pairs) == 1:
-        return [simulate_one(options, pairs[0][0], pairs[0][1], progress)]
+        return [complete(first, progress)]
     processes = processes_for(options.jobs, len(pairs))
+    if loop_seconds(first) < MIN_LOOP_S:
+        processes = 1  # a fork costs about as much as such a run saves
     parent = os.getpid()
     done = 0
 
     def one(index: int) -> RunResult:
         nonlocal done
-        run = simulate_one(options, *pairs[index])
+        run = complete(first if index == 0 else prepare(options, *pairs[index]))
         # Only this process draws progress (a fork must not touch the bar's thread and lock);
         # it counts its own runs, a lower bound while the forks work.
         if progress is not None and os.getpid() == parent:

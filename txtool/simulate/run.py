@@ -126,7 +126,11 @@ def prepare(options: Options, config: str | None, label: str | None = None) -> P
 def simulate_one(options: Options, config: str | None, label: str | None = None,
                  progress: Progress | None = None) -> result.RunResult:
     """Simulate ``options.robot`` controlled through ``config`` (None: the robot's own)."""
-    p = prepare(options, config, label)
+    return complete(prepare(options, config, label), progress)
+
+
+def complete(p: Prepared, progress: Progress | None = None) -> result.RunResult:
+    """Run a prepared loop to its end and judge it."""
     started = time.perf_counter()
     steps = p.plan.steps
     loop.run(p.plan, (lambda done: progress(done, steps)) if progress else None)
