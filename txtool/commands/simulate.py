@@ -52,7 +52,8 @@ from txtool.io.xmlio import XacroOptions
               help="Plot reference and actual positions, errors, actuator efforts and speeds "
                    "against their limits, all configs overlaid (needs the 'plot' extra).")
 @click.option("--jobs", "-j", type=click.IntRange(min=1), default=1, show_default=True,
-              help="Processes for several configs (at most one per CPU; small runs stay in one).")
+              help="Processes for several configs (at most one per config and per idle CPU; "
+                   "short runs stay in one).")
 @NO_XACRO_OPTION
 @xacro_options
 @exit_on_input_error
