@@ -113,7 +113,8 @@ def test_unstable_gains_fail_without_a_traceback(tmp_path, arm):
     run = run_with(tmp_path, arm, None, bandwidth=3000.0, duration=1.0, params=params)
     assert not run.passed
     assert run.reasons[0].startswith("the simulation diverged at t=")
-    assert "its gains are too high for --dt 0.001 (kd*dt + kp*dt^2/2 = 10.5" in run.reasons[0]
+    assert "its gains are too high for --dt 0.001 (kp·dt² 9, kd·dt 6; with the one-period " \
+           "delay it needs kd·dt < 1 and kp·dt² < kd·dt·(1 - kd·dt))" in run.reasons[0]
     assert all(np.isfinite(j.max_error) for j in run.joints.values())
 
 

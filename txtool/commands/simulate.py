@@ -21,9 +21,11 @@ from txtool.io.xmlio import XacroOptions
 @click.option("--config", "configs", multiple=True, metavar="CANDIDATE",
               help="Config whose transmissions the controller uses (repeat to compare several; "
                    "default: ROBOT's own).")
-@click.option("--params", type=click.Path(dir_okay=False), metavar="FILE.toml",
-              help="Actuator and gain parameters (default: [tool.txtool.simulate] in the "
-                   "nearest pyproject.toml above ROBOT).")
+@click.option("--params", "params", multiple=True, type=click.Path(dir_okay=False),
+              metavar="FILE.toml|FILE.yaml",
+              help="Actuator and gain parameters, or a ROS controllers YAML with PID gains "
+                   "(repeat to combine; default: [tool.txtool.simulate] in the nearest "
+                   "pyproject.toml above ROBOT).")
 @click.option("--bandwidth", type=float, metavar="RAD/S",
               help="Closed-loop bandwidth w for default gains kp=w^2, kd=2w  [default: 20]")
 @click.option("--duration", type=float, metavar="S", help="Run length  [default: 5]")
@@ -52,16 +54,20 @@ from txtool.io.xmlio import XacroOptions
 @FORMAT_OPTION
 @click.option("--csv", "csv_path", type=click.Path(dir_okay=False), metavar="PATH",
               help="Write the time series (PATH.N.csv per config when several).")
-@click.option("--plot", "plot_path", type=click.Path(dir_okay=False), metavar="PATH.png|.svg",
-              help="Plot tracking error and actuator effort (needs the 'plot' extra).")
+@click.option("--plot", "plot_path", type=click.Path(dir_okay=False),
+              metavar="PATH.png|.svg|.pdf",
+              help="Plot reference and actual positions, errors, actuator efforts and speeds "
+                   "against their limits, all configs overlaid (needs the 'plot' extra).")
 @click.option("--skip", "skip", multiple=True, metavar="TRANSMISSION",
               help="Leave this transmission out (its joints are driven directly); repeatable.")
 @click.option("--jobs", "-j", type=click.IntRange(min=1), default=1, show_default=True,
-              help="Parallel processes for several configs.")
+              help="Processes for several configs (at most one per config and per idle CPU; "
+                   "short runs stay in one).")
 @NO_XACRO_OPTION
 @xacro_options
 @exit_on_input_error
-def command(robot: str, configs: tuple[str, ...], params: str | None, bandwidth: float | None,
+def command(robot: str, configs: tuple[str, ...], params: tuple[str, ...],
+            bandwidth: float | None,
             duration: float | None, dt: float | None, tolerance: float | None,
             trajectory: str | None, interpolation: str, allow_saturation: bool, loader: str,
             convention: str, delay: bool, encoder_counts: int | None,
@@ -82,7 +88,7 @@ def command(robot: str, configs: tuple[str, ...], params: str | None, bandwidth:
     from txtool.simulate.run import Options
 
     options = Options(
-        robot=robot, configs=configs, params=params, bandwidth=bandwidth, duration=duration,
+        robot=robot, configs=configs, params=params or None, bandwidth=bandwidth, duration=duration,
         dt=dt, tolerance=tolerance, trajectory=trajectory, interpolation=interpolation,
         allow_saturation=allow_saturation, loader=loader, convention=convention, xacro=xacro,
         jobs=jobs, skip=skip, delay=delay, encoder_counts=encoder_counts,

@@ -4,22 +4,39 @@ from __future__ import annotations
 
 import csv
 import math
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from rich import box
 from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
 
-from txtool.simulate.result import RunResult
+from txtool.simulate.result import GainsUsed, RunResult
+
+TABLE_WIDTH = 100  # tables fit this many columns (or the terminal, when narrower)
 
 
 def _num(value: float | None, digits: int = 4) -> str:
+    """Short and exact enough to read: 3 (or ``digits``) significant digits, no long exponents."""
     if value is None:
         return "-"
     if math.isinf(value):
         return "none" if value > 0 else "-inf"
+    if math.isnan(value):
+        return "nan"
+    size = abs(value)
+    if size != 0 and (size >= 10**5 or size < 1e-3):
+        mantissa, exponent = f"{value:.{digits - 1}e}".split("e")
+        return f"{mantissa}e{int(exponent)}"
+    if size >= 10 ** (digits - 1):
+        return f"{value:.0f}"
     return f"{value:.{digits}g}"
+
+
+def _print_table(console: Console, table: Table) -> None:
+    console.print(table, width=min(console.width, TABLE_WIDTH))
 
 
 def _pct(value: float, limit: float) -> str:
@@ -33,7 +50,7 @@ def render_text(runs: list[RunResult], console: Console) -> None:
     if len(runs) == 1:
         render_run(runs[0], console)
         return
-    console.print(comparison_table(runs))
+    _print_table(console, comparison_table(runs))
     for run in runs:
         console.print(f"{escape(run.config)}: {verdict_line(run)}", soft_wrap=True)
         for reason in run.reasons[1:]:
@@ -48,10 +65,15 @@ def render_text(runs: list[RunResult], console: Console) -> None:
 
 def render_run(run: RunResult, console: Console) -> None:
     console.print(f"[bold]simulate[/] {escape(run.robot)} with {escape(run.config)}: "
-                  f"{run.steps} steps of {run.dt:g} s ({run.duration:g} s), "
-                  f"reference {escape(run.reference)}")
-    console.print(joint_table(run))
-    console.print(actuator_table(run))
+                  f"{run.steps} steps of {run.dt:g} s ({run.duration:g} s)", soft_wrap=True)
+    console.print(f"reference: {escape(run.reference)}", soft_wrap=True)
+    for table in [*joint_tables(run), *actuator_tables(run)]:
+        _print_table(console, table)
+    gains = gains_table(run)
+    if isinstance(gains, Table):
+        _print_table(console, gains)
+    elif gains:
+        console.print(gains, soft_wrap=True)
     for note in run.notes:
         console.print(f"note: {escape(note)}", soft_wrap=True)
     console.print(verdict_line(run), soft_wrap=True)
@@ -68,49 +90,130 @@ def verdict_line(run: RunResult) -> str:
     return f"[bold red]FAIL[/]: {escape(run.reasons[0])}{more}"
 
 
-def joint_table(run: RunResult) -> Table:
-    table = Table(title="joints", title_justify="left")
-    table.add_column("joint", no_wrap=True)
-    for name in ("max error", "RMS error", "max at (s)", "limit margin"):
+def _table(title: str) -> Table:
+    """The tables' common look: heavy header, no outer edge (they fit 100 columns)."""
+    return Table(title=title, title_justify="left", box=box.HEAVY_HEAD, show_edge=False)
+
+
+def _groups(items: dict[str, Any], units: Callable[[Any], str]) -> list[tuple[str, list[str]]]:
+    """Names grouped by units: rotary (rad) first, then linear (m), then mixed."""
+    groups: dict[str, list[str]] = {}
+    for name, item in items.items():
+        groups.setdefault(units(item), []).append(name)
+    order = {"rad": 0, "m": 1}
+    return sorted(groups.items(), key=lambda kv: order.get(kv[0], 2))
+
+
+def joint_tables(run: RunResult) -> list[Table]:
+    """One table per unit: revolute and continuous joints in rad, prismatic ones in m."""
+    tables = []
+    for units, names in _groups(run.joints, lambda j: j.units):
+        kind = "prismatic joints" if units == "m" else "joints"
+        table = _table(f"{kind} ({units})")
+        table.add_column("joint", overflow="fold")
+        table.add_column("transmission", overflow="fold")
+        for name in (f"max\nerror\n({units})", f"RMS\nerror\n({units})", "max\nat\n(s)",
+                     f"limit\nmargin\n({units})"):
+            table.add_column(name, justify="right")
+        for name in names:
+            j = run.joints[name]
+            table.add_row(escape(name), escape(j.transmission or "(direct)"),
+                          _num(j.max_error, 3), _num(j.rms_error, 3), f"{j.max_error_time:.3f}",
+                          _num(j.limit_margin, 3))
+        tables.append(table)
+    return tables
+
+
+def actuator_tables(run: RunResult) -> list[Table]:
+    """One table per unit (rotary N·m and rad/s, linear N and m/s); efforts as demanded."""
+    tables = []
+    for units, names in _groups(run.actuators, lambda a: a.units):
+        first = run.actuators[names[0]]
+        effort, speed = first.effort_units, first.speed_units
+        kind = {"m": "linear actuators", "mixed": "actuators"}.get(units, "actuators")
+        table = _table(f"{kind} ({effort}, {speed}; efforts as demanded, before saturation)")
+        table.add_column("actuator", overflow="fold")
+        for name in (f"peak\neffort\n({effort})", f"RMS\neffort\n({effort})",
+                     f"effort\nlimit\n({effort})", "peak\n% of\nlimit",
+                     f"peak\nspeed\n({speed})", f"speed\nlimit\n({speed})",
+                     "peak\n% of\nlimit", "time\nsatu-\nrated"):
+            table.add_column(name, justify="right")
+        for name in names:
+            a = run.actuators[name]
+            table.add_row(
+                escape(name), _num(a.peak_effort, 3), _num(a.rms_effort, 3),
+                _num(a.effort_limit), _pct(a.peak_effort, a.effort_limit),
+                _num(a.peak_velocity, 3), _num(a.velocity_limit),
+                _pct(a.peak_velocity, a.velocity_limit), _share(a.saturated_fraction),
+            )
+        tables.append(table)
+    return tables
+
+
+def _share(fraction: float) -> str:
+    percent = 100 * fraction
+    return f"{percent:.1f}%" if 0 < percent < 10 else f"{percent:.0f}%"
+
+
+def gains_table(run: RunResult) -> Table | str:
+    """The gains used: one line when all are the defaults, else a table with their sources."""
+    if not run.gains:
+        return ""
+    if all(g.source is None for g in run.gains.values()):
+        g = next(iter(run.gains.values()))
+        return (f"gains: kp {_num(g.kp)} 1/s², kd {_num(g.kd)} 1/s, ki 0 for every joint "
+                f"(critically damped at --bandwidth {g.bandwidth:g} rad/s)")
+    table = _table("gains (acceleration per error: the law multiplies them by M)")
+    units = {g.units for g in run.gains.values()}
+    shown = units.pop() if len(units) == 1 else None
+    divided = any(g.inertia is not None for g in run.gains.values())
+    table.add_column("joint", overflow="fold")
+    for name in ("kp\n(1/s²)", "kd\n(1/s)", "ki\n(1/s³)", f"I clamp\n({shown or 'rad|m'}/s²)"):
         table.add_column(name, justify="right")
-    for name, j in run.joints.items():
-        margin = "-" if j.limit_margin is None else f"{_num(j.limit_margin, 3)} {j.units}"
-        table.add_row(escape(name), f"{_num(j.max_error, 3)} {j.units}",
-                      f"{_num(j.rms_error, 3)} {j.units}", f"{j.max_error_time:.3f}", margin)
+    if divided:
+        table.add_column("effort gains\n÷ M_ii\n(kg·m², kg)" if shown is None
+                         else f"effort gains\n÷ M_ii\n({'kg' if shown == 'm' else 'kg·m²'})",
+                         justify="right")
+    table.add_column("from")
+    for name, g in run.gains.items():
+        clamp = "none" if g.i_clamp is None else _num(g.i_clamp, 3)
+        if g.i_clamp is not None and shown is None:
+            clamp += f" {g.units}"
+        row = [escape(name), _num(g.kp, 4), _num(g.kd, 4), _num(g.ki, 4), clamp if g.ki else "-"]
+        if divided:
+            row.append(_num(g.inertia, 3))
+        table.add_row(*row, escape(gain_origin(g)))
     return table
 
 
-def actuator_table(run: RunResult) -> Table:
-    table = Table(title="actuators (efforts as demanded, before saturation)",
-                  title_justify="left")
-    table.add_column("actuator", no_wrap=True)
-    table.add_column("transmission", no_wrap=True)
-    for name in ("peak effort", "RMS effort", "effort limit", "effort %", "peak speed",
-                 "speed limit", "speed %", "saturated", "first violation"):
-        table.add_column(name, justify="right")
-    for name, a in run.actuators.items():
-        first = "-" if a.first_violation is None else f"{a.first_violation:.3f} s"
-        table.add_row(
-            escape(name), escape(a.transmission or "(direct)"), _num(a.peak_effort, 3),
-            _num(a.rms_effort, 3), _num(a.effort_limit, 3), _pct(a.peak_effort, a.effort_limit),
-            _num(a.peak_velocity, 3), _num(a.velocity_limit, 3),
-            _pct(a.peak_velocity, a.velocity_limit), f"{100 * a.saturated_fraction:.1f}%", first,
-        )
-    return table
+def gain_origin(g: GainsUsed) -> str:
+    """``file:line`` or the default; the rest at the bandwidth when the file gave only some."""
+    if g.source is None:
+        return f"default (--bandwidth {g.bandwidth:g} rad/s)"
+    where = f"{Path(g.source.file).name}:{g.source.line}" if g.source.line else \
+        Path(g.source.file).name
+    if g.bandwidth is not None:
+        where += f", the rest at --bandwidth {g.bandwidth:g}"
+    return where
 
 
 def comparison_table(runs: list[RunResult]) -> Table:
-    table = Table(title="comparison", title_justify="left")
-    for name in ("config", "verdict", "worst joint", "max error", "peak effort %",
-                 "peak speed %"):
-        table.add_column(name, justify="right" if "%" in name or "error" in name else "left")
+    units = {max(r.joints.values(), key=lambda j: j.max_error).units for r in runs}
+    shown = units.pop() if len(units) == 1 else None
+    table = _table("comparison")
+    table.add_column("config", overflow="fold")
+    table.add_column("verdict")
+    table.add_column("worst joint")
+    table.add_column(f"max error\n({shown or 'rad|m'})", justify="right")
+    table.add_column("peak effort\n% of limit", justify="right")
+    table.add_column("peak speed\n% of limit", justify="right")
     for run in runs:
         joint, stats = max(run.joints.items(), key=lambda kv: kv[1].max_error)
         effort = max((a.effort_percent for a in run.actuators.values()), default=0.0)
         speed = max((a.velocity_percent for a in run.actuators.values()), default=0.0)
         verdict = "[green]pass[/]" if run.passed else "[red]fail[/]"
-        table.add_row(escape(run.config), verdict, escape(joint),
-                      f"{_num(stats.max_error, 3)} {stats.units}", f"{effort:.0f}%",
+        error = _num(stats.max_error, 3) + ("" if shown else f" {stats.units}")
+        table.add_row(escape(run.config), verdict, escape(joint), error, f"{effort:.0f}%",
                       f"{speed:.0f}%")
     return table
 
@@ -120,7 +223,7 @@ def _finite(value: float | None) -> float | None:
 
 
 def run_json(run: RunResult) -> dict[str, Any]:
-    """The documented JSON of one run (infinite limits are null)."""
+    """The documented JSON of one run (infinite limits are null); units beside every quantity."""
     return {
         "verdict": run.verdict,
         "reasons": list(run.reasons),
@@ -131,7 +234,7 @@ def run_json(run: RunResult) -> dict[str, Any]:
         "joints": {
             name: {"max_error": j.max_error, "rms_error": j.rms_error,
                    "max_error_time": j.max_error_time, "limit_margin": j.limit_margin,
-                   "units": j.units}
+                   "units": j.units, "transmission": j.transmission or None}
             for name, j in run.joints.items()
         },
         "actuators": {
@@ -139,13 +242,34 @@ def run_json(run: RunResult) -> dict[str, Any]:
                    "rms_effort": a.rms_effort, "peak_velocity": a.peak_velocity,
                    "velocity_limit": _finite(a.velocity_limit),
                    "saturated_fraction": a.saturated_fraction,
-                   "first_violation": a.first_violation, "transmission": a.transmission or None}
+                   "first_violation": a.first_violation, "transmission": a.transmission or None,
+                   "effort_units": a.effort_units, "speed_units": a.speed_units}
             for name, a in run.actuators.items()
         },
+        "gains": {name: gains_json(g) for name, g in run.gains.items()},
+        "tolerance": run.tolerance,
         "steps": run.steps,
         "dt": run.dt,
         "duration": run.duration,
+        "time_units": "s",
     }
+
+
+def gains_json(g: GainsUsed) -> dict[str, Any]:
+    """Gains as used (acceleration per error), their units and where they came from."""
+    if g.source is None:
+        source: dict[str, Any] = {"default": "bandwidth"}
+    else:
+        source = {"file": g.source.file, "line": g.source.line or None, "key": g.source.key,
+                  "format": g.source.format, "given": dict(g.source.given)}
+        if g.inertia is not None:
+            source["divided_by_inertia"] = g.inertia
+            source["inertia_units"] = "kg" if g.units == "m" else "kg·m²"
+    if g.bandwidth is not None:
+        source["bandwidth"] = g.bandwidth
+    return {"kp": g.kp, "kd": g.kd, "ki": g.ki, "i_clamp": g.i_clamp,
+            "units": {"kp": "1/s²", "kd": "1/s", "ki": "1/s³", "i_clamp": f"{g.units}/s²"},
+            "source": source}
 
 
 def document(runs: list[RunResult]) -> dict[str, Any]:

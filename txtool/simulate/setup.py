@@ -12,6 +12,7 @@ import pinocchio as pin
 from txtool.mechanics.limits import actuator_limits as implied_limits
 from txtool.simulate.drive import Drive
 from txtool.simulate.feasible import Limits, Parts
+from txtool.simulate.gains import condition, unstable
 from txtool.simulate.loop import Controller, Plan, configurer, layout, make_model
 from txtool.simulate.model import RobotModel
 from txtool.simulate.params import Params
@@ -267,11 +268,10 @@ def divergence_cause(plan: Plan, gains: Controller) -> str:
     growth = np.nan_to_num(error[-1] - error[0], nan=np.inf, posinf=np.inf)
     v = int(np.argmax(growth))
     joint = plan.robot.joints[v]
-    dt = plan.dt
-    stability = gains.kd[v] * dt + gains.kp[v] * dt**2 / 2
-    if stability >= 2.0:  # Jury's test on the discrete loop: kd*dt + kp*dt^2/2 < 2
+    dt, kp, kd = plan.dt, float(gains.kp[v]), float(gains.kd[v])
+    if unstable(kp, kd, dt, plan.delay):
         return (f"joint '{joint}' ran away first; its gains are too high for --dt {dt:g} "
-                f"(kd*dt + kp*dt^2/2 = {stability:.3g}; the discrete loop needs < 2)")
+                f"(kp·dt² {kp * dt * dt:.3g}, kd·dt {kd * dt:.3g}; {condition(plan.delay)})")
     mass = smallest_inertia(plan.dynamics.model, plan.robot.config(plan.q_ref[[0, end]]))[v]
     if mass < TINY_INERTIA:
         return (f"joint '{joint}' ran away first; its inertia is {mass:.3g} (links without "
