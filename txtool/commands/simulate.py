@@ -41,10 +41,10 @@ from txtool.io.xmlio import XacroOptions
               help="Do not fail on actuator effort or speed limits (still reported).")
 @click.option("--loader", type=click.Choice(["auto", "ros1", "ros2"]), default="auto",
               show_default=True, help="Which transmissions to use when a file has both kinds.")
-@click.option("--effort-convention", "convention", type=click.Choice(["ros2", "loader"]),
-              default="ros2", show_default=True,
-              help="Controller effort maps: ros2_control's (power-conserving) for every config, "
-                   "or each config's own loader's (ROS 1 four-bar: ros_control's).")
+@click.option("--effort-convention", "convention", type=click.Choice(["ros1", "ros2"]),
+              default=None,
+              help="Controller effort maps: ros_control's (ros1) or ros2_control's (ros2) for "
+                   "every config  [default: each file's own loader]")
 @click.option("--delay/--no-delay", default=True, show_default=True,
               help="One control period between reading the state and applying the effort "
                    "(read -> update -> write, as in ros2_control).")
@@ -70,7 +70,7 @@ def command(robot: str, configs: tuple[str, ...], params: tuple[str, ...],
             bandwidth: float | None,
             duration: float | None, dt: float | None, tolerance: float | None,
             trajectory: str | None, interpolation: str, allow_saturation: bool, loader: str,
-            convention: str, delay: bool, encoder_counts: int | None,
+            convention: str | None, delay: bool, encoder_counts: int | None,
             output_format: str, csv_path: str | None,
             plot_path: str | None, skip: tuple[str, ...], jobs: int, no_xacro: bool,
             xacro: XacroOptions) -> int:

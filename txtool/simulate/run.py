@@ -39,7 +39,7 @@ class Options:
     interpolation: str = "cubic"
     allow_saturation: bool = False
     loader: str = "auto"
-    convention: str = "ros2"
+    convention: str | None = None  # the controller's effort maps; None: each file's loader
     xacro: XacroOptions = field(default_factory=XacroOptions)
     jobs: int = 1
     keep_series: bool = True
@@ -102,16 +102,13 @@ def prepare(options: Options, config: str | None, label: str | None = None) -> P
     started = time.perf_counter()
     source = load(options.robot, xacro=options.xacro)
     robot = build(source)
+    # The plant is physics: power-conserving effort maps (ros2_control's). The controller
+    # runs the maps of the loader that reads its file, unless --effort-convention says.
     plant = read_drive(source, robot, loader=options.loader, convention="ros2",
                        skip=options.skip)
-    if config is not None:
-        ctrl = read_drive(load(config, xacro=options.xacro), robot, loader=options.loader,
-                          convention=options.convention, skip=options.skip)
-    elif options.convention == "loader":
-        ctrl = read_drive(source, robot, loader=options.loader, convention="loader",
-                          skip=options.skip)
-    else:
-        ctrl = plant
+    ctrl = read_drive(load(config, xacro=options.xacro) if config is not None else source,
+                      robot, loader=options.loader, convention=options.convention,
+                      skip=options.skip)
     unknown = sorted(set(options.skip) - set(plant.names) - set(ctrl.names))
     if unknown:
         raise InputError(f"--skip: no transmission named {', '.join(map(repr, unknown))} in "
@@ -294,6 +291,11 @@ def _skipped_cause(actuator: str, plant: Drive, ctrl: Drive) -> str:
 
 def _notes(robot: RobotModel, plant: Drive, ctrl: Drive, candidate: bool) -> list[str]:
     notes = list(robot.notes) + plant.notes
+    ros1 = [m.name for m in ctrl.maps if m.kind == "four_bar" and m.convention == "ros1"]
+    if ros1:
+        notes.append("the controller maps efforts of four-bar " + ", ".join(map(repr, ros1))
+                     + " as ros_control does (ROS 1; not power-conserving, ros_control#523); "
+                     "the plant is physics (--effort-convention ros2: ros2_control's map)")
     if candidate:
         notes += [f"config: {note}" for note in ctrl.notes]
     if plant.direct:
