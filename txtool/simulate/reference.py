@@ -32,7 +32,7 @@ class Reference:
 
 def step_times(duration: float, dt: float) -> np.ndarray:
     steps = max(1, int(round(duration / dt)))
-    return np.arange(steps + 1) * dt
+    return np.round(np.arange(steps + 1) * dt, 12)  # 7.129, not 7.1290000000000004
 
 
 def minimum_jerk(t: np.ndarray, t0: float, t1: float, a: float, b: float
