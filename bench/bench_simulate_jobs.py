@@ -4,7 +4,7 @@ Run: ``python bench/bench_simulate_jobs.py [ROBOT.urdf ...]`` (default:
 ``fixtures/demo_robot.urdf``). Each config is the robot itself, so every run does the same work.
 Two measurements, the settings alternated within each round and the best of ``REPEAT`` kept:
 
-- ``in-process``: :func:`txtool.simulate.jobs.execute` after the imports, the part ``--jobs``
+- ``in-process``: :func:`txtool.simulation.jobs.execute` after the imports, the part ``--jobs``
   can change;
 - ``forced``: the same with forks even when the machine looks busy (``idle_cpus`` patched to
   all usable CPUs), to show what a fork costs or saves;
@@ -30,9 +30,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from txtool.simulate import jobs  # noqa: E402
-from txtool.simulate.jobs import execute  # noqa: E402
-from txtool.simulate.run import Options  # noqa: E402
+from txtool.simulation import jobs  # noqa: E402
+from txtool.simulation.jobs import execute  # noqa: E402
+from txtool.simulation.run import Options  # noqa: E402
 
 REPEAT = 7
 CONFIGS = (1, 2, 4)

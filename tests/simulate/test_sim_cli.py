@@ -117,7 +117,7 @@ def test_input_errors_exit_2_with_one_line(tmp_path, arm, args, message):
 
 
 def test_plot_without_matplotlib_says_how_to_get_it(tmp_path, arm, monkeypatch):
-    import txtool.simulate.plot as plot
+    import txtool.simulation.plot as plot
 
     real = plot.importlib.util.find_spec
     monkeypatch.setattr(plot.importlib.util, "find_spec",

@@ -10,7 +10,7 @@ from __future__ import annotations
 import pytest
 
 from tests.simulate.robots import arm_ros1, arm_ros2, planar_two_link, write
-from txtool.simulate.run import Options, simulate_one
+from txtool.simulation.run import Options, simulate_one
 
 ROS2_WRIST_JOINTS = """      <joint name="elbow" role="joint1"><offset>0.1</offset></joint>
       <joint name="wrist" role="joint2"/>"""

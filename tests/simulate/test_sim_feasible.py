@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from tests.simulate.robots import arm_ros1, pendulum, write
-from txtool.simulate.feasible import MARGIN
-from txtool.simulate.run import Options, simulate_one
+from txtool.simulation.feasible import MARGIN
+from txtool.simulation.run import Options, simulate_one
 
 
 def fast_arm(tmp_path, velocity: float = 0.5) -> str:

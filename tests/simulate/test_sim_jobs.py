@@ -9,7 +9,7 @@ from click.testing import CliRunner
 
 from tests.simulate.robots import arm_ros1, arm_ros2, write
 from txtool.cli import cli
-from txtool.simulate import jobs
+from txtool.simulation import jobs
 
 
 def simulate(*args: str) -> tuple[int, str, str]:

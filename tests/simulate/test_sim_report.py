@@ -98,7 +98,7 @@ EXACT = ("given", "bandwidth", "tolerance", "dt", "duration")  # settings, not r
 
 def _shape(value, key=""):
     """Keys, strings, integers and settings as they are; results as "<number>"; files by name;
-    the reference's description (:mod:`txtool.simulate.reference`'s) as "<text>"."""
+    the reference's description (:mod:`txtool.simulation.reference`'s) as "<text>"."""
     if key in EXACT:
         return value
     if key == "reference":

@@ -10,8 +10,8 @@ from click.testing import CliRunner
 
 from tests.simulate.robots import arm_ros1, pendulum, planar_two_link, write
 from txtool.cli import cli
-from txtool.simulate import loop
-from txtool.simulate.run import Options, prepare, simulate_one
+from txtool.simulation import loop
+from txtool.simulation.run import Options, prepare, simulate_one
 
 
 @pytest.fixture

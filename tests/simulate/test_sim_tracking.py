@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from tests.simulate.robots import arm_both, arm_ros1, arm_ros2, pendulum, write
-from txtool.simulate.run import Options, simulate_one
+from txtool.simulation.run import Options, simulate_one
 
 
 @pytest.fixture

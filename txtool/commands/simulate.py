@@ -1,4 +1,4 @@
-"""``txtool simulate``: argument parsing only; the work is in :mod:`txtool.simulate.app`."""
+"""``txtool simulate``: argument parsing only; the work is in :mod:`txtool.simulation.app`."""
 
 from __future__ import annotations
 
@@ -84,8 +84,8 @@ def command(robot: str, configs: tuple[str, ...], params: tuple[str, ...],
     require_extra("pinocchio", "sim", "txtool simulate")
     if xacro_disabled(no_xacro, robot, *configs):
         refuse_unexpanded("simulate", robot, *configs)
-    from txtool.simulate.app import main
-    from txtool.simulate.run import Options
+    from txtool.simulation.app import main
+    from txtool.simulation.run import Options
 
     options = Options(
         robot=robot, configs=configs, params=params or None, bandwidth=bandwidth, duration=duration,

@@ -14,11 +14,11 @@ from dataclasses import replace
 import numpy as np
 import pinocchio as pin
 
-from txtool.simulate.drive import Drive
-from txtool.simulate.loop import Controller
-from txtool.simulate.model import RobotModel
-from txtool.simulate.params import JointGains, Params
-from txtool.simulate.result import GainsUsed
+from txtool.simulation.drive import Drive
+from txtool.simulation.loop import Controller
+from txtool.simulation.model import RobotModel
+from txtool.simulation.params import JointGains, Params
+from txtool.simulation.result import GainsUsed
 
 
 def joint_inertia(robot: RobotModel, plant: Drive, rotor: np.ndarray, x0: np.ndarray

@@ -10,10 +10,10 @@ from dataclasses import replace
 from rich.console import Console
 from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn, TimeRemainingColumn
 
-from txtool.simulate import plot, report
-from txtool.simulate.jobs import execute
-from txtool.simulate.result import RunResult
-from txtool.simulate.run import Options, exit_code
+from txtool.simulation import plot, report
+from txtool.simulation.jobs import execute
+from txtool.simulation.result import RunResult
+from txtool.simulation.run import Options, exit_code
 
 SHOW_AFTER = 1.0  # seconds: shorter runs get no progress bar
 WIDE = 132  # columns for reports written to files and pipes

@@ -11,11 +11,11 @@ import numpy as np
 
 from txtool.io.load import load
 from txtool.io.xmlio import InputError, XacroOptions
-from txtool.simulate import checks, feasible, gains, loop, reference, result, setup
-from txtool.simulate.drive import Drive, read_drive
-from txtool.simulate.model import RobotModel, build
-from txtool.simulate.params import Params, load_params
-from txtool.simulate.sensing import Sensing
+from txtool.simulation import checks, feasible, gains, loop, reference, result, setup
+from txtool.simulation.drive import Drive, read_drive
+from txtool.simulation.model import RobotModel, build
+from txtool.simulation.params import Params, load_params
+from txtool.simulation.sensing import Sensing
 
 DEFAULTS = {"bandwidth": 20.0, "duration": 5.0, "dt": 0.001, "tolerance": 0.01}
 MAX_STEPS = 20_000_000

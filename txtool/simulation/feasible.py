@@ -12,7 +12,7 @@ tracking error of the sampled loop within ``LAG_SHARE`` of the tolerance, is cho
 That error comes from the torque the controller applies being older than the state it acts on.
 The plant integrates damping implicitly while the controller compensates it from the last
 reading, so a damped joint is short ``D qdd dt`` of torque; with the loop's one-period delay
-(:mod:`txtool.simulate.sensing`) the whole computed torque also acts one period late, short
+(:mod:`txtool.simulation.sensing`) the whole computed torque also acts one period late, short
 ``dtau/dt dt`` (twice as much damping). Feedback turns the acceleration this lacks,
 ``M^-1 dtorque``, into an error of about ``M^-1 dtorque / kp``: large where the effective
 inertia is small (a light damped link; two joint axes nearly aligned). :class:`Lag` has the
@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from txtool.simulate.reference import Reference, minimum_jerk, step_times
+from txtool.simulation.reference import Reference, minimum_jerk, step_times
 
 MARGIN = 0.8  # a reference peak may use this share of a speed or effort limit
 LAG_SHARE = 0.15  # share of the tolerance the predicted lag of a damped light link may use

@@ -10,15 +10,15 @@ import numpy as np
 import pinocchio as pin
 
 from txtool.mechanics.limits import actuator_limits as implied_limits
-from txtool.simulate.drive import Drive
-from txtool.simulate.feasible import Limits, Parts
-from txtool.simulate.gains import condition, unstable
-from txtool.simulate.loop import Controller, Plan, configurer, layout, make_model
-from txtool.simulate.model import RobotModel
-from txtool.simulate.params import Params
-from txtool.simulate.plant import Dynamics, smallest_inertia, substeps_for
-from txtool.simulate.reference import Reference
-from txtool.simulate.sensing import Sensing, encoder
+from txtool.simulation.drive import Drive
+from txtool.simulation.feasible import Limits, Parts
+from txtool.simulation.gains import condition, unstable
+from txtool.simulation.loop import Controller, Plan, configurer, layout, make_model
+from txtool.simulation.model import RobotModel
+from txtool.simulation.params import Params
+from txtool.simulation.plant import Dynamics, smallest_inertia, substeps_for
+from txtool.simulation.reference import Reference
+from txtool.simulation.sensing import Sensing, encoder
 
 SAMPLES = 20  # reference poses where the plant's stiffness is measured
 TINY_INERTIA = 1e-12

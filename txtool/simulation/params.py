@@ -14,7 +14,7 @@
     ki = 0.0
     i_clamp = 0.5               # bound of |ki * integral(e)|
 
-YAML files hold the gains of ROS controllers (:mod:`txtool.simulate.yaml_gains`). Several
+YAML files hold the gains of ROS controllers (:mod:`txtool.simulation.yaml_gains`). Several
 ``--params`` files merge in order, a later file's entry replacing an earlier one's. Names are
 checked against the robot later (:func:`Params.check_names`); everything else is checked here
 and reported as one ``path[:line]: reason`` line.
@@ -134,7 +134,7 @@ def load_file(given: str) -> Params:
         path, only = base, name
     text = _read(path)
     if path.lower().endswith(YAML_SUFFIXES):
-        from txtool.simulate.yaml_gains import parse_yaml
+        from txtool.simulation.yaml_gains import parse_yaml
 
         return parse_yaml(text, path, only)
     return parse_params(_toml(text, path), path, text)

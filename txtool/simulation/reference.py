@@ -1,7 +1,7 @@
 """Reference motions sampled at every control step: positions, velocities, accelerations.
 
 The default motion (minimum-jerk profiles, analytic derivatives) is planned in
-:mod:`txtool.simulate.feasible`. A CSV trajectory is interpolated linearly
+:mod:`txtool.simulation.feasible`. A CSV trajectory is interpolated linearly
 (piecewise-constant velocity, zero acceleration) or with a cubic spline whose end velocities are
 zero, so the reference starts at rest like the plant. Either is then saturated to the joint limits
 as the controller would (:func:`saturate`).

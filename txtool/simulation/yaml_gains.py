@@ -7,7 +7,7 @@ Recognised wherever they sit (under namespaces, and under ``ros__parameters`` in
 - **joint_trajectory_controller** (ros_controllers, ros2_controllers) and **pid_controller**
   (ros2_controllers): ``gains: {<joint>: {p, i, d, i_clamp | i_clamp_max, i_clamp_min}}``.
   With an effort command interface the PID output is the joint effort, so the gains are
-  N·m/rad (N/m); :mod:`txtool.simulate.gains` divides them by the joint's inertia. With a
+  N·m/rad (N/m); :mod:`txtool.simulation.gains` divides them by the joint's inertia. With a
   velocity or position interface they are not effort gains and are not used (a note says so).
 - **effort_controllers/JointPositionController** (ROS 1): ``{joint: <joint>, pid: {p, i, d}}``.
 
@@ -29,7 +29,7 @@ from typing import Any
 import yaml
 
 from txtool.io.xmlio import InputError
-from txtool.simulate.params import GainSource, JointGains, Params, key_of
+from txtool.simulation.params import GainSource, JointGains, Params, key_of
 
 PID_KEYS = ("p", "i", "d", "i_clamp", "i_clamp_max", "i_clamp_min")
 # Real PID parameters that do not change the joint-space law simulate runs.

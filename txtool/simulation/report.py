@@ -13,7 +13,7 @@ from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
 
-from txtool.simulate.result import GainsUsed, RunResult
+from txtool.simulation.result import GainsUsed, RunResult
 
 TABLE_WIDTH = 100  # tables fit this many columns (or the terminal, when narrower)
 

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from txtool.mechanics.maps import TransmissionMap
-from txtool.simulate.drive import Drive
+from txtool.simulation.drive import Drive
 
 TOLERANCE = 1e-9  # relative: entries this small compared with the largest are zero
 OFFSET_TOLERANCE = 1e-12  # rad or m

@@ -15,8 +15,8 @@ from __future__ import annotations
 import os
 
 from txtool.lint.workers import forked_map
-from txtool.simulate.result import RunResult
-from txtool.simulate.run import Options, Prepared, Progress, candidates, complete, prepare
+from txtool.simulation.result import RunResult
+from txtool.simulation.run import Options, Prepared, Progress, candidates, complete, prepare
 
 MIN_LOOP_S = 0.005  # a fork costs about 10 ms of CPU: shorter runs go one after the other
 

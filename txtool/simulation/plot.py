@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from txtool.io.xmlio import InputError
-from txtool.simulate.result import RunResult
+from txtool.simulation.result import RunResult
 
 SUFFIXES = (".png", ".svg", ".pdf")
 ROW_HEIGHT = 2.1  # inches

@@ -23,8 +23,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from txtool.io.xmlio import InputError
-from txtool.simulate.drive import Drive
-from txtool.simulate.model import RobotModel
+from txtool.simulation.drive import Drive
+from txtool.simulation.model import RobotModel
 
 Reader = Callable[[np.ndarray, np.ndarray, np.ndarray, int], None]
 

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from txtool.simulate.params import GainSource
+from txtool.simulation.params import GainSource
 
 LIMIT_SLACK = 1e-9  # position limits: ignore round-off at a limit
 

@@ -21,7 +21,7 @@ from txtool.mechanics.maps import TransmissionMap, from_transmission
 from txtool.model.numbers import parse_strict
 from txtool.model.robot import children
 from txtool.model.semantics import NotLoadable, loader_of
-from txtool.simulate.model import RobotModel
+from txtool.simulation.model import RobotModel
 
 DRAKE_TAGS = ("rotor_inertia", "gear_ratio")
 GROUP = 3  # transmissions left out for one reason that are listed in one note
