@@ -63,8 +63,8 @@ def arm(n: int) -> str:
 
 def startup_seconds() -> float:
     """Fresh interpreter: import the simulate stack (numpy, pinocchio, lxml, rich)."""
-    code = ("import time; t = time.perf_counter(); import txtool.simulate.run, "
-            "txtool.simulate.app; print(time.perf_counter() - t)")
+    code = ("import time; t = time.perf_counter(); import txtool.simulation.run, "
+            "txtool.simulation.app; print(time.perf_counter() - t)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     return float(out.stdout.strip())
 
@@ -74,8 +74,8 @@ def measure(path: str) -> dict[str, float]:
     import numpy as np
     import pinocchio as pin
 
-    from txtool.simulate import loop
-    from txtool.simulate.run import Options, finish, prepare
+    from txtool.simulation import loop
+    from txtool.simulation.run import Options, finish, prepare
 
     options = Options(robot=path, allow_saturation=True)
     best_loop = best_bare = float("inf")

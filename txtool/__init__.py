@@ -150,9 +150,9 @@ def convert(
 def simulate(robot: str, configs: Sequence[str] = (), **options: Any) -> list[Any]:
     """Run ``txtool simulate ROBOT --config ...`` and return one result per config (the robot's
     own when ``configs`` is empty); each has ``passed`` and ``reasons``. ``options`` are those
-    of :class:`txtool.simulate.run.Options` (``duration``, ``dt``, ``tolerance``, ...). Needs
+    of :class:`txtool.simulation.run.Options` (``duration``, ``dt``, ``tolerance``, ...). Needs
     the ``sim`` extra (Pinocchio)."""
-    from txtool.simulate.run import Options, simulate_one
+    from txtool.simulation.run import Options, simulate_one
 
     settings = Options(robot=robot, configs=tuple(configs), keep_series=False, **options)
     return [simulate_one(settings, config) for config in (configs or (None,))]

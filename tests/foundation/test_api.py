@@ -76,7 +76,7 @@ def test_simulate_returns_one_result_per_config(tmp_path):
     (own,) = txtool.simulate(DEMO, duration=0.5)
     assert own.passed and own.reasons == []
     flipped = tmp_path / "flipped.urdf"
-    from txtool.simulate.demo import flipped_copy
+    from txtool.simulation.demo import flipped_copy
 
     flipped, _ = flipped_copy(DEMO, tmp_path)
     (bad,) = txtool.simulate(DEMO, [str(flipped)], duration=0.5)

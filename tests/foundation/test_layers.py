@@ -25,7 +25,7 @@ LAYERS = {
     "rules": 4,
     "transform": 5,
     "reporters": 5,
-    "simulate": 6,
+    "simulation": 6,
     "commands": 7,
     "cli": 8,
     "__main__": 8,

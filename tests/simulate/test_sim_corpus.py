@@ -12,7 +12,7 @@ from __future__ import annotations
 import pytest
 
 from tests.corpus import corpus_dir, corpus_file
-from txtool.simulate.run import Options, simulate_one
+from txtool.simulation.run import Options, simulate_one
 
 COMPLETE = (
     "baxter__baxter.urdf",

@@ -8,8 +8,8 @@ from rich.console import Console
 
 from tests.simulate.robots import arm_ros1, write
 from txtool.io.resources import shipped
-from txtool.simulate.demo import demo_runs, flipped_copy
-from txtool.simulate.run import Options, simulate_one
+from txtool.simulation.demo import demo_runs, flipped_copy
+from txtool.simulation.run import Options, simulate_one
 
 
 def test_demo_runs_pass_then_fail_naming_the_joint():

@@ -9,10 +9,10 @@ from hypothesis import strategies as st
 from tests.simulate.robots import arm_ros1, write
 from txtool.io.load import load
 from txtool.mechanics.maps import from_parameters
-from txtool.simulate import diagnose
-from txtool.simulate.drive import Drive, assemble
-from txtool.simulate.model import RobotModel, build
-from txtool.simulate.setup import bind
+from txtool.simulation import diagnose
+from txtool.simulation.drive import Drive, assemble
+from txtool.simulation.model import RobotModel, build
+from txtool.simulation.setup import bind
 
 UNITS = ("rad", "rad", "rad")
 

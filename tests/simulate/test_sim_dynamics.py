@@ -11,8 +11,8 @@ import pytest
 from tests.simulate.robots import arm_ros1, pendulum, planar_two_link, write
 from txtool.io.load import load
 from txtool.mechanics.inertia import reflected_inertia
-from txtool.simulate.model import build
-from txtool.simulate.run import Options, prepare, simulate_one
+from txtool.simulation.model import build
+from txtool.simulation.run import Options, prepare, simulate_one
 
 G = 9.81
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 import pytest
 
 from tests.simulate.robots import arm_ros1, arm_ros2, planar_two_link, write
-from txtool.simulate.run import Options, simulate_one
+from txtool.simulation.run import Options, simulate_one
 
 ROS2_WRIST_JOINTS = """      <joint name="elbow" role="joint1"><offset>0.1</offset></joint>
       <joint name="wrist" role="joint2"/>"""
@@ -74,7 +74,7 @@ FAULTS = {
     # :241-242 and :309-310 at 133d768c), so K = [30 20; 0 20] [30 0; -30 20]^-1 = [2 1; 1 1].
     "ROS 1 four-bar effort on a ROS 2 robot": (
         four_bar_ros2, lambda: arm_ros1(kind="FourBarLinkageTransmission"),
-        {"convention": "loader", "duration": 4.0}, [
+        {"duration": 4.0}, [
             "transmission 't_wrist': the config's effort map is ros_control's (ROS 1) four-bar "
             "map, which does not conserve power (ros_control#523), while the robot's is the "
             "power-conserving one of ros2_control (PR #1837): the applied torques of 'elbow' "
@@ -108,7 +108,8 @@ CORRECT = {
     "ROS 2 conversion of a ROS 1 robot": (arm_ros1, arm_ros2, {}),
     "ROS 1 conversion of a ROS 2 robot": (arm_ros2, arm_ros1, {}),
     "ROS 1 four-bar with ros2_control's effort map": (
-        four_bar_ros2, lambda: arm_ros1(kind="FourBarLinkageTransmission"), {"duration": 4.0}),
+        four_bar_ros2, lambda: arm_ros1(kind="FourBarLinkageTransmission"),
+        {"duration": 4.0, "convention": "ros2"}),
 }
 
 
@@ -123,7 +124,7 @@ def test_correct_copies_pass_with_nothing_to_diagnose(tmp_path, case):
 def test_a_wrong_effort_map_fails_even_where_tracking_hides_it(tmp_path):
     """High gains and a loose tolerance: the ROS 1 four-bar map tracks, the torque is wrong."""
     run = run_pair(tmp_path, four_bar_ros2(), arm_ros1(kind="FourBarLinkageTransmission"),
-                   convention="loader", duration=4.0, bandwidth=100.0, tolerance=0.1)
+                   duration=4.0, bandwidth=100.0, tolerance=0.1)
     assert not any("tracking error" in r for r in run.reasons)
     assert max(j.max_error for j in run.joints.values()) < 0.1
     torque = [r for r in run.reasons if "the robot's transmissions apply" in r]
@@ -176,9 +177,12 @@ def test_swapped_simple_transmissions_name_joints_and_actuators(tmp_path):
 def test_a_self_check_that_fails_on_limits_blames_no_transmission(tmp_path):
     robot = write(tmp_path, "arm.urdf", arm_ros1())
     params = write(tmp_path, "p.toml", "[actuators.m_left]\nvelocity_limit = 10.0\n")
-    own = simulate_one(Options(robot=robot, params=params, duration=2.0), None)
+    # the default motion is slowed to the limit; this trajectory is not (m_left: 30 x elbow)
+    fast = write(tmp_path, "fast.csv", "time,elbow\n0,0\n1,0.5\n2,0\n")
+    own = simulate_one(Options(robot=robot, params=params, trajectory=fast), None)
     assert not own.passed and not causes(own)
+    assert any(r.startswith("actuator 'm_left'") for r in own.reasons), own.reasons
     copy = write(tmp_path, "copy.urdf", arm_ros1())
-    run = simulate_one(Options(robot=robot, params=params, duration=2.0), copy)
+    run = simulate_one(Options(robot=robot, params=params, trajectory=fast), copy)
     assert causes(run) == ["not the transmissions: the config's maps equal the robot's (look "
                            "at the gains, the limits or the reference)"]

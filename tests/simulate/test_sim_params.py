@@ -6,8 +6,8 @@ import pytest
 
 from tests.simulate.robots import arm_ros1, write
 from txtool.io.xmlio import InputError
-from txtool.simulate.params import load_params
-from txtool.simulate.run import Options, prepare
+from txtool.simulation.params import load_params
+from txtool.simulation.run import Options, prepare
 
 GOOD = """bandwidth = 30.0
 duration = 2.0

@@ -10,7 +10,7 @@ from click.testing import CliRunner
 
 from tests.simulate.robots import EFFORT, arm_ros1, link, write
 from txtool.cli import cli
-from txtool.simulate.run import Options, simulate_one
+from txtool.simulation.run import Options, simulate_one
 
 CUSTOM = f"""
   <transmission name="t_custom">

@@ -7,10 +7,10 @@ import pytest
 
 from tests.simulate.robots import EFFORT, write
 from txtool.io.load import load
-from txtool.simulate.model import build
-from txtool.simulate.reference import Reference
-from txtool.simulate.run import Options, simulate_one
-from txtool.simulate.setup import plant_dynamics
+from txtool.simulation.model import build
+from txtool.simulation.reference import Reference
+from txtool.simulation.run import Options, simulate_one
+from txtool.simulation.setup import plant_dynamics
 
 # A 5 g fingertip 3 cm out: inertia 4.6e-6 kg m^2 against damping 0.05 N m s/rad
 # (damping / inertia = 1.1e4 1/s, eleven times what an explicit step of 1 ms can carry).

@@ -7,14 +7,14 @@ import pytest
 
 from tests.simulate.robots import arm_ros1, write
 from txtool.io.xmlio import InputError
-from txtool.simulate.feasible import Motion, sample
-from txtool.simulate.reference import (
+from txtool.simulation.feasible import Motion, sample
+from txtool.simulation.reference import (
     from_table,
     minimum_jerk,
     read_csv,
     step_times,
 )
-from txtool.simulate.run import Options, prepare, simulate_one
+from txtool.simulation.run import Options, prepare, simulate_one
 
 JOINTS = ("a", "b")
 

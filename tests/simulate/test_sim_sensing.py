@@ -10,8 +10,8 @@ from click.testing import CliRunner
 
 from tests.simulate.robots import arm_ros1, pendulum, planar_two_link, write
 from txtool.cli import cli
-from txtool.simulate import loop
-from txtool.simulate.run import Options, prepare, simulate_one
+from txtool.simulation import loop
+from txtool.simulation.run import Options, prepare, simulate_one
 
 
 @pytest.fixture
@@ -86,8 +86,10 @@ def test_unstable_gains_chatter_against_the_limits_and_fail_with_allow_saturatio
 def test_a_weak_motor_saturating_on_the_moves_is_no_limit_cycle(tmp_path):
     robot = write(tmp_path, "p.urdf", pendulum(2.0, 0.5, 40.0))
     params = write(tmp_path, "p.toml", "[actuators.m_swing]\neffort_limit = 0.3\n")
+    # the default motion would hold the joint still (gravity alone needs 82% of the limit)
+    swings = write(tmp_path, "swings.csv", "time,swing\n0,0\n0.3,0.5\n0.6,0\n0.9,0.5\n1.2,0\n")
     run = simulate_one(Options(robot=robot, allow_saturation=True, params=params,
-                               duration=2.0), None)
+                               trajectory=swings, duration=2.0), None)
     assert run.actuators["m_swing"].saturated_fraction > 0.01
     assert not any("chatters" in r for r in run.reasons)
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from tests.simulate.robots import arm_both, arm_ros1, arm_ros2, pendulum, write
-from txtool.simulate.run import Options, simulate_one
+from txtool.simulation.run import Options, simulate_one
 
 
 @pytest.fixture
@@ -113,7 +113,8 @@ def test_unstable_gains_fail_without_a_traceback(tmp_path, arm):
     run = run_with(tmp_path, arm, None, bandwidth=3000.0, duration=1.0, params=params)
     assert not run.passed
     assert run.reasons[0].startswith("the simulation diverged at t=")
-    assert "its gains are too high for --dt 0.001 (kd*dt + kp*dt^2/2 = 10.5" in run.reasons[0]
+    assert "its gains are too high for --dt 0.001 (kp·dt² 9, kd·dt 6; with the one-period " \
+           "delay it needs kd·dt < 1 and kp·dt² < kd·dt·(1 - kd·dt))" in run.reasons[0]
     assert all(np.isfinite(j.max_error) for j in run.joints.values())
 
 
@@ -148,9 +149,17 @@ def test_config_transmission_on_an_unknown_joint_fails_naming_it(tmp_path, arm):
                for note in run.notes)
 
 
-def test_ros1_four_bar_effort_map_shows_with_the_loader_convention(tmp_path):
+def test_ros1_four_bar_runs_ros_controls_effort_map_by_default(tmp_path):
+    """A ROS 1 robot's own four-bar, as ros_control runs it, against the physical robot."""
     robot = write(tmp_path, "fb.urdf", arm_ros1(kind="FourBarLinkageTransmission"))
-    physical = simulate_one(Options(robot=robot), None)
-    assert physical.passed, physical.reasons
-    loader = simulate_one(Options(robot=robot, convention="loader"), None)
+    loader = simulate_one(Options(robot=robot), None)
+    assert not loader.passed
     assert any(r.startswith("joint 'wrist': tracking error") for r in loader.reasons)
+    assert any(r.startswith("likely cause: transmission 't_wrist': the config's effort map is "
+                            "ros_control's (ROS 1) four-bar map") for r in loader.reasons)
+    assert "the controller maps efforts of four-bar 't_wrist' as ros_control does (ROS 1; not " \
+           "power-conserving, ros_control#523); the plant is physics (--effort-convention " \
+           "ros2: ros2_control's map)" in loader.notes
+    physical = simulate_one(Options(robot=robot, convention="ros2"), None)
+    assert physical.passed, physical.reasons
+    assert not any("ros_control does" in n for n in physical.notes)

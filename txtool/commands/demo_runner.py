@@ -81,6 +81,6 @@ def _validate(console: Console, robot: Source) -> None:
 
 
 def _simulate(console: Console) -> None:
-    from txtool.simulate.demo import demo_runs
+    from txtool.simulation.demo import demo_runs
 
     demo_runs(console)

@@ -1,4 +1,4 @@
-"""``txtool simulate``: argument parsing only; the work is in :mod:`txtool.simulate.app`."""
+"""``txtool simulate``: argument parsing only; the work is in :mod:`txtool.simulation.app`."""
 
 from __future__ import annotations
 
@@ -21,9 +21,11 @@ from txtool.io.xmlio import XacroOptions
 @click.option("--config", "configs", multiple=True, metavar="CANDIDATE",
               help="Config whose transmissions the controller uses (repeat to compare several; "
                    "default: ROBOT's own).")
-@click.option("--params", type=click.Path(dir_okay=False), metavar="FILE.toml",
-              help="Actuator and gain parameters (default: [tool.txtool.simulate] in the "
-                   "nearest pyproject.toml above ROBOT).")
+@click.option("--params", "params", multiple=True, type=click.Path(dir_okay=False),
+              metavar="FILE.toml|FILE.yaml",
+              help="Actuator and gain parameters, or a ROS controllers YAML with PID gains "
+                   "(repeat to combine; default: [tool.txtool.simulate] in the nearest "
+                   "pyproject.toml above ROBOT).")
 @click.option("--bandwidth", type=float, metavar="RAD/S",
               help="Closed-loop bandwidth w for default gains kp=w^2, kd=2w  [default: 20]")
 @click.option("--duration", type=float, metavar="S", help="Run length  [default: 5]")
@@ -39,10 +41,10 @@ from txtool.io.xmlio import XacroOptions
               help="Do not fail on actuator effort or speed limits (still reported).")
 @click.option("--loader", type=click.Choice(["auto", "ros1", "ros2"]), default="auto",
               show_default=True, help="Which transmissions to use when a file has both kinds.")
-@click.option("--effort-convention", "convention", type=click.Choice(["ros2", "loader"]),
-              default="ros2", show_default=True,
-              help="Controller effort maps: ros2_control's (power-conserving) for every config, "
-                   "or each config's own loader's (ROS 1 four-bar: ros_control's).")
+@click.option("--effort-convention", "convention", type=click.Choice(["ros1", "ros2"]),
+              default=None,
+              help="Controller effort maps: ros_control's (ros1) or ros2_control's (ros2) for "
+                   "every config  [default: each file's own loader]")
 @click.option("--delay/--no-delay", default=True, show_default=True,
               help="One control period between reading the state and applying the effort "
                    "(read -> update -> write, as in ros2_control).")
@@ -52,19 +54,23 @@ from txtool.io.xmlio import XacroOptions
 @FORMAT_OPTION
 @click.option("--csv", "csv_path", type=click.Path(dir_okay=False), metavar="PATH",
               help="Write the time series (PATH.N.csv per config when several).")
-@click.option("--plot", "plot_path", type=click.Path(dir_okay=False), metavar="PATH.png|.svg",
-              help="Plot tracking error and actuator effort (needs the 'plot' extra).")
+@click.option("--plot", "plot_path", type=click.Path(dir_okay=False),
+              metavar="PATH.png|.svg|.pdf",
+              help="Plot reference and actual positions, errors, actuator efforts and speeds "
+                   "against their limits, all configs overlaid (needs the 'plot' extra).")
 @click.option("--skip", "skip", multiple=True, metavar="TRANSMISSION",
               help="Leave this transmission out (its joints are driven directly); repeatable.")
 @click.option("--jobs", "-j", type=click.IntRange(min=1), default=1, show_default=True,
-              help="Parallel processes for several configs.")
+              help="Processes for several configs (at most one per config and per idle CPU; "
+                   "short runs stay in one).")
 @NO_XACRO_OPTION
 @xacro_options
 @exit_on_input_error
-def command(robot: str, configs: tuple[str, ...], params: str | None, bandwidth: float | None,
+def command(robot: str, configs: tuple[str, ...], params: tuple[str, ...],
+            bandwidth: float | None,
             duration: float | None, dt: float | None, tolerance: float | None,
             trajectory: str | None, interpolation: str, allow_saturation: bool, loader: str,
-            convention: str, delay: bool, encoder_counts: int | None,
+            convention: str | None, delay: bool, encoder_counts: int | None,
             output_format: str, csv_path: str | None,
             plot_path: str | None, skip: tuple[str, ...], jobs: int, no_xacro: bool,
             xacro: XacroOptions) -> int:
@@ -78,11 +84,11 @@ def command(robot: str, configs: tuple[str, ...], params: str | None, bandwidth:
     require_extra("pinocchio", "sim", "txtool simulate")
     if xacro_disabled(no_xacro, robot, *configs):
         refuse_unexpanded("simulate", robot, *configs)
-    from txtool.simulate.app import main
-    from txtool.simulate.run import Options
+    from txtool.simulation.app import main
+    from txtool.simulation.run import Options
 
     options = Options(
-        robot=robot, configs=configs, params=params, bandwidth=bandwidth, duration=duration,
+        robot=robot, configs=configs, params=params or None, bandwidth=bandwidth, duration=duration,
         dt=dt, tolerance=tolerance, trajectory=trajectory, interpolation=interpolation,
         allow_saturation=allow_saturation, loader=loader, convention=convention, xacro=xacro,
         jobs=jobs, skip=skip, delay=delay, encoder_counts=encoder_counts,

@@ -35,9 +35,13 @@ def chunk_size(count: int) -> int:
     return max(4, -(-count // MAX_CHUNKS))
 
 
-def forked_map(function: Callable[[int], Any], count: int, processes: int) -> Iterator[Any]:
-    """``function(i)`` for ``i`` in ``range(count)``, in order, from ``processes`` processes."""
-    size = chunk_size(count)
+def forked_map(function: Callable[[int], Any], count: int, processes: int,
+               size: int | None = None) -> Iterator[Any]:
+    """``function(i)`` for ``i`` in ``range(count)``, in order, from ``processes`` processes.
+
+    ``size`` indices go out at a time (default :func:`chunk_size`; 1 for few, long tasks).
+    """
+    size = size or chunk_size(count)
     starts = range(0, count, size)
     queue = _queue(b"".join(start.to_bytes(_WIDTH, "little") for start in starts))
     if queue is None:  # a pipe too small to hold them: no sharing

@@ -10,17 +10,17 @@
   ``--allow-saturation``.
 
 :func:`judge` adds these reasons and, when the run fails, the likely causes from
-:mod:`txtool.simulate.diagnose`.
+:mod:`txtool.simulation.diagnose`.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from txtool.simulate import diagnose
-from txtool.simulate.drive import Drive
-from txtool.simulate.result import RunResult, Series
-from txtool.simulate.sensing import Encoder
+from txtool.simulation import diagnose
+from txtool.simulation.drive import Drive
+from txtool.simulation.result import RunResult, Series
+from txtool.simulation.sensing import Encoder
 
 EFFORT_TOLERANCE = 0.01  # of the joint's peak torque
 CHATTER_WINDOW = 100  # steps

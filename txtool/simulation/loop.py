@@ -13,11 +13,11 @@ needed, an actuator-effort bias (damping and friction compensation, off-diagonal
 on the fast path), and ``Phi @ row`` is the semi-implicit Euler step. So a step costs one
 ``rnea``, one ``aba``, four small matrix products, a clip and a few views, with no Python loop
 over transmissions. Damping is implicit there through the plant's armature (see
-:mod:`txtool.simulate.plant`); friction, sub-steps and coupled inertia go through
+:mod:`txtool.simulation.plant`); friction, sub-steps and coupled inertia go through
 :meth:`plant.Dynamics.advance`.
 
 With ``plan.delay`` the clipped demand of row ``k`` becomes the applied effort of row ``k + 1``
-(read -> update -> write, see :mod:`txtool.simulate.sensing`). With an encoder, the estimates
+(read -> update -> write, see :mod:`txtool.simulation.sensing`). With an encoder, the estimates
 are decoded from the quantised actuator readings in the row instead of from ``x`` and ``v``.
 """
 
@@ -29,9 +29,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import pinocchio as pin
 
-from txtool.simulate.model import RobotModel
-from txtool.simulate.plant import Dynamics
-from txtool.simulate.sensing import Encoder
+from txtool.simulation.model import RobotModel
+from txtool.simulation.plant import Dynamics
+from txtool.simulation.sensing import Encoder
 
 CHUNK = 500
 

@@ -10,9 +10,10 @@ from dataclasses import replace
 from rich.console import Console
 from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn, TimeRemainingColumn
 
-from txtool.simulate import plot, report
-from txtool.simulate.result import RunResult
-from txtool.simulate.run import Options, execute, exit_code
+from txtool.simulation import plot, report
+from txtool.simulation.jobs import execute
+from txtool.simulation.result import RunResult
+from txtool.simulation.run import Options, exit_code
 
 SHOW_AFTER = 1.0  # seconds: shorter runs get no progress bar
 WIDE = 132  # columns for reports written to files and pipes
@@ -63,12 +64,13 @@ def main(options: Options, *, output: str = "text", csv_path: str | None = None,
     finally:
         progress.close()
     if output == "json":
-        console.file.write(json.dumps(report.document(runs), indent=2) + "\n")
+        console.file.write(json.dumps(report.document(runs), indent=2,
+                                      ensure_ascii=False) + "\n")
     else:
         report.render_text(runs, console)
-    for index, run in enumerate(runs, 1):
-        if csv_path is not None:
+    if csv_path is not None:
+        for index, run in enumerate(runs, 1):
             report.write_csv(run, report.numbered(csv_path, index, len(runs)))
-        if plot_path is not None:
-            plot.plot(run, report.numbered(plot_path, index, len(runs)))
+    if plot_path is not None:
+        plot.plot(runs, plot_path)
     return runs, exit_code(runs)

@@ -11,11 +11,11 @@ import numpy as np
 
 from txtool.io.load import load
 from txtool.io.xmlio import InputError, XacroOptions
-from txtool.simulate import checks, feasible, loop, reference, result, setup
-from txtool.simulate.drive import Drive, read_drive
-from txtool.simulate.model import RobotModel, build
-from txtool.simulate.params import Params, load_params
-from txtool.simulate.sensing import Sensing
+from txtool.simulation import checks, feasible, gains, loop, reference, result, setup
+from txtool.simulation.drive import Drive, read_drive
+from txtool.simulation.model import RobotModel, build
+from txtool.simulation.params import Params, load_params
+from txtool.simulation.sensing import Sensing
 
 DEFAULTS = {"bandwidth": 20.0, "duration": 5.0, "dt": 0.001, "tolerance": 0.01}
 MAX_STEPS = 20_000_000
@@ -30,7 +30,7 @@ class Options:
     robot: str
     configs: tuple[str, ...] = ()
     labels: tuple[str, ...] = ()  # display names for configs (default: their paths)
-    params: str | None = None
+    params: str | tuple[str, ...] | None = None
     bandwidth: float | None = None
     duration: float | None = None
     dt: float | None = None
@@ -39,7 +39,7 @@ class Options:
     interpolation: str = "cubic"
     allow_saturation: bool = False
     loader: str = "auto"
-    convention: str = "ros2"
+    convention: str | None = None  # the controller's effort maps; None: each file's loader
     xacro: XacroOptions = field(default_factory=XacroOptions)
     jobs: int = 1
     keep_series: bool = True
@@ -92,7 +92,9 @@ class Prepared:
     setup_s: float
     reference_notes: list[str] = field(default_factory=list)
     cannot_hold: list[str] = field(default_factory=list)  # the robot, not the config, is short
-    gains: loop.Controller | None = None
+    controller: loop.Controller | None = None
+    gains: dict[str, result.GainsUsed] = field(default_factory=dict)
+    notes: tuple[str, ...] = ()
 
 
 def prepare(options: Options, config: str | None, label: str | None = None) -> Prepared:
@@ -100,16 +102,13 @@ def prepare(options: Options, config: str | None, label: str | None = None) -> P
     started = time.perf_counter()
     source = load(options.robot, xacro=options.xacro)
     robot = build(source)
+    # The plant is physics: power-conserving effort maps (ros2_control's). The controller
+    # runs the maps of the loader that reads its file, unless --effort-convention says.
     plant = read_drive(source, robot, loader=options.loader, convention="ros2",
                        skip=options.skip)
-    if config is not None:
-        ctrl = read_drive(load(config, xacro=options.xacro), robot, loader=options.loader,
-                          convention=options.convention, skip=options.skip)
-    elif options.convention == "loader":
-        ctrl = read_drive(source, robot, loader=options.loader, convention="loader",
-                          skip=options.skip)
-    else:
-        ctrl = plant
+    ctrl = read_drive(load(config, xacro=options.xacro) if config is not None else source,
+                      robot, loader=options.loader, convention=options.convention,
+                      skip=options.skip)
     unknown = sorted(set(options.skip) - set(plant.names) - set(ctrl.names))
     if unknown:
         raise InputError(f"--skip: no transmission named {', '.join(map(repr, unknown))} in "
@@ -122,28 +121,38 @@ def prepare(options: Options, config: str | None, label: str | None = None) -> P
     rotor = (setup.rotor_inertias(plant.actuators, params, plant, ctrl),
              setup.rotor_inertias(ctrl.actuators, params, plant, ctrl))
     effort_limit, speed_limit = setup.actuator_limits(robot, plant, params)
-    gains = setup.controller(robot, params, run_settings.bandwidth)
     inertia = plant.reflected_inertia(rotor[0])
-    if options.trajectory is None:
+    table = None if options.trajectory is None else _table(options, robot)
+    params, converted = gains.in_acceleration(params, robot, plant, rotor[0],
+                                              _start(robot, table))
+    controller = setup.controller(robot, params, run_settings.bandwidth)
+    if table is None:
         fixed = options.duration is not None or "duration" in params.run
-        limits = setup.motion_limits(robot, plant, inertia, gains, effort_limit, speed_limit,
-                                     run_settings.dt)
+        limits = setup.motion_limits(robot, plant, inertia, controller, effort_limit,
+                                     speed_limit, run_settings.dt, options.delay)
         ref, duration, ref_notes, weak = _default_reference(
             robot, run_settings, limits, setup.reference_dynamics(robot, inertia), fixed)
     else:
-        ref, duration, ref_notes = _reference(options, robot, run_settings)
+        ref, duration, ref_notes = _reference(options, table, robot, run_settings)
         weak = []
-    plan = setup.build_plan(robot, plant, ctrl, binding, rotor, effort_limit, gains, ref,
+    plan = setup.build_plan(robot, plant, ctrl, binding, rotor, effort_limit, controller, ref,
                             run_settings.dt, Sensing(options.delay, options.encoder_counts))
+    used, stiff = gains.used(robot, params, controller, run_settings.bandwidth, converted,
+                             run_settings.dt, options.delay)
     return Prepared(options, config, label or (config if config is not None else options.robot),
                     robot, plant, ctrl, binding, plan, ref, run_settings, duration, effort_limit,
-                    speed_limit, time.perf_counter() - started, ref_notes, weak, gains)
+                    speed_limit, time.perf_counter() - started, ref_notes, weak, controller, used,
+                    params.notes + tuple(stiff))
 
 
 def simulate_one(options: Options, config: str | None, label: str | None = None,
                  progress: Progress | None = None) -> result.RunResult:
     """Simulate ``options.robot`` controlled through ``config`` (None: the robot's own)."""
-    p = prepare(options, config, label)
+    return complete(prepare(options, config, label), progress)
+
+
+def complete(p: Prepared, progress: Progress | None = None) -> result.RunResult:
+    """Run a prepared loop to its end and judge it."""
     started = time.perf_counter()
     steps = p.plan.steps
     loop.run(p.plan, (lambda done: progress(done, steps)) if progress else None)
@@ -157,9 +166,11 @@ def finish(p: Prepared, loop_s: float) -> result.RunResult:
         run = _judge(p, series)
     run.config = p.label
     run.reference = p.ref.source
-    run.notes = _notes(p.robot, p.plant, p.ctrl, p.config is not None) + p.reference_notes
+    run.notes = _notes(p.robot, p.plant, p.ctrl, p.config is not None) + list(p.notes) \
+        + p.reference_notes
     if p.plan.dynamics.note:
         run.notes.append(p.plan.dynamics.note)
+    run.gains, run.tolerance = p.gains, p.settings.tolerance
     checks.judge(run, series, p.plant, p.ctrl, p.binding.S, p.config is not None,
                  p.plan.encoder, p.plan.delay)
     run.timings = {"setup_s": p.setup_s, "loop_s": loop_s,
@@ -187,12 +198,27 @@ def _default_reference(robot: RobotModel, s: Settings, limits: feasible.Limits,
     return ref, float(ref.time[-1]), list(chosen.notes) + notes, list(chosen.cannot_hold)
 
 
-def _reference(options: Options, robot: RobotModel, s: Settings
+def _table(options: Options, robot: RobotModel) -> reference.Table:
+    assert options.trajectory is not None
+    return reference.read_csv(options.trajectory, set(robot.joints))
+
+
+def _start(robot: RobotModel, table: reference.Table | None) -> np.ndarray:
+    """Where effort gains are turned into acceleration gains: the trajectory's first row
+    (joints it leaves out at the middle of their range), or the middle of each range, around
+    which the default motion moves."""
+    ranges = _ranges(robot)
+    hold = np.array([(lo + hi) / 2 for lo, hi in ranges])
+    if table is None:
+        return hold
+    t = reference.step_times(0.0, 1.0)
+    return reference.from_table(table, robot.joints, hold, t, "linear").q[0]
+
+
+def _reference(options: Options, table: reference.Table, robot: RobotModel, s: Settings
                ) -> tuple[reference.Reference, float, list[str]]:
     """The reference from ``--trajectory``, saturated to the joint limits as the controller does."""
-    assert options.trajectory is not None
     ranges = _ranges(robot)
-    table = reference.read_csv(options.trajectory, set(robot.joints))
     duration = s.duration
     if options.duration is None and len(table.time) > 1:
         duration = table.end
@@ -232,7 +258,7 @@ def _judge(p: Prepared, series: result.Series) -> result.RunResult:
     actuators = result.actuator_stats(series)
     reasons = [] if options.allow_saturation else list(p.cannot_hold)
     if plan.diverged_at is not None:
-        cause = setup.divergence_cause(plan, p.gains) if p.gains is not None else ""
+        cause = setup.divergence_cause(plan, p.controller) if p.controller else ""
         reasons.append(f"the simulation diverged at t={plan.diverged_at * s.dt:.3f} s: {cause}")
     for name in binding.unbound:
         reasons.append(f"actuator '{name}' of the config is not an actuator of the robot")
@@ -265,6 +291,11 @@ def _skipped_cause(actuator: str, plant: Drive, ctrl: Drive) -> str:
 
 def _notes(robot: RobotModel, plant: Drive, ctrl: Drive, candidate: bool) -> list[str]:
     notes = list(robot.notes) + plant.notes
+    ros1 = [m.name for m in ctrl.maps if m.kind == "four_bar" and m.convention == "ros1"]
+    if ros1:
+        notes.append("the controller maps efforts of four-bar " + ", ".join(map(repr, ros1))
+                     + " as ros_control does (ROS 1; not power-conserving, ros_control#523); "
+                     "the plant is physics (--effort-convention ros2: ros2_control's map)")
     if candidate:
         notes += [f"config: {note}" for note in ctrl.notes]
     if plant.direct:
@@ -292,27 +323,6 @@ def candidates(options: Options) -> list[tuple[str | None, str | None]]:
         return [(None, None)]
     labels = options.labels or options.configs
     return list(zip(options.configs, labels, strict=True))
-
-
-def execute(options: Options, progress: Progress | None = None) -> list[result.RunResult]:
-    """All runs, in the order of the configs; several run in ``options.jobs`` processes."""
-    pairs = candidates(options)
-    if len(pairs) == 1 or options.jobs <= 1:
-        return [simulate_one(options, c, label, progress if len(pairs) == 1 else None)
-                for c, label in pairs]
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor
-
-    context = multiprocessing.get_context("spawn")
-    with ProcessPoolExecutor(max_workers=min(options.jobs, len(pairs)),
-                             mp_context=context) as pool:
-        futures = [pool.submit(simulate_one, options, c, label) for c, label in pairs]
-        results = []
-        for done, future in enumerate(futures, 1):
-            results.append(future.result())
-            if progress is not None:
-                progress(done, len(futures))
-        return results
 
 
 def exit_code(runs: list[result.RunResult]) -> int:

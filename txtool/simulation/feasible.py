@@ -7,7 +7,17 @@ scale with ``1/T`` and the torque ``tau = (M qdd + C qd) / T^2 + D qd / T + g + 
 (each term computed once at ``T = 1`` on the unit profile) is checked for any ``T`` without
 more dynamics. The smallest ``T`` that keeps every joint and actuator speed and every actuator
 effort (through the plant's effort map) within ``MARGIN`` of its limit, and the predicted
-tracking lag of heavily damped light joints within ``LAG_SHARE`` of the tolerance, is chosen.
+tracking error of the sampled loop within ``LAG_SHARE`` of the tolerance, is chosen.
+
+That error comes from the torque the controller applies being older than the state it acts on.
+The plant integrates damping implicitly while the controller compensates it from the last
+reading, so a damped joint is short ``D qdd dt`` of torque; with the loop's one-period delay
+(:mod:`txtool.simulation.sensing`) the whole computed torque also acts one period late, short
+``dtau/dt dt`` (twice as much damping). Feedback turns the acceleration this lacks,
+``M^-1 dtorque``, into an error of about ``M^-1 dtorque / kp``: large where the effective
+inertia is small (a light damped link; two joint axes nearly aligned). :class:`Lag` has the
+details. With ``tau`` split as
+above, ``dtau/dt = Q'/T^3 + L'/T^2 + g'/T`` along the unit profile (primes in ``t/T``).
 When the run's length is fixed (``--duration`` or the params file), amplitudes shrink
 instead; a joint whose gravity and friction alone exceed its actuator's limit is held still.
 Every such choice is a note.
@@ -20,7 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from txtool.simulate.reference import Reference, minimum_jerk, step_times
+from txtool.simulation.reference import Reference, minimum_jerk, step_times
 
 MARGIN = 0.8  # a reference peak may use this share of a speed or effort limit
 LAG_SHARE = 0.15  # share of the tolerance the predicted lag of a damped light link may use
@@ -45,7 +55,12 @@ class Limits:
     actuators: tuple[str, ...]
     actuator_speed: np.ndarray
     actuator_effort: np.ndarray
-    lag: np.ndarray  # per joint: predicted lag per unit reference acceleration (s^2)
+    dt: float  # control period
+    delay: bool  # one period from reading to acting (sensing.py)
+    kp: np.ndarray  # per joint position and velocity gains
+    kd: np.ndarray
+    damping: np.ndarray  # per joint viscous damping
+    inverse_mass: Callable[[np.ndarray], np.ndarray]  # joint rows -> (rows, nv, nv) M^-1
 
 
 @dataclass(frozen=True)
@@ -88,17 +103,128 @@ def plan_motion(ranges: list[tuple[float, float]], limits: Limits, dynamics: Dyn
     q, qd, qdd = unit_profile(ranges, amplitude)
     parts = dynamics(q, qd, qdd)
     weak = _cannot_hold(limits, parts[2])
+    lag = Lag.along(limits, q, qdd, parts, dynamics(q, 0 * qd, 0 * qdd)[2],
+                    LAG_SHARE * tolerance)
     longest = move if fixed else max(move, LONGEST_MOVE)
-    needed, binding = _move_time(limits, qd, qdd, parts, tolerance, move)
+    needed, binding = _move_time(limits, qd, parts, lag, move)
     if needed <= longest:
         chosen = max(move, needed)
         return Motion(chosen, amplitude, binding if chosen > move else "", tuple(notes), weak)
-    scale = _amplitude_scale(limits, qd, qdd, parts, tolerance, longest)
+    scale = _amplitude_scale(limits, qd, qdd, parts, lag, longest)
     shrunk = [f"'{limits.joints[v]}' {100 * scale[v]:.0f}%" for v in np.nonzero(scale < 1)[0]]
     if shrunk:
         notes.append(f"to stay within the limits at {longest:g} s per move, joints move this "
                      "share of the default amplitude: " + ", ".join(shrunk))
     return Motion(longest, amplitude * scale, "", tuple(notes), weak)
+
+
+@dataclass(frozen=True)
+class Lag:
+    """The predicted tracking error of the sampled loop along the unit profile.
+
+    Two effects, each scaled by the joints' amplitudes:
+
+    * the torque the delay leaves out, ``d3/T^3 + d1/T`` (joint torques: the change of
+      ``M qdd + C qd`` and of gravity over one period), costs the acceleration ``M^-1 @`` that;
+    * damping compensated from an older reading makes a joint act ``rho = 1 + c dt D / m``
+      times heavier than the controller assumes (``m`` its effective inertia, ``c`` = 1, or 2
+      with the delay): the loop's gains are divided by ``rho`` and a share ``1 - 1/rho`` of
+      the reference acceleration is missing.
+
+    The error is that acceleration through the error dynamics ``e'' + kd/rho e' + kp/rho e = a``
+    (bounded by ``max |a| rho / kp`` for real poles, which is tried first), so a brief shortfall,
+    such as passing two aligned axes, costs less than a steady one.
+    """
+
+    d3: np.ndarray  # (samples, nv) torques
+    d1: np.ndarray
+    damped: np.ndarray  # (samples, nv) accelerations, scaling with 1 / T^2
+    inverse: np.ndarray  # (samples, nv, nv) M^-1 / rho (rows)
+    kp: np.ndarray  # kp / rho, kd / rho (worst along the profile)
+    kd: np.ndarray
+    budget: float
+
+    @staticmethod
+    def along(limits: Limits, q: np.ndarray, qdd: np.ndarray, parts: Parts,
+              gravity: np.ndarray, budget: float) -> Lag:
+        quadratic, _, _ = parts
+        delay, dt = float(limits.delay), limits.dt
+        inverse = np.nan_to_num(limits.inverse_mass(q))
+        diagonal = np.einsum("njj->nj", inverse)
+        rho = 1.0 + (1.0 + delay) * dt * limits.damping * np.maximum(diagonal, 0.0)
+        worst = rho.max(axis=0, initial=1.0)
+        return Lag(delay * dt * _rate(quadratic), delay * dt * _rate(gravity),
+                   (1.0 - 1.0 / rho) * qdd, inverse / rho[:, :, None],
+                   limits.kp / worst, limits.kd / worst, budget)
+
+    def acceleration(self, move: float, scale: np.ndarray | None = None) -> np.ndarray:
+        """(samples, nv): the acceleration each joint lacks, with amplitudes ``scale``."""
+        torque = self.d3 / move**3 + self.d1 / move
+        damped = self.damped / move**2
+        if scale is not None:
+            torque, damped = torque * scale, damped * scale
+        return np.einsum("nij,nj->ni", self.inverse, torque) + damped
+
+    def error(self, move: float, scale: np.ndarray | None = None) -> np.ndarray:
+        """Per joint, the largest predicted error over the run."""
+        lacking = self.acceleration(move, scale)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            bound = np.nan_to_num(np.abs(lacking).max(axis=0, initial=0.0) / self.kp)
+        close = (bound > self.budget) | (self.kd**2 < 4 * self.kp)  # complex poles overshoot
+        if close.any():
+            bound[close] = _filtered(lacking[:, close], self.kp[close], self.kd[close],
+                                     move / (SAMPLES - 1))
+        return bound
+
+    def culprits(self, move: float, scale: np.ndarray, joint: int) -> np.ndarray:
+        """The joints whose lagging torque makes most of ``joint``'s worst shortfall."""
+        torque = (self.d3 / move**3 + self.d1 / move) * scale
+        share = self.inverse[:, joint, :] * torque
+        share[:, joint] += self.damped[:, joint] * scale[joint] / move**2
+        worst = int(np.argmax(np.abs(share.sum(axis=1))))
+        size = np.abs(share[worst])
+        return np.nonzero(size >= 0.5 * size.max())[0]
+
+
+def _filtered(lacking: np.ndarray, kp: np.ndarray, kd: np.ndarray, h: float) -> np.ndarray:
+    """Peak |e| of ``e'' + kd e' + kp e = a`` from rest, ``a`` held over samples ``h`` apart."""
+    n, nv = lacking.shape
+    system = np.zeros((nv, 3, 3))
+    system[:, 0, 1] = 1.0
+    system[:, 1, 0], system[:, 1, 1], system[:, 1, 2] = -kp, -kd, 1.0
+    step = _expm(system * h)
+    Ad, Bd = step[:, :2, :2], step[:, :2, 2]
+    response = np.zeros((n, nv))  # e at sample k after a unit input held over sample 0
+    state = Bd.copy()
+    for k in range(1, n):
+        response[k] = state[:, 0]
+        state = np.einsum("jab,jb->ja", Ad, state)
+    size = 1 << (2 * n - 1).bit_length()
+    error = np.fft.irfft(np.fft.rfft(lacking, size, axis=0) * np.fft.rfft(response, size, axis=0),
+                         size, axis=0)[:n]
+    return np.abs(error).max(axis=0)
+
+
+def _expm(a: np.ndarray) -> np.ndarray:
+    """exp of a stack of small matrices: scaling and squaring of a Taylor series."""
+    norm = float(np.abs(a).sum(axis=-1).max(initial=0.0))
+    squarings = max(0, int(np.ceil(np.log2(norm / 0.25))) if norm > 0.25 else 0)
+    x = a / 2.0**squarings
+    term = np.broadcast_to(np.eye(a.shape[-1]), a.shape).copy()
+    total = term.copy()
+    for k in range(1, 12):
+        term = term @ x / k
+        total += term
+    for _ in range(squarings):
+        total = total @ total
+    return total
+
+
+def _rate(values: np.ndarray) -> np.ndarray:
+    """d/ds along the unit profile, each move (SAMPLES rows) on its own."""
+    ds = 1.0 / (SAMPLES - 1)
+    return np.vstack([np.gradient(values[:SAMPLES], ds, axis=0),
+                      np.gradient(values[SAMPLES:], ds, axis=0)])
 
 
 def _cannot_hold(limits: Limits, static: np.ndarray) -> tuple[str, ...]:
@@ -126,18 +252,16 @@ def _held_still(limits: Limits, static: np.ndarray) -> dict[int, str]:
     return held
 
 
-def _move_time(limits: Limits, qd: np.ndarray, qdd: np.ndarray, parts: Parts,
-               tolerance: float, start: float) -> tuple[float, str]:
+def _move_time(limits: Limits, qd: np.ndarray, parts: Parts, lag: Lag, start: float
+               ) -> tuple[float, str]:
     """The shortest move time (at least ``start``) within every limit, and what binds it."""
     speed = np.abs(qd).max(axis=0)
     candidates = [(start, "")]
     with np.errstate(divide="ignore", invalid="ignore"):
         joint = speed / (MARGIN * limits.velocity)
         actuator = np.abs(qd @ limits.vel_j2a.T).max(axis=0) / (MARGIN * limits.actuator_speed)
-        lag = np.sqrt(limits.lag * np.abs(qdd).max(axis=0) / (LAG_SHARE * tolerance))
     for values, what in ((joint, "joint '{}' velocity limit"),
-                         (actuator, "actuator '{}' speed limit"),
-                         (lag, "the lag of damped light joint '{}'")):
+                         (actuator, "actuator '{}' speed limit")):
         values = np.nan_to_num(values, nan=0.0, posinf=0.0)
         if len(values) and values.max() > 0:
             k = int(np.argmax(values))
@@ -153,23 +277,26 @@ def _move_time(limits: Limits, qd: np.ndarray, qdd: np.ndarray, parts: Parts,
     for _ in range(400):
         effort = np.abs((quadratic / move**2 + linear / move + static) @ limits.eff_j2a.T)
         over = (effort.max(axis=0) > limit) & ~hopeless
-        if not over.any():
+        late = lag.error(move) > lag.budget
+        if not (over.any() or late.any()):
             return move, binding
         move *= GRID
-        binding = f"actuator '{limits.actuators[int(np.argmax(over))]}' effort limit"
+        if over.any():
+            binding = f"actuator '{limits.actuators[int(np.argmax(over))]}' effort limit"
+        else:
+            binding = (f"the tracking lag of joint '{limits.joints[int(np.argmax(late))]}' "
+                       "(torque applied a period late)")
     return move, binding
 
 
-def _amplitude_scale(limits: Limits, qd: np.ndarray, qdd: np.ndarray, parts: Parts,
-                     tolerance: float, move: float) -> np.ndarray:
+def _amplitude_scale(limits: Limits, qd: np.ndarray, qdd: np.ndarray, parts: Parts, lag: Lag,
+                     move: float) -> np.ndarray:
     """Per joint, the share of the default amplitude that fits in ``move`` seconds."""
     nv = qd.shape[1]
     scale = np.ones(nv)
-    speed, accel = np.abs(qd).max(axis=0) / move, np.abs(qdd).max(axis=0) / move**2
+    speed = np.abs(qd).max(axis=0) / move
     with np.errstate(divide="ignore", invalid="ignore"):
         scale = np.minimum(scale, np.nan_to_num(MARGIN * limits.velocity / speed, nan=1.0))
-        lag = LAG_SHARE * tolerance / (limits.lag * accel)
-        scale = np.minimum(scale, np.nan_to_num(lag, nan=1.0, posinf=1.0))
     quadratic, linear, static = parts
     hopeless = np.abs(static @ limits.eff_j2a.T).max(axis=0) > MARGIN * limits.actuator_effort
     for _ in range(200):
@@ -178,11 +305,14 @@ def _amplitude_scale(limits: Limits, qd: np.ndarray, qdd: np.ndarray, parts: Par
                         @ limits.eff_j2a.T).max(axis=0)
         over = (a_speed > MARGIN * limits.actuator_speed) \
             | ((effort > MARGIN * limits.actuator_effort) & ~hopeless)
-        if not over.any():
+        late = np.nonzero(lag.error(move, scale) > lag.budget)[0]
+        if not (over.any() or len(late)):
             break
-        joints = np.nonzero(np.abs(limits.vel_j2a[over]).sum(axis=0)
-                            + np.abs(limits.eff_j2a[over]).sum(axis=0))[0]
-        scale[joints] *= 0.95
+        shrink = np.abs(limits.vel_j2a[over]).sum(axis=0) + np.abs(limits.eff_j2a[over]).sum(axis=0)
+        joints = set(np.nonzero(shrink)[0].tolist())
+        for v in late:
+            joints.update(lag.culprits(move, scale, int(v)).tolist())
+        scale[sorted(joints)] *= 0.95
     return scale
 
 

@@ -10,14 +10,15 @@ import numpy as np
 import pinocchio as pin
 
 from txtool.mechanics.limits import actuator_limits as implied_limits
-from txtool.simulate.drive import Drive
-from txtool.simulate.feasible import Limits, Parts
-from txtool.simulate.loop import Controller, Plan, configurer, layout, make_model
-from txtool.simulate.model import RobotModel
-from txtool.simulate.params import Params
-from txtool.simulate.plant import Dynamics, smallest_inertia, substeps_for
-from txtool.simulate.reference import Reference, joint_range
-from txtool.simulate.sensing import Sensing, encoder
+from txtool.simulation.drive import Drive
+from txtool.simulation.feasible import Limits, Parts
+from txtool.simulation.gains import condition, unstable
+from txtool.simulation.loop import Controller, Plan, configurer, layout, make_model
+from txtool.simulation.model import RobotModel
+from txtool.simulation.params import Params
+from txtool.simulation.plant import Dynamics, smallest_inertia, substeps_for
+from txtool.simulation.reference import Reference
+from txtool.simulation.sensing import Sensing, encoder
 
 SAMPLES = 20  # reference poses where the plant's stiffness is measured
 TINY_INERTIA = 1e-12
@@ -237,18 +238,25 @@ def reference_dynamics(robot: RobotModel, inertia: np.ndarray
 
 
 def motion_limits(robot: RobotModel, plant: Drive, inertia: np.ndarray, gains: Controller,
-                  effort: np.ndarray, speed: np.ndarray, dt: float) -> Limits:
+                  effort: np.ndarray, speed: np.ndarray, dt: float, delay: bool) -> Limits:
     """What the default motion must respect; ``inertia``: the plant's reflected rotor inertia."""
-    model, _ = make_model(robot, inertia)
-    ranges = np.array([joint_range(k, lo, hi)
-                       for k, lo, hi in zip(robot.kinds, robot.lower, robot.upper, strict=True)])
-    poses = np.array([ranges[:, 0] + share * (ranges[:, 1] - ranges[:, 0])
-                      for share in (0.25, 0.5, 0.75)])
-    smallest = smallest_inertia(model, robot.config(poses))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        lag = np.nan_to_num(dt * robot.damping / smallest / gains.kp, nan=0.0, posinf=0.0)
+    model, block = make_model(robot, inertia)
+    data = model.createData()
+    lower = np.tril_indices(robot.nv, -1)
+
+    def inverse_mass(x: np.ndarray) -> np.ndarray:
+        inverses = np.empty((len(x), robot.nv, robot.nv))
+        for k, q in enumerate(robot.config(x)):
+            mass = pin.crba(model, data, q).copy()
+            mass[lower] = mass.T[lower]
+            if block is not None:
+                mass += block
+            inverses[k] = np.linalg.pinv(mass)
+        return inverses
+
     return Limits(robot.joints, robot.velocity, plant.vel_j2a, plant.eff_j2a, plant.actuators,
-                  speed, effort, lag)
+                  speed, effort, dt, delay, gains.kp, gains.kd, robot.damping,
+                  inverse_mass)
 
 
 def divergence_cause(plan: Plan, gains: Controller) -> str:
@@ -260,11 +268,10 @@ def divergence_cause(plan: Plan, gains: Controller) -> str:
     growth = np.nan_to_num(error[-1] - error[0], nan=np.inf, posinf=np.inf)
     v = int(np.argmax(growth))
     joint = plan.robot.joints[v]
-    dt = plan.dt
-    stability = gains.kd[v] * dt + gains.kp[v] * dt**2 / 2
-    if stability >= 2.0:  # Jury's test on the discrete loop: kd*dt + kp*dt^2/2 < 2
+    dt, kp, kd = plan.dt, float(gains.kp[v]), float(gains.kd[v])
+    if unstable(kp, kd, dt, plan.delay):
         return (f"joint '{joint}' ran away first; its gains are too high for --dt {dt:g} "
-                f"(kd*dt + kp*dt^2/2 = {stability:.3g}; the discrete loop needs < 2)")
+                f"(kp·dt² {kp * dt * dt:.3g}, kd·dt {kd * dt:.3g}; {condition(plan.delay)})")
     mass = smallest_inertia(plan.dynamics.model, plan.robot.config(plan.q_ref[[0, end]]))[v]
     if mass < TINY_INERTIA:
         return (f"joint '{joint}' ran away first; its inertia is {mass:.3g} (links without "

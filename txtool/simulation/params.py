@@ -1,4 +1,5 @@
-"""Simulation parameters: a ``--params`` TOML file or ``[tool.txtool.simulate]`` in pyproject.toml.
+"""Simulation parameters: ``--params`` files (TOML, or controller YAML for gains) or
+``[tool.txtool.simulate]`` in pyproject.toml.
 
 ::
 
@@ -13,8 +14,10 @@
     ki = 0.0
     i_clamp = 0.5               # bound of |ki * integral(e)|
 
-Names are checked against the robot later (:func:`Params.check_names`); everything else is
-checked here and reported as one ``path[:line]: reason`` line.
+YAML files hold the gains of ROS controllers (:mod:`txtool.simulation.yaml_gains`). Several
+``--params`` files merge in order, a later file's entry replacing an earlier one's. Names are
+checked against the robot later (:func:`Params.check_names`); everything else is checked here
+and reported as one ``path[:line]: reason`` line.
 """
 
 from __future__ import annotations
@@ -38,6 +41,7 @@ JOINT_KEYS = ("kp", "kd", "ki", "i_clamp")
 RUN_KEYS = ("bandwidth", "dt", "duration", "tolerance")
 POSITIVE = ("effort_limit", "velocity_limit", "bandwidth", "dt", "duration", "tolerance")
 SECTION = ("tool", "txtool", "simulate")
+YAML_SUFFIXES = (".yaml", ".yml")
 
 
 @dataclass(frozen=True)
@@ -48,11 +52,30 @@ class ActuatorParams:
 
 
 @dataclass(frozen=True)
+class GainSource:
+    """Where a joint's gains were read: file, line (0: unknown), dotted key, format."""
+
+    file: str
+    line: int
+    key: str
+    format: str  # "toml" or the controller whose YAML layout it was
+    given: dict[str, float] = field(default_factory=dict)  # the values as the file has them
+
+
+@dataclass(frozen=True)
 class JointGains:
+    """PID gains of one joint; ``per`` "acceleration" (the law's units) or "effort".
+
+    Effort gains (N·m/rad, N/m) come from controllers whose PID output is the joint effort; they
+    are turned into acceleration gains with the joint's inertia once the model is built.
+    """
+
     kp: float | None = None
     kd: float | None = None
     ki: float | None = None
     i_clamp: float | None = None
+    per: str = "acceleration"
+    source: GainSource | None = None
 
 
 @dataclass(frozen=True)
@@ -63,32 +86,79 @@ class Params:
     path: str | None = None
     text: str = ""
     prefix: str = ""
+    where: dict[str, str] = field(default_factory=dict)  # "joints.NAME" -> "path:line: key"
+    notes: tuple[str, ...] = ()
 
     def error(self, dotted: str, reason: str) -> InputError:
         """``path:line: key: reason`` with the line of ``dotted`` when it can be found."""
+        return InputError(f"{self.located(dotted)}: {reason}")
+
+    def located(self, dotted: str) -> str:
+        """``path[:line]: key`` of an entry, for messages about it."""
+        if dotted in self.where:
+            return self.where[dotted]
         line = _line_of(self.text, self.prefix + dotted)
         where = f"{self.path}:{line}" if line else f"{self.path}"
-        return InputError(f"{where}: {self.prefix}{dotted}: {reason}")
+        return f"{where}: {self.prefix}{dotted}"
 
     def check_names(self, actuators: set[str], joints: set[str], robot: str) -> None:
         for name in self.actuators:
             if name not in actuators:
-                raise self.error(f"actuators.{_key(name)}", f"no actuator '{name}' in {robot}")
+                where = self.located(f"actuators.{key_of(name)}")
+                raise InputError(f"{where}: no actuator '{name}' in {robot}")
         for name in self.joints:
             if name not in joints:
-                raise self.error(f"joints.{_key(name)}", f"no moving joint '{name}' in {robot}")
+                where = self.located(f"joints.{key_of(name)}")
+                raise InputError(f"{where}: no moving joint '{name}' in {robot}")
 
 
-def load_params(explicit: str | None, robot_path: str) -> Params:
-    """``--params FILE`` if given, else the nearest pyproject.toml with the section, else none."""
-    if explicit is not None:
-        text = _read(explicit)
-        return parse_params(_toml(text, explicit), explicit, text)
+def load_params(explicit: str | tuple[str, ...] | None, robot_path: str) -> Params:
+    """``--params FILE...`` if given, else the nearest pyproject.toml with the section."""
+    if isinstance(explicit, str):
+        explicit = (explicit,)
+    if explicit:
+        return merge([load_file(path) for path in explicit])
     found = find_pyproject(robot_path)
     if found is None:
         return Params()
     path, data, text = found
     return parse_params(data, path, text, prefix="tool.txtool.simulate.")
+
+
+def load_file(given: str) -> Params:
+    """One ``--params`` file: controller YAML by its suffix (``FILE.yaml#NAME``: only controller
+    NAME), else TOML."""
+    path, only = given, None
+    base, mark, name = given.rpartition("#")
+    if mark and base.lower().endswith(YAML_SUFFIXES) and not Path(given).exists():
+        path, only = base, name
+    text = _read(path)
+    if path.lower().endswith(YAML_SUFFIXES):
+        from txtool.simulation.yaml_gains import parse_yaml
+
+        return parse_yaml(text, path, only)
+    return parse_params(_toml(text, path), path, text)
+
+
+def merge(files: list[Params]) -> Params:
+    """Files in order; a later file's actuator, joint or setting replaces an earlier one's."""
+    if len(files) == 1:
+        return files[0]
+    actuators: dict[str, ActuatorParams] = {}
+    joints: dict[str, JointGains] = {}
+    run: dict[str, float] = {}
+    where: dict[str, str] = {}
+    notes: list[str] = []
+    for params in files:
+        for kind, entries in (("actuators", params.actuators), ("joints", params.joints)):
+            for name in entries:
+                where[f"{kind}.{key_of(name)}"] = params.located(f"{kind}.{key_of(name)}")
+        actuators.update(params.actuators)
+        joints.update(params.joints)
+        run.update(params.run)
+        notes += params.notes
+    return Params(actuators=actuators, joints=joints, run=run, path=files[-1].path,
+                  where=where, notes=tuple(notes))
 
 
 def find_pyproject(robot_path: str) -> tuple[str, dict[str, Any], str] | None:
@@ -116,16 +186,19 @@ def parse_params(data: dict[str, Any], path: str, text: str = "", prefix: str = 
     for key, value in data.items():
         if key == "actuators":
             for name, values in _tables(shell, key, value).items():
-                actuators[name] = ActuatorParams(**_values(shell, f"{key}.{_key(name)}", values,
+                actuators[name] = ActuatorParams(**_values(shell, f"{key}.{key_of(name)}", values,
                                                            ACTUATOR_KEYS))
         elif key == "joints":
             for name, values in _tables(shell, key, value).items():
-                joints[name] = JointGains(**_values(shell, f"{key}.{_key(name)}", values,
-                                                    JOINT_KEYS))
+                dotted = f"{key}.{key_of(name)}"
+                numbers = _values(shell, dotted, values, JOINT_KEYS)
+                source = GainSource(path, _line_of(text, prefix + dotted), prefix + dotted,
+                                    "toml", dict(numbers))
+                joints[name] = JointGains(**numbers, source=source)
         elif key in RUN_KEYS:
             run[key] = _number(shell, key, value)
         else:
-            raise shell.error(_key(key), "unknown key (expected actuators, joints, "
+            raise shell.error(key_of(key), "unknown key (expected actuators, joints, "
                               + ", ".join(RUN_KEYS) + ")")
     return Params(actuators=actuators, joints=joints, run=run, path=path, text=text, prefix=prefix)
 
@@ -135,7 +208,7 @@ def _tables(shell: Params, key: str, value: Any) -> dict[str, dict[str, Any]]:
         raise shell.error(key, "must be a table of names")
     for name, values in value.items():
         if not isinstance(values, dict):
-            raise shell.error(f"{key}.{_key(name)}", "must be a table")
+            raise shell.error(f"{key}.{key_of(name)}", "must be a table")
     return value
 
 
@@ -144,7 +217,7 @@ def _values(shell: Params, where: str, values: dict[str, Any], allowed: tuple[st
     result = {}
     for key, value in values.items():
         if key not in allowed:
-            raise shell.error(f"{where}.{_key(key)}",
+            raise shell.error(f"{where}.{key_of(key)}",
                               f"unknown key (expected {', '.join(allowed)})")
         result[key] = _number(shell, f"{where}.{key}", value)
     return result
@@ -161,7 +234,7 @@ def _number(shell: Params, dotted: str, value: Any) -> float:
     return number
 
 
-def _key(name: str) -> str:
+def key_of(name: str) -> str:
     return name if re.fullmatch(r"[A-Za-z0-9_-]+", name) else f'"{name}"'
 
 

@@ -1,7 +1,7 @@
 """Reference motions sampled at every control step: positions, velocities, accelerations.
 
 The default motion (minimum-jerk profiles, analytic derivatives) is planned in
-:mod:`txtool.simulate.feasible`. A CSV trajectory is interpolated linearly
+:mod:`txtool.simulation.feasible`. A CSV trajectory is interpolated linearly
 (piecewise-constant velocity, zero acceleration) or with a cubic spline whose end velocities are
 zero, so the reference starts at rest like the plant. Either is then saturated to the joint limits
 as the controller would (:func:`saturate`).
@@ -32,7 +32,7 @@ class Reference:
 
 def step_times(duration: float, dt: float) -> np.ndarray:
     steps = max(1, int(round(duration / dt)))
-    return np.arange(steps + 1) * dt
+    return np.round(np.arange(steps + 1) * dt, 12)  # 7.129, not 7.1290000000000004
 
 
 def minimum_jerk(t: np.ndarray, t0: float, t1: float, a: float, b: float

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from txtool.mechanics.maps import TransmissionMap
-from txtool.simulate.drive import Drive
+from txtool.simulation.drive import Drive
 
 TOLERANCE = 1e-9  # relative: entries this small compared with the largest are zero
 OFFSET_TOLERANCE = 1e-12  # rad or m
@@ -100,10 +100,18 @@ def _group_causes(c: Comparison, plant: Drive, ctrl: Drive, joints: list[int],
         return kinds  # a joint the candidate cannot measure: the binding reasons say why
     T = c.T[np.ix_(actuators, actuators)]
     K = c.K[np.ix_(joints, joints)]
-    out = _position(plant, ctrl, joints, G, T, [plant.actuators[i] for i in actuators])
     # Offsets that travel with swapped joints are not a difference of their own.
     by_joint = None if _diagonal(G) else _permutation(G)
     swapped = by_joint is not None and _unit(G, by_joint)
+    plain = c.offset[joints] - c.robot_offset[joints]
+    if swapped and _diagonal(T):
+        # A reversed actuator of a differential reads as swapped joints too; with offsets that
+        # do not travel with the swap, the actuator factor is the reading with fewer changes.
+        residual = c.offset[joints] - _pattern(G).astype(float) @ c.robot_offset[joints]
+        if np.abs(residual).max() > OFFSET_TOLERANCE >= np.abs(plain).max():
+            swapped = False
+    out = _position(plant, ctrl, joints, G, T, [plant.actuators[i] for i in actuators],
+                    prefer_swap=swapped or not _diagonal(T))
     carried = _pattern(G).astype(float) if swapped else np.eye(len(joints))
     offset = c.offset[joints] - carried @ c.robot_offset[joints]
     for k, v in enumerate(joints):
@@ -119,15 +127,16 @@ def _group_causes(c: Comparison, plant: Drive, ctrl: Drive, joints: list[int],
 
 
 def _position(plant: Drive, ctrl: Drive, joints: list[int], G: np.ndarray, T: np.ndarray,
-              motors: list[str]) -> list[str]:
-    """The simplest reading that fits: joint factors, a plain joint swap, actuator factors,
-    a scaled joint swap, an actuator swap; else the matrix."""
+              motors: list[str], prefer_swap: bool = True) -> list[str]:
+    """The simplest reading that fits: joint factors, a plain joint swap (unless
+    ``prefer_swap`` is off), actuator factors, a scaled joint swap, an actuator swap; else the
+    matrix."""
     names = [plant.joints[v] for v in joints]
     if _diagonal(G):
         return [_joint_factor(plant, ctrl, v, G[k, k]) for k, v in enumerate(joints)
                 if not _close(G[k, k], 1.0)]
     by_joint = _permutation(G)
-    if by_joint is not None and _unit(G, by_joint):
+    if prefer_swap and by_joint is not None and _unit(G, by_joint):
         return [_swapped("joints", names, G, by_joint, ctrl, names[0]) + _same_as(T, motors)]
     if _diagonal(T):
         return [_actuator_factor(plant, ctrl, motors[k], T[k, k]) for k in range(len(motors))

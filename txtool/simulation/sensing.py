@@ -1,9 +1,12 @@
 """What the controller reads and when its command lands: encoders and the loop's delay.
 
-ros2_control runs ``read() -> update() -> write()`` once per control period: the state is read
-at the start of the period and the command written at its end, so the effort computed from the
-reading at ``t_k`` acts on the plant from ``t_(k+1)`` to ``t_(k+2)``. That is one period of delay
-on top of the zero-order hold; :class:`Sensing` turns it on or off.
+ros2_control runs ``read() -> update() -> write()`` back to back once per control period
+(ros-controls/ros2_control controller_manager/src/ros2_control_node.cpp, the ``while`` loop).
+A hardware interface on a field bus latches the state at one bus cycle and the drives apply the
+command written after it at the next (EtherCAT drives in synchronous mode do exactly this), so
+the effort computed from the reading at ``t_k`` acts on the plant from ``t_(k+1)`` to
+``t_(k+2)``. That is one period of delay on top of the zero-order hold; :class:`Sensing` turns
+it on or off (``--no-delay``: an interface whose command lands within the same period).
 
 With ``counts`` set, each rotary actuator has an encoder of that many counts per revolution: the
 controller reads the actuator angle rounded to a whole count (the resolution at the joint is
@@ -20,8 +23,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from txtool.io.xmlio import InputError
-from txtool.simulate.drive import Drive
-from txtool.simulate.model import RobotModel
+from txtool.simulation.drive import Drive
+from txtool.simulation.model import RobotModel
 
 Reader = Callable[[np.ndarray, np.ndarray, np.ndarray, int], None]
 

@@ -7,6 +7,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from txtool.simulation.params import GainSource
+
 LIMIT_SLACK = 1e-9  # position limits: ignore round-off at a limit
 
 
@@ -38,6 +40,15 @@ class JointStats:
     max_error_time: float
     limit_margin: float | None  # smallest distance to a position limit (negative: outside)
     units: str
+    transmission: str = ""  # "" when driven directly
+
+
+def effort_units(joint_units: str) -> str:
+    return "N" if joint_units == "m" else "N·m"
+
+
+def speed_units(joint_units: str) -> str:
+    return f"{joint_units}/s"
 
 
 @dataclass
@@ -50,6 +61,15 @@ class ActuatorStats:
     saturated_fraction: float
     first_violation: float | None
     transmission: str
+    units: str = "rad"  # of its joints: "rad" (rotary, N·m, rad/s), "m" (linear, N, m/s) or "mixed"
+
+    @property
+    def effort_units(self) -> str:
+        return "N·m|N" if self.units == "mixed" else effort_units(self.units)
+
+    @property
+    def speed_units(self) -> str:
+        return "rad/s|m/s" if self.units == "mixed" else speed_units(self.units)
 
     @property
     def effort_percent(self) -> float:
@@ -66,6 +86,20 @@ def _percent(value: float, limit: float) -> float:
     return math.inf if limit == 0 else 100.0 * value / limit
 
 
+@dataclass(frozen=True)
+class GainsUsed:
+    """The acceleration gains a joint ran with and where they came from."""
+
+    kp: float  # 1/s^2
+    kd: float  # 1/s
+    ki: float  # 1/s^3
+    i_clamp: float | None  # bound of |ki * integral(e)| in rad/s^2 (m/s^2); None: no bound
+    units: str  # of the joint: rad | m
+    source: GainSource | None  # None: the default, critically damped at ``bandwidth``
+    bandwidth: float | None = None
+    inertia: float | None = None  # effort gains were divided by this M_ii (kg m^2 or kg)
+
+
 @dataclass
 class RunResult:
     robot: str
@@ -80,6 +114,8 @@ class RunResult:
     notes: list[str]
     series: Series | None = None
     timings: dict[str, float] = field(default_factory=dict)
+    gains: dict[str, GainsUsed] = field(default_factory=dict)
+    tolerance: float | None = None
 
     @property
     def passed(self) -> bool:
@@ -106,6 +142,8 @@ def joint_stats(series: Series) -> dict[str, JointStats]:
             max_error_time=float(series.time[worst]),
             limit_margin=margin,
             units=series.units[v],
+            transmission=next((series.transmission_of[i]
+                               for i in series.joint_actuators.get(name, [])), ""),
         )
     return stats
 
@@ -118,6 +156,8 @@ def actuator_stats(series: Series) -> dict[str, ActuatorStats]:
     stats = {}
     for i, name in enumerate(series.actuators):
         first = _first(series.time, over_effort[:, i], over_speed[:, i])
+        kinds = {series.units[series.joints.index(j)]
+                 for j, owned in series.joint_actuators.items() if i in owned}
         stats[name] = ActuatorStats(
             peak_effort=float(demand[:, i].max(initial=0.0)),
             effort_limit=float(series.effort_limit[i]),
@@ -127,6 +167,7 @@ def actuator_stats(series: Series) -> dict[str, ActuatorStats]:
             saturated_fraction=float(np.mean(over_effort[:, i])) if len(demand) else 0.0,
             first_violation=first,
             transmission=series.transmission_of[i],
+            units=kinds.pop() if len(kinds) == 1 else ("mixed" if kinds else "rad"),
         )
     return stats
 
@@ -155,13 +196,14 @@ def verdict_reasons(series: Series, joints: dict[str, JointStats],
         return reasons
     for name, a in actuators.items():
         first = f" (first at t={a.first_violation:.3f} s)" if a.first_violation is not None else ""
+        effort, speed = a.effort_units, a.speed_units
         if a.peak_effort > a.effort_limit:
-            reasons.append(f"actuator '{name}': effort {a.peak_effort:.4g} exceeds its limit "
-                           f"{a.effort_limit:.4g}, saturated {100 * a.saturated_fraction:.1f}% "
-                           f"of the time{first}")
+            reasons.append(f"actuator '{name}': effort {a.peak_effort:.4g} {effort} exceeds its "
+                           f"limit {a.effort_limit:.4g} {effort}, saturated "
+                           f"{100 * a.saturated_fraction:.1f}% of the time{first}")
         if a.peak_velocity > a.velocity_limit:
-            reasons.append(f"actuator '{name}': speed {a.peak_velocity:.4g} exceeds its limit "
-                           f"{a.velocity_limit:.4g}{first}")
+            reasons.append(f"actuator '{name}': speed {a.peak_velocity:.4g} {speed} exceeds its "
+                           f"limit {a.velocity_limit:.4g} {speed}{first}")
     return reasons
 
 

@@ -15,8 +15,8 @@ from txtool.io.resources import shipped
 from txtool.io.xmlio import InputError, serialize
 from txtool.model.robot import children
 from txtool.model.semantics import loader_of
-from txtool.simulate import report
-from txtool.simulate.run import Options, simulate_one
+from txtool.simulation import report
+from txtool.simulation.run import Options, simulate_one
 
 
 def demo_runs(console: Console, robot: Path | None = None) -> None:

@@ -15,12 +15,13 @@ from lxml import etree
 
 from txtool.dialects.read import Found, read_source
 from txtool.io.xmlio import InputError, Source, local
+from txtool.mechanics.convention import effort_convention
 from txtool.mechanics.inertia import reflected_inertia
 from txtool.mechanics.maps import TransmissionMap, from_transmission
 from txtool.model.numbers import parse_strict
 from txtool.model.robot import children
 from txtool.model.semantics import NotLoadable, loader_of
-from txtool.simulate.model import RobotModel
+from txtool.simulation.model import RobotModel
 
 DRAKE_TAGS = ("rotor_inertia", "gear_ratio")
 GROUP = 3  # transmissions left out for one reason that are listed in one note
@@ -72,8 +73,11 @@ class Drive:
 
 
 def read_drive(source: Source, robot: RobotModel, *, loader: str = "auto",
-               convention: str = "ros2", skip: tuple[str, ...] = ()) -> Drive:
+               convention: str | None = None, skip: tuple[str, ...] = ()) -> Drive:
     """The drive of ``source``'s transmissions on ``robot``'s joints.
+
+    Effort maps follow ``convention`` (``ros1``, ``ros2``), else each transmission's own
+    loader (:func:`txtool.mechanics.convention.effort_convention`).
 
     A transmission that cannot be simulated (``--skip``, a custom type or a loader refusal, a
     joint that is mimic, fixed, locked, absent or already driven, an actuator already taken)
@@ -125,12 +129,12 @@ def _skip_notes(path: str, skipped: dict[str, str], where: dict[str, str]) -> li
 
 
 def _why_not(item: Found, robot: RobotModel, owner: dict[str, str], taken: set[str],
-             convention: str, skip: tuple[str, ...]) -> TransmissionMap | str:
+             convention: str | None, skip: tuple[str, ...]) -> TransmissionMap | str:
     """The transmission's map, or why it cannot be simulated."""
     t = item.transmission
     if t.name in skip:
         return "skipped with --skip"
-    conv = "ros1" if convention == "loader" and loader_of(t) == "ros1" else "ros2"
+    conv = effort_convention(t, convention)
     try:
         tmap = from_transmission(t, conv)
     except NotLoadable as exc:

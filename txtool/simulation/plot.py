@@ -1,0 +1,120 @@
+"""``--plot``: every config of a run overlaid in one figure.
+
+One row per joint (reference and actual position; tracking error with the tolerance band) and
+one row per actuator (demanded effort and speed against their limits). Units are in every axis
+label. matplotlib is the optional extra ``plot``; :func:`require` fails early with a clear
+message. The file format follows the suffix: .png, .svg or .pdf.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from txtool.io.xmlio import InputError
+from txtool.simulation.result import RunResult
+
+SUFFIXES = (".png", ".svg", ".pdf")
+ROW_HEIGHT = 2.1  # inches
+REFERENCE = {"color": "black", "linestyle": "--", "linewidth": 1.0, "zorder": 3}
+LIMIT = {"color": "tab:red", "linestyle": ":", "linewidth": 1.0}
+BAND = {"color": "tab:green", "alpha": 0.15, "linewidth": 0}
+
+
+def require(path: str) -> None:
+    """Check ``--plot PATH`` before the run: a known suffix and matplotlib installed."""
+    if Path(path).suffix.lower() not in SUFFIXES:
+        raise InputError(f"{path}: --plot writes .png, .svg or .pdf files (by the suffix)")
+    if importlib.util.find_spec("matplotlib") is None:
+        raise InputError(f"{path}: --plot needs matplotlib; install it with "
+                         "pip install 'txtool[plot]'")
+
+
+def plot(runs: list[RunResult], path: str) -> None:
+    """Write the figure of ``runs`` (all on the same robot) to ``path``."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    kept = [run for run in runs if run.series is not None]
+    if not kept:
+        raise ValueError("no run kept its time series")
+    first = kept[0].series
+    assert first is not None
+    rows = len(first.joints) + len(first.actuators)
+    figure, axes = plt.subplots(rows, 2, figsize=(11, ROW_HEIGHT * rows + 1.2), squeeze=False,
+                                sharex=True, layout="constrained")
+    colors = [f"C{i % 10}" for i in range(len(kept))]
+    for v, joint in enumerate(first.joints):
+        _joint_row(axes[v], kept, colors, joint, first.units[v])
+    for i, actuator in enumerate(first.actuators):
+        _actuator_row(axes[len(first.joints) + i], kept, colors, actuator)
+    for ax in axes[-1]:
+        ax.set_xlabel("time (s)")
+    handles = [plt.Line2D([], [], color=c, label=f"{run.config} ({run.verdict})")
+               for run, c in zip(kept, colors, strict=True)]
+    handles += [plt.Line2D([], [], label="reference", **REFERENCE),
+                plt.Line2D([], [], label="limit", **LIMIT),
+                matplotlib.patches.Patch(label="tolerance", **BAND)]
+    figure.legend(handles=handles, loc="outside upper center", ncol=2, fontsize="small",
+                  frameon=False, title=f"simulate {kept[0].robot}")
+    figure.savefig(path)
+    plt.close(figure)
+
+
+def _joint_row(axes: Any, runs: list[RunResult], colors: list[str], joint: str,
+               units: str) -> None:
+    position, error = axes
+    reference_drawn = False
+    worst = 0.0
+    for run, color in zip(runs, colors, strict=True):
+        s = run.series
+        if s is None or joint not in s.joints:
+            continue
+        v = s.joints.index(joint)
+        if not reference_drawn:
+            position.plot(s.time, s.q_ref[:, v], **REFERENCE)
+            reference_drawn = True
+        position.plot(s.time, s.q[:, v], color=color, linewidth=1.0)
+        e = s.q[:, v] - s.q_ref[:, v]
+        error.plot(s.time, e, color=color, linewidth=1.0)
+        worst = max(worst, float(np.nanmax(np.abs(e), initial=0.0)))
+    tolerance = runs[0].tolerance
+    if tolerance:
+        error.axhspan(-tolerance, tolerance, **BAND)
+        if worst > 20 * tolerance:  # a failing config would flatten the band: log beyond it
+            error.set_yscale("symlog", linthresh=tolerance)
+    position.set_ylabel(f"{joint}\nposition ({units})")
+    error.set_ylabel(f"error ({units})")
+    for ax in axes:
+        ax.grid(alpha=0.3)
+
+
+def _actuator_row(axes: Any, runs: list[RunResult], colors: list[str], actuator: str) -> None:
+    effort, speed = axes
+    for run, color in zip(runs, colors, strict=True):
+        s = run.series
+        if s is None or actuator not in s.actuators:
+            continue
+        i = s.actuators.index(actuator)
+        effort.plot(s.time[: len(s.effort_demand)], s.effort_demand[:, i], color=color,
+                    linewidth=1.0)
+        speed.plot(s.time, s.velocity[:, i], color=color, linewidth=1.0)
+    s = runs[0].series
+    assert s is not None
+    i = s.actuators.index(actuator)
+    for ax, limit in ((effort, s.effort_limit[i]), (speed, s.velocity_limit[i])):
+        if math.isfinite(limit):
+            ax.axhline(limit, **LIMIT)
+            ax.axhline(-limit, **LIMIT)
+    stats = runs[0].actuators[actuator]
+    effort.set_ylabel(f"{actuator}\neffort ({stats.effort_units})")
+    speed.set_ylabel(f"speed ({stats.speed_units})")
+    for ax in axes:
+        ax.grid(alpha=0.3)
+
