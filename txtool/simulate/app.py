@@ -62,13 +62,13 @@ def main(options: Options, *, output: str = "text", csv_path: str | None = None,
         runs = execute(options, progress)
     finally:
         progress.close()
-    if output == "json":
-        console.file.write(json.dumps(report.document(runs), indent=2) + "\n")
-    else:
-        report.render_text(runs, console)
-    for index, run in enumerate(runs, 1):
+    for index, run in enumerate(runs, 1):  # before the verdict: no PASS if writing fails
         if csv_path is not None:
             report.write_csv(run, report.numbered(csv_path, index, len(runs)))
         if plot_path is not None:
             plot.plot(run, report.numbered(plot_path, index, len(runs)))
+    if output == "json":
+        console.file.write(json.dumps(report.document(runs), indent=2) + "\n")
+    else:
+        report.render_text(runs, console)
     return runs, exit_code(runs)

@@ -6,9 +6,10 @@ matplotlib is the optional extra ``plot``; :func:`require` fails early with a cl
 from __future__ import annotations
 
 import importlib.util
+import io
 import math
 
-from txtool.io.xmlio import InputError
+from txtool.io.xmlio import InputError, write_atomic
 from txtool.simulate.result import RunResult
 
 SUFFIXES = (".png", ".svg")
@@ -55,5 +56,7 @@ def plot(run: RunResult, path: str) -> None:
     axes[-1][1].set_xlabel("time [s]")
     figure.suptitle(f"{run.config}: {run.verdict}")
     figure.tight_layout()
-    figure.savefig(path)
+    image = io.BytesIO()  # then one atomic write: an interrupted run leaves no half an image
+    figure.savefig(image, format=path.rsplit(".", 1)[-1].lower())
     plt.close(figure)
+    write_atomic(path, image.getvalue())
