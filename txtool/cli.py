@@ -20,6 +20,7 @@ try:  # Ctrl-C while the modules load: the same one line as later, not a traceba
 
     from txtool import __version__
     from txtool.io import signals
+    from txtool.io.printable import printable
 except KeyboardInterrupt:
     sys.stderr.write("txtool: interrupted\n")
     raise SystemExit(130) from None
@@ -186,8 +187,10 @@ def _output_error(exc: OSError) -> OutputError:
 def internal_error_line(exc: BaseException) -> str:
     """``txtool: internal error: Type: message (while reading PATH; please report)``."""
     xmlio = _xmlio_if_loaded()
-    message = " ".join(str(exc).split()) or "(no message)"
+    message = printable(" ".join(str(exc).split())) or "(no message)"
     path = xmlio.reading() if xmlio is not None else None
+    if path is not None:
+        path = printable(path)
     where = f"while reading {path}; " if path else ""
     return f"txtool: internal error: {type(exc).__name__}: {message} ({where}please report)"
 

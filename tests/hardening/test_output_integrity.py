@@ -115,3 +115,15 @@ def test_a_closed_pipe_is_one_line_and_exit_2(tmp_path):
     _, err = process.communicate(timeout=60)
     assert (process.returncode, err.decode()) == (
         2, "txtool: cannot write standard output: the pipe is closed (Broken pipe)\n")
+
+
+@pytest.mark.parametrize(("args", "shown"), [
+    (["show", "pipe\x1b[2J\n.urdf"], "pipe\\x1b[2J\\n.urdf"),
+    (["validate", "."], "./pipe\\x1b[2J\\n.urdf"),  # found in the folder
+])
+def test_an_error_naming_a_file_stays_one_line(tmp_path, args, shown):
+    os.mkfifo(os.path.join(os.fsencode(tmp_path), b"pipe\x1b[2J\n.urdf"))
+    code, _, err = txtool(*args, cwd=tmp_path)
+    assert code == 2
+    assert err == (f"txtool: {shown}: is a named pipe (FIFO), not a regular file; txtool reads "
+                   "only regular files (or '-')\n")
