@@ -112,9 +112,9 @@ def test_what_a_xacro_expansion_reads_is_bounded_in_all(tmp_path, monkeypatch):
     assert CliRunner().invoke(cli, ["show", str(top)]).exit_code == 0
 
 
+# Never a link to a real device here: were the refusal broken, a root run would replace it.
 @pytest.mark.parametrize(("target", "kind"), [
-    ("pipe.urdf", "a named pipe (FIFO)"), ("zero.urdf", "a character device"),
-    ("sock.urdf", "a socket"),
+    ("pipe.urdf", "a named pipe (FIFO)"), ("sock.urdf", "a socket"),
 ])
 @pytest.mark.parametrize("writer", ["convert", "schema"])
 def test_output_onto_a_special_file_is_refused_and_leaves_it(specials, target, kind, writer):
@@ -130,11 +130,16 @@ def test_output_onto_a_special_file_is_refused_and_leaves_it(specials, target, k
 
 
 @pytest.mark.skipif(os.geteuid() != 0, reason="making a device node needs root")
-def test_output_onto_a_device_node_keeps_the_node(tmp_path):
-    """As root, a rename would replace the node with a regular file."""
+@pytest.mark.parametrize("name", ["null", "link.urdf"])
+@pytest.mark.parametrize("writer", [["convert", "arm.urdf", "--to", "ros2-p2"], ["schema"]])
+def test_output_onto_a_device_node_keeps_the_node(tmp_path, writer, name):
+    """As root, a rename would replace the node with a regular file (a private copy of
+    /dev/null: never the real one, which a broken refusal would destroy)."""
     (tmp_path / "arm.urdf").write_bytes(DEMO)
     node = tmp_path / "null"
     os.mknod(node, stat.S_IFCHR | 0o666, os.makedev(1, 3))
-    code, _, err = txtool("convert", "arm.urdf", "--to", "ros2-p2", "-o", "null", cwd=tmp_path)
-    assert code == 2 and "is a character device" in err
-    assert stat.S_ISCHR(os.lstat(node).st_mode)
+    (tmp_path / "link.urdf").symlink_to("null")
+    assert txtool(*writer, "-o", name, cwd=tmp_path) == (
+        2, "", f"txtool: {name}: is a character device, not a regular file; txtool writes only "
+               "regular files\n")
+    assert stat.S_ISCHR(os.lstat(node).st_mode) and os.path.islink(tmp_path / "link.urdf")
