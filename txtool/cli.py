@@ -6,13 +6,24 @@ modules import nothing heavy at module level, so ``txtool validate`` never loads
 
 from __future__ import annotations
 
-import importlib
 import sys
-from types import ModuleType
 
-import click
+try:  # Ctrl-C while the modules load: the same one line as later, not a traceback
+    import contextlib
+    import errno
+    import importlib
+    import os
+    from types import ModuleType
+    from typing import Any
 
-from txtool import __version__
+    import click
+
+    from txtool import __version__
+    from txtool.io import signals
+    from txtool.io.printable import printable
+except KeyboardInterrupt:
+    sys.stderr.write("txtool: interrupted\n")
+    raise SystemExit(130) from None
 
 # Commands whose output rich may colour: each gets --color (see commands.common.with_color).
 COLOURING = frozenset({"show", "roundtrip", "demo", "simulate"})
@@ -135,25 +146,96 @@ def cli(ctx: click.Context, debug: bool) -> None:
 
 def main() -> None:
     debug = "--debug" in sys.argv[1:]
+    signals.stop_on_signals()
     xmlio = _xmlio_if_loaded()
     if xmlio is not None:
         xmlio.forget_reading()
+    sys.stdout = GuardedStdout(sys.stdout)  # type: ignore[assignment]
     try:
-        cli.main(prog_name="txtool", standalone_mode=True)
+        try:
+            cli.main(prog_name="txtool", standalone_mode=True)
+        finally:
+            sys.stdout.flush()  # a full disk shows here, not as a warning at exit
+    except signals.Stopped as stop:
+        _leave(stop.line, stop.exit_code)
+    except OutputError as exc:
+        _leave(f"txtool: cannot write standard output: {exc}", 2)
     except SystemExit:
+        if signals.received() is not None:
+            _stopped()
         raise
-    except Exception as exc:  # the last line of defence: one line, exit 2
-        if debug:
+    except BaseException as exc:  # the last line of defence: one line, exit 2
+        if signals.received() is not None:  # a library turned the interrupt into an error
+            _stopped()
+        if debug or not isinstance(exc, Exception):
             raise
         click.echo(internal_error_line(exc), err=True)
         sys.exit(2)
 
 
+def _stopped() -> None:
+    stop = signals.Stopped(signals.received() or 2)
+    _leave(stop.line, stop.exit_code)
+
+
+def _leave(line: str, code: int) -> None:
+    """Print ``line`` on stderr and exit ``code``; what is left for stdout goes nowhere."""
+    with contextlib.suppress(Exception):
+        sys.stderr.write(line + "\n")
+        sys.stderr.flush()
+    # What stdout still buffers would fail again when Python flushes it at exit.
+    with contextlib.suppress(Exception):
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.__stdout__.fileno() if sys.__stdout__ else 1)
+    raise SystemExit(code)
+
+
+class OutputError(Exception):
+    """Standard output could not be written (disk full, closed pipe): one line, exit 2."""
+
+
+class GuardedStdout:
+    """``sys.stdout`` whose write errors are :class:`OutputError`, told apart from the
+    errors of reading inputs (which name their file); ``buffer`` is guarded the same way."""
+
+    def __init__(self, stream: Any) -> None:
+        self._stream = stream
+
+    def write(self, data: Any) -> int:
+        try:
+            return self._stream.write(data)  # type: ignore[no-any-return]
+        except OSError as exc:
+            raise _output_error(exc) from None
+
+    def flush(self) -> None:
+        try:
+            self._stream.flush()
+        except OSError as exc:
+            raise _output_error(exc) from None
+        except ValueError:  # closed
+            pass
+
+    @property
+    def buffer(self) -> Any:
+        return GuardedStdout(self._stream.buffer)
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._stream, name)
+
+
+def _output_error(exc: OSError) -> OutputError:
+    if exc.errno == errno.EPIPE:
+        return OutputError("the pipe is closed (Broken pipe)")
+    return OutputError(exc.strerror or str(exc))
+
+
 def internal_error_line(exc: BaseException) -> str:
     """``txtool: internal error: Type: message (while reading PATH; please report)``."""
     xmlio = _xmlio_if_loaded()
-    message = " ".join(str(exc).split()) or "(no message)"
+    message = printable(" ".join(str(exc).split())) or "(no message)"
     path = xmlio.reading() if xmlio is not None else None
+    if path is not None:
+        path = printable(path)
     where = f"while reading {path}; " if path else ""
     return f"txtool: internal error: {type(exc).__name__}: {message} ({where}please report)"
 

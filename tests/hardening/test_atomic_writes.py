@@ -16,6 +16,7 @@ from click.testing import CliRunner
 
 from tests.corpus import corpus_files
 from txtool.cli import cli
+from txtool.io.xmlio import write_atomic
 
 FIXTURES = Path(__file__).resolve().parents[2] / "fixtures"
 DEMO = (FIXTURES / "demo_robot.urdf").read_bytes()
@@ -236,10 +237,14 @@ def test_output_naming_the_input_needs_write(run, tmp_path, spelling):
     assert run(*args) == (
         2, "", f"txtool: {output}: is the input file; add --write to convert it in place\n")
     assert (tmp_path / "demo.urdf").read_bytes() == DEMO
+    if spelling == "hard link":  # a rename would give the output name a file of its own
+        assert run(*args, "--write") == (2, "", (
+            f"txtool: {output}: has 2 hard links; replacing it would leave the other names "
+            "with the old text, so it is not written (copy the file to break the link)\n"))
+        assert (tmp_path / "demo.urdf").read_bytes() == DEMO
+        return
     assert run(*args, "--write") == (0, "", "")
     assert b"<ros2_control" in Path(os.path.realpath(tmp_path / output)).read_bytes()
-    if spelling == "hard link":  # a rename gives the output name a file of its own
-        assert (tmp_path / "demo.urdf").read_bytes() == DEMO
 
 
 def test_a_xacro_file_is_not_replaced_by_its_expansion(run, tmp_path):
@@ -292,3 +297,44 @@ def test_migrating_the_corpus_twice_changes_nothing_the_second_time(run, tmp_pat
         shutil.copyfile(original, copy)
         copies.append(copy)
     _migrate_twice(run, copies)
+
+
+ENCODED = {
+    "CR line ends": b'<?xml version="1.0"?>\r<robot name="arm">\r  <link name="a"/>\r</robot>\r',
+    "UTF-8 BOM": b"\xef\xbb\xbf<robot name='arm'/>\r\n",
+    "UTF-16 LE BOM": '<?xml version="1.0" encoding="UTF-16"?>\n<robot/>\n'.encode("utf-16"),
+    "UTF-16 BE": '<?xml version="1.0" encoding="UTF-16BE"?><robot/>'.encode("utf-16-be"),
+    "UTF-32 BOM": "\ufeff<robot name='é'/>\n".encode("utf-32-le"),
+}
+
+
+@pytest.mark.parametrize("name", ENCODED)
+def test_the_writer_passes_every_byte_through(tmp_path, name):
+    """The writer changes no byte: line ends, byte-order marks and encodings are the caller's."""
+    path = tmp_path / "robot.urdf"
+    path.write_bytes(b"<robot/>\n")
+    write_atomic(str(path), ENCODED[name])
+    assert path.read_bytes() == ENCODED[name]
+
+
+@pytest.mark.parametrize("option", ["--csv", "--plot"])
+def test_an_interrupted_simulate_leaves_no_file_and_no_verdict(run, tmp_path, monkeypatch,
+                                                              option):
+    pytest.importorskip("pinocchio")
+    if option == "--plot":
+        pytest.importorskip("matplotlib")
+    (tmp_path / "demo.urdf").write_bytes(DEMO)
+    output = "series.csv" if option == "--csv" else "plot.png"
+
+    def interrupt(*_: object) -> None:
+        raise KeyboardInterrupt
+
+    real_fsync = os.fsync
+    monkeypatch.setattr(os, "fsync", interrupt)
+    assert run("simulate", "demo.urdf", "--duration", "0.2", option, output) == (
+        130, "", "txtool: interrupted\n")  # no verdict printed before the file is written
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["demo.urdf"]
+    monkeypatch.setattr(os, "fsync", real_fsync)
+    code, out, _ = run("simulate", "demo.urdf", "--duration", "0.2", option, output)
+    assert code in (0, 1) and ("PASS" in out or "FAIL" in out)
+    assert (tmp_path / output).stat().st_size > 0

@@ -204,11 +204,13 @@ def test_an_environment_of_0_does_not_override_the_configuration(run, robot, mon
 
 
 @pytest.mark.parametrize("command", [["show"], ["validate"], ["migrate", "--check"]])
-def test_an_unclear_environment_value_is_an_error(run, robot, monkeypatch, command):
-    monkeypatch.setenv("TXTOOL_NO_XACRO", "ture")
+@pytest.mark.parametrize("value", ["ture", "", "  "])
+def test_an_unclear_environment_value_is_an_error(run, robot, monkeypatch, command, value):
+    """An empty value (``TXTOOL_NO_XACRO=``, a CI variable that was never set) is not "off"."""
+    monkeypatch.setenv("TXTOOL_NO_XACRO", value)
     assert run(*command, str(robot)) == (2, "", (
         "txtool: TXTOOL_NO_XACRO: expected 1 or 0 (or true/false, yes/no, on/off), "
-        "got 'ture'\n"))
+        f"got {value!r}\n"))
 
 
 def test_the_configuration_of_the_input_applies_not_the_working_folder(run, robot, tmp_path,

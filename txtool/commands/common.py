@@ -11,6 +11,7 @@ from typing import Any
 
 import click
 
+from txtool.io.printable import printable
 from txtool.io.xmlio import InputError, XacroOptions, is_xacro
 
 
@@ -150,7 +151,7 @@ def exit_on_input_error(function: Callable[..., int | None]) -> Callable[..., No
         try:
             code = function(*args, **kwargs)
         except InputError as exc:
-            click.echo(f"txtool: {exc}", err=True)
+            click.echo(f"txtool: {printable(str(exc))}", err=True)
             sys.exit(2)
         sys.exit(code or 0)
 

@@ -8,6 +8,7 @@ import sys
 import click
 
 from txtool.commands.common import COLOR_MODES, color_wanted, exit_on_input_error, xacro_options
+from txtool.io.printable import printable
 
 FORMATS = ("text", "json", "github", "sarif")
 
@@ -87,7 +88,7 @@ def command(paths, output_format, select, ignore, strict, exit_zero, config_path
     )
     result = lint_paths(list(paths) or ["."], options)
     for error in result.errors:
-        click.echo(f"txtool: {error.message}", err=True)
+        click.echo(f"txtool: {printable(error.message)}", err=True)
     fmt = output_format or default_format()
     if (quiet or statistics) and fmt != "text":
         raise click.UsageError(f"--quiet and --statistics go with --format text, not {fmt}")

@@ -16,7 +16,6 @@ import os
 import xml.dom.minidom
 import xml.parsers.expat
 from collections.abc import Callable
-from pathlib import Path
 from typing import Any
 
 from lxml import etree
@@ -24,14 +23,18 @@ from lxml import etree
 from txtool.io.packages import PackageNotFound, find_package
 from txtool.io.xmlio import (
     ENTITY_REFUSAL,
+    MAX_BYTES,
     EntityRefused,
     InputError,
+    TooLarge,
     XacroOptions,
     XMLSyntax,
     parse_bytes,
+    read_regular,
 )
 
 MAX_DEPTH = 256  # libxml2's limit without huge_tree, so both parsers agree
+MAX_READ = MAX_BYTES  # what one expansion may read in all: the top file and every include
 
 
 class XacroError(InputError):
@@ -80,15 +83,29 @@ class UnsafeXML(Exception):
 
 
 def _checked_parse(original: Callable[..., Any], xacro: Any) -> Callable[..., Any]:
-    """xacro's ``parse(inp, filename)``, reading files as bytes checked by refuse_unsafe_xml."""
+    """xacro's ``parse(inp, filename)``, reading files as bytes checked by refuse_unsafe_xml.
+
+    Only regular files are read, and at most :data:`MAX_READ` bytes in all: a device or FIFO
+    included, or a file included over and over, cannot exhaust memory or block forever.
+    """
+    budget = MAX_READ
 
     def parse(inp: Any, filename: str | None = None) -> Any:
+        nonlocal budget
         if inp is not None or filename is None:
             return original(inp, filename)
+        path = os.path.join(xacro.root_dir, filename)
+        if not os.path.exists(path):
+            return original(inp, filename)  # xacro reports a missing file its own way
         try:
-            data = Path(os.path.join(xacro.root_dir, filename)).read_bytes()
-        except OSError:
-            return original(inp, filename)  # xacro reports an unreadable file its own way
+            data = read_regular(path, budget)
+        except TooLarge:
+            reason = (f"xacro would read more than {MAX_READ} bytes in all (the top file and "
+                      "its includes; a safety limit)")
+            raise UnsafeXML(filename, 1, reason) from None
+        except InputError as exc:
+            raise UnsafeXML(filename, 1, str(exc).removeprefix(f"{path}: ")) from None
+        budget -= len(data)
         refuse_unsafe_xml(data, filename)
         # Bytes, not text: expat then honours the file's BOM and encoding declaration.
         return xml.dom.minidom.parseString(data)

@@ -7,8 +7,10 @@ access, no huge trees. Parsed elements keep ``sourceline`` for diagnostics.
 from __future__ import annotations
 
 import codecs
+import contextlib
 import os
 import re
+import stat
 import sys
 from contextvars import ContextVar
 from dataclasses import dataclass, field
@@ -45,6 +47,10 @@ _reading: ContextVar[str | None] = ContextVar("txtool_reading", default=None)
 
 class InputError(Exception):
     """A one-line, user-facing error: ``path[:line]: reason``. Exit code 2."""
+
+
+class TooLarge(InputError):
+    """A file over the size limit (refused by its size, before it is read)."""
 
 
 # What every lxml reader of txtool is given: no entities, no DTD, no network, no huge trees.
@@ -106,13 +112,29 @@ def read_bytes(path: str, *, stdin_name: str | None = None) -> tuple[str, bytes]
         _reading.set(stdin_name or "<stdin>")
         return stdin_name or "<stdin>", sys.stdin.buffer.read(MAX_BYTES + 1)
     _reading.set(path)
+    return path, read_regular(path)
+
+
+def read_regular(path: str, limit: int = MAX_BYTES) -> bytes:
+    """The bytes of a regular file of at most ``limit`` bytes; anything else is refused
+    before it is read (a device never ends, a FIFO blocks until someone writes to it)."""
     try:
-        with open(path, "rb") as file:  # one open and one fstat: this runs for every file
-            size = os.fstat(file.fileno()).st_size
-            if size > MAX_BYTES:
-                raise InputError(f"{path}: file is {size} bytes, larger than the {MAX_BYTES} "
-                                 "limit")
-            return path, file.read()
+        mode = os.stat(path).st_mode
+        if stat.S_ISDIR(mode):
+            raise IsADirectoryError
+        refuse_special(path, mode)
+        # O_NONBLOCK: a FIFO swapped in after the check cannot block the open.
+        handle = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_NOCTTY | os.O_CLOEXEC)
+        with open(handle, "rb") as file:
+            status = os.fstat(handle)
+            refuse_special(path, status.st_mode)
+            if status.st_size > limit:
+                raise TooLarge(f"{path}: file is {status.st_size} bytes, larger than the "
+                               f"{limit} limit")
+            data = file.read(limit + 1)
+            if len(data) > limit:  # grew since fstat
+                raise TooLarge(f"{path}: file is larger than the {limit} limit")
+            return data
     except IsADirectoryError:
         raise InputError(f"{path}: is a directory") from None
     except FileNotFoundError:
@@ -121,6 +143,21 @@ def read_bytes(path: str, *, stdin_name: str | None = None) -> tuple[str, bytes]
         raise InputError(f"{path}: permission denied") from None
     except OSError as exc:
         raise InputError(f"{path}: {exc.strerror or exc}") from None
+
+
+_KINDS = (
+    (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
+    (stat.S_ISFIFO, "a named pipe (FIFO)"), (stat.S_ISSOCK, "a socket"),
+)
+
+
+def refuse_special(path: str, mode: int, *, writing: bool = False) -> None:
+    """Refuse a device, FIFO or socket (a folder has its own message)."""
+    if stat.S_ISREG(mode) or stat.S_ISDIR(mode):
+        return
+    kind = next((name for test, name in _KINDS if test(mode)), "not a regular file")
+    rest = "writes only regular files" if writing else "reads only regular files (or '-')"
+    raise InputError(f"{path}: is {kind}, not a regular file; txtool {rest}")
 
 
 def parse_bytes(data: bytes, path: str) -> etree._ElementTree:
@@ -311,31 +348,96 @@ def write_atomic(path: str, data: bytes) -> None:
     """Replace ``path`` with ``data``, or leave it byte for byte as it was.
 
     The data goes to a temp file in the same folder, is flushed to disk, gets the old file's
-    mode (a new file: 0o666 less the umask, as ``open`` would) and is renamed over the target,
-    whose folder is then flushed too. A symbolic link is written through to its target. Any
-    failure removes the temp file and is an :class:`InputError`.
+    owner, group, mode and extended attributes (ACLs among them; a new file: 0o666 less the
+    umask, as ``open`` would) and is renamed over the target, whose folder is then flushed too.
+    A symbolic link is written through to its target. Refused, leaving it as it was: a target
+    that is not a regular file (device, FIFO, socket), one with several hard links (a rename
+    would split them), one the user could not write, one whose owner, group or attributes the
+    replacement could not keep. Any failure removes the temp file and is an
+    :class:`InputError`; so does SIGINT or SIGTERM (see :mod:`txtool.io.signals`).
     """
     import tempfile
+
+    from txtool.io.signals import held
 
     target = os.path.realpath(path)
     folder = os.path.dirname(target) or "."
     temp = None
     try:
-        mode = os.stat(target).st_mode & 0o7777 if os.path.exists(target) else None
-        handle, temp = tempfile.mkstemp(prefix=".txtool-", suffix=".tmp", dir=folder)
+        old = _replaceable(path, target)
+        with held():  # a signal must not fall between creating the file and naming it
+            handle, temp = tempfile.mkstemp(prefix=".txtool-", suffix=".tmp", dir=folder)
         with os.fdopen(handle, "wb") as out:
             out.write(data)
             out.flush()
+            if old is None:
+                os.fchmod(out.fileno(), 0o666 & ~_umask())
+            else:
+                _keep_identity(path, target, out.fileno(), old)
             os.fsync(out.fileno())
-        os.chmod(temp, mode if mode is not None else 0o666 & ~_umask())
         os.replace(temp, target)
         temp = None
         _sync_folder(folder)
     except OSError as exc:
         raise InputError(f"{path}: cannot write: {exc.strerror or exc}") from None
     finally:
-        if temp is not None and os.path.exists(temp):
-            os.unlink(temp)
+        if temp is not None:
+            with held(), contextlib.suppress(OSError):
+                os.unlink(temp)
+
+
+def _replaceable(path: str, target: str) -> os.stat_result | None:
+    """The target's status (None when it does not exist), or why it may not be replaced."""
+    try:
+        status = os.stat(target)
+    except FileNotFoundError:
+        return None
+    refuse_special(path, status.st_mode, writing=True)
+    if not stat.S_ISREG(status.st_mode):
+        return status  # a folder: the rename fails with "Is a directory"
+    if status.st_nlink > 1:
+        raise InputError(f"{path}: has {status.st_nlink} hard links; replacing it would leave "
+                         "the other names with the old text, so it is not written (copy the "
+                         "file to break the link)")
+    effective = os.access in os.supports_effective_ids
+    if not os.access(target, os.W_OK, effective_ids=effective):
+        raise InputError(f"{path}: cannot write: permission denied (the file is read-only for "
+                         "you; its folder being writable is not enough)")
+    return status
+
+
+def _keep_identity(path: str, target: str, handle: int, old: os.stat_result) -> None:
+    """Give the new file (open as ``handle``) the old one's owner, group, mode and xattrs."""
+    new = os.fstat(handle)
+    if (new.st_uid, new.st_gid) != (old.st_uid, old.st_gid):
+        try:
+            os.fchown(handle, old.st_uid, old.st_gid)
+        except PermissionError:
+            raise InputError(
+                f"{path}: cannot write: the file belongs to user {old.st_uid}, group "
+                f"{old.st_gid}, which a replacement written by you could not keep"
+            ) from None
+    os.fchmod(handle, stat.S_IMODE(old.st_mode))  # after chown, which clears set-id bits
+    wanted = _xattrs(target)
+    for name in set(_xattrs(handle)) - set(wanted):  # inherited from the folder's defaults
+        with contextlib.suppress(OSError):
+            os.removexattr(handle, name)
+    for name, value in wanted.items():
+        try:
+            os.setxattr(handle, name, value)
+        except OSError as exc:
+            raise InputError(f"{path}: cannot write: its extended attribute {name} could not "
+                             f"be kept ({exc.strerror or exc})") from None
+
+
+def _xattrs(file: str | int) -> dict[str, bytes]:
+    """Extended attributes (POSIX ACLs are ``system.posix_acl_*``); none where unsupported."""
+    if not hasattr(os, "listxattr"):
+        return {}
+    try:
+        return {name: os.getxattr(file, name) for name in os.listxattr(file)}
+    except OSError:
+        return {}
 
 
 def _sync_folder(folder: str) -> None:

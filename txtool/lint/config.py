@@ -31,7 +31,7 @@ PYPROJECT = "pyproject.toml"
 SIMULATE_TABLE = "simulate"
 NO_XACRO_ENV = "TXTOOL_NO_XACRO"
 _ENV_TRUE = ("1", "true", "yes", "on")
-_ENV_FALSE = ("", "0", "false", "no", "off")
+_ENV_FALSE = ("0", "false", "no", "off")  # set but empty is not "off": see below
 
 
 class ConfigError(InputError):
@@ -164,9 +164,12 @@ def no_xacro_from_environment() -> bool:
     """``TXTOOL_NO_XACRO``: a CI runner's way to forbid xacro whatever the repository says.
 
     A value that is neither true nor false is an error rather than a guess: this is a
-    safety switch, and a typo must not leave xacro on.
+    safety switch, and a typo must not leave xacro on. So is an empty value (``TXTOOL_NO_XACRO=``,
+    or ``${{ vars.NO_XACRO }}`` naming an unset variable): unset means on, set means decide.
     """
-    raw = os.environ.get(NO_XACRO_ENV, "")
+    raw = os.environ.get(NO_XACRO_ENV)
+    if raw is None:
+        return False
     value = raw.strip().lower()
     if value in _ENV_TRUE:
         return True

@@ -4,12 +4,15 @@ In a folder, recursively: ``*.urdf``, ``*.xacro`` and ``.xml`` files whose root 
 description. Passed over, as ruff and colcon do: hidden folders; folders holding
 ``COLCON_IGNORE``, ``AMENT_IGNORE`` or ``CATKIN_IGNORE`` (colcon's ``build/``, ``install/`` and
 ``log/`` carry one); what ``.gitignore`` files ignore (unless told not to); and what an exclude
-pattern names (see :class:`Excludes`). A file named on the command line is always checked.
+pattern names (see :class:`Excludes`). A file named on the command line is always checked. A
+device, FIFO or socket named ``*.urdf`` or ``*.xacro`` is passed on, so that loading refuses it (an
+``.xml`` one is never opened to read its root, so passed over).
 """
 
 from __future__ import annotations
 
 import os
+import stat
 from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 
@@ -145,8 +148,13 @@ def is_candidate(path: str) -> bool:
 
 
 def root_tag(path: Path) -> str | None:
-    """The local name of the root element, reading no further than it; None if unreadable."""
+    """The local name of the root element, reading no further than it; None if unreadable.
+
+    Only a regular file is opened: a FIFO would block, a device never end.
+    """
     try:
+        if not stat.S_ISREG(os.stat(path).st_mode):
+            return None
         with path.open("rb") as handle:
             events = etree.iterparse(handle, events=("start",), **SAFE_OPTIONS)
             for _, element in events:

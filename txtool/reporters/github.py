@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+from txtool.io.printable import printable
 from txtool.lint.problem import Problem
 from txtool.reporters import Summary, end_of
 
@@ -11,7 +12,9 @@ LEVELS = {"error": "error", "warning": "warning", "info": "notice"}
 
 
 def _data(text: str) -> str:
-    return text.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+    """GitHub's escapes for ``%``, CR and LF; other control characters and bytes that are not
+    UTF-8 (in a file name) as ``\\x1b``-style escapes, so no message drives the log viewer."""
+    return printable(text.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A"))
 
 
 def _property(text: str) -> str:

@@ -14,6 +14,7 @@ from collections.abc import Sequence
 from json.encoder import encode_basestring  # type: ignore[attr-defined]
 from typing import Any
 
+from txtool.io.printable import without_surrogates
 from txtool.lint.problem import Problem
 from txtool.reporters import Summary, end_of
 
@@ -51,6 +52,11 @@ def _totals(summary: Summary) -> dict[str, int]:
 
 
 def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False) -> str:
+    """The report; a file name that is not UTF-8 keeps its bytes as ``\\udcNN`` escapes."""
+    return without_surrogates(_render(problems, summary))
+
+
+def _render(problems: Sequence[Problem], summary: Summary) -> str:
     tail = {"errors": report((), summary)["errors"], "summary": _totals(summary)}
     totals = json.dumps(tail, indent=2, ensure_ascii=False)[2:]  # '"errors": ...\n}'
     if not problems:

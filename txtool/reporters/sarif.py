@@ -136,4 +136,4 @@ def artifact_uri(path: str) -> str:
             pure = Path(path).relative_to(Path(os.getcwd()))
         except ValueError:
             return Path(path).as_uri()
-    return quote(pure.as_posix())
+    return quote(os.fsencode(pure.as_posix()))  # a name's bytes, UTF-8 or not

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+from txtool.io.printable import printable
 from txtool.lint.problem import Problem
 from txtool.reporters import Summary
 
@@ -14,9 +15,10 @@ STYLES = {"error": "bold red", "warning": "yellow", "info": "cyan"}
 
 
 def line_of(problem: Problem) -> str:
+    """One finding on one line: control characters in its path or message are escaped."""
     return (
-        f"{problem.path}:{problem.line}:{problem.column}: {problem.severity} "
-        f"{problem.code} {problem.name}: {problem.message}"
+        f"{printable(problem.path)}:{problem.line}:{problem.column}: {problem.severity} "
+        f"{problem.code} {problem.name}: {printable(problem.message)}"
     )
 
 
@@ -81,7 +83,7 @@ def _render_rich(problems: Sequence[Problem], summary: Summary | None) -> str:
     for p in problems:
         console.print(
             Text.assemble(
-                (f"{p.path}:{p.line}:{p.column}:", "bold"),
+                (f"{printable(p.path)}:{p.line}:{p.column}:", "bold"),
                 " ",
                 (p.severity, STYLES.get(p.severity, "")),
                 " ",
@@ -89,7 +91,7 @@ def _render_rich(problems: Sequence[Problem], summary: Summary | None) -> str:
                 " ",
                 (p.name, "dim"),
                 ": ",
-                p.message,
+                printable(p.message),
             )
         )
     if summary is not None:

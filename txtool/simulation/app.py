@@ -63,14 +63,15 @@ def main(options: Options, *, output: str = "text", csv_path: str | None = None,
         runs = execute(options, progress)
     finally:
         progress.close()
-    if output == "json":
-        console.file.write(json.dumps(report.document(runs), indent=2,
-                                      ensure_ascii=False) + "\n")
-    else:
-        report.render_text(runs, console)
+    # The files first: an interrupted or failed write prints no verdict.
     if csv_path is not None:
         for index, run in enumerate(runs, 1):
             report.write_csv(run, report.numbered(csv_path, index, len(runs)))
     if plot_path is not None:
         plot.plot(runs, plot_path)
+    if output == "json":
+        console.file.write(json.dumps(report.document(runs), indent=2,
+                                      ensure_ascii=False) + "\n")
+    else:
+        report.render_text(runs, console)
     return runs, exit_code(runs)

@@ -9,13 +9,14 @@ message. The file format follows the suffix: .png, .svg or .pdf.
 from __future__ import annotations
 
 import importlib.util
+import io
 import math
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from txtool.io.xmlio import InputError
+from txtool.io.xmlio import InputError, write_atomic
 from txtool.simulation.result import RunResult
 
 SUFFIXES = (".png", ".svg", ".pdf")
@@ -63,8 +64,10 @@ def plot(runs: list[RunResult], path: str) -> None:
                 matplotlib.patches.Patch(label="tolerance", **BAND)]
     figure.legend(handles=handles, loc="outside upper center", ncol=2, fontsize="small",
                   frameon=False, title=f"simulate {kept[0].robot}")
-    figure.savefig(path)
+    image = io.BytesIO()  # then one atomic write: an interrupted run leaves no half an image
+    figure.savefig(image, format=Path(path).suffix[1:].lower())
     plt.close(figure)
+    write_atomic(path, image.getvalue())
 
 
 def _joint_row(axes: Any, runs: list[RunResult], colors: list[str], joint: str,

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import io
 import math
 from collections.abc import Callable
 from pathlib import Path
@@ -13,6 +14,7 @@ from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
 
+from txtool.io.xmlio import write_atomic
 from txtool.simulation.result import GainsUsed, RunResult
 
 TABLE_WIDTH = 100  # tables fit this many columns (or the terminal, when narrower)
@@ -309,19 +311,21 @@ def write_csv(run: RunResult, path: str) -> None:
     for a in series.actuators:
         header += [f"{a}.effort_demand", f"{a}.effort", f"{a}.velocity"]
     steps = len(series.effort)
-    with open(path, "w", newline="", encoding="utf-8") as handle:
-        writer = csv.writer(handle)
-        writer.writerow(header)
-        for k, t in enumerate(series.time):
-            row = [repr(float(t))]
-            for v in range(len(series.joints)):
-                ref, pos = float(series.q_ref[k, v]), float(series.q[k, v])
-                row += [repr(ref), repr(pos), repr(pos - ref)]
-            for i in range(len(series.actuators)):
-                if k < steps:
-                    row += [repr(float(series.effort_demand[k, i])),
-                            repr(float(series.effort[k, i]))]
-                else:
-                    row += ["", ""]
-                row.append(repr(float(series.velocity[k, i])))
-            writer.writerow(row)
+    handle = io.StringIO(newline="")
+    writer = csv.writer(handle)
+    writer.writerow(header)
+    for k, t in enumerate(series.time):
+        row = [repr(float(t))]
+        for v in range(len(series.joints)):
+            ref, pos = float(series.q_ref[k, v]), float(series.q[k, v])
+            row += [repr(ref), repr(pos), repr(pos - ref)]
+        for i in range(len(series.actuators)):
+            if k < steps:
+                row += [repr(float(series.effort_demand[k, i])),
+                        repr(float(series.effort[k, i]))]
+            else:
+                row += ["", ""]
+            row.append(repr(float(series.velocity[k, i])))
+        writer.writerow(row)
+    # One atomic write: an interrupted run leaves the old file or none, never half a file.
+    write_atomic(path, handle.getvalue().encode("utf-8"))
