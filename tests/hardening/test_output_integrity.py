@@ -127,3 +127,31 @@ def test_an_error_naming_a_file_stays_one_line(tmp_path, args, shown):
     assert code == 2
     assert err == (f"txtool: {shown}: is a named pipe (FIFO), not a regular file; txtool reads "
                    "only regular files (or '-')\n")
+
+
+MARKUP_ROBOT = """<robot name="r">
+  <transmission name="t[/]x[bold]">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="j[red]"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m&#133;[2J"><mechanicalReduction>50</mechanicalReduction></actuator>
+  </transmission>
+</robot>
+"""
+
+
+@pytest.mark.parametrize("args", [("show",), ("show", "--effective"), ("show", "--actuator-limits"),
+                                  ("roundtrip",)])
+def test_brackets_and_c1_controls_in_names_are_shown_not_obeyed(tmp_path, args):
+    """rich reads ``[/]`` as markup (it stopped ``show`` with an internal error) and the C1
+    character U+0085 reaches a terminal unless escaped."""
+    from click.testing import CliRunner
+
+    from txtool.cli import cli
+
+    robot = tmp_path / "r.urdf"
+    robot.write_text(MARKUP_ROBOT)
+    result = CliRunner().invoke(cli, [args[0], str(robot), *args[1:]])
+    assert result.exit_code == 0, result.output
+    assert "t[/]x[bold]" in result.stdout and "\x85" not in result.stdout
+    if args != ("roundtrip",):
+        assert "m\\x85[2J" in result.stdout

@@ -56,10 +56,10 @@ def command(path, against, convention, output_format, no_xacro, xacro) -> int:
 def _print_table(report) -> None:
     from rich.table import Table
 
-    from txtool.views.render import console
+    from txtool.views.render import console, safe
     from txtool.views.tables import FIELDS
 
-    table = Table(title=f"{report.path}: round trips", title_justify="left")
+    table = Table(title=safe(f"{report.path}: round trips"), title_justify="left")
     for column in ("transmission", "cycle", *FIELDS, "equivalent"):
         table.add_column(column)
     for row in report.rows:
@@ -67,7 +67,7 @@ def _print_table(report) -> None:
         equivalent = row.equivalent.split(":", 1)[0]
         if equivalent == "no":
             equivalent = "[red]no[/red]"
-        table.add_row(row.transmission, " → ".join(row.cycle), *marks, equivalent)
+        table.add_row(safe(row.transmission), " → ".join(row.cycle), *marks, equivalent)
     out = console()
     out.print(table)
     for row in report.rows:
@@ -100,14 +100,15 @@ def _against(a, b, output_format, convention) -> int:
     else:
         from rich.table import Table
 
-        from txtool.views.render import console
+        from txtool.views.render import console, safe
 
-        table = Table(title=f"{a.path} against {b.path}", title_justify="left")
-        for column in ("joints", a.path, b.path, "status", "reason"):
+        table = Table(title=safe(f"{a.path} against {b.path}"), title_justify="left")
+        for column in ("joints", safe(a.path), safe(b.path), "status", "reason"):
             table.add_column(column)
         for r in report.rows:
             status = r.status if r.status == "equivalent" else f"[red]{r.status}[/red]"
-            table.add_row(", ".join(r.joints), r.a or "-", r.b or "-", status, r.reason)
+            table.add_row(safe(", ".join(r.joints)), safe(r.a or "-"), safe(r.b or "-"), status,
+                          safe(r.reason))
         out = console()
         out.print(table)
         out.print("efforts: " + (f"{convention} maps for both (--effort-convention)" if convention

@@ -331,7 +331,9 @@ def _table(b: Binding):
 def _member(data: str, source: str):
     from rich.text import Text
 
-    return Text(data if data == source else f"{data} (values of {source})")
+    from txtool.io.printable import printable
+
+    return Text(printable(data if data == source else f"{data} (values of {source})"))
 
 
 def _value(slot: Slot, field: Field, value: float | None) -> str:

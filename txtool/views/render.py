@@ -4,9 +4,17 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+from rich.markup import escape
 from rich.table import Table
 
+from txtool.io.printable import printable
 from txtool.model.core import Number, Transmission
+
+
+def safe(text: str) -> str:
+    """A name or path from a file, as a table cell or title: no control characters, and
+    brackets shown rather than read as rich markup (``[/]`` would stop the table)."""
+    return escape(printable(text))
 
 
 def _number(number: Number | None) -> str:
@@ -17,13 +25,13 @@ def _number(number: Number | None) -> str:
 
 def transmissions_table(transmissions: Sequence[Transmission], title: str) -> Table:
     """One row per joint and actuator, grouped under their transmission."""
-    table = Table(title=title, title_justify="left")
+    table = Table(title=safe(title), title_justify="left")
     for column in ("transmission", "dialect", "type", "member", "role", "reduction", "offset",
                    "interfaces"):
         table.add_column(column)
     for t in transmissions:
         line = f":{t.location.line}" if t.location else ""
-        head = [f"{t.name}{line}", t.dialect, _short(t.type)]
+        head = [safe(f"{t.name}{line}"), t.dialect, safe(_short(t.type))]
         members = [("joint", j) for j in t.joints] + [("actuator", a) for a in t.actuators]
         for index, (noun, member) in enumerate(members or [("-", None)]):
             cells = head if index == 0 else ["", "", ""]
@@ -32,11 +40,11 @@ def transmissions_table(transmissions: Sequence[Transmission], title: str) -> Ta
                 continue
             table.add_row(
                 *cells,
-                f"{noun} {member.name}",
-                member.role or "",
-                _number(member.mechanical_reduction),
-                _number(member.offset) if noun == "joint" else "",
-                ", ".join(_short(i) for i in member.interfaces),
+                safe(f"{noun} {member.name}"),
+                safe(member.role or ""),
+                safe(_number(member.mechanical_reduction)),
+                safe(_number(member.offset)) if noun == "joint" else "",
+                safe(", ".join(_short(i) for i in member.interfaces)),
                 end_section=index == len(members) - 1,
             )
     return table
@@ -57,9 +65,9 @@ def limits_table(rows: Sequence[tuple[str, str, object]]) -> Table:
     for transmission, actuator, limit in rows:
         position = getattr(limit, "position", None)
         table.add_row(
-            transmission,
-            actuator,
-            f"[{position[0]:.6g}, {position[1]:.6g}]" if position else "-",
+            safe(transmission),
+            safe(actuator),
+            escape(f"[{position[0]:.6g}, {position[1]:.6g}]") if position else "-",
             _maybe(getattr(limit, "velocity", None)),
             _maybe(getattr(limit, "effort", None)),
         )
