@@ -1,4 +1,4 @@
-"""The examples of the README's migrate section are what txtool prints."""
+"""The examples of the documentation's migrate section are what txtool prints."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ from pathlib import Path
 from tests.migrate.test_migrate_cli import ROBOT
 from tests.migrate.test_migrate_xacro import CUSTOM, MACRO
 
-README = Path(__file__).resolve().parents[2] / "README.md"
+DOC = Path(__file__).resolve().parents[2] / "docs" / "conversion.md"
 # The xacro example is the test macro without its second interface and with a plain reduction.
 ARM = (MACRO.replace(" iface:=EffortJointInterface", "")
        .replace("        <hardwareInterface>hardware_interface/${iface}</hardwareInterface>\n", "")
@@ -18,8 +18,8 @@ FILES = {"robot.urdf": ROBOT, "arm.urdf.xacro": ARM, "panda.urdf": CUSTOM}
 
 
 def _section() -> str:
-    text = README.read_text()
-    return text[text.index("### `txtool migrate"):text.index("### `txtool roundtrip")]
+    text = DOC.read_text()
+    return text[text.index("## `txtool migrate"):text.index("## `txtool roundtrip")]
 
 
 def _sessions() -> list[tuple[str, str]]:

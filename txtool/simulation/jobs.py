@@ -47,7 +47,8 @@ def processes_for(jobs: int, configs: int) -> int:
 
 
 def loop_seconds(p: Prepared) -> float:
-    """A rough cost of a prepared run's loop (README, "Performance": about 4 + 0.6 nv µs a step)."""
+    """A rough cost of a prepared run's loop: about 4 + 0.6 nv µs a step (docs/simulate.md,
+    "Performance")."""
     return p.plan.steps * (4.0 + 0.6 * p.robot.nv) * 1e-6
 
 
