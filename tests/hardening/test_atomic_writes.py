@@ -338,3 +338,31 @@ def test_an_interrupted_simulate_leaves_no_file_and_no_verdict(run, tmp_path, mo
     code, out, _ = run("simulate", "demo.urdf", "--duration", "0.2", option, output)
     assert code in (0, 1) and ("PASS" in out or "FAIL" in out)
     assert (tmp_path / output).stat().st_size > 0
+
+
+def test_convert_write_refuses_a_file_edited_during_the_run(tmp_path, monkeypatch):
+    """Issue: convert --write must notice, as migrate does, that the file changed meanwhile."""
+    from click.testing import CliRunner
+
+    from txtool.cli import cli
+    from txtool.transform import convert
+
+    robot = tmp_path / "robot.urdf"
+    original = (Path(__file__).resolve().parents[2] / "fixtures" / "demo_robot.urdf").read_text()
+    robot.write_text(original)
+    edited = original.replace("<robot", "<!-- edited meanwhile -->\n<robot", 1)
+    real = convert.convert_source
+
+    def edit_meanwhile(*args, **kwargs):
+        result = real(*args, **kwargs)
+        robot.write_text(edited)
+        return result
+
+    monkeypatch.setattr(convert, "convert_source", edit_meanwhile)
+    result = CliRunner().invoke(cli, ["convert", str(robot), "--to", "ros2-p2", "-o", str(robot),
+                                      "--write"])
+    assert result.exit_code == 2
+    assert result.stderr.endswith(
+        f"txtool: {robot}: changed on disk during the conversion; not written\n")
+    assert robot.read_text() == edited
+    assert [p.name for p in tmp_path.iterdir()] == ["robot.urdf"]  # no temporary file left

@@ -309,12 +309,13 @@ def test_migrate_imports_nothing_heavy(write, tmp_path):
 
 
 def test_a_file_that_cannot_be_written_is_one_line_and_exit_2(run, write, monkeypatch):
-    from txtool.transform import migrate
 
     def refuse(path: str, data: bytes) -> None:
         raise PermissionError(13, "Permission denied")
 
-    monkeypatch.setattr(migrate, "write_atomic", refuse)
+    from txtool.io import xmlio
+
+    monkeypatch.setattr(xmlio, "write_atomic", refuse)
     path = write("robot.urdf", ROBOT)
     clean = write("clean.urdf", CLEAN)
     assert run("migrate", "--write", "robot.urdf", "clean.urdf") == (2, "", (

@@ -49,7 +49,7 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_
     under --no-xacro its source is converted as written, ${...} kept.
     """
     from txtool.io.load import load
-    from txtool.io.xmlio import InputError, write_atomic
+    from txtool.io.xmlio import InputError, replace_if_unchanged, write_atomic
 
     if target != "bb" and (bb_direction or bb_topology):
         raise InputError("--bb-direction and --bb-topology apply to --to bb only")
@@ -83,7 +83,9 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_
         click.echo(f"txtool: {len(losses)} item(s) would be lost; nothing written "
                    "(use --allow-lossy to accept)", err=True)
         return 1
-    if output:
+    if in_place_target:
+        replace_if_unchanged(output, source.data, data, "conversion")
+    elif output:
         write_atomic(output, data)
     else:
         sys.stdout.flush()

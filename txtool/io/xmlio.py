@@ -344,6 +344,15 @@ def _top_level(tree: etree._ElementTree, encoding: str) -> bytes:
     return b"\n".join(parts)
 
 
+def replace_if_unchanged(path: str, original: bytes, data: bytes, during: str) -> None:
+    """Write ``data`` over ``path`` atomically, unless the file no longer holds ``original``:
+    someone edited it while this command ran (``during`` names the command's work)."""
+    _, current = read_bytes(path)
+    if current != original:
+        raise InputError(f"{path}: changed on disk during the {during}; not written")
+    write_atomic(path, data)
+
+
 def write_atomic(path: str, data: bytes) -> None:
     """Replace ``path`` with ``data``, or leave it byte for byte as it was.
 

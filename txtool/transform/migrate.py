@@ -24,7 +24,14 @@ from typing import Literal
 from lxml import etree
 
 from txtool.dialects.read import transmission_elements
-from txtool.io.xmlio import InputError, Source, parse_bytes, read_bytes, serialize, write_atomic
+from txtool.io.xmlio import (
+    InputError,
+    Source,
+    parse_bytes,
+    read_bytes,
+    replace_if_unchanged,
+    serialize,
+)
 from txtool.lint.config import Overrides, SettingsCache
 from txtool.lint.discover import expand_paths
 from txtool.lint.problem import Problem
@@ -189,11 +196,7 @@ def _record(report: Report, result: FileResult, options: MigrateOptions) -> None
 def _write(result: FileResult) -> None:
     """Write atomically, unless the file changed on disk since it was read."""
     try:
-        with open(result.path, "rb") as handle:
-            current = handle.read()
-        if current != result.original:
-            raise InputError(f"{result.path}: changed on disk during the migration; not written")
-        write_atomic(result.path, result.data)
+        replace_if_unchanged(result.path, result.original, result.data, "migration")
     except OSError as exc:
         raise InputError(f"{result.path}: cannot write: {exc.strerror or exc}") from None
 
