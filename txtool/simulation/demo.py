@@ -34,10 +34,12 @@ def demo_runs(console: Console, robot: Path | None = None) -> None:
         run = simulate_one(Options(robot=str(path), keep_series=False), str(flipped),
                            label=label)
     console.print(f"{escape(label)}: {report.verdict_line(run)}", soft_wrap=True)
-    for reason in run.reasons[1:3]:
+    causes = [r for r in run.reasons if r.startswith("likely cause: ")]
+    symptoms = [r for r in run.reasons[1:] if r not in causes]
+    for reason in symptoms[:2] + causes:  # the diagnosis is what the demo is for
         console.print(f"  - {escape(reason)}", soft_wrap=True)
-    if len(run.reasons) > 3:
-        console.print(f"  - ... {len(run.reasons) - 3} more")
+    if len(symptoms) > 2:
+        console.print(f"  - ... {len(symptoms) - 2} more symptoms")
 
 
 def _display(path: Path) -> str:
