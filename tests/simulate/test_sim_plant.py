@@ -92,3 +92,29 @@ def test_damping_far_stiffer_than_the_step_decays_without_overshoot(tmp_path):
     assert all(0.0 <= b <= a for a, b in zip([1.0, *speeds], speeds, strict=False))
     assert speeds[-1] < 1e-12
     assert state[0] == pytest.approx(inertia / 0.5, rel=1e-9)  # it coasts v0 M / D, as exact
+
+
+def test_projected_gauss_seidel_meets_the_friction_conditions():
+    """The fallback friction solver (used when the active set cycles): every joint either
+    sticks (no residual velocity, |p| within its bound) or slides at its bound in the
+    direction of its residual, for coupled inertia matrices."""
+    import numpy as np
+
+    from txtool.simulation.plant import Dynamics
+
+    solver = Dynamics.__new__(Dynamics)  # the solver uses no state of the plant
+    rng = np.random.default_rng(7)
+    for _ in range(50):
+        n = int(rng.integers(2, 7))
+        a = rng.normal(size=(n, n))
+        G = a @ a.T + n * np.eye(n)  # symmetric positive definite, like M^-1 blocks
+        w_free = rng.normal(scale=3.0, size=n)
+        b = rng.uniform(0.1, 2.0, size=n)
+        p = solver._gauss_seidel(G, w_free, b)
+        w = w_free - G @ p
+        assert np.all(np.abs(p) <= b + 1e-12)
+        for i in range(n):
+            if abs(p[i]) < b[i] - 1e-9:
+                assert abs(w[i]) < 1e-8, (i, p, w)
+            else:
+                assert w[i] * np.sign(p[i]) >= -1e-8, (i, p, w)

@@ -67,31 +67,3 @@ def view(t: Transmission) -> dict[str, Any]:
         "roles": roles,
         "interfaces": {j.name: _interfaces(j, ros2) for j in t.joints},
     }
-
-
-def differences(before: Transmission, after: Transmission) -> list[str]:
-    """Fields whose view differs, as ``field: before -> after`` strings."""
-    a, b = view(before), view(after)
-    out = []
-    for key in ("name", "kind", *FIELDS):
-        if not _same(a[key], b[key]):
-            out.append(f"{key}: {_show(a[key])} -> {_show(b[key])}")
-    return out
-
-
-def surviving(before: Transmission, after: Transmission) -> dict[str, bool]:
-    a, b = view(before), view(after)
-    return {key: _same(a[key], b[key]) for key in FIELDS}
-
-
-def _same(x: Any, y: Any) -> bool:
-    # Bit-for-bit float equality; NaN never survives a conversion unnoticed.
-    return repr(x) == repr(y) if isinstance(x, float) or isinstance(y, float) else x == y
-
-
-def _show(value: Any) -> str:
-    if isinstance(value, dict):
-        return "{" + ", ".join(f"{k}: {_show(v)}" for k, v in value.items()) + "}"
-    if isinstance(value, frozenset):
-        return "{" + ", ".join(sorted(value)) + "}"
-    return repr(value)
