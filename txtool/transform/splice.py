@@ -11,12 +11,12 @@ result is :func:`txtool.io.xmlio.write_atomic`.
 from __future__ import annotations
 
 import codecs
-import difflib
 import re
 
 from lxml import etree
 
 from txtool.io.xmlio import InputError, parse_bytes, serialize
+from txtool.transform.linediff import matching_blocks
 
 _LATE_DECLARATION = re.compile(rb"<\?xml\s[^>]*\?>[ \t]*(\r\n|\r|\n)?")
 
@@ -153,11 +153,10 @@ def _key(line: bytes) -> bytes:
 
 def _matches(a: list[bytes], b: list[bytes]) -> dict[int, int]:
     """Index in ``b`` of each line of ``a`` that the longest matching alignment pairs."""
-    matcher = difflib.SequenceMatcher(None, a, b, autojunk=False)
     pairs: dict[int, int] = {}
-    for block in matcher.get_matching_blocks():
-        for k in range(block.size):
-            pairs[block.a + k] = block.b + k
+    for i, j, size in matching_blocks(a, b, autojunk=False):
+        for k in range(size):
+            pairs[i + k] = j + k
     return pairs
 
 
