@@ -111,8 +111,14 @@ class Document:
 
 
 def replace(value: Value, **changes: Any) -> Value:
-    """A copy of a model value with some fields changed."""
-    return dataclasses.replace(value, **changes)  # type: ignore[type-var]
+    """A copy of a model value with some fields changed (:func:`dataclasses.replace`, without
+    its per-call field inspection: conversions make several per transmission)."""
+    names = _field_names(type(value))
+    unknown = changes.keys() - set(names)
+    if unknown:
+        raise TypeError(f"{type(value).__name__} has no field {', '.join(sorted(unknown))}")
+    return type(value)(**{name: changes[name] if name in changes else getattr(value, name)
+                          for name in names})
 
 
 @cache

@@ -56,7 +56,7 @@ def convert_source(
     """Convert ``source``; the bytes are spliced into ``source.data`` (see
     :mod:`txtool.transform.splice`) unless ``source`` is a xacro expansion."""
     tree = copy.deepcopy(source.tree)
-    originals = read_source(Source(source.path, source.data, tree))
+    originals = read_source(Source(source.path, source.data, tree), locate=False)
     result = Conversion(data=b"", target=target)
     placer = Placer(tree.getroot(), hardware_plugin)
     for found in originals:
@@ -170,7 +170,7 @@ def _check(source: Source, result: Conversion, originals: list[Found]) -> None:
     existing ``<ros2_control>`` declares besides its own are a note, not a loss)."""
     tree = parse_bytes(result.data, source.path)
     written: dict[tuple[str, bool], list[Found]] = {}
-    for found in read_source(Source(source.path, result.data, tree)):
+    for found in read_source(Source(source.path, result.data, tree), locate=False):
         key = (found.transmission.name, found.transmission.kind == "other")
         written.setdefault(key, []).append(found)
     for found in originals:
