@@ -230,7 +230,7 @@ def _convert(result: FileResult, data: bytes, rules: Sequence[Rule],
     source = Source(path=result.path, data=data, tree=parse_bytes(data, result.path))
     try:
         conversion = convert_source(source, options.target,
-                                    hardware_plugin=options.hardware_plugin)
+                                    hardware_plugin=options.hardware_plugin, consume=True)
     except ValueError as exc:
         result.losses.append(f"cannot convert: {exc}")
         result.refused = True
