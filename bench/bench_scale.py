@@ -1,20 +1,25 @@
 """Work grows linearly with the document: time per transmission from 100 to 100,000.
 
-Run: ``python bench/bench_scale.py [--sizes 100,1000,10000,100000] [--commands ...]``.
+Run: ``python bench/bench_scale.py [--sizes 100,1000,10000,100000] [--commands ...]
+[--repeat R] [--pretty]``.
 
 Each size N is one generated robot: a chain of N revolute joints, each driven by one ROS 1
 simple transmission (about 450 bytes per joint: 100,000 joints make a 45 MB file, under the 64 MB
-input limit). Each command runs once per size, through the command line (click), in a fresh
-interpreter that times the run itself (start-up and imports not counted); the table shows
-microseconds per transmission and the ratio of each size to the smallest. Flat means linear; a
-step quadratic in N shows as ratios near 10, 100 and 1,000 (a large process's cache and
-garbage-collector effects alone stay below 2).
+input limit); with ``--pretty`` every element is on a line of its own (about 700 bytes per
+joint), the repetitive lines a line diff has to align. Each command runs through the command
+line (click), in a fresh interpreter that times the run itself (start-up and imports not
+counted) and measures its peak memory above what the interpreter held before the run. The floor
+is ``lxml.etree.parse`` of the same file, timed and measured the same way; runs are interleaved
+and each figure is the median of R runs (default 1). The tables show microseconds per
+transmission, each size's ratio to the smallest (flat means linear; a step quadratic in N shows
+as ratios near 10, 100 and 1,000), and each command's time and peak memory against the floor.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -38,68 +43,105 @@ COMMANDS = {
 }
 
 
-def robot(joints: int) -> str:
+def robot(joints: int, pretty: bool = False) -> str:
     parts = ['<robot name="chain">', LINK.format(i=0)]
     parts += [LINK.format(i=i) + JOINT.format(i=i, p=i - 1) for i in range(1, joints + 1)]
     parts += [TRANSMISSION.format(i=i, n=10 + i % 90) for i in range(1, joints + 1)]
-    return "\n".join(parts) + "\n</robot>\n"
+    text = "\n".join(parts) + "\n</robot>\n"
+    return text.replace("><", ">\n<") if pretty else text
 
 
-MEASURE = """
-import sys, time
+PRELUDE = """
+import resource, sys, time
+def rss():
+    with open("/proc/self/status") as status:
+        return next(int(line.split()[1]) for line in status if line.startswith("VmRSS"))
+"""
+MEASURE = PRELUDE + """
 from click.testing import CliRunner
 from txtool.cli import cli
 warm_up, args = sys.argv[1], sys.argv[2:]
 runner = CliRunner()
 runner.invoke(cli, [*args[:-1], warm_up])  # loads what the command imports lazily
+before = rss()
 start = time.perf_counter()
 result = runner.invoke(cli, args)
 elapsed = time.perf_counter() - start
 crashed = result.exception is not None and not isinstance(result.exception, SystemExit)
 if crashed or result.exit_code not in (0, 1):
     sys.exit(f"{' '.join(args)}: exit {result.exit_code}: {result.output[:500]}")
-print(elapsed)
+print(elapsed, (resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before) * 1024)
+"""
+PARSE = PRELUDE + """
+from lxml import etree
+before = rss()
+start = time.perf_counter()
+tree = etree.parse(sys.argv[1])
+elapsed = time.perf_counter() - start
+print(elapsed, (resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before) * 1024)
 """
 
 
-def measure(command: list[str], path: Path) -> float:
-    """Seconds of one run, in a fresh interpreter that first ran the command on a one-joint
-    robot (imports and start-up not counted), so that one run's leftovers do not slow the next."""
-    warm_up = path.with_name("warm_up.urdf")
-    warm_up.write_text(robot(1))
-    args = [*command, str(path)]
-    out = subprocess.run([sys.executable, "-c", MEASURE, str(warm_up), *args],
-                         capture_output=True, text=True, check=False)
+def measure(command: list[str] | None, path: Path) -> tuple[float, float]:
+    """Seconds and peak bytes of one run, in a fresh interpreter that first ran the command on
+    a one-joint robot (imports and start-up not counted), so that one run's leftovers do not
+    slow the next; ``None`` is the floor, a bare parse of the file."""
+    if command is None:
+        argv = [sys.executable, "-c", PARSE, str(path)]
+    else:
+        warm_up = path.with_name("warm_up.urdf")
+        warm_up.write_text(robot(1))
+        argv = [sys.executable, "-c", MEASURE, str(warm_up), *command, str(path)]
+    out = subprocess.run(argv, capture_output=True, text=True, check=False)
     if out.returncode != 0:
-        raise SystemExit(out.stderr.strip() or f"{' '.join(args)}: exit {out.returncode}")
-    return float(out.stdout.strip().splitlines()[-1])
+        raise SystemExit(out.stderr.strip() or f"{' '.join(argv[3:])}: exit {out.returncode}")
+    seconds, peak = out.stdout.strip().splitlines()[-1].split()
+    return float(seconds), float(peak)
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", default="100,1000,10000,100000")
     parser.add_argument("--commands", default=",".join(COMMANDS))
+    parser.add_argument("--repeat", type=int, default=1)
+    parser.add_argument("--pretty", action="store_true", help="one element per line")
     args = parser.parse_args()
     sizes = [int(s) for s in args.sizes.split(",")]
-    commands = args.commands.split(",")
-    table: dict[str, dict[int, float]] = {name: {} for name in commands}
+    names = ["parse", *args.commands.split(",")]
+    seconds: dict[str, dict[int, float]] = {name: {} for name in names}
+    memory: dict[str, dict[int, float]] = {name: {} for name in names}
     with tempfile.TemporaryDirectory(prefix="txtool-scale-") as folder:
         for size in sizes:
             path = Path(folder) / f"chain_{size}.urdf"
-            path.write_text(robot(size))
+            path.write_text(robot(size, args.pretty))
             megabytes = path.stat().st_size / 1e6
-            for name in commands:
-                table[name][size] = measure(COMMANDS[name], path) / size
+            runs: dict[str, list[tuple[float, float]]] = {name: [] for name in names}
+            for _ in range(args.repeat):  # interleaved: load changes hit every command alike
+                for name in names:
+                    runs[name].append(measure(COMMANDS.get(name), path))
+            for name in names:
+                seconds[name][size] = statistics.median(t for t, _ in runs[name])
+                memory[name][size] = statistics.median(m for _, m in runs[name])
             print(f"N={size:>7} ({megabytes:5.1f} MB): " + "  ".join(
-                f"{name} {table[name][size] * 1e6:7.1f} us" for name in commands), flush=True)
+                f"{name} {seconds[name][size] / size * 1e6:7.1f} us" for name in names),
+                flush=True)
     smallest = min(sizes)
     print(f"\nratio of time per transmission to N={smallest} "
           f"(flat = linear, quadratic ~N/{smallest}):")
-    for name in commands:
-        ratios = {size: table[name][size] / table[name][smallest] for size in sizes}
+    for name in names:
+        ratios = {s: seconds[name][s] * smallest / s / seconds[name][smallest] for s in sizes}
         print(f"  {name:10s} " + "  ".join(f"N={s}: {r:4.2f}" for s, r in ratios.items()))
-    print(json.dumps({name: {str(s): t for s, t in row.items()} for name, row in table.items()}),
-          file=sys.stderr)
+    print("\nagainst the floor (a bare lxml parse of the same file): time x, peak memory x "
+          "(MB)")
+    for name in names[1:]:
+        print(f"  {name:10s} " + "  ".join(
+            f"N={s}: {seconds[name][s] / seconds['parse'][s]:5.1f}x "
+            f"{memory[name][s] / max(memory['parse'][s], 1):4.1f}x "
+            f"({memory[name][s] / 1e6:.0f})" for s in sizes))
+    print(json.dumps({"seconds": {n: {str(s): t for s, t in row.items()}
+                                  for n, row in seconds.items()},
+                      "peak_bytes": {n: {str(s): m for s, m in row.items()}
+                                     for n, row in memory.items()}}), file=sys.stderr)
 
 
 if __name__ == "__main__":

@@ -1,6 +1,6 @@
 """Cost of ``txtool validate``: one file against bare imports, many files against bare parsing.
 
-Run: ``python bench/bench_validate.py [--files N] [--repeat R] [--synthetic]``.
+Run: ``python bench/bench_validate.py [--files N] [--repeat R] [--synthetic] [--jobs J]``.
 
 * **One file.** ``txtool validate ROBOT.urdf`` against
   ``python -c "import click, lxml.etree, pydantic, rich"``, both as fresh processes, runs
@@ -98,7 +98,8 @@ def sources(synthetic: bool) -> list[tuple[str, str]]:
     return [("arm.urdf", synthetic_arm())]
 
 
-def many_files(count: int, repeat: int, synthetic: bool) -> dict[str, float]:
+def many_files(count: int, repeat: int, synthetic: bool, jobs: int | None = None
+               ) -> dict[str, float]:
     folder = Path(tempfile.mkdtemp(prefix="txtool-bench-"))
     try:
         texts = sources(synthetic)
@@ -111,7 +112,9 @@ def many_files(count: int, repeat: int, synthetic: bool) -> dict[str, float]:
         size = sum(os.path.getsize(f) for f in files)
         ours, bare, inside = [], [], []
         for _ in range(repeat):
-            ours.append(wall([*txtool_command(), "validate", "--format", "json", str(folder)]))
+            parallel = ["--jobs", str(jobs)] if jobs else []
+            ours.append(wall([*txtool_command(), "validate", "--format", "json", *parallel,
+                              str(folder)]))
             start = time.perf_counter()
             out = subprocess.run([sys.executable, "-c", BARE_PARSE, *files],
                                  capture_output=True, text=True, check=True)
@@ -143,6 +146,7 @@ def main() -> None:
     parser.add_argument("--files", type=int, default=1000)
     parser.add_argument("--repeat", type=int, default=11)
     parser.add_argument("--synthetic", action="store_true", help="generated arms, not the corpus")
+    parser.add_argument("--jobs", type=int, help="passed to validate (default: its own)")
     args = parser.parse_args()
     package = byte_compile()
     with tempfile.TemporaryDirectory() as folder:
@@ -150,12 +154,13 @@ def main() -> None:
         robot.write_text(synthetic_arm())
         single = one_file(robot, args.repeat)
         heavy = imported(robot)
-    many = many_files(args.files, max(3, args.repeat // 2), args.synthetic)
+    many = many_files(args.files, max(3, args.repeat // 2), args.synthetic, args.jobs)
     print(f"cpus: {os.cpu_count()}  python: {sys.version.split()[0]}  "
           f"txtool: {package} (byte-compiled)")
     print(f"one file: validate {single['validate_s'] * 1000:.0f} ms, imports "
           f"{single['baseline_s'] * 1000:.0f} ms, ratio {single['ratio']:.2f} (budget 1.5)")
-    print(f"{many['files']} files ({many['megabytes']:.1f} MB, {many['kinds']} distinct): "
+    print(f"{many['files']} files ({many['megabytes']:.1f} MB, {many['kinds']} distinct), "
+          f"--jobs {args.jobs or 'default'}: "
           f"{many['validate_s']:.2f} s, {many['files_per_s']:.0f} files/s (budget 500)")
     print(f"  bare lxml parse process {many['bare_process_s']:.2f} s: ratio "
           f"{many['ratio_to_bare_process']:.2f} (budget 3); parse loop alone "

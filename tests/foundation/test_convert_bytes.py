@@ -159,3 +159,16 @@ def test_a_declaration_after_a_comment_is_not_written_again():
     out = convert(data, "ros2-p2")
     assert out.startswith(b"<!-- licence -->\n<robot name='r'>\n  <ros2_control")
     etree.fromstring(out)  # well-formed for a strict parser
+
+
+@settings(max_examples=40, deadline=None)
+@given(documents(), st.sampled_from(["ros1", "ros2-p1", "ros2-p2"]))
+def test_converting_in_place_writes_what_converting_a_copy_writes(document, target):
+    """``convert`` gives its tree up (``consume``) to hold one tree at a time: same result."""
+    data, _ = document
+    copied = convert_source(Source("r.urdf", data, parse_bytes(data, "r.urdf")), target)
+    source = Source("r.urdf", data, parse_bytes(data, "r.urdf"))
+    consumed = convert_source(source, target, consume=True)
+    assert (consumed.data, consumed.losses, consumed.notes, consumed.warnings) == (
+        copied.data, copied.losses, copied.notes, copied.warnings)
+    assert len(source.root) == 0  # released before the result was read back

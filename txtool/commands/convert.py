@@ -68,7 +68,7 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_
     else:
         from txtool.transform.convert import convert_source
 
-        result = convert_source(source, target, hardware_plugin=hardware_plugin)
+        result = convert_source(source, target, hardware_plugin=hardware_plugin, consume=True)
         data, losses, notes = result.data, result.losses, result.notes
         for left in result.warnings:
             click.echo(f"warning: {left}", err=True)

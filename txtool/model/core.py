@@ -4,14 +4,16 @@ Every reader produces these values and every writer consumes them. Values are st
 document wrote them (a joint's reduction on the joint, an actuator's on the actuator); what a
 ROS loader actually uses from them is the business of :mod:`txtool.model.semantics`.
 
-The classes are frozen dataclasses whose schema is pydantic's: :func:`validate`, :func:`dump`
-and :func:`json_schema` go through a pydantic ``TypeAdapter``. pydantic's model machinery is
-loaded only by those functions, so ``txtool validate`` starts without it (about 50 ms).
+The classes are frozen dataclasses whose schema is pydantic's: :func:`validate` and
+:func:`json_schema` go through a pydantic ``TypeAdapter``, loaded only by those functions, so
+``txtool validate`` and ``show`` start without pydantic's model machinery (about 50 ms);
+:func:`dump` writes the same JSON in plain Python.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 from functools import cache
 from typing import TYPE_CHECKING, Any, Literal, TypeVar
@@ -109,8 +111,14 @@ class Document:
 
 
 def replace(value: Value, **changes: Any) -> Value:
-    """A copy of a model value with some fields changed."""
-    return dataclasses.replace(value, **changes)  # type: ignore[type-var]
+    """A copy of a model value with some fields changed (:func:`dataclasses.replace`, without
+    its per-call field inspection: conversions make several per transmission)."""
+    names = _field_names(type(value))
+    unknown = changes.keys() - set(names)
+    if unknown:
+        raise TypeError(f"{type(value).__name__} has no field {', '.join(sorted(unknown))}")
+    return type(value)(**{name: changes[name] if name in changes else getattr(value, name)
+                          for name in names})
 
 
 @cache
@@ -126,8 +134,28 @@ def validate(model: type[Value], data: Any) -> Value:
 
 
 def dump(value: Any) -> Any:
-    """A model value as JSON-ready data; a NaN or infinite number is null (strict JSON has
-    neither, and the number's text as written is kept beside it)."""
+    """A model value as JSON-ready data, as pydantic's JSON mode gives it (fields in
+    declaration order, tuples as lists); a NaN or infinite number is null (strict JSON has
+    neither, and the number's text as written is kept beside it). Plain Python: building a
+    pydantic serializer costs more than a command's own work (tests compare the two)."""
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if value is None or isinstance(value, str | int):
+        return value
+    if isinstance(value, tuple | list):
+        return [dump(item) for item in value]
+    if isinstance(value, dict):
+        return {key: dump(item) for key, item in value.items()}
+    return {name: dump(getattr(value, name)) for name in _field_names(type(value))}
+
+
+@cache
+def _field_names(model: type) -> tuple[str, ...]:
+    return tuple(f.name for f in dataclasses.fields(model))
+
+
+def pydantic_dump(value: Any) -> Any:
+    """:func:`dump` through pydantic's serializer (the reference the tests hold it to)."""
     import json
 
     return json.loads(adapter(type(value)).dump_json(value))

@@ -10,6 +10,7 @@ import math
 import re
 import sys
 from dataclasses import dataclass
+from functools import lru_cache
 
 # isspace() in the "C" locale: what std::stod skips before a number and what ros2_control strips.
 C_SPACE = " \t\n\v\f\r"
@@ -50,6 +51,7 @@ class Stod:
         return self.read.lstrip("+-")[:2].lower() == "0x"
 
 
+@lru_cache(maxsize=4096)  # the same few texts recur in every transmission
 def stod(text: str | None) -> Stod:
     """Read ``text`` as libstdc++'s ``std::stod`` (glibc ``strtod`` in the C locale)."""
     if text is None:

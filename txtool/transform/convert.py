@@ -22,7 +22,7 @@ from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
 from txtool.model.semantics import NotLoadable, effective
 from txtool.transform.placement import Placer
-from txtool.transform.splice import rewrite
+from txtool.transform.splice import splice
 from txtool.views.tables import FIELDS, view
 
 DEFAULT_HARDWARE_PLUGIN = "mock_components/GenericSystem"
@@ -51,12 +51,19 @@ class Conversion:
 
 
 def convert_source(
-    source: Source, target: Dialect, *, hardware_plugin: str = DEFAULT_HARDWARE_PLUGIN
+    source: Source, target: Dialect, *, hardware_plugin: str = DEFAULT_HARDWARE_PLUGIN,
+    consume: bool = False,
 ) -> Conversion:
     """Convert ``source``; the bytes are spliced into ``source.data`` (see
-    :mod:`txtool.transform.splice`) unless ``source`` is a xacro expansion."""
-    tree = copy.deepcopy(source.tree)
-    originals = read_source(Source(source.path, source.data, tree))
+    :mod:`txtool.transform.splice`) unless ``source`` is a xacro expansion.
+
+    With ``consume`` the caller gives up ``source.tree``: it is converted in place instead of
+    in a copy, and released (an empty document is left in its place) before the result is
+    read back, so a large document needs one tree at a time.
+    """
+    baseline = None if source.expanded else serialize(source.tree, source.data)
+    tree = source.tree if consume else copy.deepcopy(source.tree)
+    originals = read_source(Source(source.path, source.data, tree), locate=False)
     result = Conversion(data=b"", target=target)
     placer = Placer(tree.getroot(), hardware_plugin)
     for found in originals:
@@ -88,8 +95,13 @@ def convert_source(
     if source.expanded:
         result.data = serialize(tree, source.data)
     else:
-        result.data = rewrite(source.data, source.tree, tree)
-    _check(source, result, originals)
+        assert baseline is not None
+        result.data = splice(source.data, baseline, serialize(tree, source.data))
+    transmissions = [found.transmission for found in originals]
+    del originals, tree, placer  # the converted tree is freed before the output is read back
+    if consume:
+        source.tree = etree.ElementTree(etree.Element("consumed"))
+    _check(source, result, transmissions)
     return result
 
 
@@ -164,17 +176,16 @@ def _same_binding(old, new) -> bool:
     return all(getattr(old, f) == getattr(new, f) for f in fields)
 
 
-def _check(source: Source, result: Conversion, originals: list[Found]) -> None:
+def _check(source: Source, result: Conversion, originals: list[Transmission]) -> None:
     """Read the output back, convert it back, and compare with the original: on what the
     transmission itself defines (a value it leaves out is not judged, and interfaces that an
     existing ``<ros2_control>`` declares besides its own are a note, not a loss)."""
     tree = parse_bytes(result.data, source.path)
     written: dict[tuple[str, bool], list[Found]] = {}
-    for found in read_source(Source(source.path, result.data, tree)):
+    for found in read_source(Source(source.path, result.data, tree), locate=False):
         key = (found.transmission.name, found.transmission.kind == "other")
         written.setdefault(key, []).append(found)
-    for found in originals:
-        t = found.transmission
+    for t in originals:
         queue = written.get((t.name, t.kind == "other"))
         if not queue:
             continue

@@ -13,7 +13,6 @@ files only in ``write`` mode. Nothing here prints.
 from __future__ import annotations
 
 import copy
-import difflib
 import os
 import re
 from collections import Counter
@@ -40,6 +39,7 @@ from txtool.lint.suppress import parse as parse_suppressions
 from txtool.model.core import Dialect
 from txtool.rules import Rule, all_rules
 from txtool.transform.convert import DEFAULT_HARDWARE_PLUGIN, convert_source
+from txtool.transform.linediff import unified
 from txtool.transform.splice import splice
 
 Mode = Literal["check", "diff", "write"]
@@ -233,7 +233,7 @@ def _convert(result: FileResult, data: bytes, rules: Sequence[Rule],
     source = Source(path=result.path, data=data, tree=parse_bytes(data, result.path))
     try:
         conversion = convert_source(source, options.target,
-                                    hardware_plugin=options.hardware_plugin)
+                                    hardware_plugin=options.hardware_plugin, consume=True)
     except ValueError as exc:
         result.losses.append(f"cannot convert: {exc}")
         result.refused = True
@@ -332,7 +332,7 @@ def _silenced(element: etree._Element, code: str, suppressions: Suppressions) ->
 def unified_diff(path: str, before: bytes, after: bytes) -> str:
     """A unified diff with ``a/PATH`` and ``b/PATH`` headers (``git apply`` / ``patch -p1``)."""
     name = path.replace(os.sep, "/").lstrip("/")
-    lines = difflib.unified_diff(
+    lines = unified(
         _text(before).splitlines(keepends=True),
         _text(after).splitlines(keepends=True),
         f"a/{name}",

@@ -227,7 +227,8 @@ class Placer:
                 (m for m in children(new, kind) if m.get("name") == name), new)
             owner.extend(copy.deepcopy(e) for e in elements)
         with_comments(new, move.old)
-        dialects.pretty(new, indent, step)
+        if move.carried or any(isinstance(c, etree._Comment) for c in new.iter()):
+            dialects.pretty(new, indent, step)  # build() laid out all but these
         return new
 
 

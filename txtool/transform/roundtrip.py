@@ -71,7 +71,7 @@ def _reconvert(source: Source, target: Dialect) -> Source:
 
 def roundtrip(source: Source) -> RoundTripReport:
     report = RoundTripReport(source.path)
-    originals = [f.transmission for f in read_source(source)]
+    originals = [f.transmission for f in read_source(source, locate=False)]
     joints = robot_joints(source.root)
     for start in DIALECTS:
         group = [t for t in originals if t.dialect == start and t.kind != "other"]
@@ -88,7 +88,7 @@ def _by_name(source: Source) -> dict[_Key, list[Transmission]]:
     """Standard and custom transmissions by name; same-named ones in document order (the
     order conversions keep among them)."""
     found: dict[_Key, list[Transmission]] = {}
-    for f in read_source(source):
+    for f in read_source(source, locate=False):
         found.setdefault((f.transmission.name, f.transmission.kind == "other"), []).append(
             f.transmission)
     return found

@@ -11,12 +11,13 @@ result is :func:`txtool.io.xmlio.write_atomic`.
 from __future__ import annotations
 
 import codecs
-import difflib
+import hashlib
 import re
 
 from lxml import etree
 
 from txtool.io.xmlio import InputError, parse_bytes, serialize
+from txtool.transform.linediff import matching_blocks
 
 _LATE_DECLARATION = re.compile(rb"<\?xml\s[^>]*\?>[ \t]*(\r\n|\r|\n)?")
 
@@ -60,7 +61,7 @@ def _merge(original: bytes, baseline: bytes, changed: bytes, *, fine: bool) -> b
     then correspond one to one: the end tags before a changed node keep their text).
     """
     o, b, n = (text.splitlines(keepends=True) for text in (original, baseline, changed))
-    cuts = _cuts(parse_bytes(_lf(o), "<original>"), parse_bytes(_lf(b), "<baseline>"))
+    cuts = _cuts(_node_lines(_lf(o), "<original>"), _node_lines(_lf(b), "<baseline>"))
     cuts.append((len(b), len(o)))
     in_n = _matches([_key(line) for line in b], [_key(line) for line in n])
     written: dict[int, list[bytes]] = {}
@@ -117,14 +118,12 @@ def _lf(lines: list[bytes]) -> bytes:
     return b"".join(_key(line) + b"\n" if line != _key(line) else line for line in lines)
 
 
-def _cuts(original: etree._ElementTree, baseline: etree._ElementTree) -> list[tuple[int, int]]:
+def _cuts(original: list[int | None], baseline: list[int | None]) -> list[tuple[int, int]]:
     """(baseline line, original line) pairs, both increasing, where the same node ends."""
     cuts: list[tuple[int, int]] = []
-    nodes = _nodes(baseline), _nodes(original)
-    if len(nodes[0]) != len(nodes[1]):
+    if len(baseline) != len(original):
         raise InputError("the baseline is not a serialization of the original")
-    for first, second in zip(*nodes, strict=True):
-        b, o = first.sourceline, second.sourceline
+    for b, o in zip(baseline, original, strict=True):
         if b is None or o is None:
             continue
         if cuts and b == cuts[-1][0]:
@@ -134,10 +133,11 @@ def _cuts(original: etree._ElementTree, baseline: etree._ElementTree) -> list[tu
     return cuts
 
 
-def _nodes(tree: etree._ElementTree) -> list[etree._Element]:
-    root = tree.getroot()
+def _node_lines(text: bytes, name: str) -> list[int | None]:
+    """The line of each node of ``text`` in document order (one tree alive at a time)."""
+    root = parse_bytes(text, name).getroot()
     before = list(root.itersiblings(preceding=True))[::-1]
-    return [*before, *root.iter(), *root.itersiblings()]
+    return [node.sourceline for node in (*before, *root.iter(), *root.itersiblings())]
 
 
 def _untouched(block: range, in_n: dict[int, int]) -> bool:
@@ -153,11 +153,10 @@ def _key(line: bytes) -> bytes:
 
 def _matches(a: list[bytes], b: list[bytes]) -> dict[int, int]:
     """Index in ``b`` of each line of ``a`` that the longest matching alignment pairs."""
-    matcher = difflib.SequenceMatcher(None, a, b, autojunk=False)
     pairs: dict[int, int] = {}
-    for block in matcher.get_matching_blocks():
-        for k in range(block.size):
-            pairs[block.a + k] = block.b + k
+    for i, j, size in matching_blocks(a, b, autojunk=False):
+        for k in range(size):
+            pairs[i + k] = j + k
     return pairs
 
 
@@ -199,12 +198,12 @@ def _without_late_declaration(data: bytes) -> bytes:
 
 def _same_document(a: bytes, b: bytes) -> bool:
     try:
-        first = parse_bytes(a, "<merged>")
-        second = parse_bytes(b, "<changed>")
+        first = _canonical(a, "<merged>")
+        return first == _canonical(b, "<changed>")
     except InputError:
         return False
-    return _canonical(first) == _canonical(second)
 
 
-def _canonical(tree: etree._ElementTree) -> bytes:
-    return etree.tostring(tree, method="c14n")
+def _canonical(data: bytes, name: str) -> bytes:
+    """A digest of the canonical form (each tree and its text freed before the next)."""
+    return hashlib.sha256(etree.tostring(parse_bytes(data, name), method="c14n")).digest()
