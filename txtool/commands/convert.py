@@ -73,8 +73,9 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_
         for left in result.warnings:
             click.echo(f"warning: {left}", err=True)
         if not result.converted and not result.losses:
-            click.echo(f"txtool: {source.path}: 0 transmissions converted "
-                       f"({_found(source, target)})", err=True)
+            held = (f"{result.found} found, {result.already} already {target}; the document is "
+                    "unchanged" if result.found else "the document has no transmission")
+            click.echo(f"txtool: {source.path}: 0 transmissions converted ({held})", err=True)
     for note in notes:
         click.echo(f"note: {note}", err=True)
     for loss in losses:
@@ -92,17 +93,6 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_
         sys.stdout.buffer.write(data)
         sys.stdout.buffer.flush()
     return 0
-
-
-def _found(source, target: str) -> str:
-    """What the document holds, for a conversion that converted nothing."""
-    from txtool.dialects.read import read_source
-
-    found = [f.transmission for f in read_source(source, locate=False)]
-    if not found:
-        return "the document has no transmission"
-    already = sum(1 for t in found if t.dialect == target)
-    return f"{len(found)} found, {already} already {target}; the document is unchanged"
 
 
 def _same_file(a: str, b: str) -> bool:

@@ -48,6 +48,8 @@ class Conversion:
     notes: list[str] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)  # to look at; nothing is lost
     converted: int = 0
+    found: int = 0  # transmissions in the document
+    already: int = 0  # of them, already in the target dialect
 
 
 def convert_source(
@@ -64,7 +66,8 @@ def convert_source(
     baseline = None if source.expanded else serialize(source.tree, source.data)
     tree = source.tree if consume else copy.deepcopy(source.tree)
     originals = read_source(Source(source.path, source.data, tree), locate=False)
-    result = Conversion(data=b"", target=target)
+    result = Conversion(data=b"", target=target, found=len(originals),
+                        already=sum(1 for f in originals if f.transmission.dialect == target))
     placer = Placer(tree.getroot(), hardware_plugin)
     for found in originals:
         t = found.transmission
