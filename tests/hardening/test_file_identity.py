@@ -21,21 +21,10 @@ import pytest
 from click.testing import CliRunner
 
 import txtool.io.signals  # noqa: F401  (loaded before a fork drops privileges)
+from tests.hardening.test_atomic_writes import ROBOT  # the same legacy arm
 from txtool.cli import cli
 from txtool.io.xmlio import InputError, write_atomic
 
-ROBOT = b"""\
-<?xml version="1.0"?>
-<robot name='arm'>
-  <transmission name="elbow_trans" type="SimpleTransmission">
-    <joint name="elbow"/>
-    <actuator name="elbow_motor">
-      <hardwareInterface>EffortJointInterface</hardwareInterface>
-      <mechanicalReduction>50</mechanicalReduction>
-    </actuator>
-  </transmission>
-</robot>
-"""
 NOBODY = 65534
 as_root = pytest.mark.skipif(os.geteuid() != 0, reason="changing owners needs root")
 

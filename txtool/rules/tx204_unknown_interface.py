@@ -45,17 +45,20 @@ Failing example (ROS 1)::
 
 Passing example: ``hardware_interface/PositionJointInterface``.
 
-Failing example (ROS 2)::
+Failing example (ROS 2; with no valid interface left it is TX205's error instead)::
 
     <ros2_control name="HW" type="system">
-      <joint name="j1"><command_interface name="Position"/></joint>
+      <joint name="j1">
+        <command_interface name="position"/>
+        <command_interface name="Velocity"/>
+      </joint>
       <transmission name="t">
         <plugin>transmission_interface/SimpleTransmission</plugin>
         <joint name="j1" role="joint1"/>
       </transmission>
     </ros2_control>
 
-Passing example: ``<command_interface name="position"/>``.
+Passing example: ``<command_interface name="velocity"/>``.
 """
 
 from __future__ import annotations
