@@ -85,18 +85,26 @@ def test_tiago_has_nothing_to_convert_and_loses_nothing(run):
                     "the document is unchanged)")
 
 
-def test_renaming_as_the_refusal_says_makes_the_four_bar_convert(run, fixtures, tmp_path):
+def test_following_the_refusals_advice_makes_the_four_bar_convert(run, fixtures, tmp_path):
     code, _, err = run("convert", str(fixtures / "four_bar.ros1.urdf"), "--to", "ros2-p2")
-    assert code == 1
-    assert "rename the joints so that the joint1 name sorts before the joint2 name" in err
-    renamed = tmp_path / "four_bar.urdf"
+    assert code == 1 and "list them in role order first" in err
+    # 1. List the joints in role order (ros_control then binds the values where the roles say).
     text = (fixtures / "four_bar.ros1.urdf").read_text()
-    renamed.write_text(text.replace("bar_joint", "z_bar_joint"))
-    code, _, err = run("convert", str(renamed), "--to", "ros2-p2")
-    assert code == 1 and "rename them so that actuator1's sorts first" in err
-    renamed.write_text(text.replace("bar_joint", "z_bar_joint")
-                       .replace("bar_actuator", "z_bar_actuator"))
-    code, out, err = run("convert", str(renamed), "--to", "ros2-p2")
+    bar = text[text.index('    <joint name="bar_joint">'):text.index('    <joint name="foo_joint">')]
+    foo = text[text.index('    <joint name="foo_joint">'):text.index('    <actuator')]
+    in_order = text.replace(bar + foo, foo + bar)
+    reordered = tmp_path / "four_bar.urdf"
+    reordered.write_text(in_order)
+    code, _, err = run("validate", str(reordered), "--select", "TX404")
+    assert code == 0
+    # 2. The names now sort against the roles: ros2_control would bind them the other way.
+    code, _, err = run("convert", str(reordered), "--to", "ros2-p2")
+    assert code == 1
+    assert "rename the members so that the joint1 name sorts before the joint2 name" in err
+    # 3. Renamed as the message says, it converts.
+    reordered.write_text(in_order.replace("bar_joint", "z_bar_joint")
+                         .replace("bar_actuator", "z_bar_actuator"))
+    code, out, err = run("convert", str(reordered), "--to", "ros2-p2")
     assert (code, err) == (0, "")
     joints = etree.fromstring(out.encode()).find("ros2_control/transmission").findall("joint")
     assert [(j.get("name"), j.get("role")) for j in joints] == [

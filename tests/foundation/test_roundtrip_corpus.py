@@ -86,9 +86,10 @@ NOT_PROMISED = {
     # The ROS 1 loader refuses these by design (invalid fixtures of ros_control's tests).
     "ros_control__four_bar_linkage_transmission_loader_invalid.urdf": "not loadable",
     "ros_control__simple_transmission_loader_invalid.urdf": "not loadable",
-    # Joint names sorting against their roles: ros2_control would bind them differently.
-    "ros_control__differential_transmission_loader_full.urdf": "orders handles by name",
-    "ros_control__four_bar_linkage_transmission_loader_full.urdf": "orders handles by name",
+    # Members listed against their roles (TX404), and actuator names sorting against them:
+    # ros_control and ros2_control bind the values to different actuators.
+    "ros_control__differential_transmission_loader_full.urdf": "data in XML order",
+    "ros_control__four_bar_linkage_transmission_loader_full.urdf": "data in XML order",
     # Macros whose hardware interface is a macro argument: no ROS 2 command interface can be
     # derived from ${...}; their expansions (the robots in this corpus) do convert.
     "franka_ros__franka_description_utils.xacro": "xacro expression",

@@ -71,19 +71,25 @@ EXPECTED: dict[str, tuple[dict[str, int], set[str]]] = {
     ),
     # Differential and FourBar on the same joints: ros2_control loads both (a warning)
     "ros2_control_test_assets__minimal_robot_hardware_resources.urdf": ({"TX109": 4}, set()),
-    # ROS 1 style with only unprefixed interfaces: ros_control refuses both
+    # ROS 1 style with only unprefixed interfaces: ros_control refuses both. Its own reader was
+    # ros2_control's early parse_transmissions_from_urdf (transmission_interface/src/
+    # transmission_parser.cpp @7f93398, any interface text), which ros2_control no longer
+    # builds (transmission_interface/CMakeLists.txt @1796d3e): today only ros_control reads it.
     "ros2_control_test_assets__minimal_robot_transmissions.urdf": ({}, {"TX205", "TX300"}),
     # 'transmission_interface/SimpleTansmission': the parser copies it, no loader has the name
     "ros2_control_test_assets__modular_robot_sensors_SimpleTansmission_typo.urdf": (
         {"TX113": 1}, set()
     ),
     "ros2_control_test_assets__multi_joints_transmission.urdf": ({}, set()),
-    "ros_control__differential_transmission_loader_full.urdf": ({}, set()),
-    "ros_control__four_bar_linkage_transmission_loader_full.urdf": ({}, {"TX402"}),
+    # bar_joint (role joint2) listed before foo_joint: ros_control takes the values by role but
+    # the data in XML order, so bar_joint is driven with foo_joint's reduction and offset. The
+    # loader tests check only the values by role (joint_state_interface_provider.cpp:132).
+    "ros_control__differential_transmission_loader_full.urdf": ({}, {"TX404"}),
+    "ros_control__four_bar_linkage_transmission_loader_full.urdf": ({}, {"TX402", "TX404"}),
     # 14 copies named alike (overwrite: warnings): 8 role defects, actuator reduction missing,
-    # 3 non-numbers, 2 zeros, each refused by the four-bar loader
+    # 3 non-numbers, 2 zeros, each refused by the four-bar loader; 10 list bar_joint first
     "ros_control__four_bar_linkage_transmission_loader_invalid.urdf": (
-        {"TX104": 1, "TX105": 3, "TX106": 2, "TX107": 8, "TX108": 13}, {"TX402"}
+        {"TX104": 1, "TX105": 3, "TX106": 2, "TX107": 8, "TX108": 13}, {"TX402", "TX404"}
     ),
     # names and interfaces missing or empty, <type> missing, empty or with stray text
     "ros_control__parser_test_invalid.urdf": (

@@ -11,6 +11,7 @@ from txtool.io.load import load
 from txtool.mechanics.equivalence import compare
 from txtool.model.core import Transmission
 from txtool.model.robot import JointInfo
+from txtool.model.semantics import effective
 
 
 def read(tmp_path: Path, name: str, body: str) -> list[Transmission]:
@@ -73,19 +74,25 @@ def test_reduction_left_on_the_ros2_actuator_differs(tmp_path: Path) -> None:
                           "(elbow=-1)")
 
 
-FOUR_BAR_ROS1 = """<transmission name="t1">
-  <type>transmission_interface/FourBarLinkageTransmission</type>
-  <actuator name="{a2}"><role>actuator2</role><mechanicalReduction>-50</mechanicalReduction>
-  </actuator>
-  <actuator name="{a1}"><role>actuator1</role><mechanicalReduction>50</mechanicalReduction>
-  </actuator>
-  <joint name="{j2}"><role>joint2</role><mechanicalReduction>-2</mechanicalReduction>
-    <offset>-0.5</offset><hardwareInterface>hardware_interface/EffortJointInterface
-    </hardwareInterface></joint>
-  <joint name="{j1}"><role>joint1</role><mechanicalReduction>2</mechanicalReduction>
-    <offset>0.5</offset><hardwareInterface>hardware_interface/EffortJointInterface
-    </hardwareInterface></joint>
-</transmission>"""
+ROS1_JOINT = """<joint name="{name}"><role>{role}</role><mechanicalReduction>{reduction}
+    </mechanicalReduction><offset>{offset}</offset><hardwareInterface>
+    hardware_interface/EffortJointInterface</hardwareInterface></joint>"""
+ROS1_ACTUATOR = """<actuator name="{name}"><role>{role}</role><mechanicalReduction>{reduction}
+    </mechanicalReduction></actuator>"""
+
+
+def four_bar_ros1(j1: str, j2: str, a1: str, a2: str, against_roles: bool = False) -> str:
+    """ROS 1 four-bar; ``against_roles`` lists the role-2 members first, as ros_control's
+    own four-bar test robot does."""
+    joints = [ROS1_JOINT.format(name=j1, role="joint1", reduction="2", offset="0.5"),
+              ROS1_JOINT.format(name=j2, role="joint2", reduction="-2", offset="-0.5")]
+    actuators = [ROS1_ACTUATOR.format(name=a1, role="actuator1", reduction="50"),
+                 ROS1_ACTUATOR.format(name=a2, role="actuator2", reduction="-50")]
+    if against_roles:
+        joints.reverse()
+        actuators.reverse()
+    return ('<transmission name="t1"><type>transmission_interface/FourBarLinkageTransmission'
+            "</type>" + "".join(actuators + joints) + "</transmission>")
 
 
 def four_bar_ros2(first: tuple[str, str], second: tuple[str, str]) -> str:
@@ -100,10 +107,9 @@ def four_bar_ros2(first: tuple[str, str], second: tuple[str, str]) -> str:
 
 
 def test_four_bar_is_not_equivalent_when_name_order_differs_from_roles(tmp_path: Path) -> None:
-    # ROS 1 sorts by role (foo = joint1); ros2_control sorts handles by name (bar < foo), so
-    # foo's parameters, listed first, are bound to bar.
-    names = {"j1": "foo", "j2": "bar", "a1": "foo_actuator", "a2": "bar_actuator"}
-    a = read(tmp_path, "a.urdf", FOUR_BAR_ROS1.format(**names))
+    # ROS 1 in role order binds foo = joint1; ros2_control sorts handles by name (bar < foo),
+    # so foo's values, listed first, are bound to bar.
+    a = read(tmp_path, "a.urdf", four_bar_ros1("foo", "bar", "foo_actuator", "bar_actuator"))
     b = read(tmp_path, "b.urdf", four_bar_ros2(("foo", "foo_actuator"), ("bar", "bar_actuator")))
     (row,) = compare(a, b).rows
     assert row.status == "differs"
@@ -113,8 +119,7 @@ def test_four_bar_is_not_equivalent_when_name_order_differs_from_roles(tmp_path:
 
 
 def test_four_bar_is_equivalent_when_name_order_matches_roles(tmp_path: Path) -> None:
-    names = {"j1": "a_joint", "j2": "b_joint", "a1": "a_motor", "a2": "b_motor"}
-    a = read(tmp_path, "a.urdf", FOUR_BAR_ROS1.format(**names))
+    a = read(tmp_path, "a.urdf", four_bar_ros1("a_joint", "b_joint", "a_motor", "b_motor"))
     b = read(tmp_path, "b.urdf", four_bar_ros2(("a_joint", "a_motor"), ("b_joint", "b_motor")))
     assert compare(a, b, convention="ros2").equivalent
     assert compare(a, b, convention="ros1").equivalent
@@ -128,6 +133,31 @@ def test_four_bar_is_equivalent_when_name_order_matches_roles(tmp_path: Path) ->
     assert row.differences["effort"] == pytest.approx(0.02)
     assert row.reason == ("actuator 'b_motor' effort differs by 0.02 at joint values "
                           "(a_joint=-1, b_joint=-1)")
+
+
+def test_ros1_members_listed_against_roles_take_the_other_members_values(tmp_path: Path):
+    # ros_control: values by role, data in XML order (joint_state_interface_provider.cpp:132
+    # @133d768): b_joint, listed first, is driven with a_joint's reduction 2 and offset 0.5.
+    a = read(tmp_path, "a.urdf", four_bar_ros1("a_joint", "b_joint", "a_motor", "b_motor",
+                                               against_roles=True))
+    as_written = read(tmp_path, "b.urdf", four_bar_ros2(("a_joint", "a_motor"),
+                                                        ("b_joint", "b_motor")))
+    assert not compare(a, as_written, convention="ros2").equivalent
+    (loaded,) = [effective(t) for t in a]
+    assert loaded.joints == ("b_joint", "a_joint")
+    assert (loaded.joint_reduction, loaded.joint_offset) == ((2.0, -2.0), (0.5, -0.5))
+    assert (loaded.actuators, loaded.actuator_reduction) == (("b_motor", "a_motor"),
+                                                             (50.0, -50.0))
+
+
+def test_ros1_against_roles_can_coincide_with_ros2_name_order(tmp_path: Path):
+    # ros_control's four-bar test robot: bar_joint (joint2) before foo_joint (joint1). Its XML
+    # order is also the name order, so the ROS 1 data binding and ros2_control's name-sorted
+    # handles agree on the joints.
+    a = read(tmp_path, "a.urdf", four_bar_ros1("foo", "bar", "foo_actuator", "bar_actuator",
+                                               against_roles=True))
+    b = read(tmp_path, "b.urdf", four_bar_ros2(("foo", "foo_actuator"), ("bar", "bar_actuator")))
+    assert compare(a, b, convention="ros2").equivalent
 
 
 def test_missing_and_not_loadable_rows(tmp_path: Path) -> None:

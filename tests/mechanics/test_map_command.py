@@ -172,10 +172,13 @@ CORPUS_ROS2 = "ros2_control_test_assets__minimal_robot_hardware_resources.urdf"
 
 
 @pytest.mark.parametrize(("name", "transmission", "override", "efforts", "caption"), [
-    # ar (50, -50), jr (2, -2) in both loader test robots; actuator efforts (1, 1).
-    (CORPUS_ROS1, "four_bar_linkage_trans", None, ("100", "300"),
+    # ar (50, -50), jr (2, -2) in both loader test robots; actuator efforts (1, 1). The ROS 1
+    # robot lists bar_joint (role joint2) first, and ros_control fills its joint data in XML
+    # order (joint_state_interface_provider.cpp:132 @133d768): bar_joint gets index 0, so the
+    # columns (foo_joint, bar_joint, in role order) show index 1's value first.
+    (CORPUS_ROS1, "four_bar_linkage_trans", None, ("300", "100"),
      "ros1 (ros_control's map, from the file's loader)"),
-    (CORPUS_ROS1, "four_bar_linkage_trans", "ros2", ("50", "100"),
+    (CORPUS_ROS1, "four_bar_linkage_trans", "ros2", ("100", "50"),
      "ros2 (ros2_control's map, from --effort-convention)"),
     (CORPUS_ROS2, "four_bar_transmission", None, ("50", "100"),
      "ros2 (ros2_control's map, from the file's loader)"),

@@ -117,6 +117,10 @@ TABLE: dict[str, tuple[str, str, str]] = {
     "TX401": ("error", robot(ros2(DIFF_ROS2)), "r.urdf"),
     "TX402": ("info", robot(coupled("FourBarLinkageTransmission")), "r.urdf"),
     "TX403": ("error", robot(coupled("DifferentialTransmission", reduction2="1e-13")), "r.urdf"),
+    "TX404": ("error", robot(coupled("DifferentialTransmission")
+                             .replace("<role>joint1</role>", "<role>joint0</role>")
+                             .replace("<role>joint2</role>", "<role>joint1</role>")
+                             .replace("<role>joint0</role>", "<role>joint2</role>")), "r.urdf"),
 }
 
 

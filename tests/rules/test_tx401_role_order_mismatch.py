@@ -19,14 +19,15 @@ FOO = '<joint name="foo_joint" role="{role}"><mechanical_reduction>2</mechanical
 
 
 def test_the_converted_ros1_four_bar_keeps_bar_before_foo_and_fires():
-    # ros_control sorted these by role; converted in XML order, ros2_control binds -2 to bar
-    # (index 0 by name) although its role says joint2.
+    # Converted in XML order: ros2_control keeps -2 on bar (index 0 both in XML and by name)
+    # but drives bar as joint1 although its role says joint2.
     joints = BAR.format(role="joint2") + FOO.format(role="joint1")
     found = problems(COUPLED.format(joints=joints), select=["TX401"])
     assert [(p.line, p.column, p.code, p.severity) for p in found] == [(6, 5, "TX401", "error")]
     assert "the joint roles (joint2, joint1) run against the XML and name order" in (
         found[0].message
     )
+    assert found[0].message.endswith("drives 'bar_joint' as joint1, against its role")
     assert found[0].severity == "error"
 
 
@@ -53,7 +54,7 @@ def test_actuators_are_checked_on_their_own():
     assert "actuator reductions in XML order (z_actuator, b_actuator)" in found[0].message
 
 
-def test_ros1_sorts_by_role_and_is_not_checked():
+def test_ros1_is_left_to_tx404():
     xml = """
     <transmission name="t">
       <type>transmission_interface/FourBarLinkageTransmission</type>

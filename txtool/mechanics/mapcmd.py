@@ -1,14 +1,13 @@
 """``txtool map``: map values of one transmission between joint and actuator space.
 
 Values are given and printed in ROLE order (``joint1, joint2`` / ``actuator1, actuator2``),
-the order people write them in. The maths runs in the loader's index order: ROS 1 sorts by
-role, so the two agree; ros2_control binds parameters in XML order but orders the handles by
-NAME. A value given for role ``joint1`` goes to the handle of the member that has that role,
-and ros2_control then applies whatever parameters sit at that handle's name-sorted index.
-Where roles are missing or not ``joint1``/``joint2`` (ros2_control does not check them), XML
-order stands in for role order. ros_control fills its data vectors in XML order
-(:mod:`txtool.views.effective`); where that differs from the role order, this module still
-follows the roles, as :func:`txtool.model.semantics.effective` does.
+the order people write them in. The maths runs in the loader's index order: ros_control takes
+the parameters by role but fills its data vectors in XML order (:mod:`txtool.views.effective`);
+ros2_control binds parameters in XML order but orders the handles by NAME. A value given for
+role ``joint1`` goes to the handle of the member that has that role, and the loader then
+applies whatever parameters sit at that handle's index, as
+:func:`txtool.model.semantics.effective` binds them. Where roles are missing or not
+``joint1``/``joint2`` (ros2_control does not check them), XML order stands in for role order.
 
 Efforts go through the four-bar map of the file's own loader (ros_control's for a ROS 1
 transmission, ros2_control's for a ROS 2 one) unless ``convention`` names one.

@@ -1,8 +1,10 @@
 """What a ROS loader actually builds from a transmission: the parameters the maths uses.
 
-ros_control (ROS 1) sorts the members of a coupled transmission by ``<role>`` and reads the
-simple reduction from the actuator. ros2_control reads the simple reduction from the joint,
-takes coupled parameters in XML order, and then orders the joint and actuator handles by name
+ros_control (ROS 1) takes the parameters of a coupled transmission by ``<role>`` but fills
+the joint and actuator data in XML order (so a member listed against its role is driven with
+the other member's values, TX404), and reads the simple reduction from the actuator.
+ros2_control reads the simple reduction from the joint, takes coupled parameters in XML order,
+and then orders the joint and actuator handles by name
 (a ``std::set``) when the hardware plugin configures the transmission. :func:`effective` returns
 the parameters bound to each index together with the names at that index, so two configs
 behave alike exactly when their :class:`Effective` values are equal.
@@ -96,13 +98,14 @@ def _ros1(t: Transmission) -> Effective:
             joint_offset=(_value_ros1_optional(joint.offset, 0.0, _what(joint, "offset")),),
             loader="ros1",
         )
-    joints = _by_role(t.joints, ROLES_JOINT, "joint")
-    actuators = _by_role(t.actuators, ROLES_ACTUATOR, "actuator")
+    # Parameters by <role>, data in XML order (see txtool.views.effective for the source).
+    joints = by_role(t.joints, ROLES_JOINT, "joint")
+    actuators = by_role(t.actuators, ROLES_ACTUATOR, "actuator")
     return Effective(
         name=t.name,
         kind=t.kind,  # type: ignore[arg-type]
-        joints=tuple(j.name for j in joints),
-        actuators=tuple(a.name for a in actuators),
+        joints=tuple(j.name for j in t.joints),
+        actuators=tuple(a.name for a in t.actuators),
         actuator_reduction=tuple(
             _required(a.mechanical_reduction, _what(a, "reduction")) for a in actuators
         ),
@@ -127,7 +130,7 @@ def _what(member: Member, field: str) -> str:
     return f"'{member.name}' {field}"
 
 
-def _by_role(members: tuple[Member, ...], roles: tuple[str, str], noun: str) -> list[Member]:
+def by_role(members: tuple[Member, ...], roles: tuple[str, str], noun: str) -> list[Member]:
     by_role: dict[str, Member] = {}
     for member in members:
         if member.role not in roles:

@@ -61,6 +61,7 @@ RULE_MODULES: tuple[str, ...] = (
     "tx401_role_order_mismatch",
     "tx402_four_bar_effort_ros1",
     "tx403_singular_transmission",
+    "tx404_ros1_members_against_roles",
 )
 
 

@@ -14,10 +14,10 @@ Why
     (``joints.at(0)``, ``joints.at(1)``; the roles are ignored, ros2_control#3382), while
     ``configure`` orders the joint and actuator handles by name (a ``std::set``,
     ros2_control#1745). When the two orders differ, the values written on one joint are applied
-    to the other. ros_control (ROS 1) instead sorts by role, so when roles and XML order
-    disagree the two loaders put the values on different joints: a description converted
-    from ROS 1 keeping the XML order (the ros_control four-bar test robot lists ``bar_joint``
-    with role ``joint2`` before ``foo_joint``) changes behaviour silently.
+    to the other. When the roles run against the XML and name order, each value stays on the
+    joint it is written on, but ros2_control drives the first joint as ``joint1`` whatever its
+    role says (in a differential, which joint is the sum and which the difference). ros_control
+    (ROS 1) takes the values by role and the data in XML order (TX404).
 
 Failing example::
 
@@ -83,8 +83,7 @@ def _mismatch(noun: str, members: tuple[Member, ...], roles: tuple[str, str]) ->
     if written == [roles[1], roles[0]]:
         return (
             f"the {noun} roles ({written[0]}, {written[1]}) run against the XML and name "
-            f"order ({names[0]}, {names[1]}): ros2_control ignores roles and binds the "
-            f"{values} to '{names[0]}' first, ros_control sorts by role and binds them to "
-            f"'{names[1]}' first"
+            f"order ({names[0]}, {names[1]}): ros2_control ignores roles and drives "
+            f"'{names[0]}' as {roles[0]}, against its role"
         )
     return None

@@ -20,7 +20,13 @@ from txtool.dialects.translate import family, is_expression, translate
 from txtool.io.xmlio import Source, local, parse_bytes, serialize
 from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
-from txtool.model.semantics import NotLoadable, effective
+from txtool.model.semantics import (
+    ROLES_ACTUATOR,
+    ROLES_JOINT,
+    Effective,
+    NotLoadable,
+    effective,
+)
 from txtool.transform.placement import Placer
 from txtool.transform.splice import splice
 from txtool.views.tables import FIELDS, view
@@ -153,18 +159,44 @@ def _behaviour(before: Transmission, after: Transmission, result: Conversion) ->
         return
     if _same_binding(old, new):
         return
-    if old.joints != new.joints:
-        reason = (f"joints {', '.join(new.joints)} take the values written for "
-                  f"{', '.join(old.joints)} (ros2_control orders handles by name, not by role; "
-                  "see TX401). To convert it, rename the joints so that the joint1 name sorts "
-                  "before the joint2 name (likewise actuator1 before actuator2), then convert "
-                  "again; --allow-lossy writes it as it is")
-    else:
-        reason = ("the loaded reductions or offsets differ (if the actuators' names sort "
-                  "against their roles, rename them so that actuator1's sorts first)")
     result.losses.append(
-        f"transmission '{before.name}': behaves differently under {new.loader}: {reason}"
+        f"transmission '{before.name}': behaves differently under {new.loader}: "
+        f"{_binding_difference(before, old, new)}"
     )
+
+
+def _binding_difference(before: Transmission, old: Effective, new: Effective) -> str:
+    """Why the target binds other values: the source's XML order, or names against roles."""
+    loader = "ros_control" if old.loader == "ros1" else "ros2_control"
+    moved = [f"'{name}' would take the values {loader} applies to '{source}'"
+             for name, source in _sources(old, new)]
+    detail = "; ".join(moved) or "the loaded reductions or offsets differ"
+    if old.loader == "ros1" and _listed_against_roles(before):
+        return (f"{detail}. ros_control takes the values by <role> but the data in XML "
+                "order, and this transmission lists its members against their roles (TX404): "
+                "list them in role order first (this changes what ros_control does: check it "
+                "on the robot), then convert again; --allow-lossy writes it as it is")
+    if new.loader == "ros2":
+        return (f"{detail} (ros2_control orders handles by name, not by role; see TX401). "
+                "To convert it, rename the members so that the joint1 name sorts before the "
+                "joint2 name (likewise actuator1 before actuator2), then convert again; "
+                "--allow-lossy writes it as it is")
+    return detail
+
+
+def _sources(old: Effective, new: Effective) -> list[tuple[str, str]]:
+    """Members whose index (and so whose values) differ between the two bindings."""
+    changed = []
+    for names_old, names_new in ((old.joints, new.joints), (old.actuators, new.actuators)):
+        for i, name in enumerate(names_new):
+            if i < len(names_old) and names_old[i] != name:
+                changed.append((name, names_old[i]))
+    return changed
+
+
+def _listed_against_roles(t: Transmission) -> bool:
+    return any([m.role for m in members] == [roles[1], roles[0]]
+               for members, roles in ((t.joints, ROLES_JOINT), (t.actuators, ROLES_ACTUATOR)))
 
 
 def _same_binding(old, new) -> bool:

@@ -30,7 +30,15 @@ from txtool.model.binding import Binding, Field, Slot
 from txtool.model.core import TYPE_PREFIX, Member, Number, Transmission
 from txtool.model.numbers import format_float
 from txtool.model.robot import Component, component_of
-from txtool.model.semantics import Effective, NotLoadable, effective, loader_of
+from txtool.model.semantics import (
+    ROLES_ACTUATOR,
+    ROLES_JOINT,
+    Effective,
+    NotLoadable,
+    by_role,
+    effective,
+    loader_of,
+)
 
 ADDED_ACTUATOR = "actuator1"
 
@@ -129,10 +137,13 @@ def _by_name(members: Sequence[Member], name: str) -> Member:
 def _ros1_slots(t: Transmission, eff: Effective) -> tuple[Slot, ...]:
     # ros_control's simple transmission reads the actuator's reduction only.
     not_read: tuple[Field, ...] = ("joint_reduction",) if t.kind == "simple" else ()
+    joints, actuators = t.joints, t.actuators
+    if t.kind != "simple":  # parameters by <role>, data (t.joints[i]) in XML order
+        joints = tuple(by_role(t.joints, ROLES_JOINT, "joint"))
+        actuators = tuple(by_role(t.actuators, ROLES_ACTUATOR, "actuator"))
     slots = []
     for i in range(len(eff.joints)):
-        joint = _by_name(t.joints, eff.joints[i])  # effective() ordered them by <role>
-        actuator = _by_name(t.actuators, eff.actuators[i])
+        joint, actuator = joints[i], actuators[i]
         slots.append(Slot(
             index=i,
             joint_parameters_of=joint.name,

@@ -1,0 +1,73 @@
+"""A ROS 1 coupled transmission whose members are listed against their roles.
+
+What it checks
+    A ROS 1 Differential or FourBarLinkage transmission whose two joints, or two actuators,
+    have valid distinct roles written in the reverse order (``joint2`` listed before
+    ``joint1``, ``actuator2`` before ``actuator1``).
+
+Why
+    ros_control takes the reductions and offsets by ``<role>`` (ros-controls/ros_control
+    transmission_interface/src/four_bar_linkage_transmission_loader.cpp:49 @17b626a and the
+    differential loader's ``getJointConfig``: "Indices sorted according to role"), but fills
+    the data vectors the maths maps in XML order: ``jnt_state_data.position[i]`` is
+    ``transmission_info.joints_[i]`` (transmission_interface/src/
+    joint_state_interface_provider.cpp:132 @133d768; actuators through ``getActuatorHandles(
+    transmission_info.actuators_)`` in the same file). Nothing reorders ``joints_`` in between
+    (transmission_interface_loader.cpp, ``TransmissionInterfaceLoader::load``). So the member
+    listed first is driven with the values written on the ``joint1`` member: the reduction and
+    offset land on the other joint, silently. ``txtool show --effective`` shows the binding;
+    ``map``, ``equivalence`` and ``simulate`` use it.
+
+Failing example::
+
+    <transmission name="wrist">
+      <type>transmission_interface/DifferentialTransmission</type>
+      <joint name="wrist_flex"><role>joint2</role><mechanicalReduction>-2</mechanicalReduction>
+        ...</joint>
+      <joint name="wrist_roll"><role>joint1</role><mechanicalReduction>2</mechanicalReduction>
+        ...</joint>
+      ...
+    </transmission>
+
+    (``wrist_flex`` is driven with reduction 2, written on ``wrist_roll``.)
+
+Passing example: ``wrist_roll`` (role ``joint1``) listed before ``wrist_flex``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from txtool.lint.context import LintContext
+from txtool.lint.problem import Problem
+from txtool.lint.support import children, label
+from txtool.model.semantics import ROLES_ACTUATOR, ROLES_JOINT
+
+CODE = "TX404"
+NAME = "ros1-members-against-roles"
+SEVERITY = "error"
+FIXABLE = False
+
+
+def check(ctx: LintContext) -> Iterator[Problem]:
+    for found in ctx.transmissions():
+        t = found.transmission
+        if t.dialect != "ros1" or t.kind not in ("differential", "four_bar"):
+            continue
+        groups = (
+            ("joint", t.joints, children(found.element, "joint"), ROLES_JOINT),
+            ("actuator", t.actuators, children(found.element, "actuator"), ROLES_ACTUATOR),
+        )
+        for noun, members, elements, roles in groups:
+            if len(members) != 2 or [m.role for m in members] != [roles[1], roles[0]]:
+                continue
+            first, second = members
+            yield ctx.problem(
+                CODE,
+                elements[0],
+                f"{label(found)}: {noun} '{first.name}' (role {first.role}) is listed before "
+                f"'{second.name}' (role {second.role}); ros_control takes the values by role "
+                f"but the {noun} data in XML order, so '{first.name}' is driven with the "
+                f"values written on '{second.name}' and the other way round: list the "
+                f"{noun}s in role order",
+            )
