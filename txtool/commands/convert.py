@@ -28,6 +28,9 @@ TARGETS = ("ros1", "ros2-p1", "ros2-p2", "bb")
               help="Exit 0 even when something cannot be carried (it is still reported).")
 @click.option("--hardware-plugin", default="mock_components/GenericSystem", show_default=True,
               help="<plugin> of a <ros2_control> block created for ROS 1 transmissions.")
+@click.option("--reversible", is_flag=True,
+              help="To ROS 2: keep each transmission's original text in a comment before it, "
+                   "so that converting back gives its bytes back.")
 @click.option("--stdin-filename", help="Name to report for '-' (stdin).")
 # --- Beam Bots (--to bb) options ---
 @click.option("--bb-direction", type=click.Choice(["reversed", "negative-reduction"]),
@@ -39,8 +42,8 @@ TARGETS = ("ros1", "ros2-p1", "ros2-p2", "bb")
 @NO_XACRO_OPTION
 @xacro_options
 @exit_on_input_error
-def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_filename,
-            bb_direction, bb_topology, no_xacro, xacro) -> int:
+def command(path, target, output, in_place, allow_lossy, hardware_plugin, reversible,
+            stdin_filename, bb_direction, bb_topology, no_xacro, xacro) -> int:
     """Convert the transmissions of INPUT to another dialect, keeping the rest of the document.
 
     The result is read back and converted back; anything that does not survive, or that the
@@ -53,6 +56,9 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_
 
     if target != "bb" and (bb_direction or bb_topology):
         raise InputError("--bb-direction and --bb-topology apply to --to bb only")
+    if reversible and target in ("ros1", "bb"):
+        raise InputError("--reversible applies to --to ros2-p1 and ros2-p2 (converting back to "
+                         "ros1 puts carried originals back by itself)")
     in_place_target = bool(output) and path != "-" and _same_file(path, output)
     if target == "bb" and in_place_target:
         raise InputError(f"{output}: is the input file; --to bb writes Elixir, not a robot")
@@ -68,7 +74,8 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, stdin_
     else:
         from txtool.transform.convert import convert_source
 
-        result = convert_source(source, target, hardware_plugin=hardware_plugin, consume=True)
+        result = convert_source(source, target, hardware_plugin=hardware_plugin, consume=True,
+                                reversible=reversible)
         data, losses, notes = result.data, result.losses, result.notes
         for left in result.warnings:
             click.echo(f"warning: {left}", err=True)

@@ -28,6 +28,7 @@ from txtool.model.semantics import (
     effective,
 )
 from txtool.transform.placement import Placer
+from txtool.transform.reversible import Carrier
 from txtool.transform.splice import splice
 from txtool.views.tables import FIELDS, view
 
@@ -60,14 +61,16 @@ class Conversion:
 
 def convert_source(
     source: Source, target: Dialect, *, hardware_plugin: str = DEFAULT_HARDWARE_PLUGIN,
-    consume: bool = False,
+    consume: bool = False, reversible: bool = False,
 ) -> Conversion:
     """Convert ``source``; the bytes are spliced into ``source.data`` (see
     :mod:`txtool.transform.splice`) unless ``source`` is a xacro expansion.
 
     With ``consume`` the caller gives up ``source.tree``: it is converted in place instead of
     in a copy, and released (an empty document is left in its place) before the result is
-    read back, so a large document needs one tree at a time.
+    read back, so a large document needs one tree at a time. With ``reversible`` each
+    transmission converted to ROS 2 carries its original block (:mod:`.reversible`); the
+    originals carried by a document are put back whenever it goes back to ROS 1.
     """
     baseline = None if source.expanded else serialize(source.tree, source.data)
     tree = source.tree if consume else copy.deepcopy(source.tree)
@@ -75,6 +78,7 @@ def convert_source(
     result = Conversion(data=b"", target=target, found=len(originals),
                         already=sum(1 for f in originals if f.transmission.dialect == target))
     placer = Placer(tree.getroot(), hardware_plugin)
+    carry = Carrier(source, target, reversible)
     for found in originals:
         t = found.transmission
         if t.dialect == target or t.kind == "other" and family(t.dialect) == family(target):
@@ -97,15 +101,18 @@ def convert_source(
         result.warnings.extend(translation.warnings)
         carried = _other_children(found.element, t, target, result)
         _behaviour(t, translation.transmission, result)
+        carry.before(found)
         placer.place(found.element, translation.transmission, carried)
         result.converted += 1
     placer.finish()
-    result.notes.extend(placer.notes)
+    carry.after(tree, placer.built)
     if source.expanded:
         result.data = serialize(tree, source.data)
     else:
         assert baseline is not None
         result.data = splice(source.data, baseline, serialize(tree, source.data))
+    result.data = carry.restore(result.data)
+    result.notes.extend(placer.notes + carry.notes)
     transmissions = [found.transmission for found in originals]
     del originals, tree, placer  # the converted tree is freed before the output is read back
     if consume:

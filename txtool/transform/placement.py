@@ -45,6 +45,7 @@ class Placer:
         self._out_of: dict[etree._Element, list[_Move]] = {}
         self._components: list[etree._Element] | None = None
         self._declared: dict[etree._Element, set[str]] = {}
+        self.built: dict[etree._Element, etree._Element] = {}  # old element -> the last built
 
     def place(self, old: etree._Element, t: Transmission, carried: Carried | None = None
               ) -> None:
@@ -229,6 +230,7 @@ class Placer:
         with_comments(new, move.old)
         if move.carried or any(isinstance(c, etree._Comment) for c in new.iter()):
             dialects.pretty(new, indent, step)  # build() laid out all but these
+        self.built[move.old] = new
         return new
 
 

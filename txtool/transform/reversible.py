@@ -1,0 +1,232 @@
+"""``convert --reversible``: converting back gives the original transmission bytes.
+
+ROS 2 cannot hold everything a ROS 1 transmission's text holds (its layout, comments, an
+actuator ``<hardwareInterface>`` that no loader reads, member order), so a plain round trip
+brings each block back as txtool writes it. With ``--reversible`` each converted transmission
+is preceded by one comment that carries the original block, compressed::
+
+    <!-- txtool-original eNqzKS... -->
+
+Both loaders skip comments. Converting back, a transmission whose comment is still there and
+which is still exactly what txtool would generate from the original (nothing edited since) is
+replaced by the original bytes; an edited one is written as txtool writes it, and said so.
+Either way the comment goes.
+"""
+
+from __future__ import annotations
+
+import base64
+import binascii
+import re
+import secrets
+import zlib
+from dataclasses import dataclass
+
+from lxml import etree
+
+from txtool.dialects.read import Found, read_source
+from txtool.dialects.translate import translate
+from txtool.io.xmlio import InputError, Source, local, parse_bytes
+from txtool.model.core import Member, Transmission
+
+MARK = "txtool-original"
+MAX_ORIGINAL = 1 << 20  # a transmission block is a few hundred bytes
+_END = re.compile(rb"</([\w.-]+:)?transmission\s*>")
+_START = re.compile(rb"<([\w.-]+:)?transmission[\s/>]")
+
+
+@dataclass(frozen=True)
+class Restore:
+    token: str  # the name the written block is placed under until its original replaces it
+    original: bytes
+
+
+def block_of(data: bytes, element: etree._Element) -> bytes | None:
+    """The whole lines ``element`` stands on in ``data``, or None when they hold more."""
+    lines = data.splitlines(keepends=True)
+    start = (element.sourceline or 0) - 1
+    if not 0 <= start < len(lines) or not lines[start].lstrip().startswith(b"<"):
+        return None
+    end = start
+    if not lines[start].rstrip().endswith(b"/>"):
+        while end < len(lines) and not _END.search(lines[end]):
+            end += 1
+    if end >= len(lines) or not _END.search(lines[end]) and end != start:
+        return None
+    text = b"".join(lines[start:end + 1])
+    if not lines[end].rstrip().endswith(b">") or len(_START.findall(text)) != 1:
+        return None
+    return text
+
+
+def comment_for(block: bytes) -> etree._Comment:
+    payload = base64.b64encode(zlib.compress(block, 9)).decode("ascii")
+    return etree.Comment(f" {MARK} {payload} ")
+
+
+def annotate(element: etree._Element, block: bytes) -> None:
+    """Put the comment carrying ``block`` on its own line before ``element``."""
+    comment = comment_for(block)
+    previous = element.getprevious()
+    before = (previous.tail if previous is not None else element.getparent().text) or ""
+    indent = before.rpartition("\n")[2] if "\n" in before else ""
+    newline = "\r\n" if "\r\n" in before else "\n"
+    element.addprevious(comment)
+    comment.tail = newline + indent
+
+
+def original_of(element: etree._Element) -> bytes | None:
+    """The block carried by the comment right before ``element``; b"" for a damaged one."""
+    comment = _marker(element)
+    if comment is None:
+        return None
+    payload = (comment.text or "").strip()[len(MARK):].strip()
+    try:
+        inflater = zlib.decompressobj()
+        data = inflater.decompress(base64.b64decode(payload, validate=True), MAX_ORIGINAL)
+    except (binascii.Error, ValueError, zlib.error):
+        return b""
+    return b"" if inflater.unconsumed_tail else data
+
+
+def drop_marker(element: etree._Element) -> None:
+    from txtool.transform.placement import cut
+
+    comment = _marker(element)
+    if comment is not None:
+        cut(comment)
+
+
+def _marker(element: etree._Element) -> etree._Comment | None:
+    previous = element.getprevious()
+    if isinstance(previous, etree._Comment) and (previous.text or "").strip().startswith(MARK):
+        return previous
+    return None
+
+
+def restorable(found: Found, original: bytes) -> bool:
+    """Is ``found`` exactly what converting ``original`` gives (nothing edited since)?"""
+    try:
+        wrapped = b"<robot>" + original + b"</robot>"
+        tree = parse_bytes(wrapped, "original")
+        (source,) = read_source(Source("original", wrapped, tree), locate=False)
+    except (InputError, ValueError):
+        return False
+    present = found.transmission
+    generated = translate(source.transmission, present.dialect).transmission
+    return _essence(generated) == _essence(present)
+
+
+def _essence(t: Transmission) -> tuple:
+    def member(m: Member) -> tuple:
+        return (m.name, m.role, _value(m.mechanical_reduction), _value(m.offset))
+
+    return (t.name, t.kind, t.type.strip(), tuple(member(j) for j in t.joints),
+            tuple(member(a) for a in t.actuators))
+
+
+def _value(number) -> object:
+    return None if number is None else (number.value, number.text)
+
+
+def restore(data: bytes, restores: list[Restore], path: str) -> bytes:
+    """Replace each block written under a restore token by its original bytes."""
+    if not restores:
+        return data
+    tree = parse_bytes(data, path)
+    by_token = {e.get("name"): e for e in tree.getroot().iter("{*}transmission", "transmission")}
+    lines = data.splitlines(keepends=True)
+    replaced: dict[int, tuple[int, bytes]] = {}
+    for item in restores:
+        element = by_token[item.token]
+        block = block_of(data, element)
+        if block is None:  # txtool writes a transmission on lines of its own
+            raise AssertionError(f"{item.token}: not on lines of its own")
+        start = element.sourceline - 1
+        original = item.original
+        if not original.endswith((b"\n", b"\r")):
+            original += block[len(block.rstrip(b"\r\n")):]
+        replaced[start] = (start + len(block.splitlines()), original)
+    out: list[bytes] = []
+    index = 0
+    while index < len(lines):
+        if index in replaced:
+            end, original = replaced[index]
+            out.append(original)
+            index = end
+        else:
+            out.append(lines[index])
+            index += 1
+    return b"".join(out)
+
+
+class Carrier:
+    """What one conversion carries to ROS 2 (``reversible``) and puts back on the way to
+    ROS 1 (whenever a carried original is found)."""
+
+    def __init__(self, source: Source, target: str, reversible: bool) -> None:
+        self.source = source
+        self.target = target
+        self.reversible = reversible and target != "ros1" and not source.expanded
+        self.notes: list[str] = []
+        if reversible and source.expanded:
+            self.notes.append("--reversible: a xacro expansion has no original lines to carry "
+                              "(use migrate, or --no-xacro, to convert the source itself)")
+        self._carried: list[tuple[str, bytes]] = []
+        self._restores: list[Restore] = []
+        self._pending: list[tuple[etree._Element, Restore]] = []
+
+    def before(self, found: Found) -> None:
+        """Called for each transmission about to be converted, before it is placed."""
+        t = found.transmission
+        if self.target == "ros1":
+            self._take_back(found)
+        elif self.reversible and t.dialect == "ros1":
+            block = block_of(self.source.data, found.element)
+            if block is None:
+                self.notes.append(f"transmission '{t.name}': shares its lines with other "
+                                  "elements; its original is not carried (--reversible)")
+            else:
+                self._carried.append((t.name, block))
+
+    def after(self, tree: etree._ElementTree,
+              built: dict[etree._Element, etree._Element]) -> None:
+        """Put each carried original before its converted transmission; name each block
+        to be put back by its token (``built``: old element -> what the placer built)."""
+        for old, restore_ in self._pending:
+            built[old].set("name", restore_.token)
+        if not self._carried:
+            return
+        placed = [e for e in tree.getroot().iter() if isinstance(e.tag, str)
+                  and local(e) == "transmission" and _in_component(e)]
+        for name, block in self._carried:
+            element = next((e for e in placed if e.get("name") == name), None)
+            if element is not None:
+                placed.remove(element)
+                annotate(element, block)
+
+    def restore(self, data: bytes) -> bytes:
+        if self._restores:
+            count = len(self._restores)
+            self.notes.append(f"{count} transmission{'s' if count > 1 else ''}: the original "
+                              "bytes carried by --reversible are put back")
+        return restore(data, self._restores, self.source.path)
+
+    def _take_back(self, found: Found) -> None:
+        name = found.transmission.name
+        original = original_of(found.element)
+        if original is None:
+            return
+        drop_marker(found.element)
+        if original and restorable(found, original):
+            token = f"txtool-restore-{len(self._restores)}-{secrets.token_hex(8)}"
+            self._restores.append(Restore(token, original))
+            self._pending.append((found.element, self._restores[-1]))
+        else:
+            self.notes.append(f"transmission '{name}': changed since it was converted with "
+                              "--reversible; written as txtool writes it")
+
+
+def _in_component(element: etree._Element) -> bool:
+    parent = element.getparent()
+    return parent is not None and isinstance(parent.tag, str) and local(parent) == "ros2_control"
