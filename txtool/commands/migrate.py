@@ -38,11 +38,14 @@ def _mode(check: bool, diff: bool, write: bool) -> str:
               help="Convert even when something cannot be carried (it is still reported).")
 @click.option("--hardware-plugin", default="mock_components/GenericSystem", show_default=True,
               help="<plugin> of a <ros2_control> block created for ROS 1 transmissions.")
+@click.option("--reversible", is_flag=True,
+              help="With --to ros2-p1/ros2-p2: keep each transmission's original text in a "
+                   "comment before it, so that migrating back gives its bytes back.")
 @click.option("--no-xacro", is_flag=True,
               help="Accepted for uniformity with the other commands: migrate never runs xacro.")
 @exit_on_input_error
 def command(paths, target, check, diff, write, select, ignore, config_path, allow_lossy,
-            hardware_plugin, no_xacro) -> int:
+            hardware_plugin, reversible, no_xacro) -> int:
     """Apply the fixable rules (and, with --to, the conversion) to files and folders in place.
 
     Folders are searched like validate does (*.urdf, *.xacro, robot *.xml). xacro files are
@@ -53,6 +56,9 @@ def command(paths, target, check, diff, write, select, ignore, config_path, allo
     """
     from txtool.transform.migrate import MigrateOptions, migrate_paths
 
+    if reversible and target not in ("ros2-p1", "ros2-p2"):
+        raise click.UsageError("--reversible needs --to ros2-p1 or --to ros2-p2 (migrating "
+                               "back to ros1 puts carried originals back by itself)")
     options = MigrateOptions(
         mode=_mode(check, diff, write),  # type: ignore[arg-type]
         target=target,
@@ -61,6 +67,7 @@ def command(paths, target, check, diff, write, select, ignore, config_path, allo
         config=config_path,
         allow_lossy=allow_lossy,
         hardware_plugin=hardware_plugin,
+        reversible=reversible,
     )
     report = migrate_paths(paths, options)
     if report.diff:

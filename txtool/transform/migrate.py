@@ -40,6 +40,7 @@ from txtool.model.core import Dialect
 from txtool.rules import Rule, all_rules
 from txtool.transform.convert import DEFAULT_HARDWARE_PLUGIN, convert_source
 from txtool.transform.linediff import unified
+from txtool.transform.reversible import MARK
 from txtool.transform.splice import splice
 
 Mode = Literal["check", "diff", "write"]
@@ -58,6 +59,7 @@ class MigrateOptions:
     config: str | None = None
     allow_lossy: bool = False
     hardware_plugin: str = DEFAULT_HARDWARE_PLUGIN
+    reversible: bool = False
 
 
 @dataclass
@@ -233,7 +235,8 @@ def _convert(result: FileResult, data: bytes, rules: Sequence[Rule],
     source = Source(path=result.path, data=data, tree=parse_bytes(data, result.path))
     try:
         conversion = convert_source(source, options.target,
-                                    hardware_plugin=options.hardware_plugin, consume=True)
+                                    hardware_plugin=options.hardware_plugin, consume=True,
+                                    reversible=options.reversible)
     except ValueError as exc:
         result.losses.append(f"cannot convert: {exc}")
         result.refused = True
@@ -253,6 +256,8 @@ def dropped_comments(before: etree._ElementTree, after: etree._ElementTree) -> l
     left = Counter(_comments(after))
     lost = []
     for comment in _comment_nodes(before):
+        if (comment.text or "").strip().startswith(MARK):
+            continue  # a carried original, put back by the conversion (--reversible)
         if left[comment.text] > 0:
             left[comment.text] -= 1
             continue
