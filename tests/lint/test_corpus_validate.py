@@ -22,7 +22,9 @@ EXPECTED: dict[str, tuple[dict[str, int], set[str]]] = {
     # Errors only where the file's loader refuses it (ros_control for top-level ROS 1
     # transmissions, ros2_control inside <ros2_control>); each reason says why.
     # Unprefixed 'EffortJointInterface' is the only joint interface: ros_control refuses all 15
-    # (transmission_interface_loader.cpp:190-194 @0a09467); gazebo_ros_control would load them.
+    # (transmission_interface_loader.cpp:190-194 @0a09467), but the robot's loader is its
+    # <gazebo> plugin libbaxter_gazebo_ros_control.so (gazebo_ros_control's DefaultRobotHWSim),
+    # which accepts them with a deprecation warning: warnings, exit 0.
     "baxter__baxter.urdf": ({}, {"TX205", "TX300"}),
     # macro with <hardwareInterface> and no <mechanicalReduction>: the simple loader requires it
     "franka_ros__franka_description_utils.xacro": ({"TX104": 1}, set()),
@@ -41,8 +43,9 @@ EXPECTED: dict[str, tuple[dict[str, int], set[str]]] = {
     "kinova_ros__j2s7s300.urdf": ({}, set()),
     "kinova_ros__kinova_common.xacro": ({"TX002": 1}, set()),
     "moveit_resources__pr2_robot.urdf": ({}, {"TX302"}),
-    # unprefixed 'PositionJointInterface' only, 26 times: refused by ros_control; RHipYawPitch
-    # mimics LHipYawPitch yet has its own transmission
+    # unprefixed 'PositionJointInterface' only, 26 times: refused by ros_control, accepted by
+    # its libgazebo_ros_control.so plugin (DefaultRobotHWSim): warnings; RHipYawPitch mimics
+    # LHipYawPitch yet has its own transmission
     "nao_robot__naoV50.urdf": ({}, {"TX202", "TX205", "TX300"}),
     # stale ROS 1 transmissions beside <ros2_control> blocks: ros2_control, this robot's loader,
     # never reads them (TX304), so their unprefixed interfaces refuse nothing (no TX205);
@@ -146,3 +149,21 @@ def test_corpus_file_findings_match_its_documented_defects(name):
     assert result.exit_code == (1 if failing else 0), result.stderr
     assert {c: n for c, n in codes.items() if _own(c)} == own
     assert {c for c in codes if not _own(c)} == others
+
+
+@pytest.mark.parametrize(("name", "exit_code"), [
+    # gazebo_ros_control (their <gazebo> plugin) accepts the unprefixed interfaces
+    ("baxter__baxter.urdf", 0),
+    ("nao_robot__naoV50.urdf", 0),
+    # 'EffortJoinInterface' stops gazebo_ros_control too ("No matching hardware interface")
+    ("yumi__yumi.urdf", 1),
+])
+def test_robots_described_for_gazebo_are_judged_by_gazebo_ros_control_too(name, exit_code):
+    result = CliRunner().invoke(cli, ["validate", "--format", "json", "--select", "TX205",
+                                      str(corpus_file(name))])
+    report = json.loads(result.stdout)
+    assert result.exit_code == exit_code
+    severities = {p["severity"] for p in report["problems"]}
+    assert severities == ({"warning"} if exit_code == 0 else {"error"})
+    assert all("gazebo_ros_control (run by this robot's <gazebo> plugin" in p["message"]
+               for p in report["problems"])

@@ -60,7 +60,12 @@ def test_validate_from_the_workspace_root_checks_each_source_file_once(workspace
     # none of the copies in build/ and install/.
     assert report["summary"]["files"] == 3
     assert all(p["path"].startswith("./src/") for p in report["problems"])
-    assert code == 1  # the stale rrbot.xml names interfaces only on its actuators
+    # The stale rrbot.xml names interfaces only on its actuators: ros_control skips such joints,
+    # but its loader is gazebo_ros_control (libgazebo_ros_control.so), which takes the
+    # actuator's interface with a warning (default_robot_hw_sim.cpp initSim): warnings only.
+    assert [(p["code"], p["severity"]) for p in report["problems"]] == [
+        ("TX301", "warning"), ("TX301", "warning")]
+    assert code == 0
 
 
 def test_the_package_finds_itself_without_flags(workspace, monkeypatch):

@@ -11,7 +11,7 @@ from lxml import etree
 
 from txtool.dialects.read import Found, read_source
 from txtool.io.xmlio import Source, local
-from txtool.lint.problem import Problem
+from txtool.lint.problem import Problem, Severity
 from txtool.model.robot import Component, JointInfo, components, joint_elements, joint_info
 
 if TYPE_CHECKING:
@@ -85,16 +85,27 @@ class LintContext:
         return self.locator.position(element)
 
     def problem(
-        self, code: str, element: etree._Element, message: str, *, fixable: bool | None = None
+        self, code: str, element: etree._Element, message: str, *, fixable: bool | None = None,
+        loader_severity: Severity | None = None,
     ) -> Problem:
         """A problem at ``element``; marks positions only traced through xacro.
 
-        ``fixable=False`` marks a finding the rule's fix declines by design.
+        ``fixable=False`` marks a finding the rule's fix declines by design;
+        ``loader_severity`` lowers a finding that the file's own loader accepts.
         """
         where = self.position(element)
         if where.expanded:
             message = f"{message} (after xacro expansion)"
-        return Problem(self.source.path, where.line, where.column, code, message, fixable=fixable)
+        return Problem(self.source.path, where.line, where.column, code, message, fixable=fixable,
+                       loader_severity=loader_severity)
+
+    @cached_property
+    def gazebo_ros_control(self) -> etree._Element | None:
+        """The ``<plugin>`` that loads this robot into Gazebo through gazebo_ros_control's
+        DefaultRobotHWSim, if any (see :mod:`txtool.lint.gazebo`)."""
+        from txtool.lint.gazebo import default_robot_hw_sim
+
+        return default_robot_hw_sim(self.source.root)
 
     def transmissions(self) -> Iterator[Found]:
         return iter(self.found)

@@ -205,7 +205,7 @@ def _stamped(problem: Problem, rule: Rule, settings: Settings, lines: list[str])
         problem.message,
         end_line=problem.line,
         end_column=_end_column(problem, lines),
-        severity=settings.severity.get(rule.code, rule.severity),
+        severity=settings.severity.get(rule.code, problem.loader_severity or rule.severity),
         name=rule.name,
         fixable=rule.fixable and problem.fixable is not False,
     )

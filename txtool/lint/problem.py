@@ -38,3 +38,6 @@ class Problem:
     # A rule leaves this None, or sets it False for a finding its fix declines by design;
     # the pipeline stamps True or False.
     fixable: bool | None = field(default=None, compare=False)
+    # A rule sets this below its registered severity for a finding the file's own loader
+    # accepts (gazebo_ros_control's, say); a configured severity still wins.
+    loader_severity: Severity | None = field(default=None, compare=False)

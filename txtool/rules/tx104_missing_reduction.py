@@ -4,8 +4,11 @@ The SimpleTransmission, DifferentialTransmission and FourBarLinkageTransmission 
 ros_control require the element in every ``<actuator>`` ("Actuator 'A' of transmission 'T'
 does not specify the required <mechanicalReduction> element.") and load nothing without it.
 A ``<mechanicalReduction>`` written directly under ``<transmission>`` (the pre-Hydro form)
-is not read. gazebo_ros_control ignores reductions, so a simulation may run fine while the
-real robot's transmission fails to load. ROS 2 has no such requirement (the default is 1.0).
+is not read. gazebo_ros_control's DefaultRobotHWSim never reads reductions
+(gazebo_ros_pkgs gazebo_ros_control/src/default_robot_hw_sim.cpp ``initSim`` @01c3a2c): in a
+robot that names it as its ``<gazebo>`` plugin the finding is a warning, since the simulation
+loads while a ros_control ``RobotHW`` on the real robot would refuse the transmission. ROS 2
+has no such requirement (the default is 1.0).
 
 Failing example::
 
@@ -32,6 +35,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from txtool.lint import gazebo
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.support import children, label, members, opaque, typed_ros1
@@ -58,4 +62,10 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             )
             if legacy:
                 message += " (it does not read the one under <transmission>)"
+            plugin = ctx.gazebo_ros_control
+            if plugin is not None:
+                yield ctx.problem(CODE, ref.element,
+                                  f"{message}; {gazebo.loaded_here(plugin)} never reads "
+                                  "reductions and loads it", loader_severity="warning")
+                continue
             yield ctx.problem(CODE, ref.element, message)

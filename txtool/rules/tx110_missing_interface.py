@@ -5,9 +5,13 @@ every ``<joint>`` of a transmission ("No valid hardware interface element found 
 'J'.", ros-controls/ros_control transmission_interface/src/transmission_parser.cpp:155-175
 @14e64ea); the joint is skipped, and a transmission left without joints is not loaded ("Failed
 to load joints for transmission 'T'."). Since ROS Indigo an interface written only in the
-``<actuator>`` does not count (ros_control#177); gazebo_ros_control still tolerated that with
-a warning. Transmissions of families with their own loaders (``pr2_mechanism_model/``,
-``sr_mechanism_model/``) and ones ros_control skips for want of a ``<type>`` are not checked.
+``<actuator>`` does not count (ros_control#177). gazebo_ros_control's DefaultRobotHWSim
+still takes the first actuator's interface when the joint names none, with a warning
+(gazebo_ros_pkgs gazebo_ros_control/src/default_robot_hw_sim.cpp ``initSim`` @01c3a2c): in a
+robot that names it as its ``<gazebo>`` plugin, and whose actuator names an interface it
+accepts, this rule leaves the joint to TX301 (a warning, with a fix). Transmissions of
+families with their own loaders (``pr2_mechanism_model/``, ``sr_mechanism_model/``) and ones
+ros_control skips for want of a ``<type>`` are not checked.
 
 Failing example::
 
@@ -29,6 +33,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from txtool.dialects.read import Found
+from txtool.lint import gazebo
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.support import children, label, loaded_by_ros_control, members, opaque, typed_ros1
@@ -50,19 +55,19 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             if any((h.text or "").strip() for h in interfaces):
                 continue
             what = "an empty <hardwareInterface>" if interfaces else "no <hardwareInterface>"
-            where = " (only its actuator names one)" if _actuator_has_one(found) else ""
-            yield ctx.problem(
-                CODE,
-                ref.element,
-                f"joint '{ref.member.name}' of {label(found)} has {what}{where}: "
-                "ros_control skips the joint",
-            )
+            taken = _actuator_interfaces(found)
+            where = " (only its actuator names one)" if taken else ""
+            message = (f"joint '{ref.member.name}' of {label(found)} has {what}{where}: "
+                       "ros_control skips the joint")
+            if ctx.gazebo_ros_control is not None and taken and gazebo.accepts(taken[0]):
+                continue  # the robot's loader takes the actuator's: TX301 warns (and fixes)
+            yield ctx.problem(CODE, ref.element, message)
 
 
-def _actuator_has_one(found: Found) -> bool:
-    return any(
-        (h.text or "").strip()
-        for ref in members(found)
-        if ref.noun == "actuator"
-        for h in children(ref.element, "hardwareInterface")
-    )
+def _actuator_interfaces(found: Found) -> list[str]:
+    """The first actuator's interfaces: what gazebo_ros_control falls back on."""
+    actuators = [ref for ref in members(found) if ref.noun == "actuator"]
+    if not actuators:
+        return []
+    texts = ((h.text or "").strip() for h in children(actuators[0].element, "hardwareInterface"))
+    return [text for text in texts if text]

@@ -15,6 +15,12 @@ What it checks
     block of a document that has such blocks: the robot's loader is then ros2_control, which
     never reads it (TX304 says so), so nothing refuses it.
 
+    A robot that Gazebo loads through gazebo_ros_control's DefaultRobotHWSim (a
+    ``libgazebo_ros_control.so`` plugin, or one built on it, without another
+    ``<robotSimType>``) gets a warning instead where that loader accepts the first interface:
+    it takes the unprefixed names with a deprecation warning (gazebo_ros_pkgs
+    gazebo_ros_control/src/default_robot_hw_sim.cpp ``initSim`` @01c3a2c).
+
 Why
     ros_control warns for each name its pluginlib lookup does not find and, when no interface
     is left, logs "Failed to load transmission 'T'. It contains no valid hardware
@@ -56,6 +62,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from txtool.dialects.read import Found, enclosing_component
+from txtool.lint import gazebo
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.support import (
@@ -112,18 +119,27 @@ def _check_ros1(ctx: LintContext, found: Found) -> Iterator[Problem]:
         return
     shown = ", ".join(f"'{name}'" for name in names)
     fixes = [PREFIX + name for name in names if unprefixed_registered(name)]
+    message = (f"{label(found)} names no hardware interface ros_control knows ({shown}): "
+               f"ros_control refuses it (\"It contains no valid hardware interfaces\")")
+    plugin = ctx.gazebo_ros_control
+    if plugin is not None and gazebo.accepts(names[0]):
+        yield ctx.problem(
+            CODE, joints[0].element,
+            f"{message}; {gazebo.loaded_here(plugin)} accepts '{names[0]}' with a deprecation "
+            f"warning: write '{PREFIX + names[0]}' for both",
+            loader_severity="warning",
+        )
+        return
+    if plugin is not None:
+        message += (f"; so does {gazebo.loaded_here(plugin)}: \"No matching hardware interface "
+                    "found\"")
     advice = (
         f"; write '{fixes[0]}' (gazebo_ros_control accepts the unprefixed name with a "
         "deprecation warning, ros_control does not)"
         if fixes
         else ros1_hint(names[0])
     )
-    yield ctx.problem(
-        CODE,
-        joints[0].element,
-        f"{label(found)} names no hardware interface ros_control knows ({shown}): ros_control "
-        f"refuses it (\"It contains no valid hardware interfaces\"){advice}",
-    )
+    yield ctx.problem(CODE, joints[0].element, message + advice)
 
 
 def _check_ros2(ctx: LintContext, found: Found) -> Iterator[Problem]:

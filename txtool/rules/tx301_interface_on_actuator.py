@@ -56,6 +56,7 @@ from collections.abc import Iterator
 from lxml import etree
 
 from txtool.dialects.read import detect_dialect, ros1_type, text_of, transmission_elements
+from txtool.lint import gazebo
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.support import (
@@ -100,13 +101,16 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         if not joints:
             continue
         actuator = next(a for a in children(found.element, "actuator") if _interfaces(a))
+        plugin = ctx.gazebo_ros_control
+        also = (f"; {gazebo.loaded_here(plugin)} takes the actuator's, with a warning"
+                if plugin is not None else "")
         for joint in joints:
             yield ctx.problem(
                 CODE,
                 joint,
                 f"joint '{joint.get('name', '')}' of {label(found)} has no "
                 f"<hardwareInterface>, only actuator '{actuator.get('name', '')}' has: "
-                "ros_control (since Indigo) skips the joint ('No valid hardware interface')",
+                f"ros_control (since Indigo) skips the joint ('No valid hardware interface'){also}",
             )
 
 
