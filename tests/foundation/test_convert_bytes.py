@@ -172,3 +172,26 @@ def test_converting_in_place_writes_what_converting_a_copy_writes(document, targ
     assert (consumed.data, consumed.losses, consumed.notes, consumed.warnings) == (
         copied.data, copied.losses, copied.notes, copied.warnings)
     assert len(source.root) == 0  # released before the result was read back
+
+
+def test_repeated_lines_between_scattered_transmissions_keep_their_bytes():
+    # Found by the round-trip property: the <joint name="j0"> declared in the new
+    # <ros2_control> block used to pair with the old transmission's line and hold one of the
+    # repeated <link> lines away from its copy, which was then written as <link name="base"/>.
+    def block(i: int) -> str:
+        return (f'  <transmission name="t{i}">\n'
+                "    <type>transmission_interface/SimpleTransmission</type>\n"
+                f'    <joint name="j{i}">\n'
+                "      <hardwareInterface>hardware_interface/PositionJointInterface"
+                "</hardwareInterface>\n"
+                f'    </joint>\n    <actuator name="m{i}">\n'
+                "      <mechanicalReduction>1</mechanicalReduction>\n"
+                "    </actuator>\n  </transmission>\n")
+
+    link = "  <link name='base'></link>\n"
+    document = ("<robot name='r'>\n" + block(0) + link + block(1) + link + link + block(2)
+                + "</robot>\n").encode()
+    for target in ("ros2-p1", "ros2-p2"):
+        there = convert(document, target)
+        assert there.count(link.encode()) == 3
+        assert convert(there, "ros1").count(link.encode()) == 3

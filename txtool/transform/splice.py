@@ -152,9 +152,60 @@ def _key(line: bytes) -> bytes:
 
 
 def _matches(a: list[bytes], b: list[bytes]) -> dict[int, int]:
-    """Index in ``b`` of each line of ``a`` that the longest matching alignment pairs."""
+    """Index in ``b`` of each line of ``a`` that the longest matching alignment pairs.
+
+    A line inside a ``<transmission>`` or ``<ros2_control>`` element, which conversions
+    rewrite, pairs only with a line inside the element of the same kind and name, so that a
+    ``<joint name="j">`` declared in a new ``<ros2_control>`` block cannot hold a line of the
+    rest of the document away from its copy. The alignment matches the longest run first and
+    so may still pair a run of repeated lines (a ``<link/>`` between scattered transmissions)
+    with the wrong copies, leaving one of the rest unpaired although it could keep its text;
+    then the reversed texts are matched too, and the alignment that pairs more lines of the
+    rest wins.
+    """
+    keys_a, keys_b = _scoped(a), _scoped(b)
+    forward = _pairs(matching_blocks(keys_a, keys_b, autojunk=False))
+    paired_b = set(forward.values())
+    left_a = {keys_a[i] for i in range(len(a)) if i not in forward and keys_a[i] is a[i]}
+    if not left_a.intersection(keys_b[j] for j in range(len(b))
+                               if j not in paired_b and keys_b[j] is b[j]):
+        return forward
+    last_a, last_b = len(a) - 1, len(b) - 1
+    backward = {last_a - i: last_b - j for i, j in
+                _pairs(matching_blocks(keys_a[::-1], keys_b[::-1], autojunk=False)).items()}
+
+    def rest(pairs: dict[int, int]) -> int:
+        return sum(1 for i in pairs if keys_a[i] is a[i])
+
+    return backward if rest(backward) > rest(forward) else forward
+
+
+_SCOPE = re.compile(rb"<((?:[\w.-]+:)?(?:transmission|ros2_control))(?=[\s/>])([^>]*)>")
+_SCOPE_END = re.compile(rb"</(?:[\w.-]+:)?(?:transmission|ros2_control)\s*>")
+_NAME = re.compile(rb"""\bname\s*=\s*(?:"([^"]*)"|'([^']*)')""")
+
+
+def _scoped(lines: list[bytes]) -> list[bytes]:
+    """Each line as the key it is matched by: a line inside a ``<transmission>`` or
+    ``<ros2_control>`` is prefixed by that element's kind and name (the same object is
+    returned for every other line)."""
+    keys, scopes = [], []
+    for line in lines:
+        opened = _SCOPE.search(line)
+        if opened is not None:
+            name = _NAME.search(opened.group(2))
+            label = name.group(1) or name.group(2) or b"" if name else b""
+            scopes.append(b"\0" + opened.group(1) + b" " + label + b"\0")
+        keys.append(scopes[-1] + line if scopes else line)
+        if scopes and (opened is not None and opened.group(2).endswith(b"/")
+                       or _SCOPE_END.search(line)):
+            scopes.pop()
+    return keys
+
+
+def _pairs(blocks: list[tuple[int, int, int]]) -> dict[int, int]:
     pairs: dict[int, int] = {}
-    for i, j, size in matching_blocks(a, b, autojunk=False):
+    for i, j, size in blocks:
         for k in range(size):
             pairs[i + k] = j + k
     return pairs
