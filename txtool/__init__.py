@@ -16,7 +16,14 @@ Bad input raises :class:`InputError` with the one-line message the CLI prints.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping, Sequence
+# First, before anything slow loads: Ctrl-C while the `txtool` command starts is one line and
+# exit 130, not a traceback (see txtool.io.signals). Importing txtool as a library changes nothing.
+from txtool.io import signals as _signals
+
+if _signals.started_as_command():
+    _signals.exit_on_signals()
+
+from collections.abc import Iterable, Mapping, Sequence  # noqa: E402
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 

@@ -108,6 +108,9 @@ def forget_reading() -> None:
 
 def read_bytes(path: str, *, stdin_name: str | None = None) -> tuple[str, bytes]:
     """Read a file or ``-`` (stdin); returns the display path and the bytes."""
+    from txtool.io.signals import stop_if_received
+
+    stop_if_received()
     if path == "-":
         _reading.set(stdin_name or "<stdin>")
         return stdin_name or "<stdin>", sys.stdin.buffer.read(MAX_BYTES + 1)
@@ -506,8 +509,9 @@ def write_atomic(path: str, data: bytes) -> None:
     """
     import tempfile
 
-    from txtool.io.signals import held
+    from txtool.io.signals import held, stop_if_received
 
+    stop_if_received()
     target = os.path.realpath(path)
     folder = os.path.dirname(target) or "."
     temp = None
