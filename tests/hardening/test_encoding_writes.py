@@ -11,7 +11,10 @@ import codecs
 
 import pytest
 from click.testing import CliRunner
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
+from tests.foundation.test_convert_bytes import convert, documents
 from tests.hardening.hostile_inputs import one_line_error, run
 from txtool.cli import cli
 
@@ -106,6 +109,26 @@ def test_a_rewritten_document_keeps_its_encoding_mark_and_line_endings(
     code, _, err = run(*args)
     assert code == 0, err
     assert_written_as((tmp_path / written).read_bytes(), form, NEWLINES[newline])
+
+
+def stored(document: bytes, form: str) -> bytes:
+    """A UTF-8 document (without BOM) in ``form``, its declaration naming that encoding."""
+    mark, codec, declared = FORMS[form]
+    text = document.decode().replace("encoding='UTF-8'", f"encoding='{declared}'", 1)
+    return mark + text.encode(codec)
+
+
+@settings(max_examples=80, deadline=None)
+@given(documents(), st.sampled_from(list(FORMS)), st.sampled_from(["ros2-p1", "ros2-p2"]))
+def test_converting_any_document_gives_its_utf8_conversion_in_its_encoding(document, form,
+                                                                          target):
+    """Declaration or none, comments, blank lines, CRLF or CR, ``<x></x>``, character
+    references: what a UTF-16/32 document becomes is what its UTF-8 twin becomes, stored alike;
+    and converting back gives the document again, byte for byte, as for the twin."""
+    plain = document[0].removeprefix(codecs.BOM_UTF8)
+    there = convert(plain, target)
+    assert convert(stored(plain, form), target) == stored(there, form)
+    assert convert(stored(there, form), "ros1") == stored(convert(there, "ros1"), form)
 
 
 @pytest.mark.parametrize("form", FORMS)
