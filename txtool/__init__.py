@@ -143,7 +143,7 @@ def convert(
 ) -> Conversion:
     """Convert a file or XML text to ``to`` (``"ros1"``, ``"ros2-p1"`` or ``"ros2-p2"``) as
     ``txtool convert`` does, keeping every byte it need not change; nothing is written."""
-    from txtool.io.xmlio import document_text
+    from txtool.io.encodings import document_text
     from txtool.transform.convert import convert_source
 
     loaded = _source(source, expand, _xacro_options(xacro_args, pkg_dirs, pkg_paths))

@@ -18,15 +18,14 @@ from __future__ import annotations
 import re
 from typing import TYPE_CHECKING
 
+from txtool.io.encodings import document_text, text_lines
 from txtool.io.xmlio import (
     InputError,
     Source,
     XMLSyntax,
-    document_text,
     is_xacro,
     parse_bytes,
     read_bytes,
-    text_lines,
 )
 from txtool.lint.config import Settings, resolve
 from txtool.lint.context import LintContext

@@ -13,7 +13,7 @@ import re
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
-from txtool.io.xmlio import parsing_form
+from txtool.io.encodings import parsing_form
 from txtool.lint.problem import Problem
 
 _MARK = b"txtool:"

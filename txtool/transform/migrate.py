@@ -22,10 +22,10 @@ from typing import Literal
 from lxml import etree
 
 from txtool.dialects.read import transmission_elements
+from txtool.io.encodings import document_text
 from txtool.io.xmlio import (
     InputError,
     Source,
-    document_text,
     parse_bytes,
     read_bytes,
     replace_if_unchanged,

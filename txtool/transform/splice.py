@@ -17,7 +17,8 @@ import re
 
 from lxml import etree
 
-from txtool.io.xmlio import InputError, detect_encoding, parse_bytes, serialize, utf8_form
+from txtool.io.encodings import detect_encoding, utf8_form
+from txtool.io.xmlio import InputError, parse_bytes, serialize
 from txtool.transform.linediff import matching_blocks
 
 _LATE_DECLARATION = re.compile(rb"<\?xml\s[^>]*\?>[ \t]*(\r\n|\r|\n)?")
@@ -39,7 +40,7 @@ def splice(original: bytes, baseline: bytes, changed: bytes) -> bytes:
     the change did not touch is copied from ``original``, the rest comes from ``changed``
     with the line ending of ``original``. When the result would not parse to the changed
     document, the serialized document is returned instead. UTF-16 and UTF-32 documents are
-    spliced as UTF-8 (see :func:`txtool.io.xmlio.utf8_form`) and stored back as they were.
+    spliced as UTF-8 (see :func:`txtool.io.encodings.utf8_form`) and stored back as they were.
     """
     if changed == baseline:
         return original
