@@ -189,6 +189,23 @@ def test_validate_places_findings_by_line_and_column(tmp_path, monkeypatch, form
                    "transmission line 11 and transmision\nFound 1 error in 1 file.\n")
 
 
+@pytest.mark.parametrize("newline", NEWLINES)
+@pytest.mark.parametrize("form", FORMS)
+def test_validate_finds_a_misplaced_declaration_in_any_encoding(tmp_path, monkeypatch, form,
+                                                                newline):
+    monkeypatch.chdir(tmp_path)
+    document = tmp_path / "robot.urdf"
+    document.write_bytes(encode("<!-- licence -->\n" + BEFORE, form, NEWLINES[newline]))
+    assert run("validate", "--select", "TX0", "robot.urdf")[1].splitlines()[0] == (
+        "robot.urdf:2:1: error TX001 xml-syntax: XML declaration not at the start of the "
+        "document (it follows a comment): not well-formed, so xacro and other strict XML "
+        "parsers reject the file")
+    document.write_bytes(encode("\n  " + BEFORE, form, NEWLINES[newline]))
+    assert run("validate", "--select", "TX004", "robot.urdf")[1].splitlines()[0].startswith(
+        "robot.urdf:2:3: warning TX004 space-before-declaration: whitespace before the XML "
+        "declaration")
+
+
 @pytest.mark.parametrize("form", ["UTF-16LE with BOM", "UTF-32BE without BOM", "UTF-8 with BOM"])
 def test_migrate_diff_shows_the_text(tmp_path, monkeypatch, form):
     monkeypatch.chdir(tmp_path)

@@ -48,7 +48,10 @@ class Encoding:
         return self.mark + text.encode(self.codec)
 
 
-_DECLARED = re.compile(r"""^\s*<\?xml[^>]*?\sencoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
+# The XML declaration's encoding; looked for in the head of the document, as a declaration
+# after a comment is read too (see xmlio._movable_declaration).
+_DECLARED = re.compile(r"""<\?xml[^>]*?\sencoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
+_HEAD = 4096
 
 
 def detect_encoding(data: bytes) -> Encoding:
@@ -83,13 +86,13 @@ def _zero_pattern(head: bytes) -> str | None:
 
 
 def _declared(data: bytes, codec: str) -> str | None:
-    match = _DECLARED.match(data[:1024].decode(codec, errors="replace"))
+    match = _DECLARED.search(data[:_HEAD].decode(codec, errors="replace"))
     return match.group(1) if match else None
 
 
 def _renamed(text: str, name: str) -> str:
-    """``text`` with the encoding its leading XML declaration names replaced by ``name``."""
-    match = _DECLARED.match(text)
+    """``text`` with the encoding its XML declaration names replaced by ``name``."""
+    match = _DECLARED.search(text, 0, _HEAD)
     if match is None:
         return text
     return text[:match.start(1)] + name + text[match.end(1):]
@@ -168,8 +171,8 @@ def mislabelled(data: bytes) -> tuple[int, int, str] | None:
                  "ASCII character)")
     else:
         return None
-    head = data.removeprefix(encoding.mark)[:1024].decode(encoding.codec, errors="replace")
-    start = _DECLARED.match(head).start(1)  # type: ignore[union-attr]
+    head = data.removeprefix(encoding.mark)[:_HEAD].decode(encoding.codec, errors="replace")
+    start = _DECLARED.search(head).start(1)  # type: ignore[union-attr]
     before = re.split(r"\r\n|\r|\n", head[:start])
     return (len(before), len(before[-1]) + 1,
             f'the XML declaration says encoding="{declared}", but the document {found}; '

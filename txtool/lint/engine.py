@@ -18,7 +18,7 @@ from __future__ import annotations
 import re
 from typing import TYPE_CHECKING
 
-from txtool.io.encodings import document_text, text_lines
+from txtool.io.encodings import document_text, parsing_form, text_lines
 from txtool.io.xmlio import (
     InputError,
     Source,
@@ -108,7 +108,7 @@ def _lint_file(path: str, settings: Settings, stdin_name: str | None) -> list[Pr
 
 def _late_declaration(path: str, data: bytes) -> list[Problem]:
     """TX001 for an ``<?xml ...?>`` declaration after a comment (read anyway, see xmlio)."""
-    head = data[:4096].removeprefix(b"\xef\xbb\xbf")
+    head = parsing_form(data)[:4096].removeprefix(b"\xef\xbb\xbf")
     index = head.find(b"<?xml")
     if index <= 0 or not head[:index].strip():
         return []
