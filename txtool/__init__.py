@@ -16,7 +16,14 @@ Bad input raises :class:`InputError` with the one-line message the CLI prints.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping, Sequence
+# First, before anything slow loads: Ctrl-C while the `txtool` command starts is one line and
+# exit 130, not a traceback (see txtool.io.signals). Importing txtool as a library changes nothing.
+from txtool.io import signals as _signals
+
+if _signals.started_as_command():
+    _signals.exit_on_signals()
+
+from collections.abc import Iterable, Mapping, Sequence  # noqa: E402
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -136,7 +143,7 @@ def convert(
 ) -> Conversion:
     """Convert a file or XML text to ``to`` (``"ros1"``, ``"ros2-p1"`` or ``"ros2-p2"``) as
     ``txtool convert`` does, keeping every byte it need not change; nothing is written."""
-    from txtool.io.xmlio import document_text
+    from txtool.io.encodings import document_text
     from txtool.transform.convert import convert_source
 
     loaded = _source(source, expand, _xacro_options(xacro_args, pkg_dirs, pkg_paths))

@@ -6,24 +6,19 @@ modules import nothing heavy at module level, so ``txtool validate`` never loads
 
 from __future__ import annotations
 
+import contextlib
+import errno
+import importlib
+import os
 import sys
+from types import ModuleType
+from typing import Any
 
-try:  # Ctrl-C while the modules load: the same one line as later, not a traceback
-    import contextlib
-    import errno
-    import importlib
-    import os
-    from types import ModuleType
-    from typing import Any
+import click
 
-    import click
-
-    from txtool import __version__
-    from txtool.io import signals
-    from txtool.io.printable import printable
-except KeyboardInterrupt:
-    sys.stderr.write("txtool: interrupted\n")
-    raise SystemExit(130) from None
+from txtool import __version__
+from txtool.io import signals
+from txtool.io.printable import printable
 
 # Commands whose output rich may colour: each gets --color (see commands.common.with_color).
 COLOURING = frozenset({"show", "roundtrip", "demo", "simulate"})
@@ -145,8 +140,17 @@ def cli(ctx: click.Context, debug: bool) -> None:
 
 
 def main() -> None:
-    debug = "--debug" in sys.argv[1:]
     signals.stop_on_signals()
+    try:
+        _main()
+    except signals.Stopped as stop:  # a signal while leaving: nothing is left to clean up
+        _leave(stop.line, stop.exit_code)
+    finally:
+        signals.exit_on_signals()  # until the process ends
+
+
+def _main() -> None:
+    debug = "--debug" in sys.argv[1:]
     xmlio = _xmlio_if_loaded()
     if xmlio is not None:
         xmlio.forget_reading()

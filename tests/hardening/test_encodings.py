@@ -19,7 +19,8 @@ from click.testing import CliRunner
 from tests.corpus import corpus_dir, corpus_file
 from tests.hardening.hostile_inputs import one_line_error, robot, run
 from txtool.cli import cli
-from txtool.io.xmlio import document_text, parse_bytes
+from txtool.io.encodings import document_text
+from txtool.io.xmlio import parse_bytes
 
 GERMAN = robot(joint="gelenk_ä", transmission="getriebe_ä",
                comment="\n  <!-- Getriebe für das Gelenk: ä ö ü ß -->")

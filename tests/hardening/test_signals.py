@@ -80,37 +80,101 @@ def test_a_signal_during_a_write_leaves_no_temporary_file(tmp_path, command, num
     assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == before
 
 
-# Ctrl-C before any command runs: while the modules load, and while click builds --help.
-EARLY = {
-    "importing click": """
-        import sys
+# Ctrl-C while the command starts. The program is the console script pip writes for
+# `[project.scripts] txtool = "txtool.cli:main"`, with a trap in front: an import hook that
+# marks the moment the import of a given module begins, once txtool's first handler is in place
+# (before that, a signal lands in Python's own start-up or in site's .pth files, where only
+# Python's traceback is possible), and then holds that import for a while. The signal is sent
+# after the mark, so it lands in txtool's loading, deterministically.
+CONSOLE_SCRIPT = """\
+import os, signal, sys, time
 
-        class Trap:
-            def find_spec(self, name, path=None, target=None):
-                if name == "click":
-                    raise KeyboardInterrupt
-                return None
+class Trap:
+    def find_spec(self, name, path=None, target=None):
+        armed = signal.getsignal(signal.SIGINT) is not signal.default_int_handler
+        if armed and name in {pause!r}:
+            sys.meta_path.remove(self)
+            open("armed", "w").close()
+            time.sleep({hold})
+        return None
 
-        sys.meta_path.insert(0, Trap())
-    """,
-    "loading a command": """
-        import os, signal, sys
+sys.meta_path.insert(0, Trap())
+{start}
+"""
+CONSOLE_START = """\
+from txtool.cli import main
+if __name__ == '__main__':
+    sys.exit(main())
+"""
+MODULE_START = """\
+import runpy
+sys.argv[0], sys.orig_argv = "-m", [sys.executable, "-m", "txtool", *sys.argv[1:]]
+runpy.run_module("txtool", run_name="__main__", alter_sys=True)
+"""
 
-        class Trap:
-            def find_spec(self, name, path=None, target=None):
-                if name == "txtool.commands.convert":
-                    os.kill(os.getpid(), signal.SIGINT)
-                return None
 
-        sys.meta_path.insert(0, Trap())
-    """,
+def start_txtool(tmp_path: Path, *args: str, pause: set[str], hold: float,
+                 start: str = CONSOLE_START) -> subprocess.Popen[str]:
+    """The command, started; returns once the trap has marked the import in ``pause``."""
+    script = tmp_path / "bin" / "txtool"  # argv[0] as the console script's
+    script.parent.mkdir(exist_ok=True)
+    script.write_text(CONSOLE_SCRIPT.format(pause=pause, hold=hold, start=start))
+    process = subprocess.Popen([sys.executable, str(script), *args], cwd=tmp_path, env=ENV,
+                               stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 60
+    while not (tmp_path / "armed").exists():
+        assert process.poll() is None and time.monotonic() < deadline, process.communicate()
+        time.sleep(0.005)
+    return process
+
+
+def interrupted(process: subprocess.Popen[str], delay: float = 0.0) -> tuple[int, str, str]:
+    time.sleep(delay)
+    process.send_signal(signal.SIGINT)
+    out, err = process.communicate(timeout=60)
+    return process.returncode, out, err
+
+
+# Where the command is held (each is imported while `txtool <command>` starts).
+LOADING = {
+    "importing the txtool package": (["--version"], "dataclasses"),
+    "importing click": (["--version"], "click"),
+    "importing lxml": (["validate", "-"], "lxml"),
+    "importing rich": (["show", "demo.urdf"], "rich"),
+    "importing pydantic": (["schema"], "pydantic"),
+    "loading a command": (["show", "demo.urdf"], "txtool.commands.show"),
 }
 
 
-@pytest.mark.parametrize("moment", EARLY)
-def test_an_early_ctrl_c_is_one_line_and_exit_130(tmp_path, moment):
-    assert txtool_with(EARLY[moment], "--help", cwd=tmp_path) == (
-        130, "", "txtool: interrupted\n")
+@pytest.mark.parametrize("moment", LOADING)
+def test_ctrl_c_while_the_command_loads_is_one_line_and_exit_130(tmp_path, moment):
+    args, module = LOADING[moment]
+    (tmp_path / "demo.urdf").write_bytes(DEMO)
+    process = start_txtool(tmp_path, *args, pause={module}, hold=60)
+    assert interrupted(process) == (130, "", "txtool: interrupted\n")
+
+
+def test_ctrl_c_while_python_m_txtool_loads_is_one_line_and_exit_130(tmp_path):
+    process = start_txtool(tmp_path, "show", "-", pause={"click"}, hold=60, start=MODULE_START)
+    assert interrupted(process) == (130, "", "txtool: interrupted\n")
+
+
+@pytest.mark.parametrize("delay_ms", [0, 5, 10, 20, 40, 80, 160])
+def test_ctrl_c_at_any_moment_after_txtool_starts_is_one_line_and_exit_130(tmp_path, delay_ms):
+    """The trap marks the first import after txtool's handler is in place and lets it go on;
+    the signal comes ``delay_ms`` later: in the package, in click, lxml or rich, in the command
+    or while it reads its input (stdin stays open, so it never finishes first)."""
+    process = start_txtool(tmp_path, "show", "-", pause={"dataclasses"}, hold=0)
+    assert interrupted(process, delay_ms / 1000) == (130, "", "txtool: interrupted\n")
+
+
+def test_importing_txtool_as_a_library_leaves_ctrl_c_alone():
+    program = ("import signal, txtool.cli; "
+               "print(signal.getsignal(signal.SIGINT) is signal.default_int_handler)")
+    result = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True,
+                            env=ENV, timeout=120)
+    assert (result.returncode, result.stdout, result.stderr) == (0, "True\n", "")
 
 
 def test_a_library_that_turns_ctrl_c_into_an_error_still_exits_130(tmp_path):

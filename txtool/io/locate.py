@@ -15,7 +15,8 @@ from functools import cached_property, lru_cache
 
 from lxml import etree
 
-from txtool.io.xmlio import Source, is_xacro_element, local, text_lines
+from txtool.io.encodings import text_lines
+from txtool.io.xmlio import Source, is_xacro_element, local
 
 
 @dataclass(frozen=True)

@@ -1,20 +1,33 @@
 """Stopping cleanly on Ctrl-C (SIGINT) and SIGTERM.
 
-The command line installs :func:`stop_on_signals`: the first signal raises :class:`Stopped`
-where the program is, so every ``finally`` runs (a temporary file is removed) and the CLI exits
-130 or 143 with one line. :class:`Stopped` is not a ``KeyboardInterrupt``, so click does not
-turn it into "Aborted!" and exit 1. Further signals are ignored while the program unwinds, and
-:func:`held` delays one that arrives in a step that must not be cut in two (creating a temporary
-file and recording its name). Library use installs nothing: Ctrl-C stays a KeyboardInterrupt.
+The ``txtool`` command answers a signal with one line and exit ``128 + signal`` (130, 143) at
+every moment after its code starts, in three stages:
+
+- while the modules load: ``txtool/__init__.py`` calls :func:`exit_on_signals` as its first
+  step when the process is the command (:func:`started_as_command`): a signal ends the process
+  at once, as nothing is written yet;
+- while the command runs: the command line installs :func:`stop_on_signals`: the first signal
+  raises :class:`Stopped` where the program is, so every ``finally`` runs (a temporary file is
+  removed). :class:`Stopped` is not a ``KeyboardInterrupt``, so click does not turn it into
+  "Aborted!" and exit 1. Further signals are ignored while the program unwinds, and
+  :func:`held` delays one that arrives in a step that must not be cut in two (creating a
+  temporary file and recording its name);
+- once the command has finished: :func:`exit_on_signals` again.
+
+Library use installs nothing: Ctrl-C stays a KeyboardInterrupt. This module imports little, as
+it is loaded before everything else.
 """
 
 from __future__ import annotations
 
+import os
 import signal
-import threading
-from collections.abc import Iterator
-from contextlib import contextmanager
-from types import FrameType
+import sys
+
+TYPE_CHECKING = False  # not typing's: importing typing would delay the first handler
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from types import FrameType, TracebackType
 
 SIGNALS = (signal.SIGINT, signal.SIGTERM)
 
@@ -41,18 +54,57 @@ class _State:
     pending = False
 
 
+def started_as_command() -> bool:
+    """Whether this process is the ``txtool`` command: its console script, or
+    ``python -m txtool`` (whose ``argv[0]`` is ``-m`` while the package loads)."""
+    first = sys.argv[0] if sys.argv else ""
+    if os.path.basename(first) == "txtool":
+        return True
+    given = getattr(sys, "orig_argv", [])
+    return first == "-m" and any(
+        (option, name) == ("-m", "txtool") or option == "-mtxtool"
+        for option, name in zip(given, [*given[1:], ""], strict=True)
+    )
+
+
+def exit_on_signals() -> None:
+    """Make SIGINT and SIGTERM print one line and end the process at once (no clean-up runs:
+    for the moments when nothing is being written)."""
+    _install(_exit_now)
+
+
 def stop_on_signals() -> None:
     """Make SIGINT and SIGTERM raise :class:`Stopped` (from the main thread only)."""
-    if threading.current_thread() is not threading.main_thread():
-        return
     _State.received, _State.holding, _State.pending = None, 0, False
+    _install(_on_signal)
+
+
+def _install(handler: Callable[[int, FrameType | None], None]) -> None:
     for number in SIGNALS:
-        signal.signal(number, _on_signal)
+        try:
+            signal.signal(number, handler)
+        except ValueError:  # not the main thread: signals are not ours to handle
+            return
 
 
 def received() -> int | None:
     """The signal that stopped the run, if one did."""
     return _State.received
+
+
+def stop_if_received() -> None:
+    """Raise :class:`Stopped` again if a signal came and the program still goes on: C code that
+    calls back into Python (an extension's import, a lookup) can clear the exception raised
+    there. Called before reading or writing a file, which must not start after a signal."""
+    if _State.received is not None and not _State.holding:
+        raise Stopped(_State.received)
+
+
+def _exit_now(number: int, frame: FrameType | None) -> None:
+    try:
+        os.write(2, Stopped(number).line.encode() + b"\n")
+    finally:
+        os._exit(128 + number)
 
 
 def _on_signal(number: int, frame: FrameType | None) -> None:
@@ -65,16 +117,15 @@ def _on_signal(number: int, frame: FrameType | None) -> None:
     raise Stopped(number)
 
 
-@contextmanager
-def held() -> Iterator[None]:
+class held:  # a class, not a contextlib generator: contextlib would delay the first handler
     """Run a step whole: a signal arriving meanwhile takes effect when it ends."""
-    _State.holding += 1
-    try:
-        yield
-    except BaseException:
+
+    def __enter__(self) -> None:
+        _State.holding += 1
+
+    def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
+                 trace: TracebackType | None) -> None:
         _State.holding -= 1
-        raise
-    _State.holding -= 1
-    if not _State.holding and _State.pending:
-        _State.pending = False
-        raise Stopped(_State.received or signal.SIGINT)
+        if kind is None and not _State.holding and _State.pending:
+            _State.pending = False
+            raise Stopped(_State.received or signal.SIGINT)

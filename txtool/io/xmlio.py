@@ -14,9 +14,10 @@ import stat
 import sys
 from contextvars import ContextVar
 from dataclasses import dataclass, field
-from functools import lru_cache
 
 from lxml import etree
+
+from txtool.io.encodings import detect_encoding, mislabelled, parsing_form, utf8_form
 
 XACRO_NS = "http://www.ros.org/wiki/xacro"
 XACRO_SUFFIXES = (".xacro",)
@@ -32,11 +33,6 @@ _UNICODE_STARTS = (
     b"<\x00", b"\x00<", b"\x00\x00\x00<",
 )
 _TEXT_CONTROLS = frozenset(b"\t\n\r")
-_MARKS = (  # UTF-32 first: its little-endian mark starts like UTF-16's
-    (codecs.BOM_UTF32_LE, "utf-32-le"), (codecs.BOM_UTF32_BE, "utf-32-be"),
-    (codecs.BOM_UTF8, "utf-8"), (codecs.BOM_UTF16_LE, "utf-16-le"),
-    (codecs.BOM_UTF16_BE, "utf-16-be"),
-)
 ENTITY_REFUSAL = (
     "the DOCTYPE declares entities; txtool does not read entity declarations "
     "(they can pull in local files or expand without bound): remove them"
@@ -108,6 +104,9 @@ def forget_reading() -> None:
 
 def read_bytes(path: str, *, stdin_name: str | None = None) -> tuple[str, bytes]:
     """Read a file or ``-`` (stdin); returns the display path and the bytes."""
+    from txtool.io.signals import stop_if_received
+
+    stop_if_received()
     if path == "-":
         _reading.set(stdin_name or "<stdin>")
         return stdin_name or "<stdin>", sys.stdin.buffer.read(MAX_BYTES + 1)
@@ -166,59 +165,39 @@ def parse_bytes(data: bytes, path: str) -> etree._ElementTree:
         raise InputError(f"{path}: document larger than the {MAX_BYTES} byte limit")
     if _is_blank(data):
         raise XMLSyntax(path, 1, 1, "document is empty")
+    wrong = mislabelled(data)
+    if wrong is not None:
+        raise XMLSyntax(path, *wrong)
     parser = safe_parser()
     try:
-        root = etree.fromstring(_movable_declaration(data), parser)
+        text = parsing_form(data)
+        root = etree.fromstring(_movable_declaration(text), parser)
     except etree.XMLSyntaxError as exc:
         if is_binary(data):
             raise XMLSyntax(path, 1, 1, "not an XML document (binary data)") from None
         reason = _syntax_message(exc)
         if reason == ENTITY_REFUSAL:
-            raise EntityRefused(path, _entity_line(data), 1, reason) from None
+            raise EntityRefused(path, _entity_line(text), 1, reason) from None
         line, column = exc.position if exc.position else (1, 1)
         raise XMLSyntax(path, max(line, 1), max(column, 1), reason) from None
     except (LookupError, UnicodeError) as exc:  # an encoding name or text Python cannot decode
         raise XMLSyntax(path, 1, 1, f"cannot decode the document: {exc}") from None
     tree = root.getroottree()
-    _refuse_entities(tree, parser, data, path)
+    _refuse_entities(tree, parser, text, path)
     return tree
 
 
-def document_text(data: bytes) -> str:
-    """The document as text, decoded as its byte-order mark or declaration says (else UTF-8).
-
-    For finding columns in the text as written; undecodable bytes become U+FFFD.
-    """
-    for mark, codec in _MARKS:
-        if data.startswith(mark):
-            return data[len(mark):].decode(codec, errors="replace")
-    if data.startswith((b"<\x00", b"\x00<")):
-        return data.decode("utf-16-le" if data[0] == 0x3C else "utf-16-be", errors="replace")
-    declared = _ENCODING.match(data)
-    if declared:
-        try:
-            return data.decode(declared.group(1).decode("ascii"), errors="replace")
-        except LookupError:
-            pass
-    return data.decode("utf-8", errors="replace")
-
-
-@lru_cache(maxsize=2)
-def text_lines(data: bytes) -> list[str]:
-    """The lines of a document as written (shared by everything that places findings in it)."""
-    return document_text(data).splitlines()
-
-
 def _is_blank(data: bytes) -> bool:
-    if data.startswith((b"\xff\xfe", b"\xfe\xff")):
-        return not data.decode("utf-16", errors="replace").strip()
-    return not data.removeprefix(b"\xef\xbb\xbf").strip()
+    encoding = detect_encoding(data)
+    if encoding.wide:
+        return not data.removeprefix(encoding.mark).decode(encoding.codec, "replace").strip()
+    return not data.removeprefix(codecs.BOM_UTF8).strip()
 
 
 def is_binary(data: bytes) -> bool:
     """NUL or many other control bytes (which XML text cannot hold), and not UTF-16/32 text."""
     head = data[:1024]
-    if head.startswith(_UNICODE_STARTS):
+    if head.startswith(_UNICODE_STARTS) or detect_encoding(head).wide:
         return False
     controls = sum(1 for byte in head if byte < 0x20 and byte not in _TEXT_CONTROLS)
     return b"\x00" in head or controls > max(8, len(head) // 50)
@@ -314,7 +293,12 @@ class XacroOptions:
 
 
 def serialize(tree: etree._ElementTree, original: bytes | None = None) -> bytes:
-    """Write a tree back, keeping the original XML declaration text when there was one."""
+    """Write a tree back, keeping the original XML declaration text when there was one, and
+    the original's encoding and byte-order mark."""
+    if original is not None:
+        stored = detect_encoding(original)
+        if stored.wide:
+            return stored.from_utf8(serialize(tree, utf8_form(original)))
     encoding = "utf-8"
     declaration = _DECLARATION.match(original) if original is not None else None
     if declaration:
@@ -367,8 +351,9 @@ def write_atomic(path: str, data: bytes) -> None:
     """
     import tempfile
 
-    from txtool.io.signals import held
+    from txtool.io.signals import held, stop_if_received
 
+    stop_if_received()
     target = os.path.realpath(path)
     folder = os.path.dirname(target) or "."
     temp = None

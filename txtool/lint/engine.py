@@ -18,15 +18,14 @@ from __future__ import annotations
 import re
 from typing import TYPE_CHECKING
 
+from txtool.io.encodings import document_text, parsing_form, text_lines
 from txtool.io.xmlio import (
     InputError,
     Source,
     XMLSyntax,
-    document_text,
     is_xacro,
     parse_bytes,
     read_bytes,
-    text_lines,
 )
 from txtool.lint.config import Settings, resolve
 from txtool.lint.context import LintContext
@@ -109,7 +108,7 @@ def _lint_file(path: str, settings: Settings, stdin_name: str | None) -> list[Pr
 
 def _late_declaration(path: str, data: bytes) -> list[Problem]:
     """TX001 for an ``<?xml ...?>`` declaration after a comment (read anyway, see xmlio)."""
-    head = data[:4096].removeprefix(b"\xef\xbb\xbf")
+    head = parsing_form(data)[:4096].removeprefix(b"\xef\xbb\xbf")
     index = head.find(b"<?xml")
     if index <= 0 or not head[:index].strip():
         return []

@@ -13,6 +13,7 @@ import re
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
+from txtool.io.encodings import parsing_form
 from txtool.lint.problem import Problem
 
 _MARK = b"txtool:"
@@ -77,6 +78,7 @@ class Suppressions:
 
 def parse(data: bytes) -> Suppressions:
     """The suppression comments of a document (cheap when there are none)."""
+    data = parsing_form(data)  # UTF-8 with LF line ends, lines where libxml2 counts them
     if _MARK not in data:
         return Suppressions()
     found = Suppressions()

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from txtool.io.encodings import parsing_form
 from txtool.io.xmlio import LEADING_SPACE_DECLARATION
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
@@ -34,7 +35,7 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    data = ctx.source.data
+    data = parsing_form(ctx.source.data)  # UTF-8, lines where libxml2 counts them
     match = LEADING_SPACE_DECLARATION.match(data)
     if match is None:
         return

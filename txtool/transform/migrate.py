@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import copy
 import os
-import re
 from collections import Counter
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
@@ -23,6 +22,7 @@ from typing import Literal
 from lxml import etree
 
 from txtool.dialects.read import transmission_elements
+from txtool.io.encodings import document_text
 from txtool.io.xmlio import (
     InputError,
     Source,
@@ -44,7 +44,6 @@ from txtool.transform.reversible import MARK
 from txtool.transform.splice import splice
 
 Mode = Literal["check", "diff", "write"]
-_ENCODING = re.compile(rb"""^\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
 MAX_FIX_ROUNDS = 4
 
 
@@ -338,8 +337,8 @@ def unified_diff(path: str, before: bytes, after: bytes) -> str:
     """A unified diff with ``a/PATH`` and ``b/PATH`` headers (``git apply`` / ``patch -p1``)."""
     name = path.replace(os.sep, "/").lstrip("/")
     lines = unified(
-        _text(before).splitlines(keepends=True),
-        _text(after).splitlines(keepends=True),
+        document_text(before).splitlines(keepends=True),
+        document_text(after).splitlines(keepends=True),
         f"a/{name}",
         f"b/{name}",
     )
@@ -349,12 +348,3 @@ def unified_diff(path: str, before: bytes, after: bytes) -> str:
             line += "\n\\ No newline at end of file\n"
         out.append(line)
     return "".join(out)
-
-
-def _text(data: bytes) -> str:
-    declared = _ENCODING.match(data)
-    encoding = declared.group(1).decode("ascii") if declared else "utf-8"
-    try:
-        return data.decode(encoding, errors="replace")
-    except LookupError:
-        return data.decode("utf-8", errors="replace")

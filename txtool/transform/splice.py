@@ -2,7 +2,8 @@
 
 A command changes a parsed tree; :func:`rewrite` turns the change back into bytes by text
 splicing: only the lines that hold a changed node are written anew, every other line keeps its
-original bytes. So the byte-order mark, the XML declaration, line endings (LF, CRLF or CR),
+original bytes. So the encoding (UTF-16 and UTF-32 too), the byte-order mark, the XML
+declaration, line endings (LF, CRLF or CR),
 attribute order and quoting, ``<x></x>`` against ``<x/>``, character references, comments and
 blank lines stay as written wherever the command did not change them. Atomic writing of the
 result is :func:`txtool.io.xmlio.write_atomic`.
@@ -16,6 +17,7 @@ import re
 
 from lxml import etree
 
+from txtool.io.encodings import detect_encoding, utf8_form
 from txtool.io.xmlio import InputError, parse_bytes, serialize
 from txtool.transform.linediff import matching_blocks
 
@@ -37,10 +39,15 @@ def splice(original: bytes, baseline: bytes, changed: bytes) -> bytes:
     ending with the line where a node (element start tag, comment) ends; a block whose lines
     the change did not touch is copied from ``original``, the rest comes from ``changed``
     with the line ending of ``original``. When the result would not parse to the changed
-    document, the serialized document is returned instead.
+    document, the serialized document is returned instead. UTF-16 and UTF-32 documents are
+    spliced as UTF-8 (see :func:`txtool.io.encodings.utf8_form`) and stored back as they were.
     """
     if changed == baseline:
         return original
+    stored = detect_encoding(original)
+    if stored.wide:
+        texts = (utf8_form(original), utf8_form(baseline), utf8_form(changed))
+        return stored.from_utf8(splice(*texts))
     if baseline == original:
         return changed
     for fine in (True, False):
