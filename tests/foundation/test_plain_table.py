@@ -113,3 +113,18 @@ def test_with_colour_the_lost_fields_stay_red(run, tmp_path):
     code, out, _ = run("roundtrip", "--color", "always", str(robot))
     assert code == 1
     assert "\x1b[31mno\x1b[0m" in out
+
+
+@pytest.mark.parametrize("size", [135, 136, 137, 139, 140, 141])
+def test_at_the_edge_of_the_width_the_plain_text_is_rich_s_or_nothing(size):
+    """136 characters fill a one-column table to 140; a line of 140 fits, 141 wraps."""
+    cases = [("t", ["a"], [["x"]], ["y" * size]),
+             ("t", ["a"], [["x"]], [" ".join(["ab"] * (size // 3)).ljust(size, "c")]),
+             ("title", ["h"], [["z" * size]], []),
+             ("T" * (size + 4), ["h"], [["z" * 136]], [])]
+    for case in cases:
+        plain = plain_table(*case)
+        if plain is not None:
+            assert plain == rich_text(*case)
+    assert (plain_table(*cases[0]) is None) == (size > 140)
+    assert (plain_table(*cases[2]) is None) == (size > 136)

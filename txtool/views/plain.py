@@ -69,8 +69,8 @@ def plain_table(
 
 
 def _row(edge: str, cells: Sequence[str], widths: Sequence[int]) -> str:
-    return edge + edge.join(f" {cell.ljust(w)} " for cell, w in zip(cells, widths, strict=True)) \
-        + edge
+    padded = (f" {cell.ljust(width)} " for cell, width in zip(cells, widths, strict=True))
+    return edge + edge.join(padded) + edge
 
 
 def roundtrip_text(report: Any) -> str | None:
