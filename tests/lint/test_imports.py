@@ -71,3 +71,21 @@ def test_many_files_are_shared_without_multiprocessing(tmp_path):
     probe = run_validate("--jobs", "2", "--format", "json", str(tmp_path))
     assert probe["code"] == 1
     assert "multiprocessing" not in probe["loaded"] and "pydantic" not in probe["loaded"]
+
+
+@pytest.mark.parametrize("output_format", ["text", "json"])
+def test_roundtrip_of_a_robot_loads_neither_numpy_nor_rich_s_console(tmp_path, output_format):
+    """Its equivalence check maps a few samples in plain floats, and a table to a pipe is
+    written without rich (txtool.views.plain); numpy alone costs more than the whole run."""
+    from tests.foundation.test_plain_table import ARM
+
+    robot = tmp_path / "arm.urdf"
+    robot.write_text(ARM)
+    result = subprocess.run(
+        [sys.executable, "-c", PROBE, "roundtrip", "--format", output_format, str(robot)],
+        capture_output=True, text=True, timeout=120,
+    )
+    probe = json.loads(result.stderr.strip().splitlines()[-1])
+    assert probe["code"] == 0
+    assert [name for name in HEAVY if name in probe["loaded"]] == []
+    assert "rich" not in probe["loaded"]

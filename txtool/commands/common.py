@@ -63,7 +63,7 @@ def xacro_disabled(flag: bool, *paths: str | None) -> bool:
     whole run. None of them can turn it back on: a pull request may edit the repository's
     configuration, but not the runner's command line or environment.
     """
-    from txtool.lint.config import no_xacro_configured, no_xacro_from_environment
+    from txtool.lint.config_files import no_xacro_configured, no_xacro_from_environment
 
     if no_xacro_from_environment() or flag:
         return True

@@ -54,6 +54,19 @@ def command(path, against, convention, output_format, no_xacro, xacro) -> int:
 
 
 def _print_table(report) -> None:
+    import sys
+
+    from txtool.views.plain import plain_output, roundtrip_text
+
+    if plain_output(sys.stdout):
+        text = roundtrip_text(report)
+        if text is not None:
+            sys.stdout.write(text)
+            return
+    _print_rich_table(report)
+
+
+def _print_rich_table(report) -> None:
     from rich.table import Table
 
     from txtool.views.render import console, safe

@@ -41,6 +41,8 @@ class LintContext:
     found: list[Found] = field(default_factory=list)
     literal: bool = False
     options: Mapping[str, Any] = field(default_factory=dict)
+    # Facts about the whole document that several rules share (see txtool.lint.support).
+    memo: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         if not self.found:
@@ -124,6 +126,12 @@ class Joints(Mapping[str, JointInfo]):
         if info is None:
             info = self._read[name] = joint_info(self._elements[name], limits=False)
         return info
+
+    def get(self, name: str, default: Any = None) -> Any:  # Mapping.get, without its raise
+        info = self._read.get(name)
+        if info is not None:
+            return info
+        return self[name] if name in self._elements else default
 
     def __contains__(self, name: object) -> bool:
         return name in self._elements

@@ -32,7 +32,8 @@ class MemberRef:
 
 def members(found: Found) -> list[MemberRef]:
     """Joints then actuators, paired with their elements (same order as the model)."""
-    return _memo(found, "members", _members)
+    known = found.memo.get("members")  # _memo inlined: rules ask this most
+    return known if known is not None else _memo(found, "members", _members)
 
 
 def _members(found: Found) -> list[MemberRef]:
@@ -88,6 +89,9 @@ def scope(ctx: LintContext, element: etree._Element) -> tuple[etree._Element, ..
 
 def type_element(found: Found) -> etree._Element | None:
     """The element that carries the type: ``<plugin>`` (ROS 2) or ``<type>`` (ROS 1)."""
+    memo = found.memo
+    if "type_element" in memo:  # _memo inlined: rules ask this most
+        return memo["type_element"]  # type: ignore[no-any-return]
     return _memo(found, "type_element", _type_element)  # type: ignore[no-any-return]
 
 
@@ -130,14 +134,10 @@ class NumberRef:
     field: str
     noun: str
     member: str
+    text: str | None  # what the loader parses (see loader_text): read once, several rules ask
 
     def describe(self) -> str:
         return f"{self.field} of {self.noun} '{self.member}'"
-
-    @property
-    def text(self) -> str | None:
-        """The text the loader parses (see :func:`loader_text`)."""
-        return loader_text(self.element)
 
 
 _NODES = etree.XPath("node()")
@@ -168,7 +168,8 @@ def loader_text(element: etree._Element) -> str | None:
 
 def read_numbers(found: Found) -> list[NumberRef]:
     """The reduction and offset elements the transmission's loader reads (standard types)."""
-    return _memo(found, "read_numbers", _numbers)  # type: ignore[no-any-return]
+    known = found.memo.get("read_numbers")
+    return known if known is not None else _memo(found, "read_numbers", _numbers)
 
 
 def _numbers(found: Found) -> list[NumberRef]:
@@ -196,7 +197,7 @@ def _each_number(found: Found) -> Iterator[NumberRef]:
             element = _number_element(ref.element, tag, ros1)
             if element is not None:
                 field = "offset" if tag == "offset" else "reduction"
-                yield NumberRef(element, field, ref.noun, ref.member.name)
+                yield NumberRef(element, field, ref.noun, ref.member.name, loader_text(element))
 
 
 def _number_element(member: etree._Element, tag: str, ros1: bool) -> etree._Element | None:
@@ -226,14 +227,23 @@ def loader_group(found: Found) -> tuple[object, ...]:
 
 def robot_joints_of_transmissions(
     ctx: LintContext,
-) -> Iterator[tuple[Found, etree._Element, JointInfo]]:
-    """(transmission, its ``<joint>`` element, the robot's joint) for standard transmissions."""
+) -> list[tuple[Found, etree._Element, JointInfo]]:
+    """(transmission, its ``<joint>`` element, the robot's joint) for standard transmissions;
+    found once per document, several rules ask."""
+    known = ctx.memo.get("robot_joints")
+    if known is None:
+        known = ctx.memo["robot_joints"] = list(_robot_joints(ctx))
+    return known  # type: ignore[no-any-return]
+
+
+def _robot_joints(ctx: LintContext) -> Iterator[tuple[Found, etree._Element, JointInfo]]:
     if not ctx.is_robot:
         return
+    joints = ctx.joints
     for found in ctx.transmissions():
         if found.transmission.kind == "other":
             continue
         for joint in children(found.element, "joint"):
-            info = ctx.joints.get(joint.get("name", ""))
+            info = joints.get(joint.get("name", ""))
             if info is not None:
                 yield found, joint, info

@@ -7,7 +7,6 @@ Joint values are sampled on a grid across each joint's limits (``JointInfo.posit
 from __future__ import annotations
 
 import itertools
-import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Literal
@@ -16,6 +15,7 @@ import numpy as np
 
 from txtool.mechanics import linear
 from txtool.mechanics.maps import TransmissionMap, from_transmission
+from txtool.mechanics.samples import joint_samples
 from txtool.model.core import Transmission
 from txtool.model.robot import JointInfo
 from txtool.model.semantics import NotLoadable
@@ -65,42 +65,14 @@ def invertibility(tmap: TransmissionMap) -> Invertibility:
     )
 
 
-def _grid(ranges: Sequence[tuple[float, float]], per_axis: int) -> np.ndarray:
-    axes = [_axis(lo, hi, per_axis) for lo, hi in ranges]
-    return np.array(list(itertools.product(*axes)), dtype=float)
-
-
-def _axis(lo: float, hi: float, count: int) -> np.ndarray:
-    if math.isfinite(hi - lo):
-        return np.linspace(lo, hi, count)
-    # Limits such as +-1e308: the width overflows, a weighted mean of the two does not.
-    t = np.linspace(0.0, 1.0, count)
-    return lo * (1.0 - t) + hi * t
-
-
-def _info(joints: Mapping[str, JointInfo] | None, name: str) -> JointInfo | None:
-    return joints.get(name) if joints else None
-
-
 def sample_joint_values(
     tmap: TransmissionMap,
     joints: Mapping[str, JointInfo] | None = None,
     per_axis: int = 9,
 ) -> dict[str, np.ndarray]:
     """Grids of joint position, velocity and effort, shape ``(m, n)`` in ``tmap.joints`` order."""
-    positions, velocities, efforts = [], [], []
-    for name in tmap.joints:
-        info = _info(joints, name)
-        positions.append(info.position_range() if info else (-np.pi, np.pi))
-        speed = info.velocity if info and info.velocity else 1.0
-        effort = info.effort if info and info.effort else 1.0
-        velocities.append((-abs(speed), abs(speed)))
-        efforts.append((-abs(effort), abs(effort)))
-    return {
-        "position": _grid(positions, per_axis),
-        "velocity": _grid(velocities, per_axis),
-        "effort": _grid(efforts, per_axis),
-    }
+    grids = joint_samples(tmap.joints, joints, per_axis)
+    return {quantity: np.array(values, dtype=float) for quantity, values in grids.items()}
 
 
 def round_trip(

@@ -9,22 +9,24 @@ members in another order can bind a parameter to a different joint.
 Each side maps efforts with its own loader's four-bar map (:mod:`txtool.mechanics.convention`)
 unless one convention is imposed on both. By default, therefore, a ROS 1 four-bar and its ROS 2
 conversion differ in effort, as ros_control and ros2_control do.
+
+The handful of sampled values is mapped in plain Python floats (the same IEEE operations as
+:mod:`txtool.mechanics.maps`, so the same bits), which spares ``roundtrip`` importing numpy.
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Literal, NamedTuple
 
-import numpy as np
-
-from txtool.mechanics.checks import sample_joint_values
 from txtool.mechanics.convention import effort_convention
-from txtool.mechanics.maps import TransmissionMap, from_effective
+from txtool.mechanics.formulas import FORMULAS, formula_key
+from txtool.mechanics.samples import Sample, joint_samples
 from txtool.model.core import Transmission
 from txtool.model.robot import JointInfo
-from txtool.model.semantics import NotLoadable, effective
+from txtool.model.semantics import Effective, NotLoadable, effective
 
 Status = Literal["equivalent", "differs", "missing", "not loadable"]
 QUANTITIES = ("position", "velocity", "effort")
@@ -90,8 +92,39 @@ def _joint_set(t: Transmission) -> tuple[str, ...]:
     return tuple(sorted({j.name for j in t.joints}))
 
 
-def _load(t: Transmission, convention: str | None) -> TransmissionMap:
-    return from_effective(effective(t), effort_convention(t, convention))
+class _Loaded(NamedTuple):
+    """A loaded transmission's parameters and the effort convention it runs."""
+
+    eff: Effective
+    convention: str
+
+    @property
+    def joints(self) -> tuple[str, ...]:
+        return self.eff.joints
+
+    @property
+    def actuators(self) -> tuple[str, ...]:
+        return self.eff.actuators
+
+    def joint_to_actuator(self, quantity: str, rows: list[Sample]) -> list[Sample]:
+        eff = self.eff
+        formula = FORMULAS[formula_key(eff.kind, quantity, self.convention)][1]
+        ar, jr, off = eff.actuator_reduction, eff.joint_reduction, eff.joint_offset
+        try:
+            return [formula(row, ar, jr, off) for row in rows]
+        except ZeroDivisionError:  # reductions whose product underflows to 0
+            return self._with_numpy(quantity, rows)
+
+    def _with_numpy(self, quantity: str, rows: list[Sample]) -> list[Sample]:
+        """numpy's inf and nan where Python refuses to divide by zero."""
+        from txtool.mechanics.maps import from_effective
+
+        mapped = from_effective(self.eff, self.convention).joint_to_actuator(quantity, rows)
+        return [tuple(row) for row in mapped.tolist()]
+
+
+def _load(t: Transmission, convention: str | None) -> _Loaded:
+    return _Loaded(effective(t), effort_convention(t, convention))
 
 
 def compare_pair(
@@ -118,7 +151,7 @@ def compare_pair(
     return EquivalenceRow(key, ta.name, tb.name, status, differences, reason)
 
 
-def _name_mismatch(ma: TransmissionMap, mb: TransmissionMap) -> str:
+def _name_mismatch(ma: _Loaded, mb: _Loaded) -> str:
     for noun, x, y in (("joints", ma.joints, mb.joints), ("actuators", ma.actuators, mb.actuators)):
         if sorted(x) != sorted(y):
             return f"loaded {noun} differ: {_names(x)} vs {_names(y)}"
@@ -130,51 +163,81 @@ def _names(names: Sequence[str]) -> str:
 
 
 def _compare_maps(
-    ma: TransmissionMap, mb: TransmissionMap, joints: Mapping[str, JointInfo] | None
-) -> tuple[dict[str, float], str]:
+    ma: _Loaded, mb: _Loaded, joints: Mapping[str, JointInfo] | None
+) -> tuple[dict[str, float | None], str]:
     joint_names = sorted(ma.joints)
     actuator_names = sorted(ma.actuators)
-    samples = sample_joint_values(ma, joints, per_axis=5)
+    samples = joint_samples(ma.joints, joints, per_axis=5)
     # Samples come in ma.joints order; re-key them to sorted names for both maps.
     to_sorted = [ma.joints.index(n) for n in joint_names]
     differences: dict[str, float | None] = {}
     reason = ""
     for quantity in QUANTITIES:
-        x = samples[quantity][:, to_sorted]
+        x = [tuple(row[i] for i in to_sorted) for row in samples[quantity]]
         ya = _by_name(ma, quantity, x, joint_names, actuator_names)
         yb = _by_name(mb, quantity, x, joint_names, actuator_names)
-        diff = _difference(ya, yb)
-        worst = float(np.max(diff))
-        differences[quantity] = worst if np.isfinite(worst) else None
-        # Relative to each actuator's largest value over the samples: scale-free.
-        scale = np.fmax(np.abs(ya), np.abs(yb)).max(axis=0)
-        with np.errstate(invalid="ignore"):
-            excess = np.where(np.isinf(diff), np.inf, diff - RTOL * scale)
-        if not reason and np.max(excess) > 0:
-            row, col = np.unravel_index(int(np.argmax(excess)), excess.shape)
-            at = ", ".join(f"{n}={x[row, i]:.6g}" for i, n in enumerate(joint_names))
-            reason = (f"actuator '{actuator_names[col]}' {quantity} differs by "
-                      f"{diff[row, col]:.6g} at joint values ({at})")
+        diff = [[_difference(a, b) for a, b in zip(ra, rb, strict=True)]
+                for ra, rb in zip(ya, yb, strict=True)]
+        worst = max(max(row) for row in diff)
+        differences[quantity] = worst if math.isfinite(worst) else None
+        if not reason:
+            reason = _excess(quantity, x, ya, yb, diff, joint_names, actuator_names)
     return differences, reason
 
 
-def _difference(ya: np.ndarray, yb: np.ndarray) -> np.ndarray:
-    """``|ya - yb|``; 0 where both hold the same value (inf or nan included), inf where the
-    two differ and one is not finite (huge reductions overflow)."""
-    with np.errstate(all="ignore"):
-        diff = np.abs(ya - yb)
-    same = (ya == yb) | (np.isnan(ya) & np.isnan(yb))
-    return np.where(same, 0.0, np.where(np.isnan(diff), np.inf, diff))
+def _excess(quantity: str, x: list[Sample], ya: list[Sample], yb: list[Sample],
+            diff: list[list[float]], joint_names: list[str], actuator_names: list[str]) -> str:
+    """Why the worst difference beyond RTOL of each actuator's largest value over the samples
+    (scale-free) is too large, or "" when none is. A value that is nan in both maps makes its
+    actuator's scale nan, and the quantity then passes (as the numpy reduction it mirrors)."""
+    scale = [_column_max([_fmax(abs(ra[c]), abs(rb[c])) for ra, rb in zip(ya, yb, strict=True)])
+             for c in range(len(actuator_names))]
+    excess = [[math.inf if d == math.inf else d - RTOL * scale[c] for c, d in enumerate(row)]
+              for row in diff]
+    if any(e != e for row in excess for e in row):
+        return ""
+    top = max(max(row) for row in excess)
+    if not top > 0:
+        return ""
+    row, col = next((r, c) for r, values in enumerate(excess) for c, e in enumerate(values)
+                    if e == top)
+    at = ", ".join(f"{n}={x[row][i]:.6g}" for i, n in enumerate(joint_names))
+    return (f"actuator '{actuator_names[col]}' {quantity} differs by "
+            f"{diff[row][col]:.6g} at joint values ({at})")
+
+
+def _fmax(a: float, b: float) -> float:
+    """The larger of two values, ignoring a nan (``numpy.fmax``)."""
+    if a != a:
+        return b
+    if b != b:
+        return a
+    return max(a, b)
+
+
+def _column_max(values: list[float]) -> float:
+    """The largest value; nan if any is nan (``numpy.max``)."""
+    return math.nan if any(v != v for v in values) else max(values)
+
+
+def _difference(a: float, b: float) -> float:
+    """``|a - b|``; 0 where both hold the same value (inf or nan included), inf where the two
+    differ and one is not finite (huge reductions overflow)."""
+    if a == b or (a != a and b != b):
+        return 0.0
+    diff = abs(a - b)
+    return math.inf if diff != diff else diff
 
 
 def _by_name(
-    tmap: TransmissionMap,
+    loaded: _Loaded,
     quantity: str,
-    x: np.ndarray,
+    x: list[Sample],
     joint_names: list[str],
     actuator_names: list[str],
-) -> np.ndarray:
+) -> list[Sample]:
     """Map joint values given in ``joint_names`` order; actuator values in ``actuator_names``."""
-    inputs = x[:, [joint_names.index(n) for n in tmap.joints]]
-    out = tmap.joint_to_actuator(quantity, inputs)
-    return out[:, [tmap.actuators.index(n) for n in actuator_names]]
+    take = [joint_names.index(n) for n in loaded.joints]
+    out = loaded.joint_to_actuator(quantity, [tuple(row[i] for i in take) for row in x])
+    give = [loaded.actuators.index(n) for n in actuator_names]
+    return [tuple(row[i] for i in give) for row in out]

@@ -1,24 +1,24 @@
 """ros2_control's standard transmissions as vectorised numpy maps.
 
-The formulas are written out as ros2_control's ``transmission_interface`` computes them (not via
-a matrix inverse), so results match its test vectors to the last bits. Inputs have shape
-``(..., n)``: the last axis is the transmission index (``joints``/``actuators`` order).
+The formulas (:mod:`txtool.mechanics.formulas`) are written out as ros2_control's
+``transmission_interface`` computes them (not via a matrix inverse), so results match its test
+vectors to the last bits. Inputs have shape ``(..., n)``: the last axis is the transmission
+index (``joints``/``actuators`` order).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from txtool.mechanics import linear
+from txtool.mechanics.formulas import EFFORT_ALIASES, FORMULAS, Formula, formula_key
 from txtool.model.core import Transmission
 from txtool.model.semantics import Effective, NotLoadable, effective
 
 KINDS = ("simple", "differential", "four_bar")
-EFFORT_ALIASES = ("effort", "torque", "force")
 TO_ACTUATOR = ("position", "velocity", *EFFORT_ALIASES)
 TO_JOINT = (*TO_ACTUATOR, "absolute_position")
 
@@ -30,10 +30,6 @@ class ZeroReduction(NotLoadable):
         super().__init__(f"transmission '{name}': reduction ratio cannot be zero")
         self.transmission = name
 
-
-Arr = np.ndarray
-Red = Sequence[float]
-Formula = Callable[[Arr, Red, Red, Arr], Arr]
 
 
 @dataclass(frozen=True, eq=False)
@@ -99,23 +95,17 @@ class TransmissionMap:
         if quantity not in TO_ACTUATOR:
             raise ValueError(f"cannot map {quantity!r} from joint to actuator "
                              f"(expected one of {', '.join(TO_ACTUATOR)})")
-        return self._apply(_FORMULAS[self._key(quantity)][1], values)
+        return self._apply(FORMULAS[self._key(quantity)][1], values)
 
     def actuator_to_joint(self, quantity: str, values: ArrayLike) -> np.ndarray:
         """Map actuator values (shape ``(..., n)``) to joint values."""
         if quantity not in TO_JOINT:
             raise ValueError(f"cannot map {quantity!r} from actuator to joint "
                              f"(expected one of {', '.join(TO_JOINT)})")
-        return self._apply(_FORMULAS[self._key(quantity)][0], values)
+        return self._apply(FORMULAS[self._key(quantity)][0], values)
 
     def _key(self, quantity: str) -> tuple[str, str]:
-        if quantity in EFFORT_ALIASES:
-            if self.kind == "four_bar" and self.convention == "ros1":
-                return "four_bar_ros1", "effort"
-            return self.kind, "effort"
-        if quantity == "absolute_position":
-            quantity = "position"
-        return self.kind, quantity
+        return formula_key(self.kind, quantity, self.convention)
 
     def _apply(self, formula: Formula, values: ArrayLike) -> np.ndarray:
         x = np.asarray(values, dtype=float)
@@ -125,7 +115,9 @@ class TransmissionMap:
         # Finite but huge (or tiny) values overflow to inf or nan; callers decide what a
         # non-finite result means, and numpy's RuntimeWarnings would be noise on stderr.
         with np.errstate(all="ignore"):
-            return formula(x, self.actuator_reduction, self.joint_reduction, self.offset)
+            columns = [x[..., i] for i in range(self.size)]
+            mapped = formula(columns, self.actuator_reduction, self.joint_reduction, self.offset)
+            return np.stack(mapped, axis=-1)
 
 
 def _reductions_from_a(kind: str, a: np.ndarray) -> tuple[tuple[float, ...], tuple[float, ...]]:
@@ -137,115 +129,6 @@ def _reductions_from_a(kind: str, a: np.ndarray) -> tuple[tuple[float, ...], tup
         return (float(a[0, 0]), float(a[1, 0])), (1.0, jr1)
     jr1 = float(a[1, 1] / a[1, 0]) if a[1, 0] != 0 else 0.0
     return (float(a[0, 0]), float(a[1, 0])), (1.0, jr1)
-
-
-def _stack(*columns: np.ndarray) -> np.ndarray:
-    return np.stack(columns, axis=-1)
-
-
-# Each formula takes (x, ar, jr, off) with x of shape (..., n). Keys: (kind, quantity) ->
-# (actuator_to_joint, joint_to_actuator). Names follow the reference: a = actuator, j = joint.
-
-
-def _simple_pos_aj(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
-    return x / (ar[0] * jr[0]) + off
-
-
-def _simple_pos_ja(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
-    return (x - off) * (ar[0] * jr[0])
-
-
-def _simple_vel_aj(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
-    return x / (ar[0] * jr[0])
-
-
-def _simple_vel_ja(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
-    return x * (ar[0] * jr[0])
-
-
-def _diff_pos_aj(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
-    a0, a1 = x[..., 0] / ar[0], x[..., 1] / ar[1]
-    return _stack((a0 + a1) / (2 * jr[0]) + off[0], (a0 - a1) / (2 * jr[1]) + off[1])
-
-
-def _diff_pos_ja(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
-    p0, p1 = x[..., 0] - off[0], x[..., 1] - off[1]
-    return _stack((p0 * jr[0] + p1 * jr[1]) * ar[0], (p0 * jr[0] - p1 * jr[1]) * ar[1])
-
-
-def _diff_vel_aj(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
-    a0, a1 = x[..., 0] / ar[0], x[..., 1] / ar[1]
-    return _stack((a0 + a1) / (2 * jr[0]), (a0 - a1) / (2 * jr[1]))
-
-
-def _diff_vel_ja(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
-    v0, v1 = x[..., 0], x[..., 1]
-    return _stack((v0 * jr[0] + v1 * jr[1]) * ar[0], (v0 * jr[0] - v1 * jr[1]) * ar[1])
-
-
-def _diff_eff_aj(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
-    e0, e1 = x[..., 0] * ar[0], x[..., 1] * ar[1]
-    return _stack(jr[0] * (e0 + e1), jr[1] * (e0 - e1))
-
-
-def _diff_eff_ja(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
-    e0, e1 = x[..., 0] / jr[0], x[..., 1] / jr[1]
-    return _stack((e0 + e1) / (2 * ar[0]), (e0 - e1) / (2 * ar[1]))
-
-
-def _fourbar_pos_aj(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
-    a0 = x[..., 0] / (jr[0] * ar[0])
-    return _stack(a0 + off[0], (x[..., 1] / ar[1] - a0) / jr[1] + off[1])
-
-
-def _fourbar_pos_ja(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
-    p0, p1 = x[..., 0] - off[0], x[..., 1] - off[1]
-    return _stack(p0 * jr[0] * ar[0], (p0 + p1 * jr[1]) * ar[1])
-
-
-def _fourbar_vel_aj(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
-    a0 = x[..., 0] / (jr[0] * ar[0])
-    return _stack(a0, (x[..., 1] / ar[1] - a0) / jr[1])
-
-
-def _fourbar_vel_ja(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
-    v0, v1 = x[..., 0], x[..., 1]
-    return _stack(v0 * jr[0] * ar[0], (v0 + v1 * jr[1]) * ar[1])
-
-
-def _fourbar_eff_aj(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
-    e0, e1 = x[..., 0], x[..., 1]
-    return _stack(jr[0] * e0 * ar[0] + e1 * ar[1], jr[1] * e1 * ar[1])
-
-
-def _fourbar_eff_ja(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
-    e0, e1 = x[..., 0], x[..., 1]
-    return _stack((e0 - e1 / jr[1]) / (jr[0] * ar[0]), e1 / (ar[1] * jr[1]))
-
-
-def _fourbar_ros1_eff_aj(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
-    e0, e1 = x[..., 0], x[..., 1]
-    return _stack(jr[0] * (e0 * ar[0]), jr[1] * (e1 * ar[1] - e0 * ar[0] * jr[0]))
-
-
-def _fourbar_ros1_eff_ja(x: Arr, ar: Red, jr: Red, off: Arr) -> Arr:
-    e0, e1 = x[..., 0], x[..., 1]
-    return _stack(e0 / (ar[0] * jr[0]), (e0 + e1 / jr[1]) / ar[1])
-
-
-_FORMULAS: dict[tuple[str, str], tuple[Formula, Formula]] = {
-    ("simple", "position"): (_simple_pos_aj, _simple_pos_ja),
-    ("simple", "velocity"): (_simple_vel_aj, _simple_vel_ja),
-    # Simple effort is the inverse of the velocity map: e_j = e_a * n, e_a = e_j / n.
-    ("simple", "effort"): (_simple_vel_ja, _simple_vel_aj),
-    ("differential", "position"): (_diff_pos_aj, _diff_pos_ja),
-    ("differential", "velocity"): (_diff_vel_aj, _diff_vel_ja),
-    ("differential", "effort"): (_diff_eff_aj, _diff_eff_ja),
-    ("four_bar", "position"): (_fourbar_pos_aj, _fourbar_pos_ja),
-    ("four_bar", "velocity"): (_fourbar_vel_aj, _fourbar_vel_ja),
-    ("four_bar", "effort"): (_fourbar_eff_aj, _fourbar_eff_ja),
-    ("four_bar_ros1", "effort"): (_fourbar_ros1_eff_aj, _fourbar_ros1_eff_ja),
-}
 
 
 def from_parameters(

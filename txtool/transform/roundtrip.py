@@ -103,14 +103,10 @@ def _cycles(source: Source, start: Dialect, group: list[Transmission], joints) -
     from txtool.mechanics.equivalence import compare_pair
 
     rows = []
+    legs = _Legs(source)
     for cycle in cycles_from(start):
-        current = source
-        first_leg: dict[_Key, list[Transmission]] = {}
-        for step in cycle[1:]:
-            current = _reconvert(current, step)
-            if not first_leg:
-                first_leg = _by_name(current)
-        final = _by_name(current)
+        first_leg = legs.read(cycle[:2])
+        final = legs.read(cycle)
         for t in group:
             back = _take(final, t.name)
             converted = _take(first_leg, t.name)
@@ -125,6 +121,29 @@ def _cycles(source: Source, start: Dialect, group: list[Transmission], joints) -
                 tuple(f"{key}: {change}" for key, change in lost.items()),
             ))
     return rows
+
+
+class _Legs:
+    """The document converted along each path of dialects, each conversion done once: the
+    cycles from one dialect share their first legs (``ros1 -> ros2-p1`` starts two)."""
+
+    def __init__(self, source: Source) -> None:
+        self._documents: dict[tuple[Dialect, ...], Source] = {}
+        self._read: dict[tuple[Dialect, ...], dict[_Key, list[Transmission]]] = {}
+        self._source = source
+
+    def document(self, path: tuple[Dialect, ...]) -> Source:
+        if len(path) == 1:
+            return self._source
+        if path not in self._documents:
+            self._documents[path] = _reconvert(self.document(path[:-1]), path[-1])
+        return self._documents[path]
+
+    def read(self, path: tuple[Dialect, ...]) -> dict[_Key, list[Transmission]]:
+        """The transmissions at the end of ``path`` by name, a fresh dict to take from."""
+        if path not in self._read:
+            self._read[path] = _by_name(self.document(path))
+        return {key: list(same) for key, same in self._read[path].items()}
 
 
 def _verdict(row) -> str:
