@@ -55,7 +55,8 @@ def test_default_motion_is_slowed_for_an_actuator_effort_limit(tmp_path):
 def test_a_robot_that_cannot_hold_itself_fails_naming_the_actuator(tmp_path):
     robot = write(tmp_path, "p.urdf", pendulum(1.0, 0.5, 40.0))
     params = write(tmp_path, "p.toml", "[actuators.m_swing]\neffort_limit = 0.05\n")
-    run = simulate_one(Options(robot=robot, params=params, duration=1.0), None)
+    run = simulate_one(Options(robot=robot, params=params, duration=1.0, counterbalance=False),
+                       None)
     assert not run.passed
     assert run.reasons[0].startswith("actuator 'm_swing': holding joint 'swing' against gravity "
                                      "needs 0.12")

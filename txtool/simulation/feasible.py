@@ -30,6 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from txtool.simulation.counterbalance import Counterbalance
 from txtool.simulation.reference import Reference, minimum_jerk, step_times
 
 MARGIN = 0.8  # a reference peak may use this share of a speed or effort limit
@@ -70,6 +71,7 @@ class Motion:
     binding: str  # what set the move time
     notes: tuple[str, ...]
     cannot_hold: tuple[str, ...] = ()  # why actuators cannot hold their joints at rest
+    carry: Counterbalance | None = None  # static loads carried beside the actuators
 
 
 def unit_profile(ranges: list[tuple[float, float]], amplitude: np.ndarray
@@ -91,11 +93,23 @@ def _ends(ranges: list[tuple[float, float]], amplitude: np.ndarray
 
 
 def plan_motion(ranges: list[tuple[float, float]], limits: Limits, dynamics: Dynamics,
-                move: float, fixed: bool, tolerance: float) -> Motion:
-    """The move time and amplitudes; ``move`` is the default (or, with ``fixed``, the only)."""
+                move: float, fixed: bool, tolerance: float,
+                counterbalance: Callable[[np.ndarray], Counterbalance] | None = None) -> Motion:
+    """The move time and amplitudes; ``move`` is the default (or, with ``fixed``, the only).
+
+    ``counterbalance`` finds, from the gravity along the full motion, the static loads to take
+    off the actuators (:mod:`txtool.simulation.counterbalance`).
+    """
     amplitude = np.ones(len(ranges))
     notes = []
     q, qd, qdd = unit_profile(ranges, amplitude)
+    carry = None
+    if counterbalance is not None:
+        carry = counterbalance(dynamics(q, 0 * qd, 0 * qdd)[2])
+        if carry.active:
+            dynamics = carry.relieve(dynamics)
+        else:
+            carry = None
     still = _held_still(limits, dynamics(q, qd, qdd)[2])
     for v, why in still.items():
         amplitude[v] = 0.0
@@ -109,13 +123,15 @@ def plan_motion(ranges: list[tuple[float, float]], limits: Limits, dynamics: Dyn
     needed, binding = _move_time(limits, qd, parts, lag, move)
     if needed <= longest:
         chosen = max(move, needed)
-        return Motion(chosen, amplitude, binding if chosen > move else "", tuple(notes), weak)
-    scale = _amplitude_scale(limits, qd, qdd, parts, lag, longest)
+        return Motion(chosen, amplitude, binding if chosen > move else "", tuple(notes), weak,
+                      carry)
+    scale = _amplitude_scale(limits, qd, parts, lag, longest,
+                             lambda share: dynamics(*unit_profile(ranges, amplitude * share)))
     shrunk = [f"'{limits.joints[v]}' {100 * scale[v]:.0f}%" for v in np.nonzero(scale < 1)[0]]
     if shrunk:
         notes.append(f"to stay within the limits at {longest:g} s per move, joints move this "
                      "share of the default amplitude: " + ", ".join(shrunk))
-    return Motion(longest, amplitude * scale, "", tuple(notes), weak)
+    return Motion(longest, amplitude * scale, "", tuple(notes), weak, carry)
 
 
 @dataclass(frozen=True)
@@ -289,19 +305,23 @@ def _move_time(limits: Limits, qd: np.ndarray, parts: Parts, lag: Lag, start: fl
     return move, binding
 
 
-def _amplitude_scale(limits: Limits, qd: np.ndarray, qdd: np.ndarray, parts: Parts, lag: Lag,
-                     move: float) -> np.ndarray:
-    """Per joint, the share of the default amplitude that fits in ``move`` seconds."""
-    nv = qd.shape[1]
-    scale = np.ones(nv)
+def _amplitude_scale(limits: Limits, qd: np.ndarray, parts: Parts, lag: Lag, move: float,
+                     exact: Callable[[np.ndarray], Parts]) -> np.ndarray:
+    """Per joint, the share of the default amplitude that fits in ``move`` seconds.
+
+    Efforts are evaluated on the shrunk motion itself (``exact(scale)``): a joint's torque
+    also carries the other joints' accelerations, which shrink by their own shares.
+    """
+    scale = np.ones(qd.shape[1])
     speed = np.abs(qd).max(axis=0) / move
     with np.errstate(divide="ignore", invalid="ignore"):
         scale = np.minimum(scale, np.nan_to_num(MARGIN * limits.velocity / speed, nan=1.0))
-    quadratic, linear, static = parts
+    static = parts[2]
     hopeless = np.abs(static @ limits.eff_j2a.T).max(axis=0) > MARGIN * limits.actuator_effort
     for _ in range(200):
         a_speed = np.abs((qd * scale) @ limits.vel_j2a.T).max(axis=0) / move
-        effort = np.abs(((quadratic / move**2 + linear / move) * scale + static)
+        quadratic, linear, static = exact(scale)
+        effort = np.abs((quadratic / move**2 + linear / move + static)
                         @ limits.eff_j2a.T).max(axis=0)
         over = (a_speed > MARGIN * limits.actuator_speed) \
             | ((effort > MARGIN * limits.actuator_effort) & ~hopeless)

@@ -80,8 +80,10 @@ class Plan:
 
 
 def layout(nv: int, na: int, *, unobserved: bool, friction_ff: bool,
-           encoder: bool = False) -> dict[str, slice]:
+           encoder: bool = False, carried: bool = False) -> dict[str, slice]:
     sizes = [("x", nv), ("v", nv), ("one", 1), ("a", nv), ("ff", nv)]
+    if carried:
+        sizes.append(("cb", nv))  # joint torque of an undescribed counterbalance
     if unobserved:
         sizes += [("qref", nv), ("vref", nv)]
     if friction_ff:
