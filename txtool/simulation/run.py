@@ -106,6 +106,7 @@ class Prepared:
     gains: dict[str, result.GainsUsed] = field(default_factory=dict)
     notes: tuple[str, ...] = ()
     carried: dict[str, dict[str, float | str]] = field(default_factory=dict)
+    unstable: list[str] = field(default_factory=list)  # joints whose sampled loop is unstable
 
 
 def prepare(options: Options, config: str | None, label: str | None = None) -> Prepared:
@@ -157,12 +158,18 @@ def prepare(options: Options, config: str | None, label: str | None = None) -> P
     plan = setup.build_plan(robot, plant, ctrl, binding, rotor, effort_limit, controller, ref,
                             run_settings.dt, Sensing(options.delay, options.encoder_counts),
                             carried)
-    used, stiff = gains.used(robot, params, controller, run_settings.bandwidth, converted,
-                             run_settings.dt, options.delay)
+    used = gains.used(robot, params, controller, run_settings.bandwidth, converted)
+    poses = np.arange(0, len(ref.q), max(1, len(ref.q) // setup.SAMPLES))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rates = np.where(robot.damping > 0, robot.damping
+                         / setup.effective_inertias(robot, inertia, ref.q[poses]), 0.0)
+    stiff, unstable = gains.stability(used, run_settings.dt, options.delay,
+                                      np.nan_to_num(rates, posinf=0.0), ref.time[poses],
+                                      plan.dynamics.substeps)
     return Prepared(options, config, label or (config if config is not None else options.robot),
                     robot, plant, ctrl, binding, plan, ref, run_settings, duration, effort_limit,
                     speed_limit, time.perf_counter() - started, carry_notes + ref_notes, weak,
-                    controller, used, params.notes + tuple(stiff), carry_table)
+                    controller, used, params.notes + tuple(stiff), carry_table, unstable)
 
 
 def _finder(robot: RobotModel, plant: Drive, effort_limit: np.ndarray
@@ -293,6 +300,7 @@ def _judge(p: Prepared, series: result.Series) -> result.RunResult:
     if plan.diverged_at is not None:
         cause = setup.divergence_cause(plan, p.controller) if p.controller else ""
         reasons.append(f"the simulation diverged at t={plan.diverged_at * s.dt:.3f} s: {cause}")
+    reasons += p.unstable
     for name in binding.unbound:
         reasons.append(f"actuator '{name}' of the config is not an actuator of the robot")
     for name in binding.uncommanded:

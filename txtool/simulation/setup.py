@@ -245,6 +245,22 @@ def reference_dynamics(robot: RobotModel, inertia: np.ndarray
     return parts
 
 
+def effective_inertias(robot: RobotModel, inertia: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """Rows of each DoF's effective inertia ``1 / (M^-1)_jj`` (rotor ``inertia`` included)."""
+    model, block = make_model(robot, inertia)
+    data = model.createData()
+    lower = np.tril_indices(robot.nv, -1)
+    rows = np.empty_like(x)
+    for k, q in enumerate(robot.config(x)):
+        mass = pin.crba(model, data, q).copy()
+        mass[lower] = mass.T[lower]
+        if block is not None:
+            mass += block
+        with np.errstate(divide="ignore"):
+            rows[k] = 1.0 / np.diag(np.linalg.pinv(mass))
+    return rows
+
+
 def gravity_along(robot: RobotModel, x: np.ndarray) -> np.ndarray:
     """Rows of the gravity torque ``g(q)`` at the coordinates ``x`` (rows)."""
     model = robot.model
