@@ -119,7 +119,7 @@ def build_plan(robot: RobotModel, plant: Drive, ctrl: Drive, binding: Binding,
     friction_ff = bool(np.any(gains.friction))
     s = layout(nv, na, unobserved=bool(unobserved), friction_ff=friction_ff,
                encoder=sensing.counts is not None, carried=carried is not None)
-    width = s["sat"].stop
+    width = max(slot.stop for slot in s.values())
     steps = len(ref.time) - 1
     rows = _rows(s, width, ref, gains)
     if carried is not None:
