@@ -83,8 +83,8 @@ def layout(nv: int, na: int, *, unobserved: bool, friction_ff: bool,
            encoder: bool = False, carried: bool = False) -> dict[str, slice]:
     """Columns of a history row: what each step writes first (up to ``ta``), then the columns
     precomputed for every step (from ``one`` on)."""
-    sizes = [("x", nv), ("v", nv), ("sat", na), ("est", 3 * nv + na), ("tj", nv), ("a", nv),
-             ("ta", na), ("one", 1), ("ff", nv)]
+    sizes = [("sat", na), ("est", 3 * nv + na), ("tj", nv), ("ta", na), ("x", nv), ("v", nv),
+             ("a", nv), ("one", 1), ("ff", nv)]
     if carried:
         sizes.append(("cb", nv))  # joint torque of an undescribed counterbalance
     if unobserved:
@@ -154,28 +154,30 @@ def _steps(plan: Plan, start: int, stop: int) -> None:
 
 
 def _next_row(plan: Plan) -> np.ndarray:
-    """The matrix from a working row (x, v, a of step k; the clipped demand ``satn`` and the
-    precomputed columns of step k + 1) to step k + 1's first columns: x, v, applied effort,
-    the controller's estimates (``H``) and the plant's joint effort (``PD``).
+    """The matrix from a working row's tail (x, v, a of step k; then the clipped demand
+    ``satn`` and the precomputed columns of step k + 1) to step k + 1's head: applied effort,
+    the controller's estimates (``H``), the plant's joint effort (``PD``), ta (zero), x, v.
 
     Folding ``Phi`` into ``H`` and ``PD`` saves two products per step; only the rounding of
     the sums changes (results agree with the unfolded loop to about 1e-15).
     """
-    s, nv, width = plan.slots, plan.robot.nv, plan.rows.shape[1]
+    s, nv, width, na = plan.slots, plan.robot.nv, plan.rows.shape[1], plan.limit.size
     dynamic = ("a", "ta", "est", "tj")
     for matrix in (plan.H, plan.PD):
         if any(np.any(matrix[:, s[name]]) for name in dynamic):
             raise ValueError("H and PD read only x, v, sat and the precomputed columns")
+    first = s["x"].start  # the tail read starts here
     static = slice(s["one"].start, width)
-    later = slice(width + plan.limit.size, width + plan.limit.size + width - static.start)
-    satn = slice(width, width + plan.limit.size)
-    out = np.zeros((s["a"].start, later.stop))
-    out[: 2 * nv, :width] = plan.Phi
-    out[s["sat"], satn] = np.eye(plan.limit.size)
+    row = slice(0, width - first)
+    satn = slice(width - first, width - first + na)
+    later = slice(satn.stop, satn.stop + width - static.start)
+    phi = plan.Phi[:, first:]
+    out = np.zeros((s["v"].stop, later.stop))
+    out[s["x"].start : s["v"].stop, row] = phi
+    out[s["sat"], satn] = np.eye(na)
     for rows, matrix in ((s["est"], plan.H), (s["tj"], plan.PD)):
-        n = matrix.shape[0]
-        block = out[rows.start : rows.start + n]
-        block[:, :width] += matrix[:, s["x"]] @ plan.Phi[:nv] + matrix[:, s["v"]] @ plan.Phi[nv:]
+        block = out[rows.start : rows.start + matrix.shape[0]]
+        block[:, row] += matrix[:, s["x"]] @ phi[:nv] + matrix[:, s["v"]] @ phi[nv:]
         block[:, satn] += matrix[:, s["sat"]]
         block[:, later] += matrix[:, static]
     return out
@@ -195,7 +197,8 @@ def _delayed_steps(plan: Plan, start: int, stop: int) -> None:
         big = plan.extras["next_row"] = _next_row(plan)
     static = slice(s["one"].start, width)
     record = slice(0, s["one"].start)
-    work = [np.zeros(big.shape[1]) for _ in range(2)]
+    head, tail = slice(0, s["v"].stop), slice(s["x"].start, None)
+    work = [np.zeros(width + na + width - static.start) for _ in range(2)]
     first = work[0]
     first[:width] = rows[start]
     est = first[s["est"]]
@@ -207,13 +210,13 @@ def _delayed_steps(plan: Plan, start: int, stop: int) -> None:
         e = w[s["est"]]
         views.append((e[:nv], e[nv : 2 * nv], e[2 * nv : 3 * nv], e[bias_at : bias_at + na],
                       w[s["ta"]], w[width : width + na], w[s["x"]], w[s["v"]], w[s["tj"]],
-                      w[s["a"]], w[width + na :], w[record], w[: s["a"].start], w))
+                      w[s["a"]], w[width + na :], w[record], w[head], w[tail]))
     (cm, cdata), (pm, pdata) = plan.ctrl, plan.plant
     rnea, aba, dot, C, limit, low = pin.rnea, pin.aba, np.dot, plan.C, plan.limit, -plan.limit
     clip, bias = _clip(), plan.bias
     # Two steps per iteration, one per working row, so that every view is made once.
-    (xh0, vh0, acc0, off0, ta0, satn0, x0, v0, tj0, a0, later0, mine0, head0, w0), \
-        (xh1, vh1, acc1, off1, ta1, satn1, x1, v1, tj1, a1, later1, mine1, head1, w1) = views
+    (xh0, vh0, acc0, off0, ta0, satn0, x0, v0, tj0, a0, later0, mine0, head0, tail0), \
+        (xh1, vh1, acc1, off1, ta1, satn1, x1, v1, tj1, a1, later1, mine1, head1, tail1) = views
     upcoming = rows[start + 1 : stop + 1, static]
     past = rows[start:stop, record]
     pairs = (stop - start) // 2
@@ -232,7 +235,7 @@ def _delayed_steps(plan: Plan, start: int, stop: int) -> None:
         clip(ta0, low, limit, out=satn0)
         a0[...] = aba(pm, pdata, x0, v0, tj0)
         later0[...] = up0
-        dot(big, w0, out=head1)
+        dot(big, tail0, out=head1)
         past0[...] = mine0
         if same:
             ta1[...] = rnea(cm, cdata, xh1, vh1, acc1)
@@ -243,7 +246,7 @@ def _delayed_steps(plan: Plan, start: int, stop: int) -> None:
         clip(ta1, low, limit, out=satn1)
         a1[...] = aba(pm, pdata, x1, v1, tj1)
         later1[...] = up1
-        dot(big, w1, out=head0)
+        dot(big, tail1, out=head0)
         past1[...] = mine1
     last = head0
     if (stop - start) % 2:
@@ -253,10 +256,10 @@ def _delayed_steps(plan: Plan, start: int, stop: int) -> None:
         clip(ta0, low, limit, out=satn0)
         a0[...] = aba(pm, pdata, x0, v0, tj0)
         later0[...] = upcoming[-1]
-        dot(big, w0, out=head1)
+        dot(big, tail0, out=head1)
         past[-1] = mine0
         last = head1
-    rows[stop, : s["a"].start] = last  # x, v, applied effort of the last row
+    rows[stop, head] = last  # x, v, applied effort (and estimates) of the last row
 
 
 def _clip() -> Callable[..., np.ndarray]:
@@ -279,10 +282,10 @@ def _views(plan: Plan, start: int, stop: int) -> zip:
 
     Iterating 2-D column views yields each step's 1-D views more cheaply than indexing.
     """
-    rows, s, two = plan.rows, plan.slots, 2 * plan.robot.nv
-    span, lag = slice(start, stop), int(plan.delay)
+    rows, s = plan.rows, plan.slots
+    span, lag, state = slice(start, stop), int(plan.delay), slice(s["x"].start, s["v"].stop)
     return zip(rows[span], rows[span, s["x"]], rows[span, s["v"]], rows[span, s["ta"]],
-               rows[start + lag : stop + lag, s["sat"]], rows[start + 1 : stop + 1, :two],
+               rows[start + lag : stop + lag, s["sat"]], rows[start + 1 : stop + 1, state],
                range(start, stop), strict=True)
 
 
