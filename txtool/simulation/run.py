@@ -159,17 +159,22 @@ def prepare(options: Options, config: str | None, label: str | None = None) -> P
                             run_settings.dt, Sensing(options.delay, options.encoder_counts),
                             carried)
     used = gains.used(robot, params, controller, run_settings.bandwidth, converted)
-    poses = np.arange(0, len(ref.q), max(1, len(ref.q) // setup.SAMPLES))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        rates = np.where(robot.damping > 0, robot.damping
-                         / setup.effective_inertias(robot, inertia, ref.q[poses]), 0.0)
-    stiff, unstable = gains.stability(used, run_settings.dt, options.delay,
-                                      np.nan_to_num(rates, posinf=0.0), ref.time[poses],
-                                      plan.dynamics.substeps)
+    stiff, unstable = _stability(robot, inertia, ref, used, plan)
     return Prepared(options, config, label or (config if config is not None else options.robot),
                     robot, plant, ctrl, binding, plan, ref, run_settings, duration, effort_limit,
                     speed_limit, time.perf_counter() - started, carry_notes + ref_notes, weak,
                     controller, used, params.notes + tuple(stiff), carry_table, unstable)
+
+
+def _stability(robot: RobotModel, inertia: np.ndarray, ref: reference.Reference,
+               used: dict[str, result.GainsUsed], plan: loop.Plan) -> tuple[list[str], list[str]]:
+    """(notes, reasons) of :func:`gains.stability` at poses along the reference."""
+    poses = np.arange(0, len(ref.q), max(1, len(ref.q) // setup.SAMPLES))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rates = np.where(robot.damping > 0, robot.damping
+                         / setup.effective_inertias(robot, inertia, ref.q[poses]), 0.0)
+    return gains.stability(used, plan.dt, plan.delay, np.nan_to_num(rates, posinf=0.0),
+                           ref.time[poses], plan.dynamics.substeps)
 
 
 def _finder(robot: RobotModel, plant: Drive, effort_limit: np.ndarray
