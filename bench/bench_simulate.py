@@ -2,7 +2,8 @@
 
 Run: ``python bench/bench_simulate.py [ROBOT.urdf ...]``. Without arguments it measures a
 3-DoF arm (simple + differential transmissions), a 6-DoF arm (simple + four-bar + differential)
-and, when present, ``fixtures/demo_robot.urdf``. For each robot it reports startup (imports,
+and, when present, ``fixtures/demo_robot.urdf`` and the corpus UR5e
+(``../shared/corpus/universal_robot__ur5e.urdf``). For each robot it reports startup (imports,
 loading, model build and the loop's setup) separately, then the per-step wall time of the closed
 loop and of a bare ``rnea + aba`` loop over the same states on the same model, and their ratio.
 Best of ``REPEAT`` runs each. txtool is byte-compiled first, as installing it does (see
@@ -122,8 +123,8 @@ def main(argv: list[str]) -> None:
                 target.write_text(arm(n))
                 paths.append(str(target))
             demo = ROOT / "fixtures" / "demo_robot.urdf"
-            if demo.is_file():
-                paths.append(str(demo))
+            ur5e = ROOT.parent / "shared" / "corpus" / "universal_robot__ur5e.urdf"
+            paths += [str(p) for p in (demo, ur5e) if p.is_file()]
         print(f"startup (fresh interpreter, imports): {startup_seconds() * 1e3:.0f} ms")
         print(f"{'robot':24s} {'nv':>3s} {'steps':>6s} {'setup ms':>9s} {'loop us/step':>13s} "
               f"{'rnea+aba us':>12s} {'ratio':>6s} {'max err':>9s}")

@@ -4,7 +4,9 @@ The complete robots are the corpus's expanded URDFs (MANIFEST notes "EXPANDED", 
 "COMMITTED ... URDF", "expanded"). Runs are 1 s (the default motion shrinks to fit) to keep the
 suite short; default settings otherwise. Two robots cannot hold themselves with the effort
 limits their URDF gives, because the URDF leaves out what carries the load on the real robot:
-PR2's arm counterbalance springs and TIAGo's base suspension springs. They fail, naming that.
+PR2's arm counterbalance springs and TIAGo's base suspension springs. By default simulate
+assumes such a counterbalance and says so per joint; with ``--no-counterbalance`` they fail,
+naming the actuator that cannot hold its joint.
 """
 
 from __future__ import annotations
@@ -30,6 +32,10 @@ COMPLETE = (
     "universal_robot__ur5e.urdf",
     "yumi__yumi.urdf",
 )
+COUNTERBALANCED = {
+    "moveit_resources__pr2_robot.urdf": {"l_shoulder_lift_joint", "r_shoulder_lift_joint"},
+    "tiago_robot__tiago_pal-hey5.urdf": {"suspension_left_joint", "suspension_right_joint"},
+}
 CANNOT_HOLD = {
     "moveit_resources__pr2_robot.urdf": "actuator 'l_shoulder_lift_joint': holding joint "
                                         "'l_shoulder_lift_joint' against gravity needs 40.5",
@@ -50,8 +56,16 @@ def test_the_list_is_the_manifests_expanded_robots():
 def test_complete_robot_passes_its_own_self_check(name):
     run = simulate_one(Options(robot=str(corpus_file(name)), duration=1.0, keep_series=False),
                        None)
-    if name in CANNOT_HOLD:
-        assert run.reasons[0].startswith(CANNOT_HOLD[name]), run.reasons[:2]
-        return
     assert run.passed, (run.reasons[:3], run.notes)
     assert not any(r.startswith("the simulation diverged") for r in run.reasons)
+    assert set(run.counterbalance) == COUNTERBALANCED.get(name, set())
+    for joint in run.counterbalance:
+        assert any(n.startswith(f"joint '{joint}': gravity needs up to") for n in run.notes)
+
+
+@pytest.mark.parametrize("name", sorted(CANNOT_HOLD))
+def test_without_a_counterbalance_the_robot_cannot_hold_itself(name):
+    options = Options(robot=str(corpus_file(name)), duration=1.0, keep_series=False,
+                      counterbalance=False)
+    run = simulate_one(options, None)
+    assert run.reasons[0].startswith(CANNOT_HOLD[name]), run.reasons[:2]

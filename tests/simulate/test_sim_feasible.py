@@ -38,6 +38,33 @@ def test_a_given_duration_shrinks_the_motion_instead(tmp_path):
     assert ("to stay within the limits at 2 s per move, joints move this share of the default "
             f"amplitude: 'shoulder' {100 * share:.0f}%") in run.notes
     assert np.ptp(run.series.q_ref[:, 0]) == pytest.approx(1.5 * share, rel=1e-3)
+    # the header says plainly how much and why
+    assert run.reference == ("minimum-jerk 25% -> 75% -> 25% of each range, 2 s per move; "
+                             f"amplitude cut to {100 * share:.0f}% of the default for 1 of 3 "
+                             "joints to fit the given duration of 4 s (joint velocity limits; "
+                             "see the notes)")
+
+
+def test_without_a_given_duration_time_stretches_instead_of_the_amplitude(tmp_path):
+    """A slow joint (0.04 rad/s) needs an 88 s move: well beyond 30 s, still in full. Only
+    past 120 s per move does the amplitude shrink, and the header says so."""
+    run = simulate_one(Options(robot=fast_arm(tmp_path, velocity=0.04), keep_series=False),
+                       None)
+    assert run.passed, run.reasons
+    move = 1.875 * 1.5 / (MARGIN * 0.04)
+    assert move > 2 * 30
+    assert run.reference == ("minimum-jerk 25% -> 75% -> 25% of each range, "
+                             f"{move:.3g} s per move (slowed for joint 'shoulder' velocity "
+                             "limit)")
+    assert not any("share of the default amplitude" in n for n in run.notes)
+    slower = simulate_one(Options(robot=fast_arm(tmp_path, velocity=0.02), keep_series=False),
+                          None)
+    share = 120 / (1.875 * 1.5 / (MARGIN * 0.02))
+    assert slower.passed, slower.reasons
+    assert slower.reference == ("minimum-jerk 25% -> 75% -> 25% of each range, 120 s per move; "
+                                f"amplitude cut to {100 * share:.0f}% of the default for 1 of 3 "
+                                "joints to keep the run within 240 s (joint velocity limits; "
+                                "see the notes)")
 
 
 def test_default_motion_is_slowed_for_an_actuator_effort_limit(tmp_path):
@@ -55,7 +82,8 @@ def test_default_motion_is_slowed_for_an_actuator_effort_limit(tmp_path):
 def test_a_robot_that_cannot_hold_itself_fails_naming_the_actuator(tmp_path):
     robot = write(tmp_path, "p.urdf", pendulum(1.0, 0.5, 40.0))
     params = write(tmp_path, "p.toml", "[actuators.m_swing]\neffort_limit = 0.05\n")
-    run = simulate_one(Options(robot=robot, params=params, duration=1.0), None)
+    run = simulate_one(Options(robot=robot, params=params, duration=1.0, counterbalance=False),
+                       None)
     assert not run.passed
     assert run.reasons[0].startswith("actuator 'm_swing': holding joint 'swing' against gravity "
                                      "needs 0.12")

@@ -278,17 +278,49 @@ def test_a_file_of_alternative_controllers_and_picking_one(tmp_path):
                    "controller, VelocityJointInterface_trajectory_controller)\n")
 
 
-def test_gains_too_stiff_for_the_step_are_named(tmp_path):
+def test_gains_beyond_the_undamped_bound_that_damping_steadies_are_named(tmp_path):
     """Joint 7 of the iiwa is light: its effort gains d = 2 N·m·s/rad over M_ii = 0.001 kg·m²
-    give kd = 2000 1/s, and kd·dt = 2 at 1 kHz: the semi-implicit Euler loop oscillates."""
+    give kd = 2000 1/s, and kd·dt = 2 at 1 kHz: an undamped joint's loop would oscillate and
+    grow. Its URDF damping (0.5 N·m·s/rad, 511-555 1/s over its effective inertia) keeps the
+    sampled loop stable, so it tracks, and the note says that instead of "cannot be stable"."""
     robot = str(corpus_file("iiwa_stack__iiwa14.urdf"))
     yaml_path = write(tmp_path, "iiwa_control.yaml", IIWA_CONTROL)
-    doc = gains_of(tmp_path, robot, yaml_path, duration="0.5")
-    stiff = [n for n in doc["notes"] if n.startswith("gains too stiff")]
-    assert stiff == ["gains too stiff for --dt 0.001 s, the loop cannot be stable (with the "
-                     "one-period delay it needs kd·dt < 1 and kp·dt² < kd·dt·(1 - kd·dt)): "
-                     "iiwa_joint_7 (kp·dt² 0.017, kd·dt 2)"]
+    code, out, err = simulate(robot, "--params", yaml_path, "--format", "json")
+    doc = json.loads(out)
+    assert (code, err) == (0, "") and doc["verdict"] == "pass"
+    assert doc["joints"]["iiwa_joint_7"]["max_error"] < 1e-4
+    stiff = [n for n in doc["notes"] if n.startswith("gains")]
+    assert len(stiff) == 1
+    assert stiff[0].startswith(
+        "gains beyond the stable region of an undamped joint at --dt 0.001 s (with the one-period "
+        "delay it needs kd·dt < 1 and kp·dt² < kd·dt·(1 - kd·dt)); the URDF damping keeps the "
+        "sampled loop stable, so less real damping would make it oscillate: iiwa_joint_7 "
+        "(kp·dt² 0.017, kd·dt 2; x0.99")
+    # the same gains without the damping: unstable, named in the note and in the verdict
+    undamped = write(tmp_path, "iiwa.urdf", corpus_file("iiwa_stack__iiwa14.urdf").read_text(
+        encoding="utf-8").replace('damping="0.5"', 'damping="0"'))
+    code, out, err = simulate(undamped, "--params", yaml_path, "--format", "json")
+    doc = json.loads(out)
+    assert (code, doc["verdict"]) == (1, "fail")
+    assert "gains too stiff for --dt 0.001 s, the loop cannot be stable" in " ".join(doc["notes"])
+    assert any(r.startswith("joint 'iiwa_joint_7': gains too stiff for --dt 0.001 s: the "
+                            "sampled loop is unstable, its error grows x1.4") for r in doc["reasons"])
     code, out, err = simulate(robot, "--params", yaml_path, "--dt", "0.0002", "--format", "json")
     doc = json.loads(out)
     assert (code, err) == (0, "") and doc["verdict"] == "pass"
-    assert not any(n.startswith("gains too stiff") for n in doc["notes"])
+    assert not any(n.startswith("gains") for n in doc["notes"])
+
+
+def test_an_unstable_loop_fails_even_when_the_run_is_too_short_to_show_it(tmp_path):
+    """kp·dt² 0.252 just past the delayed loop's bound b (1 - b) = 0.25 at kd·dt 0.5: the error
+    grows by 0.2% per step, too slowly to leave the tolerance in 0.5 s, but it is unstable."""
+    robot = write(tmp_path, "p.urdf", pendulum(1.0, 0.5, 40.0))
+    params = write(tmp_path, "g.toml", "[joints.swing]\nkp = 252000.0\nkd = 500.0\n")
+    code, out, err = simulate(robot, "--params", params, "--duration", "0.5", "--format", "json")
+    doc = json.loads(out)
+    assert (code, err) == (1, "")
+    assert doc["joints"]["swing"]["max_error"] < 0.01  # tracking alone would pass
+    assert doc["reasons"][0] == (
+        "joint 'swing': gains too stiff for --dt 0.001 s: the sampled loop is unstable, its "
+        "error grows x1.002 per step (kp·dt² 0.252, kd·dt 0.5; with the one-period delay it "
+        "needs kd·dt < 1 and kp·dt² < kd·dt·(1 - kd·dt))")

@@ -77,10 +77,13 @@ def test_unstable_gains_chatter_against_the_limits_and_fail_with_allow_saturatio
                                duration=1.0), None)
     assert run.joints["swing"].max_error < 0.01  # the joint itself still tracks
     assert not run.passed
-    assert len(run.reasons) == 1
-    assert run.reasons[0].startswith("actuator 'm_swing': chatters against its effort limit 2.5 "
+    # kd·dt = 2: the stability check names the gains, the chatter check the limit cycle
+    assert len(run.reasons) == 2
+    assert run.reasons[0].startswith("joint 'swing': gains too stiff for --dt 0.001 s: the "
+                                     "sampled loop is unstable")
+    assert run.reasons[1].startswith("actuator 'm_swing': chatters against its effort limit 2.5 "
                                      "from t=")
-    assert "(a limit cycle: the loop is unstable)" in run.reasons[0]
+    assert "(a limit cycle: the loop is unstable)" in run.reasons[1]
 
 
 def test_a_weak_motor_saturating_on_the_moves_is_no_limit_cycle(tmp_path):

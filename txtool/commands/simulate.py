@@ -51,6 +51,9 @@ from txtool.io.xmlio import XacroOptions
 @click.option("--encoder-counts", type=click.IntRange(min=1), metavar="N",
               help="Quantise actuator positions to N counts per revolution; velocity by finite "
                    "differences (default: exact readings).")
+@click.option("--counterbalance/--no-counterbalance", default=True, show_default=True,
+              help="Take a static gravity load beyond a joint's effort limit as carried by a "
+                   "counterbalance or spring the URDF does not describe (a note per joint).")
 @FORMAT_OPTION
 @click.option("--csv", "csv_path", type=click.Path(dir_okay=False), metavar="PATH",
               help="Write the time series (PATH.N.csv per config when several).")
@@ -71,7 +74,7 @@ def command(robot: str, configs: tuple[str, ...], params: tuple[str, ...],
             duration: float | None, dt: float | None, tolerance: float | None,
             trajectory: str | None, interpolation: str, allow_saturation: bool, loader: str,
             convention: str | None, delay: bool, encoder_counts: int | None,
-            output_format: str, csv_path: str | None,
+            counterbalance: bool, output_format: str, csv_path: str | None,
             plot_path: str | None, skip: tuple[str, ...], jobs: int, no_xacro: bool,
             xacro: XacroOptions) -> int:
     """Check a transmission config in closed loop against the robot's own.
@@ -92,6 +95,7 @@ def command(robot: str, configs: tuple[str, ...], params: tuple[str, ...],
         dt=dt, tolerance=tolerance, trajectory=trajectory, interpolation=interpolation,
         allow_saturation=allow_saturation, loader=loader, convention=convention, xacro=xacro,
         jobs=jobs, skip=skip, delay=delay, encoder_counts=encoder_counts,
+        counterbalance=counterbalance,
     )
     _, code = main(options, output=output_format, csv_path=csv_path, plot_path=plot_path)
     return code

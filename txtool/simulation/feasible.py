@@ -30,11 +30,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from txtool.simulation.counterbalance import Counterbalance
 from txtool.simulation.reference import Reference, minimum_jerk, step_times
 
 MARGIN = 0.8  # a reference peak may use this share of a speed or effort limit
 LAG_SHARE = 0.15  # share of the tolerance the predicted lag of a damped light link may use
-LONGEST_MOVE = 30.0  # s: the default run grows to at most 2 x this
+LONGEST_MOVE = 120.0  # s: the default run grows to at most 2 x this
 SAMPLES = 120  # points of the unit profile where the dynamics are evaluated
 GRID = 1.03  # ratio between move times tried
 
@@ -70,6 +71,8 @@ class Motion:
     binding: str  # what set the move time
     notes: tuple[str, ...]
     cannot_hold: tuple[str, ...] = ()  # why actuators cannot hold their joints at rest
+    carry: Counterbalance | None = None  # static loads carried beside the actuators
+    shrunk: str = ""  # how much the amplitudes were cut, and why (for the header)
 
 
 def unit_profile(ranges: list[tuple[float, float]], amplitude: np.ndarray
@@ -91,11 +94,23 @@ def _ends(ranges: list[tuple[float, float]], amplitude: np.ndarray
 
 
 def plan_motion(ranges: list[tuple[float, float]], limits: Limits, dynamics: Dynamics,
-                move: float, fixed: bool, tolerance: float) -> Motion:
-    """The move time and amplitudes; ``move`` is the default (or, with ``fixed``, the only)."""
+                move: float, fixed: bool, tolerance: float,
+                counterbalance: Callable[[np.ndarray], Counterbalance] | None = None) -> Motion:
+    """The move time and amplitudes; ``move`` is the default (or, with ``fixed``, the only).
+
+    ``counterbalance`` finds, from the gravity along the full motion, the static loads to take
+    off the actuators (:mod:`txtool.simulation.counterbalance`).
+    """
     amplitude = np.ones(len(ranges))
     notes = []
     q, qd, qdd = unit_profile(ranges, amplitude)
+    carry = None
+    if counterbalance is not None:
+        carry = counterbalance(dynamics(q, 0 * qd, 0 * qdd)[2])
+        if carry.active:
+            dynamics = carry.relieve(dynamics)
+        else:
+            carry = None
     still = _held_still(limits, dynamics(q, qd, qdd)[2])
     for v, why in still.items():
         amplitude[v] = 0.0
@@ -109,13 +124,23 @@ def plan_motion(ranges: list[tuple[float, float]], limits: Limits, dynamics: Dyn
     needed, binding = _move_time(limits, qd, parts, lag, move)
     if needed <= longest:
         chosen = max(move, needed)
-        return Motion(chosen, amplitude, binding if chosen > move else "", tuple(notes), weak)
-    scale = _amplitude_scale(limits, qd, qdd, parts, lag, longest)
-    shrunk = [f"'{limits.joints[v]}' {100 * scale[v]:.0f}%" for v in np.nonzero(scale < 1)[0]]
+        return Motion(chosen, amplitude, binding if chosen > move else "", tuple(notes), weak,
+                      carry)
+    scale, why = _amplitude_scale(limits, qd, parts, lag, longest,
+                                  lambda share: dynamics(*unit_profile(ranges, amplitude * share)))
+    cut = np.nonzero(scale < 1)[0]
+    shrunk = [f"'{limits.joints[v]}' {100 * scale[v]:.0f}%" for v in cut]
+    header = ""
     if shrunk:
         notes.append(f"to stay within the limits at {longest:g} s per move, joints move this "
                      "share of the default amplitude: " + ", ".join(shrunk))
-    return Motion(longest, amplitude * scale, "", tuple(notes), weak)
+        low, high = 100 * scale[cut].min(), 100 * scale[cut].max()
+        share = f"{low:.0f}%" if round(low) == round(high) else f"{low:.0f}-{high:.0f}%"
+        fit = (f"to fit the given duration of {2 * longest:g} s" if fixed else
+               f"to keep the run within {2 * longest:g} s")
+        header = (f"amplitude cut to {share} of the default for {len(cut)} of {len(scale)} "
+                  f"joints {fit} ({', '.join(why)}; see the notes)")
+    return Motion(longest, amplitude * scale, "", tuple(notes), weak, carry, header)
 
 
 @dataclass(frozen=True)
@@ -289,31 +314,43 @@ def _move_time(limits: Limits, qd: np.ndarray, parts: Parts, lag: Lag, start: fl
     return move, binding
 
 
-def _amplitude_scale(limits: Limits, qd: np.ndarray, qdd: np.ndarray, parts: Parts, lag: Lag,
-                     move: float) -> np.ndarray:
-    """Per joint, the share of the default amplitude that fits in ``move`` seconds."""
-    nv = qd.shape[1]
-    scale = np.ones(nv)
+def _amplitude_scale(limits: Limits, qd: np.ndarray, parts: Parts, lag: Lag, move: float,
+                     exact: Callable[[np.ndarray], Parts]) -> tuple[np.ndarray, list[str]]:
+    """Per joint, the share of the default amplitude that fits in ``move`` seconds, and which
+    limits cut it.
+
+    Efforts are evaluated on the shrunk motion itself (``exact(scale)``): a joint's torque
+    also carries the other joints' accelerations, which shrink by their own shares.
+    """
+    scale = np.ones(qd.shape[1])
     speed = np.abs(qd).max(axis=0) / move
     with np.errstate(divide="ignore", invalid="ignore"):
         scale = np.minimum(scale, np.nan_to_num(MARGIN * limits.velocity / speed, nan=1.0))
-    quadratic, linear, static = parts
+    why = dict.fromkeys(("joint velocity limits", "actuator speed limits",
+                         "actuator effort limits", "tracking lag of the delayed loop"), False)
+    why["joint velocity limits"] = bool((scale < 1).any())
+    static = parts[2]
     hopeless = np.abs(static @ limits.eff_j2a.T).max(axis=0) > MARGIN * limits.actuator_effort
     for _ in range(200):
         a_speed = np.abs((qd * scale) @ limits.vel_j2a.T).max(axis=0) / move
-        effort = np.abs(((quadratic / move**2 + linear / move) * scale + static)
+        quadratic, linear, static = exact(scale)
+        effort = np.abs((quadratic / move**2 + linear / move + static)
                         @ limits.eff_j2a.T).max(axis=0)
         over = (a_speed > MARGIN * limits.actuator_speed) \
             | ((effort > MARGIN * limits.actuator_effort) & ~hopeless)
         late = np.nonzero(lag.error(move, scale) > lag.budget)[0]
         if not (over.any() or len(late)):
             break
+        why["actuator speed limits"] |= bool((a_speed > MARGIN * limits.actuator_speed).any())
+        why["actuator effort limits"] |= bool((over & ~(a_speed > MARGIN
+                                                        * limits.actuator_speed)).any())
+        why["tracking lag of the delayed loop"] |= bool(len(late))
         shrink = np.abs(limits.vel_j2a[over]).sum(axis=0) + np.abs(limits.eff_j2a[over]).sum(axis=0)
         joints = set(np.nonzero(shrink)[0].tolist())
         for v in late:
             joints.update(lag.culprits(move, scale, int(v)).tolist())
         scale[sorted(joints)] *= 0.95
-    return scale
+    return scale, [what for what, cut in why.items() if cut]
 
 
 def sample(ranges: list[tuple[float, float]], motion: Motion, dt: float) -> Reference:
@@ -334,4 +371,6 @@ def describe(motion: Motion) -> str:
     text = f"minimum-jerk 25% -> 75% -> 25% of each range, {motion.move:.3g} s per move"
     if motion.binding:
         text += f" (slowed for {motion.binding})"
+    if motion.shrunk:
+        text += f"; {motion.shrunk}"
     return text

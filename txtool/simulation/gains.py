@@ -52,10 +52,8 @@ def _over(value: float | None, m: float) -> float | None:
 
 
 def used(robot: RobotModel, params: Params, ctrl: Controller, bandwidth: float,
-         inertia: dict[str, float], dt: float, delay: bool = True
-         ) -> tuple[dict[str, GainsUsed], list[str]]:
-    """Per joint: the gains the controller runs with, their source, the M_ii used (if any);
-    and a note naming the joints whose gains are too stiff for ``dt`` (and the delay)."""
+         inertia: dict[str, float]) -> dict[str, GainsUsed]:
+    """Per joint: the gains the controller runs with, their source, the M_ii used (if any)."""
     table = {}
     for v, joint in enumerate(robot.joints):
         given = params.joints.get(joint)
@@ -66,7 +64,7 @@ def used(robot: RobotModel, params: Params, ctrl: Controller, bandwidth: float,
             units=robot.units(joint), source=given.source if given is not None else None,
             bandwidth=bandwidth if given is None or None in (given.kp, given.kd) else None,
             inertia=inertia.get(joint))
-    return table, too_stiff(table, dt, delay)
+    return table
 
 
 def unstable(kp: float, kd: float, dt: float, delay: bool) -> bool:
@@ -91,11 +89,63 @@ def condition(delay: bool) -> str:
     return "it needs kd·dt < 2 and kp·dt² + 2·kd·dt < 4"
 
 
-def too_stiff(table: dict[str, GainsUsed], dt: float, delay: bool = True) -> list[str]:
-    """Joints whose error dynamics the loop's step (and delay) makes unstable."""
-    stiff = [f"{name} (kp·dt² {g.kp * dt * dt:.3g}, kd·dt {g.kd * dt:.3g})"
-             for name, g in table.items() if unstable(g.kp, g.kd, dt, delay)]
-    if not stiff:
-        return []
-    return [f"gains too stiff for --dt {dt:g} s, the loop cannot be stable ({condition(delay)}): "
-            + ", ".join(stiff)]
+def radius(kp: float, kd: float, dt: float, delay: bool, rate: float = 0.0,
+           substeps: int = 1) -> float:
+    """Spectral radius of one joint's sampled error loop as simulate runs it (< 1: stable).
+
+    ``rate`` is the joint's viscous damping over its inertia (1/s). The plant steps
+    ``v' = (v + h u) / (1 + h rate)``, ``x' = x + h v'`` (implicit damping, ``substeps`` of
+    ``h``) with the command ``u`` held; the controller commands ``u = -kp x - kd v + rate v``
+    (computed torque with the damping compensated from its reading), one period late with
+    ``delay``. With ``rate = 0`` this is the region of :func:`unstable`.
+    """
+    h = dt / substeps
+    step = np.eye(3)
+    sub = np.array([[1.0, h / (1 + h * rate), h * h / (1 + h * rate)],
+                    [0.0, 1 / (1 + h * rate), h / (1 + h * rate)],
+                    [0.0, 0.0, 1.0]])
+    for _ in range(substeps):
+        step = sub @ step
+    law = np.array([-kp, rate - kd])
+    if delay:
+        loop = np.vstack([step[:2], [law[0], law[1], 0.0]])
+    else:
+        loop = step[:2, :2] + np.outer(step[:2, 2], law)
+    return float(np.abs(np.linalg.eigvals(loop)).max())
+
+
+def stability(table: dict[str, GainsUsed], dt: float, delay: bool, rates: np.ndarray,
+              times: np.ndarray, substeps: int = 1) -> tuple[list[str], list[str]]:
+    """(notes, reasons) on joints whose gains the loop's step and delay make unstable.
+
+    ``rates``: (poses, nv) damping over effective inertia at poses of the reference, reached
+    at ``times``. A joint outside the undamped region (:func:`unstable`) whose damping keeps
+    every pose's loop stable gets a note saying so; one unstable at some pose fails the run,
+    however short: its error grows there whether or not the run lasts long enough to show it.
+    """
+    failing, damped, reasons = [], [], []
+    for v, (name, g) in enumerate(table.items()):
+        if not unstable(g.kp, g.kd, dt, delay):
+            continue
+        gains = f"kp·dt² {g.kp * dt * dt:.3g}, kd·dt {g.kd * dt:.3g}"
+        worst = [radius(g.kp, g.kd, dt, delay, float(r), substeps) for r in rates[:, v]]
+        k = int(np.argmax(worst))
+        if worst[k] >= 1.0:
+            failing.append(f"{name} ({gains})")
+            where = f" at the pose of t={times[k]:.3f} s" if rates[:, v].any() else ""
+            reasons.append(f"joint '{name}': gains too stiff for --dt {dt:g} s: the sampled "
+                           f"loop is unstable, its error grows x{worst[k]:.4g} per step{where} "
+                           f"({gains}; {condition(delay)})")
+        else:
+            damped.append(f"{name} ({gains}; x{worst[k]:.4g} per step at worst, with "
+                          f"damping / inertia {rates[:, v].min():.4g}-{rates[:, v].max():.4g} "
+                          "1/s)")
+    notes = []
+    if failing:
+        notes.append(f"gains too stiff for --dt {dt:g} s, the loop cannot be stable "
+                     f"({condition(delay)}): " + ", ".join(failing))
+    if damped:
+        notes.append(f"gains beyond the stable region of an undamped joint at --dt {dt:g} s "
+                     f"({condition(delay)}); the URDF damping keeps the sampled loop stable, "
+                     "so less real damping would make it oscillate: " + ", ".join(damped))
+    return notes, reasons

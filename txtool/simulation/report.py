@@ -249,6 +249,7 @@ def run_json(run: RunResult) -> dict[str, Any]:
             for name, a in run.actuators.items()
         },
         "gains": {name: gains_json(g) for name, g in run.gains.items()},
+        "counterbalance": {name: dict(entry) for name, entry in run.counterbalance.items()},
         "tolerance": run.tolerance,
         "steps": run.steps,
         "dt": run.dt,

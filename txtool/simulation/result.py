@@ -116,6 +116,8 @@ class RunResult:
     timings: dict[str, float] = field(default_factory=dict)
     gains: dict[str, GainsUsed] = field(default_factory=dict)
     tolerance: float | None = None
+    # per joint: static_load, limit, carried (peaks) and units of an assumed counterbalance
+    counterbalance: dict[str, dict[str, float | str]] = field(default_factory=dict)
 
     @property
     def passed(self) -> bool:

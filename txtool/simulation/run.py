@@ -11,7 +11,16 @@ import numpy as np
 
 from txtool.io.load import load
 from txtool.io.xmlio import InputError, XacroOptions
-from txtool.simulation import checks, feasible, gains, loop, reference, result, setup
+from txtool.simulation import (
+    checks,
+    counterbalance,
+    feasible,
+    gains,
+    loop,
+    reference,
+    result,
+    setup,
+)
 from txtool.simulation.drive import Drive, read_drive
 from txtool.simulation.model import RobotModel, build
 from txtool.simulation.params import Params, load_params
@@ -46,6 +55,7 @@ class Options:
     skip: tuple[str, ...] = ()  # transmission names left out (joints driven directly)
     delay: bool = True  # one control period between read and write (sensing.py)
     encoder_counts: int | None = None
+    counterbalance: bool = True  # static loads beyond the effort limits: counterbalance.py
 
 
 @dataclass(frozen=True)
@@ -95,6 +105,8 @@ class Prepared:
     controller: loop.Controller | None = None
     gains: dict[str, result.GainsUsed] = field(default_factory=dict)
     notes: tuple[str, ...] = ()
+    carried: dict[str, dict[str, float | str]] = field(default_factory=dict)
+    unstable: list[str] = field(default_factory=list)  # joints whose sampled loop is unstable
 
 
 def prepare(options: Options, config: str | None, label: str | None = None) -> Prepared:
@@ -126,23 +138,51 @@ def prepare(options: Options, config: str | None, label: str | None = None) -> P
     params, converted = gains.in_acceleration(params, robot, plant, rotor[0],
                                               _start(robot, table))
     controller = setup.controller(robot, params, run_settings.bandwidth)
+    finder = _finder(robot, plant, effort_limit) if options.counterbalance else None
     if table is None:
         fixed = options.duration is not None or "duration" in params.run
         limits = setup.motion_limits(robot, plant, inertia, controller, effort_limit,
                                      speed_limit, run_settings.dt, options.delay)
-        ref, duration, ref_notes, weak = _default_reference(
-            robot, run_settings, limits, setup.reference_dynamics(robot, inertia), fixed)
+        ref, duration, ref_notes, weak, carry = _default_reference(
+            robot, run_settings, limits, setup.reference_dynamics(robot, inertia), fixed, finder)
     else:
         ref, duration, ref_notes = _reference(options, table, robot, run_settings)
-        weak = []
+        weak, carry = [], None
+        if finder is not None:  # found on every tenth pose, applied at every step
+            carry = finder(setup.gravity_along(robot, ref.q[::10]))
+    carried, carry_notes, carry_table = None, [], {}
+    if carry is not None and carry.active:
+        gravity = setup.gravity_along(robot, ref.q)
+        carried = carry.carried(gravity)
+        carry_notes, carry_table = carry.notes(gravity), carry.table(gravity)
     plan = setup.build_plan(robot, plant, ctrl, binding, rotor, effort_limit, controller, ref,
-                            run_settings.dt, Sensing(options.delay, options.encoder_counts))
-    used, stiff = gains.used(robot, params, controller, run_settings.bandwidth, converted,
-                             run_settings.dt, options.delay)
+                            run_settings.dt, Sensing(options.delay, options.encoder_counts),
+                            carried)
+    used = gains.used(robot, params, controller, run_settings.bandwidth, converted)
+    stiff, unstable = _stability(robot, inertia, ref, used, plan)
     return Prepared(options, config, label or (config if config is not None else options.robot),
                     robot, plant, ctrl, binding, plan, ref, run_settings, duration, effort_limit,
-                    speed_limit, time.perf_counter() - started, ref_notes, weak, controller, used,
-                    params.notes + tuple(stiff))
+                    speed_limit, time.perf_counter() - started, carry_notes + ref_notes, weak,
+                    controller, used, params.notes + tuple(stiff), carry_table, unstable)
+
+
+def _stability(robot: RobotModel, inertia: np.ndarray, ref: reference.Reference,
+               used: dict[str, result.GainsUsed], plan: loop.Plan) -> tuple[list[str], list[str]]:
+    """(notes, reasons) of :func:`gains.stability` at poses along the reference."""
+    poses = np.arange(0, len(ref.q), max(1, len(ref.q) // setup.SAMPLES))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rates = np.where(robot.damping > 0, robot.damping
+                         / setup.effective_inertias(robot, inertia, ref.q[poses]), 0.0)
+    return gains.stability(used, plan.dt, plan.delay, np.nan_to_num(rates, posinf=0.0),
+                           ref.time[poses], plan.dynamics.substeps)
+
+
+def _finder(robot: RobotModel, plant: Drive, effort_limit: np.ndarray
+            ) -> Callable[[np.ndarray], counterbalance.Counterbalance]:
+    """Gravity rows -> the counterbalance of the joints whose actuators cannot hold them."""
+    units = tuple(robot.units(j) for j in robot.joints)
+    return lambda gravity: counterbalance.find(robot.joints, units, gravity, plant.eff_j2a,
+                                               effort_limit)
 
 
 def simulate_one(options: Options, config: str | None, label: str | None = None,
@@ -171,6 +211,7 @@ def finish(p: Prepared, loop_s: float) -> result.RunResult:
     if p.plan.dynamics.note:
         run.notes.append(p.plan.dynamics.note)
     run.gains, run.tolerance = p.gains, p.settings.tolerance
+    run.counterbalance = p.carried
     checks.judge(run, series, p.plant, p.ctrl, p.binding.S, p.config is not None,
                  p.plan.encoder, p.plan.delay)
     run.timings = {"setup_s": p.setup_s, "loop_s": loop_s,
@@ -186,16 +227,20 @@ def _ranges(robot: RobotModel) -> list[tuple[float, float]]:
 
 
 def _default_reference(robot: RobotModel, s: Settings, limits: feasible.Limits,
-                       dynamics: feasible.Dynamics, fixed: bool
-                       ) -> tuple[reference.Reference, float, list[str], list[str]]:
+                       dynamics: feasible.Dynamics, fixed: bool,
+                       finder: Callable[[np.ndarray], counterbalance.Counterbalance] | None
+                       ) -> tuple[reference.Reference, float, list[str], list[str],
+                                  counterbalance.Counterbalance | None]:
     """The minimum-jerk motion, slowed (or, with a fixed duration, shrunk) to be feasible."""
     ranges = _ranges(robot)
-    chosen = feasible.plan_motion(ranges, limits, dynamics, s.duration / 2, fixed, s.tolerance)
+    chosen = feasible.plan_motion(ranges, limits, dynamics, s.duration / 2, fixed, s.tolerance,
+                                  finder)
     ref = feasible.sample(ranges, chosen, s.dt)
     ref = reference.follow(ref, robot.joints, robot.followers)
     ref, notes = reference.saturate(ref, robot.joints, robot.lower, robot.upper,
                                     robot.velocity, s.dt)
-    return ref, float(ref.time[-1]), list(chosen.notes) + notes, list(chosen.cannot_hold)
+    return (ref, float(ref.time[-1]), list(chosen.notes) + notes, list(chosen.cannot_hold),
+            chosen.carry)
 
 
 def _table(options: Options, robot: RobotModel) -> reference.Table:
@@ -260,6 +305,7 @@ def _judge(p: Prepared, series: result.Series) -> result.RunResult:
     if plan.diverged_at is not None:
         cause = setup.divergence_cause(plan, p.controller) if p.controller else ""
         reasons.append(f"the simulation diverged at t={plan.diverged_at * s.dt:.3f} s: {cause}")
+    reasons += p.unstable
     for name in binding.unbound:
         reasons.append(f"actuator '{name}' of the config is not an actuator of the robot")
     for name in binding.uncommanded:

@@ -109,17 +109,21 @@ def controller(robot: RobotModel, params: Params, bandwidth: float) -> Controlle
 
 def build_plan(robot: RobotModel, plant: Drive, ctrl: Drive, binding: Binding,
                rotor: tuple[np.ndarray, np.ndarray], limit: np.ndarray, gains: Controller,
-               ref: Reference, dt: float, sensing: Sensing | None = None) -> Plan:
-    """``rotor`` = (per robot actuator, per candidate actuator) rotor inertias."""
+               ref: Reference, dt: float, sensing: Sensing | None = None,
+               carried: np.ndarray | None = None) -> Plan:
+    """``rotor`` = (per robot actuator, per candidate actuator) rotor inertias; ``carried``:
+    per step, joint torques of an undescribed counterbalance (plant and controller know them)."""
     nv, na = robot.nv, plant.na
     sensing = sensing or Sensing(delay=False)
     unobserved = [robot.joints.index(j) for j in binding.unobserved]
     friction_ff = bool(np.any(gains.friction))
     s = layout(nv, na, unobserved=bool(unobserved), friction_ff=friction_ff,
-               encoder=sensing.counts is not None)
-    width = s["sat"].stop
+               encoder=sensing.counts is not None, carried=carried is not None)
+    width = max(slot.stop for slot in s.values())
     steps = len(ref.time) - 1
     rows = _rows(s, width, ref, gains)
+    if carried is not None:
+        rows[:, s["cb"]] = carried
     E = _estimates(s, width, nv, plant, ctrl, binding.S, unobserved)
     F = np.zeros((nv, width))
     F[:, s["ff"]] = np.eye(nv)
@@ -132,12 +136,16 @@ def build_plan(robot: RobotModel, plant: Drive, ctrl: Drive, binding: Binding,
         bias_rows = bias_rows + ctrl_block @ F
     if friction_ff:
         bias_rows[:, s["fric"]] += np.eye(nv)
+    if carried is not None:  # the controller leaves the carried torque to the counterbalance
+        bias_rows[:, s["cb"]] -= np.eye(nv)
     bias = bool(np.any(bias_rows))
     H = np.vstack([E, F, C @ bias_rows] if bias else [E, F])
     use_ki = bool(np.any(gains.ki))
     general = use_ki or robot.has_continuous or not dynamics.simple
     PD = np.zeros((nv, width))
     PD[:, s["sat"]] = plant.eff_a2j
+    if carried is not None:
+        PD[:, s["cb"]] = np.eye(nv)
     if not general:  # the fast loop: damping explicit in PD, implicit through the armature
         PD[:, s["v"]] = -np.diag(robot.damping)
     return Plan(
@@ -235,6 +243,32 @@ def reference_dynamics(robot: RobotModel, inertia: np.ndarray
         return quadratic, robot.damping * xd, static
 
     return parts
+
+
+def effective_inertias(robot: RobotModel, inertia: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """Rows of each DoF's effective inertia ``1 / (M^-1)_jj`` (rotor ``inertia`` included)."""
+    model, block = make_model(robot, inertia)
+    data = model.createData()
+    lower = np.tril_indices(robot.nv, -1)
+    rows = np.empty_like(x)
+    for k, q in enumerate(robot.config(x)):
+        mass = pin.crba(model, data, q).copy()
+        mass[lower] = mass.T[lower]
+        if block is not None:
+            mass += block
+        with np.errstate(divide="ignore"):
+            rows[k] = 1.0 / np.diag(np.linalg.pinv(mass))
+    return rows
+
+
+def gravity_along(robot: RobotModel, x: np.ndarray) -> np.ndarray:
+    """Rows of the gravity torque ``g(q)`` at the coordinates ``x`` (rows)."""
+    model = robot.model
+    data = model.createData()
+    gravity = np.empty_like(x)
+    for k, q in enumerate(robot.config(x)):
+        gravity[k] = pin.computeGeneralizedGravity(model, data, q)
+    return gravity
 
 
 def motion_limits(robot: RobotModel, plant: Drive, inertia: np.ndarray, gains: Controller,

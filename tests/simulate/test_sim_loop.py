@@ -1,0 +1,64 @@
+"""The delayed fast loop (two working rows, Phi folded into H and PD) against the plain one.
+
+``loop._fast_steps`` is the loop as the docs describe it, one product per matrix and one view
+per column per step; ``loop._delayed_steps`` is what the default settings run. They must agree
+to round-off: x and v within 1e-12, efforts within 1e-12 of their peak. Accelerations get
+1e-11 of their peak: ``aba`` divides the torque's round-off (the folded sums) by the inertia.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from tests.simulate.robots import arm_ros1, pendulum, write
+from tests.simulate.test_sim_counterbalance import WEAK_MOTOR
+from txtool.simulation import loop
+from txtool.simulation.run import Options, prepare
+
+FIXTURES = Path(__file__).resolve().parents[2] / "fixtures"
+
+
+def robots(tmp_path) -> dict[str, Options]:
+    pendulum_path = write(tmp_path, "p.urdf", pendulum(1.0, 0.5, 40.0))
+    return {
+        # damping: a bias row; a differential: C is no identity
+        "demo robot": Options(robot=str(FIXTURES / "demo_robot.urdf")),
+        "arm (simple + differential)": Options(robot=write(tmp_path, "arm.urdf", arm_ros1())),
+        # reductions of 1: C is the identity
+        "direct pendulum": Options(robot=write(tmp_path, "d.urdf", pendulum(1.0, 0.5, 1.0))),
+        # a counterbalance column in PD and in the bias
+        "counterbalanced pendulum": Options(robot=pendulum_path,
+                                            params=write(tmp_path, "w.toml", WEAK_MOTOR)),
+        # saturation on a fast move: the clip is active
+        "saturating": Options(robot=write(tmp_path, "a2.urdf", arm_ros1()),
+                              allow_saturation=True, params=write(
+                                  tmp_path, "s.toml", "[actuators.m_shoulder]\n"
+                                  "effort_limit = 0.3\n"),
+                              trajectory=write(tmp_path, "fast.csv",
+                                               "time,shoulder\n0,0\n0.3,1\n0.6,0\n1,0\n")),
+    }
+
+
+@pytest.mark.parametrize("case", ["demo robot", "arm (simple + differential)", "direct pendulum",
+                                  "counterbalanced pendulum", "saturating"])
+def test_the_delayed_loop_matches_the_plain_loop(tmp_path, case, monkeypatch):
+    options = robots(tmp_path)[case]
+    fast = prepare(options, None)
+    plain = prepare(options, None)
+    assert fast.plan.delay and fast.plan.dynamics.simple and fast.plan.ki is None
+    loop.run(fast.plan)
+    monkeypatch.setattr(loop, "_delayed_steps", loop._fast_steps)
+    loop.run(plain.plan)
+    s, end = fast.plan.slots, fast.plan.steps
+    for name in ("x", "v"):
+        assert np.abs(fast.plan.rows[:, s[name]] - plain.plan.rows[:, s[name]]).max() <= 1e-12
+    for name, rows, bound in (("sat", slice(None), 1e-12), ("ta", slice(0, end), 1e-12),
+                              ("a", slice(0, end), 1e-11)):
+        a, b = fast.plan.rows[rows, s[name]], plain.plan.rows[rows, s[name]]
+        assert np.abs(a - b).max() <= bound * max(1.0, np.abs(b).max()), name
+    if case == "saturating":
+        limit = fast.plan.limit
+        assert (np.abs(fast.plan.rows[:end, s["ta"]]) > limit).any()
