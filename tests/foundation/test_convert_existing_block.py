@@ -3,6 +3,8 @@ declaration is kept and the conversion is judged on what the transmission itself
 
 from __future__ import annotations
 
+import json
+
 from lxml import etree
 
 from tests.corpus import corpus_file
@@ -123,3 +125,13 @@ def test_roundtrip_judges_what_the_transmission_defines(run):
     code, out, _ = run("roundtrip", str(corpus_file(
         "ros_control__four_bar_linkage_transmission_loader_full.urdf")))
     assert code == 1 and out.rstrip().endswith("some cycles lose data or change behaviour")
+
+
+def test_roundtrip_names_the_members_listed_against_their_roles(run):
+    code, out, _ = run("roundtrip", "--format", "json", str(corpus_file(
+        "ros_control__differential_transmission_loader_full.urdf")))
+    assert code == 1
+    rows = json.loads(out)["cycles"]
+    assert rows and all(row["equivalent"].startswith("no: ") for row in rows)
+    assert all("the original lists its members against their roles (TX404): ros_control binds "
+               "their data in XML order, ros2_control by name" in row["details"] for row in rows)

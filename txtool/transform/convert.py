@@ -178,7 +178,7 @@ def _binding_difference(before: Transmission, old: Effective, new: Effective) ->
     moved = [f"'{name}' would take the values {loader} applies to '{source}'"
              for name, source in _sources(old, new)]
     detail = "; ".join(moved) or "the loaded reductions or offsets differ"
-    if old.loader == "ros1" and _listed_against_roles(before):
+    if old.loader == "ros1" and listed_against_roles(before):
         return (f"{detail}. ros_control takes the values by <role> but the data in XML "
                 "order, and this transmission lists its members against their roles (TX404): "
                 "list them in role order first (this changes what ros_control does: check it "
@@ -201,7 +201,8 @@ def _sources(old: Effective, new: Effective) -> list[tuple[str, str]]:
     return changed
 
 
-def _listed_against_roles(t: Transmission) -> bool:
+def listed_against_roles(t: Transmission) -> bool:
+    """A coupled member pair written role 2 first (ros_control's data order then differs)."""
     return any([m.role for m in members] == [roles[1], roles[0]]
                for members, roles in ((t.joints, ROLES_JOINT), (t.actuators, ROLES_ACTUATOR)))
 

@@ -17,7 +17,7 @@ from txtool.dialects.read import read_source
 from txtool.io.xmlio import Source, parse_bytes
 from txtool.model.core import DIALECTS, Dialect, Transmission
 from txtool.model.robot import robot_joints
-from txtool.transform.convert import convert_source, judge
+from txtool.transform.convert import convert_source, judge, listed_against_roles
 from txtool.views.tables import FIELDS
 
 
@@ -116,10 +116,13 @@ def _cycles(source: Source, start: Dialect, group: list[Transmission], joints) -
                 continue
             equivalence = compare_pair(t, converted, joints) if converted else None
             lost = judge(t, back)
-            rows.append(CycleRow(
-                t.name, cycle, {key: key not in lost for key in FIELDS}, _verdict(equivalence),
-                tuple(f"{key}: {change}" for key, change in lost.items()),
-            ))
+            details = [f"{key}: {change}" for key, change in lost.items()]
+            if equivalence is not None and equivalence.status == "differs" \
+                    and t.dialect == "ros1" and listed_against_roles(t):
+                details.append("the original lists its members against their roles (TX404): "
+                               "ros_control binds their data in XML order, ros2_control by name")
+            rows.append(CycleRow(t.name, cycle, {key: key not in lost for key in FIELDS},
+                                 _verdict(equivalence), tuple(details)))
     return rows
 
 
