@@ -57,8 +57,8 @@ def calls(run: Callable[[], object]) -> int:
 
 
 def per_transmission(path: Path, args: list[str], size: int) -> tuple[float, float]:
-    """Calls and CPU seconds (the best of two runs) per transmission of ``txtool ARGS PATH``,
-    after a warm-up run (imports and first-call caches are not counted)."""
+    """Calls and CPU seconds per transmission of ``txtool ARGS PATH``: the best of two timed
+    runs (the first one's imports and first-call caches do not count), then a counted one."""
     runner = CliRunner()
     seconds = []
     for _ in range(2):
@@ -77,7 +77,7 @@ def per_transmission(path: Path, args: list[str], size: int) -> tuple[float, flo
     (["migrate", "--diff", "--to", "ros2-p2"], 250, "ros1"),
     (["migrate", "--diff", "--to", "ros2-p2"], 300, "pretty"),  # repeated lines to align
     (["roundtrip", "--format", "json"], 40, "ros1"),
-])
+], ids=["convert", "convert-back", "migrate", "migrate-pretty", "roundtrip"])
 def test_work_per_transmission_does_not_grow_with_the_document(tmp_path, args, small, start):
     counts = []
     for size in (small, 4 * small):
