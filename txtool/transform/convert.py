@@ -96,13 +96,14 @@ def convert_source(
         result.converted += 1
     placer.finish()
     result.notes.extend(placer.notes)
+    transmissions = [found.transmission for found in originals]
+    del originals, placer  # the replaced elements are freed before the document is written
     if source.expanded:
         result.data = serialize(tree, source.data)
     else:
         assert baseline is not None
         result.data = splice(source.data, baseline, serialize(tree, source.data))
-    transmissions = [found.transmission for found in originals]
-    del originals, tree, placer  # the converted tree is freed before the output is read back
+    del tree  # the converted tree is freed before the output is read back
     if consume:
         source.tree = etree.ElementTree(etree.Element("consumed"))
     if check:
