@@ -91,3 +91,25 @@ def test_the_api_is_what_all_says():
         assert getattr(txtool, name) is not None
     with pytest.raises(AttributeError):
         txtool.nothing  # noqa: B018
+
+
+def test_model_replace_is_dataclasses_replace() -> None:
+    """Conversions copy models with :func:`txtool.model.core.replace`, which sets slots
+    directly: the copy equals what :func:`dataclasses.replace` builds, stays frozen, and an
+    unknown field is refused as there."""
+    import dataclasses
+
+    from txtool.model.core import Location, Member, Number, Transmission, replace
+
+    member = Member(name="j", role="joint1", mechanical_reduction=Number(value=2.0, text="2"),
+                    interfaces=("effort",), location=Location(path="r.urdf", line=3, column=5))
+    t = Transmission(name="t", type="x", kind="simple", joints=(member,), dialect="ros1")
+    for value, changes in ((member, {"role": None, "offset": Number(value=None, text="")}),
+                           (t, {"dialect": "ros2-p2", "actuators": (member,)}), (t, {})):
+        copy = replace(value, **changes)
+        assert copy == dataclasses.replace(value, **changes)
+        assert copy is not value and hash(copy) == hash(dataclasses.replace(value, **changes))
+        with pytest.raises(dataclasses.FrozenInstanceError):
+            copy.name = "other"  # type: ignore[misc]
+    with pytest.raises(TypeError, match="no field colour"):
+        replace(member, colour="red")

@@ -85,8 +85,11 @@ def enclosing_component(element: etree._Element) -> etree._Element | None:
     return ancestor(element, "ros2_control")
 
 
-def detect_dialect(element: etree._Element) -> Dialect:
-    kids = child_index(element)
+def detect_dialect(element: etree._Element,
+                   kids: dict[str, list[etree._Element]] | None = None) -> Dialect:
+    """The dialect of a ``<transmission>``; ``kids``: its :func:`child_index`, when known."""
+    if kids is None:
+        kids = child_index(element)
     members = (*kids.get("joint", ()), *kids.get("actuator", ()))
     role_attributes = any(m.get("role") is not None for m in members)
     if not (role_attributes or "plugin" in kids or enclosing_component(element) is not None):
@@ -100,10 +103,11 @@ def read_transmission(
     locator: Locator | None,
     components: dict[etree._Element, Component] | None = None,
 ) -> Transmission:
-    dialect = detect_dialect(element)
+    kids = child_index(element)  # one index for detecting and reading
+    dialect = detect_dialect(element, kids)
     if dialect == "ros1":
-        return _read_ros1(element, locator)
-    return _read_ros2(element, locator, dialect, {} if components is None else components)
+        return _read_ros1(element, locator, kids)
+    return _read_ros2(element, locator, dialect, {} if components is None else components, kids)
 
 
 def text_of(element: etree._Element | None) -> str | None:
@@ -143,8 +147,8 @@ def _ros1_type(element: etree._Element, kids: dict[str, list[etree._Element]]) -
     return (element.get("type") or typed or "").strip()
 
 
-def _read_ros1(element: etree._Element, locator: Locator | None) -> Transmission:
-    kids = child_index(element)
+def _read_ros1(element: etree._Element, locator: Locator | None,
+               kids: dict[str, list[etree._Element]]) -> Transmission:
     type_string = _ros1_type(element, kids)
     kind = kind_of(type_string)
     joints = tuple([_ros1_member(j, locator) for j in kids.get("joint", ())])
@@ -198,8 +202,8 @@ def _read_ros2(
     locator: Locator | None,
     dialect: Dialect,
     components: dict[etree._Element, Component],
+    kids: dict[str, list[etree._Element]],
 ) -> Transmission:
-    kids = child_index(element)
     plugin = _first_text(kids, "plugin")
     type_string = (plugin or "").strip()
     component_element = enclosing_component(element)
@@ -222,27 +226,29 @@ def _read_ros2(
     )
 
 
-def _ros2_number(element: etree._Element, name: str) -> Number | None:
+def _ros2_number(kids: dict[str, list[etree._Element]], name: str) -> Number | None:
     # ros2_control takes the first matching child whose text is not null.
-    for child in children(element, name):
+    found = kids.get(name, ())
+    for child in found:
         if child.text is not None:
             return Number(value=parse_ros2(child.text), text=child.text)
-    return Number(value=None, text="") if children(element, name) else None
+    return Number(value=None, text="") if found else None
 
 
 def _ros2_member(
     element: etree._Element, locator: Locator | None, component: Component | None
 ) -> Member:
+    kids = child_index(element)
     role = element.get("role")
     if role is None:
-        role_text = first_child_text(element, "role")
+        role_text = _first_text(kids, "role")
         role = role_text.strip() if role_text is not None else None
     declared = component.joint(element.get("name", "")) if component is not None else None
     return Member(
         name=element.get("name", ""),
         role=role,
-        mechanical_reduction=_ros2_number(element, "mechanical_reduction"),
-        offset=_ros2_number(element, "offset"),
+        mechanical_reduction=_ros2_number(kids, "mechanical_reduction"),
+        offset=_ros2_number(kids, "offset"),
         interfaces=declared.command_interfaces if declared is not None else (),
         state_interfaces=declared.state_interfaces if declared is not None else (),
         read_only=(element.get("read_only") or "").strip().lower() == "true",

@@ -112,13 +112,23 @@ class Document:
 
 def replace(value: Value, **changes: Any) -> Value:
     """A copy of a model value with some fields changed (:func:`dataclasses.replace`, without
-    its per-call field inspection: conversions make several per transmission)."""
-    names = _field_names(type(value))
-    unknown = changes.keys() - set(names)
+    its per-call field inspection and keyword ``__init__``: conversions make several per
+    transmission). The models are frozen, slotted and have no ``__post_init__``, so the copy
+    sets each slot directly."""
+    slots = _slots(type(value))
+    unknown = changes.keys() - slots.keys()
     if unknown:
         raise TypeError(f"{type(value).__name__} has no field {', '.join(sorted(unknown))}")
-    return type(value)(**{name: changes[name] if name in changes else getattr(value, name)
-                          for name in names})
+    copy = object.__new__(type(value))
+    for name, slot in slots.items():
+        slot.__set__(copy, changes[name] if name in changes else slot.__get__(value))
+    return copy
+
+
+@cache
+def _slots(model: type) -> dict[str, Any]:
+    """The slot descriptor of each field, by name, in declaration order."""
+    return {name: model.__dict__[name] for name in _field_names(model)}
 
 
 @cache

@@ -61,7 +61,7 @@ class Conversion:
 
 def convert_source(
     source: Source, target: Dialect, *, hardware_plugin: str = DEFAULT_HARDWARE_PLUGIN,
-    consume: bool = False, reversible: bool = False,
+    consume: bool = False, reversible: bool = False, check: bool = True,
 ) -> Conversion:
     """Convert ``source``; the bytes are spliced into ``source.data`` (see
     :mod:`txtool.transform.splice`) unless ``source`` is a xacro expansion.
@@ -71,6 +71,8 @@ def convert_source(
     read back, so a large document needs one tree at a time. With ``reversible`` each
     transmission converted to ROS 2 carries its original block (:mod:`.reversible`); the
     originals carried by a document are put back whenever it goes back to ROS 1.
+    ``check=False`` leaves out the read-back check, for a caller that judges the result
+    itself (``roundtrip``).
     """
     baseline = None if source.expanded else serialize(source.tree, source.data)
     tree = source.tree if consume else copy.deepcopy(source.tree)
@@ -106,18 +108,21 @@ def convert_source(
         result.converted += 1
     placer.finish()
     carry.after(tree, placer.built)
+    result.notes.extend(placer.notes)
+    transmissions = [found.transmission for found in originals]
+    del originals, placer  # the replaced elements are freed before the document is written
     if source.expanded:
         result.data = serialize(tree, source.data)
     else:
         assert baseline is not None
         result.data = splice(source.data, baseline, serialize(tree, source.data))
     result.data = carry.restore(result.data)
-    result.notes.extend(placer.notes + carry.notes)
-    transmissions = [found.transmission for found in originals]
-    del originals, tree, placer  # the converted tree is freed before the output is read back
+    result.notes.extend(carry.notes)
+    del tree  # the converted tree is freed before the output is read back
     if consume:
         source.tree = etree.ElementTree(etree.Element("consumed"))
-    _check(source, result, transmissions)
+    if check:
+        _check(source, result, transmissions)
     return result
 
 
@@ -223,7 +228,7 @@ def _check(source: Source, result: Conversion, originals: list[Transmission]) ->
     """Read the output back, convert it back, and compare with the original: on what the
     transmission itself defines (a value it leaves out is not judged, and interfaces that an
     existing ``<ros2_control>`` declares besides its own are a note, not a loss)."""
-    tree = parse_bytes(result.data, source.path)
+    tree = parse_bytes(result.data, source.path, limit=None)
     written: dict[tuple[str, bool], list[Found]] = {}
     for found in read_source(Source(source.path, result.data, tree), locate=False):
         key = (found.transmission.name, found.transmission.kind == "other")
@@ -236,10 +241,11 @@ def _check(source: Source, result: Conversion, originals: list[Transmission]) ->
         if t.kind == "other":
             continue
         back = translate(out.transmission, t.dialect).transmission
-        lost = judge(t, back)
+        a_view, b_view = view(t), view(back)
+        lost = _lost(a_view, b_view)
         if enclosing_component(out.element) is not None:
             lost.pop("interfaces", None)
-            _interfaces(t, *_defined(view(t)["interfaces"], view(back)["interfaces"]), result)
+            _interfaces(t, *_defined(a_view["interfaces"], b_view["interfaces"]), result)
         for key, change in lost.items():
             result.losses.append(f"transmission '{t.name}' did not survive the round trip: "
                                  f"{key}: {change}")
@@ -251,7 +257,11 @@ def judge(before: Transmission, after: Transmission) -> dict[str, str]:
     out is not judged (a missing ROS 1 reduction comes back as ros2_control's 1.0), a joint
     that names no valid interface may come back state-only, and command interfaces that a
     ``<ros2_control>`` block declares besides its own are kept, not lost."""
-    a_view, b_view = view(before), view(after)
+    return _lost(view(before), view(after))
+
+
+def _lost(a_view: dict[str, Any], b_view: dict[str, Any]) -> dict[str, str]:
+    """:func:`judge` on the views of both transmissions."""
     lost = {}
     for key in ("kind", *FIELDS):
         a, b = _defined(a_view[key], b_view[key])

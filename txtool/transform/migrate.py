@@ -12,7 +12,6 @@ files only in ``write`` mode. Nothing here prints.
 
 from __future__ import annotations
 
-import copy
 import os
 from collections import Counter
 from collections.abc import Iterable, Sequence
@@ -209,17 +208,22 @@ def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions) -> F
     ``allow_lossy``; losses of a file that would not change anyway are only reported.
     """
     display, original = read_bytes(path)
-    baseline_tree = parse_bytes(original, display)
+    tree = parse_bytes(original, display)
+    # What the end needs of the document as read is kept, and its tree is fixed in place:
+    # one tree alive at a time.
+    baseline = serialize(tree, original)
+    comments = [(node.text, node.sourceline) for node in _comment_nodes(tree)]
     result = FileResult(path=display, original=original, data=original, target=options.target)
-    tree = copy.deepcopy(baseline_tree)
     _count(result.fixes, fix_tree(tree, rules, original))
     migrated = serialize(tree, original)
+    del tree
     if options.target is not None:
         migrated = _convert(result, migrated, rules, options)
     if result.refused:
         return result
-    result.losses.extend(dropped_comments(baseline_tree, parse_bytes(migrated, display)))
-    data = splice(original, serialize(baseline_tree, original), migrated)
+    after = _comments(parse_bytes(migrated, display, limit=None))
+    result.losses.extend(_dropped(comments, after))
+    data = splice(original, baseline, migrated)
     if result.losses and not options.allow_lossy and data != original:
         result.refused = True
         return result
@@ -231,7 +235,7 @@ def _convert(result: FileResult, data: bytes, rules: Sequence[Rule],
              options: MigrateOptions) -> bytes:
     """Convert ``data`` to the target dialect, then fix what the conversion wrote."""
     assert options.target is not None
-    source = Source(path=result.path, data=data, tree=parse_bytes(data, result.path))
+    source = Source(path=result.path, data=data, tree=parse_bytes(data, result.path, limit=None))
     try:
         conversion = convert_source(source, options.target,
                                     hardware_plugin=options.hardware_plugin, consume=True,
@@ -244,7 +248,7 @@ def _convert(result: FileResult, data: bytes, rules: Sequence[Rule],
     result.warnings.extend(conversion.warnings)
     result.losses.extend(conversion.losses)
     result.converted = conversion.converted
-    tree = parse_bytes(conversion.data, result.path)
+    tree = parse_bytes(conversion.data, result.path, limit=None)
     _count(result.fixes, fix_tree(tree, rules, conversion.data))
     return serialize(tree, conversion.data)
 
@@ -252,18 +256,25 @@ def _convert(result: FileResult, data: bytes, rules: Sequence[Rule],
 def dropped_comments(before: etree._ElementTree, after: etree._ElementTree) -> list[str]:
     """A loss for each comment of ``before`` that ``after`` no longer has (conversions rebuild
     the transmissions they convert, without the comments inside them)."""
-    left = Counter(_comments(after))
+    return _dropped([(node.text, node.sourceline) for node in _comment_nodes(before)],
+                    _comments(after))
+
+
+def _dropped(before: list[tuple[str | None, int | None]], after: list[str | None]) -> list[str]:
+    """:func:`dropped_comments` on the texts and lines of the comments of ``before`` and the
+    texts of those of ``after``."""
+    left = Counter(after)
     lost = []
-    for comment in _comment_nodes(before):
-        if (comment.text or "").strip().startswith(MARK):
+    for comment, line in before:
+        if (comment or "").strip().startswith(MARK):
             continue  # a carried original, put back by the conversion (--reversible)
-        if left[comment.text] > 0:
-            left[comment.text] -= 1
+        if left[comment] > 0:
+            left[comment] -= 1
             continue
-        text = " ".join((comment.text or "").split())
+        text = " ".join((comment or "").split())
         text = text if len(text) <= 60 else text[:57] + "..."
-        lost.append(f"line {comment.sourceline}: comment '{text}' is inside a converted "
-                    "transmission; dropped")
+        lost.append(f"line {line}: comment '{text}' is inside a converted transmission; "
+                    "dropped")
     return lost
 
 

@@ -64,9 +64,11 @@ def cycles_from(start: Dialect) -> list[tuple[Dialect, ...]]:
     return two + three
 
 
-def _reconvert(source: Source, target: Dialect) -> Source:
-    data = convert_source(source, target).data
-    return Source(source.path, data, parse_bytes(data, source.path))
+def _reconvert(source: Source, target: Dialect, *, consume: bool) -> Source:
+    """``source`` converted to ``target`` and parsed again. The conversion's own read-back
+    check is left out: the cycle's result is judged here, against the original."""
+    data = convert_source(source, target, consume=consume, check=False).data
+    return Source(source.path, data, parse_bytes(data, source.path, limit=None))
 
 
 def roundtrip(source: Source) -> RoundTripReport:
@@ -100,53 +102,59 @@ def _take(found: dict[_Key, list[Transmission]], name: str) -> Transmission | No
 
 
 def _cycles(source: Source, start: Dialect, group: list[Transmission], joints) -> list[CycleRow]:
-    from txtool.mechanics.equivalence import compare_pair
+    """The rows of every cycle from ``start``. Cycles that begin with the same conversion
+    share it (and its equivalence check); each later leg converts a fresh parse."""
+    rows: dict[tuple[Dialect, ...], list[CycleRow]] = {}
+    cycles = cycles_from(start)
+    for first in dict.fromkeys(cycle[1] for cycle in cycles):
+        leg = _reconvert(source, first, consume=False)
+        verdicts = _Verdicts(group, _by_name(leg), joints)
+        for cycle in (c for c in cycles if c[1] == first):
+            current = Source(leg.path, leg.data, parse_bytes(leg.data, leg.path, limit=None))
+            for step in cycle[2:]:
+                current = _reconvert(current, step, consume=True)
+            rows[cycle] = _rows(cycle, group, _by_name(current), verdicts)
+    return [row for cycle in cycles for row in rows[cycle]]
 
+
+class _Verdicts:
+    """Whether each transmission's first conversion drives the actuators like the original,
+    computed when a cycle first asks (once per first leg)."""
+
+    def __init__(self, group: list[Transmission], first_leg: dict[_Key, list[Transmission]],
+                 joints) -> None:
+        self.converted = [_take(first_leg, t.name) for t in group]
+        self.group = group
+        self.joints = joints
+        self.known: dict[int, str] = {}
+
+    def __getitem__(self, index: int) -> str:
+        from txtool.mechanics.equivalence import compare_pair
+
+        if index not in self.known:
+            t, converted = self.group[index], self.converted[index]
+            pair = compare_pair(t, converted, self.joints) if converted else None
+            self.known[index] = _verdict(pair)
+        return self.known[index]
+
+
+def _rows(cycle: tuple[Dialect, ...], group: list[Transmission],
+          final: dict[_Key, list[Transmission]], verdicts: _Verdicts) -> list[CycleRow]:
     rows = []
-    legs = _Legs(source)
-    for cycle in cycles_from(start):
-        first_leg = legs.read(cycle[:2])
-        final = legs.read(cycle)
-        for t in group:
-            back = _take(final, t.name)
-            converted = _take(first_leg, t.name)
-            if back is None:
-                rows.append(CycleRow(t.name, cycle, dict.fromkeys(FIELDS, False), "n/a: lost",
-                                     ("the transmission is missing after the cycle",)))
-                continue
-            equivalence = compare_pair(t, converted, joints) if converted else None
-            lost = judge(t, back)
-            details = [f"{key}: {change}" for key, change in lost.items()]
-            if equivalence is not None and equivalence.status == "differs" \
-                    and t.dialect == "ros1" and listed_against_roles(t):
-                details.append("the original lists its members against their roles (TX404): "
-                               "ros_control binds their data in XML order, ros2_control by name")
-            rows.append(CycleRow(t.name, cycle, {key: key not in lost for key in FIELDS},
-                                 _verdict(equivalence), tuple(details)))
+    for index, t in enumerate(group):
+        back = _take(final, t.name)
+        if back is None:
+            rows.append(CycleRow(t.name, cycle, dict.fromkeys(FIELDS, False), "n/a: lost",
+                                 ("the transmission is missing after the cycle",)))
+            continue
+        lost = judge(t, back)
+        details = [f"{key}: {change}" for key, change in lost.items()]
+        if verdicts[index].startswith("no") and t.dialect == "ros1" and listed_against_roles(t):
+            details.append("the original lists its members against their roles (TX404): "
+                           "ros_control binds their data in XML order, ros2_control by name")
+        rows.append(CycleRow(t.name, cycle, {key: key not in lost for key in FIELDS},
+                             verdicts[index], tuple(details)))
     return rows
-
-
-class _Legs:
-    """The document converted along each path of dialects, each conversion done once: the
-    cycles from one dialect share their first legs (``ros1 -> ros2-p1`` starts two)."""
-
-    def __init__(self, source: Source) -> None:
-        self._documents: dict[tuple[Dialect, ...], Source] = {}
-        self._read: dict[tuple[Dialect, ...], dict[_Key, list[Transmission]]] = {}
-        self._source = source
-
-    def document(self, path: tuple[Dialect, ...]) -> Source:
-        if len(path) == 1:
-            return self._source
-        if path not in self._documents:
-            self._documents[path] = _reconvert(self.document(path[:-1]), path[-1])
-        return self._documents[path]
-
-    def read(self, path: tuple[Dialect, ...]) -> dict[_Key, list[Transmission]]:
-        """The transmissions at the end of ``path`` by name, a fresh dict to take from."""
-        if path not in self._read:
-            self._read[path] = _by_name(self.document(path))
-        return {key: list(same) for key, same in self._read[path].items()}
 
 
 def _verdict(row) -> str:

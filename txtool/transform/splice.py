@@ -142,7 +142,7 @@ def _cuts(original: list[int | None], baseline: list[int | None]) -> list[tuple[
 
 def _node_lines(text: bytes, name: str) -> list[int | None]:
     """The line of each node of ``text`` in document order (one tree alive at a time)."""
-    root = parse_bytes(text, name).getroot()
+    root = parse_bytes(text, name, limit=None).getroot()
     before = list(root.itersiblings(preceding=True))[::-1]
     return [node.sourceline for node in (*before, *root.iter(), *root.itersiblings())]
 
@@ -264,4 +264,5 @@ def _same_document(a: bytes, b: bytes) -> bool:
 
 def _canonical(data: bytes, name: str) -> bytes:
     """A digest of the canonical form (each tree and its text freed before the next)."""
-    return hashlib.sha256(etree.tostring(parse_bytes(data, name), method="c14n")).digest()
+    tree = parse_bytes(data, name, limit=None)
+    return hashlib.sha256(etree.tostring(tree, method="c14n")).digest()

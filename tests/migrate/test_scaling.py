@@ -1,0 +1,122 @@
+"""Big documents cost the same per transmission as small ones.
+
+Timing is unreliable on a shared machine, so the work is counted as well: every Python and
+builtin call a command makes (``sys.setprofile``), held to a tight bound. A step whose cost
+grows with the document for every transmission (a list searched per element) makes the count
+per transmission grow with the size; a linear command keeps it flat. Loops that make no calls
+(difflib's inner search) show only in the time, held to a loose bound (a quadratic step
+costs four times as much per transmission at four times the size).
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from txtool.cli import cli
+
+TRANSMISSION = (
+    '<transmission name="t{i}"><type>transmission_interface/SimpleTransmission</type>'
+    '<joint name="j{i}"><hardwareInterface>hardware_interface/EffortJointInterface'
+    '</hardwareInterface></joint><actuator name="m{i}"><mechanicalReduction>{n}'
+    "</mechanicalReduction></actuator></transmission>"
+)
+
+
+def chain(joints: int, *, pretty: bool = False) -> str:
+    """A chain of ``joints`` revolute joints, each driven by a ROS 1 simple transmission
+    (what ``bench/bench_scale.py`` measures); ``pretty``: every element on its own line."""
+    parts = ['<robot name="chain">', '<link name="l0"/>']
+    parts += [f'<link name="l{i}"/><joint name="j{i}" type="revolute"><parent link="l{i - 1}"/>'
+              f'<child link="l{i}"/><limit lower="-1" upper="1" effort="10" velocity="2"/>'
+              "</joint>" for i in range(1, joints + 1)]
+    parts += [TRANSMISSION.format(i=i, n=10 + i % 90) for i in range(1, joints + 1)]
+    text = "\n".join(parts) + "\n</robot>\n"
+    return text.replace("><", ">\n<") if pretty else text
+
+
+def calls(run: Callable[[], object]) -> int:
+    count = 0
+
+    def counter(frame, event, arg) -> None:
+        nonlocal count
+        if event in ("call", "c_call"):
+            count += 1
+
+    sys.setprofile(counter)
+    try:
+        run()
+    finally:
+        sys.setprofile(None)
+    return count
+
+
+def per_transmission(path: Path, args: list[str], size: int) -> tuple[float, float]:
+    """Calls and CPU seconds per transmission of ``txtool ARGS PATH``: the best of two timed
+    runs (the first one's imports and first-call caches do not count), then a counted one."""
+    runner = CliRunner()
+    seconds = []
+    for _ in range(2):
+        start = time.process_time()
+        result = runner.invoke(cli, [*args, str(path)])
+        seconds.append(time.process_time() - start)
+        assert result.exit_code in (0, 1), result.output
+        assert "internal error" not in result.output
+    count = calls(lambda: runner.invoke(cli, [*args, str(path)]))
+    return count / size, min(seconds) / size
+
+
+@pytest.mark.parametrize(("args", "small", "start"), [
+    (["convert", "--to", "ros2-p2"], 250, "ros1"),
+    (["convert", "--to", "ros1"], 250, "ros2"),  # a generated block taken apart
+    (["migrate", "--diff", "--to", "ros2-p2"], 250, "ros1"),
+    (["migrate", "--diff", "--to", "ros2-p2"], 300, "pretty"),  # repeated lines to align
+    (["roundtrip", "--format", "json"], 40, "ros1"),
+], ids=["convert", "convert-back", "migrate", "migrate-pretty", "roundtrip"])
+def test_work_per_transmission_does_not_grow_with_the_document(tmp_path, args, small, start):
+    counts = []
+    for size in (small, 4 * small):
+        path = tmp_path / f"chain_{size}.urdf"
+        path.write_text(chain(size, pretty=start == "pretty"))
+        if start == "ros2":
+            converted = CliRunner().invoke(cli, ["convert", "--to", "ros2-p2", str(path)])
+            path.write_bytes(converted.stdout_bytes)
+        counts.append(per_transmission(path, args, size))
+    (small_calls, small_time), (large_calls, large_time) = counts
+    # A fixed cost per document makes the small one dearer per transmission; a cost per
+    # transmission that grows with the document makes the large one dearer.
+    assert large_calls <= 1.1 * small_calls, counts
+    assert large_time <= 2 * small_time, counts
+
+
+def test_an_input_within_the_size_limit_converts_though_the_result_exceeds_it(tmp_path,
+                                                                              monkeypatch):
+    """The size cap is on inputs: a robot just under it converts to ROS 2 (its declarations
+    make the result larger), and the result is read back for the check, not refused."""
+    from txtool.io import xmlio
+
+    path = tmp_path / "robot.urdf"
+    path.write_text(chain(20))
+    limit = path.stat().st_size + 10
+    monkeypatch.setattr(xmlio.parse_bytes, "__kwdefaults__", {"limit": limit})
+    monkeypatch.setattr(xmlio.read_regular, "__defaults__", (limit,))
+    runner = CliRunner()
+    converted = runner.invoke(cli, ["convert", "--to", "ros2-p2", str(path)])
+    assert converted.exit_code == 0, converted.output
+    assert len(converted.stdout_bytes) > limit
+    assert converted.stdout_bytes.count(b"<transmission ") == 20
+    diff = runner.invoke(cli, ["migrate", "--diff", "--to", "ros2-p2", str(path)])
+    assert diff.exit_code == 1, diff.output
+    assert "+    <joint name=\"j20\" role=\"joint1\">" in diff.stdout
+    cycles = runner.invoke(cli, ["roundtrip", "--format", "json", str(path)])
+    assert cycles.exit_code == 0, cycles.output
+    bigger = tmp_path / "bigger.urdf"
+    bigger.write_bytes(converted.stdout_bytes)
+    refused = runner.invoke(cli, ["convert", "--to", "ros1", str(bigger)])
+    assert refused.exit_code == 2
+    assert "larger than the" in refused.output
