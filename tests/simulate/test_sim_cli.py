@@ -159,3 +159,17 @@ def test_xacro_candidate_with_arguments(tmp_path, arm):
     assert code == 0, out
     code, out, _ = txtool(arm, "--config", candidate, "--xacro-arg", "n:=-50")
     assert code == 1 and "FAIL: joint 'shoulder'" in out
+
+
+def test_an_element_of_absurdly_many_attributes_is_refused_before_pinocchio(tmp_path, arm):
+    crowded = tmp_path / "crowded.urdf"
+    attributes = " ".join(f'a{i}="1"' for i in range(20_000))
+    text = Path(arm).read_text()
+    crowded.write_text(text.replace("<robot ", f"<robot {attributes} ", 1))
+    code, out, err = txtool(str(crowded))
+    assert (code, out) == (2, "")
+    line = text[:text.index("<robot ")].count("\n") + 1
+    # the 20,000 and its name
+    assert err == (f"txtool: {crowded}:{line}: <robot> has 20001 attributes; simulate refuses "
+                   "more than 256 on one element (Pinocchio's URDF parser slows down "
+                   "quadratically on them)\n")

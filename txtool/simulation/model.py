@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pinocchio as pin
 
-from txtool.io.xmlio import InputError, Source, serialize
+from txtool.io.xmlio import InputError, Source, local, serialize
 from txtool.model.robot import JointInfo, joint_elements, robot_joints
 
 MOVING = ("revolute", "continuous", "prismatic")
@@ -86,6 +86,7 @@ def build(source: Source) -> RobotModel:
             raise InputError(f"{source.path}:{joint.line}: joint '{name}' is {joint.type}; "
                              "simulate supports fixed-base robots with 1-DoF joints")
     mimic = tuple(n for n, j in info.items() if j.mimic is not None and j.type in MOVING)
+    _refuse_crowded_elements(source)
     text = serialize(source.tree).decode("utf-8")
     notes: list[str] = []
     followers: dict[str, tuple[str, float, float]] = {}
@@ -116,6 +117,20 @@ def build(source: Source) -> RobotModel:
                        and f[0] in robot.joints}
     robot.locked, robot.notes = locked, notes
     return robot
+
+
+MAX_ATTRIBUTES = 256  # a URDF element has about ten; Pinocchio's parser is quadratic in them
+
+
+def _refuse_crowded_elements(source: Source) -> None:
+    """One line, before Pinocchio parses a document with an element of absurdly many
+    attributes (16,000 on one element take it about a second, 64,000 about fifteen)."""
+    for element in source.root.iter():
+        if len(element.attrib) > MAX_ATTRIBUTES:
+            raise InputError(
+                f"{source.path}:{element.sourceline}: <{local(element)}> has "
+                f"{len(element.attrib)} attributes; simulate refuses more than {MAX_ATTRIBUTES} "
+                "on one element (Pinocchio's URDF parser slows down quadratically on them)")
 
 
 def _pinocchio(text: str, mimic: bool) -> tuple[pin.Model | None, str]:
