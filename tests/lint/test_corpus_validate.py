@@ -28,6 +28,8 @@ EXPECTED: dict[str, tuple[dict[str, int], set[str]]] = {
     "baxter__baxter.urdf": ({}, {"TX205", "TX300"}),
     # macro with <hardwareInterface> and no <mechanicalReduction>: the simple loader requires it
     "franka_ros__franka_description_utils.xacro": ({"TX104": 1}, set()),
+    # the same, but its loader is franka_gazebo's FrankaHWSim (its <gazebo> plugin's
+    # robotSimType), which never reads reductions: warnings
     "franka_ros__panda-gazebo.urdf": ({"TX104": 7}, set()),
     # $(find rrbot_description) unresolved; hardwareInterface only in the actuator (pre-Indigo):
     # ros_control skips the joint and so the transmission

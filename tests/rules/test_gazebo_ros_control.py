@@ -96,3 +96,20 @@ def test_a_configured_severity_still_wins():
     found = problems(robot(iface("EffortJointInterface")), select=["TX205"],
                      severity={"TX205": "error"})
     assert [p.severity for p in found] == ["error"]
+
+
+FRANKA = "<robotSimType>franka_gazebo/FrankaHWSim</robotSimType>"
+
+
+def test_franka_gazebo_never_reads_reductions_either():
+    # frankaemika/franka_ros franka_gazebo/src/franka_hw_sim.cpp initSim @005ff25
+    (problem,) = problems(robot(iface("hardware_interface/EffortJointInterface"), actuator="",
+                                extra=FRANKA), select=["TX104"])
+    assert problem.severity == "warning"
+    assert ("franka_gazebo/FrankaHWSim (run by this robot's <gazebo> plugin "
+            "libgazebo_ros_control.so) never reads reductions") in problem.message
+
+
+def test_franka_gazebo_takes_only_prefixed_interfaces():
+    assert check(robot(iface("EffortJointInterface"), extra=FRANKA), select=["TX205"]) == [
+        (7, 5, "TX205", "error")]

@@ -16,6 +16,7 @@ from txtool.model.robot import Component, JointInfo, components, joint_elements,
 
 if TYPE_CHECKING:
     from txtool.io.locate import Locator, Position
+    from txtool.lint.gazebo import Sim
 
 
 _WALKED = ("transmission", "joint", "ros2_control")
@@ -102,12 +103,12 @@ class LintContext:
                        loader_severity=loader_severity)
 
     @cached_property
-    def gazebo_ros_control(self) -> etree._Element | None:
-        """The ``<plugin>`` that loads this robot into Gazebo through gazebo_ros_control's
-        DefaultRobotHWSim, if any (see :mod:`txtool.lint.gazebo`)."""
-        from txtool.lint.gazebo import default_robot_hw_sim
+    def gazebo_sim(self) -> Sim | None:
+        """The ``<plugin>`` that loads this robot into Gazebo through gazebo_ros_control, with
+        a RobotHWSim whose rules are known, if any (see :mod:`txtool.lint.gazebo`)."""
+        from txtool.lint.gazebo import robot_hw_sim
 
-        return default_robot_hw_sim(self.source.root)
+        return robot_hw_sim(self.source.root)
 
     def transmissions(self) -> Iterator[Found]:
         return iter(self.found)

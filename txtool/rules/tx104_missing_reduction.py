@@ -5,8 +5,10 @@ ros_control require the element in every ``<actuator>`` ("Actuator 'A' of transm
 does not specify the required <mechanicalReduction> element.") and load nothing without it.
 A ``<mechanicalReduction>`` written directly under ``<transmission>`` (the pre-Hydro form)
 is not read. gazebo_ros_control's DefaultRobotHWSim never reads reductions
-(gazebo_ros_pkgs gazebo_ros_control/src/default_robot_hw_sim.cpp ``initSim`` @01c3a2c): in a
-robot that names it as its ``<gazebo>`` plugin the finding is a warning, since the simulation
+(gazebo_ros_pkgs gazebo_ros_control/src/default_robot_hw_sim.cpp ``initSim`` @01c3a2c), nor
+does franka_gazebo's FrankaHWSim (frankaemika/franka_ros franka_gazebo/src/franka_hw_sim.cpp
+``initSim`` @005ff25): in a robot that names either as its ``<gazebo>`` plugin the finding is a
+warning, since the simulation
 loads while a ros_control ``RobotHW`` on the real robot would refuse the transmission. ROS 2
 has no such requirement (the default is 1.0).
 
@@ -35,7 +37,6 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from txtool.lint import gazebo
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.support import children, label, members, opaque, typed_ros1
@@ -62,10 +63,10 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             )
             if legacy:
                 message += " (it does not read the one under <transmission>)"
-            plugin = ctx.gazebo_ros_control
-            if plugin is not None:
+            sim = ctx.gazebo_sim
+            if sim is not None:
                 yield ctx.problem(CODE, ref.element,
-                                  f"{message}; {gazebo.loaded_here(plugin)} never reads "
-                                  "reductions and loads it", loader_severity="warning")
+                                  f"{message}; {sim.describe()} never reads reductions and "
+                                  "loads it", loader_severity="warning")
                 continue
             yield ctx.problem(CODE, ref.element, message)

@@ -59,7 +59,8 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             where = " (only its actuator names one)" if taken else ""
             message = (f"joint '{ref.member.name}' of {label(found)} has {what}{where}: "
                        "ros_control skips the joint")
-            if ctx.gazebo_ros_control is not None and taken and gazebo.accepts(taken[0]):
+            sim = ctx.gazebo_sim
+            if sim is not None and sim.default and taken and gazebo.accepts(taken[0]):
                 continue  # the robot's loader takes the actuator's: TX301 warns (and fixes)
             yield ctx.problem(CODE, ref.element, message)
 

@@ -121,18 +121,17 @@ def _check_ros1(ctx: LintContext, found: Found) -> Iterator[Problem]:
     fixes = [PREFIX + name for name in names if unprefixed_registered(name)]
     message = (f"{label(found)} names no hardware interface ros_control knows ({shown}): "
                f"ros_control refuses it (\"It contains no valid hardware interfaces\")")
-    plugin = ctx.gazebo_ros_control
-    if plugin is not None and gazebo.accepts(names[0]):
+    sim = ctx.gazebo_sim
+    if sim is not None and sim.default and gazebo.accepts(names[0]):
         yield ctx.problem(
             CODE, joints[0].element,
-            f"{message}; {gazebo.loaded_here(plugin)} accepts '{names[0]}' with a deprecation "
+            f"{message}; {sim.describe()} accepts '{names[0]}' with a deprecation "
             f"warning: write '{PREFIX + names[0]}' for both",
             loader_severity="warning",
         )
         return
-    if plugin is not None:
-        message += (f"; so does {gazebo.loaded_here(plugin)}: \"No matching hardware interface "
-                    "found\"")
+    if sim is not None and sim.default:
+        message += f"; so does {sim.describe()}: \"No matching hardware interface found\""
     advice = (
         f"; write '{fixes[0]}' (gazebo_ros_control accepts the unprefixed name with a "
         "deprecation warning, ros_control does not)"

@@ -56,7 +56,6 @@ from collections.abc import Iterator
 from lxml import etree
 
 from txtool.dialects.read import detect_dialect, ros1_type, text_of, transmission_elements
-from txtool.lint import gazebo
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.support import (
@@ -101,9 +100,9 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         if not joints:
             continue
         actuator = next(a for a in children(found.element, "actuator") if _interfaces(a))
-        plugin = ctx.gazebo_ros_control
-        also = (f"; {gazebo.loaded_here(plugin)} takes the actuator's, with a warning"
-                if plugin is not None else "")
+        sim = ctx.gazebo_sim
+        also = (f"; {sim.describe()} takes the actuator's, with a warning"
+                if sim is not None and sim.default else "")
         for joint in joints:
             yield ctx.problem(
                 CODE,
