@@ -139,3 +139,14 @@ def test_cli_flag(run, tmp_path):
     assert code == 2
     assert err == ("txtool: --reversible applies to --to ros2-p1 and ros2-p2 (converting back "
                    "to ros1 puts carried originals back by itself)\n")
+
+
+@pytest.mark.parametrize(("codec", "mark"), [("utf-16-le", b"\xff\xfe"),
+                                              ("utf-32-be", b"\x00\x00\xfe\xff")])
+def test_a_wide_document_comes_back_in_its_own_encoding(codec, mark):
+    original = mark + ARM.decode("utf-8").replace(
+        '<?xml version="1.0"?>', f'<?xml version="1.0" encoding="{codec[:6].upper()}"?>'
+    ).encode(codec)
+    there = convert(original, "ros2-p2", reversible=True)
+    assert there.data.startswith(mark) and "txtool-original".encode(codec) in there.data
+    assert convert(there.data, "ros1").data == original

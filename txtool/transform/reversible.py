@@ -26,6 +26,7 @@ from lxml import etree
 
 from txtool.dialects.read import Found, read_source
 from txtool.dialects.translate import translate
+from txtool.io.encodings import detect_encoding, utf8_form
 from txtool.io.xmlio import InputError, Source, local, parse_bytes
 from txtool.model.core import Member, Transmission
 
@@ -130,9 +131,13 @@ def _value(number) -> object:
 
 
 def restore(data: bytes, restores: list[Restore], path: str) -> bytes:
-    """Replace each block written under a restore token by its original bytes."""
+    """Replace each block written under a restore token by its original bytes (a UTF-16 or
+    UTF-32 document is worked on in its UTF-8 form, as the carried blocks are)."""
     if not restores:
         return data
+    stored = detect_encoding(data)
+    if stored.wide:
+        return stored.from_utf8(restore(utf8_form(data), restores, path))
     tree = parse_bytes(data, path)
     by_token = {e.get("name"): e for e in tree.getroot().iter("{*}transmission", "transmission")}
     lines = data.splitlines(keepends=True)
@@ -175,6 +180,7 @@ class Carrier:
         self._carried: list[tuple[str, bytes]] = []
         self._restores: list[Restore] = []
         self._pending: list[tuple[etree._Element, Restore]] = []
+        self._text = utf8_form(source.data) if self.reversible else b""
 
     def before(self, found: Found) -> None:
         """Called for each transmission about to be converted, before it is placed."""
@@ -182,7 +188,7 @@ class Carrier:
         if self.target == "ros1":
             self._take_back(found)
         elif self.reversible and t.dialect == "ros1":
-            block = block_of(self.source.data, found.element)
+            block = block_of(self._text, found.element)
             if block is None:
                 self.notes.append(f"transmission '{t.name}': shares its lines with other "
                                   "elements; its original is not carried (--reversible)")
