@@ -150,3 +150,21 @@ def test_a_wide_document_comes_back_in_its_own_encoding(codec, mark):
     there = convert(original, "ros2-p2", reversible=True)
     assert there.data.startswith(mark) and "txtool-original".encode(codec) in there.data
     assert convert(there.data, "ros1").data == original
+
+
+def test_a_block_sharing_its_line_is_not_carried_and_says_so():
+    shared = ARM.replace(b"  </transmission>\r\n</robot>", b"  </transmission><link name='x'/>\r\n</robot>")
+    assert shared != ARM
+    there = convert(shared, "ros2-p2", reversible=True)
+    assert MARK.encode() not in there.data
+    assert ("transmission 't1': shares its lines with other elements; its original is not "
+            "carried (--reversible)") in there.notes
+
+
+def test_a_block_that_cannot_be_put_back_keeps_its_own_name():
+    from txtool.transform.reversible import Restore, restore
+
+    written = b'<robot>\n  <transmission name="tok"><type>x</type></transmission><link/>\n</robot>\n'
+    assert restore(written, [Restore("tok", b"  <original/>\n", "a&b")], "r.urdf") == (
+        b'<robot>\n  <transmission name="a&amp;b"><type>x</type></transmission><link/>\n'
+        b"</robot>\n")

@@ -247,3 +247,9 @@ def _robot_joints(ctx: LintContext) -> Iterator[tuple[Found, etree._Element, Joi
             info = joints.get(joint.get("name", ""))
             if info is not None:
                 yield found, joint, info
+
+
+def interface_texts(element: etree._Element) -> list[str]:
+    """The non-empty ``<hardwareInterface>`` texts of a ROS 1 joint or actuator, stripped."""
+    texts = ((h.text or "").strip() for h in children(element, "hardwareInterface"))
+    return [text for text in texts if text]

@@ -32,11 +32,18 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from txtool.dialects.read import Found
 from txtool.lint import gazebo
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import children, label, loaded_by_ros_control, members, opaque, typed_ros1
+from txtool.lint.support import (
+    children,
+    interface_texts,
+    label,
+    loaded_by_ros_control,
+    members,
+    opaque,
+    typed_ros1,
+)
 
 CODE = "TX110"
 NAME = "missing-interface"
@@ -52,23 +59,20 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             if ref.noun != "joint" or opaque(ctx, ref.element):
                 continue
             interfaces = children(ref.element, "hardwareInterface")
-            if any((h.text or "").strip() for h in interfaces):
+            if interface_texts(ref.element):
                 continue
             what = "an empty <hardwareInterface>" if interfaces else "no <hardwareInterface>"
-            taken = _actuator_interfaces(found)
-            where = " (only its actuator names one)" if taken else ""
-            message = (f"joint '{ref.member.name}' of {label(found)} has {what}{where}: "
-                       "ros_control skips the joint")
+            actuators = [a.element for a in members(found) if a.noun == "actuator"]
+            named = any(interface_texts(a) for a in actuators)
+            where = " (only its actuator names one)" if named else ""
+            # gazebo_ros_control's DefaultRobotHWSim falls back on the first actuator's.
+            taken = interface_texts(actuators[0]) if actuators else []
             sim = ctx.gazebo_sim
             if sim is not None and sim.default and taken and gazebo.accepts(taken[0]):
                 continue  # the robot's loader takes the actuator's: TX301 warns (and fixes)
-            yield ctx.problem(CODE, ref.element, message)
-
-
-def _actuator_interfaces(found: Found) -> list[str]:
-    """The first actuator's interfaces: what gazebo_ros_control falls back on."""
-    actuators = [ref for ref in members(found) if ref.noun == "actuator"]
-    if not actuators:
-        return []
-    texts = ((h.text or "").strip() for h in children(actuators[0].element, "hardwareInterface"))
-    return [text for text in texts if text]
+            yield ctx.problem(
+                CODE,
+                ref.element,
+                f"joint '{ref.member.name}' of {label(found)} has {what}{where}: "
+                "ros_control skips the joint",
+            )

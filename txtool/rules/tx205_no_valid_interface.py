@@ -66,8 +66,7 @@ from txtool.lint import gazebo
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.support import (
-    MemberRef,
-    children,
+    interface_texts,
     label,
     loaded_by_ros_control,
     members,
@@ -102,16 +101,11 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             yield from _check_ros2(ctx, found)
 
 
-def _interfaces(ref: MemberRef) -> list[str]:
-    texts = ((h.text or "").strip() for h in children(ref.element, "hardwareInterface"))
-    return [text for text in texts if text]
-
-
 def _check_ros1(ctx: LintContext, found: Found) -> Iterator[Problem]:
-    joints = [ref for ref in members(found) if ref.noun == "joint" and _interfaces(ref)]
+    joints = [ref for ref in members(found) if ref.noun == "joint" and interface_texts(ref.element)]
     if not joints or any(opaque(ctx, ref.element) for ref in joints):
         return
-    lists = [_interfaces(ref) for ref in joints]
+    lists = [interface_texts(ref.element) for ref in joints]
     if len({frozenset(names) for names in lists}) > 1:
         return  # joints with different interfaces: TX203
     names = lists[0]

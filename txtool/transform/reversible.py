@@ -21,6 +21,7 @@ import re
 import secrets
 import zlib
 from dataclasses import dataclass
+from xml.sax.saxutils import quoteattr
 
 from lxml import etree
 
@@ -34,30 +35,32 @@ MARK = "txtool-original"
 MAX_ORIGINAL = 1 << 20  # a transmission block is a few hundred bytes
 _END = re.compile(rb"</([\w.-]+:)?transmission\s*>")
 _START = re.compile(rb"<([\w.-]+:)?transmission[\s/>]")
+_END_LINE = re.compile(rb"</([\w.-]+:)?transmission\s*>$")
+_EMPTY_LINE = re.compile(rb"\s*<([\w.-]+:)?transmission\b[^>]*/>\s*")
 
 
 @dataclass(frozen=True)
 class Restore:
     token: str  # the name the written block is placed under until its original replaces it
     original: bytes
+    name: str  # the transmission's own name, put back should the block not be replaced
 
 
 def block_of(data: bytes, element: etree._Element) -> bytes | None:
-    """The whole lines ``element`` stands on in ``data``, or None when they hold more."""
+    """The whole lines ``element`` stands on in ``data``, or None when they hold more: its
+    start tag must open its first line and its end tag close its last."""
     lines = data.splitlines(keepends=True)
     start = (element.sourceline or 0) - 1
-    if not 0 <= start < len(lines) or not lines[start].lstrip().startswith(b"<"):
+    if not 0 <= start < len(lines) or not _START.match(lines[start].lstrip()):
         return None
     end = start
-    if not lines[start].rstrip().endswith(b"/>"):
+    if not _EMPTY_LINE.fullmatch(lines[start].rstrip(b"\r\n")):
         while end < len(lines) and not _END.search(lines[end]):
             end += 1
-    if end >= len(lines) or not _END.search(lines[end]) and end != start:
-        return None
+        if end >= len(lines) or not _END_LINE.search(lines[end].rstrip()):
+            return None
     text = b"".join(lines[start:end + 1])
-    if not lines[end].rstrip().endswith(b">") or len(_START.findall(text)) != 1:
-        return None
-    return text
+    return text if len(_START.findall(text)) == 1 else None
 
 
 def comment_for(block: bytes) -> etree._Comment:
@@ -138,20 +141,22 @@ def restore(data: bytes, restores: list[Restore], path: str) -> bytes:
     stored = detect_encoding(data)
     if stored.wide:
         return stored.from_utf8(restore(utf8_form(data), restores, path))
-    tree = parse_bytes(data, path)
+    tree = parse_bytes(data, path, limit=None)
     by_token = {e.get("name"): e for e in tree.getroot().iter("{*}transmission", "transmission")}
     lines = data.splitlines(keepends=True)
     replaced: dict[int, tuple[int, bytes]] = {}
     for item in restores:
         element = by_token[item.token]
         block = block_of(data, element)
-        if block is None:  # txtool writes a transmission on lines of its own
-            raise AssertionError(f"{item.token}: not on lines of its own")
+        if block is None:  # not on lines of its own: keep it as written, under its own name
+            data = data.replace(item.token.encode(), quoteattr(item.name)[1:-1].encode())
+            continue
         start = element.sourceline - 1
         original = item.original
         if not original.endswith((b"\n", b"\r")):
             original += block[len(block.rstrip(b"\r\n")):]
         replaced[start] = (start + len(block.splitlines()), original)
+    lines = data.splitlines(keepends=True)
     out: list[bytes] = []
     index = 0
     while index < len(lines):
@@ -226,7 +231,7 @@ class Carrier:
         drop_marker(found.element)
         if original and restorable(found, original):
             token = f"txtool-restore-{len(self._restores)}-{secrets.token_hex(8)}"
-            self._restores.append(Restore(token, original))
+            self._restores.append(Restore(token, original, name))
             self._pending.append((found.element, self._restores[-1]))
         else:
             self.notes.append(f"transmission '{name}': changed since it was converted with "
