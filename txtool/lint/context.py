@@ -11,7 +11,9 @@ from lxml import etree
 
 from txtool.dialects.read import Found, read_source
 from txtool.io.xmlio import Source, local
+from txtool.lint.facts import Facts, facts_of
 from txtool.lint.problem import Problem, Severity
+from txtool.lint.text import scanned_form
 from txtool.model.robot import Component, JointInfo, components, joint_elements, joint_info
 
 if TYPE_CHECKING:
@@ -36,6 +38,7 @@ class LintContext:
     ``literal`` is True when a xacro file is linted as written (a macro library, or when
     expansion is off or failed): values containing ``${...}`` or ``$(...)`` are then unknown
     (see :meth:`unknown`). ``options`` holds each rule's validated options by code.
+    ``from_data`` is True when the tree is ``source.data`` as parsed (not an expansion).
     """
 
     source: Source
@@ -44,6 +47,7 @@ class LintContext:
     options: Mapping[str, Any] = field(default_factory=dict)
     # Facts about the whole document that several rules share (see txtool.lint.support).
     memo: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
+    from_data: bool = False
 
     def __post_init__(self) -> None:
         if not self.found:
@@ -57,6 +61,13 @@ class LintContext:
         for element in self.source.root.iter(*_WALKED_TAGS):
             found[element.tag.rpartition("}")[2]].append(element)
         return found
+
+    @cached_property
+    def facts(self) -> list[Facts]:
+        """What the rules read of each transmission (see :mod:`txtool.lint.facts`), in order."""
+        # Without a CDATA section an element's text nodes are its text (no XPath needed).
+        plain = self.from_data and b"<![CDATA[" not in scanned_form(self.source.data)
+        return [facts_of(found, plain) for found in self.found]
 
     @cached_property
     def locator(self) -> Locator:

@@ -16,9 +16,10 @@ Which tree the rules see:
 from __future__ import annotations
 
 import re
+from collections.abc import Callable, Iterable
 from typing import TYPE_CHECKING
 
-from txtool.io.encodings import document_text, parsing_form, text_lines
+from txtool.io.encodings import document_text, text_lines
 from txtool.io.xmlio import (
     InputError,
     Source,
@@ -32,6 +33,7 @@ from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.suppress import Suppressions
 from txtool.lint.suppress import parse as parse_suppressions
+from txtool.lint.text import scanned_form
 from txtool.model.robot import indexed_children
 from txtool.rules import Rule, all_rules
 
@@ -92,7 +94,7 @@ def _lint_file(path: str, settings: Settings, stdin_name: str | None) -> list[Pr
     source = Source(path=display, data=data, tree=tree)
     late = _late_declaration(display, data)
     if path == "-" or settings.no_xacro or not is_xacro(display):
-        return finish(late + _checked(source, settings), source, settings)
+        return finish(late + _checked(source, settings, from_data=True), source, settings)
     from txtool.io.xacro import XacroError, expand_xacro
 
     try:
@@ -100,15 +102,15 @@ def _lint_file(path: str, settings: Settings, stdin_name: str | None) -> list[Pr
     except XacroError as exc:
         line, column = _xacro_position(data, exc.reason)
         failed = _pipeline(display, line, column, "TX002", f"xacro: {exc.reason}")
-        problems = [*late, failed, *_checked(source, settings)]
+        problems = [*late, failed, *_checked(source, settings, from_data=True)]
         return finish(problems, source, settings)
     full = Source(path=display, data=data, tree=expanded, expanded=True, source_tree=tree)
-    return finish(late + _checked(full, settings), full, settings)
+    return finish(late + _checked(full, settings, from_data=True), full, settings)
 
 
 def _late_declaration(path: str, data: bytes) -> list[Problem]:
     """TX001 for an ``<?xml ...?>`` declaration after a comment (read anyway, see xmlio)."""
-    head = parsing_form(data)[:4096].removeprefix(b"\xef\xbb\xbf")
+    head = scanned_form(data)[:4096].removeprefix(b"\xef\xbb\xbf")
     index = head.find(b"<?xml")
     if index <= 0 or not head[:index].strip():
         return []
@@ -127,23 +129,27 @@ def as_settings(config: Config | Settings | None) -> Settings:
     return resolve(config)
 
 
-def context_for(source: Source, settings: Settings) -> LintContext:
-    """The context the rules see (see the module documentation for the choice)."""
+def context_for(source: Source, settings: Settings, *, from_data: bool = False) -> LintContext:
+    """The context the rules see (see the module documentation for the choice).
+
+    ``from_data``: the tree (``source_tree`` for an expansion) is ``source.data`` as parsed.
+    """
     options = settings.options
     if not source.expanded:
-        return LintContext(source, literal=is_xacro(source.path), options=options)
+        return LintContext(source, literal=is_xacro(source.path), options=options,
+                           from_data=from_data)
     expanded = LintContext(source, options=options)
     if expanded.found or source.source_tree is None:
         return expanded
     as_written = Source(path=source.path, data=source.data, tree=source.source_tree)
-    literal = LintContext(as_written, literal=True, options=options)
+    literal = LintContext(as_written, literal=True, options=options, from_data=from_data)
     return literal if literal.found else expanded
 
 
-def _checked(source: Source, settings: Settings) -> list[Problem]:
+def _checked(source: Source, settings: Settings, *, from_data: bool = False) -> list[Problem]:
     """Read a document and run the rules on it, each element's children indexed once."""
     with indexed_children():
-        return run_rules(context_for(source, settings), settings)
+        return run_rules(context_for(source, settings, from_data=from_data), settings)
 
 
 def run_rules(ctx: LintContext, settings: Settings) -> list[Problem]:
@@ -151,10 +157,23 @@ def run_rules(ctx: LintContext, settings: Settings) -> list[Problem]:
     problems: list[Problem] = []
     if not ctx.found:
         return problems  # every rule is about transmissions
-    for rule in all_rules().values():
-        if rule.code in settings.enabled and rule.code not in PIPELINE_CODES:
-            problems.extend(rule.check(ctx))
+    for check in _checks(settings.enabled):
+        problems.extend(check(ctx))
     return problems
+
+
+_CHECKS: dict[frozenset[str], list[Callable[[LintContext], Iterable[Problem]]]] = {}
+
+
+def _checks(enabled: frozenset[str]) -> list[Callable[[LintContext], Iterable[Problem]]]:
+    """The check functions of the enabled rules run on a context, in code order."""
+    known = _CHECKS.get(enabled)
+    if known is None:
+        known = _CHECKS[enabled] = [
+            rule.check for rule in all_rules().values()
+            if rule.code in enabled and rule.code not in PIPELINE_CODES
+        ]
+    return known
 
 
 def finish(problems: list[Problem], source: Source, settings: Settings) -> list[Problem]:

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass
 from typing import Any
 
 from lxml import etree
@@ -11,38 +10,16 @@ from lxml import etree
 from txtool.dialects.read import Found, enclosing_component
 from txtool.io.xmlio import is_xacro_element, local
 from txtool.lint.context import LintContext
-from txtool.model.core import Member
-from txtool.model.numbers import C_SPACE
+from txtool.lint.facts import OWN_LOADER_FAMILIES, Facts, MemberRef, facts_of
+from txtool.model.numbers import C_SPACE, parse_ros2
 from txtool.model.robot import JointInfo, children
 
-# Transmission families with their own loaders (not ros_control's transmission_interface):
-# pr2_mechanism / ros_ethercat parse their own XML; franka_hw registers state/model interfaces.
-OWN_LOADER_FAMILIES: tuple[str, ...] = ("pr2_mechanism_model/", "sr_mechanism_model/")
 KNOWN_FAMILIES: tuple[str, ...] = (*OWN_LOADER_FAMILIES, "franka_hw/")
-
-
-@dataclass(frozen=True)
-class MemberRef:
-    """A joint or actuator of a transmission, with the element it was read from."""
-
-    noun: str  # "joint" or "actuator"
-    member: Member
-    element: etree._Element
 
 
 def members(found: Found) -> list[MemberRef]:
     """Joints then actuators, paired with their elements (same order as the model)."""
-    known = found.memo.get("members")  # _memo inlined: rules ask this most
-    return known if known is not None else _memo(found, "members", _members)
-
-
-def _members(found: Found) -> list[MemberRef]:
-    refs = []
-    transmission = found.transmission
-    for noun, models in (("joint", transmission.joints), ("actuator", transmission.actuators)):
-        for member, element in zip(models, children(found.element, noun), strict=True):
-            refs.append(MemberRef(noun, member, element))
-    return refs
+    return facts_of(found).members
 
 
 def _memo(found: Found, what: str, compute: Callable[[Found], Any]) -> Any:
@@ -89,16 +66,7 @@ def scope(ctx: LintContext, element: etree._Element) -> tuple[etree._Element, ..
 
 def type_element(found: Found) -> etree._Element | None:
     """The element that carries the type: ``<plugin>`` (ROS 2) or ``<type>`` (ROS 1)."""
-    memo = found.memo
-    if "type_element" in memo:  # _memo inlined: rules ask this most
-        return memo["type_element"]  # type: ignore[no-any-return]
-    return _memo(found, "type_element", _type_element)  # type: ignore[no-any-return]
-
-
-def _type_element(found: Found) -> etree._Element | None:
-    name = "type" if found.transmission.dialect == "ros1" else "plugin"
-    elements = children(found.element, name)
-    return elements[0] if elements else None
+    return facts_of(found).type_element
 
 
 def typed_ros1(found: Found) -> bool:
@@ -106,7 +74,7 @@ def typed_ros1(found: Found) -> bool:
 
     With only the pre-Hydro ``type=`` attribute the parser skips it before any loader runs.
     """
-    return found.transmission.dialect == "ros1" and type_element(found) is not None
+    return facts_of(found).typed_ros1
 
 
 def parsed(found: Found) -> bool:
@@ -115,29 +83,55 @@ def parsed(found: Found) -> bool:
     ros_control skips a transmission without a name or type, so it takes part in no
     comparison with others; ros2_control's parser throws instead, reported on its own.
     """
-    if found.transmission.dialect != "ros1":
-        return True
-    return bool(found.transmission.name.strip()) and typed_ros1(found)
+    return facts_of(found).parsed
 
 
 def loaded_by_ros_control(found: Found) -> bool:
     """Whether ros_control's own parser handles this transmission (not a custom loader)."""
-    kind_type = found.transmission.type
-    return not kind_type.startswith(OWN_LOADER_FAMILIES)
+    return not facts_of(found).own_loader
 
 
-@dataclass(frozen=True)
 class NumberRef:
-    """A number element a loader reads: ``field`` is "reduction" or "offset"."""
+    """A number element a loader reads: ``field`` is "reduction" or "offset".
 
-    element: etree._Element
-    field: str
-    noun: str
-    member: str
-    text: str | None  # what the loader parses (see loader_text): read once, several rules ask
+    ``text`` is what the loader parses (see :func:`loader_text`), read once: several rules ask.
+    """
+
+    __slots__ = ("element", "field", "noun", "member", "text", "unknown", "_plain", "_strict")
+
+    def __init__(self, element: etree._Element, field: str, noun: str, member: str,
+                 text: str | None, plain: bool = False) -> None:
+        self.element = element
+        self.field = field
+        self.noun = noun
+        self.member = member
+        self.text = text
+        # Only xacro can tell the value (see LintContext.unknown): the text read or written.
+        self.unknown = _unknown(text) or _unknown(element.text)
+        self._plain = plain
+        self._strict: float | None | bool = False  # not read yet
+
+    @property
+    def strict(self) -> float | None:
+        """``parse_ros2`` of the text: ros2_control's reading, a plain finite number or None."""
+        value = self._strict
+        if value is False:
+            value = self._strict = parse_ros2(self.text)
+        return value  # type: ignore[return-value]
 
     def describe(self) -> str:
         return f"{self.field} of {self.noun} '{self.member}'"
+
+    def all_text(self) -> str:
+        """Every text node of the element (see :func:`all_text`)."""
+        element = self.element
+        if self._plain and not len(element):
+            return element.text or ""
+        return all_text(element)
+
+
+def _unknown(text: str | None) -> bool:
+    return text is not None and ("${" in text or "$(" in text)
 
 
 _NODES = etree.XPath("node()")
@@ -149,7 +143,7 @@ def all_text(element: etree._Element) -> str:
     return "".join(str(node) for node in _TEXTS(element))
 
 
-def loader_text(element: etree._Element) -> str | None:
+def loader_text(element: etree._Element, plain: bool = False) -> str | None:
     """The text TinyXML's ``GetText()`` gives the loaders: the element's first child node when
     it is text (CDATA counts as text), else None.
 
@@ -157,7 +151,13 @@ def loader_text(element: etree._Element) -> str | None:
     and an element that starts with a comment has no text at all. Whitespace alone is not a
     node for TinyXML (tinyxml2 ``XMLDocument::Identify`` skips it before the next node or end
     tag; TinyXML 1 drops blank text), so it does not count.
+
+    ``plain``: the document holds no CDATA section (see :attr:`Facts.plain`), so an element
+    without children (comments count) has at most one text node, its ``text``.
     """
+    if plain and not len(element):
+        text = element.text
+        return text if text is not None and text.strip(C_SPACE) else None
     for node in _NODES(element):
         if not isinstance(node, str):
             return None
@@ -168,46 +168,51 @@ def loader_text(element: etree._Element) -> str | None:
 
 def read_numbers(found: Found) -> list[NumberRef]:
     """The reduction and offset elements the transmission's loader reads (standard types)."""
-    known = found.memo.get("read_numbers")
-    return known if known is not None else _memo(found, "read_numbers", _numbers)
+    return numbers_of(facts_of(found))
 
 
-def _numbers(found: Found) -> list[NumberRef]:
-    return list(_each_number(found))
+def numbers_of(facts: Facts) -> list[NumberRef]:
+    """:func:`read_numbers` of a transmission's facts."""
+    known = facts.memo.get("read_numbers")
+    if known is None:
+        known = facts.memo["read_numbers"] = list(_each_number(facts))
+    return known  # type: ignore[return-value]
 
 
-def _each_number(found: Found) -> Iterator[NumberRef]:
-    t = found.transmission
-    if t.kind == "other" or (t.dialect == "ros1" and not typed_ros1(found)):
+def _each_number(facts: Facts) -> Iterator[NumberRef]:
+    if facts.kind == "other" or (facts.ros1 and not facts.typed_ros1):
         return
-    ros1 = t.dialect == "ros1"
-    coupled = t.kind != "simple"
+    ros1 = facts.ros1
+    plain = facts.plain
+    coupled = facts.kind != "simple"
     reduction = "mechanicalReduction" if ros1 else "mechanical_reduction"
-    seen = {"joint": 0, "actuator": 0}
-    for ref in members(found):
-        seen[ref.noun] += 1
-        if not ros1 and seen[ref.noun] > (2 if coupled else 1):
-            continue  # ros2_control reads only the first one or two
-        tags: list[str] = []
-        if ref.noun == "actuator" and (ros1 or coupled):
-            tags.append(reduction)
-        if ref.noun == "joint":
-            tags += [reduction, "offset"] if (coupled or not ros1) else ["offset"]
-        for tag in tags:
-            element = _number_element(ref.element, tag, ros1)
-            if element is not None:
-                field = "offset" if tag == "offset" else "reduction"
-                yield NumberRef(element, field, ref.noun, ref.member.name, loader_text(element))
+    if ros1:  # ros_control reads every member
+        joint_tags = (reduction, "offset") if coupled else ("offset",)
+        actuator_tags: tuple[str, ...] = (reduction,)
+        joints, actuators = facts.joints, facts.actuators
+    else:  # ros2_control reads only the first one or two
+        joint_tags = (reduction, "offset")
+        actuator_tags = (reduction,) if coupled else ()
+        first = 2 if coupled else 1
+        joints, actuators = facts.joints[:first], facts.actuators[:first]
+    for refs, tags in ((joints, joint_tags), (actuators, actuator_tags)):
+        for ref in refs:
+            for tag in tags:
+                element = _number_element(ref.kids.get(tag), ros1, plain)
+                if element is not None:
+                    field = "offset" if tag == "offset" else "reduction"
+                    yield NumberRef(element, field, ref.noun, ref.member.name,
+                                    loader_text(element, plain), plain)
 
 
-def _number_element(member: etree._Element, tag: str, ros1: bool) -> etree._Element | None:
-    found = children(member, tag)
+def _number_element(found: list[etree._Element] | None, ros1: bool,
+                    plain: bool) -> etree._Element | None:
     if not found:
         return None
     if not ros1:
         # ros2_control takes the first element whose GetText() is not null
         # (ros2_control hardware_interface/src/component_parser.cpp:134-161 @157446a).
-        return next((e for e in found if loader_text(e) is not None), found[0])
+        return next((e for e in found if loader_text(e, plain) is not None), found[0])
     return found[0]
 
 

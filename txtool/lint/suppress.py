@@ -13,8 +13,8 @@ import re
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
-from txtool.io.encodings import parsing_form
 from txtool.lint.problem import Problem
+from txtool.lint.text import scanned_form
 
 _MARK = b"txtool:"
 KINDS = ("disable-next-line", "disable-line", "disable-file")
@@ -78,7 +78,7 @@ class Suppressions:
 
 def parse(data: bytes) -> Suppressions:
     """The suppression comments of a document (cheap when there are none)."""
-    data = parsing_form(data)  # UTF-8 with LF line ends, lines where libxml2 counts them
+    data = scanned_form(data)  # UTF-8 with LF line ends, lines where libxml2 counts them
     if _MARK not in data:
         return Suppressions()
     found = Suppressions()

@@ -23,10 +23,10 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from txtool.io.encodings import parsing_form
 from txtool.io.xmlio import LEADING_SPACE_DECLARATION
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
+from txtool.lint.text import scanned_form
 
 CODE = "TX004"
 NAME = "space-before-declaration"
@@ -35,7 +35,7 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    data = parsing_form(ctx.source.data)  # UTF-8, lines where libxml2 counts them
+    data = scanned_form(ctx.source.data)  # UTF-8, lines where libxml2 counts them
     match = LEADING_SPACE_DECLARATION.match(data)
     if match is None:
         return

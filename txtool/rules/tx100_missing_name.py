@@ -29,7 +29,6 @@ from lxml import etree
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import children, label
 
 CODE = "TX100"
 NAME = "missing-name"
@@ -38,16 +37,17 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found in ctx.transmissions():
-        ros1 = found.transmission.dialect == "ros1"
-        what = _consequence(found.element, "transmission", ros1, member=False)
+    for tx in ctx.facts:
+        if tx.transmission.name.strip() and all(ref.member.name.strip() for ref in tx.members):
+            continue  # the common case: every name is there (the model's names are the XML's)
+        ros1 = tx.ros1
+        what = _consequence(tx.element, "transmission", ros1, member=False)
         if what:
-            yield ctx.problem(CODE, found.element, f"{label(found)} {what}")
-        for noun in ("joint", "actuator"):
-            for element in children(found.element, noun):
-                what = _consequence(element, noun, ros1, member=True)
-                if what:
-                    yield ctx.problem(CODE, element, f"{noun} of {label(found)} {what}")
+            yield ctx.problem(CODE, tx.element, f"{tx.label} {what}")
+        for ref in tx.members:
+            what = _consequence(ref.element, ref.noun, ros1, member=True)
+            if what:
+                yield ctx.problem(CODE, ref.element, f"{ref.noun} of {tx.label} {what}")
 
 
 def _consequence(element: etree._Element, tag: str, ros1: bool, *, member: bool) -> str | None:

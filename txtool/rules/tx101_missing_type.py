@@ -30,7 +30,6 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import label, type_element
 
 CODE = "TX101"
 NAME = "missing-type"
@@ -39,23 +38,23 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found in ctx.transmissions():
-        element = type_element(found)
-        ros1 = found.transmission.dialect == "ros1"
+    for tx in ctx.facts:
+        element = tx.type_element
+        ros1 = tx.ros1
         if element is None:
-            if ros1 and found.element.get("type") is not None:
+            if ros1 and tx.element.get("type") is not None:
                 continue  # the legacy attribute form: TX302
             if ros1:
-                message = f"{label(found)} has no <type>: ros_control skips it"
+                message = f"{tx.label} has no <type>: ros_control skips it"
             else:
                 message = (
-                    f"{label(found)} has no <plugin>: ros2_control throws "
+                    f"{tx.label} has no <plugin>: ros2_control throws "
                     '"Missing <plugin> tag of <transmission> element"'
                 )
-            yield ctx.problem(CODE, found.element, message)
+            yield ctx.problem(CODE, tx.element, message)
         elif not (element.text or "").strip():
             if ros1:
-                message = f"{label(found)} has an empty <type>: ros_control skips it"
+                message = f"{tx.label} has an empty <type>: ros_control skips it"
             else:
-                message = f"{label(found)} has an empty <plugin>: no ros2_control loader matches it"
+                message = f"{tx.label} has an empty <plugin>: no ros2_control loader matches it"
             yield ctx.problem(CODE, element, message)

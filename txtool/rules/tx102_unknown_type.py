@@ -39,7 +39,7 @@ from typing import Any
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import KNOWN_FAMILIES, label, type_element
+from txtool.lint.support import KNOWN_FAMILIES
 from txtool.model.core import STANDARD_TYPES, TYPE_PREFIX
 
 CODE = "TX102"
@@ -67,22 +67,21 @@ def options_model() -> Any:
 def check(ctx: LintContext) -> Iterator[Problem]:
     options = ctx.option(CODE)
     families = KNOWN_FAMILIES + tuple(options.known_families if options else ())
-    for found in ctx.transmissions():
-        element = type_element(found)
-        if element is None:
-            continue
-        text = (element.text or "").strip()
-        if not text or ctx.unknown(text) or text.startswith((*families, TYPE_PREFIX)):
-            continue  # transmission_interface/...: TX113
+    prefixes = (*families, TYPE_PREFIX)
+    for tx in ctx.facts:
+        text = tx.type_text
+        if not text or text.startswith(prefixes) or ctx.unknown(text):
+            continue  # no type element, or an empty one: TX101; transmission_interface/...: TX113
+        element = tx.type_element
         suggestion = nearest_standard(text)
         if suggestion is not None:
             message = (
-                f"{label(found)} has type '{text}': no loader knows it unless a plugin of that "
+                f"{tx.label} has type '{text}': no loader knows it unless a plugin of that "
                 f"name is installed; did you mean '{suggestion}'?"
             )
         else:
             message = (
-                f"{label(found)} has type '{text}', not a standard transmission_interface type: "
+                f"{tx.label} has type '{text}', not a standard transmission_interface type: "
                 "txtool cannot check it (add its family to known-families if it is a plugin)"
             )
         yield ctx.problem(CODE, element, message)

@@ -34,7 +34,7 @@ from collections.abc import Iterator
 from txtool.dialects.read import Found, enclosing_component
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import label, opaque, typed_ros1
+from txtool.lint.support import label, opaque
 
 CODE = "TX103"
 NAME = "wrong-member-count"
@@ -43,16 +43,14 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found in ctx.transmissions():
-        t = found.transmission
-        if t.kind == "other" or opaque(ctx, found.element):
+    for tx in ctx.facts:
+        if tx.kind == "other":
             continue
-        if t.dialect == "ros1":
-            message = _ros1(found) if typed_ros1(found) else None
-        else:
-            message = _ros2(found)
-        if message:
-            yield ctx.problem(CODE, found.element, message)
+        if tx.ros1 and not tx.typed_ros1:
+            continue
+        message = _ros1(tx.found) if tx.ros1 else _ros2(tx.found)
+        if message and not opaque(ctx, tx.element):
+            yield ctx.problem(CODE, tx.element, message)
 
 
 def _counts(joints: int, actuators: int) -> str:

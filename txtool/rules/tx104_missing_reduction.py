@@ -39,7 +39,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import children, label, members, opaque, typed_ros1
+from txtool.lint.support import opaque
 
 CODE = "TX104"
 NAME = "missing-reduction"
@@ -48,17 +48,15 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found in ctx.transmissions():
-        if found.transmission.kind == "other" or not typed_ros1(found):
+    for tx in ctx.facts:
+        if not tx.typed_ros1 or tx.kind == "other":
             continue
-        legacy = bool(children(found.element, "mechanicalReduction"))
-        for ref in members(found):
-            if ref.noun != "actuator" or opaque(ctx, ref.element):
+        for ref in tx.actuators:
+            if "mechanicalReduction" in ref.kids or opaque(ctx, ref.element):
                 continue
-            if children(ref.element, "mechanicalReduction"):
-                continue
+            legacy = "mechanicalReduction" in tx.kids
             message = (
-                f"actuator '{ref.member.name}' of {label(found)} has no <mechanicalReduction>: "
+                f"actuator '{ref.member.name}' of {tx.label} has no <mechanicalReduction>: "
                 "ros_control refuses the transmission"
             )
             if legacy:

@@ -44,7 +44,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import label, read_numbers
+from txtool.lint.support import numbers_of
 from txtool.model.numbers import C_SPACE, parse_ros2, stod
 
 CODE = "TX105"
@@ -54,17 +54,21 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found in ctx.transmissions():
-        for number in read_numbers(found):
-            text = number.text
-            if ctx.unknown(text) or ctx.unknown(number.element.text):
+    for tx in ctx.facts:
+        for number in numbers_of(tx):
+            if number.unknown:
                 continue
-            if found.transmission.dialect == "ros1":
-                problem = _ros1(text)
+            plain = number.strict
+            if tx.ros1:
+                if plain is not None and abs(plain) >= sys.float_info.min:
+                    continue  # a plain number in the range of a double (the common case)
+                problem = _ros1(number.text)
             else:
-                problem = _ros2(text, default="0.0" if number.field == "offset" else "1.0")
+                if plain is not None:
+                    continue
+                problem = _ros2(number.text, default="0.0" if number.field == "offset" else "1.0")
             if problem:
-                message = f"{number.describe()} of {label(found)} {problem}"
+                message = f"{number.describe()} of {tx.label} {problem}"
                 yield ctx.problem(CODE, number.element, message)
 
 

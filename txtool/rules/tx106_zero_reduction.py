@@ -25,8 +25,8 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import label, read_numbers
-from txtool.model.numbers import parse_ros1, parse_ros2
+from txtool.lint.support import numbers_of
+from txtool.model.numbers import parse_ros1
 
 CODE = "TX106"
 NAME = "zero-reduction"
@@ -35,12 +35,15 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found in ctx.transmissions():
-        ros1 = found.transmission.dialect == "ros1"
-        for number in read_numbers(found):
+    for tx in ctx.facts:
+        ros1 = tx.ros1
+        for number in numbers_of(tx):
             if number.field != "reduction" or ctx.unknown(number.element.text):
                 continue
-            value = (parse_ros1 if ros1 else parse_ros2)(number.text)
+            plain = number.strict
+            if plain is not None and plain != 0.0:
+                continue  # a plain non-zero number: std::stod reads the same, or throws (TX105)
+            value = plain if not ros1 else parse_ros1(number.text)
             if value != 0.0:
                 continue
             effect = (
@@ -48,5 +51,5 @@ def check(ctx: LintContext) -> Iterator[Problem]:
                 if ros1
                 else "ros2_control's loader fails (\"Failed to construct transmission\")"
             )
-            yield ctx.problem(CODE, number.element, f"{number.describe()} of {label(found)} is "
+            yield ctx.problem(CODE, number.element, f"{number.describe()} of {tx.label} is "
                               f"zero: {effect}")

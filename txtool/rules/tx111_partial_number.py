@@ -34,7 +34,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import NumberRef, all_text, label, read_numbers
+from txtool.lint.support import NumberRef, numbers_of
 from txtool.model.numbers import C_SPACE, format_float, parse_ros1, parse_ros2, stod
 
 CODE = "TX111"
@@ -44,23 +44,24 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found in ctx.transmissions():
-        ros1 = found.transmission.dialect == "ros1"
-        for number in read_numbers(found):
-            text = number.text
-            if ctx.unknown(text) or ctx.unknown(number.element.text):
+    for tx in ctx.facts:
+        ros1 = tx.ros1
+        for number in numbers_of(tx):
+            if number.unknown:
                 continue
-            default = "0.0" if number.field == "offset" else "1.0"
-            message = _split(number, text, ros1) or (_prefix(text, default) if ros1 else None)
+            text = number.text
+            message = _split(number, text, ros1)
+            if message is None and ros1 and number.strict is None:  # else a plain number
+                message = _prefix(text, "0.0" if number.field == "offset" else "1.0")
             if message:
                 yield ctx.problem(
-                    CODE, number.element, f"{number.describe()} of {label(found)} {message}"
+                    CODE, number.element, f"{number.describe()} of {tx.label} {message}"
                 )
 
 
 def _split(number: NumberRef, text: str | None, ros1: bool) -> str | None:
     """The loader reads the first text node only; the element holds more text after it."""
-    whole = all_text(number.element).strip(C_SPACE)
+    whole = number.all_text().strip(C_SPACE)
     if text is None or whole == text.strip(C_SPACE):
         return None
     value = (parse_ros1 if ros1 else parse_ros2)(text)

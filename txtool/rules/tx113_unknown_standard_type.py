@@ -33,7 +33,6 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import label, type_element
 from txtool.model.core import TYPE_PREFIX
 from txtool.rules.tx102_unknown_type import STANDARD_NAMES, nearest_standard
 
@@ -44,16 +43,16 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found in ctx.transmissions():
-        element = type_element(found)
-        if element is None:
+    for tx in ctx.facts:
+        text = tx.type_text
+        if not text or not text.startswith(TYPE_PREFIX) or text in STANDARD_NAMES:
             continue
-        text = (element.text or "").strip()
-        if not text.startswith(TYPE_PREFIX) or text in STANDARD_NAMES or ctx.unknown(text):
+        if ctx.unknown(text):
             continue
+        element = tx.type_element
         effect = (
             "ros_control refuses it (\"Unsupported type\")"
-            if found.transmission.dialect == "ros1"
+            if tx.ros1
             else "ros2_control parses it, but no transmission loader has that name"
         )
         suggestion = nearest_standard(text)
@@ -61,6 +60,6 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         yield ctx.problem(
             CODE,
             element,
-            f"{label(found)} has type '{text}', not one of the three transmission_interface "
+            f"{tx.label} has type '{text}', not one of the three transmission_interface "
             f"types: {effect}{hint}",
         )
