@@ -67,7 +67,8 @@ class LintContext:
         """What the rules read of each transmission (see :mod:`txtool.lint.facts`), in order."""
         # Without a CDATA section an element's text nodes are its text (no XPath needed).
         plain = self.from_data and b"<![CDATA[" not in scanned_form(self.source.data)
-        return [facts_of(found, plain) for found in self.found]
+        components = bool(self._walked["ros2_control"])
+        return [facts_of(found, plain, components) for found in self.found]
 
     @cached_property
     def locator(self) -> Locator:
@@ -76,8 +77,13 @@ class LintContext:
         return Locator(self.source)
 
     @cached_property
+    def joint_elements(self) -> dict[str, etree._Element]:
+        """The robot's ``<joint>`` elements by name (see :attr:`joints`)."""
+        return joint_elements(self.source.root, self._walked["joint"])
+
+    @cached_property
     def joints(self) -> Mapping[str, JointInfo]:
-        return Joints(joint_elements(self.source.root, self._walked["joint"]))
+        return Joints(self.joint_elements)
 
     @cached_property
     def components(self) -> list[Component]:

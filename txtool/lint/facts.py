@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 from lxml import etree
 
-from txtool.model.robot import child_index
+from txtool.model.robot import ancestor, child_index
 
 if TYPE_CHECKING:
     from txtool.dialects.read import Found
@@ -80,9 +80,10 @@ class Facts:
     __slots__ = (
         "found", "element", "transmission", "ros1", "kind", "kids", "type_element", "type_text",
         "typed_ros1", "parsed", "own_loader", "members", "joints", "actuators", "memo", "plain",
+        "component",
     )
 
-    def __init__(self, found: Found, plain: bool = False) -> None:
+    def __init__(self, found: Found, plain: bool = False, components: bool = True) -> None:
         t: Transmission = found.transmission
         element = found.element
         kids = child_index(element)
@@ -111,6 +112,8 @@ class Facts:
         self.memo: dict[str, object] = {}  # answers a few rules share (see support)
         # The document holds no CDATA section: an element's text nodes are its ``text``.
         self.plain = plain
+        # The enclosing <ros2_control> (none to look for when the document has none).
+        self.component = ancestor(element, "ros2_control") if components else None
 
     def tagged(self, name: str) -> list[etree._Element] | tuple[etree._Element, ...]:
         """The transmission's children named ``name`` (in any namespace)."""
@@ -123,9 +126,9 @@ class Facts:
         return f"transmission '{name}'" if name else "unnamed transmission"
 
 
-def facts_of(found: Found, plain: bool = False) -> Facts:
+def facts_of(found: Found, plain: bool = False, components: bool = True) -> Facts:
     """The facts of one transmission, built on first use and kept with it."""
     known = found.memo.get("facts")
     if known is None:
-        known = found.memo["facts"] = Facts(found, plain)
+        known = found.memo["facts"] = Facts(found, plain, components)
     return known  # type: ignore[return-value]

@@ -12,7 +12,7 @@ from txtool.io.xmlio import is_xacro_element, local
 from txtool.lint.context import LintContext
 from txtool.lint.facts import OWN_LOADER_FAMILIES, Facts, MemberRef, facts_of
 from txtool.model.numbers import C_SPACE, parse_ros2
-from txtool.model.robot import JointInfo, children
+from txtool.model.robot import children
 
 KNOWN_FAMILIES: tuple[str, ...] = (*OWN_LOADER_FAMILIES, "franka_hw/")
 
@@ -232,26 +232,27 @@ def loader_group(found: Found) -> tuple[object, ...]:
 
 def robot_joints_of_transmissions(
     ctx: LintContext,
-) -> list[tuple[Found, etree._Element, JointInfo]]:
-    """(transmission, its ``<joint>`` element, the robot's joint) for standard transmissions;
-    found once per document, several rules ask."""
+) -> list[tuple[Found, etree._Element, etree._Element]]:
+    """(transmission, its ``<joint>`` element, the robot's ``<joint>`` element) for standard
+    transmissions; found once per document, several rules ask (read a joint through
+    ``ctx.joints`` when it matters: most need none read)."""
     known = ctx.memo.get("robot_joints")
     if known is None:
         known = ctx.memo["robot_joints"] = list(_robot_joints(ctx))
     return known  # type: ignore[no-any-return]
 
 
-def _robot_joints(ctx: LintContext) -> Iterator[tuple[Found, etree._Element, JointInfo]]:
+def _robot_joints(ctx: LintContext) -> Iterator[tuple[Found, etree._Element, etree._Element]]:
     if not ctx.is_robot:
         return
-    joints = ctx.joints
-    for found in ctx.transmissions():
-        if found.transmission.kind == "other":
+    robot = ctx.joint_elements
+    for tx in ctx.facts:
+        if tx.kind == "other":
             continue
-        for joint in children(found.element, "joint"):
-            info = joints.get(joint.get("name", ""))
-            if info is not None:
-                yield found, joint, info
+        for ref in tx.joints:
+            element = robot.get(ref.member.name)  # the model's name is the element's
+            if element is not None:
+                yield tx.found, ref.element, element
 
 
 def interface_texts(element: etree._Element) -> list[str]:

@@ -43,10 +43,10 @@ from collections.abc import Iterable, Iterator
 
 from lxml import etree
 
-from txtool.dialects.read import Found, enclosing_component
 from txtool.lint.context import LintContext
+from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
-from txtool.lint.support import children, label, opaque
+from txtool.lint.support import children, opaque
 
 CODE = "TX200"
 NAME = "unknown-joint"
@@ -61,7 +61,7 @@ class Names:
 
     def __init__(self, names: Iterable[str]) -> None:
         self.exact = set(names)
-        self.patterns = [_as_pattern(n) for n in self.exact if _EXPRESSION.search(n)]
+        self.patterns = [_as_pattern(n) for n in self.exact if "$" in n and _EXPRESSION.search(n)]
 
     def __contains__(self, name: object) -> bool:
         if name in self.exact:
@@ -75,19 +75,20 @@ def _as_pattern(text: str) -> re.Pattern[str]:
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    robot_joints = Names(ctx.joints) if ctx.is_robot else None
+    robot_joints = Names(ctx.joint_elements) if ctx.is_robot else None
     components: dict[etree._Element, tuple[str, Names] | None] = {}
-    for found in ctx.transmissions():
-        declared = _component_joints(ctx, found, components)
-        for joint in children(found.element, "joint"):
-            name = joint.get("name", "")
+    for tx in ctx.facts:
+        declared = _component_joints(ctx, tx, components) if tx.component is not None else None
+        for ref in tx.joints:
+            name = ref.member.name  # the element's name attribute, or ""
+            joint = ref.element
             if not name or ctx.unknown(name):
                 continue
             if declared is not None and name not in declared[1]:
                 yield ctx.problem(
                     CODE,
                     joint,
-                    f"joint '{name}' of {label(found)} is not a <joint> of <ros2_control> "
+                    f"joint '{name}' of {tx.label} is not a <joint> of <ros2_control> "
                     f"'{declared[0]}': ros2_control throws \"declared joint '{name}' is not "
                     "available in component\"",
                 )
@@ -95,16 +96,16 @@ def check(ctx: LintContext) -> Iterator[Problem]:
                 yield ctx.problem(
                     CODE,
                     joint,
-                    f"joint '{name}' of {label(found)} is not a <joint> of the robot: the "
+                    f"joint '{name}' of {tx.label} is not a <joint> of the robot: the "
                     "loader has no joint to bind it to",
                 )
 
 
 def _component_joints(
-    ctx: LintContext, found: Found, seen: dict[etree._Element, tuple[str, Names] | None]
+    ctx: LintContext, tx: Facts, seen: dict[etree._Element, tuple[str, Names] | None]
 ) -> tuple[str, Names] | None:
     """Name and joint names of the enclosing component, None if none or not knowable."""
-    component: etree._Element | None = enclosing_component(found.element)
+    component = tx.component
     if component is None or opaque(ctx, component):
         return None
     if component not in seen:

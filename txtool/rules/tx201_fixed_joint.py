@@ -49,9 +49,10 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found, joint, info in robot_joints_of_transmissions(ctx):
-        if not info.is_fixed:
+    for found, joint, robot in robot_joints_of_transmissions(ctx):
+        if robot.get("type") != "fixed":  # JointInfo.is_fixed, without reading the joint
             continue
+        info = ctx.joints[joint.get("name", "")]
         effect = (
             "ros2_control throws \"Fixed joints do not make sense in ros2_control\""
             if _declared_by_component(found.element, info.name)

@@ -46,7 +46,10 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found, joint, info in robot_joints_of_transmissions(ctx):
+    for found, joint, robot in robot_joints_of_transmissions(ctx):
+        if next(robot.iterchildren("{*}mimic"), None) is None:
+            continue  # no <mimic>: nothing to read
+        info = ctx.joints[joint.get("name", "")]
         if info.mimic is None:
             continue
         yield ctx.problem(
