@@ -35,15 +35,7 @@ from collections.abc import Iterator
 from txtool.lint import gazebo
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import (
-    children,
-    interface_texts,
-    label,
-    loaded_by_ros_control,
-    members,
-    opaque,
-    typed_ros1,
-)
+from txtool.lint.support import opaque
 
 CODE = "TX110"
 NAME = "missing-interface"
@@ -52,27 +44,25 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found in ctx.transmissions():
-        if not typed_ros1(found) or not loaded_by_ros_control(found):
+    for tx in ctx.facts:
+        if not tx.typed_ros1 or tx.own_loader:
             continue
-        for ref in members(found):
-            if ref.noun != "joint" or opaque(ctx, ref.element):
+        for ref in tx.joints:
+            if ref.interfaces or opaque(ctx, ref.element):
                 continue
-            interfaces = children(ref.element, "hardwareInterface")
-            if interface_texts(ref.element):
-                continue
+            interfaces = ref.tagged("hardwareInterface")
             what = "an empty <hardwareInterface>" if interfaces else "no <hardwareInterface>"
-            actuators = [a.element for a in members(found) if a.noun == "actuator"]
-            named = any(interface_texts(a) for a in actuators)
+            actuators = tx.actuators
+            named = any(a.interfaces for a in actuators)
             where = " (only its actuator names one)" if named else ""
             # gazebo_ros_control's DefaultRobotHWSim falls back on the first actuator's.
-            taken = interface_texts(actuators[0]) if actuators else []
+            taken = actuators[0].interfaces if actuators else []
             sim = ctx.gazebo_sim
             if sim is not None and sim.default and taken and gazebo.accepts(taken[0]):
                 continue  # the robot's loader takes the actuator's: TX301 warns (and fixes)
             yield ctx.problem(
                 CODE,
                 ref.element,
-                f"joint '{ref.member.name}' of {label(found)} has {what}{where}: "
+                f"joint '{ref.member.name}' of {tx.label} has {what}{where}: "
                 "ros_control skips the joint",
             )

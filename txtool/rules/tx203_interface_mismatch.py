@@ -53,7 +53,7 @@ from lxml import etree
 from txtool.dialects.read import Found, enclosing_component
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import children, label, loaded_by_ros_control, members, opaque
+from txtool.lint.support import children, label, members, opaque
 
 CODE = "TX203"
 NAME = "interface-mismatch"
@@ -62,12 +62,12 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found in ctx.transmissions():
-        if found.transmission.dialect == "ros1":
-            if loaded_by_ros_control(found):
-                yield from _check_ros1(ctx, found)
-        else:
-            yield from _check_ros2(ctx, found)
+    for tx in ctx.facts:
+        if tx.ros1:
+            if len(tx.joints) > 1 and not tx.own_loader:  # one joint agrees with itself
+                yield from _check_ros1(ctx, tx.found)
+        elif tx.component is not None:  # else no component declares its joints
+            yield from _check_ros2(ctx, tx.found)
 
 
 def _check_ros1(ctx: LintContext, found: Found) -> Iterator[Problem]:

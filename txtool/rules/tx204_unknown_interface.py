@@ -105,13 +105,14 @@ _ROS1_TO_ROS2 = {
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found in ctx.transmissions():
-        if found.transmission.kind == "other":
+    for tx in ctx.facts:
+        if tx.kind == "other":
             continue
-        if found.transmission.dialect == "ros1":
-            yield from _check_ros1(ctx, found)
-        else:
-            yield from _check_ros2(ctx, found)
+        if tx.ros1:
+            if any(name not in ROS1_INTERFACES for ref in tx.joints for name in ref.interfaces):
+                yield from _check_ros1(ctx, tx.found)  # else every name is registered
+        elif tx.component is not None:  # else no component declares its joints' interfaces
+            yield from _check_ros2(ctx, tx.found)
 
 
 def unprefixed_registered(text: str) -> bool:

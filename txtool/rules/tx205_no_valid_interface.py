@@ -61,18 +61,12 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from txtool.dialects.read import Found, enclosing_component
+from txtool.dialects.read import Found
 from txtool.lint import gazebo
 from txtool.lint.context import LintContext
+from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
-from txtool.lint.support import (
-    interface_texts,
-    label,
-    loaded_by_ros_control,
-    members,
-    opaque,
-    typed_ros1,
-)
+from txtool.lint.support import label, opaque
 from txtool.rules.tx204_unknown_interface import (
     PREFIX,
     ROS2_INTERFACES,
@@ -89,23 +83,25 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found in ctx.transmissions():
-        if found.transmission.kind == "other":
+    for tx in ctx.facts:
+        if tx.kind == "other":
             continue
-        if found.transmission.dialect == "ros1":
-            if ctx.components and enclosing_component(found.element) is None:
+        if tx.ros1:
+            if tx.component is None and ctx.components:
                 continue  # a ROS 2 robot's leftover: no loader reads it (TX304)
-            if typed_ros1(found) and loaded_by_ros_control(found):
-                yield from _check_ros1(ctx, found)
-        else:
-            yield from _check_ros2(ctx, found)
+            if tx.typed_ros1 and not tx.own_loader:
+                yield from _check_ros1(ctx, tx)
+        elif tx.component is not None:  # else no component declares its joints' interfaces
+            yield from _check_ros2(ctx, tx.found)
 
 
-def _check_ros1(ctx: LintContext, found: Found) -> Iterator[Problem]:
-    joints = [ref for ref in members(found) if ref.noun == "joint" and interface_texts(ref.element)]
-    if not joints or any(opaque(ctx, ref.element) for ref in joints):
+def _check_ros1(ctx: LintContext, tx: Facts) -> Iterator[Problem]:
+    joints = [ref for ref in tx.joints if ref.interfaces]
+    if not joints or any(registered(name) for name in joints[0].interfaces):
+        return  # the common case: the first joint names a registered interface (see below)
+    if any(opaque(ctx, ref.element) for ref in joints):
         return
-    lists = [interface_texts(ref.element) for ref in joints]
+    lists = [ref.interfaces for ref in joints]
     if len({frozenset(names) for names in lists}) > 1:
         return  # joints with different interfaces: TX203
     names = lists[0]
@@ -113,7 +109,7 @@ def _check_ros1(ctx: LintContext, found: Found) -> Iterator[Problem]:
         return
     shown = ", ".join(f"'{name}'" for name in names)
     fixes = [PREFIX + name for name in names if unprefixed_registered(name)]
-    message = (f"{label(found)} names no hardware interface ros_control knows ({shown}): "
+    message = (f"{tx.label} names no hardware interface ros_control knows ({shown}): "
                f"ros_control refuses it (\"It contains no valid hardware interfaces\")")
     sim = ctx.gazebo_sim
     if sim is not None and sim.default and gazebo.accepts(names[0]):

@@ -49,7 +49,7 @@ from txtool.dialects.read import detect_dialect, ros1_type, text_of, transmissio
 from txtool.io.xmlio import local
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import OWN_LOADER_FAMILIES, children, label, loaded_by_ros_control
+from txtool.lint.support import OWN_LOADER_FAMILIES, children, label
 from txtool.rules.tx204_unknown_interface import PREFIX, unprefixed_registered
 
 CODE = "TX300"
@@ -70,9 +70,12 @@ def _unprefixed(
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found in ctx.transmissions():
-        if found.transmission.dialect != "ros1" or not loaded_by_ros_control(found):
+    for tx in ctx.facts:
+        if not tx.ros1 or tx.own_loader:
             continue
+        if not any(unprefixed_registered(name) for ref in tx.joints for name in ref.interfaces):
+            continue  # the common case (the joints' interface names are the texts below)
+        found = tx.found
         for member, element, text in _unprefixed(found.element):
             yield ctx.problem(
                 CODE,

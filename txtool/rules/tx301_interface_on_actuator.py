@@ -63,7 +63,6 @@ from txtool.lint.support import (
     children,
     is_xacro,
     label,
-    loaded_by_ros_control,
 )
 from txtool.rules.tx302_legacy_type_attribute import insert_child
 
@@ -93,9 +92,10 @@ def _bare_joints(transmission: etree._Element) -> list[etree._Element]:
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found in ctx.transmissions():
-        if found.transmission.dialect != "ros1" or not loaded_by_ros_control(found):
-            continue
+    for tx in ctx.facts:
+        if not tx.ros1 or tx.own_loader or not any(a.interfaces for a in tx.actuators):
+            continue  # no actuator names an interface: no joint is bare (see _bare_joints)
+        found = tx.found
         joints = _bare_joints(found.element)
         if not joints:
             continue
