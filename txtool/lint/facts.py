@@ -80,7 +80,7 @@ class Facts:
     __slots__ = (
         "found", "element", "transmission", "ros1", "kind", "kids", "type_element", "type_text",
         "typed_ros1", "parsed", "own_loader", "members", "joints", "actuators", "memo", "plain",
-        "component",
+        "component", "group",
     )
 
     def __init__(self, found: Found, plain: bool = False, components: bool = True) -> None:
@@ -114,6 +114,8 @@ class Facts:
         self.plain = plain
         # The enclosing <ros2_control> (none to look for when the document has none).
         self.component = ancestor(element, "ros2_control") if components else None
+        # Transmissions read by the same loader instance: ROS 1, or one <ros2_control>.
+        self.group: tuple[object, ...] = ("ros1",) if ros1 else ("ros2", self.component)
 
     def tagged(self, name: str) -> list[etree._Element] | tuple[etree._Element, ...]:
         """The transmission's children named ``name`` (in any namespace)."""

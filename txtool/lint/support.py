@@ -7,7 +7,7 @@ from typing import Any
 
 from lxml import etree
 
-from txtool.dialects.read import Found, enclosing_component
+from txtool.dialects.read import Found
 from txtool.io.xmlio import is_xacro_element, local
 from txtool.lint.context import LintContext
 from txtool.lint.facts import OWN_LOADER_FAMILIES, Facts, MemberRef, facts_of
@@ -224,10 +224,7 @@ def label(found: Found) -> str:
 
 def loader_group(found: Found) -> tuple[object, ...]:
     """Transmissions read by the same loader instance: ROS 1, or one ``<ros2_control>``."""
-    if found.transmission.dialect == "ros1":
-        return ("ros1",)
-    component = enclosing_component(found.element)
-    return ("ros2", component)
+    return facts_of(found).group
 
 
 def robot_joints_of_transmissions(

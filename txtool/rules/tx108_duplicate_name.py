@@ -30,7 +30,7 @@ from collections.abc import Iterator
 from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import loader_group, parsed, scope
+from txtool.lint.support import scope
 
 CODE = "TX108"
 NAME = "duplicate-name"
@@ -40,12 +40,15 @@ FIXABLE = False
 
 def check(ctx: LintContext) -> Iterator[Problem]:
     first: dict[tuple[object, ...], Found] = {}
-    for found in ctx.transmissions():
-        name = found.transmission.name
-        where = scope(ctx, found.element)
-        if not name.strip() or ctx.unknown(name) or where is None or not parsed(found):
+    for tx in ctx.facts:
+        name = tx.transmission.name
+        if not name.strip() or not tx.parsed or ctx.unknown(name):
             continue
-        key = (loader_group(found), where, name)
+        where = scope(ctx, tx.element)
+        if where is None:
+            continue
+        found = tx.found
+        key = (tx.group, where, name)
         if key not in first:
             first[key] = found
             continue

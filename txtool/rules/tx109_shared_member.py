@@ -32,7 +32,7 @@ from collections.abc import Iterator
 from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import label, loader_group, members, parsed, scope
+from txtool.lint.support import label, scope
 
 CODE = "TX109"
 NAME = "shared-member"
@@ -43,22 +43,26 @@ FIXABLE = False
 def check(ctx: LintContext) -> Iterator[Problem]:
     owner: dict[tuple[object, ...], Found] = {}
     names: set[tuple[object, ...]] = set()
-    for found in ctx.transmissions():
-        t = found.transmission
-        where = scope(ctx, found.element)
-        if t.kind == "other" or where is None or not parsed(found):
+    for tx in ctx.facts:
+        t = tx.transmission
+        if tx.kind == "other" or not tx.parsed:
             continue  # ros_control skips unparsed ones before any member is used
-        named = (loader_group(found), where, t.name)
+        where = scope(ctx, tx.element)
+        if where is None:
+            continue
+        found = tx.found
+        group = tx.group
+        named = (group, where, t.name)
         if t.name and named in names:
             continue
         names.add(named)
         seen_here: set[tuple[str, str]] = set()
-        for ref in members(found):
+        for ref in tx.members:
             name = ref.member.name
-            if not name.strip() or ctx.unknown(name) or (ref.noun, name) in seen_here:
+            if not name.strip() or (ref.noun, name) in seen_here or ctx.unknown(name):
                 continue
             seen_here.add((ref.noun, name))
-            key = (loader_group(found), where, ref.noun, name)
+            key = (group, where, ref.noun, name)
             first = owner.setdefault(key, found)
             if first is found:
                 continue

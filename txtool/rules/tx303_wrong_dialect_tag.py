@@ -52,14 +52,19 @@ SEVERITY = "error"
 FIXABLE = False
 
 _ROS1_SPELLINGS = frozenset({"mechanicalReduction", "hardwareInterface", "hardware_interface"})
+_ROS2_SPELLINGS = frozenset({"mechanical_reduction", "hardware_interface"})
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found in ctx.transmissions():
-        if found.transmission.dialect == "ros1":
-            yield from _check_ros1(ctx, found)
+    for tx in ctx.facts:
+        if tx.ros1:
+            if _ROS2_SPELLINGS.isdisjoint(tx.kids) and all(
+                _ROS2_SPELLINGS.isdisjoint(ref.kids) for ref in tx.members
+            ):
+                continue  # the common case: say nothing, build no message
+            yield from _check_ros1(ctx, tx.found)
         else:
-            yield from _check_ros2(ctx, found)
+            yield from _check_ros2(ctx, tx.found)
 
 
 def _members(found: Found) -> list[etree._Element]:

@@ -38,10 +38,9 @@ from collections.abc import Iterator
 
 from lxml import etree
 
-from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
+from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
-from txtool.lint.support import children, label, members
 
 CODE = "TX400"
 NAME = "ignored-value"
@@ -52,58 +51,57 @@ Finding = tuple[etree._Element, str]
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found in ctx.transmissions():
-        if found.transmission.kind == "other":
+    for tx in ctx.facts:
+        if tx.kind == "other":
             continue
-        findings = _ros1(found) if found.transmission.dialect == "ros1" else _ros2(found)
+        findings = _ros1(tx) if tx.ros1 else _ros2(tx)
         for element, message in findings:
             yield ctx.problem(CODE, element, message)
 
 
-def _ros2(found: Found) -> Iterator[Finding]:
-    simple = found.transmission.kind == "simple"
+def _ros2(tx: Facts) -> Iterator[Finding]:
+    simple = tx.kind == "simple"
     fields = ("mechanical_reduction", "offset") if simple else ("offset",)
     reason = (
         "ros2_control's SimpleTransmission takes reduction and offset from the joint"
         if simple
         else "ros2_control's coupled transmissions have joint offsets only"
     )
-    seen = {"joint": 0, "actuator": 0}
-    for ref in members(found):
-        seen[ref.noun] += 1
-        if ref.noun == "actuator":
-            for field in fields:
-                for element in children(ref.element, field):
-                    yield element, _never_read(found, ref.noun, ref.member.name, field, reason)
-        if not simple and seen[ref.noun] > 2:
-            yield ref.element, (
-                f"{ref.noun} '{ref.member.name}' of {label(found)} comes after the second: "
-                "ros2_control's loader reads only the first two and ignores it"
-            )
+    for refs in (tx.joints, tx.actuators):
+        for seen, ref in enumerate(refs, 1):
+            if ref.noun == "actuator":
+                for field in fields:
+                    for element in ref.tagged(field):
+                        yield element, _never_read(tx, ref.noun, ref.member.name, field, reason)
+            if not simple and seen > 2:
+                yield ref.element, (
+                    f"{ref.noun} '{ref.member.name}' of {tx.label} comes after the second: "
+                    "ros2_control's loader reads only the first two and ignores it"
+                )
 
 
-def _ros1(found: Found) -> Iterator[Finding]:
-    simple = found.transmission.kind == "simple"
-    for ref in members(found):
-        if ref.noun == "joint" and simple:
-            for element in children(ref.element, "mechanicalReduction"):
+def _ros1(tx: Facts) -> Iterator[Finding]:
+    simple = tx.kind == "simple"
+    if simple:
+        for ref in tx.joints:
+            for element in ref.tagged("mechanicalReduction"):
                 yield element, _never_read(
-                    found, ref.noun, ref.member.name, "mechanicalReduction",
+                    tx, ref.noun, ref.member.name, "mechanicalReduction",
                     "ros_control's SimpleTransmission takes the reduction from the actuator",
                 )
-        if ref.noun == "actuator":
-            for element in children(ref.element, "offset"):
-                yield element, _never_read(
-                    found, ref.noun, ref.member.name, "offset",
-                    "ros_control reads offsets from joints only",
-                )
-    if found.element.get("type") is None:
-        for element in children(found.element, "mechanicalReduction"):
+    for ref in tx.actuators:
+        for element in ref.tagged("offset"):
+            yield element, _never_read(
+                tx, ref.noun, ref.member.name, "offset",
+                "ros_control reads offsets from joints only",
+            )
+    if "mechanicalReduction" in tx.kids and tx.element.get("type") is None:
+        for element in tx.tagged("mechanicalReduction"):
             yield element, (
-                f"<mechanicalReduction> directly under {label(found)} is never read: "
+                f"<mechanicalReduction> directly under {tx.label} is never read: "
                 "ros_control reads the reductions of its <actuator> and <joint> elements"
             )
 
 
-def _never_read(found: Found, noun: str, name: str, field: str, reason: str) -> str:
-    return f"<{field}> of {noun} '{name}' in {label(found)} is never read: {reason}"
+def _never_read(tx: Facts, noun: str, name: str, field: str, reason: str) -> str:
+    return f"<{field}> of {noun} '{name}' in {tx.label} is never read: {reason}"
