@@ -9,9 +9,9 @@ from typing import TYPE_CHECKING, Any
 
 from lxml import etree
 
-from txtool.dialects.read import Found, read_source
+from txtool.dialects.read import Found, transmission_elements
 from txtool.io.xmlio import Source, local
-from txtool.lint.facts import Facts, facts_of
+from txtool.lint.facts import Facts, LintFound, facts_of
 from txtool.lint.problem import Problem, Severity
 from txtool.lint.text import scanned_form
 from txtool.model.robot import Component, JointInfo, components, joint_elements, joint_info
@@ -51,8 +51,12 @@ class LintContext:
 
     def __post_init__(self) -> None:
         if not self.found:
-            candidates = self._walked["transmission"]
-            self.found = read_source(self.source, locate=False, candidates=candidates)
+            # Each transmission's model is read when a rule first asks for it (see facts).
+            components: dict[etree._Element, Component] = {}
+            self.found = [
+                LintFound(element, components)
+                for element in transmission_elements(self.source.root, self._walked["transmission"])
+            ]
 
     @cached_property
     def _walked(self) -> dict[str, list[etree._Element]]:

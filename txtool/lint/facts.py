@@ -1,11 +1,15 @@
 """What the rules read of each transmission, found once per transmission.
 
-Twenty-five rules look at the same few things of every transmission: its dialect and kind, its
-``<type>``/``<plugin>`` element, its joints and actuators with their elements and children, the
-numbers and interface names its loader reads. :class:`Facts` holds them, built in one pass per
-transmission (the child indexes come from the reader's own, see
-:func:`~txtool.model.robot.indexed_children`), so that a rule reads attributes instead of
-walking the elements again. What few rules need (numbers, interface texts) is found on first use.
+Twenty-five rules look at the same few things of every transmission: its dialect, type and kind,
+its name, its ``<type>``/``<plugin>`` element, its joints and actuators with their names,
+elements and children, the numbers and interface names its loader reads. :class:`Facts` holds
+them, taken from the XML in one pass per transmission with the reader's own functions
+(:func:`~txtool.dialects.read.detect_dialect`, :func:`~txtool.dialects.read.ros1_type`,
+:func:`~txtool.model.core.kind_of`), so that a rule reads attributes instead of walking the
+elements again. The canonical model of a transmission (:attr:`Found.transmission`, read by
+:func:`~txtool.dialects.read.read_transmission`) is read only when a rule asks for it: most
+transmissions of most documents never need it (a rule that needs roles, numbers as the model
+holds them or the loaded map asks for it).
 """
 
 from __future__ import annotations
@@ -14,11 +18,19 @@ from typing import TYPE_CHECKING
 
 from lxml import etree
 
+from txtool.dialects.read import (
+    Found,
+    detect_dialect,
+    first_child_text,
+    read_transmission,
+    ros1_type,
+)
+from txtool.model.core import kind_of
 from txtool.model.robot import ancestor, child_index
 
 if TYPE_CHECKING:
-    from txtool.dialects.read import Found
     from txtool.model.core import Member, Transmission
+    from txtool.model.robot import Component
 
 # Transmission families with their own loaders (not ros_control's transmission_interface):
 # pr2_mechanism / ros_ethercat parse their own XML; franka_hw registers state/model interfaces.
@@ -28,32 +40,55 @@ Index = dict[str, list[etree._Element]]
 _NONE: tuple[etree._Element, ...] = ()
 
 
+class LintFound(Found):
+    """A :class:`~txtool.dialects.read.Found` whose transmission is read on first use.
+
+    ``components`` caches the ``<ros2_control>`` elements read for the document's ROS 2
+    transmissions (as :func:`~txtool.dialects.read.read_source` shares them).
+    """
+
+    def __init__(self, element: etree._Element, components: dict[etree._Element, Component]
+                 ) -> None:
+        object.__setattr__(self, "element", element)
+        object.__setattr__(self, "memo", {})
+        object.__setattr__(self, "_components", components)
+        object.__setattr__(self, "_read", None)
+
+    @property  # type: ignore[override]
+    def transmission(self) -> Transmission:
+        read: Transmission | None = self._read  # type: ignore[has-type]
+        if read is None:
+            read = read_transmission(self.element, None, self._components)  # type: ignore[has-type]
+            object.__setattr__(self, "_read", read)
+        return read
+
+
 class MemberRef:
-    """A joint or actuator of a transmission, with the element it was read from.
+    """A joint or actuator of a transmission: its element, name and children, and (read on
+    first use) its model.
 
     ``kids`` indexes the element's children by local name (shared: do not change it).
     """
 
-    __slots__ = ("noun", "member", "element", "kids", "_interfaces")
+    __slots__ = ("noun", "element", "name", "kids", "_found", "_index", "_interfaces")
 
-    def __init__(self, noun: str, member: Member, element: etree._Element,
-                 kids: Index | None = None) -> None:
+    def __init__(self, noun: str, element: etree._Element, found: Found, index: int) -> None:
         self.noun = noun  # "joint" or "actuator"
-        self.member = member
         self.element = element
-        self.kids: Index = child_index(element) if kids is None else kids
+        self.name: str = element.get("name", "")  # as the model's Member.name
+        self.kids: Index = child_index(element)
+        self._found = found
+        self._index = index
         self._interfaces: list[str] | None = None
 
     def __repr__(self) -> str:
-        return f"MemberRef({self.noun!r}, {self.member!r})"
+        return f"MemberRef({self.noun!r}, {self.name!r})"
 
-    def __eq__(self, other: object) -> bool:
-        if not isinstance(other, MemberRef):
-            return NotImplemented
-        return (self.noun, self.member, self.element) == (other.noun, other.member, other.element)
-
-    def __hash__(self) -> int:
-        return hash((self.noun, self.member, self.element))
+    @property
+    def member(self) -> Member:
+        """The model of this joint or actuator (reads the transmission when first asked)."""
+        t = self._found.transmission
+        return (t.joints if self.noun == "joint" else t.actuators)[self._index]
 
     def tagged(self, name: str) -> list[etree._Element] | tuple[etree._Element, ...]:
         """The member's children named ``name`` (in any namespace)."""
@@ -61,7 +96,8 @@ class MemberRef:
 
     @property
     def interfaces(self) -> list[str]:
-        """The non-empty ``<hardwareInterface>`` texts of the element, stripped."""
+        """The non-empty ``<hardwareInterface>`` texts of the element, stripped (for ROS 1,
+        the model's ``Member.interfaces``)."""
         known = self._interfaces
         if known is None:
             known = self._interfaces = texts_of(self.kids.get("hardwareInterface", _NONE))
@@ -78,21 +114,25 @@ class Facts:
     """One transmission as the rules see it (``found`` is the reader's transmission)."""
 
     __slots__ = (
-        "found", "element", "transmission", "ros1", "kind", "kids", "type_element", "type_text",
-        "typed_ros1", "parsed", "own_loader", "members", "joints", "actuators", "memo", "plain",
-        "component", "group",
+        "found", "element", "name", "ros1", "type", "kind", "kids", "type_element",
+        "type_text", "typed_ros1", "parsed", "own_loader", "members", "joints", "actuators",
+        "memo", "plain", "component", "group",
     )
 
     def __init__(self, found: Found, plain: bool = False, components: bool = True) -> None:
-        t: Transmission = found.transmission
         element = found.element
         kids = child_index(element)
-        ros1 = t.dialect == "ros1"
+        # What read_transmission reads first, with its own functions.
+        ros1 = detect_dialect(element, kids) == "ros1"
         self.found = found
         self.element = element
-        self.transmission = t
+        self.name: str = element.get("name", "")  # as the model's Transmission.name
         self.ros1 = ros1
-        self.kind = t.kind
+        if ros1:
+            self.type = ros1_type(element)
+        else:
+            self.type = (first_child_text(element, "plugin") or "").strip()
+        self.kind = kind_of(self.type)
         self.kids = kids
         typed = kids.get("type" if ros1 else "plugin")
         self.type_element = typed[0] if typed else None
@@ -100,12 +140,12 @@ class Facts:
         # ros_control gets past parsing only with a <type> element (the pre-Hydro type=
         # attribute alone is skipped before any loader runs) and a name.
         self.typed_ros1 = ros1 and typed is not None
-        self.parsed = not ros1 or (self.typed_ros1 and bool(t.name.strip()))
-        self.own_loader = t.type.startswith(OWN_LOADER_FAMILIES)
-        joints = [MemberRef("joint", member, e)
-                  for member, e in zip(t.joints, kids.get("joint", _NONE), strict=True)]
-        actuators = [MemberRef("actuator", member, e)
-                     for member, e in zip(t.actuators, kids.get("actuator", _NONE), strict=True)]
+        self.parsed = not ros1 or (self.typed_ros1 and bool(self.name.strip()))
+        self.own_loader = self.type.startswith(OWN_LOADER_FAMILIES)
+        joints = [MemberRef("joint", e, found, i)
+                  for i, e in enumerate(kids.get("joint", _NONE))]
+        actuators = [MemberRef("actuator", e, found, i)
+                     for i, e in enumerate(kids.get("actuator", _NONE))]
         self.joints = joints
         self.actuators = actuators
         self.members = joints + actuators
@@ -117,6 +157,11 @@ class Facts:
         # Transmissions read by the same loader instance: ROS 1, or one <ros2_control>.
         self.group: tuple[object, ...] = ("ros1",) if ros1 else ("ros2", self.component)
 
+    @property
+    def transmission(self) -> Transmission:
+        """The canonical model (read on first use)."""
+        return self.found.transmission
+
     def tagged(self, name: str) -> list[etree._Element] | tuple[etree._Element, ...]:
         """The transmission's children named ``name`` (in any namespace)."""
         return self.kids.get(name, _NONE)
@@ -124,7 +169,7 @@ class Facts:
     @property
     def label(self) -> str:
         """``transmission 'name'`` for messages (or ``unnamed transmission``)."""
-        name = self.transmission.name
+        name = self.name
         return f"transmission '{name}'" if name else "unnamed transmission"
 
 

@@ -201,7 +201,7 @@ def _each_number(facts: Facts) -> Iterator[NumberRef]:
                 element = _number_element(ref.kids.get(tag), ros1, plain)
                 if element is not None:
                     field = "offset" if tag == "offset" else "reduction"
-                    yield NumberRef(element, field, ref.noun, ref.member.name,
+                    yield NumberRef(element, field, ref.noun, ref.name,
                                     loader_text(element, plain), plain)
 
 
@@ -218,8 +218,7 @@ def _number_element(found: list[etree._Element] | None, ros1: bool,
 
 def label(found: Found) -> str:
     """``transmission 'name'`` for messages (or ``unnamed transmission``)."""
-    name = found.transmission.name
-    return f"transmission '{name}'" if name else "unnamed transmission"
+    return facts_of(found).label
 
 
 def loader_group(found: Found) -> tuple[object, ...]:
@@ -247,7 +246,7 @@ def _robot_joints(ctx: LintContext) -> Iterator[tuple[Found, etree._Element, etr
         if tx.kind == "other":
             continue
         for ref in tx.joints:
-            element = robot.get(ref.member.name)  # the model's name is the element's
+            element = robot.get(ref.name)  # the model's name is the element's
             if element is not None:
                 yield tx.found, ref.element, element
 

@@ -38,8 +38,8 @@ FIXABLE = False
 
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
-        if tx.transmission.name.strip() and all(ref.member.name.strip() for ref in tx.members):
-            continue  # the common case: every name is there (the model's names are the XML's)
+        if tx.name.strip() and all(ref.name.strip() for ref in tx.members):
+            continue  # the common case: every name is there
         ros1 = tx.ros1
         what = _consequence(tx.element, "transmission", ros1, member=False)
         if what:

@@ -33,6 +33,7 @@ from collections.abc import Iterator
 
 from txtool.dialects.read import Found, enclosing_component
 from txtool.lint.context import LintContext
+from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
 from txtool.lint.support import label, opaque
 
@@ -46,11 +47,19 @@ def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         if tx.kind == "other":
             continue
-        if tx.ros1 and not tx.typed_ros1:
+        if (tx.ros1 and not tx.typed_ros1) or _counts_fine(tx):
             continue
         message = _ros1(tx.found) if tx.ros1 else _ros2(tx.found)
         if message and not opaque(ctx, tx.element):
             yield ctx.problem(CODE, tx.element, message)
+
+
+def _counts_fine(tx: Facts) -> bool:
+    """The counts the loader wants (the common case, decided without reading the model)."""
+    joints, actuators = len(tx.joints), len(tx.actuators)
+    if tx.kind != "simple":
+        return joints == 2 and actuators == 2
+    return joints == 1 and (actuators == 1 if tx.ros1 else actuators <= 1)
 
 
 def _counts(joints: int, actuators: int) -> str:

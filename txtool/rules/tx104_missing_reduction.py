@@ -56,7 +56,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
                 continue
             legacy = "mechanicalReduction" in tx.kids
             message = (
-                f"actuator '{ref.member.name}' of {tx.label} has no <mechanicalReduction>: "
+                f"actuator '{ref.name}' of {tx.label} has no <mechanicalReduction>: "
                 "ros_control refuses the transmission"
             )
             if legacy:

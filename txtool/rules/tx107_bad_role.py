@@ -34,8 +34,9 @@ from collections.abc import Iterator
 
 from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
+from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
-from txtool.lint.support import MemberRef, children, label, members, opaque, typed_ros1
+from txtool.lint.support import MemberRef, children, label, members, opaque
 
 CODE = "TX107"
 NAME = "bad-role"
@@ -44,22 +45,22 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found in ctx.transmissions():
-        if found.transmission.dialect != "ros1":
-            yield from _ros2(ctx, found)
-        elif _coupled(found) and typed_ros1(found) and not opaque(ctx, found.element):
-            yield from _ros1_coupled(ctx, found)
+    for tx in ctx.facts:
+        if not tx.ros1:
+            yield from _ros2(ctx, tx.found)
+        elif _coupled(tx) and tx.typed_ros1 and not opaque(ctx, tx.element):
+            yield from _ros1_coupled(ctx, tx.found)
 
 
-def _coupled(found: Found) -> bool:
-    return found.transmission.kind in ("differential", "four_bar")
+def _coupled(tx: Facts) -> bool:
+    return tx.kind in ("differential", "four_bar")
 
 
 def _ros1_coupled(ctx: LintContext, found: Found) -> Iterator[Problem]:
     taken: dict[tuple[str, str], str] = {}
     for ref in members(found):
         valid = (f"{ref.noun}1", f"{ref.noun}2")
-        who = f"{ref.noun} '{ref.member.name}' of {label(found)}"
+        who = f"{ref.noun} '{ref.name}' of {label(found)}"
         roles = children(ref.element, "role")
         role = (roles[0].text or "").strip() if roles else None
         if ctx.unknown(role):
@@ -77,7 +78,7 @@ def _ros1_coupled(ctx: LintContext, found: Found) -> Iterator[Problem]:
                 f"roles must differ; {refused}"
             )
         else:
-            taken[(ref.noun, role)] = ref.member.name
+            taken[(ref.noun, role)] = ref.name
             continue
         yield ctx.problem(CODE, where, message)
 
@@ -89,7 +90,7 @@ def _ros2(ctx: LintContext, found: Found) -> Iterator[Problem]:
         yield ctx.problem(
             CODE,
             ref.element,
-            f"{ref.noun} '{ref.member.name}' of {label(found)} has no role attribute: "
+            f"{ref.noun} '{ref.name}' of {label(found)} has no role attribute: "
             f"ros2_control throws \"no attribute 'role' in '{ref.noun}' tag\"",
         )
 

@@ -41,7 +41,7 @@ FIXABLE = False
 def check(ctx: LintContext) -> Iterator[Problem]:
     first: dict[tuple[object, ...], Found] = {}
     for tx in ctx.facts:
-        name = tx.transmission.name
+        name = tx.name
         if not name.strip() or not tx.parsed or ctx.unknown(name):
             continue
         where = scope(ctx, tx.element)
@@ -55,7 +55,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         line = ctx.position(first[key].element).line
         effect = (
             "ros_control loads both and the later one overwrites the handles of the earlier"
-            if found.transmission.dialect == "ros1"
+            if tx.ros1
             else "ros2_control loads both; a plugin that looks transmissions up by name finds "
             "only one of them"
         )

@@ -44,7 +44,6 @@ def check(ctx: LintContext) -> Iterator[Problem]:
     owner: dict[tuple[object, ...], Found] = {}
     names: set[tuple[object, ...]] = set()
     for tx in ctx.facts:
-        t = tx.transmission
         if tx.kind == "other" or not tx.parsed:
             continue  # ros_control skips unparsed ones before any member is used
         where = scope(ctx, tx.element)
@@ -52,13 +51,13 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             continue
         found = tx.found
         group = tx.group
-        named = (group, where, t.name)
-        if t.name and named in names:
+        named = (group, where, tx.name)
+        if tx.name and named in names:
             continue
         names.add(named)
         seen_here: set[tuple[str, str]] = set()
         for ref in tx.members:
-            name = ref.member.name
+            name = ref.name
             if not name.strip() or (ref.noun, name) in seen_here or ctx.unknown(name):
                 continue
             seen_here.add((ref.noun, name))

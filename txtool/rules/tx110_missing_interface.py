@@ -63,6 +63,6 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             yield ctx.problem(
                 CODE,
                 ref.element,
-                f"joint '{ref.member.name}' of {tx.label} has {what}{where}: "
+                f"joint '{ref.name}' of {tx.label} has {what}{where}: "
                 "ros_control skips the joint",
             )

@@ -22,7 +22,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import label, members
+from txtool.lint.support import label
 
 CODE = "TX112"
 NAME = "invalid-read-only"
@@ -38,17 +38,18 @@ def valid_bool(text: str) -> bool:
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found in ctx.transmissions():
-        if found.transmission.dialect == "ros1":
+    for tx in ctx.facts:
+        if tx.ros1:
             continue
-        for ref in members(found):
+        found = tx.found
+        for ref in tx.members:
             value = ref.element.get("read_only")
             if value is None or ctx.unknown(value) or valid_bool(value):
                 continue
             yield ctx.problem(
                 CODE,
                 ref.element,
-                f"{ref.noun} '{ref.member.name}' of {label(found)} has read_only=\"{value}\": "
+                f"{ref.noun} '{ref.name}' of {label(found)} has read_only=\"{value}\": "
                 "ros2_control's parse_bool accepts only true or false (any case) and throws, "
                 "so the robot description fails to load",
             )

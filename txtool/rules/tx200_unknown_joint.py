@@ -80,7 +80,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         declared = _component_joints(ctx, tx, components) if tx.component is not None else None
         for ref in tx.joints:
-            name = ref.member.name  # the element's name attribute, or ""
+            name = ref.name  # the element's name attribute, or ""
             joint = ref.element
             if not name or ctx.unknown(name):
                 continue

@@ -79,12 +79,12 @@ def _check_ros1(ctx: LintContext, found: Found) -> Iterator[Problem]:
         if any(ctx.unknown(name) for name in interfaces):
             continue
         if first is None:
-            first = (ref.member.name, interfaces)
+            first = (ref.name, interfaces)
         elif interfaces != first[1]:
             yield ctx.problem(
                 CODE,
                 ref.element,
-                f"joint '{ref.member.name}' of {label(found)} lists hardware interfaces "
+                f"joint '{ref.name}' of {label(found)} lists hardware interfaces "
                 f"{_listing(interfaces)} but joint '{first[0]}' lists {_listing(first[1])}: "
                 "ros_control refuses joints with different hardware interfaces",
             )
@@ -119,13 +119,13 @@ def declared_interfaces(joint: etree._Element) -> list[str]:
 
 def _check_ros2(ctx: LintContext, found: Found) -> Iterator[Problem]:
     for ref in members(found):
-        pair = component_joint(ctx, found, ref.member.name) if ref.noun == "joint" else None
+        pair = component_joint(ctx, found, ref.name) if ref.noun == "joint" else None
         if pair is None or declared_interfaces(pair[1]):
             continue
         yield ctx.problem(
             CODE,
             ref.element,
-            f"joint '{ref.member.name}' of {label(found)} has no command or state interface "
+            f"joint '{ref.name}' of {label(found)} has no command or state interface "
             f"in <ros2_control> '{pair[0].get('name', '')}': the transmission gets no handle "
             "for it and ros2_control cannot configure it",
         )

@@ -145,7 +145,7 @@ def _check_ros1(ctx: LintContext, found: Found) -> Iterator[Problem]:
             yield ctx.problem(
                 CODE,
                 element,
-                f"hardware interface '{text}' of {ref.noun} '{ref.member.name}' in "
+                f"hardware interface '{text}' of {ref.noun} '{ref.name}' in "
                 f"{label(found)} is not a ros_control interface: {effect}{ros1_hint(text)}",
             )
 
@@ -161,7 +161,7 @@ def ros1_hint(text: str) -> str:
 def _check_ros2(ctx: LintContext, found: Found) -> Iterator[Problem]:
     mapped = ROS2_INTERFACES[found.transmission.kind]
     for ref, _component, names in ros2_joint_interfaces(ctx, found):
-        where = f"joint '{ref.member.name}' of {label(found)}"
+        where = f"joint '{ref.name}' of {label(found)}"
         for name in names:
             guess = _suggest(name, mapped) if name not in mapped else None
             if guess is not None:
@@ -178,7 +178,7 @@ def ros2_joint_interfaces(
 ) -> Iterator[tuple[MemberRef, etree._Element, list[str]]]:
     """(joint, its ``<ros2_control>``, the interface names it declares there), when knowable."""
     for ref in members(found):
-        pair = component_joint(ctx, found, ref.member.name) if ref.noun == "joint" else None
+        pair = component_joint(ctx, found, ref.name) if ref.noun == "joint" else None
         names = declared_interfaces(pair[1]) if pair is not None else []
         if pair is None or not names or any(ctx.unknown(name) for name in names):
             continue

@@ -140,7 +140,7 @@ def _check_ros2(ctx: LintContext, found: Found) -> Iterator[Problem]:
         yield ctx.problem(
             CODE,
             ref.element,
-            f"joint '{ref.member.name}' of {label(found)} declares only {', '.join(names)} in "
+            f"joint '{ref.name}' of {label(found)} declares only {', '.join(names)} in "
             f"<ros2_control> '{component.get('name', '')}'; a {kind} transmission maps "
             f"{', '.join(mapped)}, so configuring it throws (\"None of the provided joint "
             "handles are valid\")",

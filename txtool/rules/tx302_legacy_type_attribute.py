@@ -70,10 +70,11 @@ def _type_element_text(transmission: etree._Element) -> str:
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found in ctx.transmissions():
-        attribute = found.element.get("type")
-        if found.transmission.dialect != "ros1" or attribute is None:
+    for tx in ctx.facts:
+        attribute = tx.element.get("type")
+        if attribute is None or not tx.ros1:
             continue
+        found = tx.found
         fixable = None if _fixed_by_us(found.element, attribute) else False
         yield ctx.problem(CODE, found.element, _message(found, attribute), fixable=fixable)
 

@@ -33,7 +33,6 @@ from collections.abc import Iterator
 
 from lxml import etree
 
-from txtool.dialects.read import enclosing_component
 from txtool.io.xmlio import local
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
@@ -48,10 +47,11 @@ FIXABLE = False
 def check(ctx: LintContext) -> Iterator[Problem]:
     if not ctx.components:
         return
-    for found in ctx.transmissions():
-        if enclosing_component(found.element) is not None or _in_macro(ctx, found.element):
+    for tx in ctx.facts:
+        found = tx.found
+        if tx.component is not None or _in_macro(ctx, found.element):
             continue
-        form = "ROS 1 " if found.transmission.dialect == "ros1" else ""
+        form = "ROS 1 " if tx.ros1 else ""
         yield ctx.problem(
             CODE,
             found.element,

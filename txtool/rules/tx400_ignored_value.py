@@ -72,10 +72,10 @@ def _ros2(tx: Facts) -> Iterator[Finding]:
             if ref.noun == "actuator":
                 for field in fields:
                     for element in ref.tagged(field):
-                        yield element, _never_read(tx, ref.noun, ref.member.name, field, reason)
+                        yield element, _never_read(tx, ref.noun, ref.name, field, reason)
             if not simple and seen > 2:
                 yield ref.element, (
-                    f"{ref.noun} '{ref.member.name}' of {tx.label} comes after the second: "
+                    f"{ref.noun} '{ref.name}' of {tx.label} comes after the second: "
                     "ros2_control's loader reads only the first two and ignores it"
                 )
 
@@ -86,13 +86,13 @@ def _ros1(tx: Facts) -> Iterator[Finding]:
         for ref in tx.joints:
             for element in ref.tagged("mechanicalReduction"):
                 yield element, _never_read(
-                    tx, ref.noun, ref.member.name, "mechanicalReduction",
+                    tx, ref.noun, ref.name, "mechanicalReduction",
                     "ros_control's SimpleTransmission takes the reduction from the actuator",
                 )
     for ref in tx.actuators:
         for element in ref.tagged("offset"):
             yield element, _never_read(
-                tx, ref.noun, ref.member.name, "offset",
+                tx, ref.noun, ref.name, "offset",
                 "ros_control reads offsets from joints only",
             )
     if "mechanicalReduction" in tx.kids and tx.element.get("type") is None:

@@ -37,10 +37,11 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found in ctx.transmissions():
-        t = found.transmission
-        if t.dialect != "ros1" or t.kind != "four_bar":
+    for tx in ctx.facts:
+        if not tx.ros1 or tx.kind != "four_bar":
             continue
+        found = tx.found
+        t = found.transmission
         yield ctx.problem(
             CODE,
             found.element,

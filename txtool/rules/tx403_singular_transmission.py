@@ -71,10 +71,13 @@ def options_model() -> Any:
 def check(ctx: LintContext) -> Iterator[Problem]:
     options = ctx.option(CODE)
     max_condition = options.max_condition if options else MAX_CONDITION
-    for found in ctx.transmissions():
-        t = found.transmission
-        if t.kind in ("other", "simple") or _has_unknown_number(ctx, t):
+    for tx in ctx.facts:
+        if tx.kind in ("other", "simple"):
             continue  # a loadable simple map is one finite, non-zero number: never singular
+        found = tx.found
+        t = found.transmission
+        if _has_unknown_number(ctx, t):
+            continue
         try:
             loaded = effective(t)
         except NotLoadable:

@@ -50,10 +50,11 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    for found in ctx.transmissions():
-        t = found.transmission
-        if t.dialect != "ros1" or t.kind not in ("differential", "four_bar"):
+    for tx in ctx.facts:
+        if not tx.ros1 or tx.kind not in ("differential", "four_bar"):
             continue
+        found = tx.found
+        t = found.transmission
         groups = (
             ("joint", t.joints, children(found.element, "joint"), ROLES_JOINT),
             ("actuator", t.actuators, children(found.element, "actuator"), ROLES_ACTUATOR),
