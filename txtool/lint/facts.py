@@ -3,10 +3,11 @@
 Twenty-five rules look at the same few things of every transmission: its dialect, type and kind,
 its name, its ``<type>``/``<plugin>`` element, its joints and actuators with their names,
 elements and children, the numbers and interface names its loader reads. :class:`Facts` holds
-them, taken from the XML in one pass per transmission with the reader's own functions
+them, taken from the XML in one pass per transmission as the reader takes them
 (:func:`~txtool.dialects.read.detect_dialect`, :func:`~txtool.dialects.read.ros1_type`,
-:func:`~txtool.model.core.kind_of`), so that a rule reads attributes instead of walking the
-elements again. The canonical model of a transmission (:attr:`Found.transmission`, read by
+:func:`~txtool.model.core.kind_of`; ``tests/lint/test_facts.py`` holds the two together), so
+that a rule reads attributes instead of walking the elements again. The canonical model of a
+transmission (:attr:`Found.transmission`, read by
 :func:`~txtool.dialects.read.read_transmission`) is read only when a rule asks for it: most
 transmissions of most documents never need it (a rule that needs roles, numbers as the model
 holds them or the loaded map asks for it).
@@ -18,13 +19,7 @@ from typing import TYPE_CHECKING
 
 from lxml import etree
 
-from txtool.dialects.read import (
-    Found,
-    detect_dialect,
-    first_child_text,
-    read_transmission,
-    ros1_type,
-)
+from txtool.dialects.read import Found, detect_dialect, read_transmission
 from txtool.model.core import kind_of
 from txtool.model.robot import ancestor, child_index
 
@@ -122,33 +117,40 @@ class Facts:
     def __init__(self, found: Found, plain: bool = False, components: bool = True) -> None:
         element = found.element
         kids = child_index(element)
-        # What read_transmission reads first, with its own functions.
-        ros1 = detect_dialect(element, kids) == "ros1"
+        joints = [MemberRef("joint", e, found, i) for i, e in enumerate(kids.get("joint", _NONE))]
+        actuators = [MemberRef("actuator", e, found, i)
+                     for i, e in enumerate(kids.get("actuator", _NONE))]
+        members = joints + actuators
+        # What read_transmission reads first: the dialect (detect_dialect's first test: no
+        # role attribute, no <plugin>, no enclosing <ros2_control> is ROS 1; else its own
+        # answer), then the type (ros1_type: the <type> text, else the legacy attribute) and
+        # the kind. tests/lint/test_facts.py holds these to the model, document by document.
+        if components or "plugin" in kids or any(m.element.get("role") is not None
+                                                 for m in members):
+            ros1 = detect_dialect(element, kids) == "ros1"
+        else:
+            ros1 = True
+        typed = kids.get("type" if ros1 else "plugin")
+        self.type_element = typed[0] if typed else None
+        self.type_text = (typed[0].text or "").strip() if typed else None  # that element's
+        if ros1:
+            self.type = self.type_text or (element.get("type") or "").strip()
+        else:
+            self.type = self.type_text or ""
         self.found = found
         self.element = element
         self.name: str = element.get("name", "")  # as the model's Transmission.name
         self.ros1 = ros1
-        if ros1:
-            self.type = ros1_type(element)
-        else:
-            self.type = (first_child_text(element, "plugin") or "").strip()
         self.kind = kind_of(self.type)
         self.kids = kids
-        typed = kids.get("type" if ros1 else "plugin")
-        self.type_element = typed[0] if typed else None
-        self.type_text = (typed[0].text or "").strip() if typed else None  # that element's
         # ros_control gets past parsing only with a <type> element (the pre-Hydro type=
         # attribute alone is skipped before any loader runs) and a name.
         self.typed_ros1 = ros1 and typed is not None
         self.parsed = not ros1 or (self.typed_ros1 and bool(self.name.strip()))
         self.own_loader = self.type.startswith(OWN_LOADER_FAMILIES)
-        joints = [MemberRef("joint", e, found, i)
-                  for i, e in enumerate(kids.get("joint", _NONE))]
-        actuators = [MemberRef("actuator", e, found, i)
-                     for i, e in enumerate(kids.get("actuator", _NONE))]
         self.joints = joints
         self.actuators = actuators
-        self.members = joints + actuators
+        self.members = members
         self.memo: dict[str, object] = {}  # answers a few rules share (see support)
         # The document holds no CDATA section: an element's text nodes are its ``text``.
         self.plain = plain

@@ -97,7 +97,7 @@ class NumberRef:
     ``text`` is what the loader parses (see :func:`loader_text`), read once: several rules ask.
     """
 
-    __slots__ = ("element", "field", "noun", "member", "text", "unknown", "_plain", "_strict")
+    __slots__ = ("element", "field", "noun", "member", "text", "unknown", "single", "_strict")
 
     def __init__(self, element: etree._Element, field: str, noun: str, member: str,
                  text: str | None, plain: bool = False) -> None:
@@ -108,7 +108,9 @@ class NumberRef:
         self.text = text
         # Only xacro can tell the value (see LintContext.unknown): the text read or written.
         self.unknown = _unknown(text) or _unknown(element.text)
-        self._plain = plain
+        # The element's one text node is its text (see Facts.plain): what the loader reads is
+        # all the element holds.
+        self.single = plain and not len(element)
         self._strict: float | None | bool = False  # not read yet
 
     @property
@@ -124,10 +126,9 @@ class NumberRef:
 
     def all_text(self) -> str:
         """Every text node of the element (see :func:`all_text`)."""
-        element = self.element
-        if self._plain and not len(element):
-            return element.text or ""
-        return all_text(element)
+        if self.single:
+            return self.element.text or ""
+        return all_text(self.element)
 
 
 def _unknown(text: str | None) -> bool:

@@ -34,7 +34,6 @@ from collections.abc import Iterator
 
 from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
-from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
 from txtool.lint.support import MemberRef, children, label, members, opaque
 
@@ -48,12 +47,11 @@ def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         if not tx.ros1:
             yield from _ros2(ctx, tx.found)
-        elif _coupled(tx) and tx.typed_ros1 and not opaque(ctx, tx.element):
+        elif tx.kind in _COUPLED and tx.typed_ros1 and not opaque(ctx, tx.element):
             yield from _ros1_coupled(ctx, tx.found)
 
 
-def _coupled(tx: Facts) -> bool:
-    return tx.kind in ("differential", "four_bar")
+_COUPLED = ("differential", "four_bar")
 
 
 def _ros1_coupled(ctx: LintContext, found: Found) -> Iterator[Problem]:

@@ -42,9 +42,9 @@ def check(ctx: LintContext) -> Iterator[Problem]:
     first: dict[tuple[object, ...], Found] = {}
     for tx in ctx.facts:
         name = tx.name
-        if not name.strip() or not tx.parsed or ctx.unknown(name):
+        if not name.strip() or not tx.parsed or ("$" in name and ctx.unknown(name)):
             continue
-        where = scope(ctx, tx.element)
+        where = scope(ctx, tx.element) if ctx.literal else ()  # one scope after expansion
         if where is None:
             continue
         found = tx.found

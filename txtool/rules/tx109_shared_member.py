@@ -46,7 +46,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         if tx.kind == "other" or not tx.parsed:
             continue  # ros_control skips unparsed ones before any member is used
-        where = scope(ctx, tx.element)
+        where = scope(ctx, tx.element) if ctx.literal else ()  # one scope after expansion
         if where is None:
             continue
         found = tx.found
@@ -58,9 +58,10 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         seen_here: set[tuple[str, str]] = set()
         for ref in tx.members:
             name = ref.name
-            if not name.strip() or (ref.noun, name) in seen_here or ctx.unknown(name):
+            noun_name = (ref.noun, name)
+            if not name.strip() or noun_name in seen_here or ("$" in name and ctx.unknown(name)):
                 continue
-            seen_here.add((ref.noun, name))
+            seen_here.add(noun_name)
             key = (group, where, ref.noun, name)
             first = owner.setdefault(key, found)
             if first is found:

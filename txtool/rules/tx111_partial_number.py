@@ -50,7 +50,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             if number.unknown:
                 continue
             text = number.text
-            message = _split(number, text, ros1)
+            message = None if number.single else _split(number, text, ros1)
             if message is None and ros1 and number.strict is None:  # else a plain number
                 message = _prefix(text, "0.0" if number.field == "offset" else "1.0")
             if message:

@@ -82,7 +82,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         for ref in tx.joints:
             name = ref.name  # the element's name attribute, or ""
             joint = ref.element
-            if not name or ctx.unknown(name):
+            if not name or ("$" in name and ctx.unknown(name)):
                 continue
             if declared is not None and name not in declared[1]:
                 yield ctx.problem(
@@ -92,7 +92,9 @@ def check(ctx: LintContext) -> Iterator[Problem]:
                     f"'{declared[0]}': ros2_control throws \"declared joint '{name}' is not "
                     "available in component\"",
                 )
-            elif robot_joints is not None and name not in robot_joints:
+            elif robot_joints is not None and name not in robot_joints.exact and (
+                name not in robot_joints
+            ):
                 yield ctx.problem(
                     CODE,
                     joint,

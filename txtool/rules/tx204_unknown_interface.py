@@ -91,6 +91,8 @@ ROS1_INTERFACES: tuple[str, ...] = tuple(
         "BiDirectionalEffortJointInterface",
     )
 )
+REGISTERED = frozenset(ROS1_INTERFACES)  # for set tests of many names at once
+UNPREFIXED = frozenset(name.removeprefix(PREFIX) for name in ROS1_INTERFACES)
 ROS2_INTERFACES: dict[str, tuple[str, ...]] = {
     "simple": ("position", "velocity", "effort", "torque", "force", "absolute_position"),
     "differential": ("position", "velocity", "effort", "torque", "force", "absolute_position"),
@@ -109,7 +111,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         if tx.kind == "other":
             continue
         if tx.ros1:
-            if any(name not in ROS1_INTERFACES for ref in tx.joints for name in ref.interfaces):
+            if not all(REGISTERED.issuperset(ref.interfaces) for ref in tx.joints):
                 yield from _check_ros1(ctx, tx.found)  # else every name is registered
         elif tx.component is not None:  # else no component declares its joints' interfaces
             yield from _check_ros2(ctx, tx.found)

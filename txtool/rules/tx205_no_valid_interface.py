@@ -69,6 +69,7 @@ from txtool.lint.problem import Problem
 from txtool.lint.support import label, opaque
 from txtool.rules.tx204_unknown_interface import (
     PREFIX,
+    REGISTERED,
     ROS2_INTERFACES,
     registered,
     ros1_hint,
@@ -89,8 +90,11 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         if tx.ros1:
             if tx.component is None and ctx.components:
                 continue  # a ROS 2 robot's leftover: no loader reads it (TX304)
-            if tx.typed_ros1 and not tx.own_loader:
-                yield from _check_ros1(ctx, tx)
+            if not tx.typed_ros1 or tx.own_loader:
+                continue
+            first = next((ref for ref in tx.joints if ref.interfaces), None)
+            if first is not None and REGISTERED.isdisjoint(first.interfaces):
+                yield from _check_ros1(ctx, tx)  # else nothing to say (see there)
         elif tx.component is not None:  # else no component declares its joints' interfaces
             yield from _check_ros2(ctx, tx.found)
 

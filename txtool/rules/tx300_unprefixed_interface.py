@@ -50,7 +50,7 @@ from txtool.io.xmlio import local
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.support import OWN_LOADER_FAMILIES, children, label
-from txtool.rules.tx204_unknown_interface import PREFIX, unprefixed_registered
+from txtool.rules.tx204_unknown_interface import PREFIX, UNPREFIXED, unprefixed_registered
 
 CODE = "TX300"
 NAME = "unprefixed-interface"
@@ -73,7 +73,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         if not tx.ros1 or tx.own_loader:
             continue
-        if not any(unprefixed_registered(name) for ref in tx.joints for name in ref.interfaces):
+        if all(UNPREFIXED.isdisjoint(ref.interfaces) for ref in tx.joints):
             continue  # the common case (the joints' interface names are the texts below)
         found = tx.found
         for member, element, text in _unprefixed(found.element):

@@ -1,0 +1,90 @@
+"""The facts the rules read (txtool/lint/facts.py) say what the reader's model says.
+
+The linter takes each transmission's dialect, type, kind and names from the XML and reads the
+model only when a rule asks; these tests hold the two together on every corpus document (as
+written) and on the shapes where the dialect or type is
+decided by a detail: a role attribute, a ``<plugin>``, an enclosing ``<ros2_control>``, the
+legacy ``type=`` attribute, blank and padded texts.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from tests.corpus import corpus_file, corpus_names
+from txtool.dialects.read import read_transmission
+from txtool.io.xmlio import Source, parse_bytes, read_bytes
+from txtool.lint.config import resolve
+from txtool.lint.engine import context_for
+from txtool.lint.support import loader_text
+from txtool.model.robot import indexed_children
+
+T = "transmission_interface/"
+SHAPES = {
+    "ros1 simple": f"""<robot name="r"><transmission name="t"><type>{T}SimpleTransmission</type>
+        <joint name="j"><hardwareInterface> hardware_interface/EffortJointInterface
+        </hardwareInterface><hardwareInterface/></joint>
+        <actuator name="m"><mechanicalReduction>5</mechanicalReduction></actuator>
+        </transmission></robot>""",
+    "legacy attribute": """<robot name="r"><transmission name="t"
+        type=" pr2_mechanism_model/SimpleTransmission "><joint name="j"/><actuator name="m"/>
+        </transmission></robot>""",
+    "attribute beside a blank type": """<robot name="r"><transmission type="SimpleTransmission">
+        <type>  </type><joint name=""/></transmission></robot>""",
+    "blank type, no attribute": """<robot name="r"><transmission name=" ">
+        <type>
+        </type><actuator/></transmission></robot>""",
+    "role attribute outside ros2_control": f"""<robot name="r"><transmission name="t">
+        <type>{T}DifferentialTransmission</type><joint name="a" role="joint1"/>
+        <joint name="b"/><actuator name="m"/></transmission></robot>""",
+    "plugin outside ros2_control": f"""<robot name="r"><transmission name="t">
+        <plugin> {T}FourBarLinkageTransmission </plugin><type>{T}SimpleTransmission</type>
+        <joint name="j"><role>joint1</role></joint></transmission></robot>""",
+    "inside ros2_control": f"""<robot name="r"><ros2_control name="c" type="system">
+        <joint name="j"><command_interface name="effort"/></joint>
+        <transmission name="t"><type>{T}SimpleTransmission</type>
+        <joint name="j" role="joint1"><mechanical_reduction>2</mechanical_reduction></joint>
+        <actuator name="m" role="actuator1"/></transmission></ros2_control></robot>""",
+    "namespaced": f"""<r:robot xmlns:r="urn:r" name="r"><r:transmission name="t">
+        <r:type>{T}SimpleTransmission</r:type><r:joint name="j"/></r:transmission></r:robot>""",
+}
+
+
+def _check(source: Source) -> int:
+    """Compare every transmission's facts with its model; the number compared."""
+    with indexed_children():
+        ctx = context_for(source, resolve(None), from_data=not source.expanded)
+        for tx in ctx.facts:
+            model = read_transmission(tx.element, None)
+            assert (tx.ros1, tx.type, tx.kind, tx.name) == (
+                model.dialect == "ros1", model.type, model.kind, model.name
+            )
+            assert [r.name for r in tx.joints] == [m.name for m in model.joints]
+            assert [r.name for r in tx.actuators] == [m.name for m in model.actuators]
+            assert tx.transmission == model  # the model read on first use is the reader's
+            assert [r.member for r in tx.members] == [*model.joints, *model.actuators]
+            if tx.ros1:
+                assert [tuple(r.interfaces) for r in tx.members] == [
+                    m.interfaces for m in (*model.joints, *model.actuators)
+                ]
+        return len(ctx.facts)
+
+
+@pytest.mark.parametrize("name", sorted(SHAPES))
+def test_facts_match_the_model_on_each_shape(name: str) -> None:
+    data = SHAPES[name].encode()
+    assert _check(Source(path="shape.urdf", data=data, tree=parse_bytes(data, "shape.urdf")))
+
+
+@pytest.mark.parametrize("name", corpus_names())
+def test_facts_match_the_model_on_the_corpus(name: str) -> None:
+    display, data = read_bytes(str(corpus_file(name)))
+    assert _check(Source(path=display, data=data, tree=parse_bytes(data, display))) >= 0
+
+
+def test_loader_text_without_cdata_reads_the_text_as_the_nodes_do() -> None:
+    """A document with no CDATA section: an element without children has one text node."""
+    root = parse_bytes(b"<a><n> 5 </n><n>\n</n><n/><n>5<!-- c -->0</n><n><!-- c -->5</n></a>",
+                       "a.urdf").getroot()
+    for element in root:
+        assert loader_text(element, plain=True) == loader_text(element)
