@@ -11,7 +11,7 @@ from lxml import etree
 
 from txtool.dialects.read import Found, transmission_elements
 from txtool.io.xmlio import Source, local
-from txtool.lint.facts import Facts, LintFound, facts_of
+from txtool.lint.facts import Facts, Hints, LintFound, facts_of
 from txtool.lint.problem import Problem, Severity
 from txtool.lint.text import scanned_form
 from txtool.model.robot import Component, JointInfo, components, joint_elements, joint_info
@@ -69,10 +69,15 @@ class LintContext:
     @cached_property
     def facts(self) -> list[Facts]:
         """What the rules read of each transmission (see :mod:`txtool.lint.facts`), in order."""
-        # Without a CDATA section an element's text nodes are its text (no XPath needed).
-        plain = self.from_data and b"<![CDATA[" not in scanned_form(self.source.data)
-        components = bool(self._walked["ros2_control"])
-        return [facts_of(found, plain, components) for found in self.found]
+        # What the bytes rule out when the tree is the parsed data: without a CDATA section an
+        # element's text nodes are its text; without the word, no role attribute.
+        form = scanned_form(self.source.data) if self.from_data else None
+        hints = Hints(
+            plain=form is not None and b"<![CDATA[" not in form,
+            components=bool(self._walked["ros2_control"]),
+            roles=form is None or b"role" in form,
+        )
+        return [facts_of(found, hints) for found in self.found]
 
     @cached_property
     def locator(self) -> Locator:

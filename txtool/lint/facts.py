@@ -105,17 +105,38 @@ def texts_of(elements: list[etree._Element] | tuple[etree._Element, ...]) -> lis
     return [text for text in texts if text]
 
 
+class Hints:
+    """What a look at the whole document rules out, for every transmission in it.
+
+    ``plain``: no CDATA section (an element's text nodes are its ``text``); ``components``:
+    some ``<ros2_control>`` element; ``roles``: a ``role`` attribute may occur. Unsure is True
+    for the last two, False for the first (the slow, always right answer).
+    """
+
+    __slots__ = ("plain", "components", "roles")
+
+    def __init__(self, plain: bool = False, components: bool = True, roles: bool = True) -> None:
+        self.plain = plain
+        self.components = components
+        self.roles = roles
+
+
+_UNSURE = Hints()
+_KINDS: dict[str, str] = {}  # kind_of by type text: a document repeats a few types
+
+
 class Facts:
     """One transmission as the rules see it (``found`` is the reader's transmission)."""
 
     __slots__ = (
         "found", "element", "name", "ros1", "type", "kind", "kids", "type_element",
         "type_text", "typed_ros1", "parsed", "own_loader", "members", "joints", "actuators",
-        "memo", "plain", "component", "group",
+        "memo", "plain", "component", "group", "_joint_interfaces", "_actuator_interfaces",
     )
 
-    def __init__(self, found: Found, plain: bool = False, components: bool = True) -> None:
+    def __init__(self, found: Found, hints: Hints = _UNSURE) -> None:
         element = found.element
+        components = hints.components
         kids = child_index(element)
         joints = [MemberRef("joint", e, found, i) for i, e in enumerate(kids.get("joint", _NONE))]
         actuators = [MemberRef("actuator", e, found, i)
@@ -125,8 +146,7 @@ class Facts:
         # role attribute, no <plugin>, no enclosing <ros2_control> is ROS 1; else its own
         # answer), then the type (ros1_type: the <type> text, else the legacy attribute) and
         # the kind. tests/lint/test_facts.py holds these to the model, document by document.
-        if components or "plugin" in kids or any(m.element.get("role") is not None
-                                                 for m in members):
+        if components or "plugin" in kids or (hints.roles and _role_attribute(members)):
             ros1 = detect_dialect(element, kids) == "ros1"
         else:
             ros1 = True
@@ -141,7 +161,12 @@ class Facts:
         self.element = element
         self.name: str = element.get("name", "")  # as the model's Transmission.name
         self.ros1 = ros1
-        self.kind = kind_of(self.type)
+        kind = _KINDS.get(self.type)
+        if kind is None:
+            kind = kind_of(self.type)
+            if len(_KINDS) < 1024:
+                _KINDS[self.type] = kind
+        self.kind = kind
         self.kids = kids
         # ros_control gets past parsing only with a <type> element (the pre-Hydro type=
         # attribute alone is skipped before any loader runs) and a name.
@@ -153,7 +178,9 @@ class Facts:
         self.members = members
         self.memo: dict[str, object] = {}  # answers a few rules share (see support)
         # The document holds no CDATA section: an element's text nodes are its ``text``.
-        self.plain = plain
+        self.plain = hints.plain
+        self._joint_interfaces: frozenset[str] | None = None
+        self._actuator_interfaces: bool | None = None
         # The enclosing <ros2_control> (none to look for when the document has none).
         self.component = ancestor(element, "ros2_control") if components else None
         # Transmissions read by the same loader instance: ROS 1, or one <ros2_control>.
@@ -169,15 +196,42 @@ class Facts:
         return self.kids.get(name, _NONE)
 
     @property
+    def joint_interfaces(self) -> frozenset[str]:
+        """Every interface name of the joints (see :attr:`MemberRef.interfaces`)."""
+        known = self._joint_interfaces
+        if known is None:
+            names: set[str] = set()
+            for ref in self.joints:
+                names.update(ref.interfaces)
+            known = self._joint_interfaces = frozenset(names)
+        return known
+
+    @property
+    def actuator_interfaces(self) -> bool:
+        """Whether some actuator names an interface (see :attr:`MemberRef.interfaces`)."""
+        known = self._actuator_interfaces
+        if known is None:
+            known = self._actuator_interfaces = False
+            for ref in self.actuators:
+                if ref.interfaces:
+                    known = self._actuator_interfaces = True
+                    break
+        return known
+
+    @property
     def label(self) -> str:
         """``transmission 'name'`` for messages (or ``unnamed transmission``)."""
         name = self.name
         return f"transmission '{name}'" if name else "unnamed transmission"
 
 
-def facts_of(found: Found, plain: bool = False, components: bool = True) -> Facts:
+def _role_attribute(members: list[MemberRef]) -> bool:
+    return any(ref.element.get("role") is not None for ref in members)
+
+
+def facts_of(found: Found, hints: Hints = _UNSURE) -> Facts:
     """The facts of one transmission, built on first use and kept with it."""
     known = found.memo.get("facts")
     if known is None:
-        known = found.memo["facts"] = Facts(found, plain, components)
+        known = found.memo["facts"] = Facts(found, hints)
     return known  # type: ignore[return-value]

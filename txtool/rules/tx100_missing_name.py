@@ -38,8 +38,12 @@ FIXABLE = False
 
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
-        if tx.name.strip() and all(ref.name.strip() for ref in tx.members):
-            continue  # the common case: every name is there
+        if tx.name.strip():
+            for ref in tx.members:
+                if not ref.name.strip():
+                    break
+            else:
+                continue  # the common case: every name is there
         ros1 = tx.ros1
         what = _consequence(tx.element, "transmission", ros1, member=False)
         if what:

@@ -53,7 +53,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             interfaces = ref.tagged("hardwareInterface")
             what = "an empty <hardwareInterface>" if interfaces else "no <hardwareInterface>"
             actuators = tx.actuators
-            named = any(a.interfaces for a in actuators)
+            named = tx.actuator_interfaces
             where = " (only its actuator names one)" if named else ""
             # gazebo_ros_control's DefaultRobotHWSim falls back on the first actuator's.
             taken = actuators[0].interfaces if actuators else []

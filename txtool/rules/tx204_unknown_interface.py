@@ -111,7 +111,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         if tx.kind == "other":
             continue
         if tx.ros1:
-            if not all(REGISTERED.issuperset(ref.interfaces) for ref in tx.joints):
+            if not REGISTERED.issuperset(tx.joint_interfaces):
                 yield from _check_ros1(ctx, tx.found)  # else every name is registered
         elif tx.component is not None:  # else no component declares its joints' interfaces
             yield from _check_ros2(ctx, tx.found)

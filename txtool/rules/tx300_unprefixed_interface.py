@@ -73,7 +73,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         if not tx.ros1 or tx.own_loader:
             continue
-        if all(UNPREFIXED.isdisjoint(ref.interfaces) for ref in tx.joints):
+        if UNPREFIXED.isdisjoint(tx.joint_interfaces):
             continue  # the common case (the joints' interface names are the texts below)
         found = tx.found
         for member, element, text in _unprefixed(found.element):

@@ -93,7 +93,7 @@ def _bare_joints(transmission: etree._Element) -> list[etree._Element]:
 
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
-        if not tx.ros1 or tx.own_loader or not any(a.interfaces for a in tx.actuators):
+        if not tx.ros1 or tx.own_loader or not tx.actuator_interfaces:
             continue  # no actuator names an interface: no joint is bare (see _bare_joints)
         found = tx.found
         joints = _bare_joints(found.element)

@@ -58,10 +58,12 @@ _ROS2_SPELLINGS = frozenset({"mechanical_reduction", "hardware_interface"})
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         if tx.ros1:
-            if _ROS2_SPELLINGS.isdisjoint(tx.kids) and all(
-                _ROS2_SPELLINGS.isdisjoint(ref.kids) for ref in tx.members
-            ):
-                continue  # the common case: say nothing, build no message
+            if _ROS2_SPELLINGS.isdisjoint(tx.kids):
+                for ref in tx.members:
+                    if not _ROS2_SPELLINGS.isdisjoint(ref.kids):
+                        break
+                else:
+                    continue  # the common case: say nothing, build no message
             yield from _check_ros1(ctx, tx.found)
         else:
             yield from _check_ros2(ctx, tx.found)
