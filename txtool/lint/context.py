@@ -69,15 +69,20 @@ class LintContext:
     @cached_property
     def facts(self) -> list[Facts]:
         """What the rules read of each transmission (see :mod:`txtool.lint.facts`), in order."""
-        # What the bytes rule out when the tree is the parsed data: without a CDATA section an
-        # element's text nodes are its text; without the word, no role attribute.
+        return [facts_of(found, self.hints) for found in self.found]
+
+    @cached_property
+    def hints(self) -> Hints:
+        """What the bytes rule out when the tree is the parsed data: without a CDATA section
+        an element's text nodes are its text; without the word, no role attribute and no
+        ``<mimic>`` element (tag and attribute names stand in the bytes as they are)."""
         form = scanned_form(self.source.data) if self.from_data else None
-        hints = Hints(
+        return Hints(
             plain=form is not None and b"<![CDATA[" not in form,
             components=bool(self._walked["ros2_control"]),
             roles=form is None or b"role" in form,
+            mimics=form is None or b"mimic" in form,
         )
-        return [facts_of(found, hints) for found in self.found]
 
     @cached_property
     def locator(self) -> Locator:

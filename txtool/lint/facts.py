@@ -109,16 +109,19 @@ class Hints:
     """What a look at the whole document rules out, for every transmission in it.
 
     ``plain``: no CDATA section (an element's text nodes are its ``text``); ``components``:
-    some ``<ros2_control>`` element; ``roles``: a ``role`` attribute may occur. Unsure is True
-    for the last two, False for the first (the slow, always right answer).
+    some ``<ros2_control>`` element; ``roles``: a ``role`` attribute may occur; ``mimics``: a
+    ``<mimic>`` element may occur. Unsure is False for the first, True for the others (the slow,
+    always right answer).
     """
 
-    __slots__ = ("plain", "components", "roles")
+    __slots__ = ("plain", "components", "roles", "mimics")
 
-    def __init__(self, plain: bool = False, components: bool = True, roles: bool = True) -> None:
+    def __init__(self, plain: bool = False, components: bool = True, roles: bool = True,
+                 mimics: bool = True) -> None:
         self.plain = plain
         self.components = components
         self.roles = roles
+        self.mimics = mimics
 
 
 _UNSURE = Hints()

@@ -97,7 +97,8 @@ class NumberRef:
     ``text`` is what the loader parses (see :func:`loader_text`), read once: several rules ask.
     """
 
-    __slots__ = ("element", "field", "noun", "member", "text", "unknown", "single", "_strict")
+    __slots__ = ("element", "field", "noun", "member", "text", "unknown", "unknown_written",
+                 "single", "_strict")
 
     def __init__(self, element: etree._Element, field: str, noun: str, member: str,
                  text: str | None, plain: bool = False) -> None:
@@ -106,8 +107,10 @@ class NumberRef:
         self.noun = noun
         self.member = member
         self.text = text
-        # Only xacro can tell the value (see LintContext.unknown): the text read or written.
-        self.unknown = _unknown(text) or _unknown(element.text)
+        # Only xacro can tell the value (see LintContext.unknown): the element's text as
+        # written, or the text the loader reads.
+        self.unknown_written = _unknown(element.text)
+        self.unknown = self.unknown_written or _unknown(text)
         # The element's one text node is its text (see Facts.plain): what the loader reads is
         # all the element holds.
         self.single = plain and not len(element)

@@ -38,7 +38,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         ros1 = tx.ros1
         for number in numbers_of(tx):
-            if number.field != "reduction" or ctx.unknown(number.element.text):
+            if number.field != "reduction" or number.unknown_written:
                 continue
             plain = number.strict
             if plain is not None and plain != 0.0:

@@ -92,9 +92,11 @@ def check(ctx: LintContext) -> Iterator[Problem]:
                 continue  # a ROS 2 robot's leftover: no loader reads it (TX304)
             if not tx.typed_ros1 or tx.own_loader:
                 continue
-            first = next((ref for ref in tx.joints if ref.interfaces), None)
-            if first is not None and REGISTERED.isdisjoint(first.interfaces):
-                yield from _check_ros1(ctx, tx)  # else nothing to say (see there)
+            for ref in tx.joints:  # the first joint that names interfaces
+                if ref.interfaces:
+                    if REGISTERED.isdisjoint(ref.interfaces):
+                        yield from _check_ros1(ctx, tx)  # else nothing to say (see there)
+                    break
         elif tx.component is not None:  # else no component declares its joints' interfaces
             yield from _check_ros2(ctx, tx.found)
 
