@@ -53,7 +53,7 @@ SHAPES = {
 def _check(source: Source) -> int:
     """Compare every transmission's facts with its model; the number compared."""
     with indexed_children():
-        ctx = context_for(source, resolve(None), from_data=not source.expanded)
+        ctx = context_for(source, resolve(None))
         for tx in ctx.facts:
             model = read_transmission(tx.element, None)
             assert (tx.ros1, tx.type, tx.kind, tx.name) == (

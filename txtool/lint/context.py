@@ -38,7 +38,6 @@ class LintContext:
     ``literal`` is True when a xacro file is linted as written (a macro library, or when
     expansion is off or failed): values containing ``${...}`` or ``$(...)`` are then unknown
     (see :meth:`unknown`). ``options`` holds each rule's validated options by code.
-    ``from_data`` is True when the tree is ``source.data`` as parsed (not an expansion).
     """
 
     source: Source
@@ -47,7 +46,6 @@ class LintContext:
     options: Mapping[str, Any] = field(default_factory=dict)
     # Facts about the whole document that several rules share (see txtool.lint.support).
     memo: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
-    from_data: bool = False
 
     def __post_init__(self) -> None:
         if not self.found:
@@ -73,10 +71,11 @@ class LintContext:
 
     @cached_property
     def hints(self) -> Hints:
-        """What the bytes rule out when the tree is the parsed data: without a CDATA section
-        an element's text nodes are its text; without the word, no role attribute and no
-        ``<mimic>`` element (tag and attribute names stand in the bytes as they are)."""
-        form = scanned_form(self.source.data) if self.from_data else None
+        """What the bytes rule out: without a CDATA section an element's text nodes are its
+        text; without the word, no role attribute and no ``<mimic>`` element (tag and attribute
+        names stand in the bytes as they are). Only where the tree is the bytes as parsed: a
+        source that is not an expansion (``Source.tree`` is then the file itself)."""
+        form = None if self.source.expanded else scanned_form(self.source.data)
         return Hints(
             plain=form is not None and b"<![CDATA[" not in form,
             components=bool(self._walked["ros2_control"]),

@@ -94,7 +94,7 @@ def _lint_file(path: str, settings: Settings, stdin_name: str | None) -> list[Pr
     source = Source(path=display, data=data, tree=tree)
     late = _late_declaration(display, data)
     if path == "-" or settings.no_xacro or not is_xacro(display):
-        return finish(late + _checked(source, settings, from_data=True), source, settings)
+        return finish(late + _checked(source, settings), source, settings)
     from txtool.io.xacro import XacroError, expand_xacro
 
     try:
@@ -102,10 +102,10 @@ def _lint_file(path: str, settings: Settings, stdin_name: str | None) -> list[Pr
     except XacroError as exc:
         line, column = _xacro_position(data, exc.reason)
         failed = _pipeline(display, line, column, "TX002", f"xacro: {exc.reason}")
-        problems = [*late, failed, *_checked(source, settings, from_data=True)]
+        problems = [*late, failed, *_checked(source, settings)]
         return finish(problems, source, settings)
     full = Source(path=display, data=data, tree=expanded, expanded=True, source_tree=tree)
-    return finish(late + _checked(full, settings, from_data=True), full, settings)
+    return finish(late + _checked(full, settings), full, settings)
 
 
 def _late_declaration(path: str, data: bytes) -> list[Problem]:
@@ -129,27 +129,23 @@ def as_settings(config: Config | Settings | None) -> Settings:
     return resolve(config)
 
 
-def context_for(source: Source, settings: Settings, *, from_data: bool = False) -> LintContext:
-    """The context the rules see (see the module documentation for the choice).
-
-    ``from_data``: the tree (``source_tree`` for an expansion) is ``source.data`` as parsed.
-    """
+def context_for(source: Source, settings: Settings) -> LintContext:
+    """The context the rules see (see the module documentation for the choice)."""
     options = settings.options
     if not source.expanded:
-        return LintContext(source, literal=is_xacro(source.path), options=options,
-                           from_data=from_data)
+        return LintContext(source, literal=is_xacro(source.path), options=options)
     expanded = LintContext(source, options=options)
     if expanded.found or source.source_tree is None:
         return expanded
     as_written = Source(path=source.path, data=source.data, tree=source.source_tree)
-    literal = LintContext(as_written, literal=True, options=options, from_data=from_data)
+    literal = LintContext(as_written, literal=True, options=options)
     return literal if literal.found else expanded
 
 
-def _checked(source: Source, settings: Settings, *, from_data: bool = False) -> list[Problem]:
+def _checked(source: Source, settings: Settings) -> list[Problem]:
     """Read a document and run the rules on it, each element's children indexed once."""
     with indexed_children():
-        return run_rules(context_for(source, settings, from_data=from_data), settings)
+        return run_rules(context_for(source, settings), settings)
 
 
 def run_rules(ctx: LintContext, settings: Settings) -> list[Problem]:
