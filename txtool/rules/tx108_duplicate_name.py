@@ -39,6 +39,9 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
+    names = [tx.name for tx in ctx.facts]
+    if len(set(names)) == len(names):
+        return  # every name differs (the keys below hold the name): nothing is repeated
     first: dict[tuple[object, ...], Found] = {}
     for tx in ctx.facts:
         name = tx.name
