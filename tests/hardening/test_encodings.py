@@ -135,6 +135,11 @@ ODD_DOCUMENTS = {
     "NUL-led bytes": (b"\x00" * 16 + b"<robot/>", BINARY_REASON),
     "PNG": (b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR" + bytes(range(64)), BINARY_REASON),
     "gzip": (gzip.compress(GERMAN.encode(), mtime=0), BINARY_REASON),
+    # A UTF-16 mark before UTF-8 text: an odd number of bytes follows it.
+    "UTF-16 mark, odd length": (
+        b'\xff\xfe<?xml version="1.0"?><robot name="r"/>\n',
+        "cannot decode the document: 'utf-16-le' codec can't decode byte 0x0a in position 38: "
+        "truncated data"),
 }
 
 

@@ -35,9 +35,9 @@ class Encoding:
         read it; see :func:`utf8_form`."""
         return self.codec.startswith(("utf-16", "utf-32"))
 
-    def decode(self, data: bytes) -> str:
+    def decode(self, data: bytes, errors: str = "strict") -> str:
         """The text of a document stored this way (its mark, if it has one, dropped)."""
-        return data.removeprefix(self.mark).decode(self.codec)
+        return data.removeprefix(self.mark).decode(self.codec, errors)
 
     def from_utf8(self, data: bytes) -> bytes:
         """A document in :func:`utf8_form` stored back this way: the mark, the declaration's
@@ -98,24 +98,25 @@ def _renamed(text: str, name: str) -> str:
     return text[:match.start(1)] + name + text[match.end(1):]
 
 
-def utf8_form(data: bytes) -> bytes:
+def utf8_form(data: bytes, errors: str = "strict") -> bytes:
     """A UTF-16 or UTF-32 document as UTF-8, its declaration naming UTF-8 (lines, columns and
     everything else as written); any other document as it is. Writers turn it back with
-    :meth:`Encoding.from_utf8`."""
+    :meth:`Encoding.from_utf8`. ``errors="replace"`` is for scanners that must read a document
+    whose text cannot be decoded (its TX001 is being reported)."""
     encoding = detect_encoding(data)
     if not encoding.wide:
         return data
-    text = encoding.decode(data)
+    text = encoding.decode(data, errors)
     return (_renamed(text, "UTF-8") if encoding.declared else text).encode("utf-8")
 
 
-def parsing_form(data: bytes) -> bytes:
+def parsing_form(data: bytes, errors: str = "strict") -> bytes:
     """What libxml2 and the byte scanners read: :func:`utf8_form`, with each bare CR made a LF.
 
     The XML parser turns every CR into a LF anyway (XML 1.0 section 2.11), but libxml2 counts
     no line at a bare CR: a file with CR line endings would be all line 1.
     """
-    data = utf8_form(data)
+    data = utf8_form(data, errors)
     if b"\r" in data and data.count(b"\r") != data.count(b"\r\n"):
         data = re.sub(rb"\r(?!\n)", b"\n", data)
     return data
