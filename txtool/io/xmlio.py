@@ -188,11 +188,15 @@ def parse_bytes(data: bytes, path: str, *, limit: int | None = MAX_BYTES) -> etr
     return tree
 
 
+_NON_BLANK = re.compile(rb"[^ \t\n\r\x0b\x0c]")  # what bytes.strip() strips
+
+
 def _is_blank(data: bytes) -> bool:
     encoding = detect_encoding(data)
     if encoding.wide:
         return not data.removeprefix(encoding.mark).decode(encoding.codec, "replace").strip()
-    return not data.removeprefix(codecs.BOM_UTF8).strip()
+    return _NON_BLANK.search(data, len(codecs.BOM_UTF8) if data.startswith(codecs.BOM_UTF8)
+                             else 0) is None
 
 
 def is_binary(data: bytes) -> bool:
