@@ -8,6 +8,7 @@ for ``validate``, TX002 when a xacro include has them); a DTD is never fetched.
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 import threading
@@ -405,3 +406,21 @@ def test_nesting_within_the_limit_is_read(tmp_path):
         (tmp_path / name).write_text(nested(200))
         code, out, err = run("show", "--format", "json", str(tmp_path / name))
         assert (code, json.loads(out), err) == (0, {"transmissions": []}, ""), name
+
+
+def test_a_file_that_grew_after_its_size_was_taken_is_read_whole_or_refused(tmp_path,
+                                                                             monkeypatch):
+    """The read asks for the size fstat gave, plus one byte to see growth; a file that grew
+    between the two is read on up to the limit, and refused past it."""
+    document = tmp_path / "robot.urdf"
+    document.write_bytes(b"<robot name='r'>" + b" " * 4000 + b"</robot>\n")
+    real_fstat = xmlio.os.fstat
+
+    def shrunk(handle):  # the size the file had before it grew
+        status = real_fstat(handle)
+        return os.stat_result((*status[:6], 10, *status[7:]))
+
+    monkeypatch.setattr(xmlio.os, "fstat", shrunk)
+    assert xmlio.read_regular(str(document)) == document.read_bytes()
+    with pytest.raises(xmlio.TooLarge, match="file is larger than the 100 limit"):
+        xmlio.read_regular(str(document), limit=100)

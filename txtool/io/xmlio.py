@@ -130,7 +130,11 @@ def read_regular(path: str, limit: int = MAX_BYTES) -> bytes:
             if status.st_size > limit:
                 raise TooLarge(f"{path}: file is {status.st_size} bytes, larger than the "
                                f"{limit} limit")
-            data = file.read(limit + 1)
+            # Asking for the size the file has (not the limit) spares allocating the limit's
+            # 64 MB for every small file; one byte more tells whether it grew since fstat.
+            data = file.read(status.st_size + 1)
+            if len(data) > status.st_size:
+                data += file.read(limit + 1 - len(data))
             if len(data) > limit:  # grew since fstat
                 raise TooLarge(f"{path}: file is larger than the {limit} limit")
             return data
