@@ -118,9 +118,10 @@ class Placer:
         self._components = None
 
     def _block(self, name: str, plugin: str, moves: list[_Move], like: etree._Element,
-               indent: str, step: str) -> etree._Element:
+               indent: str, step: str, *, record: bool = True) -> etree._Element:
         """A ``<ros2_control type="system">`` block declaring the joints of the converted
-        transmissions and holding them, as txtool generates it."""
+        transmissions and holding them, as txtool generates it (``record``: as
+        :meth:`_build`)."""
         q = _qualifier(like)
         block = etree.Element(q("ros2_control"), name=name, type="system")
         hardware = etree.SubElement(block, q("hardware"))
@@ -133,7 +134,7 @@ class Placer:
                     block.append(_declaration(q, joint))
         dialects.pretty(block, indent, step)
         for move in moves:
-            append(block, self._build(move, indent + step, step, like))
+            append(block, self._build(move, indent + step, step, like, record=record))
         return block
 
     def _component_for(self, t: Transmission) -> etree._Element | None:
@@ -177,7 +178,7 @@ class Placer:
         forward = [_Move(m.old, translate(t, dialect).transmission, m.carried)
                    for m, t in zip(moves, generating, strict=True) if t is not None]
         expected = self._block(component.get("name"), plugins[0].text, forward, component,
-                               "", "")
+                               "", "", record=False)
         if _shape(expected, comments=False) != _shape(component, comments=False):
             return False
         for move, t in zip(moves, generating, strict=True):
@@ -196,7 +197,7 @@ class Placer:
         want = _shape(move.old, comments=False)
         for candidate in candidates:
             built = self._build(_Move(move.old, translate(candidate, dialect).transmission,
-                                      move.carried), "", "", move.old)
+                                      move.carried), "", "", move.old, record=False)
             if _shape(built, comments=False) == want:
                 return candidate
         return None
@@ -214,13 +215,18 @@ class Placer:
             anchor.addnext(new)
             anchor = new
         parent.remove(component)
+        for move in moves:
+            # Each replaced element stands alone: lxml frees an element of a detached subtree
+            # by scanning that whole subtree, so a block of N would cost N squared.
+            component.remove(move.old)
 
     # Building ----------------------------------------------------------------------------
 
-    def _build(self, move: _Move, indent: str, step: str,
-               like: etree._Element) -> etree._Element:
+    def _build(self, move: _Move, indent: str, step: str, like: etree._Element, *,
+               record: bool = True) -> etree._Element:
         """The converted element at ``indent``, in the namespace of ``like``, with the
-        comments and carried children of the old one."""
+        comments and carried children of the old one; ``record``: as what replaces the old
+        one (:attr:`built`), not a trial build to compare with."""
         t = move.new
         new = dialects.build(t, t.dialect, indent=indent, step=step, namespace=_namespace(like))
         for (kind, name), elements in (move.carried or {}).items():
@@ -230,7 +236,8 @@ class Placer:
         with_comments(new, move.old)
         if move.carried or any(isinstance(c, etree._Comment) for c in new.iter()):
             dialects.pretty(new, indent, step)  # build() laid out all but these
-        self.built[move.old] = new
+        if record:
+            self.built[move.old] = new
         return new
 
 
