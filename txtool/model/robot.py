@@ -126,8 +126,14 @@ def _child_index(element: etree._Element) -> dict[str, list[etree._Element]]:
     index: dict[str, list[etree._Element]] = {}
     for child in element:
         tag = child.tag
-        if isinstance(tag, str):
-            index.setdefault(tag.rpartition("}")[2], []).append(child)
+        if tag.__class__ is str:  # not a comment or processing instruction
+            if tag[0] == "{":
+                tag = tag.rpartition("}")[2]
+            found = index.get(tag)
+            if found is None:
+                index[tag] = [child]
+            else:
+                found.append(child)
     return index
 
 

@@ -131,7 +131,7 @@ class Placer:
             for joint in move.new.joints:
                 if joint.name not in seen:
                     seen.add(joint.name)
-                    block.append(_declaration(q, joint))
+                    _declaration(block, q, joint)
         dialects.pretty(block, indent, step)
         for move in moves:
             append(block, self._build(move, indent + step, step, like, record=record))
@@ -234,7 +234,7 @@ class Placer:
                 (m for m in children(new, kind) if m.get("name") == name), new)
             owner.extend(copy.deepcopy(e) for e in elements)
         with_comments(new, move.old)
-        if move.carried or any(isinstance(c, etree._Comment) for c in new.iter()):
+        if move.carried or _has_comment(new):
             dialects.pretty(new, indent, step)  # build() laid out all but these
         if record:
             self.built[move.old] = new
@@ -279,13 +279,13 @@ def _insert_first(parent: etree._Element, child: etree._Element) -> None:
     parent.insert(0, child)
 
 
-def _declaration(q: Callable[[str], str], joint: Member) -> etree._Element:
-    element = etree.Element(q("joint"), name=joint.name)
+def _declaration(block: etree._Element, q: Callable[[str], str], joint: Member) -> None:
+    """The ``<joint>`` of ``block`` that declares ``joint``'s interfaces."""
+    element = etree.SubElement(block, q("joint"), name=joint.name)
     for name in joint.interfaces:
         etree.SubElement(element, q("command_interface"), name=name)
     for name in joint.state_interfaces:
         etree.SubElement(element, q("state_interface"), name=name)
-    return element
 
 
 def _shape(element: etree._Element, *, comments: bool = True) -> tuple:
@@ -356,8 +356,12 @@ def with_comments(new: etree._Element, old: etree._Element, indent: str | None =
                   step: str | None = None) -> etree._Element:
     """Carry the comments of the old element: under the same joint or actuator when they
     stood there, else at the top of the transmission."""
-    targets = {(local(m), m.get("name")): m for m in new if isinstance(m.tag, str)}
-    for parent in [old, *children(old, "joint"), *children(old, "actuator")]:
+    parents: list[etree._Element] = []  # none without a comment (most transmissions)
+    targets: dict[tuple[str, str | None], etree._Element] = {}
+    if _has_comment(old):
+        parents = [old, *children(old, "joint"), *children(old, "actuator")]
+        targets = {(local(m), m.get("name")): m for m in new if isinstance(m.tag, str)}
+    for parent in parents:
         target = new if parent is old else targets.get((local(parent), parent.get("name")), new)
         comments = [etree.Comment(c.text) for c in parent if isinstance(c, etree._Comment)]
         for position, comment in enumerate(comments):
@@ -365,10 +369,13 @@ def with_comments(new: etree._Element, old: etree._Element, indent: str | None =
                 new.insert(position, comment)
             else:
                 target.append(comment)
-    if indent is not None and step is not None and any(
-            isinstance(c, etree._Comment) for c in new.iter()):
+    if indent is not None and step is not None and _has_comment(new):
         dialects.pretty(new, indent, step)
     return new
+
+
+def _has_comment(element: etree._Element) -> bool:
+    return next(element.iter(etree.Comment), None) is not None
 
 
 def _namespace(element: etree._Element) -> str | None:
