@@ -28,6 +28,7 @@ from txtool.model.semantics import (
     NotLoadable,
     effective,
 )
+from txtool.transform.collector import paused
 from txtool.transform.placement import Placer
 from txtool.transform.reversible import Carrier
 from txtool.transform.shapes import shape
@@ -61,6 +62,7 @@ class Conversion:
     already: int = 0  # of them, already in the target dialect
 
 
+@paused
 def convert_source(
     source: Source, target: Dialect, *, hardware_plugin: str = DEFAULT_HARDWARE_PLUGIN,
     consume: bool = False, reversible: bool = False, check: bool = True,

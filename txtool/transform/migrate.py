@@ -37,6 +37,7 @@ from txtool.lint.suppress import Suppressions
 from txtool.lint.suppress import parse as parse_suppressions
 from txtool.model.core import Dialect
 from txtool.rules import Rule, all_rules
+from txtool.transform.collector import paused
 from txtool.transform.convert import DEFAULT_HARDWARE_PLUGIN, convert_source
 from txtool.transform.linediff import unified
 from txtool.transform.reversible import MARK
@@ -201,6 +202,7 @@ def _write(result: FileResult) -> None:
         raise InputError(f"{result.path}: cannot write: {exc.strerror or exc}") from None
 
 
+@paused
 def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions) -> FileResult:
     """The migrated bytes of one file (nothing is written); :class:`InputError` if unreadable.
 

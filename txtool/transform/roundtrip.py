@@ -17,6 +17,7 @@ from txtool.dialects.read import read_source
 from txtool.io.xmlio import Source, parse_bytes
 from txtool.model.core import DIALECTS, Dialect, Transmission
 from txtool.model.robot import robot_joints
+from txtool.transform.collector import paused
 from txtool.transform.convert import convert_source, judge, listed_against_roles
 from txtool.views.tables import FIELDS
 
@@ -71,6 +72,7 @@ def _reconvert(source: Source, target: Dialect, *, consume: bool) -> Source:
     return Source(source.path, data, parse_bytes(data, source.path, limit=None))
 
 
+@paused
 def roundtrip(source: Source) -> RoundTripReport:
     report = RoundTripReport(source.path)
     originals = [f.transmission for f in read_source(source, locate=False)]
