@@ -218,12 +218,12 @@ def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions) -> F
     result = FileResult(path=display, original=original, data=original, target=options.target)
     _count(result.fixes, fix_tree(tree, rules, original))
     migrated = serialize(tree, original)
+    after = _comments(tree)  # the comments of ``migrated``, which is this tree written out
     del tree
     if options.target is not None:
-        migrated = _convert(result, migrated, rules, options)
+        migrated, after = _convert(result, migrated, rules, options)
     if result.refused:
         return result
-    after = _comments(parse_bytes(migrated, display, limit=None))
     result.losses.extend(_dropped(comments, after))
     data = splice(original, baseline, migrated)
     if result.losses and not options.allow_lossy and data != original:
@@ -234,8 +234,9 @@ def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions) -> F
 
 
 def _convert(result: FileResult, data: bytes, rules: Sequence[Rule],
-             options: MigrateOptions) -> bytes:
-    """Convert ``data`` to the target dialect, then fix what the conversion wrote."""
+             options: MigrateOptions) -> tuple[bytes, list[str | None]]:
+    """Convert ``data`` to the target dialect, then fix what the conversion wrote; the result
+    and its comments."""
     assert options.target is not None
     source = Source(path=result.path, data=data, tree=parse_bytes(data, result.path, limit=None))
     try:
@@ -245,14 +246,14 @@ def _convert(result: FileResult, data: bytes, rules: Sequence[Rule],
     except ValueError as exc:
         result.losses.append(f"cannot convert: {exc}")
         result.refused = True
-        return data
+        return data, []
     result.notes.extend(conversion.notes)
     result.warnings.extend(conversion.warnings)
     result.losses.extend(conversion.losses)
     result.converted = conversion.converted
     tree = parse_bytes(conversion.data, result.path, limit=None)
     _count(result.fixes, fix_tree(tree, rules, conversion.data))
-    return serialize(tree, conversion.data)
+    return serialize(tree, conversion.data), _comments(tree)
 
 
 def dropped_comments(before: etree._ElementTree, after: etree._ElementTree) -> list[str]:

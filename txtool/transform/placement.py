@@ -33,6 +33,16 @@ class _Move:
     carried: Carried | None = None
 
 
+@dataclass
+class _Generating:
+    """A ROS 1 transmission (``source``) from which txtool generates exactly a ROS 2 element
+    of ``shape`` (:func:`_shape`), through ``forward``."""
+
+    source: Transmission
+    forward: Transmission
+    shape: tuple
+
+
 class Placer:
     """Puts converted elements where their target dialect expects them; call :meth:`finish`
     once every transmission has been placed."""
@@ -118,10 +128,11 @@ class Placer:
         self._components = None
 
     def _block(self, name: str, plugin: str, moves: list[_Move], like: etree._Element,
-               indent: str, step: str, *, record: bool = True) -> etree._Element:
+               indent: str, step: str, *, record: bool = True,
+               transmissions: bool = True) -> etree._Element:
         """A ``<ros2_control type="system">`` block declaring the joints of the converted
-        transmissions and holding them, as txtool generates it (``record``: as
-        :meth:`_build`)."""
+        transmissions and holding them (unless ``transmissions`` is false), as txtool
+        generates it (``record``: as :meth:`_build`)."""
         q = _qualifier(like)
         block = etree.Element(q("ros2_control"), name=name, type="system")
         hardware = etree.SubElement(block, q("hardware"))
@@ -133,7 +144,7 @@ class Placer:
                     seen.add(joint.name)
                     _declaration(block, q, joint)
         dialects.pretty(block, indent, step)
-        for move in moves:
+        for move in moves if transmissions else ():
             append(block, self._build(move, indent + step, step, like, record=record))
         return block
 
@@ -173,19 +184,31 @@ class Placer:
             return False
         dialect = detect_dialect(moves[0].old)
         generating = [self._generating(move, dialect) for move in moves]
-        if any(t is None for t in generating):
+        found = [g for g in generating if g is not None]
+        if len(found) < len(moves):
             return False
-        forward = [_Move(m.old, translate(t, dialect).transmission, m.carried)
-                   for m, t in zip(moves, generating, strict=True) if t is not None]
-        expected = self._block(component.get("name"), plugins[0].text, forward, component,
-                               "", "", record=False)
-        if _shape(expected, comments=False) != _shape(component, comments=False):
+        forward = [_Move(m.old, f.forward, m.carried) for m, f in zip(moves, found, strict=True)]
+        namespace = _namespace(component)
+        if all(_namespace(m.old) == namespace for m in moves):
+            # Each transmission as generated is already known to have the shape of the one
+            # written: compare the rest of the block, and those shapes, without building them
+            # again (shape() of the block as written takes them from ``known``).
+            tag, attrib, text, kids = _shape(
+                self._block(component.get("name"), plugins[0].text, forward, component, "", "",
+                            record=False, transmissions=False), comments=False)
+            expected = (tag, attrib, text, (*kids, *(f.shape for f in found)))
+            known = {m.old: f.shape for m, f in zip(moves, found, strict=True)}
+        else:
+            expected = _shape(self._block(component.get("name"), plugins[0].text, forward,
+                                          component, "", "", record=False), comments=False)
+            known = {}
+        if expected != _shape(component, comments=False, known=known):
             return False
-        for move, t in zip(moves, generating, strict=True):
-            move.new = t or move.new
+        for move, f in zip(moves, found, strict=True):
+            move.new = f.source
         return True
 
-    def _generating(self, move: _Move, dialect: Dialect) -> Transmission | None:
+    def _generating(self, move: _Move, dialect: Dialect) -> _Generating | None:
         """The ROS 1 transmission from which txtool generates exactly ``move.old``: the
         conversion itself, or the same without the reduction it had to write (ROS 1 requires
         one; ros2_control reads a missing one as 1.0)."""
@@ -196,10 +219,11 @@ class Placer:
             candidates.append(replace(t, actuators=(bare, *t.actuators[1:])))
         want = _shape(move.old, comments=False)
         for candidate in candidates:
-            built = self._build(_Move(move.old, translate(candidate, dialect).transmission,
-                                      move.carried), "", "", move.old, record=False)
+            forward = translate(candidate, dialect).transmission
+            built = self._build(_Move(move.old, forward, move.carried), "", "", move.old,
+                                record=False)
             if _shape(built, comments=False) == want:
-                return candidate
+                return _Generating(candidate, forward, want)
         return None
 
     def _ungenerate(self, component: etree._Element, moves: list[_Move]) -> None:
@@ -288,9 +312,13 @@ def _declaration(block: etree._Element, q: Callable[[str], str], joint: Member) 
         etree.SubElement(element, q("state_interface"), name=name)
 
 
-def _shape(element: etree._Element, *, comments: bool = True) -> tuple:
+def _shape(element: etree._Element, *, comments: bool = True,
+           known: dict[etree._Element, tuple] | None = None) -> tuple:
     """Tags, attributes, stripped texts and children: the element without its layout.
-    ``comments=False`` leaves out the comments inside transmissions (carried, not generated)."""
+    ``comments=False`` leaves out the comments inside transmissions (carried, not generated);
+    ``known``: shapes already computed, by element."""
+    if known and element in known:
+        return known[element]
     kids = []
     for child in element:
         if isinstance(child, etree._Comment):
@@ -298,7 +326,7 @@ def _shape(element: etree._Element, *, comments: bool = True) -> tuple:
                 kids.append(("#comment", child.text))
             continue
         if isinstance(child.tag, str):
-            kids.append(_shape(child, comments=comments))
+            kids.append(_shape(child, comments=comments, known=known))
     return (element.tag, dict(element.attrib), (element.text or "").strip(), tuple(kids))
 
 
