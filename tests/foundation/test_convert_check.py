@@ -5,7 +5,7 @@ for every transmission it concerns."""
 from __future__ import annotations
 
 from txtool.model.core import Member, Number, Transmission
-from txtool.transform.shapes import shape
+from txtool.transform.shapes import ordered_shape, shape
 
 BLOCK = """<robot name="r">
   <ros2_control name="hw" type="system">
@@ -62,3 +62,47 @@ def test_a_shape_is_the_transmission_up_to_its_names():
     assert shape(first) != shape(Transmission(
         name="t1", type=first.type, kind=first.kind, joints=first.joints,
         actuators=(other, first.actuators[1]), dialect="ros1"))
+
+
+DIFFERENTIAL = """  <transmission name="{name}">
+    <type>transmission_interface/DifferentialTransmission</type>
+    <joint name="{j1}"><role>joint1</role><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+    <joint name="{j2}"><role>joint2</role><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+    <actuator name="{a1}"><role>actuator1</role><mechanicalReduction>2</mechanicalReduction></actuator>
+    <actuator name="{a2}"><role>actuator2</role><mechanicalReduction>3</mechanicalReduction></actuator>
+  </transmission>"""
+
+
+def test_roundtrip_judges_again_a_pair_whose_names_sort_otherwise(run, tmp_path):
+    """t1 and t2 differ only in their names, but t2's joint1 sorts after its joint2:
+    ros2_control, which orders handles by name, binds them the other way. The verdict found
+    for t1 must not be taken for t2 (``shape`` would call them alike; ``ordered_shape`` does
+    not)."""
+    import json
+
+    path = tmp_path / "robot.urdf"
+    path.write_text('<robot name="r">\n  <link name="base"/>\n'
+                    + DIFFERENTIAL.format(name="t1", j1="a", j2="b", a1="m1", a2="m2") + "\n"
+                    + DIFFERENTIAL.format(name="t2", j1="d", j2="c", a1="m3", a2="m4") + "\n"
+                    + DIFFERENTIAL.format(name="t3", j1="e", j2="f", a1="m5", a2="m6")
+                    + "\n</robot>\n")
+    code, out, _ = run("roundtrip", "--format", "json", str(path))
+    assert code == 1
+    verdicts = {(c["transmission"], tuple(c["cycle"])): c["equivalent"]
+                for c in json.loads(out)["cycles"]}
+    assert len(verdicts) == 12
+    for (name, _cycle), verdict in verdicts.items():
+        if name == "t2":
+            assert verdict == ("no: actuator 'm4' position differs by 37.6991 at joint values "
+                               "(c=3.14159, d=-3.14159)")
+        else:
+            assert verdict == "yes"
+    assert shape(_differential("t1", ("a", "b"), ("m1", "m2"))) == shape(
+        _differential("t2", ("d", "c"), ("m3", "m4")))
+    assert ordered_shape(_differential("t1", ("a", "b"), ("m1", "m2"))) != ordered_shape(
+        _differential("t2", ("d", "c"), ("m3", "m4")))
+    # Names that compare alike, with each other and with the names the code writes itself:
+    assert ordered_shape(_differential("t1", ("p", "q"), ("m1", "m2"))) == ordered_shape(
+        _differential("t3", ("r", "s"), ("m5", "m6")))
+    assert ordered_shape(_differential("t1", ("a", "b"), ("m1", "m2"))) != ordered_shape(
+        _differential("t3", ("e", "f"), ("m5", "m6")))  # "a" < "actuator1" < "b"

@@ -11,7 +11,7 @@ every other name becomes the index of its first appearance.
 
 from __future__ import annotations
 
-from collections.abc import Hashable
+from collections.abc import Callable, Hashable
 
 from txtool.model.core import Member, Number, Transmission
 
@@ -30,6 +30,20 @@ def shape(*transmissions: Transmission) -> Hashable:
             return text
         return names.setdefault(text, len(names))
 
+    return _shape(transmissions, name)
+
+
+def ordered_shape(*transmissions: Transmission) -> Hashable:
+    """:func:`shape` for what also reads the order of the names (ros2_control orders handles
+    by name): every name becomes its rank among all their names and :data:`LITERAL_NAMES`,
+    so equal shapes mean a renaming that keeps every comparison between names."""
+    every = {n for t in transmissions for n in (t.name, *(m.name for m in t.joints),
+                                                  *(m.name for m in t.actuators))}
+    rank = {text: index for index, text in enumerate(sorted(every | LITERAL_NAMES))}
+    return _shape(transmissions, lambda text: text if text in LITERAL_NAMES else rank[text])
+
+
+def _shape(transmissions: tuple[Transmission, ...], name: Callable[[str], object]) -> Hashable:
     def number(n: Number | None) -> object:
         return None if n is None else (repr(n.value), n.text)
 
