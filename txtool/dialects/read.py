@@ -19,12 +19,27 @@ from typing import TYPE_CHECKING, Any
 from lxml import etree
 
 from txtool.io.xmlio import Source
-from txtool.model.core import Dialect, Location, Member, Number, Transmission, kind_of, replace
+from txtool.model.core import (
+    Dialect,
+    Location,
+    Member,
+    Number,
+    Transmission,
+    builder,
+    kind_of,
+    replace,
+)
 from txtool.model.numbers import parse_ros1, parse_ros2
 from txtool.model.robot import Component, ancestor, child_index, children, component_of
 
 if TYPE_CHECKING:
     from txtool.io.locate import Locator
+
+
+# The model's constructors, without a frozen dataclass's per-field __setattr__ (see builder).
+_new_transmission = builder(Transmission)
+_new_member = builder(Member)
+_new_number = builder(Number)
 
 
 @dataclass(frozen=True)
@@ -157,7 +172,7 @@ def _read_ros1(element: etree._Element, locator: Locator | None,
     if legacy and len(actuators) == 1 and actuators[0].mechanical_reduction is None:
         # Pre-Hydro form: the reduction stands under <transmission>, meaning the actuator's.
         actuators[0] = replace(actuators[0], mechanical_reduction=_ros1_number(legacy[0]))
-    return Transmission(
+    return _new_transmission(
         name=element.get("name", ""),
         type=type_string,
         kind=kind,
@@ -176,7 +191,7 @@ def _ros1_member(element: etree._Element, locator: Locator | None) -> Member:
     role = kids.get("role")
     reduction = kids.get("mechanicalReduction")
     offset = kids.get("offset")
-    return Member(
+    return _new_member(
         name=element.get("name", ""),
         role=(role[0].text or "").strip() if role else None,
         mechanical_reduction=_ros1_number(reduction[0]) if reduction else None,
@@ -188,7 +203,7 @@ def _ros1_member(element: etree._Element, locator: Locator | None) -> Member:
 
 def _ros1_number(element: etree._Element) -> Number:
     text = element.text or ""
-    return Number(value=parse_ros1(text), text=text)
+    return _new_number(value=parse_ros1(text), text=text)
 
 
 def _stripped_texts(elements: list[etree._Element]) -> tuple[str, ...]:
@@ -212,7 +227,7 @@ def _read_ros2(
         component = components.get(component_element)
         if component is None:
             component = components[component_element] = component_of(component_element)
-    return Transmission(
+    return _new_transmission(
         name=element.get("name", ""),
         type=type_string,
         kind=kind_of(type_string),
@@ -231,8 +246,8 @@ def _ros2_number(kids: dict[str, list[etree._Element]], name: str) -> Number | N
     found = kids.get(name, ())
     for child in found:
         if child.text is not None:
-            return Number(value=parse_ros2(child.text), text=child.text)
-    return Number(value=None, text="") if found else None
+            return _new_number(value=parse_ros2(child.text), text=child.text)
+    return _new_number(value=None, text="") if found else None
 
 
 def _ros2_member(
@@ -244,7 +259,7 @@ def _ros2_member(
         role_text = _first_text(kids, "role")
         role = role_text.strip() if role_text is not None else None
     declared = component.joint(element.get("name", "")) if component is not None else None
-    return Member(
+    return _new_member(
         name=element.get("name", ""),
         role=role,
         mechanical_reduction=_ros2_number(kids, "mechanical_reduction"),
