@@ -20,7 +20,7 @@ from txtool import dialects
 from txtool.dialects.read import detect_dialect, enclosing_component
 from txtool.dialects.translate import translate
 from txtool.io.xmlio import local
-from txtool.model.core import Dialect, Member, Transmission, replace
+from txtool.model.core import Dialect, Transmission, replace
 from txtool.model.robot import children
 
 Carried = dict[tuple[str, str | None], list[etree._Element]]
@@ -138,11 +138,17 @@ class Placer:
         hardware = etree.SubElement(block, q("hardware"))
         etree.SubElement(hardware, q("plugin")).text = plugin
         seen: set[str] = set()
+        declarations: dict[tuple, etree._Element] = {}  # by interfaces: copied, then named
         for move in moves:
             for joint in move.new.joints:
                 if joint.name not in seen:
                     seen.add(joint.name)
-                    _declaration(block, q, joint)
+                    interfaces = (joint.interfaces, joint.state_interfaces)
+                    if interfaces not in declarations:
+                        declarations[interfaces] = _declaration(q, *interfaces)
+                    declaration = copy.deepcopy(declarations[interfaces])
+                    declaration.set("name", joint.name)
+                    block.append(declaration)
         dialects.pretty(block, indent, step)
         for move in moves if transmissions else ():
             append(block, self._build(move, indent + step, step, like, record=record))
@@ -303,13 +309,15 @@ def _insert_first(parent: etree._Element, child: etree._Element) -> None:
     parent.insert(0, child)
 
 
-def _declaration(block: etree._Element, q: Callable[[str], str], joint: Member) -> None:
-    """The ``<joint>`` of ``block`` that declares ``joint``'s interfaces."""
-    element = etree.SubElement(block, q("joint"), name=joint.name)
-    for name in joint.interfaces:
+def _declaration(q: Callable[[str], str], commands: tuple[str, ...],
+                 states: tuple[str, ...]) -> etree._Element:
+    """A ``<joint>`` declaring these interfaces, its name still empty (the first attribute)."""
+    element = etree.Element(q("joint"), name="")
+    for name in commands:
         etree.SubElement(element, q("command_interface"), name=name)
-    for name in joint.state_interfaces:
+    for name in states:
         etree.SubElement(element, q("state_interface"), name=name)
+    return element
 
 
 def _shape(element: etree._Element, *, comments: bool = True,
