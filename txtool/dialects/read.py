@@ -109,8 +109,9 @@ def detect_dialect(element: etree._Element,
     role_attributes = any(m.get("role") is not None for m in members)
     if not (role_attributes or "plugin" in kids or enclosing_component(element) is not None):
         return "ros1"
-    role_elements = any(children(m, "role") for m in members)
-    return "ros2-p1" if role_elements and not role_attributes else "ros2-p2"
+    if role_attributes:
+        return "ros2-p2"
+    return "ros2-p1" if any(children(m, "role") for m in members) else "ros2-p2"
 
 
 def read_transmission(
@@ -227,17 +228,18 @@ def _read_ros2(
         component = components.get(component_element)
         if component is None:
             component = components[component_element] = component_of(component_element)
+    kind = kind_of(type_string)
     return _new_transmission(
         name=element.get("name", ""),
         type=type_string,
-        kind=kind_of(type_string),
-        joints=tuple(_ros2_member(j, locator, component) for j in kids.get("joint", ())),
-        actuators=tuple(_ros2_member(a, locator, None) for a in kids.get("actuator", ())),
+        kind=kind,
+        joints=tuple([_ros2_member(j, locator, component) for j in kids.get("joint", ())]),
+        actuators=tuple([_ros2_member(a, locator, None) for a in kids.get("actuator", ())]),
         parameters=_parameters(kids),
         dialect=dialect,
-        location=_location(element, locator),
+        location=_location(element, locator) if locator is not None else None,
         ros2_control=component.name if component is not None else None,
-        xml=_xml_if_custom(element, type_string),
+        xml=_xml(element) if kind == "other" else None,
     )
 
 
@@ -258,25 +260,22 @@ def _ros2_member(
     if role is None:
         role_text = _first_text(kids, "role")
         role = role_text.strip() if role_text is not None else None
-    declared = component.joint(element.get("name", "")) if component is not None else None
+    name = element.get("name", "")
+    declared = component.joint(name) if component is not None else None
     return _new_member(
-        name=element.get("name", ""),
+        name=name,
         role=role,
         mechanical_reduction=_ros2_number(kids, "mechanical_reduction"),
         offset=_ros2_number(kids, "offset"),
         interfaces=declared.command_interfaces if declared is not None else (),
         state_interfaces=declared.state_interfaces if declared is not None else (),
         read_only=(element.get("read_only") or "").strip().lower() == "true",
-        location=_location(element, locator),
+        location=_location(element, locator) if locator is not None else None,
     )
 
 
 def _parameters(kids: dict[str, list[etree._Element]]) -> tuple[tuple[str, str], ...]:
     return tuple((p.get("name", ""), (p.text or "").strip()) for p in kids.get("param", ()))
-
-
-def _xml_if_custom(element: etree._Element, type_string: str) -> str | None:
-    return _xml(element) if kind_of(type_string) == "other" else None
 
 
 def _xml(element: etree._Element) -> str:
