@@ -107,17 +107,23 @@ def _take(found: dict[_Key, list[Transmission]], name: str) -> Transmission | No
 
 def _cycles(source: Source, start: Dialect, group: list[Transmission], joints) -> list[CycleRow]:
     """The rows of every cycle from ``start``. Cycles that begin with the same conversion
-    share it (and its equivalence check); each later leg converts a fresh parse."""
+    share it (and its equivalence check); each later leg converts a fresh parse (the first
+    cycle takes the parse the shared leg was read from): one tree of each leg alive at once."""
     rows: dict[tuple[Dialect, ...], list[CycleRow]] = {}
     cycles = cycles_from(start)
     for first in dict.fromkeys(cycle[1] for cycle in cycles):
         leg = _reconvert(source, first, consume=False)
         verdicts = _Verdicts(group, _by_name(leg), joints)
+        data, parsed = leg.data, [leg.tree]
+        del leg
         for cycle in (c for c in cycles if c[1] == first):
-            current = Source(leg.path, leg.data, parse_bytes(leg.data, leg.path, limit=None))
+            tree = parsed.pop() if parsed else parse_bytes(data, source.path, limit=None)
+            current = Source(source.path, data, tree)
+            del tree
             for step in cycle[2:]:
                 current = _reconvert(current, step, consume=True)
             rows[cycle] = _rows(cycle, group, _by_name(current), verdicts)
+            del current
     return [row for cycle in cycles for row in rows[cycle]]
 
 
