@@ -113,3 +113,33 @@ def test_model_replace_is_dataclasses_replace() -> None:
             copy.name = "other"  # type: ignore[misc]
     with pytest.raises(TypeError, match="no field colour"):
         replace(member, colour="red")
+
+
+def test_model_builder_is_the_class_constructor() -> None:
+    """The readers build models with :func:`txtool.model.core.builder`, which sets slots
+    directly: a value equals (and hashes as) the one the class builds, with the same defaults,
+    stays frozen, and a missing or unknown field is refused as there."""
+    import dataclasses
+
+    from txtool.model.core import Location, Member, Number, Transmission, builder
+
+    number = Number(value=2.0, text="2")
+    cases = [
+        (Number, {"value": None}),
+        (Number, {"value": -0.0, "text": "-0"}),
+        (Location, {"path": "r.urdf", "line": 3}),
+        (Member, {"name": "j", "mechanical_reduction": number, "read_only": True}),
+        (Transmission, {"name": "t", "type": "x", "kind": "simple", "dialect": "ros1",
+                        "joints": (Member(name="j"),), "xml": "<transmission/>"}),
+    ]
+    for model, fields in cases:
+        value = builder(model)(**fields)
+        assert type(value) is model
+        assert value == model(**fields) and hash(value) == hash(model(**fields))
+        assert dataclasses.asdict(value) == dataclasses.asdict(model(**fields))
+        with pytest.raises(dataclasses.FrozenInstanceError):
+            setattr(value, next(iter(fields)), "other")
+    with pytest.raises(TypeError, match="name"):
+        builder(Member)(role="joint1")
+    with pytest.raises(TypeError, match="colour"):
+        builder(Member)(name="j", colour="red")

@@ -30,8 +30,10 @@ def pretty(element: etree._Element, indent: str, step: str) -> None:
     children = list(element)
     if not children:
         return
-    inner = indent + step
-    element.text = "\n" + inner
-    for index, child in enumerate(children):
-        pretty(child, inner, step)
-        child.tail = "\n" + (inner if index < len(children) - 1 else indent)
+    inner = "\n" + indent + step
+    element.text = inner
+    for child in children:
+        if len(child):  # a leaf keeps its text
+            pretty(child, indent + step, step)
+        child.tail = inner
+    children[-1].tail = "\n" + indent

@@ -19,12 +19,27 @@ from typing import TYPE_CHECKING, Any
 from lxml import etree
 
 from txtool.io.xmlio import Source
-from txtool.model.core import Dialect, Location, Member, Number, Transmission, kind_of, replace
+from txtool.model.core import (
+    Dialect,
+    Location,
+    Member,
+    Number,
+    Transmission,
+    builder,
+    kind_of,
+    replace,
+)
 from txtool.model.numbers import parse_ros1, parse_ros2
 from txtool.model.robot import Component, ancestor, child_index, children, component_of
 
 if TYPE_CHECKING:
     from txtool.io.locate import Locator
+
+
+# The model's constructors, without a frozen dataclass's per-field __setattr__ (see builder).
+_new_transmission = builder(Transmission)
+_new_member = builder(Member)
+_new_number = builder(Number)
 
 
 @dataclass(frozen=True)
@@ -94,8 +109,9 @@ def detect_dialect(element: etree._Element,
     role_attributes = any(m.get("role") is not None for m in members)
     if not (role_attributes or "plugin" in kids or enclosing_component(element) is not None):
         return "ros1"
-    role_elements = any(children(m, "role") for m in members)
-    return "ros2-p1" if role_elements and not role_attributes else "ros2-p2"
+    if role_attributes:
+        return "ros2-p2"
+    return "ros2-p1" if any(children(m, "role") for m in members) else "ros2-p2"
 
 
 def read_transmission(
@@ -157,7 +173,7 @@ def _read_ros1(element: etree._Element, locator: Locator | None,
     if legacy and len(actuators) == 1 and actuators[0].mechanical_reduction is None:
         # Pre-Hydro form: the reduction stands under <transmission>, meaning the actuator's.
         actuators[0] = replace(actuators[0], mechanical_reduction=_ros1_number(legacy[0]))
-    return Transmission(
+    return _new_transmission(
         name=element.get("name", ""),
         type=type_string,
         kind=kind,
@@ -176,7 +192,7 @@ def _ros1_member(element: etree._Element, locator: Locator | None) -> Member:
     role = kids.get("role")
     reduction = kids.get("mechanicalReduction")
     offset = kids.get("offset")
-    return Member(
+    return _new_member(
         name=element.get("name", ""),
         role=(role[0].text or "").strip() if role else None,
         mechanical_reduction=_ros1_number(reduction[0]) if reduction else None,
@@ -188,7 +204,7 @@ def _ros1_member(element: etree._Element, locator: Locator | None) -> Member:
 
 def _ros1_number(element: etree._Element) -> Number:
     text = element.text or ""
-    return Number(value=parse_ros1(text), text=text)
+    return _new_number(value=parse_ros1(text), text=text)
 
 
 def _stripped_texts(elements: list[etree._Element]) -> tuple[str, ...]:
@@ -212,17 +228,18 @@ def _read_ros2(
         component = components.get(component_element)
         if component is None:
             component = components[component_element] = component_of(component_element)
-    return Transmission(
+    kind = kind_of(type_string)
+    return _new_transmission(
         name=element.get("name", ""),
         type=type_string,
-        kind=kind_of(type_string),
-        joints=tuple(_ros2_member(j, locator, component) for j in kids.get("joint", ())),
-        actuators=tuple(_ros2_member(a, locator, None) for a in kids.get("actuator", ())),
+        kind=kind,
+        joints=tuple([_ros2_member(j, locator, component) for j in kids.get("joint", ())]),
+        actuators=tuple([_ros2_member(a, locator, None) for a in kids.get("actuator", ())]),
         parameters=_parameters(kids),
         dialect=dialect,
-        location=_location(element, locator),
+        location=_location(element, locator) if locator is not None else None,
         ros2_control=component.name if component is not None else None,
-        xml=_xml_if_custom(element, type_string),
+        xml=_xml(element) if kind == "other" else None,
     )
 
 
@@ -231,8 +248,8 @@ def _ros2_number(kids: dict[str, list[etree._Element]], name: str) -> Number | N
     found = kids.get(name, ())
     for child in found:
         if child.text is not None:
-            return Number(value=parse_ros2(child.text), text=child.text)
-    return Number(value=None, text="") if found else None
+            return _new_number(value=parse_ros2(child.text), text=child.text)
+    return _new_number(value=None, text="") if found else None
 
 
 def _ros2_member(
@@ -243,25 +260,22 @@ def _ros2_member(
     if role is None:
         role_text = _first_text(kids, "role")
         role = role_text.strip() if role_text is not None else None
-    declared = component.joint(element.get("name", "")) if component is not None else None
-    return Member(
-        name=element.get("name", ""),
+    name = element.get("name", "")
+    declared = component.joint(name) if component is not None else None
+    return _new_member(
+        name=name,
         role=role,
         mechanical_reduction=_ros2_number(kids, "mechanical_reduction"),
         offset=_ros2_number(kids, "offset"),
         interfaces=declared.command_interfaces if declared is not None else (),
         state_interfaces=declared.state_interfaces if declared is not None else (),
         read_only=(element.get("read_only") or "").strip().lower() == "true",
-        location=_location(element, locator),
+        location=_location(element, locator) if locator is not None else None,
     )
 
 
 def _parameters(kids: dict[str, list[etree._Element]]) -> tuple[tuple[str, str], ...]:
     return tuple((p.get("name", ""), (p.text or "").strip()) for p in kids.get("param", ()))
-
-
-def _xml_if_custom(element: etree._Element, type_string: str) -> str | None:
-    return _xml(element) if kind_of(type_string) == "other" else None
 
 
 def _xml(element: etree._Element) -> str:

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 from txtool.model.core import Dialect, Member, Number, Transmission, replace, standard_type
 from txtool.model.numbers import format_float, parse_ros1, parse_ros2
@@ -145,19 +146,17 @@ def _simple_to_ros2(t: Transmission, result: Translation) -> tuple[tuple[Member,
                 " is ignored by ros_control for simple transmissions and has no place in ROS 2"
             )
         moved = _retext(reduction, parse_ros2) if index == 0 else None
-        joints.append(
-            replace(_ros2_joint(joint, result), mechanical_reduction=moved,
-                    role=joint.role or "joint1")
-        )
+        joints.append(_ros2_joint(joint, result, mechanical_reduction=moved,
+                                  role=joint.role or "joint1"))
     actuators = tuple(
-        replace(_ros2_actuator(a, result), mechanical_reduction=None,
-                role=a.role or "actuator1")
+        _ros2_actuator(a, result, mechanical_reduction=None, role=a.role or "actuator1")
         for a in t.actuators
     )
     return tuple(joints), actuators
 
 
-def _ros2_joint(joint: Member, result: Translation) -> Member:
+def _ros2_joint(joint: Member, result: Translation, **changes: Any) -> Member:
+    """``joint`` as ros2_control declares it (``changes``: fields the caller sets itself)."""
     commands, states = ros2_interfaces(joint.interfaces)
     expressions = [i for i in joint.interfaces if "${" in i or "$(" in i]
     if expressions:
@@ -178,26 +177,21 @@ def _ros2_joint(joint: Member, result: Translation) -> Member:
             f"joint '{joint.name}': hardware interface(s) {', '.join(unknown)} are not ones "
             f"ros_control knows{refused}; no ros2_control command interface for them"
         )
-    return replace(
-        joint,
-        mechanical_reduction=_retext(joint.mechanical_reduction, parse_ros2),
-        offset=_retext(joint.offset, parse_ros2),
-        interfaces=commands,
-        state_interfaces=states,
-    )
+    if "mechanical_reduction" not in changes:
+        changes["mechanical_reduction"] = _retext(joint.mechanical_reduction, parse_ros2)
+    return replace(joint, offset=_retext(joint.offset, parse_ros2), interfaces=commands,
+                   state_interfaces=states, **changes)
 
 
-def _ros2_actuator(actuator: Member, result: Translation) -> Member:
+def _ros2_actuator(actuator: Member, result: Translation, **changes: Any) -> Member:
     if actuator.interfaces:
         result.notes.append(
             f"actuator '{actuator.name}': <hardwareInterface> is not used by ros_control's "
             "loaders and has no place in ROS 2; dropped"
         )
-    return replace(
-        actuator,
-        mechanical_reduction=_retext(actuator.mechanical_reduction, parse_ros2),
-        interfaces=(),
-    )
+    if "mechanical_reduction" not in changes:
+        changes["mechanical_reduction"] = _retext(actuator.mechanical_reduction, parse_ros2)
+    return replace(actuator, interfaces=(), **changes)
 
 
 def _to_ros1(t: Transmission) -> Translation:
@@ -247,11 +241,8 @@ def _simple_to_ros1(t: Transmission, result: Translation) -> tuple[tuple[Member,
             f"transmission '{t.name}': no actuator; wrote 'actuator1' as ros2_control names it"
         )
         actuators.append(Member(name="actuator1", mechanical_reduction=reduction))
-    joints = tuple(
-        replace(_ros1_joint(j, result), mechanical_reduction=None,
-                role=_unless(j.role, "joint1"))
-        for j in t.joints
-    )
+    joints = tuple(_ros1_joint(j, result, mechanical_reduction=None,
+                               role=_unless(j.role, "joint1")) for j in t.joints)
     actuators = [replace(a, role=_unless(a.role, "actuator1")) for a in actuators]
     return joints, tuple(actuators)
 
@@ -261,7 +252,8 @@ def _unless(role: str | None, default: str) -> str | None:
     return None if role == default else role
 
 
-def _ros1_joint(joint: Member, result: Translation) -> Member:
+def _ros1_joint(joint: Member, result: Translation, **changes: Any) -> Member:
+    """``joint`` as ros_control reads it (``changes``: fields the caller sets itself)."""
     names = [ROS1_INTERFACE[c] for c in joint.interfaces if c in ROS1_INTERFACE]
     dropped = [c for c in joint.interfaces if c not in ROS1_INTERFACE]
     if dropped:
@@ -273,14 +265,11 @@ def _ros1_joint(joint: Member, result: Translation) -> Member:
         names = [ROS1_STATE_ONLY]
     if joint.read_only:
         result.losses.append(f"joint '{joint.name}': read_only has no place in ROS 1")
-    return replace(
-        joint,
-        mechanical_reduction=_retext(_as_loaded(joint.mechanical_reduction, 1.0), parse_ros1),
-        offset=_retext(_as_loaded(joint.offset, 0.0), parse_ros1),
-        interfaces=tuple(names),
-        state_interfaces=(),
-        read_only=False,
-    )
+    if "mechanical_reduction" not in changes:
+        changes["mechanical_reduction"] = _retext(_as_loaded(joint.mechanical_reduction, 1.0),
+                                                  parse_ros1)
+    return replace(joint, offset=_retext(_as_loaded(joint.offset, 0.0), parse_ros1),
+                   interfaces=tuple(names), state_interfaces=(), read_only=False, **changes)
 
 
 def _as_loaded(number: Number | None, default: float) -> Number | None:

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cache
 from typing import TYPE_CHECKING, Any, Literal, TypeVar
@@ -115,20 +116,58 @@ def replace(value: Value, **changes: Any) -> Value:
     its per-call field inspection and keyword ``__init__``: conversions make several per
     transmission). The models are frozen, slotted and have no ``__post_init__``, so the copy
     sets each slot directly."""
-    slots = _slots(type(value))
-    unknown = changes.keys() - slots.keys()
-    if unknown:
-        raise TypeError(f"{type(value).__name__} has no field {', '.join(sorted(unknown))}")
-    copy = object.__new__(type(value))
-    for name, slot in slots.items():
-        slot.__set__(copy, changes[name] if name in changes else slot.__get__(value))
-    return copy
+    return _copier(type(value))(value, changes)  # type: ignore[no-any-return]
 
 
 @cache
-def _slots(model: type) -> dict[str, Any]:
-    """The slot descriptor of each field, by name, in declaration order."""
-    return {name: model.__dict__[name] for name in _field_names(model)}
+def _copier(model: type) -> Callable[[Any, dict[str, Any]], Any]:
+    """A function that copies a ``model`` value, setting each slot in one straight line of
+    code (a loop over the fields costs as much again)."""
+    names = _field_names(model)
+    scope: dict[str, Any] = {"new": object.__new__, "model": model, "known": frozenset(names),
+                             "unknown": _unknown}
+    lines = ["def copy(value, changes):",
+             "    if changes and not changes.keys() <= known:",
+             "        unknown(model, changes, known)",
+             "    result = new(model)"]
+    for index, name in enumerate(names):
+        scope[f"set{index}"] = model.__dict__[name].__set__
+        lines.append(f"    set{index}(result, changes[{name!r}] if {name!r} in changes "
+                     f"else value.{name})")
+    lines.append("    return result")
+    exec("\n".join(lines), scope)  # noqa: S102 (code from the model's own field names)
+    return scope["copy"]  # type: ignore[no-any-return]
+
+
+def builder(model: type[Value]) -> Callable[..., Value]:
+    """A constructor of ``model`` values with the keywords and defaults of the class, that sets
+    each slot directly: a frozen dataclass's ``__init__`` costs about three times as much, and
+    the readers build several values per transmission. Tested against the class itself."""
+    return _builder(model)  # type: ignore[no-any-return]
+
+
+@cache
+def _builder(model: type) -> Callable[..., Any]:
+    scope: dict[str, Any] = {"new": object.__new__, "model": model}
+    parameters, lines = [], []
+    for index, f in enumerate(dataclasses.fields(model)):
+        if f.default_factory is not dataclasses.MISSING:
+            raise TypeError(f"{model.__name__}.{f.name}: a default factory is not supported")
+        if f.default is dataclasses.MISSING:
+            parameters.append(f.name)
+        else:
+            scope[f"default{index}"] = f.default
+            parameters.append(f"{f.name}=default{index}")
+        scope[f"set{index}"] = model.__dict__[f.name].__set__
+        lines.append(f"    set{index}(built_, {f.name})")
+    source = "\n".join([f"def build(*, {', '.join(parameters)}):", "    built_ = new(model)",
+                        *lines, "    return built_"])
+    exec(source, scope)  # noqa: S102 (code from the model's own field names)
+    return scope["build"]  # type: ignore[no-any-return]
+
+
+def _unknown(model: type, changes: dict[str, Any], known: frozenset[str]) -> None:
+    raise TypeError(f"{model.__name__} has no field {', '.join(sorted(changes.keys() - known))}")
 
 
 @cache

@@ -82,7 +82,13 @@ def children(element: etree._Element, name: str) -> list[etree._Element]:
     Inside :func:`indexed_children` the list is the kept index's own: do not change it.
     """
     if _INDEXES is None:
-        return list(element.iterchildren("{*}" + name))
+        # A plain loop: iterchildren("{*}" + name) sets up a tag matcher on every call.
+        found = []
+        for child in element:
+            tag = child.tag  # a function for comments and processing instructions
+            if tag == name or tag.__class__ is str and tag.endswith("}" + name):
+                found.append(child)
+        return found
     index = _INDEXES.get(element)  # child_index() inlined: the linter's most frequent call
     if index is None:
         index = _INDEXES[element] = _child_index(element)
@@ -126,8 +132,14 @@ def _child_index(element: etree._Element) -> dict[str, list[etree._Element]]:
     index: dict[str, list[etree._Element]] = {}
     for child in element:
         tag = child.tag
-        if isinstance(tag, str):
-            index.setdefault(tag.rpartition("}")[2], []).append(child)
+        if tag.__class__ is str:  # not a comment or processing instruction
+            if tag[0] == "{":
+                tag = tag.rpartition("}")[2]
+            found = index.get(tag)
+            if found is None:
+                index[tag] = [child]
+            else:
+                found.append(child)
     return index
 
 

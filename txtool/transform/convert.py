@@ -10,6 +10,7 @@ converting it back.
 from __future__ import annotations
 
 import copy
+from collections.abc import Hashable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -27,8 +28,10 @@ from txtool.model.semantics import (
     NotLoadable,
     effective,
 )
+from txtool.transform.collector import paused
 from txtool.transform.placement import Placer
 from txtool.transform.reversible import Carrier
+from txtool.transform.shapes import shape
 from txtool.transform.splice import splice
 from txtool.views.tables import FIELDS, view
 
@@ -59,6 +62,7 @@ class Conversion:
     already: int = 0  # of them, already in the target dialect
 
 
+@paused
 def convert_source(
     source: Source, target: Dialect, *, hardware_plugin: str = DEFAULT_HARDWARE_PLUGIN,
     consume: bool = False, reversible: bool = False, check: bool = True,
@@ -116,13 +120,19 @@ def convert_source(
     else:
         assert baseline is not None
         result.data = splice(source.data, baseline, serialize(tree, source.data))
+    del baseline
+    spliced = result.data
     result.data = carry.restore(result.data)
     result.notes.extend(carry.notes)
-    del tree  # the converted tree is freed before the output is read back
     if consume:
         source.tree = etree.ElementTree(etree.Element("consumed"))
-    if check:
-        _check(source, result, transmissions)
+    if not check:
+        return result
+    if result.data is not spliced and result.data != spliced:
+        # Originals put back as bytes: only a parse of the output shows what it holds.
+        del tree
+        tree = parse_bytes(result.data, source.path, limit=None)
+    _check(Source(source.path, result.data, tree), result, transmissions)
     return result
 
 
@@ -136,11 +146,13 @@ def _other_children(element: etree._Element, t: Transmission, target: Dialect,
     carried: dict[tuple[str, str | None], list[etree._Element]] = {}
     for parent in [element, *children(element, "joint"), *children(element, "actuator")]:
         kind = "transmission" if parent is element else local(parent)
-        owner = f"{kind} '{parent.get('name', '')}'"
+        ours = known[kind]
         for child in parent:
+            tag = child.tag
+            if tag.__class__ is not str or tag.rpartition("}")[2] in ours:
+                continue  # a comment, or a child its own dialect reads
             name = local(child)
-            if not isinstance(child.tag, str) or name in known[kind]:
-                continue
+            owner = f"{kind} '{parent.get('name', '')}'"
             if name in theirs[kind]:
                 result.losses.append(f"{owner}: <{name}> is not read in {family(t.dialect)} "
                                      f"but would be in {target}; dropped")
@@ -224,13 +236,20 @@ def _same_binding(old, new) -> bool:
     return all(getattr(old, f) == getattr(new, f) for f in fields)
 
 
-def _check(source: Source, result: Conversion, originals: list[Transmission]) -> None:
+def _check(output: Source, result: Conversion, originals: list[Transmission]) -> None:
     """Read the output back, convert it back, and compare with the original: on what the
     transmission itself defines (a value it leaves out is not judged, and interfaces that an
-    existing ``<ros2_control>`` declares besides its own are a note, not a loss)."""
-    tree = parse_bytes(result.data, source.path, limit=None)
+    existing ``<ros2_control>`` declares besides its own are a note, not a loss).
+
+    ``output.tree`` is the converted tree itself when ``output.data`` is its serialization,
+    or a splice of it that parses to the same canonical document (:func:`.splice` verifies
+    that): reading it reads what a parse of the output would give, without a second tree.
+    A pair whose shape (:func:`.shapes.shape`: the same up to the names) already came back
+    whole is not judged again: the judgement reads names only to tell members apart.
+    """
+    survived: set[Hashable] = set()  # shapes (:mod:`.shapes`) that came back whole
     written: dict[tuple[str, bool], list[Found]] = {}
-    for found in read_source(Source(source.path, result.data, tree), locate=False):
+    for found in read_source(output, locate=False):
         key = (found.transmission.name, found.transmission.kind == "other")
         written.setdefault(key, []).append(found)
     for t in originals:
@@ -240,15 +259,22 @@ def _check(source: Source, result: Conversion, originals: list[Transmission]) ->
         out = queue.pop(0)  # same-named transmissions keep their order
         if t.kind == "other":
             continue
+        in_component = enclosing_component(out.element) is not None
+        key = (shape(t, out.transmission), in_component)
+        if key in survived:
+            continue
+        said = len(result.losses) + len(result.notes)
         back = translate(out.transmission, t.dialect).transmission
         a_view, b_view = view(t), view(back)
         lost = _lost(a_view, b_view)
-        if enclosing_component(out.element) is not None:
+        if in_component:
             lost.pop("interfaces", None)
             _interfaces(t, *_defined(a_view["interfaces"], b_view["interfaces"]), result)
-        for key, change in lost.items():
+        for key_, change in lost.items():
             result.losses.append(f"transmission '{t.name}' did not survive the round trip: "
-                                 f"{key}: {change}")
+                                 f"{key_}: {change}")
+        if len(result.losses) + len(result.notes) == said:
+            survived.add(key)
 
 
 def judge(before: Transmission, after: Transmission) -> dict[str, str]:

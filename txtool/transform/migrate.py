@@ -37,6 +37,7 @@ from txtool.lint.suppress import Suppressions
 from txtool.lint.suppress import parse as parse_suppressions
 from txtool.model.core import Dialect
 from txtool.rules import Rule, all_rules
+from txtool.transform.collector import paused
 from txtool.transform.convert import DEFAULT_HARDWARE_PLUGIN, convert_source
 from txtool.transform.linediff import unified
 from txtool.transform.reversible import MARK
@@ -201,6 +202,7 @@ def _write(result: FileResult) -> None:
         raise InputError(f"{result.path}: cannot write: {exc.strerror or exc}") from None
 
 
+@paused
 def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions) -> FileResult:
     """The migrated bytes of one file (nothing is written); :class:`InputError` if unreadable.
 
@@ -216,12 +218,12 @@ def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions) -> F
     result = FileResult(path=display, original=original, data=original, target=options.target)
     _count(result.fixes, fix_tree(tree, rules, original))
     migrated = serialize(tree, original)
+    after = _comments(tree)  # the comments of ``migrated``, which is this tree written out
     del tree
     if options.target is not None:
-        migrated = _convert(result, migrated, rules, options)
+        migrated, after = _convert(result, migrated, rules, options)
     if result.refused:
         return result
-    after = _comments(parse_bytes(migrated, display, limit=None))
     result.losses.extend(_dropped(comments, after))
     data = splice(original, baseline, migrated)
     if result.losses and not options.allow_lossy and data != original:
@@ -232,8 +234,9 @@ def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions) -> F
 
 
 def _convert(result: FileResult, data: bytes, rules: Sequence[Rule],
-             options: MigrateOptions) -> bytes:
-    """Convert ``data`` to the target dialect, then fix what the conversion wrote."""
+             options: MigrateOptions) -> tuple[bytes, list[str | None]]:
+    """Convert ``data`` to the target dialect, then fix what the conversion wrote; the result
+    and its comments."""
     assert options.target is not None
     source = Source(path=result.path, data=data, tree=parse_bytes(data, result.path, limit=None))
     try:
@@ -243,14 +246,14 @@ def _convert(result: FileResult, data: bytes, rules: Sequence[Rule],
     except ValueError as exc:
         result.losses.append(f"cannot convert: {exc}")
         result.refused = True
-        return data
+        return data, []
     result.notes.extend(conversion.notes)
     result.warnings.extend(conversion.warnings)
     result.losses.extend(conversion.losses)
     result.converted = conversion.converted
     tree = parse_bytes(conversion.data, result.path, limit=None)
     _count(result.fixes, fix_tree(tree, rules, conversion.data))
-    return serialize(tree, conversion.data)
+    return serialize(tree, conversion.data), _comments(tree)
 
 
 def dropped_comments(before: etree._ElementTree, after: etree._ElementTree) -> list[str]:

@@ -20,7 +20,7 @@ from txtool import dialects
 from txtool.dialects.read import detect_dialect, enclosing_component
 from txtool.dialects.translate import translate
 from txtool.io.xmlio import local
-from txtool.model.core import Dialect, Member, Transmission, replace
+from txtool.model.core import Dialect, Transmission, replace
 from txtool.model.robot import children
 
 Carried = dict[tuple[str, str | None], list[etree._Element]]
@@ -31,6 +31,16 @@ class _Move:
     old: etree._Element
     new: Transmission
     carried: Carried | None = None
+
+
+@dataclass
+class _Generating:
+    """A ROS 1 transmission (``source``) from which txtool generates exactly a ROS 2 element
+    of ``shape`` (:func:`_shape`), through ``forward``."""
+
+    source: Transmission
+    forward: Transmission
+    shape: tuple
 
 
 class Placer:
@@ -118,22 +128,30 @@ class Placer:
         self._components = None
 
     def _block(self, name: str, plugin: str, moves: list[_Move], like: etree._Element,
-               indent: str, step: str) -> etree._Element:
+               indent: str, step: str, *, record: bool = True,
+               transmissions: bool = True) -> etree._Element:
         """A ``<ros2_control type="system">`` block declaring the joints of the converted
-        transmissions and holding them, as txtool generates it."""
+        transmissions and holding them (unless ``transmissions`` is false), as txtool
+        generates it (``record``: as :meth:`_build`)."""
         q = _qualifier(like)
         block = etree.Element(q("ros2_control"), name=name, type="system")
         hardware = etree.SubElement(block, q("hardware"))
         etree.SubElement(hardware, q("plugin")).text = plugin
         seen: set[str] = set()
+        declarations: dict[tuple, etree._Element] = {}  # by interfaces: copied, then named
         for move in moves:
             for joint in move.new.joints:
                 if joint.name not in seen:
                     seen.add(joint.name)
-                    block.append(_declaration(q, joint))
+                    interfaces = (joint.interfaces, joint.state_interfaces)
+                    if interfaces not in declarations:
+                        declarations[interfaces] = _declaration(q, *interfaces)
+                    declaration = copy.deepcopy(declarations[interfaces])
+                    declaration.set("name", joint.name)
+                    block.append(declaration)
         dialects.pretty(block, indent, step)
-        for move in moves:
-            append(block, self._build(move, indent + step, step, like))
+        for move in moves if transmissions else ():
+            append(block, self._build(move, indent + step, step, like, record=record))
         return block
 
     def _component_for(self, t: Transmission) -> etree._Element | None:
@@ -172,19 +190,31 @@ class Placer:
             return False
         dialect = detect_dialect(moves[0].old)
         generating = [self._generating(move, dialect) for move in moves]
-        if any(t is None for t in generating):
+        found = [g for g in generating if g is not None]
+        if len(found) < len(moves):
             return False
-        forward = [_Move(m.old, translate(t, dialect).transmission, m.carried)
-                   for m, t in zip(moves, generating, strict=True) if t is not None]
-        expected = self._block(component.get("name"), plugins[0].text, forward, component,
-                               "", "")
-        if _shape(expected, comments=False) != _shape(component, comments=False):
+        forward = [_Move(m.old, f.forward, m.carried) for m, f in zip(moves, found, strict=True)]
+        namespace = _namespace(component)
+        if all(_namespace(m.old) == namespace for m in moves):
+            # Each transmission as generated is already known to have the shape of the one
+            # written: compare the rest of the block, and those shapes, without building them
+            # again (shape() of the block as written takes them from ``known``).
+            tag, attrib, text, kids = _shape(
+                self._block(component.get("name"), plugins[0].text, forward, component, "", "",
+                            record=False, transmissions=False), comments=False)
+            expected = (tag, attrib, text, (*kids, *(f.shape for f in found)))
+            known = {m.old: f.shape for m, f in zip(moves, found, strict=True)}
+        else:
+            expected = _shape(self._block(component.get("name"), plugins[0].text, forward,
+                                          component, "", "", record=False), comments=False)
+            known = {}
+        if expected != _shape(component, comments=False, known=known):
             return False
-        for move, t in zip(moves, generating, strict=True):
-            move.new = t or move.new
+        for move, f in zip(moves, found, strict=True):
+            move.new = f.source
         return True
 
-    def _generating(self, move: _Move, dialect: Dialect) -> Transmission | None:
+    def _generating(self, move: _Move, dialect: Dialect) -> _Generating | None:
         """The ROS 1 transmission from which txtool generates exactly ``move.old``: the
         conversion itself, or the same without the reduction it had to write (ROS 1 requires
         one; ros2_control reads a missing one as 1.0)."""
@@ -195,10 +225,11 @@ class Placer:
             candidates.append(replace(t, actuators=(bare, *t.actuators[1:])))
         want = _shape(move.old, comments=False)
         for candidate in candidates:
-            built = self._build(_Move(move.old, translate(candidate, dialect).transmission,
-                                      move.carried), "", "", move.old)
+            forward = translate(candidate, dialect).transmission
+            built = self._build(_Move(move.old, forward, move.carried), "", "", move.old,
+                                record=False)
             if _shape(built, comments=False) == want:
-                return candidate
+                return _Generating(candidate, forward, want)
         return None
 
     def _ungenerate(self, component: etree._Element, moves: list[_Move]) -> None:
@@ -214,13 +245,18 @@ class Placer:
             anchor.addnext(new)
             anchor = new
         parent.remove(component)
+        for move in moves:
+            # Each replaced element stands alone: lxml frees an element of a detached subtree
+            # by scanning that whole subtree, so a block of N would cost N squared.
+            component.remove(move.old)
 
     # Building ----------------------------------------------------------------------------
 
-    def _build(self, move: _Move, indent: str, step: str,
-               like: etree._Element) -> etree._Element:
+    def _build(self, move: _Move, indent: str, step: str, like: etree._Element, *,
+               record: bool = True) -> etree._Element:
         """The converted element at ``indent``, in the namespace of ``like``, with the
-        comments and carried children of the old one."""
+        comments and carried children of the old one; ``record``: as what replaces the old
+        one (:attr:`built`), not a trial build to compare with."""
         t = move.new
         new = dialects.build(t, t.dialect, indent=indent, step=step, namespace=_namespace(like))
         for (kind, name), elements in (move.carried or {}).items():
@@ -228,9 +264,10 @@ class Placer:
                 (m for m in children(new, kind) if m.get("name") == name), new)
             owner.extend(copy.deepcopy(e) for e in elements)
         with_comments(new, move.old)
-        if move.carried or any(isinstance(c, etree._Comment) for c in new.iter()):
+        if move.carried or _has_comment(new):
             dialects.pretty(new, indent, step)  # build() laid out all but these
-        self.built[move.old] = new
+        if record:
+            self.built[move.old] = new
         return new
 
 
@@ -272,18 +309,24 @@ def _insert_first(parent: etree._Element, child: etree._Element) -> None:
     parent.insert(0, child)
 
 
-def _declaration(q: Callable[[str], str], joint: Member) -> etree._Element:
-    element = etree.Element(q("joint"), name=joint.name)
-    for name in joint.interfaces:
+def _declaration(q: Callable[[str], str], commands: tuple[str, ...],
+                 states: tuple[str, ...]) -> etree._Element:
+    """A ``<joint>`` declaring these interfaces, its name still empty (the first attribute)."""
+    element = etree.Element(q("joint"), name="")
+    for name in commands:
         etree.SubElement(element, q("command_interface"), name=name)
-    for name in joint.state_interfaces:
+    for name in states:
         etree.SubElement(element, q("state_interface"), name=name)
     return element
 
 
-def _shape(element: etree._Element, *, comments: bool = True) -> tuple:
+def _shape(element: etree._Element, *, comments: bool = True,
+           known: dict[etree._Element, tuple] | None = None) -> tuple:
     """Tags, attributes, stripped texts and children: the element without its layout.
-    ``comments=False`` leaves out the comments inside transmissions (carried, not generated)."""
+    ``comments=False`` leaves out the comments inside transmissions (carried, not generated);
+    ``known``: shapes already computed, by element."""
+    if known and element in known:
+        return known[element]
     kids = []
     for child in element:
         if isinstance(child, etree._Comment):
@@ -291,7 +334,7 @@ def _shape(element: etree._Element, *, comments: bool = True) -> tuple:
                 kids.append(("#comment", child.text))
             continue
         if isinstance(child.tag, str):
-            kids.append(_shape(child, comments=comments))
+            kids.append(_shape(child, comments=comments, known=known))
     return (element.tag, dict(element.attrib), (element.text or "").strip(), tuple(kids))
 
 
@@ -349,8 +392,12 @@ def with_comments(new: etree._Element, old: etree._Element, indent: str | None =
                   step: str | None = None) -> etree._Element:
     """Carry the comments of the old element: under the same joint or actuator when they
     stood there, else at the top of the transmission."""
-    targets = {(local(m), m.get("name")): m for m in new if isinstance(m.tag, str)}
-    for parent in [old, *children(old, "joint"), *children(old, "actuator")]:
+    parents: list[etree._Element] = []  # none without a comment (most transmissions)
+    targets: dict[tuple[str, str | None], etree._Element] = {}
+    if _has_comment(old):
+        parents = [old, *children(old, "joint"), *children(old, "actuator")]
+        targets = {(local(m), m.get("name")): m for m in new if isinstance(m.tag, str)}
+    for parent in parents:
         target = new if parent is old else targets.get((local(parent), parent.get("name")), new)
         comments = [etree.Comment(c.text) for c in parent if isinstance(c, etree._Comment)]
         for position, comment in enumerate(comments):
@@ -358,10 +405,13 @@ def with_comments(new: etree._Element, old: etree._Element, indent: str | None =
                 new.insert(position, comment)
             else:
                 target.append(comment)
-    if indent is not None and step is not None and any(
-            isinstance(c, etree._Comment) for c in new.iter()):
+    if indent is not None and step is not None and _has_comment(new):
         dialects.pretty(new, indent, step)
     return new
+
+
+def _has_comment(element: etree._Element) -> bool:
+    return next(element.iter(etree.Comment), None) is not None
 
 
 def _namespace(element: etree._Element) -> str | None:

@@ -11,13 +11,16 @@ exactly like the original (:mod:`txtool.mechanics.equivalence`).
 from __future__ import annotations
 
 import itertools
+from collections.abc import Hashable
 from dataclasses import dataclass, field
 
 from txtool.dialects.read import read_source
 from txtool.io.xmlio import Source, parse_bytes
 from txtool.model.core import DIALECTS, Dialect, Transmission
-from txtool.model.robot import robot_joints
+from txtool.model.robot import JointInfo, robot_joints
+from txtool.transform.collector import paused
 from txtool.transform.convert import convert_source, judge, listed_against_roles
+from txtool.transform.shapes import ordered_shape, shape
 from txtool.views.tables import FIELDS
 
 
@@ -71,6 +74,7 @@ def _reconvert(source: Source, target: Dialect, *, consume: bool) -> Source:
     return Source(source.path, data, parse_bytes(data, source.path, limit=None))
 
 
+@paused
 def roundtrip(source: Source) -> RoundTripReport:
     report = RoundTripReport(source.path)
     originals = [f.transmission for f in read_source(source, locate=False)]
@@ -103,23 +107,32 @@ def _take(found: dict[_Key, list[Transmission]], name: str) -> Transmission | No
 
 def _cycles(source: Source, start: Dialect, group: list[Transmission], joints) -> list[CycleRow]:
     """The rows of every cycle from ``start``. Cycles that begin with the same conversion
-    share it (and its equivalence check); each later leg converts a fresh parse."""
+    share it (and its equivalence check); each later leg converts a fresh parse (the first
+    cycle takes the parse the shared leg was read from): one tree of each leg alive at once."""
     rows: dict[tuple[Dialect, ...], list[CycleRow]] = {}
     cycles = cycles_from(start)
     for first in dict.fromkeys(cycle[1] for cycle in cycles):
         leg = _reconvert(source, first, consume=False)
         verdicts = _Verdicts(group, _by_name(leg), joints)
+        data, parsed = leg.data, [leg.tree]
+        del leg
         for cycle in (c for c in cycles if c[1] == first):
-            current = Source(leg.path, leg.data, parse_bytes(leg.data, leg.path, limit=None))
+            tree = parsed.pop() if parsed else parse_bytes(data, source.path, limit=None)
+            current = Source(source.path, data, tree)
+            del tree
             for step in cycle[2:]:
                 current = _reconvert(current, step, consume=True)
             rows[cycle] = _rows(cycle, group, _by_name(current), verdicts)
+            del current
     return [row for cycle in cycles for row in rows[cycle]]
 
 
 class _Verdicts:
     """Whether each transmission's first conversion drives the actuators like the original,
-    computed when a cycle first asks (once per first leg)."""
+    computed when a cycle first asks (once per first leg). A pair whose ordered shape
+    (:func:`.shapes.ordered_shape`: the same up to names that compare alike) and joint limits
+    were already found equivalent is equivalent: the comparison reads names only to order
+    and match them."""
 
     def __init__(self, group: list[Transmission], first_leg: dict[_Key, list[Transmission]],
                  joints) -> None:
@@ -127,27 +140,48 @@ class _Verdicts:
         self.group = group
         self.joints = joints
         self.known: dict[int, str] = {}
+        self.equivalent: set[Hashable] = set()
 
     def __getitem__(self, index: int) -> str:
         from txtool.mechanics.equivalence import compare_pair
 
         if index not in self.known:
             t, converted = self.group[index], self.converted[index]
-            pair = compare_pair(t, converted, self.joints) if converted else None
-            self.known[index] = _verdict(pair)
+            if converted is None:
+                self.known[index] = _verdict(None)
+                return self.known[index]
+            key = (ordered_shape(t, converted),
+                   tuple(_limits(self.joints.get(j.name)) for j in t.joints))
+            if key in self.equivalent:
+                self.known[index] = "yes"
+                return "yes"
+            self.known[index] = _verdict(compare_pair(t, converted, self.joints))
+            if self.known[index] == "yes":
+                self.equivalent.add(key)
         return self.known[index]
+
+
+def _limits(info: JointInfo | None) -> tuple[str, ...] | None:
+    """What the equivalence samples of a joint (its floats as text: -0.0 is not 0.0)."""
+    if info is None:
+        return None
+    return (repr(info.position_range()), repr(info.velocity), repr(info.effort))
 
 
 def _rows(cycle: tuple[Dialect, ...], group: list[Transmission],
           final: dict[_Key, list[Transmission]], verdicts: _Verdicts) -> list[CycleRow]:
     rows = []
+    kept: set[Hashable] = set()  # shapes (:func:`.shapes.shape`) that came back whole
     for index, t in enumerate(group):
         back = _take(final, t.name)
         if back is None:
             rows.append(CycleRow(t.name, cycle, dict.fromkeys(FIELDS, False), "n/a: lost",
                                  ("the transmission is missing after the cycle",)))
             continue
-        lost = judge(t, back)
+        key = shape(t, back)
+        lost = {} if key in kept else judge(t, back)
+        if not lost:
+            kept.add(key)
         details = [f"{key}: {change}" for key, change in lost.items()]
         if verdicts[index].startswith("no") and t.dialect == "ros1" and listed_against_roles(t):
             details.append("the original lists its members against their roles (TX404): "
