@@ -57,6 +57,7 @@ class Ring:
             self.clipped.append((*control, ta, satn, *common))
         self.clip = clipper()
         self.scratch = np.empty((RING, na))
+        self.saved = np.empty(self.work.shape[1])  # row 0 at the start of a checked block
         # The controller's efforts C tau: a copy when C is the identity (reductions of 1,
         # direct joints), a product otherwise.
         self.same = plan.C.shape[0] == plan.C.shape[1] and np.array_equal(
@@ -84,11 +85,11 @@ def delayed_steps(plan: Plan, start: int, stop: int) -> None:
             _block(plan, ring, ring.clipped, n, clip=True)
             ring.saturated = _changed(work[:n, s["ta"]], work[:n, ring.satn])
         else:
-            saved = work[0].copy()
+            ring.saved[...] = work[0]
             _block(plan, ring, ring.checked, n, clip=False)
             demand = work[:n, ring.satn]
             if _changed(demand, ring.clip(demand, low, limit, out=ring.scratch[:n])):
-                work[0] = saved
+                work[0] = ring.saved
                 _block(plan, ring, ring.clipped, n, clip=True)
                 ring.saturated = True
             else:
