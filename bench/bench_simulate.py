@@ -6,12 +6,16 @@ and, when present, ``fixtures/demo_robot.urdf`` and the corpus UR5e
 (``../shared/corpus/universal_robot__ur5e.urdf``). For each robot it reports startup (imports,
 loading, model build and the loop's setup) separately, then the per-step wall time of the closed
 loop and of a bare ``rnea + aba`` loop over the same states on the same model, and their ratio.
-Best of ``REPEAT`` runs each. txtool is byte-compiled first, as installing it does (see
-``installed.py``).
+The two are timed in turn, ``--repeat`` times (default 15): the ratio of the best times, the
+median of the ratios of each pair, and the median ratio of their CPU times (``process_time``,
+which other processes' load disturbs less than wall time). txtool is byte-compiled first, as
+installing it does (see ``installed.py``).
 """
 
 from __future__ import annotations
 
+import argparse
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -70,7 +74,7 @@ def startup_seconds() -> float:
     return float(out.stdout.strip())
 
 
-def measure(path: str) -> dict[str, float]:
+def measure(path: str, repeat: int = REPEAT) -> dict[str, float]:
     """Closed loop and bare rnea+aba, interleaved so that both see the same machine load."""
     import numpy as np
     import pinocchio as pin
@@ -79,12 +83,13 @@ def measure(path: str) -> dict[str, float]:
     from txtool.simulation.run import Options, finish, prepare
 
     options = Options(robot=path, allow_saturation=True)
-    best_loop = best_bare = float("inf")
-    for _ in range(REPEAT):
+    loops, bares, cpu_ratios = [], [], []
+    for _ in range(repeat):
         prepared = prepare(options, None)
-        started = time.perf_counter()
+        started, cpu = time.perf_counter(), time.process_time()
         loop.run(prepared.plan)
-        best_loop = min(best_loop, time.perf_counter() - started)
+        loops.append(time.perf_counter() - started)
+        loop_cpu = time.process_time() - cpu
         plan = prepared.plan
         model = plan.robot.model
         xs = plan.rows[:, plan.slots["x"]]
@@ -92,12 +97,16 @@ def measure(path: str) -> dict[str, float]:
         vs = np.ascontiguousarray(plan.rows[:, plan.slots["v"]])
         accs = np.ascontiguousarray(plan.rows[:, plan.slots["a"]])
         taus = np.ascontiguousarray(plan.rows[:, plan.slots["ff"]])
-        best_bare = min(best_bare, _bare(pin, model, model.createData(), qs, vs, accs, taus))
-    run = finish(prepared, best_loop)
+        cpu = time.process_time()
+        bares.append(_bare(pin, model, model.createData(), qs, vs, accs, taus))
+        cpu_ratios.append(loop_cpu / max(time.process_time() - cpu, 1e-9))
+    run = finish(prepared, min(loops))
     return {
         "nv": model.nv, "steps": plan.steps, "setup_s": prepared.setup_s,
-        "loop_us": 1e6 * best_loop / plan.steps, "bare_us": 1e6 * best_bare / plan.steps,
-        "ratio": best_loop / best_bare,
+        "loop_us": 1e6 * min(loops) / plan.steps, "bare_us": 1e6 * min(bares) / plan.steps,
+        "ratio": min(loops) / min(bares),
+        "median": statistics.median(a / b for a, b in zip(loops, bares, strict=True)),
+        "cpu": statistics.median(cpu_ratios),
         "max_error": max(j.max_error for j in run.joints.values()),
     }
 
@@ -114,8 +123,12 @@ def _bare(pin: object, model: object, data: object, qs: object, vs: object, accs
 
 
 def main(argv: list[str]) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("robots", nargs="*", help="URDF files (default: the set above)")
+    parser.add_argument("--repeat", type=int, default=REPEAT, help="interleaved runs")
+    args = parser.parse_args(argv)
     byte_compile()
-    paths = list(argv)
+    paths = list(args.robots)
     with tempfile.TemporaryDirectory() as folder:
         if not paths:
             for n in (3, 6):
@@ -127,12 +140,12 @@ def main(argv: list[str]) -> None:
             paths += [str(p) for p in (demo, ur5e) if p.is_file()]
         print(f"startup (fresh interpreter, imports): {startup_seconds() * 1e3:.0f} ms")
         print(f"{'robot':24s} {'nv':>3s} {'steps':>6s} {'setup ms':>9s} {'loop us/step':>13s} "
-              f"{'rnea+aba us':>12s} {'ratio':>6s} {'max err':>9s}")
+              f"{'rnea+aba us':>12s} {'ratio':>6s} {'median':>7s} {'cpu':>6s} {'max err':>9s}")
         for path in paths:
-            r = measure(path)
+            r = measure(path, args.repeat)
             print(f"{Path(path).name:24s} {r['nv']:3d} {r['steps']:6d} {r['setup_s'] * 1e3:9.1f} "
                   f"{r['loop_us']:13.2f} {r['bare_us']:12.2f} {r['ratio']:6.2f} "
-                  f"{r['max_error']:9.2e}")
+                  f"{r['median']:7.2f} {r['cpu']:6.2f} {r['max_error']:9.2e}")
 
 
 if __name__ == "__main__":

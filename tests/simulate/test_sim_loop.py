@@ -1,9 +1,10 @@
-"""The delayed fast loop (two working rows, Phi folded into H and PD) against the plain one.
+"""The delayed fast loop (a ring of working rows, Phi folded into H and PD) against the plain one.
 
 ``loop._fast_steps`` is the loop as the docs describe it, one product per matrix and one view
 per column per step; ``loop._delayed_steps`` is what the default settings run. They must agree
 to round-off: x and v within 1e-12, efforts within 1e-12 of their peak. Accelerations get
 1e-11 of their peak: ``aba`` divides the torque's round-off (the folded sums) by the inertia.
+The fast loop leaves out the clip where it changes nothing; that must change no bit.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ import pytest
 
 from tests.simulate.robots import arm_ros1, pendulum, write
 from tests.simulate.test_sim_counterbalance import WEAK_MOTOR
-from txtool.simulation import loop
+from txtool.simulation import loop, ring
 from txtool.simulation.run import Options, prepare
 
 FIXTURES = Path(__file__).resolve().parents[2] / "fixtures"
@@ -42,8 +43,11 @@ def robots(tmp_path) -> dict[str, Options]:
     }
 
 
-@pytest.mark.parametrize("case", ["demo robot", "arm (simple + differential)", "direct pendulum",
-                                  "counterbalanced pendulum", "saturating"])
+CASES = ["demo robot", "arm (simple + differential)", "direct pendulum",
+         "counterbalanced pendulum", "saturating"]
+
+
+@pytest.mark.parametrize("case", CASES)
 def test_the_delayed_loop_matches_the_plain_loop(tmp_path, case, monkeypatch):
     options = robots(tmp_path)[case]
     fast = prepare(options, None)
@@ -62,3 +66,32 @@ def test_the_delayed_loop_matches_the_plain_loop(tmp_path, case, monkeypatch):
     if case == "saturating":
         limit = fast.plan.limit
         assert (np.abs(fast.plan.rows[:end, s["ta"]]) > limit).any()
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_leaving_out_a_clip_that_changes_nothing_changes_no_bit(tmp_path, case, monkeypatch):
+    options = robots(tmp_path)[case]
+    checked = prepare(options, None)
+    loop.run(checked.plan)
+    monkeypatch.setattr(ring, "_changed", lambda a, b: True)  # every block clips
+    clipped = prepare(options, None)
+    loop.run(clipped.plan)
+    assert checked.plan.rows.tobytes() == clipped.plan.rows.tobytes()
+
+
+def test_a_block_that_saturates_runs_again_with_the_clip(tmp_path, monkeypatch):
+    blocks: list[str] = []
+    block = ring._block
+
+    def spy(plan, working, views, n, *, clip):
+        blocks.append("C" if clip else ".")
+        block(plan, working, views, n, clip=clip)
+
+    monkeypatch.setattr(ring, "_block", spy)
+    prepared = prepare(robots(tmp_path)["saturating"], None)
+    loop.run(prepared.plan)
+    runs = "".join(blocks)
+    # unclipped, then again with the clip; clipping while it saturates; checking again after
+    assert ".C" in runs and "CC" in runs and "C." in runs
+    steps = len(runs) - runs.count(".C")  # a block run twice counts once
+    assert steps * ring.RING >= prepared.plan.steps > (steps - 2) * ring.RING

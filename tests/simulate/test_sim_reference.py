@@ -103,3 +103,18 @@ def test_trajectory_sets_the_duration_unless_given(tmp_path):
     assert prepare(Options(robot=robot, trajectory=csv, duration=2.0), None).duration == 2.0
     run = simulate_one(Options(robot=robot, trajectory=csv, interpolation="linear"), None)
     assert run.steps == 1500 and "linear" in run.reference
+
+
+@pytest.mark.parametrize(("move", "dt"), [(1.0, 0.001), (4.69, 0.001), (0.37, 0.0007)])
+def test_the_default_motion_is_each_joints_profile_to_the_bit(move, dt):
+    ranges = [(-1.0, 1.0), (-3.1, 0.4), (0.0, 2.5)]
+    motion = Motion(move, np.array([1.0, 0.37, 0.9]), "", ())
+    ref = sample(ranges, motion, dt)
+    # One joint at a time over the whole run, each move picked where it applies.
+    second = ref.time >= move
+    for i, (lo, hi) in enumerate(ranges):
+        middle, half = (lo + hi) / 2, 0.25 * (hi - lo) * motion.amplitude[i]
+        up = minimum_jerk(ref.time, 0.0, move, middle - half, middle + half)
+        down = minimum_jerk(ref.time, move, 2 * move, middle + half, middle - half)
+        for got, a, b in zip((ref.q, ref.qd, ref.qdd), up, down, strict=True):
+            assert got[:, i].tobytes() == np.where(second, b, a).tobytes()

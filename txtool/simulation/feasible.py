@@ -354,16 +354,18 @@ def _amplitude_scale(limits: Limits, qd: np.ndarray, parts: Parts, lag: Lag, mov
 
 
 def sample(ranges: list[tuple[float, float]], motion: Motion, dt: float) -> Reference:
-    """The reference of ``motion`` at every control step (two moves: up, then back)."""
+    """The reference of ``motion`` at every control step (two moves: up, then back).
+
+    Each move is evaluated on its own steps only, for every joint at once: the profile's
+    powers of the normalised time are shared, and each value is the same IEEE operation as
+    evaluating the joints one by one over the whole run.
+    """
     t = step_times(2 * motion.move, dt)
     low, high = _ends(ranges, motion.amplitude)
-    q, qd, qdd = (np.zeros((len(t), len(ranges))) for _ in range(3))
-    second = t >= motion.move
-    for i in range(len(ranges)):
-        up = minimum_jerk(t, 0.0, motion.move, low[i], high[i])
-        down = minimum_jerk(t, motion.move, 2 * motion.move, high[i], low[i])
-        for target, a, b in zip((q, qd, qdd), up, down, strict=True):
-            target[:, i] = np.where(second, b, a)
+    second = t >= motion.move  # the times increase: the up move's rows come first
+    up = minimum_jerk(t[~second, None], 0.0, motion.move, low, high)
+    down = minimum_jerk(t[second, None], motion.move, 2 * motion.move, high, low)
+    q, qd, qdd = (np.concatenate(pair) for pair in zip(up, down, strict=True))
     return Reference(t, q, qd, qdd, describe(motion))
 
 

@@ -31,6 +31,7 @@ import pinocchio as pin
 
 from txtool.simulation.model import RobotModel
 from txtool.simulation.plant import Dynamics
+from txtool.simulation.ring import delayed_steps as _delayed_steps
 from txtool.simulation.sensing import Encoder
 
 CHUNK = 500
@@ -151,129 +152,6 @@ def _steps(plan: Plan, start: int, stop: int) -> None:
         _delayed_steps(plan, start, stop)
     else:
         _fast_steps(plan, start, stop)
-
-
-def _next_row(plan: Plan) -> np.ndarray:
-    """The matrix from a working row's tail (x, v, a of step k; then the clipped demand
-    ``satn`` and the precomputed columns of step k + 1) to step k + 1's head: applied effort,
-    the controller's estimates (``H``), the plant's joint effort (``PD``), ta (zero), x, v.
-
-    Folding ``Phi`` into ``H`` and ``PD`` saves two products per step; only the rounding of
-    the sums changes (results agree with the unfolded loop to about 1e-15).
-    """
-    s, nv, width, na = plan.slots, plan.robot.nv, plan.rows.shape[1], plan.limit.size
-    dynamic = ("a", "ta", "est", "tj")
-    for matrix in (plan.H, plan.PD):
-        if any(np.any(matrix[:, s[name]]) for name in dynamic):
-            raise ValueError("H and PD read only x, v, sat and the precomputed columns")
-    first = s["x"].start  # the tail read starts here
-    static = slice(s["one"].start, width)
-    row = slice(0, width - first)
-    satn = slice(width - first, width - first + na)
-    later = slice(satn.stop, satn.stop + width - static.start)
-    phi = plan.Phi[:, first:]
-    out = np.zeros((s["v"].stop, later.stop))
-    out[s["x"].start : s["v"].stop, row] = phi
-    out[s["sat"], satn] = np.eye(na)
-    for rows, matrix in ((s["est"], plan.H), (s["tj"], plan.PD)):
-        block = out[rows.start : rows.start + matrix.shape[0]]
-        block[:, row] += matrix[:, s["x"]] @ phi[:nv] + matrix[:, s["v"]] @ phi[nv:]
-        block[:, satn] += matrix[:, s["sat"]]
-        block[:, later] += matrix[:, static]
-    return out
-
-
-def _delayed_steps(plan: Plan, start: int, stop: int) -> None:
-    """The fast loop with the one-period delay, on two working rows used in turn.
-
-    A step costs one ``rnea``, one ``aba``, two matrix products (the controller's efforts,
-    and :func:`_next_row`), a clip and three row copies (the acceleration, the precomputed
-    columns of the next step, the record of this one); each step makes two views.
-    """
-    s, nv, rows = plan.slots, plan.robot.nv, plan.rows
-    width, na = rows.shape[1], plan.limit.size
-    big = plan.extras.get("next_row")
-    if big is None:
-        big = plan.extras["next_row"] = _next_row(plan)
-    static = slice(s["one"].start, width)
-    record = slice(0, s["one"].start)
-    head, tail = slice(0, s["v"].stop), slice(s["x"].start, None)
-    work = [np.zeros(width + na + width - static.start) for _ in range(2)]
-    first = work[0]
-    first[:width] = rows[start]
-    est = first[s["est"]]
-    est[: plan.H.shape[0]] = plan.H @ rows[start]
-    first[s["tj"]] = plan.PD @ rows[start]
-    bias_at = 3 * nv
-    views: list[tuple[np.ndarray, ...]] = []
-    for w in work:
-        e = w[s["est"]]
-        views.append((e[:nv], e[nv : 2 * nv], e[2 * nv : 3 * nv], e[bias_at : bias_at + na],
-                      w[s["ta"]], w[width : width + na], w[s["x"]], w[s["v"]], w[s["tj"]],
-                      w[s["a"]], w[width + na :], w[record], w[head], w[tail]))
-    (cm, cdata), (pm, pdata) = plan.ctrl, plan.plant
-    rnea, aba, dot, C, limit, low = pin.rnea, pin.aba, np.dot, plan.C, plan.limit, -plan.limit
-    clip, bias = _clip(), plan.bias
-    # Two steps per iteration, one per working row, so that every view is made once.
-    (xh0, vh0, acc0, off0, ta0, satn0, x0, v0, tj0, a0, later0, mine0, head0, tail0), \
-        (xh1, vh1, acc1, off1, ta1, satn1, x1, v1, tj1, a1, later1, mine1, head1, tail1) = views
-    upcoming = rows[start + 1 : stop + 1, static]
-    past = rows[start:stop, record]
-    pairs = (stop - start) // 2
-    # The controller's efforts C tau: a copy when C is the identity (reductions of 1, direct
-    # joints), a product otherwise.
-    same = C.shape[0] == C.shape[1] and np.array_equal(C, np.eye(C.shape[0]))
-    for up0, up1, past0, past1 in zip(upcoming[0 : 2 * pairs : 2], upcoming[1 : 2 * pairs : 2],
-                                      past[0 : 2 * pairs : 2], past[1 : 2 * pairs : 2],
-                                      strict=True):
-        if same:
-            ta0[...] = rnea(cm, cdata, xh0, vh0, acc0)
-        else:
-            dot(C, rnea(cm, cdata, xh0, vh0, acc0), out=ta0)
-        if bias:
-            ta0 += off0
-        clip(ta0, low, limit, out=satn0)
-        a0[...] = aba(pm, pdata, x0, v0, tj0)
-        later0[...] = up0
-        dot(big, tail0, out=head1)
-        past0[...] = mine0
-        if same:
-            ta1[...] = rnea(cm, cdata, xh1, vh1, acc1)
-        else:
-            dot(C, rnea(cm, cdata, xh1, vh1, acc1), out=ta1)
-        if bias:
-            ta1 += off1
-        clip(ta1, low, limit, out=satn1)
-        a1[...] = aba(pm, pdata, x1, v1, tj1)
-        later1[...] = up1
-        dot(big, tail1, out=head0)
-        past1[...] = mine1
-    last = head0
-    if (stop - start) % 2:
-        dot(C, rnea(cm, cdata, xh0, vh0, acc0), out=ta0)
-        if bias:
-            ta0 += off0
-        clip(ta0, low, limit, out=satn0)
-        a0[...] = aba(pm, pdata, x0, v0, tj0)
-        later0[...] = upcoming[-1]
-        dot(big, tail0, out=head1)
-        past[-1] = mine0
-        last = head1
-    rows[stop, head] = last  # x, v, applied effort (and estimates) of the last row
-
-
-def _clip() -> Callable[..., np.ndarray]:
-    """numpy's clip ufunc (one call) when this numpy exposes it, else minimum then maximum."""
-    ufunc = getattr(getattr(getattr(np, "_core", None), "umath", None), "clip", None)
-    if isinstance(ufunc, np.ufunc):
-        return ufunc
-
-    def clip(value: np.ndarray, low: np.ndarray, high: np.ndarray, out: np.ndarray
-             ) -> np.ndarray:
-        np.minimum(value, high, out=out)
-        return np.maximum(out, low, out=out)
-
-    return clip
 
 
 def _views(plan: Plan, start: int, stop: int) -> zip:
