@@ -57,11 +57,12 @@ def calls(run: Callable[[], object]) -> int:
 
 
 def per_transmission(path: Path, args: list[str], size: int) -> tuple[float, float]:
-    """Calls and CPU seconds per transmission of ``txtool ARGS PATH``: the best of two timed
-    runs (the first one's imports and first-call caches do not count), then a counted one."""
+    """Calls and CPU seconds per transmission of ``txtool ARGS PATH``: the best of three timed
+    runs (the first one's imports and first-call caches do not count; the third takes out a
+    run slowed by other work on a shared machine), then a counted one."""
     runner = CliRunner()
     seconds = []
-    for _ in range(2):
+    for _ in range(3):
         start = time.process_time()
         result = runner.invoke(cli, [*args, str(path)])
         seconds.append(time.process_time() - start)
