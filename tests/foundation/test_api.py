@@ -143,3 +143,32 @@ def test_model_builder_is_the_class_constructor() -> None:
         builder(Member)(role="joint1")
     with pytest.raises(TypeError, match="colour"):
         builder(Member)(name="j", colour="red")
+
+    @dataclasses.dataclass(frozen=True, slots=True)
+    class Listed:  # a default factory would be shared by every value: refused
+        items: list[str] = dataclasses.field(default_factory=list)
+
+    with pytest.raises(TypeError, match="Listed.items: a default factory is not supported"):
+        builder(Listed)
+
+
+def test_standard_type_names_each_standard_kind_and_refuses_others() -> None:
+    from txtool.model.core import kind_of, standard_type
+
+    for kind in ("simple", "differential", "four_bar"):
+        assert kind_of(standard_type(kind)) == kind
+    with pytest.raises(ValueError, match="kind 'other' has no standard type"):
+        standard_type("other")  # type: ignore[arg-type]
+
+
+def test_a_custom_type_is_not_translated_across_families() -> None:
+    from txtool.dialects.translate import translate
+    from txtool.model.core import Member, Transmission
+
+    custom = Transmission(name="t", type="franka_hw/FrankaStateInterface", kind="other",
+                          dialect="ros1", joints=(Member(name="j"),))
+    across = translate(custom, "ros2-p2")
+    assert across.transmission is custom
+    assert across.losses == ["transmission 't': custom type 'franka_hw/FrankaStateInterface' "
+                             "cannot be carried to ros2-p2; left as written"]
+    assert translate(custom, "ros1").losses == []

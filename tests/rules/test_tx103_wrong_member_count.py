@@ -85,3 +85,21 @@ def test_literal_xacro_members_under_conditionals_are_not_counted():
     </robot>
     """
     assert check(xml, filename="lib.urdf.xacro", select=["TX103"]) == []
+
+
+def test_ros2_simple_with_two_actuators_uses_one():
+    xml = ROS2.format(component="system", more='<actuator name="m1" role="actuator1"/>'
+                                               '<actuator name="m2" role="actuator2"/>')
+    found = problems(xml, select=["TX103"])
+    assert [(p.line, p.column, p.code) for p in found] == [(4, 5, "TX103")]
+    assert found[0].message == ("transmission 't' (SimpleTransmission) has 1 joint and 2 "
+                                "actuators: ros2_control uses one actuator and ignores the others")
+
+
+def test_ros2_simple_without_joint_fails_to_load():
+    xml = ROS2.format(component="system", more="").replace('<joint name="a" role="joint1"/>',
+                                                           '<actuator name="m"/>')
+    found = problems(xml, select=["TX103"])
+    assert [(p.line, p.column, p.code) for p in found] == [(4, 5, "TX103")]
+    assert found[0].message.endswith("has 0 joints and 1 actuator: ros2_control's loader reads "
+                                     "the first joint and fails")

@@ -140,9 +140,6 @@ class LintContext:
 
         return robot_hw_sim(self.source.root)
 
-    def transmissions(self) -> Iterator[Found]:
-        return iter(self.found)
-
 
 class Joints(Mapping[str, JointInfo]):
     """The robot's joints by name, each read when a rule first asks for it: rules look up the

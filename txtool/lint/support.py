@@ -2,8 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator
-from typing import Any
+from collections.abc import Iterator
 
 from lxml import etree
 
@@ -12,7 +11,7 @@ from txtool.io.xmlio import is_xacro_element, local
 from txtool.lint.context import LintContext
 from txtool.lint.facts import OWN_LOADER_FAMILIES, Facts, MemberRef, facts_of
 from txtool.model.numbers import C_SPACE, parse_ros2
-from txtool.model.robot import children
+from txtool.model.robot import children  # noqa: F401 (the rules import it from here)
 
 KNOWN_FAMILIES: tuple[str, ...] = (*OWN_LOADER_FAMILIES, "franka_hw/")
 
@@ -20,15 +19,6 @@ KNOWN_FAMILIES: tuple[str, ...] = (*OWN_LOADER_FAMILIES, "franka_hw/")
 def members(found: Found) -> list[MemberRef]:
     """Joints then actuators, paired with their elements (same order as the model)."""
     return facts_of(found).members
-
-
-def _memo(found: Found, what: str, compute: Callable[[Found], Any]) -> Any:
-    """Every rule asks the same questions of each transmission: answer each once."""
-    memo = found.memo
-    if what in memo:
-        return memo[what]
-    value = memo[what] = compute(found)
-    return value
 
 
 # xacro itself goes by the "xacro:" prefix; files use several namespace spellings.
@@ -62,33 +52,6 @@ def scope(ctx: LintContext, element: etree._Element) -> tuple[etree._Element, ..
             key.append(parent)
         parent = parent.getparent()
     return tuple(key)
-
-
-def type_element(found: Found) -> etree._Element | None:
-    """The element that carries the type: ``<plugin>`` (ROS 2) or ``<type>`` (ROS 1)."""
-    return facts_of(found).type_element
-
-
-def typed_ros1(found: Found) -> bool:
-    """A ROS 1 transmission ros_control gets past parsing: it has a ``<type>`` element.
-
-    With only the pre-Hydro ``type=`` attribute the parser skips it before any loader runs.
-    """
-    return facts_of(found).typed_ros1
-
-
-def parsed(found: Found) -> bool:
-    """Whether the transmission gets past its loader's parser (ROS 1: a name and a ``<type>``).
-
-    ros_control skips a transmission without a name or type, so it takes part in no
-    comparison with others; ros2_control's parser throws instead, reported on its own.
-    """
-    return facts_of(found).parsed
-
-
-def loaded_by_ros_control(found: Found) -> bool:
-    """Whether ros_control's own parser handles this transmission (not a custom loader)."""
-    return not facts_of(found).own_loader
 
 
 class NumberRef:
@@ -170,13 +133,9 @@ def loader_text(element: etree._Element, plain: bool = False) -> str | None:
     return None
 
 
-def read_numbers(found: Found) -> list[NumberRef]:
-    """The reduction and offset elements the transmission's loader reads (standard types)."""
-    return numbers_of(facts_of(found))
-
-
 def numbers_of(facts: Facts) -> list[NumberRef]:
-    """:func:`read_numbers` of a transmission's facts."""
+    """The reduction and offset elements the transmission's loader reads (standard types), found
+    once per transmission."""
     known = facts.memo.get("read_numbers")
     if known is None:
         known = facts.memo["read_numbers"] = list(_each_number(facts))
@@ -225,11 +184,6 @@ def label(found: Found) -> str:
     return facts_of(found).label
 
 
-def loader_group(found: Found) -> tuple[object, ...]:
-    """Transmissions read by the same loader instance: ROS 1, or one ``<ros2_control>``."""
-    return facts_of(found).group
-
-
 def robot_joints_of_transmissions(
     ctx: LintContext,
 ) -> list[tuple[Found, etree._Element, etree._Element]]:
@@ -253,9 +207,3 @@ def _robot_joints(ctx: LintContext) -> Iterator[tuple[Found, etree._Element, etr
             element = robot.get(ref.name)  # the model's name is the element's
             if element is not None:
                 yield tx.found, ref.element, element
-
-
-def interface_texts(element: etree._Element) -> list[str]:
-    """The non-empty ``<hardwareInterface>`` texts of a ROS 1 joint or actuator, stripped."""
-    texts = ((h.text or "").strip() for h in children(element, "hardwareInterface"))
-    return [text for text in texts if text]
