@@ -172,3 +172,24 @@ def test_a_custom_type_is_not_translated_across_families() -> None:
     assert across.losses == ["transmission 't': custom type 'franka_hw/FrankaStateInterface' "
                              "cannot be carried to ros2-p2; left as written"]
     assert translate(custom, "ros1").losses == []
+
+
+def test_ros2_writer_writes_read_only_parameters_and_both_role_forms() -> None:
+    from lxml import etree
+
+    from txtool.dialects.ros2 import write
+    from txtool.model.core import Member, Transmission
+
+    t = Transmission(name="t", type="transmission_interface/SimpleTransmission", kind="simple",
+                     dialect="ros2-p2", joints=(Member(name="j", role="joint1", read_only=True),),
+                     actuators=(Member(name="m", role="actuator1"),),
+                     parameters=(("mode", "fast"),))
+    assert etree.tostring(write(t, "ros2-p2")).decode() == (
+        '<transmission name="t"><plugin>transmission_interface/SimpleTransmission</plugin>'
+        '<actuator name="m" role="actuator1"/><joint name="j" role="joint1" read_only="true"/>'
+        '<param name="mode">fast</param></transmission>')
+    assert etree.tostring(write(t, "ros2-p1")).decode() == (
+        '<transmission name="t"><plugin>transmission_interface/SimpleTransmission</plugin>'
+        '<actuator name="m"><role>actuator1</role></actuator>'
+        '<joint name="j" read_only="true"><role>joint1</role></joint>'
+        '<param name="mode">fast</param></transmission>')
