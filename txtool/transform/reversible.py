@@ -17,11 +17,10 @@ from __future__ import annotations
 
 import base64
 import binascii
+import os
 import re
-import secrets
 import zlib
 from dataclasses import dataclass
-from xml.sax.saxutils import quoteattr
 
 from lxml import etree
 
@@ -149,6 +148,10 @@ def restore(data: bytes, restores: list[Restore], path: str) -> bytes:
         element = by_token[item.token]
         block = block_of(data, element)
         if block is None:  # not on lines of its own: keep it as written, under its own name
+            # Imported here: xml.sax.saxutils loads urllib.request, http.client and ssl,
+            # about 25 ms that every conversion would pay at start-up.
+            from xml.sax.saxutils import quoteattr
+
             data = data.replace(item.token.encode(), quoteattr(item.name)[1:-1].encode())
             continue
         start = element.sourceline - 1
@@ -230,7 +233,7 @@ class Carrier:
             return
         drop_marker(found.element)
         if original and restorable(found, original):
-            token = f"txtool-restore-{len(self._restores)}-{secrets.token_hex(8)}"
+            token = f"txtool-restore-{len(self._restores)}-{os.urandom(8).hex()}"
             self._restores.append(Restore(token, original, name))
             self._pending.append((found.element, self._restores[-1]))
         else:
