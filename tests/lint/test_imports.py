@@ -89,3 +89,5 @@ def test_roundtrip_of_a_robot_loads_neither_numpy_nor_rich_s_console(tmp_path, o
     assert probe["code"] == 0
     assert [name for name in HEAVY if name in probe["loaded"]] == []
     assert "rich" not in probe["loaded"]
+    # Nor the network stack that xml.sax.saxutils brings (urllib.request, http.client, ssl).
+    assert [name for name in ("ssl", "http", "email", "urllib") if name in probe["loaded"]] == []
