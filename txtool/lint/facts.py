@@ -125,7 +125,6 @@ class Hints:
 
 
 _UNSURE = Hints()
-_KINDS: dict[str, str] = {}  # kind_of by type text: a document repeats a few types
 
 
 class Facts:
@@ -164,12 +163,7 @@ class Facts:
         self.element = element
         self.name: str = element.get("name", "")  # as the model's Transmission.name
         self.ros1 = ros1
-        kind = _KINDS.get(self.type)
-        if kind is None:
-            kind = kind_of(self.type)
-            if len(_KINDS) < 1024:
-                _KINDS[self.type] = kind
-        self.kind = kind
+        self.kind = kind_of(self.type)
         self.kids = kids
         # ros_control gets past parsing only with a <type> element (the pre-Hydro type=
         # attribute alone is skipped before any loader runs) and a name.

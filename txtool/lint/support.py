@@ -10,8 +10,10 @@ from txtool.dialects.read import Found
 from txtool.io.xmlio import is_xacro_element, local
 from txtool.lint.context import LintContext
 from txtool.lint.facts import OWN_LOADER_FAMILIES, Facts, MemberRef, facts_of
+from txtool.model.core import Member
 from txtool.model.numbers import C_SPACE, parse_ros2
-from txtool.model.robot import children  # noqa: F401 (the rules import it from here)
+from txtool.model.robot import children
+from txtool.model.semantics import ROLES_ACTUATOR, ROLES_JOINT
 
 KNOWN_FAMILIES: tuple[str, ...] = (*OWN_LOADER_FAMILIES, "franka_hw/")
 
@@ -177,6 +179,16 @@ def _number_element(found: list[etree._Element] | None, ros1: bool,
         # (ros2_control hardware_interface/src/component_parser.cpp:134-161 @157446a).
         return next((e for e in found if loader_text(e, plain) is not None), found[0])
     return found[0]
+
+
+def coupled_groups(
+    tx: Facts,
+) -> tuple[tuple[str, tuple[Member, ...], list[etree._Element], tuple[str, str]], ...]:
+    """``(noun, members, their elements, the roles the loader expects)`` for the joints, then
+    the actuators, of a transmission (the role rules of coupled transmissions read these)."""
+    t, element = tx.found.transmission, tx.found.element
+    return (("joint", t.joints, children(element, "joint"), ROLES_JOINT),
+            ("actuator", t.actuators, children(element, "actuator"), ROLES_ACTUATOR))
 
 
 def label(found: Found) -> str:

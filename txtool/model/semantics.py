@@ -23,6 +23,17 @@ ROLES_JOINT = ("joint1", "joint2")
 ROLES_ACTUATOR = ("actuator1", "actuator2")
 
 
+def against_roles(members: tuple[Member, ...], roles: tuple[str, str]) -> bool:
+    """A coupled pair written role 2 first: ros_control takes the values by role but the data
+    in XML order (joint_state_interface_provider.cpp), so the two swap values."""
+    return [m.role for m in members] == [roles[1], roles[0]]
+
+
+def listed_against_roles(t: Transmission) -> bool:
+    """A coupled member pair of ``t`` written role 2 first (see :func:`against_roles`)."""
+    return against_roles(t.joints, ROLES_JOINT) or against_roles(t.actuators, ROLES_ACTUATOR)
+
+
 class NotLoadable(ValueError):
     """The loader would refuse this transmission; the message says why."""
 

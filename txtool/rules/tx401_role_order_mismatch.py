@@ -40,9 +40,8 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import children, label
+from txtool.lint.support import coupled_groups, label
 from txtool.model.core import Member
-from txtool.model.semantics import ROLES_ACTUATOR, ROLES_JOINT
 
 CODE = "TX401"
 NAME = "role-order-mismatch"
@@ -55,12 +54,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         if tx.ros1 or tx.kind not in ("differential", "four_bar"):
             continue
         found = tx.found
-        t = found.transmission
-        groups = (
-            ("joint", t.joints, children(found.element, "joint"), ROLES_JOINT),
-            ("actuator", t.actuators, children(found.element, "actuator"), ROLES_ACTUATOR),
-        )
-        for noun, members, elements, roles in groups:
+        for noun, members, elements, roles in coupled_groups(tx):
             if any(ctx.unknown(m.name) for m in members[:2]):
                 continue
             message = _mismatch(noun, members[:2], roles)

@@ -40,8 +40,8 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import children, label
-from txtool.model.semantics import ROLES_ACTUATOR, ROLES_JOINT
+from txtool.lint.support import coupled_groups, label
+from txtool.model.semantics import against_roles
 
 CODE = "TX404"
 NAME = "ros1-members-against-roles"
@@ -54,13 +54,8 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         if not tx.ros1 or tx.kind not in ("differential", "four_bar"):
             continue
         found = tx.found
-        t = found.transmission
-        groups = (
-            ("joint", t.joints, children(found.element, "joint"), ROLES_JOINT),
-            ("actuator", t.actuators, children(found.element, "actuator"), ROLES_ACTUATOR),
-        )
-        for noun, members, elements, roles in groups:
-            if len(members) != 2 or [m.role for m in members] != [roles[1], roles[0]]:
+        for noun, members, elements, roles in coupled_groups(tx):
+            if len(members) != 2 or not against_roles(members, roles):
                 continue
             first, second = members
             yield ctx.problem(

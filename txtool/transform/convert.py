@@ -21,13 +21,7 @@ from txtool.dialects.translate import family, is_expression, translate
 from txtool.io.xmlio import Source, local, parse_bytes, serialize
 from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
-from txtool.model.semantics import (
-    ROLES_ACTUATOR,
-    ROLES_JOINT,
-    Effective,
-    NotLoadable,
-    effective,
-)
+from txtool.model.semantics import Effective, NotLoadable, effective, listed_against_roles
 from txtool.transform.collector import paused
 from txtool.transform.placement import Placer
 from txtool.transform.reversible import Carrier
@@ -216,12 +210,6 @@ def _sources(old: Effective, new: Effective) -> list[tuple[str, str]]:
             if i < len(names_old) and names_old[i] != name:
                 changed.append((name, names_old[i]))
     return changed
-
-
-def listed_against_roles(t: Transmission) -> bool:
-    """A coupled member pair written role 2 first (ros_control's data order then differs)."""
-    return any([m.role for m in members] == [roles[1], roles[0]]
-               for members, roles in ((t.joints, ROLES_JOINT), (t.actuators, ROLES_ACTUATOR)))
 
 
 def _same_binding(old, new) -> bool:

@@ -18,8 +18,9 @@ from txtool.dialects.read import read_source
 from txtool.io.xmlio import Source, parse_bytes
 from txtool.model.core import DIALECTS, Dialect, Transmission
 from txtool.model.robot import JointInfo, robot_joints
+from txtool.model.semantics import listed_against_roles
 from txtool.transform.collector import paused
-from txtool.transform.convert import convert_source, judge, listed_against_roles
+from txtool.transform.convert import convert_source, judge
 from txtool.transform.shapes import ordered_shape, shape
 from txtool.views.tables import FIELDS
 
