@@ -11,7 +11,7 @@ Removing an element removes its lines and keeps the blank lines around it.
 from __future__ import annotations
 
 import copy
-from collections.abc import Callable
+from collections.abc import Callable, Hashable
 from dataclasses import dataclass
 
 from lxml import etree
@@ -22,6 +22,7 @@ from txtool.dialects.translate import translate
 from txtool.io.xmlio import local
 from txtool.model.core import Dialect, Transmission, replace
 from txtool.model.robot import children
+from txtool.transform.memo import Renaming
 
 Carried = dict[tuple[str, str | None], list[etree._Element]]
 
@@ -31,6 +32,7 @@ class _Move:
     old: etree._Element
     new: Transmission
     carried: Carried | None = None
+    renaming: Renaming | None = None  # the old element's, when it was keyed (:mod:`.memo`)
 
 
 @dataclass
@@ -56,16 +58,22 @@ class Placer:
         self._components: list[etree._Element] | None = None
         self._declared: dict[etree._Element, set[str]] = {}
         self.built: dict[etree._Element, etree._Element] = {}  # old element -> the last built
+        # Built elements in the block generated for the document whose joints it declares
+        # from them alone: what reading one back gives depends on that element only.
+        self.alone: set[etree._Element] = set()
+        self._templates: dict[Hashable, tuple[etree._Element, tuple[int | None, ...]]] = {}
 
-    def place(self, old: etree._Element, t: Transmission, carried: Carried | None = None
-              ) -> None:
+    def place(self, old: etree._Element, t: Transmission, carried: Carried | None = None,
+              renaming: Renaming | None = None, dialect: Dialect | None = None) -> None:
         """Place the conversion ``t`` of ``old``; ``carried``: children of ``old`` (by
-        owner) that go along as written."""
-        move = _Move(old, t, carried)
+        owner) that go along as written; ``renaming``: ``old``'s key and names (see
+        :mod:`.memo`), so that the elements built for one key are built once; ``dialect``:
+        ``old``'s, when known."""
+        move = _Move(old, t, carried, renaming)
         component = enclosing_component(old)
         moving_out = t.dialect == "ros1" and component is not None
         moving_in = (t.dialect != "ros1" and component is None and old.getparent() is not None
-                     and detect_dialect(old) == "ros1")
+                     and (dialect or detect_dialect(old)) == "ros1")
         if moving_out and component.getparent() is not None:
             self._out_of.setdefault(component, []).append(move)
         elif moving_in and old.getparent() is self.root and local(self.root) == "robot":
@@ -80,7 +88,7 @@ class Placer:
             # <ros2_control> of its own, in place, so that the transmission stays in the scope
             # of its ${...} parameters.
             self._wrap_in_place(move)
-        elif t.dialect != "ros1" and detect_dialect(old) != "ros1":
+        elif t.dialect != "ros1" and (dialect or detect_dialect(old)) != "ros1":
             restyle_roles(old, t.dialect)  # Proposal 1 <-> 2: only the roles change
         else:
             new = self._build(move, *indentation(old), old)
@@ -113,7 +121,7 @@ class Placer:
         first = moves[0].old
         indent, step = indentation(first)
         block = self._block(self.root.get("name", "robot"), self.hardware_plugin, moves,
-                            first, indent, step)
+                            first, indent, step, alone=True)
         runs = _runs([m.old for m in moves])
         for run in runs[1:]:
             for old in run:
@@ -129,29 +137,36 @@ class Placer:
 
     def _block(self, name: str, plugin: str, moves: list[_Move], like: etree._Element,
                indent: str, step: str, *, record: bool = True,
-               transmissions: bool = True) -> etree._Element:
+               transmissions: bool = True, alone: bool = False) -> etree._Element:
         """A ``<ros2_control type="system">`` block declaring the joints of the converted
         transmissions and holding them (unless ``transmissions`` is false), as txtool
-        generates it (``record``: as :meth:`_build`)."""
+        generates it (``record``: as :meth:`_build`; ``alone``: keep in :attr:`alone` the
+        transmissions whose joints none before declared)."""
         q = _qualifier(like)
         block = etree.Element(q("ros2_control"), name=name, type="system")
         hardware = etree.SubElement(block, q("hardware"))
         etree.SubElement(hardware, q("plugin")).text = plugin
         seen: set[str] = set()
         declarations: dict[tuple, etree._Element] = {}  # by interfaces: copied, then named
+        shared: set[etree._Element] = set()  # moves with a joint declared before
         for move in moves:
             for joint in move.new.joints:
-                if joint.name not in seen:
+                if joint.name in seen:
+                    shared.add(move.old)
+                else:
                     seen.add(joint.name)
                     interfaces = (joint.interfaces, joint.state_interfaces)
                     if interfaces not in declarations:
                         declarations[interfaces] = _declaration(q, *interfaces)
-                    declaration = copy.deepcopy(declarations[interfaces])
+                    declaration = declarations[interfaces].__deepcopy__(None)
                     declaration.set("name", joint.name)
                     block.append(declaration)
         dialects.pretty(block, indent, step)
         for move in moves if transmissions else ():
-            append(block, self._build(move, indent + step, step, like, record=record))
+            new = self._build(move, indent + step, step, like, record=record)
+            append(block, new)
+            if alone and move.old not in shared:
+                self.alone.add(new)
         return block
 
     def _component_for(self, t: Transmission) -> etree._Element | None:
@@ -258,7 +273,11 @@ class Placer:
         comments and carried children of the old one; ``record``: as what replaces the old
         one (:attr:`built`), not a trial build to compare with."""
         t = move.new
-        new = dialects.build(t, t.dialect, indent=indent, step=step, namespace=_namespace(like))
+        if move.renaming is not None and not move.carried:
+            new = self._from_template(move, indent, step, _namespace(like))
+        else:
+            new = dialects.build(t, t.dialect, indent=indent, step=step,
+                                 namespace=_namespace(like))
         for (kind, name), elements in (move.carried or {}).items():
             owner = new if kind == "transmission" else next(
                 (m for m in children(new, kind) if m.get("name") == name), new)
@@ -268,6 +287,29 @@ class Placer:
             dialects.pretty(new, indent, step)  # build() laid out all but these
         if record:
             self.built[move.old] = new
+        return new
+
+    def _from_template(self, move: _Move, indent: str, step: str, namespace: str | None
+                       ) -> etree._Element:
+        """What :func:`dialects.build` gives for ``move.new``, copied from the element built
+        for the first of its key and renamed (its old element has no comment: see
+        :mod:`.memo`)."""
+        assert move.renaming is not None
+        names = move.renaming.names
+        key = (move.renaming.key, move.new.dialect, indent, step, namespace)
+        known = self._templates.get(key)
+        if known is None:
+            new = dialects.build(move.new, move.new.dialect, indent=indent, step=step,
+                                 namespace=namespace)
+            index = {name: i for i, name in enumerate(names)}
+            plan = tuple([index.get(node.get("name")) for node in new.iter()])  # type: ignore[arg-type]
+            self._templates[key] = (copy.deepcopy(new), plan)
+            return new
+        template, plan = known
+        new = template.__deepcopy__(None)  # copy.deepcopy's own bookkeeping costs as much
+        for node, i in zip(new.iter(), plan, strict=True):
+            if i is not None:
+                node.set("name", names[i])
         return new
 
 
