@@ -22,21 +22,21 @@ from __future__ import annotations
 import re
 from collections.abc import Hashable
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 from lxml import etree
 
-from txtool.model.core import Member, Transmission, replace
+from txtool.model.core import Transmission, replace
 from txtool.transform.shapes import LITERAL_NAMES
 
 # A name attribute (the serializer puts one space before each): inside a tag, as what follows
 # it up to the tag's end holds no "<" or ">" (escaped in values and text); a text that reads
 # ' name="..."' is followed by "<" first. An attribute value holds no '"' (escaped).
-_NAME = re.compile(rb' name="([^"]*)"(?=[^<>]*>)')
+NAME = re.compile(rb' name="([^"]*)"(?=[^<>]*>)')
 _LITERALS = frozenset(name.encode("ascii") for name in LITERAL_NAMES)
 
 
-@dataclass(frozen=True)
-class Renaming:
+class Renaming(NamedTuple):
     """An element's key (its serialization up to the names) and its names, by index."""
 
     key: Hashable
@@ -48,7 +48,7 @@ def renaming_of(element: etree._Element) -> Renaming | None:
     data = etree.tostring(element, with_tail=False)  # ASCII: other characters as references
     if b"<!" in data or b"<?" in data:
         return None
-    parts = _NAME.split(data)
+    parts = NAME.split(data)
     raws = parts[1::2]
     index = {raw: None for raw in raws if raw not in _LITERALS}  # in order of appearance
     for position, raw in enumerate(index):
@@ -72,7 +72,7 @@ class Record:
     verdict: Hashable | None = None  # the check's key for the first judged in the same place
 
 
-@dataclass
+@dataclass(slots=True)
 class Follower:
     """A transmission converted as its :class:`Record` up to the names."""
 
@@ -117,13 +117,10 @@ class Memo:
 
 def renamed(t: Transmission, names: dict[str, str]) -> Transmission:
     """``t`` with each name in ``names`` replaced (the others, literal names, kept)."""
-
-    def member(m: Member) -> Member:
-        return replace(m, name=names.get(m.name, m.name))
-
+    get = names.get
     return replace(
-        t, name=names.get(t.name, t.name),
-        joints=tuple([member(j) for j in t.joints]),
-        actuators=tuple([member(a) for a in t.actuators]),
-        parameters=tuple([(names.get(n, n), value) for n, value in t.parameters]),
+        t, name=get(t.name, t.name),
+        joints=tuple([replace(j, name=get(j.name, j.name)) for j in t.joints]),
+        actuators=tuple([replace(a, name=get(a.name, a.name)) for a in t.actuators]),
+        parameters=tuple([(get(n, n), value) for n, value in t.parameters]),
     )

@@ -11,7 +11,7 @@ Removing an element removes its lines and keeps the blank lines around it.
 from __future__ import annotations
 
 import copy
-from collections.abc import Callable, Hashable
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from lxml import etree
@@ -23,6 +23,7 @@ from txtool.io.xmlio import local
 from txtool.model.core import Dialect, Transmission, replace
 from txtool.model.robot import children
 from txtool.transform.memo import Renaming
+from txtool.transform.templates import Templates, parse_children
 
 Carried = dict[tuple[str, str | None], list[etree._Element]]
 
@@ -61,7 +62,7 @@ class Placer:
         # Built elements in the block generated for the document whose joints it declares
         # from them alone: what reading one back gives depends on that element only.
         self.alone: set[etree._Element] = set()
-        self._templates: dict[Hashable, tuple[etree._Element, tuple[int | None, ...]]] = {}
+        self._templates = Templates()
 
     def place(self, old: etree._Element, t: Transmission, carried: Carried | None = None,
               renaming: Renaming | None = None, dialect: Dialect | None = None) -> None:
@@ -126,9 +127,8 @@ class Placer:
         for run in runs[1:]:
             for old in run:
                 cut(old)
-        inner = [t for t in block if local(t) == "transmission"]
-        for position, old in enumerate(runs[0][:-1]):
-            inner[position].tail = _reindent(old.tail, indent + step)
+        for old in runs[0][:-1]:
+            self.built[old].tail = _reindent(old.tail, indent + step)
         block.tail = runs[0][-1].tail
         for old in runs[0][1:]:
             old.getparent().remove(old)
@@ -147,7 +147,7 @@ class Placer:
         hardware = etree.SubElement(block, q("hardware"))
         etree.SubElement(hardware, q("plugin")).text = plugin
         seen: set[str] = set()
-        declarations: dict[tuple, etree._Element] = {}  # by interfaces: copied, then named
+        declared: list[tuple[str, tuple]] = []  # joint names and interfaces, in order
         shared: set[etree._Element] = set()  # moves with a joint declared before
         for move in moves:
             for joint in move.new.joints:
@@ -155,19 +155,80 @@ class Placer:
                     shared.add(move.old)
                 else:
                     seen.add(joint.name)
-                    interfaces = (joint.interfaces, joint.state_interfaces)
-                    if interfaces not in declarations:
-                        declarations[interfaces] = _declaration(q, *interfaces)
-                    declaration = declarations[interfaces].__deepcopy__(None)
-                    declaration.set("name", joint.name)
-                    block.append(declaration)
-        dialects.pretty(block, indent, step)
-        for move in moves if transmissions else ():
-            new = self._build(move, indent + step, step, like, record=record)
-            append(block, new)
+                    declared.append((joint.name, (joint.interfaces, joint.state_interfaces)))
+        texts = self._texts(moves, like, indent + step, step) if transmissions and record \
+            else None
+        if texts is not None:
+            built = self._fill_by_text(block, declared, texts, indent, step)
+            self.built.update(zip([m.old for m in moves], built, strict=True))
+        else:
+            built = self._fill(block, declared, moves if transmissions else [], like, indent,
+                               step, record)
+        for move, new in zip(moves, built, strict=False):
             if alone and move.old not in shared:
                 self.alone.add(new)
         return block
+
+    def _fill(self, block: etree._Element, declared: list[tuple[str, tuple]],
+              moves: list[_Move], like: etree._Element, indent: str, step: str, record: bool
+              ) -> list[etree._Element]:
+        """Declare the joints in ``block`` and put in the transmissions built for ``moves``,
+        laid out as :func:`dialects.pretty` lays out the block."""
+        q = _qualifier(like)
+        inner = "\n" + indent + step
+        declarations: dict[tuple, etree._Element] = {}  # by interfaces: copied, then named
+        for name, interfaces in declared:
+            if interfaces not in declarations:
+                declarations[interfaces] = _declaration(q, *interfaces)
+                dialects.pretty(declarations[interfaces], indent + step, step)
+                declarations[interfaces].tail = inner
+            declaration = declarations[interfaces].__deepcopy__(None)  # see Templates
+            declaration.set("name", name)
+            block.append(declaration)
+        hardware = block[0]
+        dialects.pretty(hardware, indent + step, step)
+        hardware.tail, block.text = inner, inner
+        block[-1].tail = "\n" + indent
+        built = []
+        for move in moves:
+            built.append(self._build(move, indent + step, step, like, record=record))
+            append(block, built[-1])
+        return built
+
+    def _texts(self, moves: list[_Move], like: etree._Element, indent: str, step: str
+               ) -> list[list[bytes]] | None:
+        """The text of each transmission :meth:`_build` would build, when all have one."""
+        if _namespace(like) is not None:
+            return None
+        texts = []
+        for move in moves:
+            if move.renaming is None or move.carried:
+                return None
+            text = self._templates.text(move.renaming, move.new, indent, step)
+            if text is None:
+                return None
+            texts.append(text)
+        return texts
+
+    def _fill_by_text(self, block: etree._Element, declared: list[tuple[str, tuple]],
+                      texts: list[list[bytes]], indent: str, step: str
+                      ) -> list[etree._Element]:
+        """What :meth:`_fill` gives, the declarations and transmissions parsed from text."""
+        inner = ("\n" + indent + step).encode()
+        pieces: list[bytes] = []
+        for name, interfaces in declared:
+            head, tail = self._templates.declaration(interfaces, indent + step, step)
+            pieces += (head, name.encode(), tail, inner)
+        for text in texts:
+            pieces += text
+            pieces.append(inner)
+        hardware = block[0]
+        dialects.pretty(hardware, indent + step, step)
+        hardware.tail, block.text = inner.decode(), inner.decode()
+        pieces[-1] = ("\n" + indent).encode()  # there is a transmission at least
+        children = parse_children(pieces)
+        block.extend(children)
+        return children[len(declared):]
 
     def _component_for(self, t: Transmission) -> etree._Element | None:
         names = {j.name for j in t.joints}
@@ -274,42 +335,20 @@ class Placer:
         one (:attr:`built`), not a trial build to compare with."""
         t = move.new
         if move.renaming is not None and not move.carried:
-            new = self._from_template(move, indent, step, _namespace(like))
+            # A keyed element has no comment (see :mod:`.memo`): nothing to add.
+            new = self._templates.element(move.renaming, t, indent, step, _namespace(like))
         else:
             new = dialects.build(t, t.dialect, indent=indent, step=step,
                                  namespace=_namespace(like))
-        for (kind, name), elements in (move.carried or {}).items():
-            owner = new if kind == "transmission" else next(
-                (m for m in children(new, kind) if m.get("name") == name), new)
-            owner.extend(copy.deepcopy(e) for e in elements)
-        with_comments(new, move.old)
-        if move.carried or _has_comment(new):
-            dialects.pretty(new, indent, step)  # build() laid out all but these
+            for (kind, name), elements in (move.carried or {}).items():
+                owner = new if kind == "transmission" else next(
+                    (m for m in children(new, kind) if m.get("name") == name), new)
+                owner.extend(copy.deepcopy(e) for e in elements)
+            with_comments(new, move.old)
+            if move.carried or _has_comment(new):
+                dialects.pretty(new, indent, step)  # build() laid out all but these
         if record:
             self.built[move.old] = new
-        return new
-
-    def _from_template(self, move: _Move, indent: str, step: str, namespace: str | None
-                       ) -> etree._Element:
-        """What :func:`dialects.build` gives for ``move.new``, copied from the element built
-        for the first of its key and renamed (its old element has no comment: see
-        :mod:`.memo`)."""
-        assert move.renaming is not None
-        names = move.renaming.names
-        key = (move.renaming.key, move.new.dialect, indent, step, namespace)
-        known = self._templates.get(key)
-        if known is None:
-            new = dialects.build(move.new, move.new.dialect, indent=indent, step=step,
-                                 namespace=namespace)
-            index = {name: i for i, name in enumerate(names)}
-            plan = tuple([index.get(node.get("name")) for node in new.iter()])  # type: ignore[arg-type]
-            self._templates[key] = (copy.deepcopy(new), plan)
-            return new
-        template, plan = known
-        new = template.__deepcopy__(None)  # copy.deepcopy's own bookkeeping costs as much
-        for node, i in zip(new.iter(), plan, strict=True):
-            if i is not None:
-                node.set("name", names[i])
         return new
 
 
