@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from lxml import etree
 
 from txtool.io.xmlio import Source, parse_bytes
 from txtool.transform import convert as convert_module
@@ -151,3 +152,28 @@ def test_the_order_of_names_is_part_of_the_key():
     assert key("j", "m") == key("k", "n")
     assert key("j", "m") != key("n", "k")
     assert key("j", "m") != key("actuator1", "m")
+
+
+def test_a_template_whose_text_would_not_parse_back_is_copied_as_an_element():
+    """An element built with an empty text (``<offset></offset>``) parses back without one:
+    such a template is not written as text, and the block comes out as built one by one."""
+    from txtool.dialects.read import read_transmission
+    from txtool.dialects.translate import translate
+    from txtool.transform.placement import Placer
+
+    data = ('<robot name="r">\n' + "\n".join(
+        f'  <transmission name="t{i}"><type>transmission_interface/SimpleTransmission</type>'
+        f'<joint name="j{i}"><offset></offset></joint><actuator name="m{i}"/></transmission>'
+        for i in range(3)) + "\n</robot>\n").encode()
+
+    def placed(keyed: bool) -> bytes:
+        tree = parse_bytes(data, "<doc>")
+        placer = Placer(tree.getroot(), "x/Y")
+        for element in list(tree.getroot()):
+            t = translate(read_transmission(element, None), "ros2-p2").transmission
+            placer.place(element, t, {}, renaming_of(element) if keyed else None)
+        placer.finish()
+        return etree.tostring(tree)
+
+    assert b"<offset></offset>" in placed(keyed=True)
+    assert placed(keyed=True) == placed(keyed=False)

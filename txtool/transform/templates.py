@@ -90,9 +90,6 @@ def _split(element: etree._Element, renaming: Renaming
         return None
     index = {name.encode("ascii"): i for i, name in enumerate(renaming.names)}
     parts = NAME.split(text)  # what NAME matches goes; the names stay, between the others
-    named = [node for node in element.iter() if node.get("name") is not None]
-    if len(named) != len(parts) // 2:
-        return None
     for position in range(0, len(parts) - 1, 2):
         parts[position] += b' name="'
         parts[position + 2] = b'"' + parts[position + 2]
