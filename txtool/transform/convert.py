@@ -290,11 +290,11 @@ def _check(output: Source, result: Conversion, originals: list[Transmission | Fo
     components: dict[etree._Element, Any] = {}
     survived: set[Hashable] = set()  # shapes (:mod:`.shapes`) that came back whole
     written: dict[tuple[str, bool], list[Found]] = {}
-    for element in transmission_elements(output.root):
-        if element not in apart:
-            found = Found(read_transmission(element, None, components), element)
-            key = (found.transmission.name, found.transmission.kind == "other")
-            written.setdefault(key, []).append(found)
+    for element in transmission_elements(output.root, (
+            e for e in output.root.iter("{*}transmission") if e not in apart)):
+        found = Found(read_transmission(element, None, components), element)
+        key = (found.transmission.name, found.transmission.kind == "other")
+        written.setdefault(key, []).append(found)
     for item in originals:
         record = item.record if isinstance(item, Follower) else firsts.get(id(item))
         if isinstance(item, Follower) and item.built in apart:

@@ -26,7 +26,7 @@ from typing import NamedTuple
 
 from lxml import etree
 
-from txtool.model.core import Transmission, replace
+from txtool.model.core import Member, Transmission, replace
 from txtool.transform.shapes import LITERAL_NAMES
 
 # A name attribute (the serializer puts one space before each): inside a tag, as what follows
@@ -62,14 +62,51 @@ def renaming_of(element: etree._Element) -> Renaming | None:
                     tuple([raw.decode("ascii") for raw in index]))
 
 
-@dataclass
+class Renamer:
+    """Puts other names into one transmission of a key: each of its names is the index of a
+    name of the key, or kept (a literal name), worked out once."""
+
+    def __init__(self, t: Transmission, names: tuple[str, ...]) -> None:
+        index = {name: i for i, name in enumerate(names)}
+        self.t = t
+        self.name = index.get(t.name)
+        self.joints = [(m, index.get(m.name)) for m in t.joints]
+        self.actuators = [(m, index.get(m.name)) for m in t.actuators]
+        self.parameters = [(n, index.get(n), value) for n, value in t.parameters]
+
+    def __call__(self, names: tuple[str, ...]) -> Transmission:
+        """The transmission with ``names`` (another element's of the key) put in."""
+        def member(m: Member, i: int | None) -> Member:
+            return m if i is None else replace(m, name=names[i])
+
+        return replace(
+            self.t, name=self.t.name if self.name is None else names[self.name],
+            joints=tuple([member(m, i) for m, i in self.joints]),
+            actuators=tuple([member(m, i) for m, i in self.actuators]),
+            parameters=tuple([(n if i is None else names[i], value)
+                              for n, i, value in self.parameters]),
+        )
+
+
 class Record:
     """The full conversion of the first element of a key."""
 
-    renaming: Renaming
-    original: Transmission
-    translated: Transmission
-    verdict: Hashable | None = None  # the check's key for the first judged in the same place
+    def __init__(self, renaming: Renaming, original: Transmission, translated: Transmission
+                 ) -> None:
+        self.renaming = renaming
+        self.original = original
+        self.translated = translated
+        self.verdict: Hashable | None = None  # the check's key for the first judged alone
+        self._translated = Renamer(translated, renaming.names)
+        self._original: Renamer | None = None
+
+    def translation_for(self, names: tuple[str, ...]) -> Transmission:
+        return self._translated(names)
+
+    def original_for(self, names: tuple[str, ...]) -> Transmission:
+        if self._original is None:
+            self._original = Renamer(self.original, self.renaming.names)
+        return self._original(names)
 
 
 @dataclass(slots=True)
@@ -77,20 +114,17 @@ class Follower:
     """A transmission converted as its :class:`Record` up to the names."""
 
     record: Record
-    renaming: Renaming
+    names: tuple[str, ...]  # its own, by the index of the key's
     name: str = ""
     element: etree._Element | None = None  # the old element, until it is placed
     built: etree._Element | None = None  # then what the placer built for it
 
     def translated(self) -> Transmission:
-        return renamed(self.record.translated, self._names())
+        return self.record.translation_for(self.names)
 
     def transmission(self) -> Transmission:
         """The original transmission, as reading the element gives it."""
-        return renamed(self.record.original, self._names())
-
-    def _names(self) -> dict[str, str]:
-        return dict(zip(self.record.renaming.names, self.renaming.names, strict=True))
+        return self.record.original_for(self.names)
 
 
 @dataclass
@@ -103,7 +137,7 @@ class Memo:
         if renaming is None:
             return None
         record = self.records.get(renaming.key)
-        return None if record is None else Follower(record, renaming)
+        return None if record is None else Follower(record, renaming.names)
 
     def learn(self, renaming: Renaming | None, original: Transmission, translated: Transmission,
               clean: bool) -> Record | None:
@@ -113,14 +147,3 @@ class Memo:
         record = Record(renaming, original, translated) if clean else None
         self.records[renaming.key] = record
         return record
-
-
-def renamed(t: Transmission, names: dict[str, str]) -> Transmission:
-    """``t`` with each name in ``names`` replaced (the others, literal names, kept)."""
-    get = names.get
-    return replace(
-        t, name=get(t.name, t.name),
-        joints=tuple([replace(j, name=get(j.name, j.name)) for j in t.joints]),
-        actuators=tuple([replace(a, name=get(a.name, a.name)) for a in t.actuators]),
-        parameters=tuple([(get(n, n), value) for n, value in t.parameters]),
-    )
