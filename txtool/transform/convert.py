@@ -109,6 +109,9 @@ def convert_source(
         if not _convert_one(found, tree, target, result, placer, carry, memo, renaming, said):
             continue
         result.converted += 1
+    # The declarations read go while their elements are in the tree: lxml frees an element
+    # of a removed subtree (a generated block, replaced) by scanning all of that subtree.
+    del components
     placer.finish()
     carry.after(tree, placer.built)
     result.notes.extend(placer.notes)
