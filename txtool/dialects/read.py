@@ -30,7 +30,7 @@ from txtool.model.core import (
     replace,
 )
 from txtool.model.numbers import parse_ros1, parse_ros2
-from txtool.model.robot import Component, ancestor, child_index, children, component_of
+from txtool.model.robot import ComponentJoint, ancestor, child_index, children
 
 if TYPE_CHECKING:
     from txtool.io.locate import Locator
@@ -40,6 +40,39 @@ if TYPE_CHECKING:
 _new_transmission = builder(Transmission)
 _new_member = builder(Member)
 _new_number = builder(Number)
+
+
+class Declarations:
+    """What the reader asks of a ``<ros2_control>``: its name and the declaration of a joint
+    (the first of a repeated name, as :func:`~txtool.model.robot.component_of` keeps it),
+    each joint read when it is asked for: a block generated for thousands of transmissions
+    is read back one member at a time."""
+
+    def __init__(self, element: etree._Element) -> None:
+        self.name = element.get("name", "")
+        self._element = element
+        self._index: dict[str, etree._Element] | None = None
+        self._read: dict[str, ComponentJoint | None] = {}
+
+    def joint(self, name: str) -> ComponentJoint | None:
+        if name in self._read:
+            return self._read[name]
+        if self._index is None:
+            self._index = {}
+            for declared in children(self._element, "joint"):
+                self._index.setdefault(declared.get("name", ""), declared)
+        element = self._index.get(name)
+        self._read[name] = joint = None if element is None else ComponentJoint(
+            name=name,
+            command_interfaces=_names(children(element, "command_interface")),
+            state_interfaces=_names(children(element, "state_interface")),
+            line=element.sourceline or 0,
+        )
+        return joint
+
+
+def _names(elements: list[etree._Element]) -> tuple[str, ...]:
+    return tuple([e.get("name", "") for e in elements])
 
 
 @dataclass(frozen=True)
@@ -72,7 +105,7 @@ def read_source(
         from txtool.io.locate import Locator
 
         locator = Locator(source)
-    components: dict[etree._Element, Component] = {}  # each read once, however many members
+    components: dict[etree._Element, Declarations] = {}  # each read once, however many members
     return [
         Found(read_transmission(element, locator, components), element)
         for element in transmission_elements(source.root, candidates)
@@ -117,7 +150,7 @@ def detect_dialect(element: etree._Element,
 def read_transmission(
     element: etree._Element,
     locator: Locator | None,
-    components: dict[etree._Element, Component] | None = None,
+    components: dict[etree._Element, Declarations] | None = None,
 ) -> Transmission:
     kids = child_index(element)  # one index for detecting and reading
     dialect = detect_dialect(element, kids)
@@ -217,7 +250,7 @@ def _read_ros2(
     element: etree._Element,
     locator: Locator | None,
     dialect: Dialect,
-    components: dict[etree._Element, Component],
+    components: dict[etree._Element, Declarations],
     kids: dict[str, list[etree._Element]],
 ) -> Transmission:
     plugin = _first_text(kids, "plugin")
@@ -227,7 +260,7 @@ def _read_ros2(
     if component_element is not None:
         component = components.get(component_element)
         if component is None:
-            component = components[component_element] = component_of(component_element)
+            component = components[component_element] = Declarations(component_element)
     kind = kind_of(type_string)
     return _new_transmission(
         name=element.get("name", ""),
@@ -253,7 +286,7 @@ def _ros2_number(kids: dict[str, list[etree._Element]], name: str) -> Number | N
 
 
 def _ros2_member(
-    element: etree._Element, locator: Locator | None, component: Component | None
+    element: etree._Element, locator: Locator | None, component: Declarations | None
 ) -> Member:
     kids = child_index(element)
     role = element.get("role")

@@ -10,19 +10,26 @@ converting it back.
 from __future__ import annotations
 
 import copy
+from collections import Counter
 from collections.abc import Hashable
 from dataclasses import dataclass, field
 from typing import Any
 
 from lxml import etree
 
-from txtool.dialects.read import Found, enclosing_component, read_source
+from txtool.dialects.read import (
+    Found,
+    enclosing_component,
+    read_transmission,
+    transmission_elements,
+)
 from txtool.dialects.translate import family, is_expression, translate
 from txtool.io.xmlio import Source, local, parse_bytes, serialize
 from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
 from txtool.model.semantics import Effective, NotLoadable, effective, listed_against_roles
 from txtool.transform.collector import paused
+from txtool.transform.memo import Follower, Memo, Record, Renaming, renaming_of
 from txtool.transform.placement import Placer
 from txtool.transform.reversible import Carrier
 from txtool.transform.shapes import shape
@@ -74,41 +81,45 @@ def convert_source(
     """
     baseline = None if source.expanded else serialize(source.tree, source.data)
     tree = source.tree if consume else copy.deepcopy(source.tree)
-    originals = read_source(Source(source.path, source.data, tree), locate=False)
-    result = Conversion(data=b"", target=target, found=len(originals),
-                        already=sum(1 for f in originals if f.transmission.dialect == target))
+    elements = transmission_elements(tree.getroot())
+    result = Conversion(data=b"", target=target, found=len(elements))
     placer = Placer(tree.getroot(), hardware_plugin)
     carry = Carrier(source, target, reversible)
-    for found in originals:
-        t = found.transmission
-        if t.dialect == target or t.kind == "other" and family(t.dialect) == family(target):
+    # Back to ROS 1 (each element may carry its original) and --reversible convert in full.
+    memo = None if carry.reversible or target == "ros1" else Memo()
+    components: dict[etree._Element, Any] = {}
+    items: list[Transmission | Follower] = []
+    for element in elements:
+        renaming = renaming_of(element) if memo is not None and enclosing_component(
+            element) is None else None
+        follower = memo.follow(renaming) if memo is not None else None
+        if follower is not None:
+            translated = follower.translated()
+            follower.name, follower.element = translated.name, element
+            placer.place(element, translated, {}, renaming, follower.record.original.dialect)
+            items.append(follower)
+            result.converted += 1
             continue
-        if target == "ros1" and enclosing_component(found.element) is tree.getroot():
-            result.losses.append(
-                f"transmission '{t.name}': a bare <ros2_control> fragment has no place for a "
-                "top-level ROS 1 transmission; convert the robot description that holds it"
-            )
+        t = read_transmission(element, None, components)
+        items.append(t)
+        if t.dialect == target:
+            result.already += 1
+        found = Found(t, element)
+        said = len(result.losses) + len(result.notes) + len(result.warnings)
+        if not _convert_one(found, tree, target, result, placer, carry, memo, renaming, said):
             continue
-        if t.kind == "other":
-            result.warnings.append(
-                f"transmission '{t.name}': custom type '{t.type}' is not converted (txtool "
-                f"knows only the standard types); left as written, in {family(t.dialect)} form"
-            )
-            continue
-        translation = translate(t, target)
-        result.losses.extend(translation.losses)
-        result.notes.extend(translation.notes)
-        result.warnings.extend(translation.warnings)
-        carried = _other_children(found.element, t, target, result)
-        _behaviour(t, translation.transmission, result)
-        carry.before(found)
-        placer.place(found.element, translation.transmission, carried)
         result.converted += 1
+    # The declarations read go while their elements are in the tree: lxml frees an element
+    # of a removed subtree (a generated block, replaced) by scanning all of that subtree.
+    del components
     placer.finish()
     carry.after(tree, placer.built)
     result.notes.extend(placer.notes)
-    transmissions = [found.transmission for found in originals]
-    del originals, placer  # the replaced elements are freed before the document is written
+    for item in items:
+        if isinstance(item, Follower):
+            item.built, item.element = placer.built.get(item.element), None
+    alone = placer.alone
+    del elements, placer  # the replaced elements are freed before the document is written
     if source.expanded:
         result.data = serialize(tree, source.data)
     else:
@@ -126,8 +137,44 @@ def convert_source(
         # Originals put back as bytes: only a parse of the output shows what it holds.
         del tree
         tree = parse_bytes(result.data, source.path, limit=None)
-    _check(Source(source.path, result.data, tree), result, transmissions)
+        alone = set()
+    _check(Source(source.path, result.data, tree), result, items, alone)
     return result
+
+
+def _convert_one(found: Found, tree: etree._ElementTree, target: Dialect, result: Conversion,
+                 placer: Placer, carry: Carrier, memo: Memo | None, renaming: Renaming | None,
+                 said: int) -> bool:
+    """Convert one transmission in full (whether it is converted: those already in the
+    target dialect, and some others, are not); ``said``: how many messages came before."""
+    t = found.transmission
+    if t.dialect == target or t.kind == "other" and family(t.dialect) == family(target):
+        return False
+    if target == "ros1" and enclosing_component(found.element) is tree.getroot():
+        result.losses.append(
+            f"transmission '{t.name}': a bare <ros2_control> fragment has no place for a "
+            "top-level ROS 1 transmission; convert the robot description that holds it"
+        )
+        return False
+    if t.kind == "other":
+        result.warnings.append(
+            f"transmission '{t.name}': custom type '{t.type}' is not converted (txtool "
+            f"knows only the standard types); left as written, in {family(t.dialect)} form"
+        )
+        return False
+    translation = translate(t, target)
+    result.losses.extend(translation.losses)
+    result.notes.extend(translation.notes)
+    result.warnings.extend(translation.warnings)
+    carried = _other_children(found.element, t, target, result)
+    _behaviour(t, translation.transmission, result)
+    carry.before(found)
+    clean = not carried and said == len(result.losses) + len(result.notes) + len(
+        result.warnings)
+    if memo is not None and memo.learn(renaming, t, translation.transmission, clean) is None:
+        renaming = None
+    placer.place(found.element, translation.transmission, carried, renaming, t.dialect)
+    return True
 
 
 def _other_children(element: etree._Element, t: Transmission, target: Dialect,
@@ -224,7 +271,8 @@ def _same_binding(old, new) -> bool:
     return all(getattr(old, f) == getattr(new, f) for f in fields)
 
 
-def _check(output: Source, result: Conversion, originals: list[Transmission]) -> None:
+def _check(output: Source, result: Conversion, originals: list[Transmission | Follower],
+           alone: set[etree._Element]) -> None:
     """Read the output back, convert it back, and compare with the original: on what the
     transmission itself defines (a value it leaves out is not judged, and interfaces that an
     existing ``<ros2_control>`` declares besides its own are a note, not a loss).
@@ -233,22 +281,43 @@ def _check(output: Source, result: Conversion, originals: list[Transmission]) ->
     or a splice of it that parses to the same canonical document (:func:`.splice` verifies
     that): reading it reads what a parse of the output would give, without a second tree.
     A pair whose shape (:func:`.shapes.shape`: the same up to the names) already came back
-    whole is not judged again: the judgement reads names only to tell members apart.
+    whole is not judged again: the judgement reads names only to tell members apart. So a
+    follower (:mod:`.memo`) is not even read back when its record's first came back whole
+    from the same place: both with a name of their own, in the block generated for the
+    document (``alone``), declaring their joints there themselves.
     """
+    names = Counter(item.name for item in originals)
+    apart = {item.built for item in originals if isinstance(item, Follower)
+             and item.built in alone and names[item.name] == 1}
+    firsts = {id(record.original): record for record in _records(originals)}
+    components: dict[etree._Element, Any] = {}
     survived: set[Hashable] = set()  # shapes (:mod:`.shapes`) that came back whole
     written: dict[tuple[str, bool], list[Found]] = {}
-    for found in read_source(output, locate=False):
+    for element in transmission_elements(output.root, (
+            e for e in output.root.iter("{*}transmission") if e not in apart)):
+        found = Found(read_transmission(element, None, components), element)
         key = (found.transmission.name, found.transmission.kind == "other")
         written.setdefault(key, []).append(found)
-    for t in originals:
-        queue = written.get((t.name, t.kind == "other"))
-        if not queue:
-            continue
-        out = queue.pop(0)  # same-named transmissions keep their order
-        if t.kind == "other":
-            continue
+    for item in originals:
+        record = item.record if isinstance(item, Follower) else firsts.get(id(item))
+        if isinstance(item, Follower) and item.built in apart:
+            if item.record.verdict in survived:
+                continue
+            t = item.transmission()
+            out = Found(read_transmission(item.built, None, components), item.built)
+        else:
+            t = item.transmission() if isinstance(item, Follower) else item
+            queue = written.get((t.name, t.kind == "other"))
+            if not queue:
+                continue
+            out = queue.pop(0)  # same-named transmissions keep their order
+            if t.kind == "other":
+                continue
         in_component = enclosing_component(out.element) is not None
         key = (shape(t, out.transmission), in_component)
+        if record is not None and record.verdict is None and out.element in alone and (
+                names[t.name] == 1):
+            record.verdict = key
         if key in survived:
             continue
         said = len(result.losses) + len(result.notes)
@@ -263,6 +332,11 @@ def _check(output: Source, result: Conversion, originals: list[Transmission]) ->
                                  f"{key_}: {change}")
         if len(result.losses) + len(result.notes) == said:
             survived.add(key)
+
+
+def _records(items: list[Transmission | Follower]) -> list[Record]:
+    return list({id(item.record): item.record for item in items
+                 if isinstance(item, Follower)}.values())
 
 
 def judge(before: Transmission, after: Transmission) -> dict[str, str]:

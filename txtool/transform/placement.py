@@ -22,6 +22,8 @@ from txtool.dialects.translate import translate
 from txtool.io.xmlio import local
 from txtool.model.core import Dialect, Transmission, replace
 from txtool.model.robot import children
+from txtool.transform.memo import Renaming
+from txtool.transform.templates import Templates, parse_children
 
 Carried = dict[tuple[str, str | None], list[etree._Element]]
 
@@ -31,6 +33,7 @@ class _Move:
     old: etree._Element
     new: Transmission
     carried: Carried | None = None
+    renaming: Renaming | None = None  # the old element's, when it was keyed (:mod:`.memo`)
 
 
 @dataclass
@@ -56,16 +59,22 @@ class Placer:
         self._components: list[etree._Element] | None = None
         self._declared: dict[etree._Element, set[str]] = {}
         self.built: dict[etree._Element, etree._Element] = {}  # old element -> the last built
+        # Built elements in the block generated for the document whose joints it declares
+        # from them alone: what reading one back gives depends on that element only.
+        self.alone: set[etree._Element] = set()
+        self._templates = Templates()
 
-    def place(self, old: etree._Element, t: Transmission, carried: Carried | None = None
-              ) -> None:
+    def place(self, old: etree._Element, t: Transmission, carried: Carried | None = None,
+              renaming: Renaming | None = None, dialect: Dialect | None = None) -> None:
         """Place the conversion ``t`` of ``old``; ``carried``: children of ``old`` (by
-        owner) that go along as written."""
-        move = _Move(old, t, carried)
+        owner) that go along as written; ``renaming``: ``old``'s key and names (see
+        :mod:`.memo`), so that the elements built for one key are built once; ``dialect``:
+        ``old``'s, when known."""
+        move = _Move(old, t, carried, renaming)
         component = enclosing_component(old)
         moving_out = t.dialect == "ros1" and component is not None
         moving_in = (t.dialect != "ros1" and component is None and old.getparent() is not None
-                     and detect_dialect(old) == "ros1")
+                     and (dialect or detect_dialect(old)) == "ros1")
         if moving_out and component.getparent() is not None:
             self._out_of.setdefault(component, []).append(move)
         elif moving_in and old.getparent() is self.root and local(self.root) == "robot":
@@ -80,7 +89,7 @@ class Placer:
             # <ros2_control> of its own, in place, so that the transmission stays in the scope
             # of its ${...} parameters.
             self._wrap_in_place(move)
-        elif t.dialect != "ros1" and detect_dialect(old) != "ros1":
+        elif t.dialect != "ros1" and (dialect or detect_dialect(old)) != "ros1":
             restyle_roles(old, t.dialect)  # Proposal 1 <-> 2: only the roles change
         else:
             new = self._build(move, *indentation(old), old)
@@ -113,14 +122,13 @@ class Placer:
         first = moves[0].old
         indent, step = indentation(first)
         block = self._block(self.root.get("name", "robot"), self.hardware_plugin, moves,
-                            first, indent, step)
+                            first, indent, step, alone=True)
         runs = _runs([m.old for m in moves])
         for run in runs[1:]:
             for old in run:
                 cut(old)
-        inner = [t for t in block if local(t) == "transmission"]
-        for position, old in enumerate(runs[0][:-1]):
-            inner[position].tail = _reindent(old.tail, indent + step)
+        for old in runs[0][:-1]:
+            self.built[old].tail = _reindent(old.tail, indent + step)
         block.tail = runs[0][-1].tail
         for old in runs[0][1:]:
             old.getparent().remove(old)
@@ -129,30 +137,98 @@ class Placer:
 
     def _block(self, name: str, plugin: str, moves: list[_Move], like: etree._Element,
                indent: str, step: str, *, record: bool = True,
-               transmissions: bool = True) -> etree._Element:
+               transmissions: bool = True, alone: bool = False) -> etree._Element:
         """A ``<ros2_control type="system">`` block declaring the joints of the converted
         transmissions and holding them (unless ``transmissions`` is false), as txtool
-        generates it (``record``: as :meth:`_build`)."""
+        generates it (``record``: as :meth:`_build`; ``alone``: keep in :attr:`alone` the
+        transmissions whose joints none before declared)."""
         q = _qualifier(like)
         block = etree.Element(q("ros2_control"), name=name, type="system")
         hardware = etree.SubElement(block, q("hardware"))
         etree.SubElement(hardware, q("plugin")).text = plugin
         seen: set[str] = set()
-        declarations: dict[tuple, etree._Element] = {}  # by interfaces: copied, then named
+        declared: list[tuple[str, tuple]] = []  # joint names and interfaces, in order
+        shared: set[etree._Element] = set()  # moves with a joint declared before
         for move in moves:
             for joint in move.new.joints:
-                if joint.name not in seen:
+                if joint.name in seen:
+                    shared.add(move.old)
+                else:
                     seen.add(joint.name)
-                    interfaces = (joint.interfaces, joint.state_interfaces)
-                    if interfaces not in declarations:
-                        declarations[interfaces] = _declaration(q, *interfaces)
-                    declaration = copy.deepcopy(declarations[interfaces])
-                    declaration.set("name", joint.name)
-                    block.append(declaration)
-        dialects.pretty(block, indent, step)
-        for move in moves if transmissions else ():
-            append(block, self._build(move, indent + step, step, like, record=record))
+                    declared.append((joint.name, (joint.interfaces, joint.state_interfaces)))
+        texts = self._texts(moves, like, indent + step, step) if transmissions and record \
+            else None
+        if texts is not None:
+            built = self._fill_by_text(block, declared, texts, indent, step)
+            self.built.update(zip([m.old for m in moves], built, strict=True))
+        else:
+            built = self._fill(block, declared, moves if transmissions else [], like, indent,
+                               step, record)
+        for move, new in zip(moves, built, strict=False):
+            if alone and move.old not in shared:
+                self.alone.add(new)
         return block
+
+    def _fill(self, block: etree._Element, declared: list[tuple[str, tuple]],
+              moves: list[_Move], like: etree._Element, indent: str, step: str, record: bool
+              ) -> list[etree._Element]:
+        """Declare the joints in ``block`` and put in the transmissions built for ``moves``,
+        laid out as :func:`dialects.pretty` lays out the block."""
+        q = _qualifier(like)
+        inner = "\n" + indent + step
+        declarations: dict[tuple, etree._Element] = {}  # by interfaces: copied, then named
+        for name, interfaces in declared:
+            if interfaces not in declarations:
+                declarations[interfaces] = _declaration(q, *interfaces)
+                dialects.pretty(declarations[interfaces], indent + step, step)
+                declarations[interfaces].tail = inner
+            declaration = declarations[interfaces].__deepcopy__(None)  # see Templates
+            declaration.set("name", name)
+            block.append(declaration)
+        hardware = block[0]
+        dialects.pretty(hardware, indent + step, step)
+        hardware.tail, block.text = inner, inner
+        block[-1].tail = "\n" + indent
+        built = []
+        for move in moves:
+            built.append(self._build(move, indent + step, step, like, record=record))
+            append(block, built[-1])
+        return built
+
+    def _texts(self, moves: list[_Move], like: etree._Element, indent: str, step: str
+               ) -> list[list[bytes]] | None:
+        """The text of each transmission :meth:`_build` would build, when all have one."""
+        if _namespace(like) is not None:
+            return None
+        texts = []
+        for move in moves:
+            if move.renaming is None or move.carried:
+                return None
+            text = self._templates.text(move.renaming, move.new, indent, step)
+            if text is None:
+                return None
+            texts.append(text)
+        return texts
+
+    def _fill_by_text(self, block: etree._Element, declared: list[tuple[str, tuple]],
+                      texts: list[list[bytes]], indent: str, step: str
+                      ) -> list[etree._Element]:
+        """What :meth:`_fill` gives, the declarations and transmissions parsed from text."""
+        inner = ("\n" + indent + step).encode()
+        pieces: list[bytes] = []
+        for name, interfaces in declared:
+            head, tail = self._templates.declaration(interfaces, indent + step, step)
+            pieces += (head, name.encode(), tail, inner)
+        for text in texts:
+            pieces += text
+            pieces.append(inner)
+        hardware = block[0]
+        dialects.pretty(hardware, indent + step, step)
+        hardware.tail, block.text = inner.decode(), inner.decode()
+        pieces[-1] = ("\n" + indent).encode()  # there is a transmission at least
+        children = parse_children(pieces)
+        block.extend(children)
+        return children[len(declared):]
 
     def _component_for(self, t: Transmission) -> etree._Element | None:
         names = {j.name for j in t.joints}
@@ -258,14 +334,19 @@ class Placer:
         comments and carried children of the old one; ``record``: as what replaces the old
         one (:attr:`built`), not a trial build to compare with."""
         t = move.new
-        new = dialects.build(t, t.dialect, indent=indent, step=step, namespace=_namespace(like))
-        for (kind, name), elements in (move.carried or {}).items():
-            owner = new if kind == "transmission" else next(
-                (m for m in children(new, kind) if m.get("name") == name), new)
-            owner.extend(copy.deepcopy(e) for e in elements)
-        with_comments(new, move.old)
-        if move.carried or _has_comment(new):
-            dialects.pretty(new, indent, step)  # build() laid out all but these
+        if move.renaming is not None and not move.carried:
+            # A keyed element has no comment (see :mod:`.memo`): nothing to add.
+            new = self._templates.element(move.renaming, t, indent, step, _namespace(like))
+        else:
+            new = dialects.build(t, t.dialect, indent=indent, step=step,
+                                 namespace=_namespace(like))
+            for (kind, name), elements in (move.carried or {}).items():
+                owner = new if kind == "transmission" else next(
+                    (m for m in children(new, kind) if m.get("name") == name), new)
+                owner.extend(copy.deepcopy(e) for e in elements)
+            with_comments(new, move.old)
+            if move.carried or _has_comment(new):
+                dialects.pretty(new, indent, step)  # build() laid out all but these
         if record:
             self.built[move.old] = new
         return new
