@@ -131,3 +131,20 @@ def test_a_clean_document_is_not_rewritten(tmp_path: Path) -> None:
     result = migrate_file(str(path), FIXABLE, MigrateOptions(mode="check"))
     assert result.data == result.original and not result.changed and not result.losses
     assert result.fixes == {}
+
+
+@pytest.mark.parametrize(("text", "code"), [
+    ("<r><transmission><joint name='j'><hardwareInterface>\u2003Effort<![CDATA[JointInterface]]>"
+     "<x/></hardwareInterface></joint></transmission></r>", "TX300"),
+    ("<r xmlns:n='urn:n'><n:transmission><joint name='j'><hardwareInterface> <!-- none -->"
+     "</hardwareInterface></joint><n:actuator name='m'><n:hardwareInterface>"
+     "<![CDATA[hardware_interface/EffortJointInterface]]></n:hardwareInterface></n:actuator>"
+     "</n:transmission></r>", "TX301"),
+    ("<r><n:transmission xmlns:n='urn:n' type='SimpleTransmission'><joint name='j'/>"
+     "<actuator name='m'/></n:transmission></r>", "TX302"),
+])
+def test_text_split_by_cdata_children_or_namespaces_is_read_as_the_fixes_read_it(
+        text: str, code: str) -> None:
+    tree = etree.ElementTree(root(text))
+    assert might_fix(tree.getroot(), rules(code))
+    assert fix_tree(tree, rules(code), text.encode()) == {code: 1}
