@@ -84,3 +84,9 @@ def test_a_rewritten_stretch_of_a_long_document_is_matched_without_difflib() -> 
     before = [f"<link name='l{i}'/>\n" for i in range(5_000)] + ["<type>y</type>\n"] * 5_000
     after = before[:5_000] + ["<plugin>x</plugin>\n"] * 6_000 + ["</robot>\n"]
     assert matching_blocks(before, after) == [(0, 0, 5_000), (10_000, 11_001, 0)]
+
+
+def test_a_long_document_whose_first_line_changed_keeps_the_rest() -> None:
+    rest = [f"<link name='l{i}'/>\n" for i in range(5_000)]
+    assert matching_blocks(["<robot a='1'>\n", *rest], ["<robot a='2'>\n", *rest]) == [
+        (1, 1, 5_000), (5_001, 5_001, 0)]
