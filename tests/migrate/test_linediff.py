@@ -8,7 +8,7 @@ import time
 from hypothesis import given
 from hypothesis import strategies as st
 
-from txtool.transform.linediff import matching_blocks, unified
+from txtool.transform.linediff import matching_blocks, unified, unified_text
 
 LINES = st.lists(st.sampled_from(["<a>\n", "</a>\n", "<b/>\n", "x\n", "\n"]), max_size=40)
 
@@ -65,3 +65,28 @@ def test_matching_blocks_pair_equal_lines_in_order() -> None:
         assert before[i:i + size] == after[j:j + size]
         assert i + size <= k and j + size <= m
     assert sum(size for _, _, size in blocks) == len(before) - 3_000
+
+
+ENDED = st.lists(st.sampled_from(["<a>\n", "</a>\r\n", "<b/>\r", "x", "\n", "y\x0c"]),
+                 max_size=30)
+
+
+@given(ENDED, ENDED)
+def test_the_diff_text_marks_each_line_without_a_newline(before: list[str],
+                                                        after: list[str]) -> None:
+    expected = "".join(line if line.endswith("\n") else line + "\n\\ No newline at end of file\n"
+                       for line in unified(before, after, "a/f", "b/f"))
+    assert unified_text(before, after, "a/f", "b/f") == expected
+
+
+def test_a_rewritten_stretch_of_a_long_document_is_matched_without_difflib() -> None:
+    """No line of the gap is in both texts: nothing to match, whatever its size."""
+    before = [f"<link name='l{i}'/>\n" for i in range(5_000)] + ["<type>y</type>\n"] * 5_000
+    after = before[:5_000] + ["<plugin>x</plugin>\n"] * 6_000 + ["</robot>\n"]
+    assert matching_blocks(before, after) == [(0, 0, 5_000), (10_000, 11_001, 0)]
+
+
+def test_a_long_document_whose_first_line_changed_keeps_the_rest() -> None:
+    rest = [f"<link name='l{i}'/>\n" for i in range(5_000)]
+    assert matching_blocks(["<robot a='1'>\n", *rest], ["<robot a='2'>\n", *rest]) == [
+        (1, 1, 5_000), (5_001, 5_001, 0)]

@@ -45,7 +45,7 @@ def command(path, against, convention, output_format, no_xacro, xacro) -> int:
                         convention)
     from txtool.transform.roundtrip import roundtrip
 
-    report = roundtrip(source)
+    report = roundtrip(source, consume=True)
     if output_format == "json":
         click.echo(json.dumps(report.to_json(), indent=2))
     else:

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import bisect
 import difflib
+from collections import Counter
 from collections.abc import Hashable, Iterator, Sequence
 
 WHOLE = 16_000_000  # line pairs (4,000 lines each) that SequenceMatcher matches in one piece
@@ -40,13 +41,14 @@ def matching_blocks(a: Sequence[Hashable], b: Sequence[Hashable], *,
 def _match(a: Sequence[Hashable], b: Sequence[Hashable], a0: int, a1: int, b0: int, b1: int,
            autojunk: bool, out: list[tuple[int, int, int]]) -> None:
     if (a1 - a0) * (b1 - b0) <= WHOLE:
-        if a0 < a1 and b0 < b1:
-            matcher = difflib.SequenceMatcher(None, a[a0:a1], b[b0:b1], autojunk=autojunk)
-            out.extend((a0 + i, b0 + j, size) for i, j, size in matcher.get_matching_blocks())
+        _difflib(a, b, a0, a1, b0, b1, autojunk, out)
         return
-    while a0 < a1 and b0 < b1 and a[a0] == b[b0]:  # common head
-        out.append((a0, b0, 1))
-        a0, b0 = a0 + 1, b0 + 1
+    head = 0
+    while a0 + head < a1 and b0 + head < b1 and a[a0 + head] == b[b0 + head]:
+        head += 1
+    if head:
+        out.append((a0, b0, head))
+        a0, b0 = a0 + head, b0 + head
     tail = 0
     while a0 < a1 - tail and b0 < b1 - tail and a[a1 - 1 - tail] == b[b1 - 1 - tail]:
         tail += 1
@@ -58,24 +60,31 @@ def _match(a: Sequence[Hashable], b: Sequence[Hashable], a0: int, a1: int, b0: i
             out.append((i, j, 1))
             a0, b0 = i + 1, j + 1
         _match(a, b, a0, a1, b0, b1, autojunk, out)
-    elif a0 < a1 and b0 < b1:
-        matcher = difflib.SequenceMatcher(None, a[a0:a1], b[b0:b1], autojunk=autojunk)
-        out.extend((a0 + i, b0 + j, size) for i, j, size in matcher.get_matching_blocks())
-    out.extend((a1 + k, b1 + k, 1) for k in range(tail))
+    else:
+        _difflib(a, b, a0, a1, b0, b1, autojunk, out)
+    if tail:
+        out.append((a1, b1, tail))
+
+
+def _difflib(a: Sequence[Hashable], b: Sequence[Hashable], a0: int, a1: int, b0: int, b1: int,
+             autojunk: bool, out: list[tuple[int, int, int]]) -> None:
+    """:class:`~difflib.SequenceMatcher`'s blocks of the two ranges; none when they have no
+    line in common (a gap where every line was rewritten, which difflib would index whole)."""
+    if a0 >= a1 or b0 >= b1 or set(a[a0:a1]).isdisjoint(b[b0:b1]):
+        return
+    matcher = difflib.SequenceMatcher(None, a[a0:a1], b[b0:b1], autojunk=autojunk)
+    out.extend((a0 + i, b0 + j, size) for i, j, size in matcher.get_matching_blocks())
 
 
 def _anchors(a: Sequence[Hashable], b: Sequence[Hashable], a0: int, a1: int, b0: int,
              b1: int) -> list[tuple[int, int]]:
     """The longest increasing chain of lines unique in both ranges (patience sorting)."""
-    seen_a: dict[Hashable, int] = {}
-    for i in range(a0, a1):
-        seen_a[a[i]] = -1 if a[i] in seen_a else i
-    seen_b: dict[Hashable, int] = {}
-    for j in range(b0, b1):
-        if seen_a.get(b[j], -1) >= 0:
-            seen_b[b[j]] = -1 if b[j] in seen_b else j
-    pairs = [(seen_a[line], j) for line, j in seen_b.items() if j >= 0]
-    pairs.sort()
+    in_a, in_b = Counter(a[a0:a1]), Counter(b[b0:b1])
+    unique = {line for line, count in in_a.items() if count == 1 and in_b.get(line) == 1}
+    if not unique:
+        return []
+    where_a = {a[i]: i for i in range(a0, a1) if a[i] in unique}
+    pairs = sorted((where_a[b[j]], j) for j in range(b0, b1) if b[j] in unique)
     tops: list[int] = []  # b index at the top of each pile
     piles: list[int] = []  # index into pairs at the top of each pile
     back: list[int] = []
@@ -98,23 +107,47 @@ def _anchors(a: Sequence[Hashable], b: Sequence[Hashable], a0: int, a1: int, b0:
 def unified(a: Sequence[str], b: Sequence[str], fromfile: str, tofile: str,
             context: int = 3) -> Iterator[str]:
     """The lines of :func:`difflib.unified_diff` (no dates), from :func:`matching_blocks`."""
+    for prefix, lines in _runs(a, b, fromfile, tofile, context):
+        yield from (prefix + line for line in lines)
+
+
+NO_NEWLINE = "\n\\ No newline at end of file\n"
+
+
+def unified_text(a: Sequence[str], b: Sequence[str], fromfile: str, tofile: str,
+                 context: int = 3) -> str:
+    """The lines of :func:`unified` as one text, each line that does not end with a newline
+    followed by a newline and ``diff``'s ``\\ No newline at end of file``."""
+    out = []
+    for prefix, lines in _runs(a, b, fromfile, tofile, context):
+        run = prefix.join(lines)
+        if run.count("\n") == len(lines):  # every line ends with one (and holds no other)
+            out += (prefix, run)
+            continue
+        out += (prefix + line if line.endswith("\n") else prefix + line + NO_NEWLINE
+                for line in lines)
+    return "".join(out)
+
+
+def _runs(a: Sequence[str], b: Sequence[str], fromfile: str, tofile: str,
+          context: int) -> Iterator[tuple[str, Sequence[str]]]:
+    """:func:`unified`'s lines as runs: (prefix, the lines it goes before)."""
     matcher = _Matcher(a, b)
     started = False
     for group in matcher.get_grouped_opcodes(context):
         if not started:
             started = True
-            yield f"--- {fromfile}\n"
-            yield f"+++ {tofile}\n"
+            yield "", (f"--- {fromfile}\n", f"+++ {tofile}\n")
         first, last = group[0], group[-1]
-        yield f"@@ -{_range(first[1], last[2])} +{_range(first[3], last[4])} @@\n"
+        yield "", (f"@@ -{_range(first[1], last[2])} +{_range(first[3], last[4])} @@\n",)
         for tag, i1, i2, j1, j2 in group:
             if tag == "equal":
-                yield from (" " + line for line in a[i1:i2])
+                yield " ", a[i1:i2]
                 continue
             if tag in {"replace", "delete"}:
-                yield from ("-" + line for line in a[i1:i2])
+                yield "-", a[i1:i2]
             if tag in {"replace", "insert"}:
-                yield from ("+" + line for line in b[j1:j2])
+                yield "+", b[j1:j2]
 
 
 class _Matcher(difflib.SequenceMatcher):
@@ -122,7 +155,9 @@ class _Matcher(difflib.SequenceMatcher):
     search (its opcodes and groups are then computed as difflib computes them)."""
 
     def __init__(self, a: Sequence[str], b: Sequence[str]) -> None:
-        super().__init__(None, a, b, autojunk=True)
+        super().__init__(None, (), (), autojunk=True)
+        # Set directly: difflib's index of ``b`` (set_seq2) serves only its own search.
+        self.a, self.b = a, b
 
     def get_matching_blocks(self) -> list[difflib.Match]:  # type: ignore[override]
         if self.matching_blocks is None:

@@ -39,7 +39,8 @@ from txtool.model.core import Dialect
 from txtool.rules import Rule, all_rules
 from txtool.transform.collector import paused
 from txtool.transform.convert import DEFAULT_HARDWARE_PLUGIN, convert_source
-from txtool.transform.linediff import unified
+from txtool.transform.fixable import might_fix
+from txtool.transform.linediff import unified_text
 from txtool.transform.reversible import MARK
 from txtool.transform.splice import splice
 
@@ -213,15 +214,25 @@ def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions) -> F
     tree = parse_bytes(original, display)
     # What the end needs of the document as read is kept, and its tree is fixed in place:
     # one tree alive at a time.
-    baseline = serialize(tree, original)
     comments = [(node.text, node.sourceline) for node in _comment_nodes(tree)]
     result = FileResult(path=display, original=original, data=original, target=options.target)
-    _count(result.fixes, fix_tree(tree, rules, original))
-    migrated = serialize(tree, original)
+    clean = not might_fix(tree.getroot(), rules)  # fix_tree() would find nothing
+    if clean and options.target is None:
+        return result
+    baseline = serialize(tree, original)
+    if not clean:
+        _count(result.fixes, fix_tree(tree, rules, original))
+    migrated = serialize(tree, original) if result.fixes else baseline
     after = _comments(tree)  # the comments of ``migrated``, which is this tree written out
-    del tree
     if options.target is not None:
-        migrated, after = _convert(result, migrated, rules, options)
+        if not _as_parsed(result, options, comments):
+            del tree
+            tree = parse_bytes(migrated, display, limit=None)
+        source = Source(display, migrated, tree)
+        del tree  # the conversion frees it once converted
+        migrated, after = _convert(result, source, rules, options)
+    else:
+        del tree
     if result.refused:
         return result
     result.losses.extend(_dropped(comments, after))
@@ -233,12 +244,11 @@ def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions) -> F
     return result
 
 
-def _convert(result: FileResult, data: bytes, rules: Sequence[Rule],
+def _convert(result: FileResult, source: Source, rules: Sequence[Rule],
              options: MigrateOptions) -> tuple[bytes, list[str | None]]:
-    """Convert ``data`` to the target dialect, then fix what the conversion wrote; the result
-    and its comments."""
+    """Convert ``source`` (its tree is consumed) to the target dialect, then fix what the
+    conversion wrote; the result and its comments."""
     assert options.target is not None
-    source = Source(path=result.path, data=data, tree=parse_bytes(data, result.path, limit=None))
     try:
         conversion = convert_source(source, options.target,
                                     hardware_plugin=options.hardware_plugin, consume=True,
@@ -246,14 +256,29 @@ def _convert(result: FileResult, data: bytes, rules: Sequence[Rule],
     except ValueError as exc:
         result.losses.append(f"cannot convert: {exc}")
         result.refused = True
-        return data, []
+        return source.data, []
     result.notes.extend(conversion.notes)
     result.warnings.extend(conversion.warnings)
     result.losses.extend(conversion.losses)
     result.converted = conversion.converted
     tree = parse_bytes(conversion.data, result.path, limit=None)
-    _count(result.fixes, fix_tree(tree, rules, conversion.data))
+    if might_fix(tree.getroot(), rules):
+        _count(result.fixes, fix_tree(tree, rules, conversion.data))
     return serialize(tree, conversion.data), _comments(tree)
+
+
+def _as_parsed(result: FileResult, options: MigrateOptions,
+               comments: list[tuple[str | None, int | None]]) -> bool:
+    """Whether the tree, unfixed, may stand for the parse of its serialization: the same
+    document, but for the lines of its elements, which only ``--reversible`` and putting
+    carried originals back read."""
+    return not result.fixes and not options.reversible and not any(
+        _carried(text) for text, _ in comments)
+
+
+def _carried(comment: str | None) -> bool:
+    """A comment carrying a transmission's original (``--reversible``)."""
+    return (comment or "").strip().startswith(MARK)
 
 
 def dropped_comments(before: etree._ElementTree, after: etree._ElementTree) -> list[str]:
@@ -269,7 +294,7 @@ def _dropped(before: list[tuple[str | None, int | None]], after: list[str | None
     left = Counter(after)
     lost = []
     for comment, line in before:
-        if (comment or "").strip().startswith(MARK):
+        if _carried(comment):
             continue  # a carried original, put back by the conversion (--reversible)
         if left[comment] > 0:
             left[comment] -= 1
@@ -350,15 +375,9 @@ def _silenced(element: etree._Element, code: str, suppressions: Suppressions) ->
 def unified_diff(path: str, before: bytes, after: bytes) -> str:
     """A unified diff with ``a/PATH`` and ``b/PATH`` headers (``git apply`` / ``patch -p1``)."""
     name = path.replace(os.sep, "/").lstrip("/")
-    lines = unified(
+    return unified_text(
         document_text(before).splitlines(keepends=True),
         document_text(after).splitlines(keepends=True),
         f"a/{name}",
         f"b/{name}",
     )
-    out = []
-    for line in lines:
-        if not line.endswith("\n"):
-            line += "\n\\ No newline at end of file\n"
-        out.append(line)
-    return "".join(out)

@@ -10,9 +10,12 @@ exactly like the original (:mod:`txtool.mechanics.equivalence`).
 
 from __future__ import annotations
 
+import hashlib
 import itertools
 from collections.abc import Hashable
 from dataclasses import dataclass, field
+
+from lxml import etree
 
 from txtool.dialects.read import read_source
 from txtool.io.xmlio import Source, parse_bytes
@@ -68,22 +71,28 @@ def cycles_from(start: Dialect) -> list[tuple[Dialect, ...]]:
     return two + three
 
 
-def _reconvert(source: Source, target: Dialect, *, consume: bool) -> Source:
-    """``source`` converted to ``target`` and parsed again. The conversion's own read-back
-    check is left out: the cycle's result is judged here, against the original."""
-    data = convert_source(source, target, consume=consume, check=False).data
-    return Source(source.path, data, parse_bytes(data, source.path, limit=None))
+def _reconvert(source: Source, target: Dialect, *, consume: bool) -> bytes:
+    """``source`` converted to ``target``. The conversion's own read-back check is left out:
+    the cycle's result is judged here, against the original."""
+    return convert_source(source, target, consume=consume, check=False).data
 
 
 @paused
-def roundtrip(source: Source) -> RoundTripReport:
+def roundtrip(source: Source, *, consume: bool = False) -> RoundTripReport:
+    """The rows of every cycle of every transmission of ``source``. With ``consume`` the
+    caller gives up ``source.tree``: the last conversion of it converts it in place."""
     report = RoundTripReport(source.path)
     originals = [f.transmission for f in read_source(source, locate=False)]
     joints = robot_joints(source.root)
-    for start in DIALECTS:
-        group = [t for t in originals if t.dialect == start and t.kind != "other"]
-        if group:
-            report.rows.extend(_cycles(source, start, group, joints))
+    groups = {start: [t for t in originals if t.dialect == start and t.kind != "other"]
+              for start in DIALECTS}
+    starts = [start for start in DIALECTS if groups[start]]
+    firsts = list(dict.fromkeys(cycle[1] for start in starts for cycle in cycles_from(start)))
+    # Each first leg converts the document as read, once for every group that starts with it.
+    legs = {first: _reconvert(source, first, consume=consume and first == firsts[-1])
+            for first in firsts}
+    for start in starts:
+        report.rows.extend(_cycles(source.path, start, groups[start], joints, legs))
     report.skipped = [f"{t.name}: custom type '{t.type}'" for t in originals if t.kind == "other"]
     return report
 
@@ -106,26 +115,64 @@ def _take(found: dict[_Key, list[Transmission]], name: str) -> Transmission | No
     return same.pop(0) if same else None
 
 
-def _cycles(source: Source, start: Dialect, group: list[Transmission], joints) -> list[CycleRow]:
+def _cycles(path: str, start: Dialect, group: list[Transmission], joints,
+            legs: dict[Dialect, bytes]) -> list[CycleRow]:
     """The rows of every cycle from ``start``. Cycles that begin with the same conversion
     share it (and its equivalence check); each later leg converts a fresh parse (the first
     cycle takes the parse the shared leg was read from): one tree of each leg alive at once."""
     rows: dict[tuple[Dialect, ...], list[CycleRow]] = {}
     cycles = cycles_from(start)
+    ends = _Ends(path, group)
     for first in dict.fromkeys(cycle[1] for cycle in cycles):
-        leg = _reconvert(source, first, consume=False)
-        verdicts = _Verdicts(group, _by_name(leg), joints)
-        data, parsed = leg.data, [leg.tree]
-        del leg
+        data = legs[first]
+        tree = parse_bytes(data, path, limit=None)
+        verdicts = _Verdicts(group, _by_name(Source(path, data, tree)), joints)
+        parsed = [tree]
+        del tree
         for cycle in (c for c in cycles if c[1] == first):
-            tree = parsed.pop() if parsed else parse_bytes(data, source.path, limit=None)
-            current = Source(source.path, data, tree)
-            del tree
-            for step in cycle[2:]:
-                current = _reconvert(current, step, consume=True)
-            rows[cycle] = _rows(cycle, group, _by_name(current), verdicts)
-            del current
+            rows[cycle] = _rows(cycle, group, ends.judged(data, cycle[2:], parsed), verdicts)
+        parsed.clear()
     return [row for cycle in cycles for row in rows[cycle]]
+
+
+_Judged = list[dict[str, str] | None]  # per transmission: what it lost, or None: missing
+
+
+class _Ends:
+    """What each cycle brings back, judged against the original. A cycle's last leg that
+    converts a text already converted to the same dialect (converting ``ros1 -> ros2-p1 ->
+    ros2-p2`` often writes what ``ros1 -> ros2-p2`` wrote) brings back what it brought back
+    then: a conversion depends on nothing but the text and the dialect."""
+
+    def __init__(self, path: str, group: list[Transmission]) -> None:
+        self.path = path
+        self.group = group
+        self.known: dict[tuple[bytes, Dialect], _Judged] = {}
+
+    def judged(self, data: bytes, steps: tuple[Dialect, ...],
+               parsed: list[etree._ElementTree]) -> _Judged:
+        """The judgement of the group after converting ``data`` through ``steps``;
+        ``parsed`` holds a parse of ``data`` or nothing; the first conversion takes it."""
+        *between, last = steps
+        for step in between:
+            data = self._convert(data, step, parsed)
+        key = (_digest(data), last)
+        if key not in self.known:
+            final = self._convert(data, last, parsed)
+            self.known[key] = _judge(self.group, _by_name(self._parse(final)))
+        return self.known[key]
+
+    def _convert(self, data: bytes, target: Dialect, parsed: list[etree._ElementTree]) -> bytes:
+        tree = parsed.pop() if parsed else parse_bytes(data, self.path, limit=None)
+        return _reconvert(Source(self.path, data, tree), target, consume=True)
+
+    def _parse(self, data: bytes) -> Source:
+        return Source(self.path, data, parse_bytes(data, self.path, limit=None))
+
+
+def _digest(data: bytes) -> bytes:
+    """What texts are told apart by (holding 32 bytes, not the text)."""
+    return hashlib.sha256(data).digest()
 
 
 class _Verdicts:
@@ -169,20 +216,31 @@ def _limits(info: JointInfo | None) -> tuple[str, ...] | None:
     return (repr(info.position_range()), repr(info.velocity), repr(info.effort))
 
 
-def _rows(cycle: tuple[Dialect, ...], group: list[Transmission],
-          final: dict[_Key, list[Transmission]], verdicts: _Verdicts) -> list[CycleRow]:
-    rows = []
+def _judge(group: list[Transmission], final: dict[_Key, list[Transmission]]) -> _Judged:
+    """What each transmission of ``group`` lost in ``final`` (None: it is missing there)."""
+    judged: _Judged = []
     kept: set[Hashable] = set()  # shapes (:func:`.shapes.shape`) that came back whole
-    for index, t in enumerate(group):
+    for t in group:
         back = _take(final, t.name)
         if back is None:
-            rows.append(CycleRow(t.name, cycle, dict.fromkeys(FIELDS, False), "n/a: lost",
-                                 ("the transmission is missing after the cycle",)))
+            judged.append(None)
             continue
         key = shape(t, back)
         lost = {} if key in kept else judge(t, back)
         if not lost:
             kept.add(key)
+        judged.append(lost)
+    return judged
+
+
+def _rows(cycle: tuple[Dialect, ...], group: list[Transmission], judged: _Judged,
+          verdicts: _Verdicts) -> list[CycleRow]:
+    rows = []
+    for index, (t, lost) in enumerate(zip(group, judged, strict=True)):
+        if lost is None:
+            rows.append(CycleRow(t.name, cycle, dict.fromkeys(FIELDS, False), "n/a: lost",
+                                 ("the transmission is missing after the cycle",)))
+            continue
         details = [f"{key}: {change}" for key, change in lost.items()]
         if verdicts[index].startswith("no") and t.dialect == "ros1" and listed_against_roles(t):
             details.append("the original lists its members against their roles (TX404): "
