@@ -13,7 +13,6 @@ from txtool.lint.facts import OWN_LOADER_FAMILIES, Facts, MemberRef, facts_of
 from txtool.model.core import Member
 from txtool.model.numbers import C_SPACE, parse_ros2
 from txtool.model.robot import children
-from txtool.model.semantics import ROLES_ACTUATOR, ROLES_JOINT
 
 KNOWN_FAMILIES: tuple[str, ...] = (*OWN_LOADER_FAMILIES, "franka_hw/")
 
@@ -186,6 +185,8 @@ def coupled_groups(
 ) -> tuple[tuple[str, tuple[Member, ...], list[etree._Element], tuple[str, str]], ...]:
     """``(noun, members, their elements, the roles the loader expects)`` for the joints, then
     the actuators, of a transmission (the role rules of coupled transmissions read these)."""
+    from txtool.model.semantics import ROLES_ACTUATOR, ROLES_JOINT  # coupled types only
+
     t, element = tx.found.transmission, tx.found.element
     return (("joint", t.joints, children(element, "joint"), ROLES_JOINT),
             ("actuator", t.actuators, children(element, "actuator"), ROLES_ACTUATOR))
