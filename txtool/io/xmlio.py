@@ -87,9 +87,6 @@ class Source:
         self.source_tree = source_tree
         self.notes: list[str] = [] if notes is None else notes
 
-    def __repr__(self) -> str:
-        return f"Source(path={self.path!r}, expanded={self.expanded!r})"
-
     @property
     def root(self) -> etree._Element:
         return self.tree.getroot()

@@ -54,9 +54,6 @@ class LintContext:
             ]
         self.found: list[Found] = found
 
-    def __repr__(self) -> str:
-        return f"LintContext({self.source!r}, literal={self.literal!r})"
-
     @cached_property
     def _walked(self) -> dict[str, list[etree._Element]]:
         """One walk of the tree for the elements rules look for at any depth."""
