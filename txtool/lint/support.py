@@ -139,13 +139,14 @@ def numbers_of(facts: Facts) -> list[NumberRef]:
     once per transmission."""
     known = facts.memo.get("read_numbers")
     if known is None:
-        known = facts.memo["read_numbers"] = list(_each_number(facts))
+        known = facts.memo["read_numbers"] = _read_numbers(facts)
     return known  # type: ignore[return-value]
 
 
-def _each_number(facts: Facts) -> Iterator[NumberRef]:
+def _read_numbers(facts: Facts) -> list[NumberRef]:
+    found: list[NumberRef] = []
     if facts.kind == "other" or (facts.ros1 and not facts.typed_ros1):
-        return
+        return found
     ros1 = facts.ros1
     plain = facts.plain
     coupled = facts.kind != "simple"
@@ -165,8 +166,9 @@ def _each_number(facts: Facts) -> Iterator[NumberRef]:
                 element = _number_element(ref.kids.get(tag), ros1, plain)
                 if element is not None:
                     field = "offset" if tag == "offset" else "reduction"
-                    yield NumberRef(element, field, ref.noun, ref.name,
-                                    loader_text(element, plain), plain)
+                    found.append(NumberRef(element, field, ref.noun, ref.name,
+                                           loader_text(element, plain), plain))
+    return found
 
 
 def _number_element(found: list[etree._Element] | None, ros1: bool,
