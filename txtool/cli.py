@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import contextlib
 import errno
+import gc
 import importlib
 import os
 import sys
@@ -140,6 +141,9 @@ def cli(ctx: click.Context, debug: bool) -> None:
 
 
 def main() -> None:
+    # What is loaded so far lives as long as the process: the garbage collector need not walk
+    # it in every full collection (nor at exit).
+    gc.freeze()
     signals.stop_on_signals()
     try:
         _main()

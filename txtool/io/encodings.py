@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import codecs
 import re
-from dataclasses import dataclass
 from functools import lru_cache
+from typing import NamedTuple
 
 _MARKS = (  # UTF-32 first: its little-endian mark starts like UTF-16's
     (codecs.BOM_UTF32_LE, "utf-32-le"), (codecs.BOM_UTF32_BE, "utf-32-be"),
@@ -20,8 +20,7 @@ _MARKS = (  # UTF-32 first: its little-endian mark starts like UTF-16's
 )
 
 
-@dataclass(frozen=True)
-class Encoding:
+class Encoding(NamedTuple):
     """How a document's text is stored: the codec, the byte-order mark before the text (empty
     when there is none) and the name the XML declaration gives (None when it gives none)."""
 

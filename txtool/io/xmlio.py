@@ -12,8 +12,9 @@ import os
 import re
 import stat
 import sys
+import threading
 from contextvars import ContextVar
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 from lxml import etree
 
@@ -69,7 +70,6 @@ def safe_parser(*, recover: bool = False) -> etree.XMLParser:
     )
 
 
-@dataclass
 class Source:
     """One input document.
 
@@ -77,12 +77,15 @@ class Source:
     For xacro inputs ``source_tree`` is the file as written (for locations and in-place edits).
     """
 
-    path: str
-    data: bytes
-    tree: etree._ElementTree
-    expanded: bool = False
-    source_tree: etree._ElementTree | None = None
-    notes: list[str] = field(default_factory=list)
+    def __init__(self, path: str, data: bytes, tree: etree._ElementTree, expanded: bool = False,
+                 source_tree: etree._ElementTree | None = None,
+                 notes: list[str] | None = None) -> None:
+        self.path = path
+        self.data = data
+        self.tree = tree
+        self.expanded = expanded
+        self.source_tree = source_tree
+        self.notes: list[str] = [] if notes is None else notes
 
     @property
     def root(self) -> etree._Element:
@@ -173,7 +176,7 @@ def parse_bytes(data: bytes, path: str, *, limit: int | None = MAX_BYTES) -> etr
     wrong = mislabelled(data)
     if wrong is not None:
         raise XMLSyntax(path, *wrong)
-    parser = safe_parser()
+    parser = _reused_parser()
     try:
         text = parsing_form(data)
         root = etree.fromstring(_movable_declaration(text), parser)
@@ -190,6 +193,18 @@ def parse_bytes(data: bytes, path: str, *, limit: int | None = MAX_BYTES) -> etr
     tree = root.getroottree()
     _refuse_entities(tree, parser, text, path)
     return tree
+
+
+_PARSERS = threading.local()
+
+
+def _reused_parser() -> etree.XMLParser:
+    """This thread's :func:`safe_parser`, made once: making one costs about as much as parsing
+    a small file, and each parse starts from a clean state (its error log included)."""
+    parser: etree.XMLParser | None = getattr(_PARSERS, "parser", None)
+    if parser is None:
+        parser = _PARSERS.parser = safe_parser()
+    return parser
 
 
 _NON_BLANK = re.compile(rb"[^ \t\n\r\x0b\x0c]")  # what bytes.strip() strips

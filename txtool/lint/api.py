@@ -6,7 +6,7 @@ import os
 import sys
 import threading
 from collections.abc import Iterator
-from dataclasses import dataclass, field
+from typing import NamedTuple
 
 from txtool.io.xmlio import InputError, XacroOptions
 from txtool.lint.config import Overrides, Settings, SettingsCache
@@ -17,8 +17,7 @@ from txtool.lint.problem import InputFailure, Problem
 __all__ = ["LintOptions", "LintResult", "exit_code", "lint_paths", "lint_source"]
 
 
-@dataclass(frozen=True)
-class LintOptions:
+class LintOptions(NamedTuple):
     """Everything ``txtool validate`` takes besides the paths and the output format."""
 
     select: tuple[str, ...] | None = None
@@ -35,13 +34,15 @@ class LintOptions:
     respect_gitignore: bool | None = None  # None: as configured (default True)
 
 
-@dataclass
 class LintResult:
     """Problems of every file in input order, how many files were read, and input errors."""
 
-    problems: list[Problem] = field(default_factory=list)
-    files: int = 0
-    errors: list[InputFailure] = field(default_factory=list)
+    __slots__ = ("problems", "files", "errors")
+
+    def __init__(self) -> None:
+        self.problems: list[Problem] = []
+        self.files = 0
+        self.errors: list[InputFailure] = []
 
     def count(self, severity: str) -> int:
         return sum(1 for p in self.problems if p.severity == severity)

@@ -291,6 +291,7 @@ class SettingsCache:
         self.explicit = Path(explicit) if explicit else None
         self._by_file: dict[Path | None, Settings] = {}
         self._by_folder: dict[str, Path | None] = {}
+        self._by_path: dict[str, Settings] = {}  # a folder walk asks first, then the linter
         self._cli_excludes = Excludes(
             os.getcwd(), (*(overrides.exclude or ()), *overrides.extend_exclude)
         )
@@ -298,6 +299,12 @@ class SettingsCache:
         no_xacro_from_environment()  # a bad value stops the run before any file is read
 
     def for_file(self, path: str) -> Settings:
+        known = self._by_path.get(path)
+        if known is None:
+            known = self._by_path[path] = self._for_file(path)
+        return known
+
+    def _for_file(self, path: str) -> Settings:
         if self.explicit is not None:
             config_path: Path | None = self.explicit
         elif path == "-":

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from collections.abc import Iterator, Mapping
-from dataclasses import dataclass, field
 from functools import cached_property
 from typing import TYPE_CHECKING, Any
 
@@ -25,7 +24,6 @@ _WALKED = ("transmission", "joint", "ros2_control")
 _WALKED_TAGS = tuple(f"{{*}}{name}" for name in _WALKED)
 
 
-@dataclass
 class LintContext:
     """One parsed document (after xacro expansion when the input is xacro).
 
@@ -40,21 +38,21 @@ class LintContext:
     (see :meth:`unknown`). ``options`` holds each rule's validated options by code.
     """
 
-    source: Source
-    found: list[Found] = field(default_factory=list)
-    literal: bool = False
-    options: Mapping[str, Any] = field(default_factory=dict)
-    # Facts about the whole document that several rules share (see txtool.lint.support).
-    memo: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
-
-    def __post_init__(self) -> None:
-        if not self.found:
+    def __init__(self, source: Source, found: list[Found] | None = None, literal: bool = False,
+                 options: Mapping[str, Any] | None = None) -> None:
+        self.source = source
+        self.literal = literal
+        self.options: Mapping[str, Any] = {} if options is None else options
+        # Facts about the whole document that several rules share (see txtool.lint.support).
+        self.memo: dict[str, Any] = {}
+        if not found:
             # Each transmission's model is read when a rule first asks for it (see facts).
             components: dict[etree._Element, Component] = {}
-            self.found = [
+            found = [
                 LintFound(element, components)
-                for element in transmission_elements(self.source.root, self._walked["transmission"])
+                for element in transmission_elements(source.root, self._walked["transmission"])
             ]
+        self.found: list[Found] = found
 
     @cached_property
     def _walked(self) -> dict[str, list[etree._Element]]:

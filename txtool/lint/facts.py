@@ -44,10 +44,8 @@ class LintFound(Found):
 
     def __init__(self, element: etree._Element, components: dict[etree._Element, Component]
                  ) -> None:
-        object.__setattr__(self, "element", element)
-        object.__setattr__(self, "memo", {})
-        object.__setattr__(self, "_components", components)
-        object.__setattr__(self, "_read", None)
+        # One update for the four fields: the frozen dataclass refuses plain assignment.
+        self.__dict__.update(element=element, memo={}, _components=components, _read=None)
 
     @property  # type: ignore[override]
     def transmission(self) -> Transmission:

@@ -3,12 +3,10 @@
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass
-from typing import Any
+from typing import Any, NamedTuple
 
 
-@dataclass(frozen=True)
-class Excludes:
+class Excludes(NamedTuple):
     """gitignore-style patterns relative to ``base``: a pattern without ``/`` matches a name
     at any depth, one with ``/`` is anchored at ``base``, ``dir/`` matches folders only."""
 

@@ -3,13 +3,12 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Literal, NamedTuple
 
 Severity = Literal["error", "warning", "info"]
 
 
-@dataclass(frozen=True)
-class InputFailure:
+class InputFailure(NamedTuple):
     """A file that could not be checked: its path and the one-line message (``path[:line]:
     reason``) that says why. It fails the run with exit 2; machine reports keep it."""
 

@@ -13,7 +13,6 @@ from txtool.lint.facts import OWN_LOADER_FAMILIES, Facts, MemberRef, facts_of
 from txtool.model.core import Member
 from txtool.model.numbers import C_SPACE, parse_ros2
 from txtool.model.robot import children
-from txtool.model.semantics import ROLES_ACTUATOR, ROLES_JOINT
 
 KNOWN_FAMILIES: tuple[str, ...] = (*OWN_LOADER_FAMILIES, "franka_hw/")
 
@@ -140,13 +139,14 @@ def numbers_of(facts: Facts) -> list[NumberRef]:
     once per transmission."""
     known = facts.memo.get("read_numbers")
     if known is None:
-        known = facts.memo["read_numbers"] = list(_each_number(facts))
+        known = facts.memo["read_numbers"] = _read_numbers(facts)
     return known  # type: ignore[return-value]
 
 
-def _each_number(facts: Facts) -> Iterator[NumberRef]:
+def _read_numbers(facts: Facts) -> list[NumberRef]:
+    found: list[NumberRef] = []
     if facts.kind == "other" or (facts.ros1 and not facts.typed_ros1):
-        return
+        return found
     ros1 = facts.ros1
     plain = facts.plain
     coupled = facts.kind != "simple"
@@ -166,8 +166,9 @@ def _each_number(facts: Facts) -> Iterator[NumberRef]:
                 element = _number_element(ref.kids.get(tag), ros1, plain)
                 if element is not None:
                     field = "offset" if tag == "offset" else "reduction"
-                    yield NumberRef(element, field, ref.noun, ref.name,
-                                    loader_text(element, plain), plain)
+                    found.append(NumberRef(element, field, ref.noun, ref.name,
+                                           loader_text(element, plain), plain))
+    return found
 
 
 def _number_element(found: list[etree._Element] | None, ros1: bool,
@@ -186,6 +187,8 @@ def coupled_groups(
 ) -> tuple[tuple[str, tuple[Member, ...], list[etree._Element], tuple[str, str]], ...]:
     """``(noun, members, their elements, the roles the loader expects)`` for the joints, then
     the actuators, of a transmission (the role rules of coupled transmissions read these)."""
+    from txtool.model.semantics import ROLES_ACTUATOR, ROLES_JOINT  # coupled types only
+
     t, element = tx.found.transmission, tx.found.element
     return (("joint", t.joints, children(element, "joint"), ROLES_JOINT),
             ("actuator", t.actuators, children(element, "actuator"), ROLES_ACTUATOR))

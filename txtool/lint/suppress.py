@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Iterator
-from dataclasses import dataclass, field
+from typing import NamedTuple
 
 from txtool.lint.problem import Problem
 from txtool.lint.text import scanned_form
@@ -22,14 +22,19 @@ _DIRECTIVE = re.compile(rb"<!--\s*txtool:\s*([\w-]*)(.*?)-->", re.DOTALL)
 _CODE = re.compile(r"^TX\d{3}$", re.IGNORECASE)
 
 
-@dataclass
 class Directive:
-    kind: str
-    line: int
-    column: int
-    target: int | None  # the line silenced; None for the whole file
-    codes: frozenset[str]  # empty: every code
-    used: set[str] = field(default_factory=set)
+    """One ``txtool: disable-...`` comment; ``used`` collects the codes it silenced."""
+
+    __slots__ = ("kind", "line", "column", "target", "codes", "used")
+
+    def __init__(self, kind: str, line: int, column: int, target: int | None,
+                 codes: frozenset[str]) -> None:
+        self.kind = kind
+        self.line = line
+        self.column = column
+        self.target = target  # the line silenced; None for the whole file
+        self.codes = codes  # empty: every code
+        self.used: set[str] = set()
 
     def covers(self, problem: Problem) -> bool:
         if self.target is not None and problem.line != self.target:
@@ -37,8 +42,7 @@ class Directive:
         return not self.codes or problem.code in self.codes
 
 
-@dataclass(frozen=True)
-class Invalid:
+class Invalid(NamedTuple):
     """A ``txtool:`` comment that silences nothing as written: a misspelt directive or a
     token that is not a rule code (``reason`` says which)."""
 
@@ -47,10 +51,14 @@ class Invalid:
     reason: str
 
 
-@dataclass
 class Suppressions:
-    directives: list[Directive] = field(default_factory=list)
-    invalid: list[Invalid] = field(default_factory=list)
+    """The directives of a document, and the comments that are none."""
+
+    __slots__ = ("directives", "invalid")
+
+    def __init__(self) -> None:
+        self.directives: list[Directive] = []
+        self.invalid: list[Invalid] = []
 
     def __bool__(self) -> bool:
         return bool(self.directives or self.invalid)

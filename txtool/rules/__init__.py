@@ -9,10 +9,9 @@ from __future__ import annotations
 
 import importlib
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass
 from functools import lru_cache
 from types import ModuleType
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 from txtool.lint.problem import SEVERITIES, Severity
 
@@ -70,8 +69,7 @@ class UnknownRule(KeyError):
         return f"no such rule: {self.args[0]}"
 
 
-@dataclass(frozen=True)
-class Rule:
+class Rule(NamedTuple):
     """One registered rule: its metadata, its functions and its documentation."""
 
     code: str

@@ -45,9 +45,7 @@ from typing import Any
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.support import label
-from txtool.mechanics.linear import MAX_CONDITION, condition_number, singular
 from txtool.model.core import Transmission
-from txtool.model.semantics import NotLoadable, effective
 
 CODE = "TX403"
 NAME = "singular-transmission"
@@ -60,6 +58,8 @@ def options_model() -> Any:
     """The pydantic model of this rule's options (built when a configuration names them)."""
     from pydantic import BaseModel, ConfigDict, Field
 
+    from txtool.mechanics.linear import MAX_CONDITION
+
     class Options(BaseModel):
         model_config = ConfigDict(extra="forbid", populate_by_name=True)
 
@@ -69,11 +69,17 @@ def options_model() -> Any:
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
+    # A loadable simple map is one finite, non-zero number: never singular. The linear algebra
+    # is loaded for documents with other standard transmissions only.
+    coupled = [tx for tx in ctx.facts if tx.kind not in ("other", "simple")]
+    if not coupled:
+        return
+    from txtool.mechanics.linear import MAX_CONDITION, condition_number, singular
+    from txtool.model.semantics import NotLoadable, effective
+
     options = ctx.option(CODE)
     max_condition = options.max_condition if options else MAX_CONDITION
-    for tx in ctx.facts:
-        if tx.kind in ("other", "simple"):
-            continue  # a loadable simple map is one finite, non-zero number: never singular
+    for tx in coupled:
         found = tx.found
         t = found.transmission
         if _has_unknown_number(ctx, t):

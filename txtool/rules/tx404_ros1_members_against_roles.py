@@ -41,7 +41,6 @@ from collections.abc import Iterator
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.support import coupled_groups, label
-from txtool.model.semantics import against_roles
 
 CODE = "TX404"
 NAME = "ros1-members-against-roles"
@@ -53,6 +52,8 @@ def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         if not tx.ros1 or tx.kind not in ("differential", "four_bar"):
             continue
+        from txtool.model.semantics import against_roles  # for coupled transmissions only
+
         found = tx.found
         for noun, members, elements, roles in coupled_groups(tx):
             if len(members) != 2 or not against_roles(members, roles):
