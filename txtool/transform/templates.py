@@ -16,10 +16,9 @@ from collections.abc import Hashable
 from lxml import etree
 
 from txtool import dialects
+from txtool.io.xmlio import safe_parser
 from txtool.model.core import Transmission
 from txtool.transform.memo import NAME, Renaming
-
-_PARSER = etree.XMLParser(resolve_entities=False, huge_tree=True)
 
 
 class Templates:
@@ -86,7 +85,7 @@ def _split(element: etree._Element, renaming: Renaming
     """``element``'s text cut at its name attributes, and which name goes in each cut (None:
     the name as written), or None when the text does not give the element back."""
     text = etree.tostring(element, with_tail=False)
-    if etree.tostring(etree.fromstring(text, _PARSER)) != text:
+    if etree.tostring(etree.fromstring(text, safe_parser())) != text:
         return None
     index = {name.encode("ascii"): i for i, name in enumerate(renaming.names)}
     parts = NAME.split(text)  # what NAME matches goes; the names stay, between the others
@@ -98,4 +97,4 @@ def _split(element: etree._Element, renaming: Renaming
 
 def parse_children(pieces: list[bytes]) -> list[etree._Element]:
     """The elements (with their tails) of the text ``pieces`` join to."""
-    return list(etree.fromstring(b"<x>" + b"".join(pieces) + b"</x>", _PARSER))
+    return list(etree.fromstring(b"<x>" + b"".join(pieces) + b"</x>", safe_parser()))
