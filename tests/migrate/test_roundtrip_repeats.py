@@ -18,7 +18,7 @@ from lxml import etree
 
 from tests.corpus import corpus_file
 from txtool.io.load import load
-from txtool.model.robot import robot_joints
+from txtool.model.robot import JointsOnDemand, joint_elements
 from txtool.transform import roundtrip as module
 from txtool.transform.repeats import cycled_document, plan_repeats
 from txtool.transform.roundtrip import CycleRow, RoundTripReport, roundtrip
@@ -65,7 +65,7 @@ def both(path: Path, monkeypatch: pytest.MonkeyPatch) -> tuple[RoundTripReport, 
 
 def followers(path: Path) -> int:
     source = load(str(path))
-    plan = plan_repeats(source, robot_joints(source.root))
+    plan = plan_repeats(source, JointsOnDemand(joint_elements(source.root)))
     return 0 if plan is None else len(plan.first_of)
 
 
@@ -138,7 +138,7 @@ def test_the_document_cycled_holds_one_transmission_of_each_shape(tmp_path: Path
     path = tmp_path / "robot.urdf"
     path.write_text(chain(50, n7="3"))
     source = load(str(path))
-    plan = plan_repeats(source, robot_joints(source.root))
+    plan = plan_repeats(source, JointsOnDemand(joint_elements(source.root)))
     assert plan is not None
     cycled = cycled_document(source, plan)
     assert [t.get("name") for t in cycled.root] == ["t0", "t7"]  # no links, joints, followers

@@ -32,7 +32,7 @@ from lxml import etree
 
 from txtool.dialects.read import transmission_elements
 from txtool.io.xmlio import Source, parse_bytes
-from txtool.model.robot import JointInfo, children
+from txtool.model.robot import JointsOnDemand, child_index, children, joint_info
 from txtool.transform.memo import renaming_of
 
 # What the cycled document leaves out besides the followers: URDF parts no conversion reads.
@@ -51,7 +51,7 @@ class Plan(NamedTuple):
         return Plan(self.elements, {f: p for f, p in self.first_of.items() if p not in firsts})
 
 
-def plan_repeats(source: Source, joints: dict[str, JointInfo]) -> Plan | None:
+def plan_repeats(source: Source, joints: JointsOnDemand) -> Plan | None:
     """The followers of ``source``, or None where none can be left out."""
     root = source.root
     if source.expanded or _CARRIED in source.data:
@@ -63,6 +63,7 @@ def plan_repeats(source: Source, joints: dict[str, JointInfo]) -> Plan | None:
         return None
     keys: list[Hashable | None] = []
     uses: Counter[str] = Counter()
+    known: dict[tuple, tuple | None] = {}
     names_of: list[set[str]] = []
     for element in elements:
         renaming = renaming_of(element)
@@ -72,7 +73,7 @@ def plan_repeats(source: Source, joints: dict[str, JointInfo]) -> Plan | None:
         uses.update(names)
         names_of.append(names)
         keys.append(None if renaming is None else
-                    (renaming.key, _joints_alike(element, joints)))
+                    (renaming.key, _joints_alike(element, joints, known)))
     firsts: dict[Hashable, int] = {}
     first_of: dict[int, int] = {}
     for position, (key, names) in enumerate(zip(keys, names_of, strict=True)):
@@ -90,17 +91,34 @@ def _names(element: etree._Element) -> set[str]:
             if isinstance(node.tag, str) and node.get("name") is not None}
 
 
-def _joints_alike(element: etree._Element, joints: dict[str, JointInfo]) -> tuple:
+def _joints_alike(element: etree._Element, joints: JointsOnDemand,
+                  known: dict[tuple, tuple | None]) -> tuple:
     """What the cycles read of a transmission's URDF joints (in the order it names them):
-    none where a joint is missing or mimics another (then it is no one's follower)."""
+    unlike any other where a joint is missing or mimics another (then it is no one's
+    follower). ``known``: each reading by what it reads (joints written alike read alike)."""
     alike = []
     for member in children(element, "joint"):
-        info = joints.get(member.get("name", ""))
-        if info is None or info.mimic is not None:
+        joint = joints.elements.get(member.get("name", ""))
+        if joint is None:
             return (object(),)  # equal to nothing
-        alike.append((info.type, repr(info.lower), repr(info.upper), repr(info.velocity),
-                      repr(info.effort), repr(info.damping), repr(info.friction)))
+        kids = child_index(joint)
+        written = (joint.get("type"), _attributes(kids, "limit"), _attributes(kids, "dynamics"),
+                   _attributes(kids, "mimic"))
+        if written not in known:
+            info = joint_info(joint)
+            known[written] = None if info.mimic is not None else (
+                info.type, repr(info.lower), repr(info.upper), repr(info.velocity),
+                repr(info.effort), repr(info.damping), repr(info.friction))
+        if known[written] is None:
+            return (object(),)
+        alike.append(known[written])
     return tuple(alike)
+
+
+def _attributes(kids: dict[str, list[etree._Element]], name: str) -> tuple | None:
+    """The attributes of the first child ``name`` (the one a joint is read from)."""
+    found = kids.get(name)
+    return tuple(found[0].items()) if found else None
 
 
 def cycled_document(source: Source, plan: Plan) -> Source:

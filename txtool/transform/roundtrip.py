@@ -13,15 +13,15 @@ from __future__ import annotations
 import hashlib
 import itertools
 from collections import Counter
-from collections.abc import Hashable
+from collections.abc import Hashable, Mapping
 from dataclasses import dataclass, field
 
 from lxml import etree
 
 from txtool.dialects.read import read_source
 from txtool.io.xmlio import Source, parse_bytes
-from txtool.model.core import DIALECTS, Dialect, Transmission
-from txtool.model.robot import JointInfo, robot_joints
+from txtool.model.core import DIALECTS, Dialect, Transmission, builder
+from txtool.model.robot import JointInfo, JointsOnDemand, joint_elements
 from txtool.model.semantics import listed_against_roles
 from txtool.transform.collector import paused
 from txtool.transform.convert import convert_source, judge
@@ -30,7 +30,7 @@ from txtool.transform.shapes import ordered_shape, shape
 from txtool.views.tables import FIELDS
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class CycleRow:
     transmission: str
     cycle: tuple[Dialect, ...]
@@ -51,7 +51,10 @@ class RoundTripReport:
 
     @property
     def ok(self) -> bool:
-        return all(row.ok for row in self.rows)
+        # The rows of repeated transmissions share their fields (see .repeats): each fields
+        # and verdict they share is looked at once.
+        shared = {(id(row.fields), row.equivalent): row for row in self.rows}
+        return all(row.ok for row in shared.values())
 
     def to_json(self) -> dict:
         return {
@@ -83,7 +86,7 @@ def _reconvert(source: Source, target: Dialect, *, consume: bool) -> bytes:
 def roundtrip(source: Source, *, consume: bool = False) -> RoundTripReport:
     """The rows of every cycle of every transmission of ``source``. With ``consume`` the
     caller gives up ``source.tree``: the last conversion of it converts it in place."""
-    joints = robot_joints(source.root)
+    joints = JointsOnDemand(joint_elements(source.root))
     plan = plan_repeats(source, joints)
     while plan is not None:
         # A transmission that repeats another is cycled once, with it (see .repeats).
@@ -98,7 +101,7 @@ def roundtrip(source: Source, *, consume: bool = False) -> RoundTripReport:
     return _report(source, joints, consume=consume)[0]
 
 
-def _report(source: Source, joints: dict[str, JointInfo], *, consume: bool
+def _report(source: Source, joints: Mapping[str, JointInfo], *, consume: bool
             ) -> tuple[RoundTripReport, list[Transmission]]:
     """:func:`roundtrip`'s report on ``source`` cycled in full, and its transmissions."""
     report = RoundTripReport(source.path)
@@ -121,6 +124,7 @@ def _groups(originals: list[Transmission]) -> dict[Dialect, list[Transmission]]:
             for start in DIALECTS}
 
 
+_new_row = builder(CycleRow)
 _ByPosition = dict[int, CycleRow]  # a cycle's rows by their transmission's position
 
 
@@ -180,8 +184,9 @@ def with_followers(report: RoundTripReport, originals: list[Transmission], plan:
             row = by_position.get(at[position if first is None else first])
             if row is None:
                 continue
-            rows.append(row if first is None else
-                        CycleRow(element.get("name", ""), cycle, row.fields, row.equivalent))
+            rows.append(row if first is None else _new_row(
+                transmission=element.get("name", ""), cycle=cycle, fields=row.fields,
+                equivalent=row.equivalent))
     return rows
 
 

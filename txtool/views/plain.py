@@ -91,7 +91,7 @@ def roundtrip_text(report: Any) -> str | None:
     rests: dict[tuple, list[str]] = {}  # the cells after the name, alike in many rows
     for row in report.rows:
         cycle = " → ".join(row.cycle)
-        key = (row.cycle, tuple(row.fields.items()), row.equivalent)
+        key = (row.cycle, id(row.fields), row.equivalent)  # rows of repeats share fields
         rest = rests.get(key)
         if rest is None:
             rest = rests[key] = [cycle, *("✓" if row.fields[f] else "✗" for f in FIELDS),

@@ -9,6 +9,7 @@ robot shares among thousands of rows: each rest is encoded once, by ``json.dumps
 from __future__ import annotations
 
 import json
+from json.encoder import encode_basestring_ascii  # what json.dumps writes a str with
 from typing import Any
 
 _ROW = "    {\n      \"transmission\": "
@@ -19,11 +20,12 @@ def roundtrip_json(report: Any) -> str:
     rests: dict[tuple, str] = {}
     rows = []
     for row in report.rows:
-        key = (row.cycle, tuple(row.fields.items()), row.equivalent, row.details)
+        # Rows of repeated transmissions share their fields (all rows are alive: ids differ).
+        key = (row.cycle, id(row.fields), row.equivalent, row.details)
         rest = rests.get(key)
         if rest is None:
             rest = rests[key] = _rest(row)
-        rows.append(_ROW + json.dumps(row.transmission) + rest)
+        rows.append(_ROW + encode_basestring_ascii(row.transmission) + rest)
     cycles = "[\n" + ",\n".join(rows) + "\n  ]" if rows else "[]"
     return "".join([
         "{\n  \"path\": ", json.dumps(report.path),
