@@ -13,12 +13,14 @@ detail may name what it lost.
 
 That needs each follower and its first to stand apart from everything else the conversions
 read: none of their names is used by another transmission (both would then read the other's
-members), the document has no ``<ros2_control>`` (a conversion reads its declarations) and no
-carried original (:mod:`.reversible`, a comment beside a transmission), every transmission is
-a child of the root (and none is inside a xacro macro), and the document is the file as
-written, not a xacro expansion. The document cycled also leaves out the root's URDF ``<link>``
-and ``<joint>`` children: conversions never read them, and the equivalence check reads the
-joints of the whole document, found before.
+members) or names a ``<ros2_control>`` block; in a block, the declarations of their joints are
+keyed with them and leave with them (see :class:`_Blocks` for when that changes nothing else);
+outside the blocks, none declares their joints; a transmission inside another element is not
+keyed. The document has no carried original (:mod:`.reversible`, a comment beside a
+transmission), every block is a child of the root, and the document is the file as written,
+not a xacro expansion. The document cycled also leaves out the root's URDF ``<link>`` and
+``<joint>`` children: conversions never read them, and the equivalence check reads the joints
+of the whole document, found before.
 """
 
 from __future__ import annotations
@@ -45,10 +47,12 @@ class Plan(NamedTuple):
 
     elements: list[etree._Element]  # every <transmission>, in document order
     first_of: dict[int, int]  # a follower's position -> its first's
+    declarations: dict[int, list[etree._Element]]  # in a block: its joints' declarations
 
     def without(self, firsts: set[int]) -> Plan:
         """The plan in which the followers of ``firsts`` are cycled in full."""
-        return Plan(self.elements, {f: p for f, p in self.first_of.items() if p not in firsts})
+        return self._replace(first_of={f: p for f, p in self.first_of.items()
+                                       if p not in firsts})
 
 
 def plan_repeats(source: Source, joints: JointsOnDemand) -> Plan | None:
@@ -56,10 +60,9 @@ def plan_repeats(source: Source, joints: JointsOnDemand) -> Plan | None:
     root = source.root
     if source.expanded or _CARRIED in source.data:
         return None
-    if next(root.iter("{*}ros2_control"), None) is not None:
-        return None
     elements = transmission_elements(root)
-    if len(elements) < 2 or any(e.getparent() is not root for e in elements):
+    blocks = _Blocks(root)
+    if len(elements) < 2 or not blocks.apart:
         return None
     keys: list[Hashable | None] = []
     uses: Counter[str] = Counter()
@@ -72,17 +75,91 @@ def plan_repeats(source: Source, joints: JointsOnDemand) -> Plan | None:
             renaming = None  # a literal name (actuator1, *) is not told apart by its key
         uses.update(names)
         names_of.append(names)
-        keys.append(None if renaming is None else
-                    (renaming.key, _joints_alike(element, joints, known)))
+        place = None if renaming is None else blocks.place(element)
+        keys.append(None if place is None else
+                    (renaming.key, place, _joints_alike(element, joints, known)))
     firsts: dict[Hashable, int] = {}
     first_of: dict[int, int] = {}
     for position, (key, names) in enumerate(zip(keys, names_of, strict=True)):
-        if key is None or any(uses[n] > 1 for n in names):
+        if key is None or any(uses[n] > 1 for n in names) or blocks.named(names):
             continue
         first = firsts.setdefault(key, position)
         if first != position:
             first_of[position] = first
-    return Plan(elements, first_of) if first_of else None
+    if not first_of:
+        return None
+    return Plan(elements, first_of, {f: blocks.declarations(elements[f]) for f in first_of})
+
+
+class _Blocks:
+    """The ``<ros2_control>`` blocks of a document, and where a transmission stands among them.
+
+    A transmission in a block reads the declarations of its joints there: one is keyed with
+    them, and only where removing it with them from the block changes nothing else. That is
+    so where every joint the block declares is declared once in the document, and the block
+    declares exactly the joints of its transmissions, in the order they name them (as txtool
+    generates a block: converting back recognises a generated block by building it again).
+    A transmission outside the blocks is keyed only when none of them declares its joints
+    (converting it to ROS 2 would move it into that block).
+    """
+
+    def __init__(self, root: etree._Element) -> None:
+        self.root = root
+        self.blocks = {block: index for index, block in enumerate(root.iter("{*}ros2_control"))}
+        self.apart = all(block.getparent() is root for block in self.blocks)
+        self.declared: Counter[str | None] = Counter(
+            joint.get("name") for block in self.blocks for joint in children(block, "joint"))
+        self._orderly: dict[etree._Element, dict[str, etree._Element] | None] = {}
+
+    def place(self, element: etree._Element) -> Hashable | None:
+        """What a transmission's conversions read besides it, or None where that is more
+        than its block's declarations of its joints."""
+        parent = element.getparent()
+        names = [member.get("name", "") for member in children(element, "joint")]
+        if parent is self.root:
+            return None if any(self.declared[name] for name in names) else ()
+        declared = self._declarations_of(parent) if parent in self.blocks else None
+        if declared is None:
+            return None
+        shapes = [_declaration_shape(declared[name], name) for name in names]
+        if None in shapes:
+            return None
+        return self.blocks[parent], tuple(shapes)
+
+    def named(self, names: set[str]) -> bool:
+        """Whether a block is named like one of ``names`` (converting back reads a block
+        around one transmission that bears its name as generated)."""
+        return any(block.get("name") in names for block in self.blocks)
+
+    def declarations(self, element: etree._Element) -> list[etree._Element]:
+        parent = element.getparent()
+        if parent is self.root:
+            return []
+        declared = self._orderly[parent]
+        assert declared is not None
+        return [declared[member.get("name", "")] for member in children(element, "joint")]
+
+    def _declarations_of(self, block: etree._Element) -> dict[str, etree._Element] | None:
+        """The block's declarations by joint name, where it is orderly (above)."""
+        if block not in self._orderly:
+            declared = [(joint.get("name"), joint) for joint in children(block, "joint")]
+            named = [member.get("name", "") for t in children(block, "transmission")
+                     for member in children(t, "joint")]
+            orderly = [name for name, _ in declared] == list(dict.fromkeys(named)) and all(
+                self.declared[name] == 1 for name, _ in declared)
+            self._orderly[block] = {name: joint for name, joint in declared  # type: ignore[misc]
+                                    } if orderly else None
+        return self._orderly[block]
+
+
+def _declaration_shape(declaration: etree._Element, name: str) -> bytes | None:
+    """A joint's declaration as written, but for its own name."""
+    data = etree.tostring(declaration, with_tail=False)
+    named = b' name="' + name.encode("ascii", "xmlcharrefreplace") + b'"'
+    head = data[:data.find(b">")]
+    if b"<!" in data or b"<?" in data or b"&" in named or head.count(named) != 1:
+        return None
+    return data.replace(named, b"", 1)
 
 
 def _names(element: etree._Element) -> set[str]:
@@ -122,14 +199,28 @@ def _attributes(kids: dict[str, list[etree._Element]], name: str) -> tuple | Non
 
 
 def cycled_document(source: Source, plan: Plan) -> Source:
-    """``source`` without the followers of ``plan`` and the root's URDF links and joints."""
+    """``source`` without the followers of ``plan`` (and their joints' declarations) and the
+    root's URDF links and joints."""
     root = source.root
-    followers = {id(plan.elements[f]) for f in plan.first_of}
-    shell = etree.Element(root.tag, dict(root.attrib), nsmap=root.nsmap)
-    shell.text = root.text
-    for child in root:
-        if id(child) in followers or child.tag in _URDF_PARTS:
-            continue
-        shell.append(copy.copy(child))
+    left_out = {id(plan.elements[f]) for f in plan.first_of}
+    left_out.update(id(d) for f in plan.first_of for d in plan.declarations[f])
+    shell = _kept(root, left_out, parts=_URDF_PARTS)
     data = etree.tostring(shell, encoding="utf-8", xml_declaration=True)
     return Source(source.path, data, parse_bytes(data, source.path, limit=None))
+
+
+def _kept(element: etree._Element, left_out: set[int], parts: frozenset[str] = frozenset()
+          ) -> etree._Element:
+    """A copy of ``element`` without the children in ``left_out`` or named in ``parts``;
+    a ``<ros2_control>`` child copied the same way."""
+    shell = etree.Element(element.tag, dict(element.attrib), nsmap=element.nsmap)
+    shell.text = element.text
+    shell.tail = element.tail
+    for child in element:
+        if id(child) in left_out or child.tag in parts:
+            continue
+        if isinstance(child.tag, str) and child.tag.rpartition("}")[2] == "ros2_control":
+            shell.append(_kept(child, left_out))
+        else:
+            shell.append(copy.copy(child))
+    return shell
