@@ -238,7 +238,7 @@ def test_real_robots_and_copies_of_their_transmissions(
 
 # -- the JSON text ---------------------------------------------------------------------------
 
-NAMES = st.text(max_size=12)
+NAMES = st.text(st.characters(exclude_categories=()), max_size=12)  # surrogates too
 ROWS = st.builds(
     CycleRow, NAMES, st.sampled_from([("ros1", "ros2-p2", "ros1"),
                                        ("ros2-p1", "ros1", "ros2-p2", "ros2-p1")]),
