@@ -78,7 +78,10 @@ def per_transmission(path: Path, args: list[str], size: int) -> tuple[float, flo
     (["migrate", "--diff", "--to", "ros2-p2"], 250, "ros1"),
     (["migrate", "--diff", "--to", "ros2-p2"], 300, "pretty"),  # repeated lines to align
     (["roundtrip", "--format", "json"], 40, "ros1"),
-], ids=["convert", "convert-back", "migrate", "migrate-pretty", "roundtrip"])
+    (["roundtrip", "--format", "json"], 40, "ros2"),  # followers inside a generated block
+    (["validate", "--format", "json"], 250, "ros2"),  # each member's block declaration
+], ids=["convert", "convert-back", "migrate", "migrate-pretty", "roundtrip", "roundtrip-ros2",
+        "validate-ros2"])
 def test_work_per_transmission_does_not_grow_with_the_document(tmp_path, args, small, start):
     counts = []
     for size in (small, 4 * small):

@@ -47,7 +47,9 @@ def command(path, against, convention, output_format, no_xacro, xacro) -> int:
 
     report = roundtrip(source, consume=True)
     if output_format == "json":
-        click.echo(json.dumps(report.to_json(), indent=2))
+        from txtool.views.report_json import roundtrip_json
+
+        click.echo(roundtrip_json(report))
     else:
         _print_table(report)
     return 0 if report.ok else 1

@@ -7,7 +7,7 @@ URDF ``<joint>`` elements (type, limits, mimic, dynamics) and ROS 2 ``<ros2_cont
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterable, Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import cached_property
@@ -265,3 +265,24 @@ def component_of(element: etree._Element) -> Component:
         joints=joints,
         line=element.sourceline or 0,
     )
+
+
+class JointsOnDemand(Mapping[str, JointInfo]):
+    """:func:`robot_joints`, each joint read (limits included) when first asked for: a
+    document's few transmissions that are compared name a few of its thousands of joints."""
+
+    def __init__(self, elements: dict[str, etree._Element]) -> None:
+        self.elements = elements
+        self._read: dict[str, JointInfo] = {}
+
+    def __getitem__(self, name: str) -> JointInfo:
+        info = self._read.get(name)
+        if info is None:
+            info = self._read[name] = joint_info(self.elements[name])
+        return info
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self.elements)
+
+    def __len__(self) -> int:
+        return len(self.elements)

@@ -101,10 +101,22 @@ def component_joint(
     component = enclosing_component(found.element)
     if component is None:
         return None
-    joint = next((j for j in children(component, "joint") if j.get("name") == name), None)
+    joint = _joints_of(ctx, component).get(name)
     if joint is None or opaque(ctx, joint):
         return None
     return component, joint
+
+
+def _joints_of(ctx: LintContext, component: etree._Element) -> dict[str, etree._Element]:
+    """A block's ``<joint>`` elements by name (the first of a repeated name), found once per
+    block: a block generated for thousands of transmissions is asked about each of them."""
+    known = ctx.memo.setdefault("component joints", {})
+    joints = known.get(component)
+    if joints is None:
+        joints = known[component] = {}
+        for joint in children(component, "joint"):
+            joints.setdefault(joint.get("name"), joint)
+    return joints
 
 
 def declared_interfaces(joint: etree._Element) -> list[str]:

@@ -12,23 +12,25 @@ from __future__ import annotations
 
 import hashlib
 import itertools
-from collections.abc import Hashable
+from collections import Counter
+from collections.abc import Hashable, Mapping
 from dataclasses import dataclass, field
 
 from lxml import etree
 
 from txtool.dialects.read import read_source
 from txtool.io.xmlio import Source, parse_bytes
-from txtool.model.core import DIALECTS, Dialect, Transmission
-from txtool.model.robot import JointInfo, robot_joints
+from txtool.model.core import DIALECTS, Dialect, Transmission, builder
+from txtool.model.robot import JointInfo, JointsOnDemand, joint_elements
 from txtool.model.semantics import listed_against_roles
 from txtool.transform.collector import paused
 from txtool.transform.convert import convert_source, judge
+from txtool.transform.repeats import Plan, cycled_document, plan_repeats
 from txtool.transform.shapes import ordered_shape, shape
 from txtool.views.tables import FIELDS
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class CycleRow:
     transmission: str
     cycle: tuple[Dialect, ...]
@@ -49,7 +51,10 @@ class RoundTripReport:
 
     @property
     def ok(self) -> bool:
-        return all(row.ok for row in self.rows)
+        # The rows of repeated transmissions share their fields (see .repeats): each fields
+        # and verdict they share is looked at once.
+        shared = {(id(row.fields), row.equivalent): row for row in self.rows}
+        return all(row.ok for row in shared.values())
 
     def to_json(self) -> dict:
         return {
@@ -81,11 +86,27 @@ def _reconvert(source: Source, target: Dialect, *, consume: bool) -> bytes:
 def roundtrip(source: Source, *, consume: bool = False) -> RoundTripReport:
     """The rows of every cycle of every transmission of ``source``. With ``consume`` the
     caller gives up ``source.tree``: the last conversion of it converts it in place."""
+    joints = JointsOnDemand(joint_elements(source.root))
+    plan = plan_repeats(source, joints)
+    while plan is not None:
+        # A transmission that repeats another is cycled once, with it (see .repeats).
+        report, originals = _report(cycled_document(source, plan), joints, consume=True)
+        spoken = spoken_firsts(report, originals, plan)
+        if not spoken:
+            report.rows = with_followers(report, originals, plan)
+            return report
+        plan = plan.without(spoken)
+        if not plan.first_of:
+            plan = None
+    return _report(source, joints, consume=consume)[0]
+
+
+def _report(source: Source, joints: Mapping[str, JointInfo], *, consume: bool
+            ) -> tuple[RoundTripReport, list[Transmission]]:
+    """:func:`roundtrip`'s report on ``source`` cycled in full, and its transmissions."""
     report = RoundTripReport(source.path)
     originals = [f.transmission for f in read_source(source, locate=False)]
-    joints = robot_joints(source.root)
-    groups = {start: [t for t in originals if t.dialect == start and t.kind != "other"]
-              for start in DIALECTS}
+    groups = _groups(originals)
     starts = [start for start in DIALECTS if groups[start]]
     firsts = list(dict.fromkeys(cycle[1] for start in starts for cycle in cycles_from(start)))
     # Each first leg converts the document as read, once for every group that starts with it.
@@ -94,7 +115,79 @@ def roundtrip(source: Source, *, consume: bool = False) -> RoundTripReport:
     for start in starts:
         report.rows.extend(_cycles(source.path, start, groups[start], joints, legs))
     report.skipped = [f"{t.name}: custom type '{t.type}'" for t in originals if t.kind == "other"]
-    return report
+    return report, originals
+
+
+def _groups(originals: list[Transmission]) -> dict[Dialect, list[Transmission]]:
+    """The transmissions cycled from each dialect (custom types are passed through)."""
+    return {start: [t for t in originals if t.dialect == start and t.kind != "other"]
+            for start in DIALECTS}
+
+
+_new_row = builder(CycleRow)
+_ByPosition = dict[int, CycleRow]  # a cycle's rows by their transmission's position
+
+
+def _by_cycle(report: RoundTripReport, originals: list[Transmission]
+              ) -> list[tuple[tuple[Dialect, ...], _ByPosition]]:
+    """The rows of ``report`` cycle by cycle, by the position of each one's transmission
+    among ``originals`` (the report's rows, in :func:`_report`'s order)."""
+    rows = iter(report.rows)
+    found = []
+    for start in DIALECTS:
+        members = [j for j, t in enumerate(originals) if t.dialect == start and t.kind != "other"]
+        found.extend((cycle, {j: next(rows) for j in members}) for cycle in cycles_from(start)
+                     if members)
+    return found
+
+
+def _silent(row: CycleRow) -> bool:
+    return row.equivalent == "yes" and not row.details and all(row.fields.values())
+
+
+def _kept(plan: Plan) -> dict[int, int]:
+    """Each transmission cycled: its position in the document -> in the document cycled."""
+    kept = (p for p in range(len(plan.elements)) if p not in plan.first_of)
+    return {p: j for j, p in enumerate(kept)}
+
+
+def spoken_firsts(report: RoundTripReport, originals: list[Transmission], plan: Plan
+                  ) -> set[int]:
+    """The firsts of ``plan`` whose rows in ``report`` (of the document cycled) say something
+    or are missing: their followers are cycled in full."""
+    firsts = set(plan.first_of.values())
+    at = _kept(plan)
+    if len(at) != len(originals):
+        return firsts  # not the transmissions planned: cycle everything
+    covered: Counter[int] = Counter()
+    spoken = set()
+    by_cycle = _by_cycle(report, originals)
+    for first in firsts:
+        for _, rows in by_cycle:
+            row = rows.get(at[first])
+            if row is not None:
+                covered[first] += 1
+                if not _silent(row):
+                    spoken.add(first)
+    return spoken | {f for f in firsts if not covered[f]}
+
+
+def with_followers(report: RoundTripReport, originals: list[Transmission], plan: Plan
+                   ) -> list[CycleRow]:
+    """The rows of the whole document: ``report``'s, and each follower's after its first's
+    (the same, with its name), in document order."""
+    at = _kept(plan)
+    rows = []
+    for cycle, by_position in _by_cycle(report, originals):
+        for position, element in enumerate(plan.elements):
+            first = plan.first_of.get(position)
+            row = by_position.get(at[position if first is None else first])
+            if row is None:
+                continue
+            rows.append(row if first is None else _new_row(
+                transmission=element.get("name", ""), cycle=cycle, fields=row.fields,
+                equivalent=row.equivalent))
+    return rows
 
 
 _Key = tuple[str, bool]

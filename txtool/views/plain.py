@@ -51,7 +51,7 @@ def plain_table(
     """rich's ``Table(title=title, title_justify="left")`` of these columns and rows, then
     ``lines``, as printed at ``width`` without colour; None unless every text is plain and the
     table and each line fit the width. Texts are as printed (no markup)."""
-    texts = [title, *columns, *lines, *(cell for row in rows for cell in row)]
+    texts = {title, *columns, *lines, *(cell for row in rows for cell in row)}
     if not all(_plain(text) for text in texts) or any(len(line) > width for line in lines):
         return None
     widths = [max([len(name)] + [len(row[i]) for row in rows]) for i, name in enumerate(columns)]
@@ -62,7 +62,14 @@ def plain_table(
     out.append("┏" + "┳".join("━" * (w + 2) for w in widths) + "┓")
     out.append(_row("┃", columns, widths))
     out.append("┡" + "╇".join("━" * (w + 2) for w in widths) + "┩")
-    out.extend(_row("│", row, widths) for row in rows)
+    tails: dict[tuple[str, ...], str] = {}  # the cells after the first, alike in many rows
+    for row in rows:
+        tail = tuple(row[1:])
+        text = tails.get(tail)
+        if text is None:
+            text = tails[tail] = "".join(
+                f" {cell.ljust(width)} │" for cell, width in zip(tail, widths[1:], strict=True))
+        out.append(f"│ {row[0].ljust(widths[0])} │{text}")
     out.append("└" + "┴".join("─" * (w + 2) for w in widths) + "┘")
     out.extend(lines)
     return "\n".join(out) + "\n"
@@ -81,14 +88,19 @@ def roundtrip_text(report: Any) -> str | None:
 
     rows = []
     lines = []
+    rests: dict[tuple, list[str]] = {}  # the cells after the name, alike in many rows
     for row in report.rows:
         cycle = " → ".join(row.cycle)
-        marks = ["✓" if row.fields[f] else "✗" for f in FIELDS]
-        rows.append([printable(row.transmission), cycle, *marks,
-                     row.equivalent.split(":", 1)[0]])
-        reason = row.equivalent.split(": ", 1)[1:] if row.equivalent != "yes" else []
-        lines.extend(f"{row.transmission} ({cycle}): {detail}"
-                     for detail in (*row.details, *reason))
+        key = (row.cycle, id(row.fields), row.equivalent)  # rows of repeats share fields
+        rest = rests.get(key)
+        if rest is None:
+            rest = rests[key] = [cycle, *("✓" if row.fields[f] else "✗" for f in FIELDS),
+                                 row.equivalent.split(":", 1)[0]]
+        rows.append([printable(row.transmission), *rest])
+        if row.details or row.equivalent != "yes":
+            reason = row.equivalent.split(": ", 1)[1:] if row.equivalent != "yes" else []
+            lines.extend(f"{row.transmission} ({cycle}): {detail}"
+                         for detail in (*row.details, *reason))
     lines.extend(f"passed through untouched: {skipped}" for skipped in report.skipped)
     lines.append("all cycles keep every field" if report.ok
                  else "some cycles lose data or change behaviour")
