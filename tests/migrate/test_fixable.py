@@ -270,7 +270,7 @@ def check_comment_texts(data: bytes) -> None:
     texts = migrate._comment_texts(data)
     if texts is not None:
         assert Counter(texts) == Counter(migrate._comments(tree))
-    if not migrate._may_hold_comments(data):
+    if not migrate._may_declare(data):
         assert not migrate._comments(tree)
 
 

@@ -74,7 +74,7 @@ SCANNABLE = frozenset({"utf-8", "ascii", "iso8859-1", "cp1252"})
 # and its parent is no actuator. The usual ROS 1 layout; anything else is read in the tree.
 _JOINT_INTERFACE = re.compile(
     rb"<joint name=(?:\"[^\"<]*\"|'[^'<]*')>\s*<hardwareInterface>\s*" + PREFIX.encode()
-    + rb"[^<]*</hardwareInterface>")
+    + rb"[^<]*</hardwareInterface>()")  # the empty group: findall() copies no match
 _TRANSMISSION_TAG = re.compile(rb"transmission(\s[^<]*)")
 _TYPE = re.compile(rb"type\s*=")
 # No registered name starts like the prefix, so a text that does is no unprefixed name.

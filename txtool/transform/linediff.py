@@ -192,18 +192,19 @@ def unified_ascii(a: bytes, b: bytes, fromfile: str, tofile: str) -> str | None:
     """
     if a == b or not (a.isascii() and b.isascii()) or b"\r" in a or b"\r" in b:
         return None
-    lines_a, lines_b = _line_count(a), _line_count(b)
-    if lines_a * lines_b <= WHOLE:
-        return None  # matched whole by difflib
     cut = a.rfind(b"\n", 0, _common_prefix(a, b)) + 1
-    head = a.count(b"\n", 0, cut)
     tail_bytes, tail = _common_tail(a, b, cut)
     middle_a, middle_b = a[cut:len(a) - tail_bytes], b[cut:len(b) - tail_bytes]
-    if middle_a and middle_b and not set(middle_a.splitlines()).isdisjoint(
-            middle_b.splitlines()):
+    lines_in_a, lines_in_b = middle_a.splitlines(), middle_b.splitlines()
+    head = a.count(b"\n", 0, cut)
+    lines_a, lines_b = head + len(lines_in_a) + tail, head + len(lines_in_b) + tail
+    if lines_a * lines_b <= WHOLE:
+        return None  # matched whole by difflib
+    # Without their ends, lines that differ only there (a last line without one) count as
+    # common too: then the lines are diffed.
+    if lines_in_a and lines_in_b and not set(lines_in_a).isdisjoint(lines_in_b):
         return None
-    # Every line of a middle ends with "\n" but maybe the last of the document: splitting on
-    # "\n" without the ends loses no line but the empty text after a final "\n".
+    del lines_in_a, lines_in_b
     end_a, end_b = lines_a - tail, lines_b - tail
     first = max(0, head - 3)
     before = a[_line_start(a, cut, head - first):cut]

@@ -215,13 +215,14 @@ def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions) -> F
     tree = parse_bytes(original, display)
     # What the end needs of the document as read is kept, and its tree is fixed in place:
     # one tree alive at a time.
+    declarations = _may_declare(original)
     comments = [(node.text, node.sourceline) for node in _comment_nodes(tree)] if (
-        _may_hold_comments(original)) else []
+        declarations) else []
     result = FileResult(path=display, original=original, data=original, target=options.target)
     clean = not might_fix(tree.getroot(), rules, original)  # fix_tree() would find nothing
     if clean and options.target is None:
         return result
-    if clean and _direct(original, result, options, comments):
+    if clean and _direct(original, result, options, comments, declarations):
         source = Source(display, original, tree)
         del tree  # the conversion frees it once converted
         if _convert_direct(result, source, rules, options, comments):
@@ -265,11 +266,13 @@ def _steps(result: FileResult, tree: etree._ElementTree, rules: Sequence[Rule],
 
 
 def _direct(original: bytes, result: FileResult, options: MigrateOptions,
-            comments: list[tuple[str | None, int | None]]) -> bool:
+            comments: list[tuple[str | None, int | None]], declarations: bool) -> bool:
     """Whether converting the original itself (see :func:`_convert_direct`) may stand for the
-    steps: a conversion, no carried originals to put back, bytes a scanner can read."""
+    steps: a conversion, no carried originals to put back, bytes a scanner can read, no
+    DOCTYPE (``declarations``: the original may hold one)."""
     return options.target is not None and _as_parsed(result, options, comments) and (
-        detect_encoding(original).codec in SCANNABLE) and b"<!DOCTYPE" not in original
+        detect_encoding(original).codec in SCANNABLE) and not (
+        declarations and b"<!DOCTYPE" in original)
 
 
 def _convert_direct(result: FileResult, source: Source, rules: Sequence[Rule],
@@ -335,8 +338,10 @@ def _empty_with_end_tag(data: bytes) -> bool:
     return False
 
 
-def _may_hold_comments(data: bytes) -> bool:
-    return detect_encoding(data).codec not in SCANNABLE or b"<!--" in data
+def _may_declare(data: bytes) -> bool:
+    """Whether ``data`` may hold a comment, a DOCTYPE or a CDATA section ("<!" begins each;
+    one byte is looked for faster than two)."""
+    return detect_encoding(data).codec not in SCANNABLE or b"!" in data
 
 
 _COMMENT = re.compile(rb"<!--(.*?)-->", re.DOTALL)
