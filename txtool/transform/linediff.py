@@ -175,3 +175,123 @@ def _range(start: int, stop: int) -> str:
     if not length:
         beginning -= 1
     return f"{beginning},{length}"
+
+
+_CHUNK = 1 << 16
+
+
+def unified_ascii(a: bytes, b: bytes, fromfile: str, tofile: str) -> str | None:
+    """:func:`unified_text` of the lines of two large XML documents stored in ASCII, where
+    they differ in one run of lines that has no line in common: the anchored search then
+    keeps the common head and tail and nothing between, and the diff is written from the
+    bytes without a Python object per line. None where that does not hold (the caller diffs
+    the lines) or ``a == b``.
+
+    Both must be well-formed XML, which holds no control character but tab, LF and CR: then
+    only LF and CR end lines (as :meth:`str.splitlines` cuts them), and with no CR, LF alone.
+    """
+    if a == b or not (a.isascii() and b.isascii()) or b"\r" in a or b"\r" in b:
+        return None
+    cut = a.rfind(b"\n", 0, _common_prefix(a, b)) + 1
+    tail_bytes, tail = _common_tail(a, b, cut)
+    middle_a, middle_b = a[cut:len(a) - tail_bytes], b[cut:len(b) - tail_bytes]
+    lines_in_a, lines_in_b = middle_a.splitlines(), middle_b.splitlines()
+    head = a.count(b"\n", 0, cut)
+    lines_a, lines_b = head + len(lines_in_a) + tail, head + len(lines_in_b) + tail
+    if lines_a * lines_b <= WHOLE:
+        return None  # matched whole by difflib
+    # Without their ends, lines that differ only there (a last line without one) count as
+    # common too: then the lines are diffed.
+    if lines_in_a and lines_in_b and not set(lines_in_a).isdisjoint(lines_in_b):
+        return None
+    del lines_in_a, lines_in_b
+    end_a, end_b = lines_a - tail, lines_b - tail
+    first = max(0, head - 3)
+    before = a[_line_start(a, cut, head - first):cut]
+    after = a[len(a) - tail_bytes:_line_end(a, len(a) - tail_bytes, min(tail, 3))]
+    header = (f"--- {fromfile}\n+++ {tofile}\n"
+              f"@@ -{_range(first, min(end_a + 3, lines_a))} "
+              f"+{_range(first, min(end_b + 3, lines_b))} @@\n")
+    return header + b"".join(_prefixed(prefix, text) for prefix, text in (
+        (b" ", before), (b"-", middle_a), (b"+", middle_b), (b" ", after))).decode("ascii")
+
+
+def _line_count(data: bytes) -> int:
+    return data.count(b"\n") + (0 if data.endswith(b"\n") or not data else 1)
+
+
+def _common_prefix(a: bytes, b: bytes) -> int:
+    """The length of the longest common prefix of ``a`` and ``b``."""
+    size = min(len(a), len(b))
+    at = 0
+    while at < size and a[at:at + _CHUNK] == b[at:at + _CHUNK]:
+        at += _CHUNK
+    low, high = at, min(at + _CHUNK, size)  # the answer lies in [low, high]
+    while low < high:
+        middle = (low + high + 1) // 2
+        if a[low:middle] == b[low:middle]:
+            low = middle
+        else:
+            high = middle - 1
+    return low
+
+
+def _common_suffix(a: bytes, b: bytes, limit: int) -> int:
+    """The length of the longest common suffix of ``a`` and ``b``, at most ``limit``."""
+    at = 0  # bytes matched from the end
+    while at < limit:
+        size = min(_CHUNK, limit - at)
+        if a[len(a) - at - size:len(a) - at] != b[len(b) - at - size:len(b) - at]:
+            break
+        at += size
+    else:
+        return limit
+    low, high = at, min(at + _CHUNK, limit)  # the answer lies in [low, high]
+    while low < high:
+        middle = (low + high + 1) // 2
+        if a[len(a) - middle:len(a) - low] == b[len(b) - middle:len(b) - low]:
+            low = middle
+        else:
+            high = middle - 1
+    return low
+
+
+def _common_tail(a: bytes, b: bytes, cut: int) -> tuple[int, int]:
+    """The bytes and lines of the longest run of whole lines that ``a`` and ``b`` end with,
+    after their common head (both start a line at ``cut``)."""
+    room = min(len(a), len(b)) - cut
+    same = _common_suffix(a, b, room)
+    tail = a[len(a) - same:]
+    if same == room:  # one rest ends the other: whole if the other starts a line there
+        longer = b if len(a) == cut + room else a
+        if longer[len(longer) - same - 1:len(longer) - same] == b"\n":
+            return same, _line_count(tail)
+    start = tail.find(b"\n") + 1
+    if not start:
+        return 0, 0
+    return same - start, _line_count(tail[start:])
+
+
+def _line_start(data: bytes, at: int, lines: int) -> int:
+    """Where the line ``lines`` lines before the one starting at ``at`` starts."""
+    for _ in range(lines):
+        at = data.rfind(b"\n", 0, at - 1) + 1
+    return at
+
+
+def _line_end(data: bytes, at: int, lines: int) -> int:
+    """Where ``lines`` lines after ``at`` (a line start) end."""
+    for _ in range(lines):
+        found = data.find(b"\n", at)
+        at = len(data) if found < 0 else found + 1
+    return at
+
+
+def _prefixed(prefix: bytes, text: bytes) -> bytes:
+    """Each line of ``text`` after ``prefix``, a last line without "\\n" marked as diff marks
+    it."""
+    if not text:
+        return b""
+    if text.endswith(b"\n"):
+        return prefix + text[:-1].replace(b"\n", b"\n" + prefix) + b"\n"
+    return prefix + text.replace(b"\n", b"\n" + prefix) + NO_NEWLINE.encode()

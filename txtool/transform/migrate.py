@@ -13,6 +13,7 @@ files only in ``write`` mode. Nothing here prints.
 from __future__ import annotations
 
 import os
+import re
 from collections import Counter
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
@@ -21,7 +22,7 @@ from typing import Literal
 from lxml import etree
 
 from txtool.dialects.read import transmission_elements
-from txtool.io.encodings import document_text
+from txtool.io.encodings import detect_encoding, document_text
 from txtool.io.xmlio import (
     InputError,
     Source,
@@ -39,8 +40,8 @@ from txtool.model.core import Dialect
 from txtool.rules import Rule, all_rules
 from txtool.transform.collector import paused
 from txtool.transform.convert import DEFAULT_HARDWARE_PLUGIN, convert_source
-from txtool.transform.fixable import might_fix
-from txtool.transform.linediff import unified_text
+from txtool.transform.fixable import SCANNABLE, might_fix, might_fix_text
+from txtool.transform.linediff import unified_ascii, unified_text
 from txtool.transform.reversible import MARK
 from txtool.transform.splice import splice
 
@@ -214,11 +215,31 @@ def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions) -> F
     tree = parse_bytes(original, display)
     # What the end needs of the document as read is kept, and its tree is fixed in place:
     # one tree alive at a time.
-    comments = [(node.text, node.sourceline) for node in _comment_nodes(tree)]
+    declarations = _may_declare(original)
+    comments = [(node.text, node.sourceline) for node in _comment_nodes(tree)] if (
+        declarations) else []
     result = FileResult(path=display, original=original, data=original, target=options.target)
-    clean = not might_fix(tree.getroot(), rules)  # fix_tree() would find nothing
+    clean = not might_fix(tree.getroot(), rules, original)  # fix_tree() would find nothing
     if clean and options.target is None:
         return result
+    if clean and _direct(original, result, options, comments, declarations):
+        source = Source(display, original, tree)
+        del tree  # the conversion frees it once converted
+        if _convert_direct(result, source, rules, options, comments):
+            return result
+        # What the conversion wrote needs the steps below (rare): they start again.
+        tree = parse_bytes(original, display)
+        result = FileResult(path=display, original=original, data=original,
+                            target=options.target)
+    return _steps(result, tree, rules, options, comments, clean)
+
+
+def _steps(result: FileResult, tree: etree._ElementTree, rules: Sequence[Rule],
+           options: MigrateOptions, comments: list[tuple[str | None, int | None]],
+           clean: bool) -> FileResult:
+    """Fix ``tree`` (the parse of ``result.original``), serialize, convert, parse, fix again,
+    serialize, and splice into the original."""
+    original, display = result.original, result.path
     baseline = serialize(tree, original)
     if not clean:
         _count(result.fixes, fix_tree(tree, rules, original))
@@ -242,6 +263,105 @@ def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions) -> F
         return result
     result.data = data
     return result
+
+
+def _direct(original: bytes, result: FileResult, options: MigrateOptions,
+            comments: list[tuple[str | None, int | None]], declarations: bool) -> bool:
+    """Whether converting the original itself (see :func:`_convert_direct`) may stand for the
+    steps: a conversion, no carried originals to put back, bytes a scanner can read, no
+    DOCTYPE (``declarations``: the original may hold one)."""
+    return options.target is not None and _as_parsed(result, options, comments) and (
+        detect_encoding(original).codec in SCANNABLE) and not (
+        declarations and b"<!DOCTYPE" in original)
+
+
+def _convert_direct(result: FileResult, source: Source, rules: Sequence[Rule],
+                    options: MigrateOptions,
+                    comments: list[tuple[str | None, int | None]]) -> bool:
+    """Convert ``source`` (the original and its unfixed parse; the tree is consumed) straight
+    into the original's bytes; False, with nothing settled, where the steps are needed.
+
+    The steps convert the serialized tree, then parse, fix and serialize the result again and
+    splice that into the original. When no fix can find anything in what the conversion wrote
+    and it holds no empty element written with an end tag (``<role></role>``, which a parse
+    and a serialization make ``<role/>``), that serialization is the conversion's own, and
+    the conversion spliced it into the original as the steps would.
+    """
+    assert options.target is not None
+    try:
+        conversion = convert_source(source, options.target,
+                                    hardware_plugin=options.hardware_plugin, consume=True)
+    except ValueError as exc:
+        result.losses.append(f"cannot convert: {exc}")
+        result.refused = True
+        return True
+    data = conversion.data
+    if _empty_with_end_tag(data):
+        return False
+    after = _comment_texts(data) if comments else []
+    if after is None or might_fix_text(data, rules):
+        # The bytes cannot tell: the parse of what was written can (it reads as the steps'
+        # parse reads, see splice()).
+        try:
+            tree = parse_bytes(data, result.path, limit=None)
+        except InputError:
+            return False  # the steps say what cannot be read, as they read it
+        if might_fix(tree.getroot(), rules, data):
+            return False
+        after = _comments(tree)
+        del tree
+    result.notes.extend(conversion.notes)
+    result.warnings.extend(conversion.warnings)
+    result.losses.extend(conversion.losses)
+    result.converted = conversion.converted
+    result.losses.extend(_dropped(comments, after))
+    if result.losses and not options.allow_lossy and data != result.original:
+        result.refused = True
+    else:
+        result.data = data
+    return True
+
+
+# ``></`` after neither a self-closing tag nor the end of a comment, instruction or CDATA
+# section: after the end of a start or end tag (or a ``>`` in text).
+_AFTER_TAG_END = re.compile(rb"></(?<![/\-?\]]></)")
+
+
+def _empty_with_end_tag(data: bytes) -> bool:
+    """Whether an element may be written ``<x></x>`` (serialized with an empty text) in
+    ``data``, a serialization by lxml (which writes ``>`` in values as ``&gt;``) maybe spliced
+    into a document: an end tag right after a start tag."""
+    for match in _AFTER_TAG_END.finditer(data):
+        opening = data.rfind(b"<", 0, match.start())
+        if data[opening + 1:opening + 2] != b"/":
+            return True
+    return False
+
+
+def _may_declare(data: bytes) -> bool:
+    """Whether ``data`` may hold a comment, a DOCTYPE or a CDATA section ("<!" begins each;
+    one byte is looked for faster than two)."""
+    return detect_encoding(data).codec not in SCANNABLE or b"!" in data
+
+
+_COMMENT = re.compile(rb"<!--(.*?)-->", re.DOTALL)
+
+
+def _comment_texts(data: bytes) -> list[str] | None:
+    """The texts of the comments of ``data`` as a parse reads them, or None where the bytes
+    alone may not tell (a CDATA section, a DOCTYPE or a processing instruction could hold
+    ``<!--``; a text not in UTF-8)."""
+    if b"<![CDATA[" in data or b"<!DOCTYPE" in data or detect_encoding(data).codec not in (
+            "utf-8", "ascii"):
+        return None
+    instruction = data.find(b"<?")
+    if instruction >= 0:
+        end = data.find(b"?>", instruction)
+        if end < 0 or data.find(b"<?", instruction + 2) >= 0 or (
+                b"<!--" in data[instruction:end]):
+            return None
+    return [text.decode("utf-8").replace("\r\n", "\n").replace("\r", "\n")
+            for text in _COMMENT.findall(data)]
 
 
 def _convert(result: FileResult, source: Source, rules: Sequence[Rule],
@@ -375,6 +495,10 @@ def _silenced(element: etree._Element, code: str, suppressions: Suppressions) ->
 def unified_diff(path: str, before: bytes, after: bytes) -> str:
     """A unified diff with ``a/PATH`` and ``b/PATH`` headers (``git apply`` / ``patch -p1``)."""
     name = path.replace(os.sep, "/").lstrip("/")
+    if {detect_encoding(before).codec, detect_encoding(after).codec} <= SCANNABLE:
+        fast = unified_ascii(before, after, f"a/{name}", f"b/{name}")
+        if fast is not None:
+            return fast
     return unified_text(
         document_text(before).splitlines(keepends=True),
         document_text(after).splitlines(keepends=True),
