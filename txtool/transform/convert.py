@@ -123,17 +123,17 @@ def convert_source(
     names = Counter(map(attrgetter("name"), items))
     if check and memo is not None and not detect_encoding(source.data).wide:
         # What the check reads back of a written transmission is paired with it by its name.
-        crowded = {item.element if isinstance(item, Follower) else olds[id(item)]
-                   for item in items if names[item.name] > 1}
-        placer.may_write = lambda old: old not in crowded
+        placer.crowded = set() if len(names) == len(items) else {
+            item.element if isinstance(item, Follower) else olds[id(item)]
+            for item in items if names[item.name] > 1}
     placer.finish()
     carry.after(tree, placer.built)
     result.notes.extend(placer.notes)
     for item in items:
         if isinstance(item, Follower):
             item.built, item.element = placer.built.get(item.element), None
-    virtual = {id(item): built for item in items if not isinstance(item, Follower)
-               and isinstance(built := placer.built.get(olds[id(item)]), Written)}
+    virtual = {key: built for key, old in olds.items()
+               if isinstance(built := placer.built.get(old), Written)}
     del elements, olds  # the replaced elements are freed before the document is written
     changed = _serialize(tree, source.data, placer)
     if placer.unwritten:  # parsed into the tree after all
@@ -331,6 +331,7 @@ def _check(output: Source, result: Conversion, originals: list[Transmission | Fo
     firsts = {id(record.original): record for record in _records(originals)}
     components: dict[etree._Element, Any] = {}
     survived: set[Hashable] = set()  # shapes (:mod:`.shapes`) that came back whole
+    whole: set[int] = set()  # records whose verdict is in ``survived``, by id
     written: dict[tuple[str, bool], list[Found]] = {}
     for element in transmission_elements(output.root, (
             e for e in output.root.iter("{*}transmission") if e not in apart)):
@@ -344,7 +345,10 @@ def _check(output: Source, result: Conversion, originals: list[Transmission | Fo
         text = item.built if is_follower and isinstance(item.built, Written) else virtual.get(
             id(item))
         if is_follower and item.built in apart:
-            if item.record.verdict in survived:
+            if id(item.record) in whole:
+                continue
+            if item.record.verdict in survived:  # and stays: a shape's hash is made once
+                whole.add(id(item.record))
                 continue
             t = item.transmission()
             element = read_back([text])[0] if text is not None else item.built

@@ -97,9 +97,9 @@ class Placer:
         # from them alone: what reading one back gives depends on that element only.
         self.alone: set[etree._Element | Written] = set()
         self._templates = Templates()
-        # Set by the caller: whether the element built for an old element may be written as
-        # text (:mod:`.written`) rather than parsed into the tree.
-        self.may_write: Callable[[etree._Element], bool] | None = None
+        # Set by the caller: the old elements whose built ones may not be written as text
+        # (:mod:`.written`) rather than parsed into the tree; None: none may.
+        self.crowded: set[etree._Element] | None = None
         self.written: tuple[etree._Comment, bytes] | None = None  # the marker, and its text
         self.unwritten: dict[Written, etree._Element] = {}  # by :meth:`unwrite`
 
@@ -272,23 +272,66 @@ class Placer:
                      like: etree._Element, indent: str, step: str) -> etree._Element | None:
         """The block :meth:`_generate` makes, with its declarations and transmissions left as
         text (:mod:`.written`, kept in :attr:`written`), or None when it cannot be so."""
-        may_write = self.may_write
-        if may_write is None or not (blank(indent) and blank(step)):
+        crowded = self.crowded
+        if crowded is None or not (blank(indent) and blank(step)):
             return None
-        if not all([may_write(move.old) for move in moves]):
+        if not crowded.isdisjoint([move.old for move in moves]):
             return None
         texts = self._texts(moves, like, indent + step, step, plain_only=True)
         if texts is None:
             return None
-        joints = [move.joints() for move in moves]
-        declared, shared = _declared(moves, joints)
-        if not plain_names("".join([joint for joint, _ in declared])):
+        tails = self._tails(moves, runs, indent, step)
+        if tails is None:
             return None
-        inner = "\n" + indent + step
-        newline = inner.encode()
-        tails = [newline] * len(moves)
+        newline = ("\n" + indent + step).encode()
+        part = Block(name)
+        declarations = part.declarations  # the first of each joint, in order
+        declaration = self._templates.declaration
+        forms: dict[tuple, tuple[bytes, bytes]] = {}
+        heads: list[bytes] = []
+        bodies: list[bytes] = []
+        written: list[tuple[Written, bool]] = []  # and whether its joints are its own
+        for move, text, tail in zip(moves, texts, tails, strict=True):
+            joints = move.joints()
+            alone = True
+            for joint, commands, states in joints:
+                if joint in declarations:
+                    alone = False
+                    continue
+                form = forms.get((commands, states))
+                if form is None:
+                    form = forms[commands, states] = declaration(
+                        (commands, states), indent + step, step)
+                    if not plain(form[0] + form[1]):
+                        return None
+                declarations[joint] = text_ = form[0] + joint.encode() + form[1]
+                heads += (text_, newline)
+            bodies += (text, tail)
+            written.append((Written(part, text, joints), alone))
+        if not plain_names("".join(declarations)):
+            return None
+        for move, (one, alone) in zip(moves, written, strict=True):
+            self.built[move.old] = one
+            if alone:
+                self.alone.add(one)
+        block = etree.Element("ros2_control", name=name, type="system")
+        hardware = etree.SubElement(block, "hardware")
+        etree.SubElement(hardware, "plugin").text = self.hardware_plugin
+        dialects.pretty(hardware, indent + step, step)
+        hardware.tail = block.text = newline.decode()
+        comment = marker()
+        block.append(comment)
+        self.written = (comment, b"".join(heads) + b"".join(bodies))
+        return block
+
+    @staticmethod
+    def _tails(moves: list[_Move], runs: list[list[etree._Element]], indent: str, step: str
+               ) -> list[bytes] | None:
+        """What follows each transmission of a generated block: the blank lines that followed
+        it in the first run, one line break, or the block's end; None when not blank."""
+        tails = [("\n" + indent + step).encode()] * len(moves)
         reindented: dict[str | None, bytes] = {}
-        for position, old in enumerate(runs[0][:-1]):  # the first run: its own blank lines
+        for position, old in enumerate(runs[0][:-1]):
             tail = reindented.get(old.tail)
             if tail is None:
                 tail = reindented[old.tail] = _reindent(old.tail, indent + step).encode()
@@ -296,34 +339,7 @@ class Placer:
         tails[-1] = ("\n" + indent).encode()
         if not all([blank(tail.decode()) for tail in {*reindented.values(), tails[-1]}]):
             return None
-        shared_part = Block(name)
-        declaration = self._templates.declaration
-        pieces: list[bytes] = []
-        forms: dict[tuple, tuple[bytes, bytes]] = {}
-        for joint, interfaces in declared:
-            form = forms.get(interfaces)
-            if form is None:
-                form = forms[interfaces] = declaration(interfaces, indent + step, step)
-                if not plain(form[0] + form[1]):
-                    return None
-            text = shared_part.declarations[joint] = form[0] + joint.encode() + form[1]
-            pieces += (text, newline)
-        alone, built = self.alone, self.built
-        for move, text, tail, its_joints in zip(moves, texts, tails, joints, strict=True):
-            pieces += (text, tail)
-            old = move.old
-            written = built[old] = Written(shared_part, text, its_joints)
-            if old not in shared:
-                alone.add(written)
-        block = etree.Element("ros2_control", name=name, type="system")
-        hardware = etree.SubElement(block, "hardware")
-        etree.SubElement(hardware, "plugin").text = self.hardware_plugin
-        dialects.pretty(hardware, indent + step, step)
-        hardware.tail, block.text = inner, inner
-        comment = marker()
-        block.append(comment)
-        self.written = (comment, b"".join(pieces))
-        return block
+        return tails
 
     def unwrite(self) -> None:
         """Parse the text of :attr:`written` into the tree in place of its marker."""
@@ -486,17 +502,14 @@ class Placer:
         return new
 
 
-def _declared(moves: list[_Move], joints: list[Joints] | None = None
-              ) -> tuple[list[tuple[str, tuple]], set[etree._Element]]:
+def _declared(moves: list[_Move]) -> tuple[list[tuple[str, tuple]], set[etree._Element]]:
     """The joints a generated block declares (names and interfaces, in order: the first of
-    each name) and the old elements of the moves with a joint declared before (``joints``:
-    each move's, when known)."""
+    each name) and the old elements of the moves with a joint declared before."""
     seen: set[str] = set()
     declared: list[tuple[str, tuple]] = []
     shared: set[etree._Element] = set()
-    for move, its_joints in zip(moves, joints or [move.joints() for move in moves],
-                                strict=True):
-        for name, commands, states in its_joints:
+    for move in moves:
+        for name, commands, states in move.joints():
             if name in seen:
                 shared.add(move.old)
             else:
