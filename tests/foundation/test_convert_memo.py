@@ -88,13 +88,13 @@ def documents(draw) -> bytes:
 def converted(data: bytes, target: str, *, memo: bool = True) -> tuple:
     """What converting ``data`` gives; without ``memo`` every transmission is converted in
     full, as if none had a key."""
-    original = convert_module.Memo.key
+    original = convert_module.Memo.keyed
     try:
         if not memo:
-            convert_module.Memo.key = lambda self, element: (None, None)  # type: ignore
+            convert_module.Memo.keyed = lambda self, element: None  # type: ignore
         result = convert_source(Source("<doc>", data, parse_bytes(data, "<doc>")), target)
     finally:
-        convert_module.Memo.key = original  # type: ignore[method-assign]
+        convert_module.Memo.keyed = original  # type: ignore[method-assign]
     return (result.data, result.losses, result.notes, result.warnings, result.converted,
             result.found, result.already)
 
@@ -181,14 +181,18 @@ def test_a_template_whose_text_would_not_parse_back_is_copied_as_an_element():
 def test_a_memo_keys_each_element_as_renaming_of_does(data):
     """Matching an element against the records of its skeleton gives its key itself."""
     from txtool.dialects.read import read_transmission
-    from txtool.transform.memo import Memo
+    from txtool.transform.memo import Follower, Memo
 
     memo = Memo()
     for element in parse_bytes(data, "<doc>").getroot().iter("{*}transmission"):
-        renaming, record = memo.key(element)
+        keyed = memo.keyed(element)
+        renaming = keyed.renaming() if isinstance(keyed, Follower) else keyed
         assert renaming == renaming_of(element)
-        if renaming is not None:
-            assert record is memo.records.get(renaming.key)
+        if isinstance(keyed, Follower):
+            assert keyed.record is memo.records[renaming.key]
+            assert keyed.translated().name == keyed.name
+        elif renaming is not None:
+            assert memo.records.get(renaming.key) is None
             t = read_transmission(element, None)
             memo.learn(renaming, t, t, clean=True)
 

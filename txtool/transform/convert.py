@@ -96,17 +96,16 @@ def convert_source(
     root = tree.getroot()
     top = local(root) != "ros2_control"  # a child of the root is in no <ros2_control>
     for element in elements:
-        renaming, record = memo.key(element) if memo is not None and (
+        keyed = memo.keyed(element) if memo is not None and (
             element.getparent() is root and top or enclosing_component(element) is None
-        ) else (None, None)
-        if record is not None:
-            assert renaming is not None
-            follower = Follower(record, renaming.names, record.name_for(renaming.names),
-                                element)
-            placer.place_follower(element, follower, renaming, record.original.dialect)
-            items.append(follower)
+        ) else None
+        if keyed.__class__ is Follower:
+            assert isinstance(keyed, Follower)
+            placer.place_follower(element, keyed, keyed.record.original.dialect)
+            items.append(keyed)
             result.converted += 1
             continue
+        renaming = keyed if isinstance(keyed, Renaming) else None
         t = read_transmission(element, None, components)
         items.append(t)
         olds[id(t)] = element

@@ -23,12 +23,15 @@ import re
 from bisect import bisect_left
 from collections.abc import Hashable
 from dataclasses import dataclass, field
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 from lxml import etree
 
 from txtool.model.core import Member, Transmission, replace
 from txtool.transform.shapes import LITERAL_NAMES
+
+if TYPE_CHECKING:
+    from txtool.transform.written import Written
 
 # A name attribute (the serializer puts one space before each): inside a tag, as what follows
 # it up to the tag's end holds no "<" or ">" (escaped in values and text); a text that reads
@@ -118,8 +121,10 @@ class Record:
         # What placing a follower reads of its conversion, without building it.
         self.dialect = translated.dialect
         self._name = self._translated.name
-        self._joints = [(i, m.name, m.interfaces, m.state_interfaces)
-                        for m, i in self._translated.joints]
+        # Each joint of the conversion: the index of its name (None: kept), the name, and
+        # its command and state interfaces.
+        self.joint_plan = [(i, m.name, (m.interfaces, m.state_interfaces))
+                           for m, i in self._translated.joints]
         self.skeleton, pattern, _ = renaming.key  # type: ignore[misc]
         self.distinct = pattern == tuple(range(len(pattern)))  # no name twice, none literal
         raws = [name.encode("ascii") for name in renaming.names]
@@ -150,8 +155,8 @@ class Record:
                    ) -> list[tuple[str, tuple[str, ...], tuple[str, ...]]]:
         """The name, command and state interfaces of each joint of ``translation_for(names)``.
         """
-        return [(name if i is None else names[i], commands, states)
-                for i, name, commands, states in self._joints]
+        return [(name if i is None else names[i], *interfaces)
+                for i, name, interfaces in self.joint_plan]
 
     def translation_for(self, names: tuple[str, ...]) -> Transmission:
         return self._translated(names)
@@ -170,10 +175,13 @@ class Follower:
     names: tuple[str, ...]  # its own, by the index of the key's
     name: str = ""
     element: etree._Element | None = None  # the old element, until it is placed
-    built: etree._Element | None = None  # then what the placer built for it
+    built: etree._Element | Written | None = None  # then what the placer built (or wrote)
 
     def translated(self) -> Transmission:
         return self.record.translation_for(self.names)
+
+    def renaming(self) -> Renaming:
+        return Renaming(self.record.renaming.key, self.names)
 
     def transmission(self) -> Transmission:
         """The original transmission, as reading the element gives it."""
@@ -187,25 +195,23 @@ class Memo:
     records: dict[Hashable, Record | None] = field(default_factory=dict)
     _distinct: dict[tuple[bytes, ...], list[Record]] = field(default_factory=dict)
 
-    def key(self, element: etree._Element) -> tuple[Renaming | None, Record | None]:
-        """:func:`renaming_of` ``element``, and the record of its key (when it has one and
-        its first said nothing): a record whose names are distinct is matched without the
-        key being made."""
+    def keyed(self, element: etree._Element) -> Follower | Renaming | None:
+        """``element`` as a follower of the record of its key (:func:`renaming_of`) when
+        there is one (its first said nothing), else its renaming (None: it has no key). A
+        record whose names are distinct is matched without the key being made."""
         parts = _parts(element)
         if parts is None:
-            return None, None
+            return None
         for record in self._distinct.get(tuple(parts[0::2]), ()):
             names = record.match(parts[1::2])
             if names is not None:
-                return Renaming(record.renaming.key, names), record
+                return Follower(record, names, record.name_for(names), element)
         renaming = _renaming(parts)
-        return renaming, None if renaming is None else self.records.get(renaming.key)
-
-    def follow(self, renaming: Renaming | None) -> Follower | None:
         if renaming is None:
             return None
         record = self.records.get(renaming.key)
-        return None if record is None else Follower(record, renaming.names)
+        return renaming if record is None else Follower(
+            record, renaming.names, record.name_for(renaming.names), element)
 
     def learn(self, renaming: Renaming | None, original: Transmission, translated: Transmission,
               clean: bool) -> Record | None:

@@ -33,7 +33,7 @@ Joints = list[tuple[str, tuple[str, ...], tuple[str, ...]]]  # names and interfa
 class _Move:
     """``old`` and its conversion ``new`` (a follower's is built only when it is read)."""
 
-    __slots__ = ("old", "_new", "carried", "renaming", "follower")
+    __slots__ = ("old", "_new", "carried", "_renaming", "follower")
 
     def __init__(self, old: etree._Element, new: Transmission | None,
                  carried: Carried | None = None, renaming: Renaming | None = None,
@@ -41,8 +41,15 @@ class _Move:
         self.old = old
         self._new = new
         self.carried = carried
-        self.renaming = renaming  # the old element's, when it was keyed (:mod:`.memo`)
+        self._renaming = renaming
         self.follower = follower
+
+    @property
+    def renaming(self) -> Renaming | None:
+        """The old element's, when it was keyed (:mod:`.memo`)."""
+        if self._renaming is None and self.follower is not None:
+            self._renaming = self.follower.renaming()
+        return self._renaming
 
     @property
     def new(self) -> Transmission:
@@ -138,8 +145,8 @@ class Placer:
             else:
                 old.getparent().replace(old, new)
 
-    def place_follower(self, old: etree._Element, follower: Follower, renaming: Renaming,
-                       dialect: Dialect) -> None:
+    def place_follower(self, old: etree._Element, follower: Follower, dialect: Dialect
+                       ) -> None:
         """:meth:`place` for a follower (:mod:`.memo`) outside any ``<ros2_control>``: one
         that goes into the block generated for the document is not built here."""
         into_new = (dialect == "ros1" and follower.record.dialect != "ros1"
@@ -147,9 +154,9 @@ class Placer:
         if into_new and (self._components == [] or self._component_for(
                 lambda: {name for name, _, _ in follower.record.joints_for(follower.names)}
         ) is None):
-            self._into_new.append(_Move(old, None, {}, renaming, follower))
+            self._into_new.append(_Move(old, None, {}, None, follower))
         else:
-            self.place(old, follower.translated(), {}, renaming, dialect)
+            self.place(old, follower.translated(), {}, follower.renaming(), dialect)
 
     def finish(self) -> None:
         if self._into_new:
@@ -241,27 +248,25 @@ class Placer:
             append(block, built[-1])
         return built
 
-    def _texts(self, moves: list[_Move], like: etree._Element, indent: str, step: str,
-               plain_only: bool = False) -> list[bytes] | None:
-        """The text of each transmission :meth:`_build` would build, when all have one
-        (``plain_only``: one that :func:`.written.plain` holds)."""
+    def _texts(self, moves: list[_Move], like: etree._Element, indent: str, step: str
+               ) -> list[bytes] | None:
+        """The text of each transmission :meth:`_build` would build, when all have one."""
         if _namespace(like) is not None:
             return None
         texts = []
         templates = self._templates
         forms: dict[int, tuple[str, Callable, bool] | None] = {}  # a follower's, by record
         for move in moves:
-            if move.renaming is None or move.carried:
-                return None
             follower = move.follower
+            if move.carried or follower is None and move.renaming is None:
+                return None
             if follower is None:
-                text = templates.text(move.renaming, move.dialect, indent, step, move,
-                                      plain_only)
+                text = templates.text(move.renaming, move.dialect, indent, step, move)
             else:  # the same key and dialect as its record's: the same form
                 form = forms.get(id(follower.record), False)
                 if form is False:
                     form = forms[id(follower.record)] = templates.form(
-                        move.renaming, move.dialect, indent, step, move, plain_only)
+                        follower.renaming(), move.dialect, indent, step, move)
                 text = None if form is None else (form[0] % form[1](follower.names)).encode()
             if text is None:
                 return None
@@ -271,14 +276,13 @@ class Placer:
     def _write_block(self, name: str, moves: list[_Move], runs: list[list[etree._Element]],
                      like: etree._Element, indent: str, step: str) -> etree._Element | None:
         """The block :meth:`_generate` makes, with its declarations and transmissions left as
-        text (:mod:`.written`, kept in :attr:`written`), or None when it cannot be so."""
+        text (:mod:`.written`, kept in :attr:`written`), or None when it cannot be so. The
+        transmissions are written by one ``%`` of the forms of their templates."""
         crowded = self.crowded
-        if crowded is None or not (blank(indent) and blank(step)):
+        if crowded is None or _namespace(like) is not None or not (blank(indent)
+                                                                   and blank(step)):
             return None
         if not crowded.isdisjoint([move.old for move in moves]):
-            return None
-        texts = self._texts(moves, like, indent + step, step, plain_only=True)
-        if texts is None:
             return None
         tails = self._tails(moves, runs, indent, step)
         if tails is None:
@@ -286,28 +290,51 @@ class Placer:
         newline = ("\n" + indent + step).encode()
         part = Block(name)
         declarations = part.declarations  # the first of each joint, in order
-        declaration = self._templates.declaration
         forms: dict[tuple, tuple[bytes, bytes]] = {}
+        by_record: dict[int, tuple[str, Callable] | None] = {}  # a follower's form
         heads: list[bytes] = []
-        bodies: list[bytes] = []
+        bodies: list[str] = []
+        values: list[str] = []
         written: list[tuple[Written, bool]] = []  # and whether its joints are its own
-        for move, text, tail in zip(moves, texts, tails, strict=True):
-            joints = move.joints()
+        for move, tail in zip(moves, tails, strict=True):
+            follower = move.follower
+            if move.carried:
+                return None
+            if follower is not None:  # the same key and dialect as its record's
+                known = by_record.get(id(follower.record), False)
+                if known is False:
+                    known = by_record[id(follower.record)] = self._templates.form(
+                        follower.renaming(), move.dialect, indent + step, step, move, True)
+                if known is None:
+                    return None
+                form, args = known[0], known[1](follower.names)
+                names = follower.names
+                joints = [(joint if i is None else names[i], interfaces)
+                          for i, joint, interfaces in follower.record.joint_plan]
+            else:
+                text = None if move.renaming is None else self._templates.text(
+                    move.renaming, move.dialect, indent + step, step, move, True)
+                if text is None:
+                    return None
+                form, args = text.decode().replace("%", "%%"), ()
+                joints = [(joint, (commands, states)) for joint, commands, states
+                          in move.joints()]
             alone = True
-            for joint, commands, states in joints:
+            for joint, interfaces in joints:
                 if joint in declarations:
                     alone = False
                     continue
-                form = forms.get((commands, states))
-                if form is None:
-                    form = forms[commands, states] = declaration(
-                        (commands, states), indent + step, step)
-                    if not plain(form[0] + form[1]):
+                form_ = forms.get(interfaces)
+                if form_ is None:
+                    form_ = forms[interfaces] = self._templates.declaration(
+                        interfaces, indent + step, step)
+                    if not plain(form_[0] + form_[1]):
                         return None
-                declarations[joint] = text_ = form[0] + joint.encode() + form[1]
-                heads += (text_, newline)
-            bodies += (text, tail)
-            written.append((Written(part, text, joints), alone))
+                declarations[joint] = declared = form_[0] + joint.encode() + form_[1]
+                heads += (declared, newline)
+            bodies += (form, tail)
+            values += args
+            written.append((Written(part, form, args, [joint for joint, _ in joints]), alone))
         if not plain_names("".join(declarations)):
             return None
         for move, (one, alone) in zip(moves, written, strict=True):
@@ -321,23 +348,24 @@ class Placer:
         hardware.tail = block.text = newline.decode()
         comment = marker()
         block.append(comment)
-        self.written = (comment, b"".join(heads) + b"".join(bodies))
+        heads.append(("".join(bodies) % tuple(values)).encode())
+        self.written = (comment, b"".join(heads))
         return block
 
     @staticmethod
     def _tails(moves: list[_Move], runs: list[list[etree._Element]], indent: str, step: str
-               ) -> list[bytes] | None:
+               ) -> list[str] | None:
         """What follows each transmission of a generated block: the blank lines that followed
         it in the first run, one line break, or the block's end; None when not blank."""
-        tails = [("\n" + indent + step).encode()] * len(moves)
-        reindented: dict[str | None, bytes] = {}
+        tails = ["\n" + indent + step] * len(moves)
+        reindented: dict[str | None, str] = {}
         for position, old in enumerate(runs[0][:-1]):
             tail = reindented.get(old.tail)
             if tail is None:
-                tail = reindented[old.tail] = _reindent(old.tail, indent + step).encode()
+                tail = reindented[old.tail] = _reindent(old.tail, indent + step)
             tails[position] = tail
-        tails[-1] = ("\n" + indent).encode()
-        if not all([blank(tail.decode()) for tail in {*reindented.values(), tails[-1]}]):
+        tails[-1] = "\n" + indent
+        if not all([blank(tail) for tail in {*reindented.values(), tails[-1]}]):
             return None
         return tails
 

@@ -55,22 +55,24 @@ class Block:
 
 
 class Written:
-    """A transmission of a written block, not parsed (see the module)."""
+    """A transmission of a written block, not parsed (see the module): its text is ``form %
+    values``."""
 
-    __slots__ = ("block", "text", "joints")
+    __slots__ = ("block", "form", "values", "joints")
 
-    def __init__(self, block: Block, text: bytes,
-                 joints: list[tuple[str, tuple[str, ...], tuple[str, ...]]]) -> None:
+    def __init__(self, block: Block, form: str, values: tuple[str, ...], joints: list[str]
+                 ) -> None:
         self.block = block
-        self.text = text
+        self.form = form
+        self.values = values
         self.joints = joints
 
     def source(self) -> bytes:
         """It in a ``<ros2_control>`` (without its name) declaring its joints."""
-        seen = dict.fromkeys([name for name, _, _ in self.joints])
         declarations = self.block.declarations
-        return b"".join([b"<ros2_control>", *[declarations[name] for name in seen],
-                         self.text, b"</ros2_control>"])
+        return b"".join([b"<ros2_control>",
+                         *[declarations[name] for name in dict.fromkeys(self.joints)],
+                         (self.form % self.values).encode(), b"</ros2_control>"])
 
 
 def read_back(written: list[Written]) -> list[etree._Element]:
