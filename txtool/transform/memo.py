@@ -20,7 +20,6 @@ a name that the serialization escapes is not keyed, and is converted in full.
 from __future__ import annotations
 
 import re
-from bisect import bisect_left
 from collections.abc import Hashable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, NamedTuple
@@ -39,6 +38,7 @@ if TYPE_CHECKING:
 NAME = re.compile(rb' name="([^"]*)"(?=[^<>]*>)')
 _LITERALS = frozenset(name.encode("ascii") for name in LITERAL_NAMES)
 _KEPT = {name: name for name in _LITERALS}
+_LITERAL_LIST = sorted(_LITERALS)
 
 
 class Renaming(NamedTuple):
@@ -127,9 +127,10 @@ class Record:
                            for m, i in self._translated.joints]
         self.skeleton, pattern, _ = renaming.key  # type: ignore[misc]
         self.distinct = pattern == tuple(range(len(pattern)))  # no name twice, none literal
-        raws = [name.encode("ascii") for name in renaming.names]
-        self._sorting = sorted(range(len(raws)), key=raws.__getitem__)
-        self._literals = [(literal, bisect_left(sorted(raws), literal)) for literal in _LITERALS]
+        # The names and the literal ones in the order they sort: indices into the names
+        # followed by the literal names.
+        every = [name.encode("ascii") for name in renaming.names] + _LITERAL_LIST
+        self._sorted = sorted(range(len(every)), key=every.__getitem__)
 
     def match(self, raws: list[bytes]) -> tuple[str, ...] | None:
         """The names of an element whose :func:`renaming_of` has this record's key, from its
@@ -139,12 +140,10 @@ class Record:
         literal name sorts among them."""
         if len(set(raws)) != len(raws) or not _LITERALS.isdisjoint(raws):
             return None
-        ordered = sorted(raws)
-        if ordered != list(map(raws.__getitem__, self._sorting)) or b"&" in b"".join(raws):
+        every = raws + _LITERAL_LIST
+        if sorted(every) != list(map(every.__getitem__, self._sorted)) or b"&" in b"".join(
+                raws):
             return None
-        for literal, position in self._literals:
-            if bisect_left(ordered, literal) != position:
-                return None
         return tuple(map(bytes.decode, raws))
 
     def name_for(self, names: tuple[str, ...]) -> str:

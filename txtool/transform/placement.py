@@ -295,7 +295,8 @@ class Placer:
         heads: list[bytes] = []
         bodies: list[str] = []
         values: list[str] = []
-        written: list[tuple[Written, bool]] = []  # and whether its joints are its own
+        written: list[Written] = []
+        alone: list[Written] = []  # those whose joints none before declared
         for move, tail in zip(moves, tails, strict=True):
             follower = move.follower
             if move.carried:
@@ -311,6 +312,7 @@ class Placer:
                 names = follower.names
                 joints = [(joint if i is None else names[i], interfaces)
                           for i, joint, interfaces in follower.record.joint_plan]
+                one = Written(part, form, args, follower)
             else:
                 text = None if move.renaming is None else self._templates.text(
                     move.renaming, move.dialect, indent + step, step, move, True)
@@ -319,10 +321,11 @@ class Placer:
                 form, args = text.decode().replace("%", "%%"), ()
                 joints = [(joint, (commands, states)) for joint, commands, states
                           in move.joints()]
-            alone = True
+                one = Written(part, form, args, [joint for joint, _ in joints])
+            own = True
             for joint, interfaces in joints:
                 if joint in declarations:
-                    alone = False
+                    own = False
                     continue
                 form_ = forms.get(interfaces)
                 if form_ is None:
@@ -334,13 +337,13 @@ class Placer:
                 heads += (declared, newline)
             bodies += (form, tail)
             values += args
-            written.append((Written(part, form, args, [joint for joint, _ in joints]), alone))
+            written.append(one)
+            if own:
+                alone.append(one)
         if not plain_names("".join(declarations)):
             return None
-        for move, (one, alone) in zip(moves, written, strict=True):
-            self.built[move.old] = one
-            if alone:
-                self.alone.add(one)
+        self.built.update(zip([move.old for move in moves], written, strict=True))
+        self.alone.update(alone)
         block = etree.Element("ros2_control", name=name, type="system")
         hardware = etree.SubElement(block, "hardware")
         etree.SubElement(hardware, "plugin").text = self.hardware_plugin

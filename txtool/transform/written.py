@@ -19,10 +19,14 @@ from __future__ import annotations
 
 import os
 import re
+from typing import TYPE_CHECKING
 
 from lxml import etree
 
 from txtool.io.xmlio import safe_parser
+
+if TYPE_CHECKING:
+    from txtool.transform.memo import Follower
 
 _UNSAFE = re.compile(rb"[^\x20-\x7e\n\t]|&#")  # a reference, or what another encoding writes
 _UNSAFE_NAME = re.compile(r'[^\x20-\x7e]|[&<>"]')
@@ -60,8 +64,8 @@ class Written:
 
     __slots__ = ("block", "form", "values", "joints")
 
-    def __init__(self, block: Block, form: str, values: tuple[str, ...], joints: list[str]
-                 ) -> None:
+    def __init__(self, block: Block, form: str, values: tuple[str, ...],
+                 joints: list[str] | Follower) -> None:
         self.block = block
         self.form = form
         self.values = values
@@ -70,8 +74,10 @@ class Written:
     def source(self) -> bytes:
         """It in a ``<ros2_control>`` (without its name) declaring its joints."""
         declarations = self.block.declarations
+        joints = self.joints if isinstance(self.joints, list) else [
+            name for name, _, _ in self.joints.record.joints_for(self.joints.names)]
         return b"".join([b"<ros2_control>",
-                         *[declarations[name] for name in dict.fromkeys(self.joints)],
+                         *[declarations[name] for name in dict.fromkeys(joints)],
                          (self.form % self.values).encode(), b"</ros2_control>"])
 
 
