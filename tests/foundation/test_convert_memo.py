@@ -258,10 +258,10 @@ def test_a_chain_is_written_as_text(monkeypatch):
 def test_a_written_block_whose_marker_the_document_holds_is_parsed(monkeypatch):
     """The marker found other than once (here: a comment of the document reads the same):
     the block is parsed into the tree and written as a whole, with the same result."""
-    from txtool.transform import placement
+    from txtool.transform import written
 
     data = chain(5).replace(b"</robot>", b"<!--txtool-block-x-->\n</robot>")
-    monkeypatch.setattr(placement, "marker", lambda: etree.Comment("txtool-block-x"))
+    monkeypatch.setattr(written, "marker", lambda: etree.Comment("txtool-block-x"))
     assert converted(data, "ros2-p2") == converted(data, "ros2-p2", memo=False)
 
 

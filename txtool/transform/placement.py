@@ -24,7 +24,7 @@ from txtool.model.core import Dialect, Transmission, replace
 from txtool.model.robot import children
 from txtool.transform.memo import Follower, Renaming
 from txtool.transform.templates import Templates, parse_children
-from txtool.transform.written import Block, Written, blank, marker, plain, plain_names
+from txtool.transform.written import Written, blank, write
 
 Carried = dict[tuple[str, str | None], list[etree._Element]]
 Joints = list[tuple[str, tuple[str, ...], tuple[str, ...]]]  # names and interfaces
@@ -276,8 +276,8 @@ class Placer:
     def _write_block(self, name: str, moves: list[_Move], runs: list[list[etree._Element]],
                      like: etree._Element, indent: str, step: str) -> etree._Element | None:
         """The block :meth:`_generate` makes, with its declarations and transmissions left as
-        text (:mod:`.written`, kept in :attr:`written`), or None when it cannot be so. The
-        transmissions are written by one ``%`` of the forms of their templates."""
+        text (:func:`.written.write`, kept in :attr:`written`), or None when it cannot be
+        so."""
         crowded = self.crowded
         if crowded is None or _namespace(like) is not None or not (blank(indent)
                                                                    and blank(step)):
@@ -287,72 +287,12 @@ class Placer:
         tails = self._tails(moves, runs, indent, step)
         if tails is None:
             return None
-        newline = ("\n" + indent + step).encode()
-        part = Block(name)
-        declarations = part.declarations  # the first of each joint, in order
-        forms: dict[tuple, tuple[bytes, bytes]] = {}
-        by_record: dict[int, tuple[str, Callable] | None] = {}  # a follower's form
-        heads: list[bytes] = []
-        bodies: list[str] = []
-        values: list[str] = []
-        written: list[Written] = []
-        alone: list[Written] = []  # those whose joints none before declared
-        for move, tail in zip(moves, tails, strict=True):
-            follower = move.follower
-            if move.carried:
-                return None
-            if follower is not None:  # the same key and dialect as its record's
-                known = by_record.get(id(follower.record), False)
-                if known is False:
-                    known = by_record[id(follower.record)] = self._templates.form(
-                        follower.renaming(), move.dialect, indent + step, step, move, True)
-                if known is None:
-                    return None
-                form, args = known[0], known[1](follower.names)
-                names = follower.names
-                joints = [(joint if i is None else names[i], interfaces)
-                          for i, joint, interfaces in follower.record.joint_plan]
-                one = Written(part, form, args, follower)
-            else:
-                text = None if move.renaming is None else self._templates.text(
-                    move.renaming, move.dialect, indent + step, step, move, True)
-                if text is None:
-                    return None
-                form, args = text.decode().replace("%", "%%"), ()
-                joints = [(joint, (commands, states)) for joint, commands, states
-                          in move.joints()]
-                one = Written(part, form, args, [joint for joint, _ in joints])
-            own = True
-            for joint, interfaces in joints:
-                if joint in declarations:
-                    own = False
-                    continue
-                form_ = forms.get(interfaces)
-                if form_ is None:
-                    form_ = forms[interfaces] = self._templates.declaration(
-                        interfaces, indent + step, step)
-                    if not plain(form_[0] + form_[1]):
-                        return None
-                declarations[joint] = declared = form_[0] + joint.encode() + form_[1]
-                heads += (declared, newline)
-            bodies += (form, tail)
-            values += args
-            written.append(one)
-            if own:
-                alone.append(one)
-        if not plain_names("".join(declarations)):
+        made = write(name, self.hardware_plugin, moves, tails, indent, step, self._templates)
+        if made is None:
             return None
+        block, written, alone, self.written = made
         self.built.update(zip([move.old for move in moves], written, strict=True))
         self.alone.update(alone)
-        block = etree.Element("ros2_control", name=name, type="system")
-        hardware = etree.SubElement(block, "hardware")
-        etree.SubElement(hardware, "plugin").text = self.hardware_plugin
-        dialects.pretty(hardware, indent + step, step)
-        hardware.tail = block.text = newline.decode()
-        comment = marker()
-        block.append(comment)
-        heads.append(("".join(bodies) % tuple(values)).encode())
-        self.written = (comment, b"".join(heads))
         return block
 
     @staticmethod

@@ -19,14 +19,18 @@ from __future__ import annotations
 
 import os
 import re
-from typing import TYPE_CHECKING
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Protocol
 
 from lxml import etree
 
+from txtool import dialects
 from txtool.io.xmlio import safe_parser
+from txtool.model.core import Dialect, Transmission
 
 if TYPE_CHECKING:
-    from txtool.transform.memo import Follower
+    from txtool.transform.memo import Follower, Renaming
+    from txtool.transform.templates import Templates
 
 _UNSAFE = re.compile(rb"[^\x20-\x7e\n\t]|&#")  # a reference, or what another encoding writes
 _UNSAFE_NAME = re.compile(r'[^\x20-\x7e]|[&<>"]')
@@ -93,6 +97,101 @@ def read_back(written: list[Written]) -> list[etree._Element]:
         component.set("name", w.block.name)
         elements.append(component[len(component) - 1])
     return elements
+
+
+class Move(Protocol):
+    """What :func:`write` reads of a placed conversion (see :mod:`.placement`)."""
+
+    old: etree._Element
+    follower: Follower | None
+    carried: object
+
+    @property
+    def renaming(self) -> Renaming | None: ...
+
+    @property
+    def dialect(self) -> Dialect: ...
+
+    @property
+    def new(self) -> Transmission: ...
+
+    def joints(self) -> list[tuple[str, tuple[str, ...], tuple[str, ...]]]: ...
+
+
+def write(name: str, plugin: str, moves: Sequence[Move], tails: list[str], indent: str,
+          step: str, templates: Templates
+          ) -> tuple[etree._Element, list[Written], list[Written],
+                     tuple[etree._Comment, bytes]] | None:
+    """The block generated for ``moves`` (each followed by its ``tails``) at ``indent``: its
+    element with the marker, each transmission as :class:`Written`, those whose joints none
+    before declared, and the marker with the text that goes in its place (the declarations,
+    then the transmissions by one ``%`` of the forms of their templates); None when a piece
+    has no plain text."""
+    newline = ("\n" + indent + step).encode()
+    part = Block(name)
+    declarations = part.declarations  # the first of each joint, in order
+    forms: dict[tuple, tuple[bytes, bytes]] = {}
+    by_record: dict[int, tuple[str, Callable] | None] = {}  # a follower's form
+    heads: list[bytes] = []
+    bodies: list[str] = []
+    values: list[str] = []
+    written: list[Written] = []
+    alone: list[Written] = []  # those whose joints none before declared
+    for move, tail in zip(moves, tails, strict=True):
+        follower = move.follower
+        if move.carried:
+            return None
+        if follower is not None:  # the same key and dialect as its record's
+            known = by_record.get(id(follower.record), False)
+            if known is False:
+                known = by_record[id(follower.record)] = templates.form(
+                    follower.renaming(), move.dialect, indent + step, step, move, True)
+            if known is None:
+                return None
+            form, args = known[0], known[1](follower.names)
+            names = follower.names
+            joints = [(joint if i is None else names[i], interfaces)
+                      for i, joint, interfaces in follower.record.joint_plan]
+            one = Written(part, form, args, follower)
+        else:
+            text = None if move.renaming is None else templates.text(
+                move.renaming, move.dialect, indent + step, step, move, True)
+            if text is None:
+                return None
+            form, args = text.decode().replace("%", "%%"), ()
+            joints = [(joint, (commands, states)) for joint, commands, states
+                      in move.joints()]
+            one = Written(part, form, args, [joint for joint, _ in joints])
+        own = True
+        for joint, interfaces in joints:
+            if joint in declarations:
+                own = False
+                continue
+            form_ = forms.get(interfaces)
+            if form_ is None:
+                form_ = forms[interfaces] = templates.declaration(
+                    interfaces, indent + step, step)
+                if not plain(form_[0] + form_[1]):
+                    return None
+            declarations[joint] = declared = form_[0] + joint.encode() + form_[1]
+            heads += (declared, newline)
+        bodies += (form, tail)
+        values += args
+        written.append(one)
+        if own:
+            alone.append(one)
+    if not plain_names("".join(declarations)):
+        return None
+    block = etree.Element("ros2_control", name=name, type="system")
+    hardware = etree.SubElement(block, "hardware")
+    etree.SubElement(hardware, "plugin").text = plugin
+    dialects.pretty(hardware, indent + step, step)
+    hardware.tail = block.text = newline.decode()
+    comment = marker()
+    block.append(comment)
+    heads.append(("".join(bodies) % tuple(values)).encode())
+    return block, written, alone, (comment, b"".join(heads))
+
 
 
 def marker() -> etree._Comment:
