@@ -85,8 +85,16 @@ def documents(draw) -> bytes:
             + separator.join(body) + "\n</robot>\n").encode()
 
 
-def converted(data: bytes, target: str) -> tuple:
-    result = convert_source(Source("<doc>", data, parse_bytes(data, "<doc>")), target)
+def converted(data: bytes, target: str, *, memo: bool = True) -> tuple:
+    """What converting ``data`` gives; without ``memo`` every transmission is converted in
+    full, as if none had a key."""
+    original = convert_module.Memo.keyed
+    try:
+        if not memo:
+            convert_module.Memo.keyed = lambda self, element: None  # type: ignore
+        result = convert_source(Source("<doc>", data, parse_bytes(data, "<doc>")), target)
+    finally:
+        convert_module.Memo.keyed = original  # type: ignore[method-assign]
     return (result.data, result.losses, result.notes, result.warnings, result.converted,
             result.found, result.already)
 
@@ -95,20 +103,9 @@ def converted(data: bytes, target: str) -> tuple:
 @given(documents(), st.sampled_from(TARGETS))
 def test_a_document_converts_as_without_the_memo(data, target):
     fast = converted(data, target)
-    original = convert_module.renaming_of
-    try:
-        convert_module.renaming_of = lambda element: None  # every transmission in full
-        full = converted(data, target)
-    finally:
-        convert_module.renaming_of = original
-    assert fast == full
+    assert fast == converted(data, target, memo=False)
     if target != "ros1":  # and the result converts back as without the memo
-        back = converted(fast[0], "ros1")
-        try:
-            convert_module.renaming_of = lambda element: None
-            assert back == converted(fast[0], "ros1")
-        finally:
-            convert_module.renaming_of = original
+        assert converted(fast[0], "ros1") == converted(fast[0], "ros1", memo=False)
 
 
 def test_thousands_of_repeats_give_the_messages_of_each():
@@ -177,3 +174,103 @@ def test_a_template_whose_text_would_not_parse_back_is_copied_as_an_element():
 
     assert b"<offset></offset>" in placed(keyed=True)
     assert placed(keyed=True) == placed(keyed=False)
+
+
+@settings(max_examples=100, deadline=None)
+@given(documents())
+def test_a_memo_keys_each_element_as_renaming_of_does(data):
+    """Matching an element against the records of its skeleton gives its key itself."""
+    from txtool.dialects.read import read_transmission
+    from txtool.transform.memo import Follower, Memo
+
+    memo = Memo()
+    for element in parse_bytes(data, "<doc>").getroot().iter("{*}transmission"):
+        keyed = memo.keyed(element)
+        renaming = keyed.renaming() if isinstance(keyed, Follower) else keyed
+        assert renaming == renaming_of(element)
+        if isinstance(keyed, Follower):
+            assert keyed.record is memo.records[renaming.key]
+            assert keyed.translated().name == keyed.name
+        elif renaming is not None:
+            assert memo.records.get(renaming.key) is None
+            t = read_transmission(element, None)
+            memo.learn(renaming, t, t, clean=True)
+
+
+@st.composite
+def repeated_documents(draw) -> bytes:
+    """Many transmissions of a few shapes, mostly under names of their own (the block
+    generated for them is then written as text, :mod:`txtool.transform.written`), some under
+    a name of the pool: colliding, shared or literal."""
+    shapes = draw(st.lists(st.sampled_from([ros1_simple(), ros1_differential()]),
+                           min_size=1, max_size=2))
+    templates = [draw(shape) for shape in shapes]
+    body = []
+    for i in range(draw(st.integers(2, 12))):
+        text = templates[draw(st.integers(0, len(templates) - 1))]
+        for name in NAMES:  # names of their own, unless drawn from the pool
+            if draw(st.integers(0, 9)):
+                text = text.replace(f'name="{name}"', f'name="{name}_{i}"')
+        body.append(text)
+    if draw(st.booleans()):
+        body.insert(draw(st.integers(0, len(body))), '<link name="l"/>')
+    if draw(st.booleans()):
+        body.append('<ros2_control name="hw" type="system"><hardware><plugin>x/Y</plugin>'
+                    '</hardware><joint name="a_1"><command_interface name="effort"/></joint>'
+                    "</ros2_control>")
+    separator = draw(st.sampled_from(["\n  ", "\n\n  ", "", "\n\t"]))
+    text = separator.join(body)
+    if draw(st.booleans()):
+        text = text.replace("><", ">\n    <")
+    return ('<robot name="r">\n  ' + text + "\n</robot>\n").encode()
+
+
+@settings(max_examples=150, deadline=None)
+@given(repeated_documents(), st.sampled_from(["ros2-p1", "ros2-p2"]))
+def test_a_block_written_as_text_is_what_converting_in_full_gives(data, target):
+    assert converted(data, target) == converted(data, target, memo=False)
+
+
+def chain(count: int, reduction: str = "50") -> bytes:
+    return ('<robot name="r">\n' + "\n".join(
+        f'  <transmission name="t{i}"><type>transmission_interface/SimpleTransmission</type>'
+        f'<joint name="j{i}"><hardwareInterface>hardware_interface/EffortJointInterface'
+        f'</hardwareInterface></joint><actuator name="m{i}"><mechanicalReduction>{reduction}'
+        "</mechanicalReduction></actuator></transmission>" for i in range(count))
+        + "\n</robot>\n").encode()
+
+
+def test_a_chain_is_written_as_text(monkeypatch):
+    """Repeats with names of their own: the generated block is never parsed."""
+    from txtool.transform import placement
+
+    parsed = []
+    monkeypatch.setattr(placement, "parse_children",
+                        lambda pieces: parsed.append(1) or list(etree.fromstring(
+                            b"<x>" + b"".join(pieces) + b"</x>")))
+    data = chain(50)
+    fast = converted(data, "ros2-p2")
+    assert parsed == []
+    assert fast == converted(data, "ros2-p2", memo=False)
+    assert fast[0].count(b"<transmission ") == 50 and fast[4] == 50
+
+
+def test_a_written_block_whose_marker_the_document_holds_is_parsed(monkeypatch):
+    """The marker found other than once (here: a comment of the document reads the same):
+    the block is parsed into the tree and written as a whole, with the same result."""
+    from txtool.transform import written
+
+    data = chain(5).replace(b"</robot>", b"<!--txtool-block-x-->\n</robot>")
+    monkeypatch.setattr(written, "marker", lambda: etree.Comment("txtool-block-x"))
+    assert converted(data, "ros2-p2") == converted(data, "ros2-p2", memo=False)
+
+
+def test_each_written_transmission_is_read_back_when_its_shape_did_not_come_back(monkeypatch):
+    """A judgement that finds a loss in every round trip: no shape comes back whole, so every
+    transmission of the written block is read back on its own and judged, as in full."""
+    monkeypatch.setattr(convert_module, "_lost", lambda a, b: {"offset": repr(b["offset"])})
+    data = chain(6)
+    fast = converted(data, "ros2-p2")
+    assert fast == converted(data, "ros2-p2", memo=False)
+    assert [loss.split(" did")[0] for loss in fast[1]] == [
+        f"transmission 't{i}'" for i in range(6)]

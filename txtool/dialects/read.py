@@ -118,8 +118,15 @@ def transmission_elements(
     """``<transmission>`` elements that are transmissions (not nested in another one), of
     ``root`` or among its already collected ``candidates``."""
     found = []
+    # A child of the document's root element (the most common place) has only it above.
+    top = root if root.getparent() is None else None
+    tag = root.tag
+    in_root = tag == "transmission" or tag.endswith("}transmission")
     for element in root.iter("{*}transmission") if candidates is None else candidates:
-        if not _inside_transmission(element):
+        if element.getparent() is top:
+            if not in_root:
+                found.append(element)
+        elif not _inside_transmission(element):
             found.append(element)
     return found
 

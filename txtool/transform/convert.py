@@ -13,6 +13,7 @@ import copy
 from collections import Counter
 from collections.abc import Hashable
 from dataclasses import dataclass, field
+from operator import attrgetter
 from typing import Any
 
 from lxml import etree
@@ -24,16 +25,18 @@ from txtool.dialects.read import (
     transmission_elements,
 )
 from txtool.dialects.translate import family, is_expression, translate
+from txtool.io.encodings import detect_encoding
 from txtool.io.xmlio import Source, local, parse_bytes, serialize
 from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
 from txtool.model.semantics import Effective, NotLoadable, effective, listed_against_roles
 from txtool.transform.collector import paused
-from txtool.transform.memo import Follower, Memo, Record, Renaming, renaming_of
+from txtool.transform.memo import Follower, Memo, Record, Renaming
 from txtool.transform.placement import Placer
 from txtool.transform.reversible import Carrier
 from txtool.transform.shapes import shape
 from txtool.transform.splice import splice
+from txtool.transform.written import Written, fill, read_back
 from txtool.views.tables import FIELDS, view
 
 DEFAULT_HARDWARE_PLUGIN = "mock_components/GenericSystem"
@@ -89,19 +92,23 @@ def convert_source(
     memo = None if carry.reversible or target == "ros1" else Memo()
     components: dict[etree._Element, Any] = {}
     items: list[Transmission | Follower] = []
+    olds: dict[int, etree._Element] = {}  # the element of each item not a follower, by id
+    root = tree.getroot()
+    top = local(root) != "ros2_control"  # a child of the root is in no <ros2_control>
     for element in elements:
-        renaming = renaming_of(element) if memo is not None and enclosing_component(
-            element) is None else None
-        follower = memo.follow(renaming) if memo is not None else None
-        if follower is not None:
-            translated = follower.translated()
-            follower.name, follower.element = translated.name, element
-            placer.place(element, translated, {}, renaming, follower.record.original.dialect)
-            items.append(follower)
+        keyed = memo.keyed(element) if memo is not None and (
+            element.getparent() is root and top or enclosing_component(element) is None
+        ) else None
+        if keyed.__class__ is Follower:
+            assert isinstance(keyed, Follower)
+            placer.place_follower(element, keyed, keyed.record.original.dialect)
+            items.append(keyed)
             result.converted += 1
             continue
+        renaming = keyed if isinstance(keyed, Renaming) else None
         t = read_transmission(element, None, components)
         items.append(t)
+        olds[id(t)] = element
         if t.dialect == target:
             result.already += 1
         found = Found(t, element)
@@ -112,19 +119,34 @@ def convert_source(
     # The declarations read go while their elements are in the tree: lxml frees an element
     # of a removed subtree (a generated block, replaced) by scanning all of that subtree.
     del components
+    names = Counter(map(attrgetter("name"), items))
+    if check and memo is not None and not detect_encoding(source.data).wide:
+        # What the check reads back of a written transmission is paired with it by its name.
+        placer.crowded = set() if len(names) == len(items) else {
+            item.element if isinstance(item, Follower) else olds[id(item)]
+            for item in items if names[item.name] > 1}
     placer.finish()
     carry.after(tree, placer.built)
     result.notes.extend(placer.notes)
     for item in items:
         if isinstance(item, Follower):
             item.built, item.element = placer.built.get(item.element), None
+    virtual = {key: built for key, old in olds.items()
+               if isinstance(built := placer.built.get(old), Written)}
+    del elements, olds  # the replaced elements are freed before the document is written
+    changed = _serialize(tree, source.data, placer)
+    if placer.unwritten:  # parsed into the tree after all
+        for item in items:
+            if isinstance(item, Follower) and item.built in placer.unwritten:
+                item.built = placer.unwritten[item.built]  # type: ignore[index]
+        virtual = {}
     alone = placer.alone
-    del elements, placer  # the replaced elements are freed before the document is written
+    del placer
     if source.expanded:
-        result.data = serialize(tree, source.data)
+        result.data = changed
     else:
         assert baseline is not None
-        result.data = splice(source.data, baseline, serialize(tree, source.data))
+        result.data = splice(source.data, baseline, changed)
     del baseline
     spliced = result.data
     result.data = carry.restore(result.data)
@@ -138,8 +160,20 @@ def convert_source(
         del tree
         tree = parse_bytes(result.data, source.path, limit=None)
         alone = set()
-    _check(Source(source.path, result.data, tree), result, items, alone)
+    _check(Source(source.path, result.data, tree), result, items, alone, names, virtual)
     return result
+
+
+def _serialize(tree: etree._ElementTree, original: bytes, placer: Placer) -> bytes:
+    """The converted document, the block :attr:`Placer.written` as text filled in."""
+    data = serialize(tree, original)
+    if placer.written is not None:
+        filled = fill(data, *placer.written)
+        if filled is not None:
+            return filled
+        placer.unwrite()
+        data = serialize(tree, original)
+    return data
 
 
 def _convert_one(found: Found, tree: etree._ElementTree, target: Dialect, result: Conversion,
@@ -272,7 +306,8 @@ def _same_binding(old, new) -> bool:
 
 
 def _check(output: Source, result: Conversion, originals: list[Transmission | Follower],
-           alone: set[etree._Element]) -> None:
+           alone: set[etree._Element | Written], names: Counter[str],
+           virtual: dict[int, Written]) -> None:
     """Read the output back, convert it back, and compare with the original: on what the
     transmission itself defines (a value it leaves out is not judged, and interfaces that an
     existing ``<ros2_control>`` declares besides its own are a note, not a loss).
@@ -280,33 +315,51 @@ def _check(output: Source, result: Conversion, originals: list[Transmission | Fo
     ``output.tree`` is the converted tree itself when ``output.data`` is its serialization,
     or a splice of it that parses to the same canonical document (:func:`.splice` verifies
     that): reading it reads what a parse of the output would give, without a second tree.
+    The transmissions of a block written as text (:mod:`.written`) are not in that tree: each
+    is read back on its own (a follower's only when it is judged), its name being its own
+    (``names``: how many originals have each); ``virtual`` holds those of the originals that
+    are not followers, by id.
     A pair whose shape (:func:`.shapes.shape`: the same up to the names) already came back
     whole is not judged again: the judgement reads names only to tell members apart. So a
     follower (:mod:`.memo`) is not even read back when its record's first came back whole
     from the same place: both with a name of their own, in the block generated for the
     document (``alone``), declaring their joints there themselves.
     """
-    names = Counter(item.name for item in originals)
     apart = {item.built for item in originals if isinstance(item, Follower)
              and item.built in alone and names[item.name] == 1}
     firsts = {id(record.original): record for record in _records(originals)}
     components: dict[etree._Element, Any] = {}
     survived: set[Hashable] = set()  # shapes (:mod:`.shapes`) that came back whole
+    whole: set[int] = set()  # records whose verdict is in ``survived``, by id
     written: dict[tuple[str, bool], list[Found]] = {}
     for element in transmission_elements(output.root, (
             e for e in output.root.iter("{*}transmission") if e not in apart)):
         found = Found(read_transmission(element, None, components), element)
         key = (found.transmission.name, found.transmission.kind == "other")
         written.setdefault(key, []).append(found)
+    read = dict(zip(virtual, read_back(list(virtual.values())), strict=True))
     for item in originals:
-        record = item.record if isinstance(item, Follower) else firsts.get(id(item))
-        if isinstance(item, Follower) and item.built in apart:
-            if item.record.verdict in survived:
+        is_follower = isinstance(item, Follower)
+        record = item.record if is_follower else firsts.get(id(item))
+        text = item.built if is_follower and isinstance(item.built, Written) else virtual.get(
+            id(item))
+        if is_follower and item.built in apart:
+            if id(item.record) in whole:
+                continue
+            if item.record.verdict in survived:  # and stays: a shape's hash is made once
+                whole.add(id(item.record))
                 continue
             t = item.transmission()
-            out = Found(read_transmission(item.built, None, components), item.built)
+            element = read_back([text])[0] if text is not None else item.built
+            out = Found(read_transmission(element, None, components), element)
+        elif text is not None:
+            t = item.transmission() if is_follower else item
+            element = read[id(item)] if id(item) in read else read_back([text])[0]
+            out = Found(read_transmission(element, None, components), element)
+            if t.kind == "other":
+                continue
         else:
-            t = item.transmission() if isinstance(item, Follower) else item
+            t = item.transmission() if is_follower else item
             queue = written.get((t.name, t.kind == "other"))
             if not queue:
                 continue
@@ -315,8 +368,8 @@ def _check(output: Source, result: Conversion, originals: list[Transmission | Fo
                 continue
         in_component = enclosing_component(out.element) is not None
         key = (shape(t, out.transmission), in_component)
-        if record is not None and record.verdict is None and out.element in alone and (
-                names[t.name] == 1):
+        if record is not None and record.verdict is None and (
+                out.element if text is None else text) in alone and names[t.name] == 1:
             record.verdict = key
         if key in survived:
             continue

@@ -22,18 +22,23 @@ from __future__ import annotations
 import re
 from collections.abc import Hashable
 from dataclasses import dataclass, field
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 from lxml import etree
 
 from txtool.model.core import Member, Transmission, replace
 from txtool.transform.shapes import LITERAL_NAMES
 
+if TYPE_CHECKING:
+    from txtool.transform.written import Written
+
 # A name attribute (the serializer puts one space before each): inside a tag, as what follows
 # it up to the tag's end holds no "<" or ">" (escaped in values and text); a text that reads
 # ' name="..."' is followed by "<" first. An attribute value holds no '"' (escaped).
 NAME = re.compile(rb' name="([^"]*)"(?=[^<>]*>)')
 _LITERALS = frozenset(name.encode("ascii") for name in LITERAL_NAMES)
+_KEPT = {name: name for name in _LITERALS}
+_LITERAL_LIST = sorted(_LITERALS)
 
 
 class Renaming(NamedTuple):
@@ -45,21 +50,35 @@ class Renaming(NamedTuple):
 
 def renaming_of(element: etree._Element) -> Renaming | None:
     """The :class:`Renaming` of a ``<transmission>`` element, or None when it is not keyed."""
+    parts = _parts(element)
+    return None if parts is None else _renaming(parts)
+
+
+def _parts(element: etree._Element) -> list[bytes] | None:
+    """The serialization of ``element`` cut at its names (:data:`NAME`: the names are at the
+    odd indices), or None when it holds a comment or processing instruction."""
     data = etree.tostring(element, with_tail=False)  # ASCII: other characters as references
     if b"<!" in data or b"<?" in data:
         return None
-    parts = NAME.split(data)
+    return NAME.split(data)
+
+
+def _renaming(parts: list[bytes]) -> Renaming | None:
     raws = parts[1::2]
-    index = {raw: None for raw in raws if raw not in _LITERALS}  # in order of appearance
-    for position, raw in enumerate(index):
-        index[raw] = position
-    if b"&" in b"".join(index):
+    distinct = dict.fromkeys(raws)  # the names that are not literal, in order of appearance
+    if not _LITERALS.isdisjoint(distinct):
+        for literal in _LITERALS:
+            distinct.pop(literal, None)
+    if b"&" in b"".join(distinct):
         return None  # an escaped name: its order is not the order of its bytes
-    # Equal names, and the order of all names among each other and the literal ones.
-    names = tuple([index.get(raw, raw) for raw in raws])
-    order = tuple([index.get(raw, raw) for raw in sorted(index.keys() | _LITERALS)])
-    return Renaming((tuple(parts[0::2]), names, order),
-                    tuple([raw.decode("ascii") for raw in index]))
+    # Equal names, and the order of all names among each other and the literal ones (kept).
+    index = dict(zip(distinct, range(len(distinct)), strict=True))
+    index.update(_KEPT)
+    names = tuple(map(index.__getitem__, raws))
+    everything = [*distinct, *_LITERALS]
+    everything.sort()
+    order = tuple(map(index.__getitem__, everything))
+    return Renaming((tuple(parts[0::2]), names, order), tuple(map(bytes.decode, distinct)))
 
 
 class Renamer:
@@ -99,6 +118,44 @@ class Record:
         self.verdict: Hashable | None = None  # the check's key for the first judged alone
         self._translated = Renamer(translated, renaming.names)
         self._original: Renamer | None = None
+        # What placing a follower reads of its conversion, without building it.
+        self.dialect = translated.dialect
+        self._name = self._translated.name
+        # Each joint of the conversion: the index of its name (None: kept), the name, and
+        # its command and state interfaces.
+        self.joint_plan = [(i, m.name, (m.interfaces, m.state_interfaces))
+                           for m, i in self._translated.joints]
+        self.skeleton, pattern, _ = renaming.key  # type: ignore[misc]
+        self.distinct = pattern == tuple(range(len(pattern)))  # no name twice, none literal
+        # The names and the literal ones in the order they sort: indices into the names
+        # followed by the literal names.
+        every = [name.encode("ascii") for name in renaming.names] + _LITERAL_LIST
+        self._sorted = sorted(range(len(every)), key=every.__getitem__)
+
+    def match(self, raws: list[bytes]) -> tuple[str, ...] | None:
+        """The names of an element whose :func:`renaming_of` has this record's key, from its
+        names as written (``raws``), its key's skeleton being this record's; or None when its
+        key differs (or it has none). Only for a :attr:`distinct` record: then the key says
+        that the names are distinct and not literal, the order they sort in, and where each
+        literal name sorts among them."""
+        if len(set(raws)) != len(raws) or not _LITERALS.isdisjoint(raws):
+            return None
+        every = raws + _LITERAL_LIST
+        if sorted(every) != list(map(every.__getitem__, self._sorted)) or b"&" in b"".join(
+                raws):
+            return None
+        return tuple(map(bytes.decode, raws))
+
+    def name_for(self, names: tuple[str, ...]) -> str:
+        """The name of ``translation_for(names)``."""
+        return self.translated.name if self._name is None else names[self._name]
+
+    def joints_for(self, names: tuple[str, ...]
+                   ) -> list[tuple[str, tuple[str, ...], tuple[str, ...]]]:
+        """The name, command and state interfaces of each joint of ``translation_for(names)``.
+        """
+        return [(name if i is None else names[i], *interfaces)
+                for i, name, interfaces in self.joint_plan]
 
     def translation_for(self, names: tuple[str, ...]) -> Transmission:
         return self._translated(names)
@@ -117,10 +174,13 @@ class Follower:
     names: tuple[str, ...]  # its own, by the index of the key's
     name: str = ""
     element: etree._Element | None = None  # the old element, until it is placed
-    built: etree._Element | None = None  # then what the placer built for it
+    built: etree._Element | Written | None = None  # then what the placer built (or wrote)
 
     def translated(self) -> Transmission:
         return self.record.translation_for(self.names)
+
+    def renaming(self) -> Renaming:
+        return Renaming(self.record.renaming.key, self.names)
 
     def transmission(self) -> Transmission:
         """The original transmission, as reading the element gives it."""
@@ -132,12 +192,25 @@ class Memo:
     """Records by key; a key whose first conversion said something is marked spoken."""
 
     records: dict[Hashable, Record | None] = field(default_factory=dict)
+    _distinct: dict[tuple[bytes, ...], list[Record]] = field(default_factory=dict)
 
-    def follow(self, renaming: Renaming | None) -> Follower | None:
+    def keyed(self, element: etree._Element) -> Follower | Renaming | None:
+        """``element`` as a follower of the record of its key (:func:`renaming_of`) when
+        there is one (its first said nothing), else its renaming (None: it has no key). A
+        record whose names are distinct is matched without the key being made."""
+        parts = _parts(element)
+        if parts is None:
+            return None
+        for record in self._distinct.get(tuple(parts[0::2]), ()):
+            names = record.match(parts[1::2])
+            if names is not None:
+                return Follower(record, names, record.name_for(names), element)
+        renaming = _renaming(parts)
         if renaming is None:
             return None
         record = self.records.get(renaming.key)
-        return None if record is None else Follower(record, renaming.names)
+        return renaming if record is None else Follower(
+            record, renaming.names, record.name_for(renaming.names), element)
 
     def learn(self, renaming: Renaming | None, original: Transmission, translated: Transmission,
               clean: bool) -> Record | None:
@@ -146,4 +219,6 @@ class Memo:
             return None
         record = Record(renaming, original, translated) if clean else None
         self.records[renaming.key] = record
+        if record is not None and record.distinct:
+            self._distinct.setdefault(record.skeleton, []).append(record)
         return record

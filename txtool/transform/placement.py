@@ -22,18 +22,58 @@ from txtool.dialects.translate import translate
 from txtool.io.xmlio import local
 from txtool.model.core import Dialect, Transmission, replace
 from txtool.model.robot import children
-from txtool.transform.memo import Renaming
+from txtool.transform.memo import Follower, Renaming
 from txtool.transform.templates import Templates, parse_children
+from txtool.transform.written import Written, blank, write
 
 Carried = dict[tuple[str, str | None], list[etree._Element]]
+Joints = list[tuple[str, tuple[str, ...], tuple[str, ...]]]  # names and interfaces
 
 
-@dataclass
 class _Move:
-    old: etree._Element
-    new: Transmission
-    carried: Carried | None = None
-    renaming: Renaming | None = None  # the old element's, when it was keyed (:mod:`.memo`)
+    """``old`` and its conversion ``new`` (a follower's is built only when it is read)."""
+
+    __slots__ = ("old", "_new", "carried", "_renaming", "follower")
+
+    def __init__(self, old: etree._Element, new: Transmission | None,
+                 carried: Carried | None = None, renaming: Renaming | None = None,
+                 follower: Follower | None = None) -> None:
+        self.old = old
+        self._new = new
+        self.carried = carried
+        self._renaming = renaming
+        self.follower = follower
+
+    @property
+    def renaming(self) -> Renaming | None:
+        """The old element's, when it was keyed (:mod:`.memo`)."""
+        if self._renaming is None and self.follower is not None:
+            self._renaming = self.follower.renaming()
+        return self._renaming
+
+    @property
+    def new(self) -> Transmission:
+        if self._new is None:
+            assert self.follower is not None
+            self._new = self.follower.translated()
+        return self._new
+
+    @new.setter
+    def new(self, value: Transmission) -> None:
+        self._new = value
+
+    @property
+    def dialect(self) -> Dialect:
+        if self._new is None:
+            assert self.follower is not None
+            return self.follower.record.dialect
+        return self._new.dialect
+
+    def joints(self) -> Joints:
+        if self._new is None:
+            assert self.follower is not None
+            return self.follower.record.joints_for(self.follower.names)
+        return [(j.name, j.interfaces, j.state_interfaces) for j in self._new.joints]
 
 
 @dataclass
@@ -52,6 +92,7 @@ class Placer:
 
     def __init__(self, root: etree._Element, hardware_plugin: str) -> None:
         self.root = root
+        self._robot = local(root) == "robot"
         self.hardware_plugin = hardware_plugin
         self.notes: list[str] = []
         self._into_new: list[_Move] = []
@@ -61,8 +102,13 @@ class Placer:
         self.built: dict[etree._Element, etree._Element] = {}  # old element -> the last built
         # Built elements in the block generated for the document whose joints it declares
         # from them alone: what reading one back gives depends on that element only.
-        self.alone: set[etree._Element] = set()
+        self.alone: set[etree._Element | Written] = set()
         self._templates = Templates()
+        # Set by the caller: the old elements whose built ones may not be written as text
+        # (:mod:`.written`) rather than parsed into the tree; None: none may.
+        self.crowded: set[etree._Element] | None = None
+        self.written: tuple[etree._Comment, bytes] | None = None  # the marker, and its text
+        self.unwritten: dict[Written, etree._Element] = {}  # by :meth:`unwrite`
 
     def place(self, old: etree._Element, t: Transmission, carried: Carried | None = None,
               renaming: Renaming | None = None, dialect: Dialect | None = None) -> None:
@@ -78,7 +124,7 @@ class Placer:
         if moving_out and component.getparent() is not None:
             self._out_of.setdefault(component, []).append(move)
         elif moving_in and old.getparent() is self.root and local(self.root) == "robot":
-            existing = self._component_for(t)
+            existing = self._component_for(lambda: {j.name for j in t.joints})
             if existing is None:
                 self._into_new.append(move)
             else:
@@ -98,6 +144,19 @@ class Placer:
                 _become(old, new)  # a bare <transmission> fragment
             else:
                 old.getparent().replace(old, new)
+
+    def place_follower(self, old: etree._Element, follower: Follower, dialect: Dialect
+                       ) -> None:
+        """:meth:`place` for a follower (:mod:`.memo`) outside any ``<ros2_control>``: one
+        that goes into the block generated for the document is not built here."""
+        into_new = (dialect == "ros1" and follower.record.dialect != "ros1"
+                    and old.getparent() is self.root and self._robot)
+        if into_new and (self._components == [] or self._component_for(
+                lambda: {name for name, _, _ in follower.record.joints_for(follower.names)}
+        ) is None):
+            self._into_new.append(_Move(old, None, {}, None, follower))
+        else:
+            self.place(old, follower.translated(), {}, follower.renaming(), dialect)
 
     def finish(self) -> None:
         if self._into_new:
@@ -121,14 +180,17 @@ class Placer:
     def _generate(self, moves: list[_Move]) -> None:
         first = moves[0].old
         indent, step = indentation(first)
-        block = self._block(self.root.get("name", "robot"), self.hardware_plugin, moves,
-                            first, indent, step, alone=True)
         runs = _runs([m.old for m in moves])
+        name = self.root.get("name", "robot")
+        block = self._write_block(name, moves, runs, first, indent, step)
+        if block is None:
+            block = self._block(name, self.hardware_plugin, moves, first, indent, step,
+                                alone=True)
+            for old in runs[0][:-1]:
+                self.built[old].tail = _reindent(old.tail, indent + step)
         for run in runs[1:]:
             for old in run:
                 cut(old)
-        for old in runs[0][:-1]:
-            self.built[old].tail = _reindent(old.tail, indent + step)
         block.tail = runs[0][-1].tail
         for old in runs[0][1:]:
             old.getparent().remove(old)
@@ -146,16 +208,7 @@ class Placer:
         block = etree.Element(q("ros2_control"), name=name, type="system")
         hardware = etree.SubElement(block, q("hardware"))
         etree.SubElement(hardware, q("plugin")).text = plugin
-        seen: set[str] = set()
-        declared: list[tuple[str, tuple]] = []  # joint names and interfaces, in order
-        shared: set[etree._Element] = set()  # moves with a joint declared before
-        for move in moves:
-            for joint in move.new.joints:
-                if joint.name in seen:
-                    shared.add(move.old)
-                else:
-                    seen.add(joint.name)
-                    declared.append((joint.name, (joint.interfaces, joint.state_interfaces)))
+        declared, shared = _declared(moves)
         texts = self._texts(moves, like, indent + step, step) if transmissions and record \
             else None
         if texts is not None:
@@ -196,22 +249,88 @@ class Placer:
         return built
 
     def _texts(self, moves: list[_Move], like: etree._Element, indent: str, step: str
-               ) -> list[list[bytes]] | None:
+               ) -> list[bytes] | None:
         """The text of each transmission :meth:`_build` would build, when all have one."""
         if _namespace(like) is not None:
             return None
         texts = []
+        templates = self._templates
+        forms: dict[int, tuple[str, Callable, bool] | None] = {}  # a follower's, by record
         for move in moves:
-            if move.renaming is None or move.carried:
+            follower = move.follower
+            if move.carried or follower is None and move.renaming is None:
                 return None
-            text = self._templates.text(move.renaming, move.new, indent, step)
+            if follower is None:
+                text = templates.text(move.renaming, move.dialect, indent, step, move)
+            else:  # the same key and dialect as its record's: the same form
+                form = forms.get(id(follower.record), False)
+                if form is False:
+                    form = forms[id(follower.record)] = templates.form(
+                        follower.renaming(), move.dialect, indent, step, move)
+                text = None if form is None else (form[0] % form[1](follower.names)).encode()
             if text is None:
                 return None
             texts.append(text)
         return texts
 
+    def _write_block(self, name: str, moves: list[_Move], runs: list[list[etree._Element]],
+                     like: etree._Element, indent: str, step: str) -> etree._Element | None:
+        """The block :meth:`_generate` makes, with its declarations and transmissions left as
+        text (:func:`.written.write`, kept in :attr:`written`), or None when it cannot be
+        so."""
+        crowded = self.crowded
+        if crowded is None or _namespace(like) is not None or not (blank(indent)
+                                                                   and blank(step)):
+            return None
+        if not crowded.isdisjoint([move.old for move in moves]):
+            return None
+        tails = self._tails(moves, runs, indent, step)
+        if tails is None:
+            return None
+        made = write(name, self.hardware_plugin, moves, tails, indent, step, self._templates)
+        if made is None:
+            return None
+        block, written, alone, self.written = made
+        self.built.update(zip([move.old for move in moves], written, strict=True))
+        self.alone.update(alone)
+        return block
+
+    @staticmethod
+    def _tails(moves: list[_Move], runs: list[list[etree._Element]], indent: str, step: str
+               ) -> list[str] | None:
+        """What follows each transmission of a generated block: the blank lines that followed
+        it in the first run, one line break, or the block's end; None when not blank."""
+        tails = ["\n" + indent + step] * len(moves)
+        reindented: dict[str | None, str] = {}
+        for position, old in enumerate(runs[0][:-1]):
+            tail = reindented.get(old.tail)
+            if tail is None:
+                tail = reindented[old.tail] = _reindent(old.tail, indent + step)
+            tails[position] = tail
+        tails[-1] = "\n" + indent
+        if not all([blank(tail) for tail in {*reindented.values(), tails[-1]}]):
+            return None
+        return tails
+
+    def unwrite(self) -> None:
+        """Parse the text of :attr:`written` into the tree in place of its marker."""
+        assert self.written is not None
+        comment, text = self.written
+        self.written = None
+        block = comment.getparent()
+        block.remove(comment)
+        elements = parse_children([text])
+        block.extend(elements)
+        olds = [old for old, built in self.built.items() if isinstance(built, Written)]
+        for old, element in zip(olds, elements[len(elements) - len(olds):], strict=True):
+            written = self.built[old]
+            self.unwritten[written] = self.built[old] = element  # type: ignore[index]
+            if written in self.alone:
+                self.alone.discard(written)
+                self.alone.add(element)
+
     def _fill_by_text(self, block: etree._Element, declared: list[tuple[str, tuple]],
-                      texts: list[list[bytes]], indent: str, step: str
+                      texts: list[bytes], indent: str, step: str
                       ) -> list[etree._Element]:
         """What :meth:`_fill` gives, the declarations and transmissions parsed from text."""
         inner = ("\n" + indent + step).encode()
@@ -220,8 +339,7 @@ class Placer:
             head, tail = self._templates.declaration(interfaces, indent + step, step)
             pieces += (head, name.encode(), tail, inner)
         for text in texts:
-            pieces += text
-            pieces.append(inner)
+            pieces += (text, inner)
         hardware = block[0]
         dialects.pretty(hardware, indent + step, step)
         hardware.tail, block.text = inner.decode(), inner.decode()
@@ -230,10 +348,13 @@ class Placer:
         block.extend(children)
         return children[len(declared):]
 
-    def _component_for(self, t: Transmission) -> etree._Element | None:
-        names = {j.name for j in t.joints}
+    def _component_for(self, joints: Callable[[], set[str]]) -> etree._Element | None:
+        """The first ``<ros2_control>`` that declares all of ``joints()``."""
         if self._components is None:
             self._components = list(self.root.iter("{*}ros2_control"))
+        if not self._components:
+            return None
+        names = joints()
         for element in self._components:
             if names <= self._joints_of(element):
                 return element
@@ -350,6 +471,22 @@ class Placer:
         if record:
             self.built[move.old] = new
         return new
+
+
+def _declared(moves: list[_Move]) -> tuple[list[tuple[str, tuple]], set[etree._Element]]:
+    """The joints a generated block declares (names and interfaces, in order: the first of
+    each name) and the old elements of the moves with a joint declared before."""
+    seen: set[str] = set()
+    declared: list[tuple[str, tuple]] = []
+    shared: set[etree._Element] = set()
+    for move in moves:
+        for name, commands, states in move.joints():
+            if name in seen:
+                shared.add(move.old)
+            else:
+                seen.add(name)
+                declared.append((name, (commands, states)))
+    return declared, shared
 
 
 def restyle_roles(element: etree._Element, dialect: Dialect) -> None:

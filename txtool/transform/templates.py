@@ -11,20 +11,28 @@ without one), and it holds no name it does not key.
 
 from __future__ import annotations
 
-from collections.abc import Hashable
+from collections.abc import Callable, Hashable
+from operator import itemgetter
+from typing import Protocol
 
 from lxml import etree
 
 from txtool import dialects
 from txtool.io.xmlio import safe_parser
-from txtool.model.core import Transmission
+from txtool.model.core import Dialect, Transmission
 from txtool.transform.memo import NAME, Renaming
+from txtool.transform.written import plain
+
+
+class Converted(Protocol):
+    @property
+    def new(self) -> Transmission: ...
 
 
 class Templates:
     def __init__(self) -> None:
         self._elements: dict[Hashable, tuple[etree._Element, tuple[int | None, ...]]] = {}
-        self._texts: dict[Hashable, tuple[list[bytes], tuple[int | None, ...]] | None] = {}
+        self._texts: dict[Hashable, tuple[str, Callable, bool] | None] = {}
         self._declarations: dict[Hashable, tuple[bytes, bytes]] = {}
 
     def element(self, renaming: Renaming, t: Transmission, indent: str, step: str,
@@ -46,21 +54,30 @@ class Templates:
                 node.set("name", renaming.names[i])
         return new
 
-    def text(self, renaming: Renaming, t: Transmission, indent: str, step: str
-             ) -> list[bytes] | None:
-        """The text of :meth:`element` (no namespace), or None when it cannot be written so."""
-        key = (renaming.key, t.dialect, indent, step)
-        if key not in self._texts:
-            self._texts[key] = _split(self.element(renaming, t, indent, step, None), renaming)
-        known = self._texts[key]
+    def text(self, renaming: Renaming, dialect: Dialect, indent: str, step: str,
+             conversion: Converted, plain_only: bool = False) -> bytes | None:
+        """The text of :meth:`element` (no namespace) for ``conversion.new``, whose dialect
+        is ``dialect`` (read only for the first of a key and layout), or None when it cannot
+        be written so (``plain_only``: or is not :func:`.written.plain`)."""
+        known = self.form(renaming, dialect, indent, step, conversion, plain_only)
         if known is None:
             return None
-        parts, slots = known
-        pieces = [parts[0]]
-        for position, slot in enumerate(slots):
-            name = parts[2 * position + 1] if slot is None else renaming.names[slot].encode()
-            pieces += (name, parts[2 * position + 2])
-        return pieces
+        form, pick, _ = known
+        return (form % pick(renaming.names)).encode()
+
+    def form(self, renaming: Renaming, dialect: Dialect, indent: str, step: str,
+             conversion: Converted, plain_only: bool = False
+             ) -> tuple[str, Callable, bool] | None:
+        """What :meth:`text` fills in: a ``%`` form, what picks the names for its ``%s``
+        out of a renaming's names, and whether the text is plain (see :func:`_split`)."""
+        key = (renaming.key, dialect, indent, step)
+        known = self._texts.get(key, False)
+        if known is False:
+            known = self._texts[key] = _split(
+                self.element(renaming, conversion.new, indent, step, None), renaming)
+        if known is None or plain_only and not known[2]:
+            return None
+        return known
 
     def declaration(self, interfaces: tuple[tuple[str, ...], ...], indent: str, step: str
                     ) -> tuple[bytes, bytes]:
@@ -81,18 +98,26 @@ class Templates:
 
 
 def _split(element: etree._Element, renaming: Renaming
-           ) -> tuple[list[bytes], tuple[int | None, ...]] | None:
-    """``element``'s text cut at its name attributes, and which name goes in each cut (None:
-    the name as written), or None when the text does not give the element back."""
+           ) -> tuple[str, Callable, bool] | None:
+    """``element``'s text as a ``%`` form with a ``%s`` for each name that ``renaming`` keys,
+    what picks those names out of a renaming's, and whether the text is plain; or None when
+    the text does not give the element back."""
     text = etree.tostring(element, with_tail=False)
     if etree.tostring(etree.fromstring(text, safe_parser())) != text:
         return None
     index = {name.encode("ascii"): i for i, name in enumerate(renaming.names)}
     parts = NAME.split(text)  # what NAME matches goes; the names stay, between the others
-    for position in range(0, len(parts) - 1, 2):
-        parts[position] += b' name="'
-        parts[position + 2] = b'"' + parts[position + 2]
-    return parts, tuple([index.get(raw) for raw in parts[1::2]])
+    form = parts[0].decode("ascii").replace("%", "%%")
+    slots = []
+    for raw, after in zip(parts[1::2], parts[2::2], strict=True):
+        slot = index.get(raw)
+        name = raw.decode("ascii").replace("%", "%%") if slot is None else "%s"
+        form += ' name="' + name + '"' + after.decode("ascii").replace("%", "%%")
+        if slot is not None:
+            slots.append(slot)
+    pick = (lambda names: ()) if not slots else itemgetter(*slots) if len(slots) > 1 else (
+        lambda names, slot=slots[0]: (names[slot],))
+    return form, pick, plain(text)
 
 
 def parse_children(pieces: list[bytes]) -> list[etree._Element]:
