@@ -91,8 +91,19 @@ class MemberRef:
         return self.kids.get(name, _NONE)
 
 
+def _refs(noun: str, elements: list[etree._Element] | None, found: Found) -> list[MemberRef]:
+    if not elements:
+        return []
+    if len(elements) == 1:  # the common case, without a list comprehension
+        return [MemberRef(noun, elements[0], found, 0)]
+    return [MemberRef(noun, e, found, i) for i, e in enumerate(elements)]
+
+
 def texts_of(elements: list[etree._Element] | tuple[etree._Element, ...]) -> list[str]:
     """The stripped texts of ``elements``, without the empty ones."""
+    if len(elements) == 1:  # the common case, without two list comprehensions
+        text = (elements[0].text or "").strip()
+        return [text] if text else []
     texts = [(e.text or "").strip() for e in elements]
     return [text for text in texts if text]
 
@@ -136,9 +147,8 @@ class Facts:
         element = found.element
         components = hints.components
         kids = child_index(element)
-        joints = [MemberRef("joint", e, found, i) for i, e in enumerate(kids.get("joint", _NONE))]
-        actuators = [MemberRef("actuator", e, found, i)
-                     for i, e in enumerate(kids.get("actuator", _NONE))]
+        joints = _refs("joint", kids.get("joint"), found)
+        actuators = _refs("actuator", kids.get("actuator"), found)
         members = joints + actuators
         # What read_transmission reads first: the dialect (detect_dialect's first test: no
         # role attribute, no <plugin>, no enclosing <ros2_control> is ROS 1; else its own

@@ -74,8 +74,9 @@ class NumberRef:
         self.text = text
         # Only xacro can tell the value (see LintContext.unknown): the element's text as
         # written, or the text the loader reads.
-        self.unknown_written = _unknown(written)
-        self.unknown = self.unknown_written or _unknown(text)
+        unknown = self.unknown_written = written is not None and (
+            "${" in written or "$(" in written)
+        self.unknown = unknown or (text is not None and ("${" in text or "$(" in text))
         # The element's one text node is its text (see Facts.plain): what the loader reads is
         # all the element holds.
         self.single = single
@@ -91,10 +92,6 @@ class NumberRef:
         if self.single:
             return self.element.text or ""
         return all_text(self.element)
-
-
-def _unknown(text: str | None) -> bool:
-    return text is not None and ("${" in text or "$(" in text)
 
 
 _NODES = etree.XPath("node()")
@@ -158,9 +155,10 @@ def _read_numbers(facts: Facts) -> list[NumberRef]:
     for refs, tags in ((joints, joint_tags), (actuators, actuator_tags)):
         for ref in refs:
             for tag in tags:
-                element = _number_element(ref.kids.get(tag), ros1, plain)
-                if element is None:
+                elements = ref.kids.get(tag)
+                if not elements:
                     continue
+                element = elements[0] if ros1 else _number_element(elements, plain)
                 field = "offset" if tag == "offset" else "reduction"
                 written = element.text
                 if plain and not len(element):  # loader_text's plain case, its text read once
@@ -173,15 +171,11 @@ def _read_numbers(facts: Facts) -> list[NumberRef]:
     return found
 
 
-def _number_element(found: list[etree._Element] | None, ros1: bool,
-                    plain: bool) -> etree._Element | None:
-    if not found:
-        return None
-    if not ros1:
-        # ros2_control takes the first element whose GetText() is not null
-        # (ros2_control hardware_interface/src/component_parser.cpp:134-161 @157446a).
-        return next((e for e in found if loader_text(e, plain) is not None), found[0])
-    return found[0]
+def _number_element(found: list[etree._Element], plain: bool) -> etree._Element:
+    """The element ros2_control reads: the first whose GetText() is not null
+    (ros2_control hardware_interface/src/component_parser.cpp:134-161 @157446a); ros_control
+    reads the first."""
+    return next((e for e in found if loader_text(e, plain) is not None), found[0])
 
 
 def coupled_groups(
