@@ -2,10 +2,15 @@
 
 from __future__ import annotations
 
+import os
+
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from tests.lint.conftest import BROKEN, WARNING_ONLY
 from txtool.lint.config import Config, ConfigError, find_config, load_config, resolve
+from txtool.lint.patterns import absolute_folder
 
 
 def write(path, text):
@@ -137,3 +142,14 @@ def test_load_config_reads_a_txtool_toml(tmp_path):
     assert load_config(path) == Config(ignore=["TX3"], severity={"TX102": "info"})
     with pytest.raises(ConfigError, match="unknown rule code"):
         resolve(Config(select=["XX"]), origin=str(path))
+
+
+@given(st.lists(st.sampled_from(["a", "b.urdf", ".", "..", "", ".x", "..y"]), min_size=1,
+                max_size=5), st.booleans())
+def test_folders_made_absolute_once_are_those_of_abspath(parts: list[str], rooted: bool) -> None:
+    """The folder walk and the settings normalise each folder once; any path gets the folder
+    ``os.path.dirname(os.path.abspath(path))`` gives, asked once or twice."""
+    path = ("/" if rooted else "") + "/".join(parts)
+    known: dict[str, str] = {}
+    for _ in range(2):
+        assert absolute_folder(path, known) == os.path.dirname(os.path.abspath(path))

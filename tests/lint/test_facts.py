@@ -16,7 +16,8 @@ from txtool.dialects.read import read_transmission
 from txtool.io.xmlio import Source, parse_bytes, read_bytes
 from txtool.lint.config import resolve
 from txtool.lint.engine import context_for
-from txtool.lint.support import loader_text
+from txtool.lint.facts import Facts
+from txtool.lint.support import loader_text, numbers_of
 from txtool.model.robot import indexed_children
 
 T = "transmission_interface/"
@@ -88,3 +89,36 @@ def test_loader_text_without_cdata_reads_the_text_as_the_nodes_do() -> None:
                        "a.urdf").getroot()
     for element in root:
         assert loader_text(element, plain=True) == loader_text(element)
+
+
+NUMBERS = b"""<robot name="r"><transmission name="t"><type>transmission_interface/SimpleTransmission
+  </type><joint name="j"><offset> 0.5 </offset></joint><actuator name="m">
+  <mechanicalReduction>${r}</mechanicalReduction></actuator></transmission>
+  <transmission name="d"><type>transmission_interface/DifferentialTransmission</type>
+  <joint name="a"><mechanicalReduction>
+  </mechanicalReduction><offset>1<!-- c -->0</offset></joint><joint name="b"><offset/></joint>
+  <actuator name="x"><mechanicalReduction><!-- c -->5</mechanicalReduction></actuator>
+  <actuator name="y"><mechanicalReduction>1e999</mechanicalReduction></actuator></transmission>
+  </robot>"""
+
+
+@pytest.mark.parametrize("name", ["numbers", *corpus_names()])
+def test_numbers_read_without_cdata_are_those_read_node_by_node(name: str) -> None:
+    """Where the document holds no CDATA section, each number's text is read from the element
+    directly; the numbers found and read are those of the node-by-node reading."""
+    if name == "numbers":
+        display, data = "numbers.urdf", NUMBERS
+    else:
+        display, data = read_bytes(str(corpus_file(name)))
+    source = Source(path=display, data=data, tree=parse_bytes(data, display))
+    with indexed_children():
+        ctx = context_for(source, resolve(None))
+        for tx in ctx.facts:
+            unsure = Facts(tx.found)  # plain=False: every text node read
+            fields = ("element", "field", "noun", "member", "text", "unknown",
+                      "unknown_written", "strict")
+            assert [[getattr(n, f) for f in fields] for n in numbers_of(tx)] == [
+                [getattr(n, f) for f in fields] for n in numbers_of(unsure)
+            ]
+            if tx.plain:
+                assert all(n.single == (not len(n.element)) for n in numbers_of(tx))

@@ -127,7 +127,7 @@ def read_regular(path: str, limit: int = MAX_BYTES) -> bytes:
         refuse_special(path, mode)
         # O_NONBLOCK: a FIFO swapped in after the check cannot block the open.
         handle = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_NOCTTY | os.O_CLOEXEC)
-        with open(handle, "rb") as file:
+        try:  # plain descriptor reads: a buffered file object costs more than a small read
             status = os.fstat(handle)
             refuse_special(path, status.st_mode)
             if status.st_size > limit:
@@ -135,12 +135,14 @@ def read_regular(path: str, limit: int = MAX_BYTES) -> bytes:
                                f"{limit} limit")
             # Asking for the size the file has (not the limit) spares allocating the limit's
             # 64 MB for every small file; one byte more tells whether it grew since fstat.
-            data = file.read(status.st_size + 1)
+            data = _read_up_to(handle, status.st_size + 1)
             if len(data) > status.st_size:
-                data += file.read(limit + 1 - len(data))
+                data += _read_up_to(handle, limit + 1 - len(data))
             if len(data) > limit:  # grew since fstat
                 raise TooLarge(f"{path}: file is larger than the {limit} limit")
             return data
+        finally:
+            os.close(handle)
     except IsADirectoryError:
         raise InputError(f"{path}: is a directory") from None
     except FileNotFoundError:
@@ -149,6 +151,22 @@ def read_regular(path: str, limit: int = MAX_BYTES) -> bytes:
         raise InputError(f"{path}: permission denied") from None
     except OSError as exc:
         raise InputError(f"{path}: {exc.strerror or exc}") from None
+
+
+def _read_up_to(handle: int, size: int) -> bytes:
+    """Up to ``size`` bytes, fewer only at the end of the file (as a file object's read)."""
+    data = os.read(handle, size)
+    if len(data) == size or not data:
+        return data
+    parts = [data]
+    size -= len(data)
+    while size > 0:
+        data = os.read(handle, size)
+        if not data:
+            break
+        parts.append(data)
+        size -= len(data)
+    return b"".join(parts)
 
 
 _KINDS = (

@@ -28,7 +28,7 @@ from txtool.lint.config_files import (  # noqa: F401 - this module's names befor
     no_xacro_configured,
     no_xacro_from_environment,
 )
-from txtool.lint.patterns import Excludes
+from txtool.lint.patterns import Excludes, absolute_folder
 from txtool.lint.problem import Severity
 
 if TYPE_CHECKING:
@@ -292,6 +292,7 @@ class SettingsCache:
         self._by_file: dict[Path | None, Settings] = {}
         self._by_folder: dict[str, Path | None] = {}
         self._by_path: dict[str, Settings] = {}  # a folder walk asks first, then the linter
+        self._absolute: dict[str, str] = {}  # folders made absolute (see absolute_folder)
         self._cli_excludes = Excludes(
             os.getcwd(), (*(overrides.exclude or ()), *overrides.extend_exclude)
         )
@@ -312,7 +313,7 @@ class SettingsCache:
         elif os.path.islink(path):
             config_path = find_config(Path(path).resolve().parent)  # where the file really is
         else:
-            config_path = self._config_of_folder(os.path.dirname(os.path.abspath(path)))
+            config_path = self._config_of_folder(absolute_folder(path, self._absolute))
         if config_path not in self._by_file:
             self._by_file[config_path] = self._settings(config_path)
         return self._by_file[config_path].for_path(path)

@@ -20,7 +20,7 @@ from lxml import etree
 
 from txtool.io.packages import is_ignored
 from txtool.io.xmlio import SAFE_OPTIONS, InputError
-from txtool.lint.patterns import Excludes
+from txtool.lint.patterns import Excludes, absolute_folder
 
 SUFFIXES = (".urdf", ".xacro")  # ``.urdf.xacro`` ends with ``.xacro``
 XML_ROOTS = frozenset({"robot", "ros2_control", "transmission"})
@@ -111,14 +111,15 @@ class GitIgnores:
 
     def __init__(self, start: str) -> None:
         self._by_folder: dict[str, tuple[Excludes, ...]] = {}
+        self._absolute: dict[str, str] = {}
         start = os.path.abspath(start)
         self._top = next(
             (str(f) for f in (Path(start), *Path(start).parents) if (f / ".git").exists()), start
         )
 
     def ignored(self, path: str, is_folder: bool) -> bool:
-        folder = os.path.dirname(os.path.abspath(path))
-        return any(rules.matches(path, is_folder) for rules in self._rules(folder))
+        found = self._rules(absolute_folder(path, self._absolute))
+        return bool(found) and any(rules.matches(path, is_folder) for rules in found)
 
     def _rules(self, folder: str) -> tuple[Excludes, ...]:
         if folder not in self._by_folder:

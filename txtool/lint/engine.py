@@ -174,7 +174,8 @@ def _checks(enabled: frozenset[str]) -> list[Callable[[LintContext], Iterable[Pr
 
 def finish(problems: list[Problem], source: Source, settings: Settings) -> list[Problem]:
     """Select, suppress, report unused suppressions, stamp, add end positions, sort."""
-    kept = [p for p in problems if p.code in settings.enabled]
+    enabled = settings.enabled
+    kept = [p for p in problems if p.code in enabled] if problems else []
     suppressions = parse_suppressions(source.data)
     if suppressions:
         kept = [p for p in kept if not suppressions.suppressed(p)]

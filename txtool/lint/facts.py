@@ -63,16 +63,19 @@ class MemberRef:
     ``kids`` indexes the element's children by local name (shared: do not change it).
     """
 
-    __slots__ = ("noun", "element", "name", "kids", "_found", "_index", "_interfaces")
+    __slots__ = ("noun", "element", "name", "kids", "interfaces", "_found", "_index")
 
     def __init__(self, noun: str, element: etree._Element, found: Found, index: int) -> None:
         self.noun = noun  # "joint" or "actuator"
         self.element = element
         self.name: str = element.get("name", "")  # as the model's Member.name
-        self.kids: Index = child_index(element)
+        kids = self.kids = child_index(element)
+        # The non-empty <hardwareInterface> texts, stripped (for ROS 1, the model's
+        # Member.interfaces): read here, as most rules ask for them.
+        named = kids.get("hardwareInterface")
+        self.interfaces: list[str] = texts_of(named) if named else []
         self._found = found
         self._index = index
-        self._interfaces: list[str] | None = None
 
     def __repr__(self) -> str:
         return f"MemberRef({self.noun!r}, {self.name!r})"
@@ -87,18 +90,20 @@ class MemberRef:
         """The member's children named ``name`` (in any namespace)."""
         return self.kids.get(name, _NONE)
 
-    @property
-    def interfaces(self) -> list[str]:
-        """The non-empty ``<hardwareInterface>`` texts of the element, stripped (for ROS 1,
-        the model's ``Member.interfaces``)."""
-        known = self._interfaces
-        if known is None:
-            known = self._interfaces = texts_of(self.kids.get("hardwareInterface", _NONE))
-        return known
+
+def _refs(noun: str, elements: list[etree._Element] | None, found: Found) -> list[MemberRef]:
+    if not elements:
+        return []
+    if len(elements) == 1:  # the common case, without a list comprehension
+        return [MemberRef(noun, elements[0], found, 0)]
+    return [MemberRef(noun, e, found, i) for i, e in enumerate(elements)]
 
 
 def texts_of(elements: list[etree._Element] | tuple[etree._Element, ...]) -> list[str]:
     """The stripped texts of ``elements``, without the empty ones."""
+    if len(elements) == 1:  # the common case, without two list comprehensions
+        text = (elements[0].text or "").strip()
+        return [text] if text else []
     texts = [(e.text or "").strip() for e in elements]
     return [text for text in texts if text]
 
@@ -123,6 +128,9 @@ class Hints:
 
 
 _UNSURE = Hints()
+# kind_of by type text, for the few type texts a run meets.
+_KINDS: dict[str, str] = {}
+_KINDS_KEPT = 256
 
 
 class Facts:
@@ -131,16 +139,16 @@ class Facts:
     __slots__ = (
         "found", "element", "name", "ros1", "type", "kind", "kids", "type_element",
         "type_text", "typed_ros1", "parsed", "own_loader", "members", "joints", "actuators",
-        "memo", "plain", "component", "group", "_joint_interfaces", "_actuator_interfaces",
+        "memo", "plain", "component", "group", "numbers", "_joint_interfaces",
+        "_actuator_interfaces",
     )
 
     def __init__(self, found: Found, hints: Hints = _UNSURE) -> None:
         element = found.element
         components = hints.components
         kids = child_index(element)
-        joints = [MemberRef("joint", e, found, i) for i, e in enumerate(kids.get("joint", _NONE))]
-        actuators = [MemberRef("actuator", e, found, i)
-                     for i, e in enumerate(kids.get("actuator", _NONE))]
+        joints = _refs("joint", kids.get("joint"), found)
+        actuators = _refs("actuator", kids.get("actuator"), found)
         members = joints + actuators
         # What read_transmission reads first: the dialect (detect_dialect's first test: no
         # role attribute, no <plugin>, no enclosing <ros2_control> is ROS 1; else its own
@@ -161,7 +169,12 @@ class Facts:
         self.element = element
         self.name: str = element.get("name", "")  # as the model's Transmission.name
         self.ros1 = ros1
-        self.kind = kind_of(self.type)
+        kind = _KINDS.get(self.type)
+        if kind is None:
+            kind = kind_of(self.type)
+            if len(_KINDS) < _KINDS_KEPT:
+                _KINDS[self.type] = kind
+        self.kind = kind
         self.kids = kids
         # ros_control gets past parsing only with a <type> element (the pre-Hydro type=
         # attribute alone is skipped before any loader runs) and a name.
@@ -172,6 +185,7 @@ class Facts:
         self.actuators = actuators
         self.members = members
         self.memo: dict[str, object] = {}  # answers a few rules share (see support)
+        self.numbers: object = None  # the numbers its loader reads (see support.numbers_of)
         # The document holds no CDATA section: an element's text nodes are its ``text``.
         self.plain = hints.plain
         self._joint_interfaces: frozenset[str] | None = None
@@ -195,10 +209,15 @@ class Facts:
         """Every interface name of the joints (see :attr:`MemberRef.interfaces`)."""
         known = self._joint_interfaces
         if known is None:
-            names: set[str] = set()
-            for ref in self.joints:
-                names.update(ref.interfaces)
-            known = self._joint_interfaces = frozenset(names)
+            joints = self.joints
+            if len(joints) == 1:
+                known = frozenset(joints[0].interfaces)
+            else:
+                names: set[str] = set()
+                for ref in joints:
+                    names.update(ref.interfaces)
+                known = frozenset(names)
+            self._joint_interfaces = known
         return known
 
     @property
@@ -206,11 +225,12 @@ class Facts:
         """Whether some actuator names an interface (see :attr:`MemberRef.interfaces`)."""
         known = self._actuator_interfaces
         if known is None:
-            known = self._actuator_interfaces = False
+            known = False
             for ref in self.actuators:
                 if ref.interfaces:
-                    known = self._actuator_interfaces = True
+                    known = True
                     break
+            self._actuator_interfaces = known
         return known
 
     @property

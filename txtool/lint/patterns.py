@@ -31,3 +31,16 @@ def _spec(patterns: tuple[str, ...]):
 
 
 _SPECS: dict[tuple[str, ...], Any] = {}
+
+
+def absolute_folder(path: str, known: dict[str, str]) -> str:
+    """``os.path.dirname(os.path.abspath(path))``, each folder normalised once (``known`` keeps
+    them, for one walk: the working folder does not change during it). The same answer where
+    the last part of ``path`` is a name (not ``.``, ``..`` or empty)."""
+    head, name = os.path.split(path)
+    if name in ("", ".", ".."):
+        return os.path.dirname(os.path.abspath(path))
+    folder = known.get(head)
+    if folder is None:
+        folder = known[head] = os.path.abspath(head)
+    return folder

@@ -58,14 +58,15 @@ def scope(ctx: LintContext, element: etree._Element) -> tuple[etree._Element, ..
 class NumberRef:
     """A number element a loader reads: ``field`` is "reduction" or "offset".
 
-    ``text`` is what the loader parses (see :func:`loader_text`), read once: several rules ask.
+    ``text`` is what the loader parses (see :func:`loader_text`), read once: several rules ask;
+    ``written`` is the element's ``text`` (its text before any child or comment).
     """
 
     __slots__ = ("element", "field", "noun", "member", "text", "unknown", "unknown_written",
-                 "single", "_strict")
+                 "single", "strict")
 
     def __init__(self, element: etree._Element, field: str, noun: str, member: str,
-                 text: str | None, plain: bool = False) -> None:
+                 text: str | None, single: bool, written: str | None) -> None:
         self.element = element
         self.field = field
         self.noun = noun
@@ -73,20 +74,15 @@ class NumberRef:
         self.text = text
         # Only xacro can tell the value (see LintContext.unknown): the element's text as
         # written, or the text the loader reads.
-        self.unknown_written = _unknown(element.text)
-        self.unknown = self.unknown_written or _unknown(text)
+        unknown = self.unknown_written = written is not None and (
+            "${" in written or "$(" in written)
+        self.unknown = unknown or (text is not None and ("${" in text or "$(" in text))
         # The element's one text node is its text (see Facts.plain): what the loader reads is
         # all the element holds.
-        self.single = plain and not len(element)
-        self._strict: float | None | bool = False  # not read yet
-
-    @property
-    def strict(self) -> float | None:
-        """``parse_ros2`` of the text: ros2_control's reading, a plain finite number or None."""
-        value = self._strict
-        if value is False:
-            value = self._strict = parse_ros2(self.text)
-        return value  # type: ignore[return-value]
+        self.single = single
+        # ``parse_ros2`` of the text: ros2_control's reading, a plain finite number or None
+        # (every number rule asks).
+        self.strict: float | None = parse_ros2(text)
 
     def describe(self) -> str:
         return f"{self.field} of {self.noun} '{self.member}'"
@@ -96,10 +92,6 @@ class NumberRef:
         if self.single:
             return self.element.text or ""
         return all_text(self.element)
-
-
-def _unknown(text: str | None) -> bool:
-    return text is not None and ("${" in text or "$(" in text)
 
 
 _NODES = etree.XPath("node()")
@@ -137,10 +129,10 @@ def loader_text(element: etree._Element, plain: bool = False) -> str | None:
 def numbers_of(facts: Facts) -> list[NumberRef]:
     """The reduction and offset elements the transmission's loader reads (standard types), found
     once per transmission."""
-    known = facts.memo.get("read_numbers")
+    known: list[NumberRef] | None = facts.numbers  # type: ignore[assignment]
     if known is None:
-        known = facts.memo["read_numbers"] = _read_numbers(facts)
-    return known  # type: ignore[return-value]
+        known = facts.numbers = _read_numbers(facts)
+    return known
 
 
 def _read_numbers(facts: Facts) -> list[NumberRef]:
@@ -163,23 +155,27 @@ def _read_numbers(facts: Facts) -> list[NumberRef]:
     for refs, tags in ((joints, joint_tags), (actuators, actuator_tags)):
         for ref in refs:
             for tag in tags:
-                element = _number_element(ref.kids.get(tag), ros1, plain)
-                if element is not None:
-                    field = "offset" if tag == "offset" else "reduction"
-                    found.append(NumberRef(element, field, ref.noun, ref.name,
-                                           loader_text(element, plain), plain))
+                elements = ref.kids.get(tag)
+                if not elements:
+                    continue
+                element = elements[0] if ros1 else _number_element(elements, plain)
+                field = "offset" if tag == "offset" else "reduction"
+                written = element.text
+                if plain and not len(element):  # loader_text's plain case, its text read once
+                    text = written if written is not None and written.strip(C_SPACE) else None
+                    number = NumberRef(element, field, ref.noun, ref.name, text, True, written)
+                else:
+                    number = NumberRef(element, field, ref.noun, ref.name,
+                                       loader_text(element, plain), False, written)
+                found.append(number)
     return found
 
 
-def _number_element(found: list[etree._Element] | None, ros1: bool,
-                    plain: bool) -> etree._Element | None:
-    if not found:
-        return None
-    if not ros1:
-        # ros2_control takes the first element whose GetText() is not null
-        # (ros2_control hardware_interface/src/component_parser.cpp:134-161 @157446a).
-        return next((e for e in found if loader_text(e, plain) is not None), found[0])
-    return found[0]
+def _number_element(found: list[etree._Element], plain: bool) -> etree._Element:
+    """The element ros2_control reads: the first whose GetText() is not null
+    (ros2_control hardware_interface/src/component_parser.cpp:134-161 @157446a); ros_control
+    reads the first."""
+    return next((e for e in found if loader_text(e, plain) is not None), found[0])
 
 
 def coupled_groups(
