@@ -4,8 +4,7 @@ from __future__ import annotations
 
 from lxml import etree
 
-from txtool.lint.context import Joints
-from txtool.model.robot import joint_elements
+from txtool.model.robot import JointsOnDemand, joint_elements
 
 ROBOT = """<robot name="r">
   <joint name="a" type="revolute"><mimic joint="b"/></joint>
@@ -14,7 +13,7 @@ ROBOT = """<robot name="r">
 
 
 def test_joints_read_on_demand_behave_as_a_mapping():
-    joints = Joints(joint_elements(etree.fromstring(ROBOT)))
+    joints = JointsOnDemand(joint_elements(etree.fromstring(ROBOT)), limits=False)
     assert list(joints) == ["a", "b"] and len(joints) == 2
     assert "a" in joints and "c" not in joints
     assert joints.get("c") is None and joints.get("c", "none") == "none"
@@ -23,3 +22,10 @@ def test_joints_read_on_demand_behave_as_a_mapping():
     assert joints.get("a") is first and joints["a"] is first  # read once
     assert joints["b"].type == "fixed"
     assert dict(joints.items())["b"] is joints["b"]
+
+
+def test_joints_read_with_their_limits_for_roundtrip():
+    joints = JointsOnDemand(joint_elements(etree.fromstring(
+        '<robot name="r"><joint name="a" type="revolute"><limit lower="-1" upper="2" '
+        'effort="3" velocity="4"/></joint></robot>')))
+    assert (joints["a"].lower, joints["a"].upper, joints["a"].velocity) == (-1.0, 2.0, 4.0)

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Mapping
+from collections.abc import Mapping
 from functools import cached_property
 from typing import TYPE_CHECKING, Any
 
@@ -13,7 +13,13 @@ from txtool.io.xmlio import Source, local
 from txtool.lint.facts import Facts, Hints, LintFound
 from txtool.lint.problem import Problem, Severity
 from txtool.lint.text import scanned_form
-from txtool.model.robot import Component, JointInfo, components, joint_elements, joint_info
+from txtool.model.robot import (
+    Component,
+    JointInfo,
+    JointsOnDemand,
+    components,
+    joint_elements,
+)
 
 if TYPE_CHECKING:
     from txtool.io.locate import Locator, Position
@@ -101,7 +107,7 @@ class LintContext:
 
     @cached_property
     def joints(self) -> Mapping[str, JointInfo]:
-        return Joints(self.joint_elements)
+        return JointsOnDemand(self.joint_elements, limits=False)
 
     @cached_property
     def components(self) -> list[Component]:
@@ -144,33 +150,3 @@ class LintContext:
         from txtool.lint.gazebo import robot_hw_sim
 
         return robot_hw_sim(self.source.root)
-
-
-class Joints(Mapping[str, JointInfo]):
-    """The robot's joints by name, each read when a rule first asks for it: rules look up the
-    few joints transmissions name, and a robot may have hundreds."""
-
-    def __init__(self, elements: dict[str, etree._Element]) -> None:
-        self._elements = elements
-        self._read: dict[str, JointInfo] = {}
-
-    def __getitem__(self, name: str) -> JointInfo:
-        info = self._read.get(name)
-        if info is None:
-            info = self._read[name] = joint_info(self._elements[name], limits=False)
-        return info
-
-    def get(self, name: str, default: Any = None) -> Any:  # Mapping.get, without its raise
-        info = self._read.get(name)
-        if info is not None:
-            return info
-        return self[name] if name in self._elements else default
-
-    def __contains__(self, name: object) -> bool:
-        return name in self._elements
-
-    def __iter__(self) -> Iterator[str]:
-        return iter(self._elements)
-
-    def __len__(self) -> int:
-        return len(self._elements)

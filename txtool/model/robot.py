@@ -11,6 +11,7 @@ from collections.abc import Iterable, Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import cached_property
+from typing import Any
 
 from lxml import etree
 
@@ -268,18 +269,29 @@ def component_of(element: etree._Element) -> Component:
 
 
 class JointsOnDemand(Mapping[str, JointInfo]):
-    """:func:`robot_joints`, each joint read (limits included) when first asked for: a
-    document's few transmissions that are compared name a few of its thousands of joints."""
+    """:func:`robot_joints`, each joint read when first asked for: a document's transmissions
+    name a few of its hundreds or thousands of joints. ``limits=False`` reads no limits or
+    dynamics (as :func:`joint_info`)."""
 
-    def __init__(self, elements: dict[str, etree._Element]) -> None:
+    def __init__(self, elements: dict[str, etree._Element], *, limits: bool = True) -> None:
         self.elements = elements
+        self._limits = limits
         self._read: dict[str, JointInfo] = {}
 
     def __getitem__(self, name: str) -> JointInfo:
         info = self._read.get(name)
         if info is None:
-            info = self._read[name] = joint_info(self.elements[name])
+            info = self._read[name] = joint_info(self.elements[name], limits=self._limits)
         return info
+
+    def get(self, name: str, default: Any = None) -> Any:  # Mapping.get, without its raise
+        info = self._read.get(name)
+        if info is not None:
+            return info
+        return self[name] if name in self.elements else default
+
+    def __contains__(self, name: object) -> bool:
+        return name in self.elements
 
     def __iter__(self) -> Iterator[str]:
         return iter(self.elements)
