@@ -22,6 +22,21 @@ from txtool.dialects.translate import translate
 from txtool.io.xmlio import local
 from txtool.model.core import Dialect, Transmission, replace
 from txtool.model.robot import children
+from txtool.transform.layout import (
+    append,
+    become,
+    child_indentation,
+    cut,
+    has_comment,
+    indentation,
+    leading_space,
+    namespace_of,
+    qualifier,
+    reindent,
+    restyle_roles,
+    runs_of,
+    with_comments,
+)
 from txtool.transform.memo import Follower, Renaming
 from txtool.transform.templates import Templates, parse_children
 from txtool.transform.written import Written, blank, write
@@ -141,7 +156,7 @@ class Placer:
             new = self._build(move, *indentation(old), old)
             new.tail = old.tail
             if old.getparent() is None:
-                _become(old, new)  # a bare <transmission> fragment
+                become(old, new)  # a bare <transmission> fragment
             else:
                 old.getparent().replace(old, new)
 
@@ -180,14 +195,14 @@ class Placer:
     def _generate(self, moves: list[_Move]) -> None:
         first = moves[0].old
         indent, step = indentation(first)
-        runs = _runs([m.old for m in moves])
+        runs = runs_of([m.old for m in moves])
         name = self.root.get("name", "robot")
         block = self._write_block(name, moves, runs, first, indent, step)
         if block is None:
             block = self._block(name, self.hardware_plugin, moves, first, indent, step,
                                 alone=True)
             for old in runs[0][:-1]:
-                self.built[old].tail = _reindent(old.tail, indent + step)
+                self.built[old].tail = reindent(old.tail, indent + step)
         for run in runs[1:]:
             for old in run:
                 cut(old)
@@ -204,7 +219,7 @@ class Placer:
         transmissions and holding them (unless ``transmissions`` is false), as txtool
         generates it (``record``: as :meth:`_build`; ``alone``: keep in :attr:`alone` the
         transmissions whose joints none before declared)."""
-        q = _qualifier(like)
+        q = qualifier(like)
         block = etree.Element(q("ros2_control"), name=name, type="system")
         hardware = etree.SubElement(block, q("hardware"))
         etree.SubElement(hardware, q("plugin")).text = plugin
@@ -227,7 +242,7 @@ class Placer:
               ) -> list[etree._Element]:
         """Declare the joints in ``block`` and put in the transmissions built for ``moves``,
         laid out as :func:`dialects.pretty` lays out the block."""
-        q = _qualifier(like)
+        q = qualifier(like)
         inner = "\n" + indent + step
         declarations: dict[tuple, etree._Element] = {}  # by interfaces: copied, then named
         for name, interfaces in declared:
@@ -251,7 +266,7 @@ class Placer:
     def _texts(self, moves: list[_Move], like: etree._Element, indent: str, step: str
                ) -> list[bytes] | None:
         """The text of each transmission :meth:`_build` would build, when all have one."""
-        if _namespace(like) is not None:
+        if namespace_of(like) is not None:
             return None
         texts = []
         templates = self._templates
@@ -279,7 +294,7 @@ class Placer:
         text (:func:`.written.write`, kept in :attr:`written`), or None when it cannot be
         so."""
         crowded = self.crowded
-        if crowded is None or _namespace(like) is not None or not (blank(indent)
+        if crowded is None or namespace_of(like) is not None or not (blank(indent)
                                                                    and blank(step)):
             return None
         if not crowded.isdisjoint([move.old for move in moves]):
@@ -305,7 +320,7 @@ class Placer:
         for position, old in enumerate(runs[0][:-1]):
             tail = reindented.get(old.tail)
             if tail is None:
-                tail = reindented[old.tail] = _reindent(old.tail, indent + step)
+                tail = reindented[old.tail] = reindent(old.tail, indent + step)
             tails[position] = tail
         tails[-1] = "\n" + indent
         if not all([blank(tail) for tail in {*reindented.values(), tails[-1]}]):
@@ -391,8 +406,8 @@ class Placer:
         if len(found) < len(moves):
             return False
         forward = [_Move(m.old, f.forward, m.carried) for m, f in zip(moves, found, strict=True)]
-        namespace = _namespace(component)
-        if all(_namespace(m.old) == namespace for m in moves):
+        namespace = namespace_of(component)
+        if all(namespace_of(m.old) == namespace for m in moves):
             # Each transmission as generated is already known to have the shape of the one
             # written: compare the rest of the block, and those shapes, without building them
             # again (shape() of the block as written takes them from ``known``).
@@ -430,12 +445,11 @@ class Placer:
         return None
 
     def _ungenerate(self, component: etree._Element, moves: list[_Move]) -> None:
-        indent, _ = indentation(component)
-        step = _step(component)
+        indent, step = indentation(component)
         parent = component.getparent()
         news = [self._build(m, indent, step, component) for m in moves]
         for move, new in zip(moves, news, strict=True):
-            new.tail = _reindent(move.old.tail, indent)
+            new.tail = reindent(move.old.tail, indent)
         news[-1].tail = component.tail
         anchor = component
         for new in news:
@@ -457,16 +471,16 @@ class Placer:
         t = move.new
         if move.renaming is not None and not move.carried:
             # A keyed element has no comment (see :mod:`.memo`): nothing to add.
-            new = self._templates.element(move.renaming, t, indent, step, _namespace(like))
+            new = self._templates.element(move.renaming, t, indent, step, namespace_of(like))
         else:
             new = dialects.build(t, t.dialect, indent=indent, step=step,
-                                 namespace=_namespace(like))
+                                 namespace=namespace_of(like))
             for (kind, name), elements in (move.carried or {}).items():
                 owner = new if kind == "transmission" else next(
                     (m for m in children(new, kind) if m.get("name") == name), new)
                 owner.extend(copy.deepcopy(e) for e in elements)
             with_comments(new, move.old)
-            if move.carried or _has_comment(new):
+            if move.carried or has_comment(new):
                 dialects.pretty(new, indent, step)  # build() laid out all but these
         if record:
             self.built[move.old] = new
@@ -487,44 +501,6 @@ def _declared(moves: list[_Move]) -> tuple[list[tuple[str, tuple]], set[etree._E
                 seen.add(name)
                 declared.append((name, (commands, states)))
     return declared, shared
-
-
-def restyle_roles(element: etree._Element, dialect: Dialect) -> None:
-    """Roles as ``role=`` attributes (Proposal 2) or ``<role>`` elements (Proposal 1), in
-    place: the rest of the transmission stays as written."""
-    for member in [*children(element, "joint"), *children(element, "actuator")]:
-        if dialect == "ros2-p2":
-            roles = children(member, "role")
-            if roles and member.get("role") is None:
-                _set_after_name(member, "role", (roles[0].text or "").strip())
-            for role in roles:
-                cut(role)
-            if roles and len(member) == 0 and not (member.text or "").strip():
-                member.text = None  # <x/> again
-        elif member.get("role") is not None:
-            role = etree.Element(member.tag.replace("}" + local(member), "}role")
-                                 if "}" in member.tag else "role")
-            role.text = member.attrib.pop("role")
-            _insert_first(member, role)
-
-
-def _set_after_name(element: etree._Element, name: str, value: str) -> None:
-    items = list(element.attrib.items())
-    at = next((i + 1 for i, (key, _) in enumerate(items) if key == "name"), len(items))
-    items.insert(at, (name, value))
-    element.attrib.clear()
-    element.attrib.update(items)
-
-
-def _insert_first(parent: etree._Element, child: etree._Element) -> None:
-    indent, step = indentation(parent)
-    first = next(iter(parent), None)
-    if first is None:
-        child.tail = "\n" + indent
-    else:
-        child.tail = parent.text if parent.text and parent.text.strip() == "" else None
-    parent.text = "\n" + (leading_space(first) if first is not None else indent + step)
-    parent.insert(0, child)
 
 
 def _declaration(q: Callable[[str], str], commands: tuple[str, ...],
@@ -558,128 +534,3 @@ def _shape(element: etree._Element, *, comments: bool = True,
 
 def _in_transmission(element: etree._Element) -> bool:
     return any(local(a) == "transmission" for a in element.iterancestors())
-
-
-def _runs(elements: list[etree._Element]) -> list[list[etree._Element]]:
-    """Elements that stand together (siblings with only whitespace between them). The first
-    run is replaced by the generated block, which keeps the blank lines between them."""
-    runs: list[list[etree._Element]] = []
-    for element in elements:
-        if runs and element.getprevious() is runs[-1][-1]:
-            runs[-1].append(element)
-        else:
-            runs.append([element])
-    return runs
-
-
-def cut(element: etree._Element) -> None:
-    """Remove ``element`` with the lines it stands on: the whitespace that starts its line
-    goes with it, its tail stays (so the blank lines on either side are kept)."""
-    parent = element.getparent()
-    previous = element.getprevious()
-    before = (previous.tail if previous is not None else parent.text) or ""
-    head, newline, indent = before.rpartition("\n")
-    tail = element.tail or ""
-    joined = head + tail if newline and not indent.strip() and tail.startswith(("\n", "\r")) \
-        else before + tail
-    if previous is not None:
-        previous.tail = joined
-    else:
-        parent.text = joined
-    parent.remove(element)
-
-
-def append(parent: etree._Element, element: etree._Element) -> None:
-    last = next(parent.iterchildren(reversed=True), None)  # len(parent) walks every child
-    if last is not None:
-        element.tail = last.tail or ""
-        last.tail = "\n" + leading_space(last)
-    else:
-        indent, _ = indentation(parent)
-        element.tail = "\n" + indent
-    parent.append(element)
-
-
-def _reindent(tail: str | None, indent: str) -> str:
-    """``tail`` with the indentation of its last line replaced by ``indent``."""
-    head, newline, _ = (tail or "").rpartition("\n")
-    return head + newline + indent if newline else "\n" + indent
-
-
-def with_comments(new: etree._Element, old: etree._Element, indent: str | None = None,
-                  step: str | None = None) -> etree._Element:
-    """Carry the comments of the old element: under the same joint or actuator when they
-    stood there, else at the top of the transmission."""
-    parents: list[etree._Element] = []  # none without a comment (most transmissions)
-    targets: dict[tuple[str, str | None], etree._Element] = {}
-    if _has_comment(old):
-        parents = [old, *children(old, "joint"), *children(old, "actuator")]
-        targets = {(local(m), m.get("name")): m for m in new if isinstance(m.tag, str)}
-    for parent in parents:
-        target = new if parent is old else targets.get((local(parent), parent.get("name")), new)
-        comments = [etree.Comment(c.text) for c in parent if isinstance(c, etree._Comment)]
-        for position, comment in enumerate(comments):
-            if target is new:
-                new.insert(position, comment)
-            else:
-                target.append(comment)
-    if indent is not None and step is not None and _has_comment(new):
-        dialects.pretty(new, indent, step)
-    return new
-
-
-def _has_comment(element: etree._Element) -> bool:
-    return next(element.iter(etree.Comment), None) is not None
-
-
-def _namespace(element: etree._Element) -> str | None:
-    tag = element.tag
-    return tag[1:].split("}", 1)[0] if isinstance(tag, str) and tag.startswith("{") else None
-
-
-def _become(old: etree._Element, new: etree._Element) -> None:
-    """Give the root element ``new``'s content, keeping its place among top-level comments."""
-    old.tag = new.tag
-    old.attrib.clear()
-    old.attrib.update(new.attrib)
-    old.text = new.text
-    for child in list(old):
-        old.remove(child)
-    old.extend(list(new))
-
-
-def _qualifier(like: etree._Element) -> Callable[[str], str]:
-    """Tag names in the default namespace of ``like`` (some URDFs declare one)."""
-    ns = _namespace(like)
-    return (lambda tag: f"{{{ns}}}{tag}") if ns else (lambda tag: tag)
-
-
-def leading_space(element: etree._Element) -> str:
-    previous = element.getprevious()
-    text = previous.tail if previous is not None else (
-        element.getparent().text if element.getparent() is not None else "")
-    text = text or ""
-    return text.rsplit("\n", 1)[-1] if "\n" in text else ""
-
-
-def indentation(element: etree._Element) -> tuple[str, str]:
-    indent = leading_space(element)
-    return indent, _step(element)
-
-
-def _step(element: etree._Element) -> str:
-    indent = leading_space(element)
-    first = next((c for c in element if isinstance(c.tag, str)), None)
-    if first is not None:
-        inner = leading_space(first)
-        if inner.startswith(indent) and len(inner) > len(indent):
-            return inner[len(indent):]
-    return "  "
-
-
-def child_indentation(parent: etree._Element) -> tuple[str, str]:
-    outer, step = indentation(parent)
-    last = next((c for c in reversed(parent) if isinstance(c.tag, str)), None)
-    if last is not None:
-        return leading_space(last), step
-    return outer + step, step

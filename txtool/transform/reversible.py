@@ -93,7 +93,7 @@ def original_of(element: etree._Element) -> bytes | None:
 
 
 def drop_marker(element: etree._Element) -> None:
-    from txtool.transform.placement import cut
+    from txtool.transform.layout import cut
 
     comment = _marker(element)
     if comment is not None:
