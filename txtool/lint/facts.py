@@ -128,9 +128,6 @@ class Hints:
 
 
 _UNSURE = Hints()
-# kind_of by type text, for the few type texts a run meets.
-_KINDS: dict[str, str] = {}
-_KINDS_KEPT = 256
 
 
 class Facts:
@@ -169,12 +166,7 @@ class Facts:
         self.element = element
         self.name: str = element.get("name", "")  # as the model's Transmission.name
         self.ros1 = ros1
-        kind = _KINDS.get(self.type)
-        if kind is None:
-            kind = kind_of(self.type)
-            if len(_KINDS) < _KINDS_KEPT:
-                _KINDS[self.type] = kind
-        self.kind = kind
+        self.kind = kind_of(self.type)
         self.kids = kids
         # ros_control gets past parsing only with a <type> element (the pre-Hydro type=
         # attribute alone is skipped before any loader runs) and a name.

@@ -160,14 +160,9 @@ def _read_numbers(facts: Facts) -> list[NumberRef]:
                     continue
                 element = elements[0] if ros1 else _number_element(elements, plain)
                 field = "offset" if tag == "offset" else "reduction"
-                written = element.text
-                if plain and not len(element):  # loader_text's plain case, its text read once
-                    text = written if written is not None and written.strip(C_SPACE) else None
-                    number = NumberRef(element, field, ref.noun, ref.name, text, True, written)
-                else:
-                    number = NumberRef(element, field, ref.noun, ref.name,
-                                       loader_text(element, plain), False, written)
-                found.append(number)
+                found.append(NumberRef(element, field, ref.noun, ref.name,
+                                       loader_text(element, plain), plain and not len(element),
+                                       element.text))
     return found
 
 

@@ -149,9 +149,7 @@ def write(name: str, plugin: str, moves: Sequence[Move], tails: list[str], inden
             if known is None:
                 return None
             form, args = known[0], known[1](follower.names)
-            names = follower.names
-            joints = [(joint if i is None else names[i], interfaces)
-                      for i, joint, interfaces in follower.record.joint_plan]
+            joints = follower.record.joints_for(follower.names)
             one = Written(part, form, args, follower)
         else:
             text = None if move.renaming is None else templates.text(
@@ -159,11 +157,11 @@ def write(name: str, plugin: str, moves: Sequence[Move], tails: list[str], inden
             if text is None:
                 return None
             form, args = text.decode().replace("%", "%%"), ()
-            joints = [(joint, (commands, states)) for joint, commands, states
-                      in move.joints()]
-            one = Written(part, form, args, [joint for joint, _ in joints])
+            joints = move.joints()
+            one = Written(part, form, args, [joint for joint, _, _ in joints])
         own = True
-        for joint, interfaces in joints:
+        for joint, commands, states in joints:
+            interfaces = (commands, states)
             if joint in declarations:
                 own = False
                 continue
@@ -191,7 +189,6 @@ def write(name: str, plugin: str, moves: Sequence[Move], tails: list[str], inden
     block.append(comment)
     heads.append(("".join(bodies) % tuple(values)).encode())
     return block, written, alone, (comment, b"".join(heads))
-
 
 
 def marker() -> etree._Comment:
