@@ -122,7 +122,8 @@ class Placer:
         # Set by the caller: the old elements whose built ones may not be written as text
         # (:mod:`.written`) rather than parsed into the tree; None: none may.
         self.crowded: set[etree._Element] | None = None
-        self.written: tuple[etree._Comment, bytes] | None = None  # the marker, and its text
+        # The marker, and the pieces of its text.
+        self.written: tuple[etree._Comment, list[bytes]] | None = None
         self.unwritten: dict[Written, etree._Element] = {}  # by :meth:`unwrite`
 
     def place(self, old: etree._Element, t: Transmission, carried: Carried | None = None,
@@ -330,11 +331,11 @@ class Placer:
     def unwrite(self) -> None:
         """Parse the text of :attr:`written` into the tree in place of its marker."""
         assert self.written is not None
-        comment, text = self.written
+        comment, pieces = self.written
         self.written = None
         block = comment.getparent()
         block.remove(comment)
-        elements = parse_children([text])
+        elements = parse_children(pieces)
         block.extend(elements)
         olds = [old for old, built in self.built.items() if isinstance(built, Written)]
         for old, element in zip(olds, elements[len(elements) - len(olds):], strict=True):

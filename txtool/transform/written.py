@@ -121,12 +121,12 @@ class Move(Protocol):
 def write(name: str, plugin: str, moves: Sequence[Move], tails: list[str], indent: str,
           step: str, templates: Templates
           ) -> tuple[etree._Element, list[Written], list[Written],
-                     tuple[etree._Comment, bytes]] | None:
+                     tuple[etree._Comment, list[bytes]]] | None:
     """The block generated for ``moves`` (each followed by its ``tails``) at ``indent``: its
     element with the marker, each transmission as :class:`Written`, those whose joints none
-    before declared, and the marker with the text that goes in its place (the declarations,
-    then the transmissions by one ``%`` of the forms of their templates); None when a piece
-    has no plain text."""
+    before declared, and the marker with the pieces of the text that goes in its place (the
+    declarations, then the transmissions by one ``%`` of the forms of their templates); None
+    when a piece has no plain text."""
     writer = _Writer(Block(name), indent, step, templates)
     for move, tail in zip(moves, tails, strict=True):
         if move.carried or not (writer.follower(move, move.follower, tail) if (
@@ -145,7 +145,7 @@ def write(name: str, plugin: str, moves: Sequence[Move], tails: list[str], inden
     block.append(comment)
     heads = writer.heads
     heads.append(("".join(writer.bodies) % tuple(writer.values)).encode())
-    return block, writer.written, writer.alone, (comment, b"".join(heads))
+    return block, writer.written, writer.alone, (comment, heads)
 
 
 class _Writer:
@@ -255,10 +255,12 @@ def marker() -> etree._Comment:
     return etree.Comment(f"txtool-block-{os.urandom(16).hex()}")
 
 
-def fill(data: bytes, comment: etree._Comment, text: bytes) -> bytes | None:
-    """``data`` (a serialization holding ``comment`` once) with ``text`` in its place, or None
-    when the comment is not there exactly once."""
+def fill(data: bytes, comment: etree._Comment, pieces: list[bytes]) -> bytes | None:
+    """``data`` (a serialization holding ``comment`` once) with the text ``pieces`` join to
+    in its place (one copy of each), or None when the comment is not there exactly once."""
     token = f"<!--{comment.text}-->".encode("ascii")
-    if data.count(token) != 1:
+    at = data.find(token)
+    if at < 0 or data.find(token, at + 1) >= 0:
         return None
-    return data.replace(token, text)
+    view = memoryview(data)
+    return b"".join([view[:at], *pieces, view[at + len(token):]])
