@@ -125,6 +125,7 @@ class Placer:
         # The marker, and the pieces of its text.
         self.written: tuple[etree._Comment, list[bytes]] | None = None
         self.unwritten: dict[Written, etree._Element] = {}  # by :meth:`unwrite`
+        self._written_block: list[Written] = []  # the transmissions of :attr:`written`
 
     def place(self, old: etree._Element, t: Transmission, carried: Carried | None = None,
               renaming: Renaming | None = None, dialect: Dialect | None = None) -> None:
@@ -307,6 +308,7 @@ class Placer:
         if made is None:
             return None
         block, written, alone, self.written = made
+        self._written_block = written
         self.built.update(zip([move.old for move in moves], written, strict=True))
         self.alone.update(alone)
         return block
@@ -328,6 +330,11 @@ class Placer:
             return None
         return tails
 
+    def release(self) -> None:
+        """Let go of the elements replaced (and of :attr:`built`): they are freed before the
+        document is written, and its text takes their memory."""
+        self._into_new, self._out_of, self.crowded, self.built = [], {}, None, {}
+
     def unwrite(self) -> None:
         """Parse the text of :attr:`written` into the tree in place of its marker."""
         assert self.written is not None
@@ -337,10 +344,10 @@ class Placer:
         block.remove(comment)
         elements = parse_children(pieces)
         block.extend(elements)
-        olds = [old for old, built in self.built.items() if isinstance(built, Written)]
-        for old, element in zip(olds, elements[len(elements) - len(olds):], strict=True):
-            written = self.built[old]
-            self.unwritten[written] = self.built[old] = element  # type: ignore[index]
+        block_written = self._written_block
+        for written, element in zip(block_written, elements[len(elements) - len(block_written):],
+                                    strict=True):
+            self.unwritten[written] = element
             if written in self.alone:
                 self.alone.discard(written)
                 self.alone.add(element)
