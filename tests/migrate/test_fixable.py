@@ -198,6 +198,9 @@ JOINT_FIRST = CLEAN.replace("""
      {"TX300", "TX301"}),
     (JOINT_FIRST.replace("hardware_interface/Effort", "<![CDATA[hardware_interface/]]>Effort"),
      {"TX302"}),
+    # Only the last transmission, at the end of the scan, has a type attribute.
+    (JOINT_FIRST.replace("</robot>", '<transmission name="u" type="x"/></robot>'),
+     {"TX300", "TX301"}),
 ])
 def test_the_bytes_settle_only_what_they_can_tell(text: str, settled: set[str]) -> None:
     assert settled_text(text.encode(), FIXABLE) == settled

@@ -134,6 +134,7 @@ def convert_source(
     virtual = {key: built for key, old in olds.items()
                if isinstance(built := placer.built.get(old), Written)}
     del elements, olds  # the replaced elements are freed before the document is written
+    placer.release()
     changed = _serialize(tree, source.data, placer)
     if placer.unwritten:  # parsed into the tree after all
         for item in items:

@@ -110,12 +110,24 @@ def _interfaces_settled(data: bytes) -> bool:
     the ``<joint ...>`` before it, which is therefore a real start tag and its parent (a
     comment, CDATA section or instruction would end in between)."""
     total = data.count(b"hardwareInterface")
-    return not total or 2 * len(_JOINT_INTERFACE.findall(data)) == total
+    if not total:
+        return True
+    # No match starts before the "<joint" last before the first occurrence (only a name and
+    # white space stand between a match's "<joint" and its "<hardwareInterface>"), nor ends
+    # after the last occurrence's ">".
+    start = max(data.rfind(b"<joint", 0, data.find(b"hardwareInterface")), 0)
+    end = data.rfind(b"hardwareInterface") + len(b"hardwareInterface>")
+    return 2 * len(_JOINT_INTERFACE.findall(data, start, end)) == total
 
 
 def _type_attribute_text(data: bytes) -> bool:
     """Whether a ``transmission`` start tag may have a ``type`` attribute."""
-    tags = _TRANSMISSION_TAG.findall(data)
+    first = data.find(b"transmission")
+    if first < 0:
+        return False
+    # Every match starts at an occurrence and ends before the "<" after the last one.
+    end = data.find(b"<", data.rfind(b"transmission"))
+    tags = _TRANSMISSION_TAG.findall(data, first, len(data) if end < 0 else end)
     return bool(tags) and _TYPE.search(b"\0".join(tags)) is not None
 
 

@@ -195,16 +195,15 @@ def unified_ascii(a: bytes, b: bytes, fromfile: str, tofile: str) -> str | None:
     cut = a.rfind(b"\n", 0, _common_prefix(a, b)) + 1
     tail_bytes, tail = _common_tail(a, b, cut)
     middle_a, middle_b = a[cut:len(a) - tail_bytes], b[cut:len(b) - tail_bytes]
-    lines_in_a, lines_in_b = middle_a.splitlines(), middle_b.splitlines()
     head = a.count(b"\n", 0, cut)
-    lines_a, lines_b = head + len(lines_in_a) + tail, head + len(lines_in_b) + tail
+    lines_a = head + _line_count(middle_a) + tail
+    lines_b = head + _line_count(middle_b) + tail
     if lines_a * lines_b <= WHOLE:
         return None  # matched whole by difflib
     # Without their ends, lines that differ only there (a last line without one) count as
     # common too: then the lines are diffed.
-    if lines_in_a and lines_in_b and not set(lines_in_a).isdisjoint(lines_in_b):
+    if _share_a_line(middle_a, middle_b):
         return None
-    del lines_in_a, lines_in_b
     end_a, end_b = lines_a - tail, lines_b - tail
     first = max(0, head - 3)
     before = a[_line_start(a, cut, head - first):cut]
@@ -212,12 +211,36 @@ def unified_ascii(a: bytes, b: bytes, fromfile: str, tofile: str) -> str | None:
     header = (f"--- {fromfile}\n+++ {tofile}\n"
               f"@@ -{_range(first, min(end_a + 3, lines_a))} "
               f"+{_range(first, min(end_b + 3, lines_b))} @@\n")
-    return header + b"".join(_prefixed(prefix, text) for prefix, text in (
-        (b" ", before), (b"-", middle_a), (b"+", middle_b), (b" ", after))).decode("ascii")
+    parts: list[bytes | memoryview] = [header.encode("ascii")]
+    for prefix, text in ((b" ", before), (b"-", middle_a), (b"+", middle_b), (b" ", after)):
+        parts += _prefixed(prefix, text)
+    return b"".join(parts).decode("ascii")
 
 
 def _line_count(data: bytes) -> int:
     return data.count(b"\n") + (0 if data.endswith(b"\n") or not data else 1)
+
+
+_PIECE = 1 << 16
+
+
+def _share_a_line(a: bytes, b: bytes) -> bool:
+    """Whether two texts whose lines end with "\n" have a line in common (without its end),
+    their lines split a piece at a time: no list of every line, which for a large document
+    costs more memory than the document."""
+    seen: set[bytes] = set()
+    for piece in _pieces(a):
+        seen.update(piece.splitlines())
+    return bool(seen) and any(not seen.isdisjoint(piece.splitlines()) for piece in _pieces(b))
+
+
+def _pieces(text: bytes) -> Iterator[bytes]:
+    """``text`` in pieces of whole lines, of about :data:`_PIECE` bytes each."""
+    start = 0
+    while start < len(text):
+        end = text.find(b"\n", start + _PIECE) + 1 or len(text)
+        yield text[start:end]
+        start = end
 
 
 def _common_prefix(a: bytes, b: bytes) -> int:
@@ -287,11 +310,11 @@ def _line_end(data: bytes, at: int, lines: int) -> int:
     return at
 
 
-def _prefixed(prefix: bytes, text: bytes) -> bytes:
+def _prefixed(prefix: bytes, text: bytes) -> list[bytes | memoryview]:
     """Each line of ``text`` after ``prefix``, a last line without "\\n" marked as diff marks
-    it."""
+    it: the pieces to join (one copy of ``text``)."""
     if not text:
-        return b""
-    if text.endswith(b"\n"):
-        return prefix + text[:-1].replace(b"\n", b"\n" + prefix) + b"\n"
-    return prefix + text.replace(b"\n", b"\n" + prefix) + NO_NEWLINE.encode()
+        return []
+    if text.endswith(b"\n"):  # without the prefix after the last "\n"
+        return [prefix, memoryview(text.replace(b"\n", b"\n" + prefix))[:-len(prefix)]]
+    return [prefix, text.replace(b"\n", b"\n" + prefix), NO_NEWLINE.encode()]

@@ -22,6 +22,7 @@ from __future__ import annotations
 import re
 from collections.abc import Hashable
 from dataclasses import dataclass, field
+from operator import itemgetter
 from typing import TYPE_CHECKING, NamedTuple
 
 from lxml import etree
@@ -58,9 +59,13 @@ def _parts(element: etree._Element) -> list[bytes] | None:
     """The serialization of ``element`` cut at its names (:data:`NAME`: the names are at the
     odd indices), or None when it holds a comment or processing instruction."""
     data = etree.tostring(element, with_tail=False)  # ASCII: other characters as references
-    if b"<!" in data or b"<?" in data:
-        return None
-    return NAME.split(data)
+    return None if _unkeyed(data) else NAME.split(data)
+
+
+def _unkeyed(data: bytes) -> bool:
+    """Whether a serialization holds a comment, CDATA section or processing instruction
+    (the one-byte searches are the faster)."""
+    return b"!" in data and b"<!" in data or b"?" in data and b"<?" in data
 
 
 def _renaming(parts: list[bytes]) -> Renaming | None:
@@ -130,18 +135,19 @@ class Record:
         # The names and the literal ones in the order they sort: indices into the names
         # followed by the literal names.
         every = [name.encode("ascii") for name in renaming.names] + _LITERAL_LIST
-        self._sorted = sorted(range(len(every)), key=every.__getitem__)
+        self._order = itemgetter(*sorted(range(len(every)), key=every.__getitem__))
 
-    def match(self, raws: list[bytes]) -> tuple[str, ...] | None:
+    def match(self, raws: list[bytes], data: bytes) -> tuple[str, ...] | None:
         """The names of an element whose :func:`renaming_of` has this record's key, from its
         names as written (``raws``), its key's skeleton being this record's; or None when its
         key differs (or it has none). Only for a :attr:`distinct` record: then the key says
         that the names are distinct and not literal, the order they sort in, and where each
-        literal name sorts among them."""
-        if len(set(raws)) != len(raws) or not _LITERALS.isdisjoint(raws):
+        literal name sorts among them. ``data``: the element's serialization."""
+        distinct = set(raws)
+        if len(distinct) != len(raws) or not distinct.isdisjoint(_LITERALS):
             return None
         every = raws + _LITERAL_LIST
-        if sorted(every) != list(map(every.__getitem__, self._sorted)) or b"&" in b"".join(
+        if sorted(every) != list(self._order(every)) or b"&" in data and b"&" in b"".join(
                 raws):
             return None
         return tuple(map(bytes.decode, raws))
@@ -198,13 +204,16 @@ class Memo:
         """``element`` as a follower of the record of its key (:func:`renaming_of`) when
         there is one (its first said nothing), else its renaming (None: it has no key). A
         record whose names are distinct is matched without the key being made."""
-        parts = _parts(element)
-        if parts is None:
-            return None
+        data = etree.tostring(element, with_tail=False)
+        parts = NAME.split(data)
+        # A record's skeleton holds no "<!" or "<?", nor then does an element of the same
+        # skeleton: its names, attribute values, hold no "<" (escaped).
         for record in self._distinct.get(tuple(parts[0::2]), ()):
-            names = record.match(parts[1::2])
+            names = record.match(parts[1::2], data)
             if names is not None:
                 return Follower(record, names, record.name_for(names), element)
+        if _unkeyed(data):
+            return None
         renaming = _renaming(parts)
         if renaming is None:
             return None

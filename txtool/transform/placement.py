@@ -122,8 +122,10 @@ class Placer:
         # Set by the caller: the old elements whose built ones may not be written as text
         # (:mod:`.written`) rather than parsed into the tree; None: none may.
         self.crowded: set[etree._Element] | None = None
-        self.written: tuple[etree._Comment, bytes] | None = None  # the marker, and its text
+        # The marker, and the pieces of its text.
+        self.written: tuple[etree._Comment, list[bytes]] | None = None
         self.unwritten: dict[Written, etree._Element] = {}  # by :meth:`unwrite`
+        self._written_block: list[Written] = []  # the transmissions of :attr:`written`
 
     def place(self, old: etree._Element, t: Transmission, carried: Carried | None = None,
               renaming: Renaming | None = None, dialect: Dialect | None = None) -> None:
@@ -306,6 +308,7 @@ class Placer:
         if made is None:
             return None
         block, written, alone, self.written = made
+        self._written_block = written
         self.built.update(zip([move.old for move in moves], written, strict=True))
         self.alone.update(alone)
         return block
@@ -327,19 +330,24 @@ class Placer:
             return None
         return tails
 
+    def release(self) -> None:
+        """Let go of the elements replaced (and of :attr:`built`): they are freed before the
+        document is written, and its text takes their memory."""
+        self._into_new, self._out_of, self.crowded, self.built = [], {}, None, {}
+
     def unwrite(self) -> None:
         """Parse the text of :attr:`written` into the tree in place of its marker."""
         assert self.written is not None
-        comment, text = self.written
+        comment, pieces = self.written
         self.written = None
         block = comment.getparent()
         block.remove(comment)
-        elements = parse_children([text])
+        elements = parse_children(pieces)
         block.extend(elements)
-        olds = [old for old, built in self.built.items() if isinstance(built, Written)]
-        for old, element in zip(olds, elements[len(elements) - len(olds):], strict=True):
-            written = self.built[old]
-            self.unwritten[written] = self.built[old] = element  # type: ignore[index]
+        block_written = self._written_block
+        for written, element in zip(block_written, elements[len(elements) - len(block_written):],
+                                    strict=True):
+            self.unwritten[written] = element
             if written in self.alone:
                 self.alone.discard(written)
                 self.alone.add(element)

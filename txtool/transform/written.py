@@ -29,7 +29,7 @@ from txtool.io.xmlio import safe_parser
 from txtool.model.core import Dialect, Transmission
 
 if TYPE_CHECKING:
-    from txtool.transform.memo import Follower, Renaming
+    from txtool.transform.memo import Follower, Record, Renaming
     from txtool.transform.templates import Templates
 
 _UNSAFE = re.compile(rb"[^\x20-\x7e\n\t]|&#")  # a reference, or what another encoding writes
@@ -121,74 +121,133 @@ class Move(Protocol):
 def write(name: str, plugin: str, moves: Sequence[Move], tails: list[str], indent: str,
           step: str, templates: Templates
           ) -> tuple[etree._Element, list[Written], list[Written],
-                     tuple[etree._Comment, bytes]] | None:
+                     tuple[etree._Comment, list[bytes]]] | None:
     """The block generated for ``moves`` (each followed by its ``tails``) at ``indent``: its
     element with the marker, each transmission as :class:`Written`, those whose joints none
-    before declared, and the marker with the text that goes in its place (the declarations,
-    then the transmissions by one ``%`` of the forms of their templates); None when a piece
-    has no plain text."""
-    newline = ("\n" + indent + step).encode()
-    part = Block(name)
-    declarations = part.declarations  # the first of each joint, in order
-    forms: dict[tuple, tuple[bytes, bytes]] = {}
-    by_record: dict[int, tuple[str, Callable] | None] = {}  # a follower's form
-    heads: list[bytes] = []
-    bodies: list[str] = []
-    values: list[str] = []
-    written: list[Written] = []
-    alone: list[Written] = []  # those whose joints none before declared
+    before declared, and the marker with the pieces of the text that goes in its place (the
+    declarations, then the transmissions by one ``%`` of the forms of their templates); None
+    when a piece has no plain text."""
+    writer = _Writer(Block(name), indent, step, templates)
     for move, tail in zip(moves, tails, strict=True):
-        follower = move.follower
-        if move.carried:
+        if move.carried or not (writer.follower(move, move.follower, tail) if (
+                move.follower is not None) else writer.other(move, tail)):
             return None
-        if follower is not None:  # the same key and dialect as its record's
-            known = by_record.get(id(follower.record), False)
-            if known is False:
-                known = by_record[id(follower.record)] = templates.form(
-                    follower.renaming(), move.dialect, indent + step, step, move, True)
-            if known is None:
-                return None
-            form, args = known[0], known[1](follower.names)
-            joints = follower.record.joints_for(follower.names)
-            one = Written(part, form, args, follower)
-        else:
-            text = None if move.renaming is None else templates.text(
-                move.renaming, move.dialect, indent + step, step, move, True)
-            if text is None:
-                return None
-            form, args = text.decode().replace("%", "%%"), ()
-            joints = move.joints()
-            one = Written(part, form, args, [joint for joint, _, _ in joints])
-        own = True
-        for joint, commands, states in joints:
-            interfaces = (commands, states)
-            if joint in declarations:
-                own = False
-                continue
-            form_ = forms.get(interfaces)
-            if form_ is None:
-                form_ = forms[interfaces] = templates.declaration(
-                    interfaces, indent + step, step)
-                if not plain(form_[0] + form_[1]):
-                    return None
-            declarations[joint] = declared = form_[0] + joint.encode() + form_[1]
-            heads += (declared, newline)
-        bodies += (form, tail)
-        values += args
-        written.append(one)
-        if own:
-            alone.append(one)
+    declarations = writer.part.declarations
     if not plain_names("".join(declarations)):
         return None
+    newline = writer.newline.decode()
     block = etree.Element("ros2_control", name=name, type="system")
     hardware = etree.SubElement(block, "hardware")
     etree.SubElement(hardware, "plugin").text = plugin
     dialects.pretty(hardware, indent + step, step)
-    hardware.tail = block.text = newline.decode()
+    hardware.tail = block.text = newline
     comment = marker()
     block.append(comment)
-    heads.append(("".join(bodies) % tuple(values)).encode())
-    return block, written, alone, (comment, b"".join(heads))
+    heads = writer.heads
+    heads.append(("".join(writer.bodies) % tuple(writer.values)).encode())
+    return block, writer.written, writer.alone, (comment, heads)
+
+
+class _Writer:
+    """The pieces of a written block, one transmission at a time."""
+
+    def __init__(self, part: Block, indent: str, step: str, templates: Templates) -> None:
+        self.part = part
+        self.indent, self.step = indent, step
+        self.templates = templates
+        self.newline = ("\n" + indent + step).encode()
+        self.heads: list[bytes] = []  # the declarations, each followed by a newline
+        self.bodies: list[str] = []  # the forms of the transmissions, each with its tail
+        self.values: list[str] = []  # what goes into the forms
+        self.written: list[Written] = []
+        self.alone: list[Written] = []  # those whose joints none before declared
+        self._forms: dict[tuple, tuple[bytes, bytes]] = {}  # declarations by interfaces
+        # A follower's form, what picks its names, and per joint of its record's the text of
+        # its declaration once made, by record.
+        self._by_record: dict[Record, tuple[str, Callable, list] | None] = {}
+
+    def follower(self, move: Move, follower: Follower, tail: str) -> bool:
+        """Add a follower (the same key and dialect as its record's); False when it has no
+        plain text."""
+        record = follower.record
+        known = self._by_record.get(record, False)
+        if known is False:
+            form_of = self.templates.form(follower.renaming(), move.dialect,
+                                          self.indent + self.step, self.step, move, True)
+            known = self._by_record[record] = None if form_of is None else (
+                form_of[0], form_of[1], [None] * len(record.joint_plan))
+        if known is None:
+            return False
+        form, pick, made = known
+        names = follower.names
+        args = pick(names)
+        declarations = self.part.declarations
+        own = True
+        for k, (i, joint, interfaces) in enumerate(record.joint_plan):
+            if i is not None:
+                joint = names[i]
+            if joint in declarations:
+                own = False
+                continue
+            declaration = made[k]
+            if declaration is None:
+                declaration = made[k] = self._declaration(interfaces)
+                if declaration is None:
+                    return False
+            declarations[joint] = declared = declaration[0] + joint.encode() + declaration[1]
+            self.heads += (declared, self.newline)
+        one = Written(self.part, form, args, follower)
+        self.bodies += (form, tail)
+        self.values += args
+        self.written.append(one)
+        if own:
+            self.alone.append(one)
+        return True
+
+    def other(self, move: Move, tail: str) -> bool:
+        """Add a transmission converted in full; False when it has no plain text."""
+        text = None if move.renaming is None else self.templates.text(
+            move.renaming, move.dialect, self.indent + self.step, self.step, move, True)
+        if text is None:
+            return False
+        form = text.decode().replace("%", "%%")
+        joints = move.joints()
+        own = True
+        for joint, commands, states in joints:
+            if joint in self.part.declarations:
+                own = False
+                continue
+            declaration = self._declaration((commands, states))
+            if declaration is None:
+                return False
+            self._declare(joint, declaration)
+        self._add(Written(self.part, form, (), [joint for joint, _, _ in joints]), form, (),
+                  tail, own)
+        return True
+
+    def _declaration(self, interfaces: tuple) -> tuple[bytes, bytes] | None:
+        """A joint declaration's text before and after its name (made once per interfaces),
+        or None when it is not plain."""
+        form = self._forms.get(interfaces)
+        if form is None:
+            form = self._forms[interfaces] = self.templates.declaration(
+                interfaces, self.indent + self.step, self.step)
+            if not plain(form[0] + form[1]):
+                return None  # and the block is not written
+        return form
+
+    def _declare(self, joint: str, declaration: tuple[bytes, bytes]) -> None:
+        self.part.declarations[joint] = declared = (
+            declaration[0] + joint.encode() + declaration[1])
+        self.heads += (declared, self.newline)
+
+    def _add(self, one: Written, form: str, args: tuple[str, ...], tail: str,
+             own: bool) -> None:
+        self.bodies += (form, tail)
+        self.values += args
+        self.written.append(one)
+        if own:
+            self.alone.append(one)
 
 
 def marker() -> etree._Comment:
@@ -196,10 +255,12 @@ def marker() -> etree._Comment:
     return etree.Comment(f"txtool-block-{os.urandom(16).hex()}")
 
 
-def fill(data: bytes, comment: etree._Comment, text: bytes) -> bytes | None:
-    """``data`` (a serialization holding ``comment`` once) with ``text`` in its place, or None
-    when the comment is not there exactly once."""
+def fill(data: bytes, comment: etree._Comment, pieces: list[bytes]) -> bytes | None:
+    """``data`` (a serialization holding ``comment`` once) with the text ``pieces`` join to
+    in its place (one copy of each), or None when the comment is not there exactly once."""
     token = f"<!--{comment.text}-->".encode("ascii")
-    if data.count(token) != 1:
+    at = data.find(token)
+    if at < 0 or data.find(token, at + 1) >= 0:
         return None
-    return data.replace(token, text)
+    view = memoryview(data)
+    return b"".join([view[:at], *pieces, view[at + len(token):]])
