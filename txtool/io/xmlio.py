@@ -23,6 +23,9 @@ from txtool.io.encodings import detect_encoding, mislabelled, parsing_form, utf8
 XACRO_NS = "http://www.ros.org/wiki/xacro"
 XACRO_SUFFIXES = (".xacro",)
 MAX_BYTES = 64 * 1024 * 1024
+# libxml2 reads no element nested deeper than this (XML_PARSE_HUGE, which txtool never sets,
+# would lift it).
+MAX_DEPTH = 256
 
 _DECLARATION = re.compile(rb"^(?:\xef\xbb\xbf)?\s*<\?xml[^>]*\?>")  # after a UTF-8 BOM too
 # Whitespace (and nothing else) before the XML declaration: see _movable_declaration.
@@ -347,27 +350,30 @@ def serialize(tree: etree._ElementTree, original: bytes | None = None) -> bytes:
         declared = _ENCODING.match(original or b"")
         if declared and declared.group(1).lower() not in (b"utf-8", b"utf8"):
             encoding = declared.group(1).decode("ascii")
-    body = _top_level(tree, encoding)
+    parts = _top_level(tree, encoding)
     if declaration:
         gap = re.match(rb"\s*", original[declaration.end() :]).group(0)  # type: ignore[union-attr, index]
-        body = declaration.group(0).lstrip() + (gap or b"\n") + body
-    if original is not None and original.endswith(b"\n") and not body.endswith(b"\n"):
-        body += b"\n"
-    return body
+        parts[:0] = (declaration.group(0).lstrip(), gap or b"\n")
+    if original is not None and original.endswith(b"\n") and not parts[-1].endswith(b"\n"):
+        parts.append(b"\n")
+    return b"".join(parts)  # one copy of the document, however many parts
 
 
-def _top_level(tree: etree._ElementTree, encoding: str) -> bytes:
-    """The document without declaration; top-level comments each on a line of their own."""
+def _top_level(tree: etree._ElementTree, encoding: str) -> list[bytes]:
+    """The document without declaration, in parts to join: top-level comments each on a line
+    of their own."""
     root = tree.getroot()
     before = list(root.itersiblings(preceding=True))[::-1]
     after = list(root.itersiblings())
-    parts = []
+    nodes = []
     if tree.docinfo.doctype:
-        parts.append(tree.docinfo.doctype.encode(encoding))
+        nodes.append(tree.docinfo.doctype.encode(encoding))
     for node in [*before, root, *after]:
-        parts.append(etree.tostring(node, encoding=encoding, xml_declaration=False,
+        nodes.append(etree.tostring(node, encoding=encoding, xml_declaration=False,
                                     with_tail=False))
-    return b"\n".join(parts)
+    parts = [b"\n"] * (2 * len(nodes) - 1)
+    parts[::2] = nodes
+    return parts
 
 
 def replace_if_unchanged(path: str, original: bytes, data: bytes, during: str) -> None:
