@@ -408,6 +408,43 @@ def test_nesting_within_the_limit_is_read(tmp_path):
         assert (code, json.loads(out), err) == (0, {"transmissions": []}, ""), name
 
 
+def deep_transmission(groups: int) -> str:
+    """A robot whose one transmission stands inside ``groups`` nested elements."""
+    transmission = (
+        '<transmission name="t"><type>transmission_interface/SimpleTransmission</type>'
+        '<joint name="j"><hardwareInterface>hardware_interface/EffortJointInterface'
+        '</hardwareInterface></joint><actuator name="m"><mechanicalReduction>2'
+        "</mechanicalReduction></actuator></transmission>"
+    )
+    return ('<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="revolute">'
+            '<parent link="a"/><child link="b"/>'
+            '<limit effort="1" velocity="1" lower="-1" upper="1"/></joint>'
+            + "<group>" * groups + transmission + "</group>" * groups + "</robot>\n")
+
+
+@pytest.mark.parametrize("target", ["ros2-p1", "ros2-p2"])
+def test_a_conversion_that_would_nest_too_deep_is_refused_not_written(tmp_path, target):
+    """The <ros2_control> block written in the place of a transmission 253 levels down nests
+    its <mechanical_reduction> 257 deep: nothing (txtool included) could read the result."""
+    document = tmp_path / "deep.urdf"
+    document.write_text(deep_transmission(252))
+    reason = "elements nested more than 256 levels deep (a safety limit)"
+    assert run("validate", str(document))[0] == 0  # the input itself reads
+
+    code, out, err = run("convert", "--to", target, str(document))
+    assert (code, out) == (2, "")
+    line = one_line_error(err)
+    assert line.startswith(f"txtool: {document}: cannot convert: the result could not be read "
+                           "back; its line ") and line.endswith(f": {reason}")
+    before = document.read_bytes()
+    code, out, err = run("migrate", "--write", "--to", target, str(document))
+    assert code == 2 and line in err and document.read_bytes() == before
+
+    document.write_text(deep_transmission(249))  # three levels up: converted as usual
+    code, out, err = run("convert", "--to", target, str(document))
+    assert (code, err) == (0, "") and "<ros2_control" in out
+
+
 def test_a_file_that_grew_after_its_size_was_taken_is_read_whole_or_refused(tmp_path,
                                                                              monkeypatch):
     """The read asks for the size fstat gave, plus one byte to see growth; a file that grew

@@ -26,7 +26,7 @@ from txtool.dialects.read import (
 )
 from txtool.dialects.translate import family, is_expression, translate
 from txtool.io.encodings import detect_encoding
-from txtool.io.xmlio import Source, local, parse_bytes, serialize
+from txtool.io.xmlio import MAX_DEPTH, InputError, Source, XMLSyntax, local, parse_bytes, serialize
 from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
 from txtool.model.semantics import Effective, NotLoadable, effective, listed_against_roles
@@ -85,6 +85,7 @@ def convert_source(
     baseline = None if source.expanded else serialize(source.tree, source.data)
     tree = source.tree if consume else copy.deepcopy(source.tree)
     elements = transmission_elements(tree.getroot())
+    deep = _near_depth_limit(elements, tree.getroot())
     result = Conversion(data=b"", target=target, found=len(elements))
     placer = Placer(tree.getroot(), hardware_plugin)
     carry = Carrier(source, target, reversible)
@@ -152,6 +153,8 @@ def convert_source(
     spliced = result.data
     result.data = carry.restore(result.data)
     result.notes.extend(carry.notes)
+    if deep:
+        _reads_back(result.data, source.path)
     if consume:
         source.tree = etree.ElementTree(etree.Element("consumed"))
     if not check:
@@ -163,6 +166,37 @@ def convert_source(
         alone = set()
     _check(Source(source.path, result.data, tree), result, items, alone, names, virtual)
     return result
+
+
+# What replaces a transmission nests at most this many levels below where it stood
+# (<ros2_control>, <transmission>, <joint>, <role> or <mechanical_reduction>).
+_WRITTEN_DEPTH = 4
+
+
+def _near_depth_limit(elements: list[etree._Element], root: etree._Element) -> bool:
+    """Whether a transmission stands so deep that what is written in its place may nest
+    deeper than a parse reads (:data:`~txtool.io.xmlio.MAX_DEPTH`)."""
+    for element in elements:
+        depth, parent = 1, element.getparent()
+        if parent is root:
+            continue
+        while parent is not None:
+            depth += 1
+            parent = parent.getparent()
+        if depth + _WRITTEN_DEPTH > MAX_DEPTH:
+            return True
+    return False
+
+
+def _reads_back(data: bytes, path: str) -> None:
+    """Refuse a converted document that txtool (or any reader with libxml2's limits) could
+    not read back: it nests elements too deep."""
+    try:
+        parse_bytes(data, path, limit=None)
+    except XMLSyntax as exc:
+        raise InputError(
+            f"{path}: cannot convert: the result could not be read back; its line {exc.line}: "
+            f"{exc.reason}") from None
 
 
 def _serialize(tree: etree._ElementTree, original: bytes, placer: Placer) -> bytes:
