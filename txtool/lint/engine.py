@@ -155,6 +155,7 @@ def run_rules(ctx: LintContext, settings: Settings) -> list[Problem]:
         return problems  # every rule is about transmissions
     for check in _checks(settings.enabled):
         problems.extend(check(ctx))
+    ctx.release()
     return problems
 
 
