@@ -73,7 +73,13 @@ class MemberRef:
         # The non-empty <hardwareInterface> texts, stripped (for ROS 1, the model's
         # Member.interfaces): read here, as most rules ask for them.
         named = kids.get("hardwareInterface")
-        self.interfaces: list[str] = texts_of(named) if named else []
+        if named is None:
+            self.interfaces: list[str] = []
+        elif len(named) == 1:  # the common case, without a call
+            text = (named[0].text or "").strip()
+            self.interfaces = [text] if text else []
+        else:
+            self.interfaces = texts_of(named)
         self._found = found
         self._index = index
 
@@ -89,14 +95,6 @@ class MemberRef:
     def tagged(self, name: str) -> list[etree._Element] | tuple[etree._Element, ...]:
         """The member's children named ``name`` (in any namespace)."""
         return self.kids.get(name, _NONE)
-
-
-def _refs(noun: str, elements: list[etree._Element] | None, found: Found) -> list[MemberRef]:
-    if not elements:
-        return []
-    if len(elements) == 1:  # the common case, without a list comprehension
-        return [MemberRef(noun, elements[0], found, 0)]
-    return [MemberRef(noun, e, found, i) for i, e in enumerate(elements)]
 
 
 def texts_of(elements: list[etree._Element] | tuple[etree._Element, ...]) -> list[str]:
@@ -135,48 +133,60 @@ class Facts:
 
     __slots__ = (
         "found", "element", "name", "ros1", "type", "kind", "kids", "type_element",
-        "type_text", "typed_ros1", "parsed", "own_loader", "members", "joints", "actuators",
-        "memo", "plain", "component", "group", "numbers", "_joint_interfaces",
-        "_actuator_interfaces",
+        "type_text", "typed_ros1", "own_loader", "members", "joints", "actuators", "plain",
+        "component", "numbers", "_joint_interfaces", "_actuator_interfaces",
     )
 
     def __init__(self, found: Found, hints: Hints = _UNSURE) -> None:
         element = found.element
-        components = hints.components
         kids = child_index(element)
-        joints = _refs("joint", kids.get("joint"), found)
-        actuators = _refs("actuator", kids.get("actuator"), found)
+        named = kids.get("joint")
+        if named is None:
+            joints: list[MemberRef] = []
+        elif len(named) == 1:  # the common case, without a list comprehension
+            joints = [MemberRef("joint", named[0], found, 0)]
+        else:
+            joints = [MemberRef("joint", e, found, i) for i, e in enumerate(named)]
+        named = kids.get("actuator")
+        if named is None:
+            actuators: list[MemberRef] = []
+        elif len(named) == 1:
+            actuators = [MemberRef("actuator", named[0], found, 0)]
+        else:
+            actuators = [MemberRef("actuator", e, found, i) for i, e in enumerate(named)]
         members = joints + actuators
         # What read_transmission reads first: the dialect (detect_dialect's first test: no
         # role attribute, no <plugin>, no enclosing <ros2_control> is ROS 1; else its own
         # answer), then the type (ros1_type: the <type> text, else the legacy attribute) and
         # the kind. tests/lint/test_facts.py holds these to the model, document by document.
+        components = hints.components
         if components or "plugin" in kids or (hints.roles and _role_attribute(members)):
             ros1 = detect_dialect(element, kids) == "ros1"
         else:
             ros1 = True
         typed = kids.get("type" if ros1 else "plugin")
-        self.type_element = typed[0] if typed else None
-        self.type_text = (typed[0].text or "").strip() if typed else None  # that element's
-        if ros1:
-            self.type = self.type_text or (element.get("type") or "").strip()
+        if typed is None:
+            self.type_element = self.type_text = None
+            text = (element.get("type") or "").strip() if ros1 else ""
         else:
-            self.type = self.type_text or ""
+            self.type_element = typed[0]
+            text = self.type_text = (typed[0].text or "").strip()  # that element's
+            if not text and ros1:
+                text = (element.get("type") or "").strip()
+        self.type = text
         self.found = found
         self.element = element
         self.name: str = element.get("name", "")  # as the model's Transmission.name
         self.ros1 = ros1
-        self.kind = kind_of(self.type)
+        self.kind = kind_of(text)
         self.kids = kids
         # ros_control gets past parsing only with a <type> element (the pre-Hydro type=
         # attribute alone is skipped before any loader runs) and a name.
         self.typed_ros1 = ros1 and typed is not None
-        self.parsed = not ros1 or (self.typed_ros1 and bool(self.name.strip()))
-        self.own_loader = self.type.startswith(OWN_LOADER_FAMILIES)
+        self.own_loader = text.startswith(OWN_LOADER_FAMILIES)
         self.joints = joints
         self.actuators = actuators
         self.members = members
-        self.memo: dict[str, object] = {}  # answers a few rules share (see support)
         self.numbers: object = None  # the numbers its loader reads (see support.numbers_of)
         # The document holds no CDATA section: an element's text nodes are its ``text``.
         self.plain = hints.plain
@@ -184,8 +194,16 @@ class Facts:
         self._actuator_interfaces: bool | None = None
         # The enclosing <ros2_control> (none to look for when the document has none).
         self.component = ancestor(element, "ros2_control") if components else None
-        # Transmissions read by the same loader instance: ROS 1, or one <ros2_control>.
-        self.group: tuple[object, ...] = ("ros1",) if ros1 else ("ros2", self.component)
+
+    @property
+    def parsed(self) -> bool:
+        """Whether the loader gets past parsing it (ros_control: a ``<type>`` and a name)."""
+        return not self.ros1 or (self.typed_ros1 and bool(self.name.strip()))
+
+    @property
+    def group(self) -> tuple[object, ...]:
+        """Transmissions read by the same loader instance: ROS 1, or one ``<ros2_control>``."""
+        return ("ros1",) if self.ros1 else ("ros2", self.component)
 
     @property
     def transmission(self) -> Transmission:
