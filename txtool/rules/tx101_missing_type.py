@@ -30,6 +30,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
+from txtool.lint.support import all_canonical
 
 CODE = "TX101"
 NAME = "missing-type"
@@ -38,6 +39,8 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
+    if all_canonical(ctx):
+        return  # nothing to say about any transmission (see all_canonical)
     for tx in ctx.facts:
         element = tx.type_element
         ros1 = tx.ros1

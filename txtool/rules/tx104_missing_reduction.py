@@ -39,7 +39,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import opaque
+from txtool.lint.support import all_canonical, opaque
 
 CODE = "TX104"
 NAME = "missing-reduction"
@@ -48,6 +48,8 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
+    if all_canonical(ctx):
+        return  # nothing to say about any transmission (see all_canonical)
     for tx in ctx.facts:
         if not tx.typed_ros1 or tx.kind == "other":
             continue

@@ -25,7 +25,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import numbers_of
+from txtool.lint.support import all_canonical, numbers_of
 from txtool.model.numbers import parse_ros1
 
 CODE = "TX106"
@@ -35,6 +35,8 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
+    if all_canonical(ctx):
+        return  # nothing to say about any transmission (see all_canonical)
     for tx in ctx.facts:
         ros1 = tx.ros1
         for number in numbers_of(tx):

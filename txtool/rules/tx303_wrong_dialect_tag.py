@@ -43,7 +43,7 @@ from txtool.dialects.read import Found
 from txtool.io.xmlio import local
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import children, label
+from txtool.lint.support import ROS2_SPELLINGS, all_canonical, children, label
 from txtool.model.robot import child_index
 
 CODE = "TX303"
@@ -52,15 +52,16 @@ SEVERITY = "error"
 FIXABLE = False
 
 _ROS1_SPELLINGS = frozenset({"mechanicalReduction", "hardwareInterface", "hardware_interface"})
-_ROS2_SPELLINGS = frozenset({"mechanical_reduction", "hardware_interface"})
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
+    if all_canonical(ctx):
+        return  # nothing to say about any transmission (see all_canonical)
     for tx in ctx.facts:
         if tx.ros1:
-            if _ROS2_SPELLINGS.isdisjoint(tx.kids):
+            if ROS2_SPELLINGS.isdisjoint(tx.kids):
                 for ref in tx.members:
-                    if not _ROS2_SPELLINGS.isdisjoint(ref.kids):
+                    if not ROS2_SPELLINGS.isdisjoint(ref.kids):
                         break
                 else:
                     continue  # the common case: say nothing, build no message

@@ -29,6 +29,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
+from txtool.lint.support import all_canonical
 
 CODE = "TX402"
 NAME = "four-bar-effort-ros1"
@@ -37,6 +38,8 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
+    if all_canonical(ctx):
+        return  # nothing to say about any transmission (see all_canonical)
     for tx in ctx.facts:
         if not tx.ros1 or tx.kind != "four_bar":
             continue
