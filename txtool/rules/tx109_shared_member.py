@@ -80,10 +80,9 @@ def check(ctx: LintContext) -> Iterator[Problem]:
 
 def _all_distinct(ctx: LintContext) -> bool:
     """No (noun, name) repeats across the transmissions: no key below can be met twice."""
-    seen: set[tuple[str, str]] = set()
-    count = 0
-    for tx in ctx.facts:
-        for ref in tx.members:
-            seen.add((ref.noun, ref.name))
-            count += 1
-    return len(seen) == count
+    facts = ctx.facts
+    joints = [ref.name for tx in facts for ref in tx.joints]
+    if len(set(joints)) != len(joints):
+        return False
+    actuators = [ref.name for tx in facts for ref in tx.actuators]
+    return len(set(actuators)) == len(actuators)

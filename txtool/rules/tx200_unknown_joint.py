@@ -75,6 +75,8 @@ def _as_pattern(text: str) -> re.Pattern[str]:
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
+    if not ctx.hints.components and (not ctx.is_robot or _all_known(ctx)):
+        return  # the common case: no component, every joint named is the robot's
     robot_joints = Names(ctx.joint_elements) if ctx.is_robot else None
     components: dict[etree._Element, tuple[str, Names] | None] = {}
     for tx in ctx.facts:
@@ -101,6 +103,11 @@ def check(ctx: LintContext) -> Iterator[Problem]:
                     f"joint '{name}' of {tx.label} is not a <joint> of the robot: the "
                     "loader has no joint to bind it to",
                 )
+
+
+def _all_known(ctx: LintContext) -> bool:
+    """Every joint name of every transmission is one of the robot's joints, as written."""
+    return ctx.joint_elements.keys() >= {ref.name for tx in ctx.facts for ref in tx.joints}
 
 
 def _component_joints(

@@ -49,6 +49,8 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
+    if not _any_fixed(ctx.joint_elements):
+        return  # the common case: no joint of the robot is fixed
     for found, joint, robot in robot_joints_of_transmissions(ctx):
         if robot.get("type") != "fixed":  # JointInfo.is_fixed, without reading the joint
             continue
@@ -61,6 +63,13 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         yield ctx.problem(
             CODE, joint, f"joint '{info.name}' of {label(found)} is a fixed joint: {effect}"
         )
+
+
+def _any_fixed(joints: dict[str, etree._Element]) -> bool:
+    for element in joints.values():  # noqa: SIM110 (a loop costs less than a generator)
+        if element.get("type") == "fixed":
+            return True
+    return False
 
 
 def _declared_by_component(transmission: etree._Element, joint: str) -> bool:

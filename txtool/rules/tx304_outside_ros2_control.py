@@ -45,8 +45,8 @@ FIXABLE = False
 
 
 def check(ctx: LintContext) -> Iterator[Problem]:
-    if not ctx.components:
-        return
+    if not ctx.hints.components:
+        return  # no <ros2_control> in the document
     for tx in ctx.facts:
         found = tx.found
         if tx.component is not None or _in_macro(ctx, found.element):
