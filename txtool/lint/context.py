@@ -117,9 +117,10 @@ class LintContext:
     def components(self) -> list[Component]:
         return components(self.source.root, self._walked["ros2_control"])
 
-    @property
+    @cached_property
     def is_robot(self) -> bool:
-        return not self.literal and local(self.source.root) == "robot" and bool(self.joints)
+        return (not self.literal and local(self.source.root) == "robot"
+                and bool(self.joint_elements))
 
     def unknown(self, text: str | None) -> bool:
         """True for a value only xacro can tell: it contains ``${...}`` or ``$(...)``."""
