@@ -24,7 +24,7 @@ from txtool.model.core import kind_of
 from txtool.model.robot import ancestor, child_index
 
 if TYPE_CHECKING:
-    from txtool.model.core import Member, Transmission
+    from txtool.model.core import Kind, Member, Transmission
     from txtool.model.robot import Component
 
 # Transmission families with their own loaders (not ros_control's transmission_interface):
@@ -126,6 +126,7 @@ class Hints:
 
 
 _UNSURE = Hints()
+_KINDS: dict[str, Kind] = {}  # kind_of by type text
 
 
 class Facts:
@@ -178,7 +179,12 @@ class Facts:
         self.element = element
         self.name: str = element.get("name", "")  # as the model's Transmission.name
         self.ros1 = ros1
-        self.kind = kind_of(text)
+        kind = _KINDS.get(text)
+        if kind is None:
+            kind = kind_of(text)
+            if len(_KINDS) < 256:  # the few type texts documents use
+                _KINDS[text] = kind
+        self.kind = kind
         self.kids = kids
         # ros_control gets past parsing only with a <type> element (the pre-Hydro type=
         # attribute alone is skipped before any loader runs) and a name.
