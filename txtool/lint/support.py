@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
+import functools
 import sys
-from collections.abc import Iterator
+from collections.abc import Callable, Iterable, Iterator
 
 from lxml import etree
 
@@ -11,6 +12,7 @@ from txtool.dialects.read import Found
 from txtool.io.xmlio import is_xacro_element, local
 from txtool.lint.context import LintContext
 from txtool.lint.facts import OWN_LOADER_FAMILIES, Facts, MemberRef, facts_of
+from txtool.lint.problem import Problem
 from txtool.model.core import TYPE_PREFIX, Member
 from txtool.model.numbers import C_SPACE, parse_ros2
 from txtool.model.robot import children
@@ -236,6 +238,24 @@ def _robot_joints(ctx: LintContext) -> Iterator[tuple[Found, etree._Element, etr
 
 _SIMPLE = TYPE_PREFIX + "SimpleTransmission"
 _SMALLEST_NORMAL = sys.float_info.min
+
+
+Check = Callable[[LintContext], Iterable[Problem]]
+
+
+def per_transmission(check: Check) -> Check:
+    """Mark the check of a rule that looks at one transmission at a time: a document whose
+    transmissions are all :func:`canonical` gives it nothing to say, so it returns at once
+    (and the linter does not call it for such a document)."""
+
+    @functools.wraps(check)
+    def checked(ctx: LintContext) -> Iterable[Problem]:
+        if all_canonical(ctx):
+            return ()
+        return check(ctx)
+
+    checked.per_transmission = True  # type: ignore[attr-defined]
+    return checked
 
 
 def all_canonical(ctx: LintContext) -> bool:

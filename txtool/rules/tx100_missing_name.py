@@ -29,7 +29,7 @@ from lxml import etree
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import all_canonical
+from txtool.lint.support import per_transmission
 
 CODE = "TX100"
 NAME = "missing-name"
@@ -37,9 +37,8 @@ SEVERITY = "error"
 FIXABLE = False
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
-    if all_canonical(ctx):
-        return  # nothing to say about any transmission (see all_canonical)
     for tx in ctx.facts:
         if tx.name.strip():
             for ref in tx.members:

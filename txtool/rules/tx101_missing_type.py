@@ -30,7 +30,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import all_canonical
+from txtool.lint.support import per_transmission
 
 CODE = "TX101"
 NAME = "missing-type"
@@ -38,9 +38,8 @@ SEVERITY = "error"
 FIXABLE = False
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
-    if all_canonical(ctx):
-        return  # nothing to say about any transmission (see all_canonical)
     for tx in ctx.facts:
         element = tx.type_element
         ros1 = tx.ros1

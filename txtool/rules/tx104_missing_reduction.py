@@ -39,7 +39,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import all_canonical, opaque
+from txtool.lint.support import opaque, per_transmission
 
 CODE = "TX104"
 NAME = "missing-reduction"
@@ -47,9 +47,8 @@ SEVERITY = "error"
 FIXABLE = False
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
-    if all_canonical(ctx):
-        return  # nothing to say about any transmission (see all_canonical)
     for tx in ctx.facts:
         if not tx.typed_ros1 or tx.kind == "other":
             continue

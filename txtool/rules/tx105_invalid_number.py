@@ -44,7 +44,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import all_canonical, numbers_of
+from txtool.lint.support import numbers_of, per_transmission
 from txtool.model.numbers import C_SPACE, parse_ros2, stod
 
 CODE = "TX105"
@@ -53,9 +53,8 @@ SEVERITY = "error"
 FIXABLE = False
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
-    if all_canonical(ctx):
-        return  # nothing to say about any transmission (see all_canonical)
     for tx in ctx.facts:
         for number in numbers_of(tx):
             if number.unknown:

@@ -35,7 +35,7 @@ from collections.abc import Iterator
 from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import MemberRef, all_canonical, children, label, members, opaque
+from txtool.lint.support import MemberRef, children, label, members, opaque, per_transmission
 
 CODE = "TX107"
 NAME = "bad-role"
@@ -43,9 +43,8 @@ SEVERITY = "error"
 FIXABLE = False
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
-    if all_canonical(ctx):
-        return  # nothing to say about any transmission (see all_canonical)
     for tx in ctx.facts:
         if not tx.ros1:
             yield from _ros2(ctx, tx.found)

@@ -22,7 +22,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import all_canonical, label
+from txtool.lint.support import label, per_transmission
 
 CODE = "TX112"
 NAME = "invalid-read-only"
@@ -37,9 +37,8 @@ def valid_bool(text: str) -> bool:
     return text.isascii() and text.lower() in _BOOLEANS
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
-    if all_canonical(ctx):
-        return  # nothing to say about any transmission (see all_canonical)
     for tx in ctx.facts:
         if tx.ros1:
             continue

@@ -33,7 +33,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import all_canonical
+from txtool.lint.support import per_transmission
 from txtool.model.core import TYPE_PREFIX
 from txtool.rules.tx102_unknown_type import STANDARD_NAMES, nearest_standard
 
@@ -43,9 +43,8 @@ SEVERITY = "error"
 FIXABLE = False
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
-    if all_canonical(ctx):
-        return  # nothing to say about any transmission (see all_canonical)
     for tx in ctx.facts:
         text = tx.type_text
         if not text or not text.startswith(TYPE_PREFIX) or text in STANDARD_NAMES:

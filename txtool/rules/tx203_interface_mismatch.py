@@ -53,7 +53,7 @@ from lxml import etree
 from txtool.dialects.read import Found, enclosing_component
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import all_canonical, children, label, members, opaque
+from txtool.lint.support import children, label, members, opaque, per_transmission
 
 CODE = "TX203"
 NAME = "interface-mismatch"
@@ -61,9 +61,8 @@ SEVERITY = "error"
 FIXABLE = False
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
-    if all_canonical(ctx):
-        return  # nothing to say about any transmission (see all_canonical)
     for tx in ctx.facts:
         if tx.ros1:
             if len(tx.joints) > 1 and not tx.own_loader:  # one joint agrees with itself

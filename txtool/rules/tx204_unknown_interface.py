@@ -75,10 +75,10 @@ from txtool.lint.support import (
     REGISTERED,
     ROS1_INTERFACES,
     MemberRef,
-    all_canonical,
     children,
     label,
     members,
+    per_transmission,
 )
 from txtool.rules.tx203_interface_mismatch import component_joint, declared_interfaces
 
@@ -101,9 +101,8 @@ _ROS1_TO_ROS2 = {
 }
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
-    if all_canonical(ctx):
-        return  # nothing to say about any transmission (see all_canonical)
     for tx in ctx.facts:
         if tx.kind == "other":
             continue

@@ -66,7 +66,7 @@ from txtool.lint import gazebo
 from txtool.lint.context import LintContext
 from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
-from txtool.lint.support import all_canonical, label, opaque
+from txtool.lint.support import label, opaque, per_transmission
 from txtool.rules.tx204_unknown_interface import (
     PREFIX,
     REGISTERED,
@@ -83,9 +83,8 @@ SEVERITY = "error"
 FIXABLE = False
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
-    if all_canonical(ctx):
-        return  # nothing to say about any transmission (see all_canonical)
     for tx in ctx.facts:
         if tx.kind == "other":
             continue

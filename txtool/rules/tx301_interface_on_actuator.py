@@ -60,10 +60,10 @@ from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.support import (
     OWN_LOADER_FAMILIES,
-    all_canonical,
     children,
     is_xacro,
     label,
+    per_transmission,
 )
 from txtool.rules.tx302_legacy_type_attribute import insert_child
 
@@ -92,9 +92,8 @@ def _bare_joints(transmission: etree._Element) -> list[etree._Element]:
     ]
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
-    if all_canonical(ctx):
-        return  # nothing to say about any transmission (see all_canonical)
     for tx in ctx.facts:
         if not tx.ros1 or tx.own_loader or not tx.actuator_interfaces:
             continue  # no actuator names an interface: no joint is bare (see _bare_joints)

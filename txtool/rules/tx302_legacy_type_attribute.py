@@ -54,7 +54,7 @@ from lxml import etree
 from txtool.dialects.read import Found, detect_dialect, first_child_text, transmission_elements
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import all_canonical, children, label
+from txtool.lint.support import children, label, per_transmission
 
 CODE = "TX302"
 NAME = "legacy-type-attribute"
@@ -69,9 +69,8 @@ def _type_element_text(transmission: etree._Element) -> str:
     return (first_child_text(transmission, "type") or "").strip()
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
-    if all_canonical(ctx):
-        return  # nothing to say about any transmission (see all_canonical)
     for tx in ctx.facts:
         attribute = tx.element.get("type")
         if attribute is None or not tx.ros1:

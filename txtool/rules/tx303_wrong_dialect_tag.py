@@ -43,7 +43,7 @@ from txtool.dialects.read import Found
 from txtool.io.xmlio import local
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import ROS2_SPELLINGS, all_canonical, children, label
+from txtool.lint.support import ROS2_SPELLINGS, children, label, per_transmission
 from txtool.model.robot import child_index
 
 CODE = "TX303"
@@ -54,9 +54,8 @@ FIXABLE = False
 _ROS1_SPELLINGS = frozenset({"mechanicalReduction", "hardwareInterface", "hardware_interface"})
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
-    if all_canonical(ctx):
-        return  # nothing to say about any transmission (see all_canonical)
     for tx in ctx.facts:
         if tx.ros1:
             if ROS2_SPELLINGS.isdisjoint(tx.kids):

@@ -41,7 +41,7 @@ from lxml import etree
 from txtool.lint.context import LintContext
 from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
-from txtool.lint.support import all_canonical
+from txtool.lint.support import per_transmission
 
 CODE = "TX400"
 NAME = "ignored-value"
@@ -51,9 +51,8 @@ FIXABLE = False
 Finding = tuple[etree._Element, str]
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
-    if all_canonical(ctx):
-        return  # nothing to say about any transmission (see all_canonical)
     for tx in ctx.facts:
         if tx.kind == "other" or (tx.ros1 and _quiet_ros1(tx)):
             continue

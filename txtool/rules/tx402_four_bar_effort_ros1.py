@@ -29,7 +29,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import all_canonical
+from txtool.lint.support import per_transmission
 
 CODE = "TX402"
 NAME = "four-bar-effort-ros1"
@@ -37,9 +37,8 @@ SEVERITY = "info"
 FIXABLE = False
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
-    if all_canonical(ctx):
-        return  # nothing to say about any transmission (see all_canonical)
     for tx in ctx.facts:
         if not tx.ros1 or tx.kind != "four_bar":
             continue

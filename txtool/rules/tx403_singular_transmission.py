@@ -44,7 +44,7 @@ from typing import Any
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import all_canonical, label
+from txtool.lint.support import label, per_transmission
 from txtool.model.core import Transmission
 
 CODE = "TX403"
@@ -68,9 +68,8 @@ def options_model() -> Any:
     return Options
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
-    if all_canonical(ctx):
-        return  # nothing to say about any transmission (see all_canonical)
     # A loadable simple map is one finite, non-zero number: never singular. The linear algebra
     # is loaded for documents with other standard transmissions only.
     coupled = [tx for tx in ctx.facts if tx.kind not in ("other", "simple")]
