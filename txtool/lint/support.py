@@ -296,9 +296,9 @@ def canonical(tx: Facts) -> bool:
     kids, own, driven = tx.kids, joint.kids, actuator.kids
     if "mechanicalReduction" in kids or "mechanicalReduction" in own or "offset" in driven:
         return False
-    spelt = ROS2_SPELLINGS.isdisjoint
-    if not (spelt(kids) and spelt(own) and spelt(driven)):
-        return False
+    for spelling in ROS2_SPELLINGS:  # two lookups a dictionary cost less than a set operation
+        if spelling in kids or spelling in own or spelling in driven:
+            return False
     if tx.element.get("type") is not None:
         return False
     reductions = driven.get("mechanicalReduction")
@@ -313,5 +313,14 @@ def _normal_number(element: etree._Element) -> bool:
     plain, finite number of at least the smallest normal magnitude."""
     if len(element):
         return False
-    value = parse_ros2(element.text)
-    return value is not None and abs(value) >= _SMALLEST_NORMAL
+    text = element.text
+    known = _NORMAL.get(text)  # type: ignore[arg-type]
+    if known is None:
+        value = parse_ros2(text)
+        known = value is not None and abs(value) >= _SMALLEST_NORMAL
+        if len(_NORMAL) < 1024:  # the few number texts documents repeat
+            _NORMAL[text] = known  # type: ignore[index]
+    return known
+
+
+_NORMAL: dict[str, bool] = {}  # _normal_number by text
