@@ -44,8 +44,12 @@ class LintFound(Found):
 
     def __init__(self, element: etree._Element, components: dict[etree._Element, Component]
                  ) -> None:
-        # One update for the four fields: the frozen dataclass refuses plain assignment.
-        self.__dict__.update(element=element, memo={}, _components=components, _read=None)
+        # The fields set in the instance's dictionary: the frozen dataclass refuses assignment.
+        fields = self.__dict__
+        fields["element"] = element
+        fields["memo"] = {}
+        fields["_components"] = components
+        fields["_read"] = None
 
     @property  # type: ignore[override]
     def transmission(self) -> Transmission:
@@ -69,7 +73,20 @@ class MemberRef:
         self.noun = noun  # "joint" or "actuator"
         self.element = element
         self.name: str = element.get("name", "")  # as the model's Member.name
-        kids = self.kids = child_index(element)
+        # Its children by local name (child_index's, built here without a call: most members
+        # have one or two children).
+        kids: dict[str, list[etree._Element]] = {}
+        for child in element[:]:
+            tag = child.tag
+            if tag.__class__ is str:  # not a comment or processing instruction
+                if tag[0] == "{":
+                    tag = tag.rpartition("}")[2]
+                same = kids.get(tag)
+                if same is None:
+                    kids[tag] = [child]
+                else:
+                    same.append(child)
+        self.kids = kids
         # The non-empty <hardwareInterface> texts, stripped (for ROS 1, the model's
         # Member.interfaces): read here, as most rules ask for them.
         named = kids.get("hardwareInterface")
