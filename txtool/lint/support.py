@@ -206,6 +206,22 @@ def coupled_groups(
             ("actuator", t.actuators, children(element, "actuator"), ROLES_ACTUATOR))
 
 
+def member_names(ctx: LintContext) -> tuple[list[str], list[str]]:
+    """The joint names, then the actuator names, of every transmission in document order
+    (found once per document: several rules ask)."""
+    known = ctx.memo.get("member names")
+    if known is None:
+        joints: list[str] = []
+        actuators: list[str] = []
+        for tx in ctx.facts:
+            for ref in tx.joints:
+                joints.append(ref.name)
+            for ref in tx.actuators:
+                actuators.append(ref.name)
+        known = ctx.memo["member names"] = (joints, actuators)
+    return known  # type: ignore[no-any-return]
+
+
 def label(found: Found) -> str:
     """``transmission 'name'`` for messages (or ``unnamed transmission``)."""
     return facts_of(found).label

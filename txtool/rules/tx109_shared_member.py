@@ -32,7 +32,7 @@ from collections.abc import Iterator
 from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import label, scope
+from txtool.lint.support import label, member_names, scope
 
 CODE = "TX109"
 NAME = "shared-member"
@@ -80,9 +80,5 @@ def check(ctx: LintContext) -> Iterator[Problem]:
 
 def _all_distinct(ctx: LintContext) -> bool:
     """No (noun, name) repeats across the transmissions: no key below can be met twice."""
-    facts = ctx.facts
-    joints = [ref.name for tx in facts for ref in tx.joints]
-    if len(set(joints)) != len(joints):
-        return False
-    actuators = [ref.name for tx in facts for ref in tx.actuators]
-    return len(set(actuators)) == len(actuators)
+    joints, actuators = member_names(ctx)
+    return len(set(joints)) == len(joints) and len(set(actuators)) == len(actuators)

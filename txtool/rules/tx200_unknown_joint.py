@@ -46,7 +46,7 @@ from lxml import etree
 from txtool.lint.context import LintContext
 from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
-from txtool.lint.support import children, opaque
+from txtool.lint.support import children, member_names, opaque
 
 CODE = "TX200"
 NAME = "unknown-joint"
@@ -107,7 +107,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
 
 def _all_known(ctx: LintContext) -> bool:
     """Every joint name of every transmission is one of the robot's joints, as written."""
-    return ctx.joint_elements.keys() >= {ref.name for tx in ctx.facts for ref in tx.joints}
+    return ctx.joint_elements.keys() >= set(member_names(ctx)[0])
 
 
 def _component_joints(
