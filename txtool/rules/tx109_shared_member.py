@@ -27,7 +27,7 @@ Passing example::
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 
 from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
@@ -40,9 +40,13 @@ SEVERITY = "warning"
 FIXABLE = False
 
 
-def check(ctx: LintContext) -> Iterator[Problem]:
+def check(ctx: LintContext) -> Iterable[Problem]:
     if _all_distinct(ctx):
-        return  # the common case: no joint or actuator is named twice in the document
+        return ()  # the common case: no joint or actuator is named twice in the document
+    return _shared(ctx)
+
+
+def _shared(ctx: LintContext) -> Iterator[Problem]:
     owner: dict[tuple[object, ...], Found] = {}
     names: set[tuple[object, ...]] = set()
     for tx in ctx.facts:

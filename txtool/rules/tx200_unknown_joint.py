@@ -74,9 +74,13 @@ def _as_pattern(text: str) -> re.Pattern[str]:
     return re.compile(".*".join(re.escape(part) for part in parts), re.DOTALL)
 
 
-def check(ctx: LintContext) -> Iterator[Problem]:
+def check(ctx: LintContext) -> Iterable[Problem]:
     if not ctx.hints.components and (not ctx.is_robot or _all_known(ctx)):
-        return  # the common case: no component, every joint named is the robot's
+        return ()  # the common case: no component, every joint named is the robot's
+    return _unknown(ctx)
+
+
+def _unknown(ctx: LintContext) -> Iterator[Problem]:
     robot_joints = Names(ctx.joint_elements) if ctx.is_robot else None
     components: dict[etree._Element, tuple[str, Names] | None] = {}
     for tx in ctx.facts:

@@ -33,7 +33,7 @@ Passing example: the same with ``type="revolute"`` (and its ``<limit>``).
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 
 from lxml import etree
 
@@ -48,9 +48,13 @@ SEVERITY = "error"
 FIXABLE = False
 
 
-def check(ctx: LintContext) -> Iterator[Problem]:
+def check(ctx: LintContext) -> Iterable[Problem]:
     if not _any_fixed(ctx.joint_elements):
-        return  # the common case: no joint of the robot is fixed
+        return ()  # the common case: no joint of the robot is fixed
+    return _fixed(ctx)
+
+
+def _fixed(ctx: LintContext) -> Iterator[Problem]:
     for found, joint, robot in robot_joints_of_transmissions(ctx):
         if robot.get("type") != "fixed":  # JointInfo.is_fixed, without reading the joint
             continue
