@@ -10,7 +10,7 @@ from lxml import etree
 
 from txtool.dialects.read import Found, transmission_elements
 from txtool.io.xmlio import Source, local
-from txtool.lint.facts import Facts, Hints, LintFound, facts_of
+from txtool.lint.facts import Facts, Hints, LintFound
 from txtool.lint.problem import Problem, Severity
 from txtool.lint.text import scanned_form
 from txtool.model.robot import (
@@ -60,6 +60,16 @@ class LintContext:
             ]
         self.found: list[Found] = found
 
+    def release(self) -> None:
+        """Drop the facts kept with each transmission once the rules are done.
+
+        Facts and their transmission refer to each other (a cycle): left alone, each document
+        (its tree included) would wait for the garbage collector, whose passes over the
+        growing heap cost validate of many small files about a tenth of its time.
+        """
+        for found in self.found:
+            found.memo.clear()
+
     @cached_property
     def _walked(self) -> dict[str, list[etree._Element]]:
         """One walk of the tree for the elements rules look for at any depth."""
@@ -72,7 +82,13 @@ class LintContext:
     def facts(self) -> list[Facts]:
         """What the rules read of each transmission (see :mod:`txtool.lint.facts`), in order."""
         hints = self.hints
-        return [facts_of(found, hints) for found in self.found]
+        facts = []
+        for found in self.found:  # facts_of inlined: once per transmission
+            known = found.memo.get("facts")
+            if known is None:
+                known = found.memo["facts"] = Facts(found, hints)
+            facts.append(known)
+        return facts
 
     @cached_property
     def hints(self) -> Hints:
@@ -107,9 +123,10 @@ class LintContext:
     def components(self) -> list[Component]:
         return components(self.source.root, self._walked["ros2_control"])
 
-    @property
+    @cached_property
     def is_robot(self) -> bool:
-        return not self.literal and local(self.source.root) == "robot" and bool(self.joints)
+        return (not self.literal and local(self.source.root) == "robot"
+                and bool(self.joint_elements))
 
     def unknown(self, text: str | None) -> bool:
         """True for a value only xacro can tell: it contains ``${...}`` or ``$(...)``."""

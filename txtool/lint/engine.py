@@ -31,6 +31,7 @@ from txtool.io.xmlio import (
 from txtool.lint.config import Settings, resolve
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
+from txtool.lint.support import all_canonical
 from txtool.lint.suppress import Suppressions
 from txtool.lint.suppress import parse as parse_suppressions
 from txtool.lint.text import scanned_form
@@ -153,22 +154,30 @@ def run_rules(ctx: LintContext, settings: Settings) -> list[Problem]:
     problems: list[Problem] = []
     if not ctx.found:
         return problems  # every rule is about transmissions
-    for check in _checks(settings.enabled):
+    every, whole = _checks(settings.enabled)
+    # A document of canonical transmissions: the rules about one transmission at a time have
+    # nothing to say (see support.per_transmission); the others look at the whole document.
+    for check in whole if len(whole) < len(every) and all_canonical(ctx) else every:
         problems.extend(check(ctx))
+    ctx.release()
     return problems
 
 
-_CHECKS: dict[frozenset[str], list[Callable[[LintContext], Iterable[Problem]]]] = {}
+Checks = list[Callable[[LintContext], Iterable[Problem]]]
+_CHECKS: dict[frozenset[str], tuple[Checks, Checks]] = {}
 
 
-def _checks(enabled: frozenset[str]) -> list[Callable[[LintContext], Iterable[Problem]]]:
-    """The check functions of the enabled rules run on a context, in code order."""
+def _checks(enabled: frozenset[str]) -> tuple[Checks, Checks]:
+    """The check functions of the enabled rules run on a context, in code order: all of them,
+    and those not marked :func:`~txtool.lint.support.per_transmission`."""
     known = _CHECKS.get(enabled)
     if known is None:
-        known = _CHECKS[enabled] = [
+        every = [
             rule.check for rule in all_rules().values()
             if rule.code in enabled and rule.code not in PIPELINE_CODES
         ]
+        whole = [check for check in every if not getattr(check, "per_transmission", False)]
+        known = _CHECKS[enabled] = (every, whole)
     return known
 
 

@@ -24,7 +24,7 @@ from txtool.model.core import kind_of
 from txtool.model.robot import ancestor, child_index
 
 if TYPE_CHECKING:
-    from txtool.model.core import Member, Transmission
+    from txtool.model.core import Kind, Member, Transmission
     from txtool.model.robot import Component
 
 # Transmission families with their own loaders (not ros_control's transmission_interface):
@@ -44,8 +44,12 @@ class LintFound(Found):
 
     def __init__(self, element: etree._Element, components: dict[etree._Element, Component]
                  ) -> None:
-        # One update for the four fields: the frozen dataclass refuses plain assignment.
-        self.__dict__.update(element=element, memo={}, _components=components, _read=None)
+        # The fields set in the instance's dictionary: the frozen dataclass refuses assignment.
+        fields = self.__dict__
+        fields["element"] = element
+        fields["memo"] = {}
+        fields["_components"] = components
+        fields["_read"] = None
 
     @property  # type: ignore[override]
     def transmission(self) -> Transmission:
@@ -69,11 +73,30 @@ class MemberRef:
         self.noun = noun  # "joint" or "actuator"
         self.element = element
         self.name: str = element.get("name", "")  # as the model's Member.name
-        kids = self.kids = child_index(element)
+        # Its children by local name (child_index's, built here without a call: most members
+        # have one or two children).
+        kids: dict[str, list[etree._Element]] = {}
+        for child in element[:]:
+            tag = child.tag
+            if tag.__class__ is str:  # not a comment or processing instruction
+                if tag[0] == "{":
+                    tag = tag.rpartition("}")[2]
+                same = kids.get(tag)
+                if same is None:
+                    kids[tag] = [child]
+                else:
+                    same.append(child)
+        self.kids = kids
         # The non-empty <hardwareInterface> texts, stripped (for ROS 1, the model's
         # Member.interfaces): read here, as most rules ask for them.
         named = kids.get("hardwareInterface")
-        self.interfaces: list[str] = texts_of(named) if named else []
+        if named is None:
+            self.interfaces: list[str] = []
+        elif len(named) == 1:  # the common case, without a call
+            text = (named[0].text or "").strip()
+            self.interfaces = [text] if text else []
+        else:
+            self.interfaces = texts_of(named)
         self._found = found
         self._index = index
 
@@ -89,14 +112,6 @@ class MemberRef:
     def tagged(self, name: str) -> list[etree._Element] | tuple[etree._Element, ...]:
         """The member's children named ``name`` (in any namespace)."""
         return self.kids.get(name, _NONE)
-
-
-def _refs(noun: str, elements: list[etree._Element] | None, found: Found) -> list[MemberRef]:
-    if not elements:
-        return []
-    if len(elements) == 1:  # the common case, without a list comprehension
-        return [MemberRef(noun, elements[0], found, 0)]
-    return [MemberRef(noun, e, found, i) for i, e in enumerate(elements)]
 
 
 def texts_of(elements: list[etree._Element] | tuple[etree._Element, ...]) -> list[str]:
@@ -128,6 +143,7 @@ class Hints:
 
 
 _UNSURE = Hints()
+_KINDS: dict[str, Kind] = {}  # kind_of by type text
 
 
 class Facts:
@@ -135,48 +151,65 @@ class Facts:
 
     __slots__ = (
         "found", "element", "name", "ros1", "type", "kind", "kids", "type_element",
-        "type_text", "typed_ros1", "parsed", "own_loader", "members", "joints", "actuators",
-        "memo", "plain", "component", "group", "numbers", "_joint_interfaces",
-        "_actuator_interfaces",
+        "type_text", "typed_ros1", "own_loader", "members", "joints", "actuators", "plain",
+        "component", "numbers", "_joint_interfaces", "_actuator_interfaces",
     )
 
     def __init__(self, found: Found, hints: Hints = _UNSURE) -> None:
         element = found.element
-        components = hints.components
         kids = child_index(element)
-        joints = _refs("joint", kids.get("joint"), found)
-        actuators = _refs("actuator", kids.get("actuator"), found)
+        named = kids.get("joint")
+        if named is None:
+            joints: list[MemberRef] = []
+        elif len(named) == 1:  # the common case, without a list comprehension
+            joints = [MemberRef("joint", named[0], found, 0)]
+        else:
+            joints = [MemberRef("joint", e, found, i) for i, e in enumerate(named)]
+        named = kids.get("actuator")
+        if named is None:
+            actuators: list[MemberRef] = []
+        elif len(named) == 1:
+            actuators = [MemberRef("actuator", named[0], found, 0)]
+        else:
+            actuators = [MemberRef("actuator", e, found, i) for i, e in enumerate(named)]
         members = joints + actuators
         # What read_transmission reads first: the dialect (detect_dialect's first test: no
         # role attribute, no <plugin>, no enclosing <ros2_control> is ROS 1; else its own
         # answer), then the type (ros1_type: the <type> text, else the legacy attribute) and
         # the kind. tests/lint/test_facts.py holds these to the model, document by document.
+        components = hints.components
         if components or "plugin" in kids or (hints.roles and _role_attribute(members)):
             ros1 = detect_dialect(element, kids) == "ros1"
         else:
             ros1 = True
         typed = kids.get("type" if ros1 else "plugin")
-        self.type_element = typed[0] if typed else None
-        self.type_text = (typed[0].text or "").strip() if typed else None  # that element's
-        if ros1:
-            self.type = self.type_text or (element.get("type") or "").strip()
+        if typed is None:
+            self.type_element = self.type_text = None
+            text = (element.get("type") or "").strip() if ros1 else ""
         else:
-            self.type = self.type_text or ""
+            self.type_element = typed[0]
+            text = self.type_text = (typed[0].text or "").strip()  # that element's
+            if not text and ros1:
+                text = (element.get("type") or "").strip()
+        self.type = text
         self.found = found
         self.element = element
         self.name: str = element.get("name", "")  # as the model's Transmission.name
         self.ros1 = ros1
-        self.kind = kind_of(self.type)
+        kind = _KINDS.get(text)
+        if kind is None:
+            kind = kind_of(text)
+            if len(_KINDS) < 256:  # the few type texts documents use
+                _KINDS[text] = kind
+        self.kind = kind
         self.kids = kids
         # ros_control gets past parsing only with a <type> element (the pre-Hydro type=
         # attribute alone is skipped before any loader runs) and a name.
         self.typed_ros1 = ros1 and typed is not None
-        self.parsed = not ros1 or (self.typed_ros1 and bool(self.name.strip()))
-        self.own_loader = self.type.startswith(OWN_LOADER_FAMILIES)
+        self.own_loader = text.startswith(OWN_LOADER_FAMILIES)
         self.joints = joints
         self.actuators = actuators
         self.members = members
-        self.memo: dict[str, object] = {}  # answers a few rules share (see support)
         self.numbers: object = None  # the numbers its loader reads (see support.numbers_of)
         # The document holds no CDATA section: an element's text nodes are its ``text``.
         self.plain = hints.plain
@@ -184,8 +217,16 @@ class Facts:
         self._actuator_interfaces: bool | None = None
         # The enclosing <ros2_control> (none to look for when the document has none).
         self.component = ancestor(element, "ros2_control") if components else None
-        # Transmissions read by the same loader instance: ROS 1, or one <ros2_control>.
-        self.group: tuple[object, ...] = ("ros1",) if ros1 else ("ros2", self.component)
+
+    @property
+    def parsed(self) -> bool:
+        """Whether the loader gets past parsing it (ros_control: a ``<type>`` and a name)."""
+        return not self.ros1 or (self.typed_ros1 and bool(self.name.strip()))
+
+    @property
+    def group(self) -> tuple[object, ...]:
+        """Transmissions read by the same loader instance: ROS 1, or one ``<ros2_control>``."""
+        return ("ros1",) if self.ros1 else ("ros2", self.component)
 
     @property
     def transmission(self) -> Transmission:

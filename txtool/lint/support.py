@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+import functools
+import sys
+from collections.abc import Callable, Iterable, Iterator
 
 from lxml import etree
 
@@ -10,11 +12,30 @@ from txtool.dialects.read import Found
 from txtool.io.xmlio import is_xacro_element, local
 from txtool.lint.context import LintContext
 from txtool.lint.facts import OWN_LOADER_FAMILIES, Facts, MemberRef, facts_of
-from txtool.model.core import Member
+from txtool.lint.problem import Problem
+from txtool.model.core import TYPE_PREFIX, Member
 from txtool.model.numbers import C_SPACE, parse_ros2
 from txtool.model.robot import children
 
 KNOWN_FAMILIES: tuple[str, ...] = (*OWN_LOADER_FAMILIES, "franka_hw/")
+
+PREFIX = "hardware_interface/"
+# The interface names ros_control registers with pluginlib (see TX204).
+ROS1_INTERFACES: tuple[str, ...] = tuple(
+    PREFIX + name
+    for name in (
+        "JointStateInterface",
+        "PositionJointInterface",
+        "VelocityJointInterface",
+        "EffortJointInterface",
+        "BiDirectionalPositionJointInterface",
+        "BiDirectionalVelocityJointInterface",
+        "BiDirectionalEffortJointInterface",
+    )
+)
+REGISTERED = frozenset(ROS1_INTERFACES)  # for set tests of many names at once
+# ros2_control's spellings of ROS 1 tags (see TX303).
+ROS2_SPELLINGS = frozenset({"mechanical_reduction", "hardware_interface"})
 
 
 def members(found: Found) -> list[MemberRef]:
@@ -185,6 +206,22 @@ def coupled_groups(
             ("actuator", t.actuators, children(element, "actuator"), ROLES_ACTUATOR))
 
 
+def member_names(ctx: LintContext) -> tuple[list[str], list[str]]:
+    """The joint names, then the actuator names, of every transmission in document order
+    (found once per document: several rules ask)."""
+    known = ctx.memo.get("member names")
+    if known is None:
+        joints: list[str] = []
+        actuators: list[str] = []
+        for tx in ctx.facts:
+            for ref in tx.joints:
+                joints.append(ref.name)
+            for ref in tx.actuators:
+                actuators.append(ref.name)
+        known = ctx.memo["member names"] = (joints, actuators)
+    return known  # type: ignore[no-any-return]
+
+
 def label(found: Found) -> str:
     """``transmission 'name'`` for messages (or ``unnamed transmission``)."""
     return facts_of(found).label
@@ -213,3 +250,93 @@ def _robot_joints(ctx: LintContext) -> Iterator[tuple[Found, etree._Element, etr
             element = robot.get(ref.name)  # the model's name is the element's
             if element is not None:
                 yield tx.found, ref.element, element
+
+
+_SIMPLE = TYPE_PREFIX + "SimpleTransmission"
+_SMALLEST_NORMAL = sys.float_info.min
+
+
+Check = Callable[[LintContext], Iterable[Problem]]
+
+
+def per_transmission(check: Check) -> Check:
+    """Mark the check of a rule that looks at one transmission at a time: a document whose
+    transmissions are all :func:`canonical` gives it nothing to say, so it returns at once
+    (and the linter does not call it for such a document)."""
+
+    @functools.wraps(check)
+    def checked(ctx: LintContext) -> Iterable[Problem]:
+        if all_canonical(ctx):
+            return ()
+        return check(ctx)
+
+    checked.per_transmission = True  # type: ignore[attr-defined]
+    return checked
+
+
+def all_canonical(ctx: LintContext) -> bool:
+    """Whether every transmission of the document is :func:`canonical` (found once per
+    document): the rules about one transmission at a time then have nothing to say."""
+    known: bool | None = ctx.memo.get("canonical")
+    if known is None:
+        known = True
+        for tx in ctx.facts:  # noqa: SIM110 (a loop costs less than a generator, per document)
+            if not canonical(tx):
+                known = False
+                break
+        ctx.memo["canonical"] = known
+    return known
+
+
+def canonical(tx: Facts) -> bool:
+    """A ROS 1 ``SimpleTransmission`` written as ros_control reads it, in a document without
+    CDATA: a name, a ``<type>`` element of that exact text and no ``type=`` attribute; one
+    named joint whose ``<hardwareInterface>`` texts are registered names (TX110, TX204,
+    TX205, TX300, TX301 silent); one named actuator with a ``<mechanicalReduction>``; each
+    number the loader reads (that reduction, the joint's ``<offset>``) a single text that
+    parses as a normal, finite, plain number (TX104-TX106, TX111); no reduction or offset where
+    ros_control never reads it (TX400) and no ros2_control spelling (TX303). The other rules
+    about one transmission skip ROS 1 simple ones (``tests/lint/test_canonical.py`` runs
+    every rule with and without this answer)."""
+    if not tx.plain or tx.type_text != _SIMPLE or not tx.ros1:
+        return False
+    joints, actuators = tx.joints, tx.actuators
+    if len(joints) != 1 or len(actuators) != 1:
+        return False
+    joint, actuator = joints[0], actuators[0]
+    interfaces = joint.interfaces
+    if not interfaces or not REGISTERED.issuperset(interfaces):
+        return False
+    if not (tx.name.strip() and joint.name.strip() and actuator.name.strip()):
+        return False
+    kids, own, driven = tx.kids, joint.kids, actuator.kids
+    if "mechanicalReduction" in kids or "mechanicalReduction" in own or "offset" in driven:
+        return False
+    for spelling in ROS2_SPELLINGS:  # two lookups a dictionary cost less than a set operation
+        if spelling in kids or spelling in own or spelling in driven:
+            return False
+    if tx.element.get("type") is not None:
+        return False
+    reductions = driven.get("mechanicalReduction")
+    if reductions is None or not _normal_number(reductions[0]):
+        return False
+    offsets = own.get("offset")
+    return offsets is None or _normal_number(offsets[0])
+
+
+def _normal_number(element: etree._Element) -> bool:
+    """An element without children (so, without CDATA, one text node) whose text parses as a
+    plain, finite number of at least the smallest normal magnitude."""
+    if len(element):
+        return False
+    text = element.text
+    known = _NORMAL.get(text)  # type: ignore[arg-type]
+    if known is None:
+        value = parse_ros2(text)
+        known = value is not None and abs(value) >= _SMALLEST_NORMAL
+        if len(_NORMAL) < 1024:  # the few number texts documents repeat
+            _NORMAL[text] = known  # type: ignore[index]
+    return known
+
+
+_NORMAL: dict[str, bool] = {}  # _normal_number by text

@@ -90,9 +90,9 @@ def children(element: etree._Element, name: str) -> list[etree._Element]:
             if tag == name or tag.__class__ is str and tag.endswith("}" + name):
                 found.append(child)
         return found
-    index = _INDEXES.get(element)  # child_index() inlined: the linter's most frequent call
+    index = _INDEXES.get(element)  # the kept index looked up here: the linter's most frequent call
     if index is None:
-        index = _INDEXES[element] = _child_index(element)
+        index = child_index(element)
     return index.get(name, _NONE)
 
 
@@ -121,17 +121,13 @@ def child_index(element: etree._Element) -> dict[str, list[etree._Element]]:
 
     The lists are shared: do not change them.
     """
-    if _INDEXES is None:
-        return _child_index(element)
-    index = _INDEXES.get(element)
-    if index is None:
-        index = _INDEXES[element] = _child_index(element)
-    return index
-
-
-def _child_index(element: etree._Element) -> dict[str, list[etree._Element]]:
-    index: dict[str, list[etree._Element]] = {}
-    for child in element:
+    indexes = _INDEXES
+    if indexes is not None:
+        index = indexes.get(element)
+        if index is not None:
+            return index
+    index = {}
+    for child in element[:]:  # the list in one call: iterating sets up an iterator per element
         tag = child.tag
         if tag.__class__ is str:  # not a comment or processing instruction
             if tag[0] == "{":
@@ -141,6 +137,8 @@ def _child_index(element: etree._Element) -> dict[str, list[etree._Element]]:
                 index[tag] = [child]
             else:
                 found.append(child)
+    if indexes is not None:
+        indexes[element] = index
     return index
 
 
@@ -159,11 +157,12 @@ def joint_elements(
     not_urdf = ("ros2_control", "transmission")
     root_is_urdf = local(root) not in not_urdf
     for element in root.iter("{*}joint") if candidates is None else candidates:
-        if element.getparent() is root:  # where URDF joints stand: no walk needed
+        parent = element.getparent()
+        if parent is root:  # where URDF joints stand: no walk needed
             if not root_is_urdf:
                 continue
-        elif _inside(element, not_urdf):
-            continue
+        elif parent is not None and (parent.tag in not_urdf or _inside(element, not_urdf)):
+            continue  # the first test: a transmission's or component's own joint
         name = element.get("name")
         if name is not None and element.get("type") is not None:
             joints[name] = element

@@ -21,8 +21,6 @@ Passing example::
 
 from __future__ import annotations
 
-from collections.abc import Iterator
-
 from txtool.io.xmlio import LEADING_SPACE_DECLARATION
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
@@ -34,19 +32,19 @@ SEVERITY = "warning"
 FIXABLE = False
 
 
-def check(ctx: LintContext) -> Iterator[Problem]:
+def check(ctx: LintContext) -> list[Problem]:
     data = scanned_form(ctx.source.data)  # UTF-8, lines where libxml2 counts them
     match = LEADING_SPACE_DECLARATION.match(data)
     if match is None:
-        return
+        return []
     index = match.end(1)
     line = data.count(b"\n", 0, index) + 1
     column = index - (data.rfind(b"\n", 0, index) + 1) + 1
-    yield Problem(
+    return [Problem(
         ctx.source.path,
         line,
         column,
         CODE,
         "whitespace before the XML declaration: tinyxml2 (urdfdom, ros2_control) skips it and "
         "loads the file, but strict XML parsers (xacro's expat, libxml2) reject it; remove it",
-    )
+    )]

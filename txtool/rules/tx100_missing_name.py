@@ -29,6 +29,7 @@ from lxml import etree
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
+from txtool.lint.support import per_transmission
 
 CODE = "TX100"
 NAME = "missing-name"
@@ -36,6 +37,7 @@ SEVERITY = "error"
 FIXABLE = False
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         if tx.name.strip():

@@ -30,6 +30,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
+from txtool.lint.support import per_transmission
 
 CODE = "TX101"
 NAME = "missing-type"
@@ -37,6 +38,7 @@ SEVERITY = "error"
 FIXABLE = False
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         element = tx.type_element

@@ -39,7 +39,7 @@ from typing import Any
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import KNOWN_FAMILIES
+from txtool.lint.support import KNOWN_FAMILIES, per_transmission
 from txtool.model.core import STANDARD_TYPES, TYPE_PREFIX
 
 CODE = "TX102"
@@ -64,6 +64,7 @@ def options_model() -> Any:
     return Options
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
     options = ctx.option(CODE)
     families = KNOWN_FAMILIES + tuple(options.known_families if options else ())

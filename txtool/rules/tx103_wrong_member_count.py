@@ -35,7 +35,7 @@ from txtool.dialects.read import Found, enclosing_component
 from txtool.lint.context import LintContext
 from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
-from txtool.lint.support import label, opaque
+from txtool.lint.support import label, opaque, per_transmission
 
 CODE = "TX103"
 NAME = "wrong-member-count"
@@ -43,6 +43,7 @@ SEVERITY = "error"
 FIXABLE = False
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         if tx.kind == "other":

@@ -39,7 +39,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import opaque
+from txtool.lint.support import opaque, per_transmission
 
 CODE = "TX104"
 NAME = "missing-reduction"
@@ -47,6 +47,7 @@ SEVERITY = "error"
 FIXABLE = False
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         if not tx.typed_ros1 or tx.kind == "other":

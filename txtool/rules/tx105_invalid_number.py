@@ -44,7 +44,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import numbers_of
+from txtool.lint.support import numbers_of, per_transmission
 from txtool.model.numbers import C_SPACE, parse_ros2, stod
 
 CODE = "TX105"
@@ -53,6 +53,7 @@ SEVERITY = "error"
 FIXABLE = False
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         for number in numbers_of(tx):

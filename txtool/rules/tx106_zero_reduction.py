@@ -25,7 +25,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import numbers_of
+from txtool.lint.support import numbers_of, per_transmission
 from txtool.model.numbers import parse_ros1
 
 CODE = "TX106"
@@ -34,6 +34,7 @@ SEVERITY = "error"
 FIXABLE = False
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         ros1 = tx.ros1

@@ -25,7 +25,7 @@ Passing example::
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 
 from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
@@ -38,10 +38,14 @@ SEVERITY = "warning"
 FIXABLE = False
 
 
-def check(ctx: LintContext) -> Iterator[Problem]:
+def check(ctx: LintContext) -> Iterable[Problem]:
     names = [tx.name for tx in ctx.facts]
     if len(set(names)) == len(names):
-        return  # every name differs (the keys below hold the name): nothing is repeated
+        return ()  # every name differs (the keys below hold the name): nothing is repeated
+    return _repeated(ctx)
+
+
+def _repeated(ctx: LintContext) -> Iterator[Problem]:
     first: dict[tuple[object, ...], Found] = {}
     for tx in ctx.facts:
         name = tx.name

@@ -27,12 +27,12 @@ Passing example::
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 
 from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import label, scope
+from txtool.lint.support import label, member_names, scope
 
 CODE = "TX109"
 NAME = "shared-member"
@@ -40,9 +40,13 @@ SEVERITY = "warning"
 FIXABLE = False
 
 
-def check(ctx: LintContext) -> Iterator[Problem]:
+def check(ctx: LintContext) -> Iterable[Problem]:
     if _all_distinct(ctx):
-        return  # the common case: no joint or actuator is named twice in the document
+        return ()  # the common case: no joint or actuator is named twice in the document
+    return _shared(ctx)
+
+
+def _shared(ctx: LintContext) -> Iterator[Problem]:
     owner: dict[tuple[object, ...], Found] = {}
     names: set[tuple[object, ...]] = set()
     for tx in ctx.facts:
@@ -80,10 +84,5 @@ def check(ctx: LintContext) -> Iterator[Problem]:
 
 def _all_distinct(ctx: LintContext) -> bool:
     """No (noun, name) repeats across the transmissions: no key below can be met twice."""
-    seen: set[tuple[str, str]] = set()
-    count = 0
-    for tx in ctx.facts:
-        for ref in tx.members:
-            seen.add((ref.noun, ref.name))
-            count += 1
-    return len(seen) == count
+    joints, actuators = member_names(ctx)
+    return len(set(joints)) == len(joints) and len(set(actuators)) == len(actuators)

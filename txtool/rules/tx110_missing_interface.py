@@ -35,7 +35,7 @@ from collections.abc import Iterator
 from txtool.lint import gazebo
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import opaque
+from txtool.lint.support import opaque, per_transmission
 
 CODE = "TX110"
 NAME = "missing-interface"
@@ -43,6 +43,7 @@ SEVERITY = "error"
 FIXABLE = False
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         if not tx.typed_ros1 or tx.own_loader:

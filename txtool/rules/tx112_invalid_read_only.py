@@ -22,7 +22,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import label
+from txtool.lint.support import label, per_transmission
 
 CODE = "TX112"
 NAME = "invalid-read-only"
@@ -37,6 +37,7 @@ def valid_bool(text: str) -> bool:
     return text.isascii() and text.lower() in _BOOLEANS
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         if tx.ros1:

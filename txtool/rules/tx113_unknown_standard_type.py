@@ -33,6 +33,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
+from txtool.lint.support import per_transmission
 from txtool.model.core import TYPE_PREFIX
 from txtool.rules.tx102_unknown_type import STANDARD_NAMES, nearest_standard
 
@@ -42,6 +43,7 @@ SEVERITY = "error"
 FIXABLE = False
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         text = tx.type_text

@@ -46,7 +46,7 @@ from lxml import etree
 from txtool.lint.context import LintContext
 from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
-from txtool.lint.support import children, opaque
+from txtool.lint.support import children, member_names, opaque
 
 CODE = "TX200"
 NAME = "unknown-joint"
@@ -74,7 +74,13 @@ def _as_pattern(text: str) -> re.Pattern[str]:
     return re.compile(".*".join(re.escape(part) for part in parts), re.DOTALL)
 
 
-def check(ctx: LintContext) -> Iterator[Problem]:
+def check(ctx: LintContext) -> Iterable[Problem]:
+    if not ctx.hints.components and (not ctx.is_robot or _all_known(ctx)):
+        return ()  # the common case: no component, every joint named is the robot's
+    return _unknown(ctx)
+
+
+def _unknown(ctx: LintContext) -> Iterator[Problem]:
     robot_joints = Names(ctx.joint_elements) if ctx.is_robot else None
     components: dict[etree._Element, tuple[str, Names] | None] = {}
     for tx in ctx.facts:
@@ -101,6 +107,11 @@ def check(ctx: LintContext) -> Iterator[Problem]:
                     f"joint '{name}' of {tx.label} is not a <joint> of the robot: the "
                     "loader has no joint to bind it to",
                 )
+
+
+def _all_known(ctx: LintContext) -> bool:
+    """Every joint name of every transmission is one of the robot's joints, as written."""
+    return ctx.joint_elements.keys() >= set(member_names(ctx)[0])
 
 
 def _component_joints(

@@ -33,7 +33,7 @@ Passing example: the same with ``type="revolute"`` (and its ``<limit>``).
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 
 from lxml import etree
 
@@ -48,7 +48,13 @@ SEVERITY = "error"
 FIXABLE = False
 
 
-def check(ctx: LintContext) -> Iterator[Problem]:
+def check(ctx: LintContext) -> Iterable[Problem]:
+    if not _any_fixed(ctx.joint_elements):
+        return ()  # the common case: no joint of the robot is fixed
+    return _fixed(ctx)
+
+
+def _fixed(ctx: LintContext) -> Iterator[Problem]:
     for found, joint, robot in robot_joints_of_transmissions(ctx):
         if robot.get("type") != "fixed":  # JointInfo.is_fixed, without reading the joint
             continue
@@ -61,6 +67,13 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         yield ctx.problem(
             CODE, joint, f"joint '{info.name}' of {label(found)} is a fixed joint: {effect}"
         )
+
+
+def _any_fixed(joints: dict[str, etree._Element]) -> bool:
+    for element in joints.values():  # noqa: SIM110 (a loop costs less than a generator)
+        if element.get("type") == "fixed":
+            return True
+    return False
 
 
 def _declared_by_component(transmission: etree._Element, joint: str) -> bool:

@@ -33,7 +33,7 @@ Passing example: the transmission names ``finger_left``.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
@@ -45,9 +45,13 @@ SEVERITY = "warning"
 FIXABLE = False
 
 
-def check(ctx: LintContext) -> Iterator[Problem]:
+def check(ctx: LintContext) -> Iterable[Problem]:
     if not ctx.hints.mimics:
-        return  # no <mimic> in the document
+        return ()  # no <mimic> in the document
+    return _mimics(ctx)
+
+
+def _mimics(ctx: LintContext) -> Iterator[Problem]:
     for found, joint, robot in robot_joints_of_transmissions(ctx):
         if next(robot.iterchildren("{*}mimic"), None) is None:
             continue  # no <mimic>: nothing to read

@@ -70,7 +70,16 @@ from lxml import etree
 from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import MemberRef, children, label, members
+from txtool.lint.support import (
+    PREFIX,
+    REGISTERED,
+    ROS1_INTERFACES,
+    MemberRef,
+    children,
+    label,
+    members,
+    per_transmission,
+)
 from txtool.rules.tx203_interface_mismatch import component_joint, declared_interfaces
 
 CODE = "TX204"
@@ -78,20 +87,6 @@ NAME = "unknown-interface"
 SEVERITY = "warning"
 FIXABLE = False
 
-PREFIX = "hardware_interface/"
-ROS1_INTERFACES: tuple[str, ...] = tuple(
-    PREFIX + name
-    for name in (
-        "JointStateInterface",
-        "PositionJointInterface",
-        "VelocityJointInterface",
-        "EffortJointInterface",
-        "BiDirectionalPositionJointInterface",
-        "BiDirectionalVelocityJointInterface",
-        "BiDirectionalEffortJointInterface",
-    )
-)
-REGISTERED = frozenset(ROS1_INTERFACES)  # for set tests of many names at once
 UNPREFIXED = frozenset(name.removeprefix(PREFIX) for name in ROS1_INTERFACES)
 ROS2_INTERFACES: dict[str, tuple[str, ...]] = {
     "simple": ("position", "velocity", "effort", "torque", "force", "absolute_position"),
@@ -106,6 +101,7 @@ _ROS1_TO_ROS2 = {
 }
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         if tx.kind == "other":

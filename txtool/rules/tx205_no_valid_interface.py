@@ -66,7 +66,7 @@ from txtool.lint import gazebo
 from txtool.lint.context import LintContext
 from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
-from txtool.lint.support import label, opaque
+from txtool.lint.support import label, opaque, per_transmission
 from txtool.rules.tx204_unknown_interface import (
     PREFIX,
     REGISTERED,
@@ -83,6 +83,7 @@ SEVERITY = "error"
 FIXABLE = False
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         if tx.kind == "other":

@@ -49,7 +49,7 @@ from txtool.dialects.read import detect_dialect, ros1_type, text_of, transmissio
 from txtool.io.xmlio import local
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import OWN_LOADER_FAMILIES, children, label
+from txtool.lint.support import OWN_LOADER_FAMILIES, children, label, per_transmission
 from txtool.rules.tx204_unknown_interface import PREFIX, UNPREFIXED, unprefixed_registered
 
 CODE = "TX300"
@@ -69,6 +69,7 @@ def _unprefixed(
                 yield member, element, text
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         if not tx.ros1 or tx.own_loader:

@@ -63,6 +63,7 @@ from txtool.lint.support import (
     children,
     is_xacro,
     label,
+    per_transmission,
 )
 from txtool.rules.tx302_legacy_type_attribute import insert_child
 
@@ -91,6 +92,7 @@ def _bare_joints(transmission: etree._Element) -> list[etree._Element]:
     ]
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         if not tx.ros1 or tx.own_loader or not tx.actuator_interfaces:

@@ -54,7 +54,7 @@ from lxml import etree
 from txtool.dialects.read import Found, detect_dialect, first_child_text, transmission_elements
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import children, label
+from txtool.lint.support import children, label, per_transmission
 
 CODE = "TX302"
 NAME = "legacy-type-attribute"
@@ -69,6 +69,7 @@ def _type_element_text(transmission: etree._Element) -> str:
     return (first_child_text(transmission, "type") or "").strip()
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         attribute = tx.element.get("type")

@@ -43,7 +43,7 @@ from txtool.dialects.read import Found
 from txtool.io.xmlio import local
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import children, label
+from txtool.lint.support import ROS2_SPELLINGS, children, label, per_transmission
 from txtool.model.robot import child_index
 
 CODE = "TX303"
@@ -52,15 +52,15 @@ SEVERITY = "error"
 FIXABLE = False
 
 _ROS1_SPELLINGS = frozenset({"mechanicalReduction", "hardwareInterface", "hardware_interface"})
-_ROS2_SPELLINGS = frozenset({"mechanical_reduction", "hardware_interface"})
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         if tx.ros1:
-            if _ROS2_SPELLINGS.isdisjoint(tx.kids):
+            if ROS2_SPELLINGS.isdisjoint(tx.kids):
                 for ref in tx.members:
-                    if not _ROS2_SPELLINGS.isdisjoint(ref.kids):
+                    if not ROS2_SPELLINGS.isdisjoint(ref.kids):
                         break
                 else:
                     continue  # the common case: say nothing, build no message

@@ -29,7 +29,7 @@ Passing example: the transmission, in the ROS 2 form, inside ``<ros2_control>``.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 
 from lxml import etree
 
@@ -44,9 +44,13 @@ SEVERITY = "warning"
 FIXABLE = False
 
 
-def check(ctx: LintContext) -> Iterator[Problem]:
-    if not ctx.components:
-        return
+def check(ctx: LintContext) -> Iterable[Problem]:
+    if not ctx.hints.components:
+        return ()  # no <ros2_control> in the document
+    return _outside(ctx)
+
+
+def _outside(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         found = tx.found
         if tx.component is not None or _in_macro(ctx, found.element):

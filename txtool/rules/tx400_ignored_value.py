@@ -41,6 +41,7 @@ from lxml import etree
 from txtool.lint.context import LintContext
 from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
+from txtool.lint.support import per_transmission
 
 CODE = "TX400"
 NAME = "ignored-value"
@@ -50,6 +51,7 @@ FIXABLE = False
 Finding = tuple[etree._Element, str]
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         if tx.kind == "other" or (tx.ros1 and _quiet_ros1(tx)):

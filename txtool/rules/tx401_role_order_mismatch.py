@@ -40,7 +40,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import coupled_groups, label
+from txtool.lint.support import coupled_groups, label, per_transmission
 from txtool.model.core import Member
 
 CODE = "TX401"
@@ -49,6 +49,7 @@ SEVERITY = "error"
 FIXABLE = False
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         if tx.ros1 or tx.kind not in ("differential", "four_bar"):

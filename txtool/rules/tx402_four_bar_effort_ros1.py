@@ -29,6 +29,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
+from txtool.lint.support import per_transmission
 
 CODE = "TX402"
 NAME = "four-bar-effort-ros1"
@@ -36,6 +37,7 @@ SEVERITY = "info"
 FIXABLE = False
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         if not tx.ros1 or tx.kind != "four_bar":

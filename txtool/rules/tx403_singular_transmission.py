@@ -44,7 +44,7 @@ from typing import Any
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import label
+from txtool.lint.support import label, per_transmission
 from txtool.model.core import Transmission
 
 CODE = "TX403"
@@ -68,6 +68,7 @@ def options_model() -> Any:
     return Options
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
     # A loadable simple map is one finite, non-zero number: never singular. The linear algebra
     # is loaded for documents with other standard transmissions only.

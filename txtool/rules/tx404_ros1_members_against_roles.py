@@ -40,7 +40,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import coupled_groups, label
+from txtool.lint.support import coupled_groups, label, per_transmission
 
 CODE = "TX404"
 NAME = "ros1-members-against-roles"
@@ -48,6 +48,7 @@ SEVERITY = "error"
 FIXABLE = False
 
 
+@per_transmission
 def check(ctx: LintContext) -> Iterator[Problem]:
     for tx in ctx.facts:
         if not tx.ros1 or tx.kind not in ("differential", "four_bar"):
