@@ -10,7 +10,7 @@ from lxml import etree
 
 from txtool.dialects.read import Found, transmission_elements
 from txtool.io.xmlio import Source, local
-from txtool.lint.facts import Facts, Hints, LintFound
+from txtool.lint.facts import Facts, Hints, LintFound, facts_of
 from txtool.lint.problem import Problem, Severity
 from txtool.lint.text import scanned_form
 from txtool.model.robot import (
@@ -82,13 +82,7 @@ class LintContext:
     def facts(self) -> list[Facts]:
         """What the rules read of each transmission (see :mod:`txtool.lint.facts`), in order."""
         hints = self.hints
-        facts = []
-        for found in self.found:  # facts_of inlined: once per transmission
-            known = found.memo.get("facts")
-            if known is None:
-                known = found.memo["facts"] = Facts(found, hints)
-            facts.append(known)
-        return facts
+        return [facts_of(found, hints) for found in self.found]
 
     @cached_property
     def hints(self) -> Hints:

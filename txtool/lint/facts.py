@@ -21,10 +21,10 @@ from lxml import etree
 
 from txtool.dialects.read import Found, detect_dialect, read_transmission
 from txtool.model.core import kind_of
-from txtool.model.robot import ancestor, child_index
+from txtool.model.robot import ancestor, child_index, index_children
 
 if TYPE_CHECKING:
-    from txtool.model.core import Kind, Member, Transmission
+    from txtool.model.core import Member, Transmission
     from txtool.model.robot import Component
 
 # Transmission families with their own loaders (not ros_control's transmission_interface):
@@ -73,20 +73,9 @@ class MemberRef:
         self.noun = noun  # "joint" or "actuator"
         self.element = element
         self.name: str = element.get("name", "")  # as the model's Member.name
-        # Its children by local name (child_index's, built here without a call: most members
-        # have one or two children).
-        kids: dict[str, list[etree._Element]] = {}
-        for child in element[:]:
-            tag = child.tag
-            if tag.__class__ is str:  # not a comment or processing instruction
-                if tag[0] == "{":
-                    tag = tag.rpartition("}")[2]
-                same = kids.get(tag)
-                if same is None:
-                    kids[tag] = [child]
-                else:
-                    same.append(child)
-        self.kids = kids
+        # Its children by local name, not kept with the element (most members have one or
+        # two children, and few rules ask for them again).
+        kids = self.kids = index_children(element)
         # The non-empty <hardwareInterface> texts, stripped (for ROS 1, the model's
         # Member.interfaces): read here, as most rules ask for them.
         named = kids.get("hardwareInterface")
@@ -143,7 +132,6 @@ class Hints:
 
 
 _UNSURE = Hints()
-_KINDS: dict[str, Kind] = {}  # kind_of by type text
 
 
 class Facts:
@@ -196,12 +184,7 @@ class Facts:
         self.element = element
         self.name: str = element.get("name", "")  # as the model's Transmission.name
         self.ros1 = ros1
-        kind = _KINDS.get(text)
-        if kind is None:
-            kind = kind_of(text)
-            if len(_KINDS) < 256:  # the few type texts documents use
-                _KINDS[text] = kind
-        self.kind = kind
+        self.kind = kind_of(text)
         self.kids = kids
         # ros_control gets past parsing only with a <type> element (the pre-Hydro type=
         # attribute alone is skipped before any loader runs) and a name.

@@ -16,7 +16,7 @@ import dataclasses
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from functools import cache
+from functools import cache, lru_cache
 from typing import TYPE_CHECKING, Any, Literal, TypeVar
 
 if TYPE_CHECKING:
@@ -214,6 +214,7 @@ def json_schema(model: type) -> dict[str, Any]:
     return adapter(model).json_schema()  # type: ignore[no-any-return]
 
 
+@lru_cache(maxsize=256)  # the few type texts documents use: each transmission asks
 def kind_of(type_string: str) -> Kind:
     """Classify a type string; custom and misspelt types are ``other``."""
     text = type_string.strip()

@@ -117,16 +117,23 @@ def indexed_children() -> Iterator[None]:
 
 
 def child_index(element: etree._Element) -> dict[str, list[etree._Element]]:
-    """Child elements by local name, in document order: one pass for many lookups.
+    """Child elements by local name, in document order: one pass for many lookups (kept
+    inside :func:`indexed_children`).
 
     The lists are shared: do not change them.
     """
     indexes = _INDEXES
-    if indexes is not None:
-        index = indexes.get(element)
-        if index is not None:
-            return index
-    index = {}
+    if indexes is None:
+        return index_children(element)
+    index = indexes.get(element)
+    if index is None:
+        index = indexes[element] = index_children(element)
+    return index
+
+
+def index_children(element: etree._Element) -> dict[str, list[etree._Element]]:
+    """Child elements by local name, in document order, worked out now (never kept)."""
+    index: dict[str, list[etree._Element]] = {}
     for child in element[:]:  # the list in one call: iterating sets up an iterator per element
         tag = child.tag
         if tag.__class__ is str:  # not a comment or processing instruction
@@ -137,8 +144,6 @@ def child_index(element: etree._Element) -> dict[str, list[etree._Element]]:
                 index[tag] = [child]
             else:
                 found.append(child)
-    if indexes is not None:
-        indexes[element] = index
     return index
 
 
