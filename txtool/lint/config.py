@@ -15,7 +15,7 @@ import sys
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 from txtool.io.xmlio import XacroOptions
 from txtool.lint.config_files import (  # noqa: F401 - this module's names before the split
@@ -105,7 +105,7 @@ class Settings:
                 args.update(extra)
         if not disabled and args == dict(self.xacro.args):
             return self
-        xacro = dataclasses.replace(self.xacro, args=tuple(args.items()))
+        xacro = self.xacro._replace(args=tuple(args.items()))
         return dataclasses.replace(self, enabled=self.enabled - disabled, xacro=xacro)
 
 
@@ -240,8 +240,7 @@ def _options(rule: Any, values: dict[str, Any], origin: str, where: str) -> Any:
         raise ConfigError(f"{origin}: key '{key}': {reason}") from None
 
 
-@dataclass(frozen=True)
-class Overrides:
+class Overrides(NamedTuple):
     """Command-line options that override or extend the configuration."""
 
     select: tuple[str, ...] | None = None
