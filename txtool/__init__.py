@@ -24,7 +24,6 @@ if _signals.started_as_command():
     _signals.exit_on_signals()
 
 from collections.abc import Iterable, Mapping, Sequence  # noqa: E402
-from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 __version__ = "0.1.0"
@@ -33,6 +32,7 @@ if TYPE_CHECKING:
     from txtool.io.xmlio import InputError, Source, XacroOptions
     from txtool.lint.problem import Problem
     from txtool.model.core import Dialect, Transmission
+    from txtool.transform.api import Conversion
 
 __all__ = [
     "Conversion",
@@ -47,6 +47,7 @@ __all__ = [
 ]
 
 _LAZY = {
+    "Conversion": "txtool.transform.api",
     "InputError": "txtool.io.xmlio",
     "Problem": "txtool.lint.problem",
     "Transmission": "txtool.model.core",
@@ -115,23 +116,6 @@ def read(
     return [found.transmission for found in read_source(source)]
 
 
-@dataclass(frozen=True)
-class Conversion:
-    """What :func:`convert` made: the document's new ``text`` (``data`` in its own encoding),
-    what could not be carried over (``losses``: the CLI exits 1 on them unless told to allow
-    them) and what a reader should know (``notes``)."""
-
-    text: str
-    data: bytes
-    losses: list[str] = field(default_factory=list)
-    notes: list[str] = field(default_factory=list)
-    converted: int = 0
-
-    @property
-    def lossless(self) -> bool:
-        return not self.losses
-
-
 def convert(
     source: str,
     *,
@@ -144,6 +128,7 @@ def convert(
     """Convert a file or XML text to ``to`` (``"ros1"``, ``"ros2-p1"`` or ``"ros2-p2"``) as
     ``txtool convert`` does, keeping every byte it need not change; nothing is written."""
     from txtool.io.encodings import document_text
+    from txtool.transform.api import Conversion
     from txtool.transform.convert import convert_source
 
     loaded = _source(source, expand, _xacro_options(xacro_args, pkg_dirs, pkg_paths))

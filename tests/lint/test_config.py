@@ -26,16 +26,32 @@ def test_pyproject_table_is_found_upward_from_the_file(validate, tmp_path):
     assert code == 0 and "TX106" not in out and "TX102" in out
 
 
-def test_each_file_gets_its_own_folders_configuration_and_a_link_its_targets(validate, tmp_path):
+def quiet_loud_and_a_link(tmp_path):
+    """A folder ignoring TX106 (quiet), one that does not (loud) holding a link to quiet's robot."""
     write(tmp_path / "quiet" / ".txtool.toml", 'ignore = ["TX106"]\n')
     quiet = write(tmp_path / "quiet" / "robot.urdf", BROKEN)
     loud = write(tmp_path / "loud" / "robot.urdf", BROKEN)
-    (tmp_path / "loud" / "linked.urdf").symlink_to(quiet)
-    find_config.cache_clear()
     linked = tmp_path / "loud" / "linked.urdf"
+    linked.symlink_to(quiet)
+    find_config.cache_clear()
+    return quiet, loud, linked
+
+
+def tx106_paths(out):
+    return [line.split(":")[0] for line in out.splitlines() if "TX106" in line]
+
+
+def test_each_file_gets_its_own_folders_configuration_and_a_link_its_targets(validate, tmp_path):
+    quiet, loud, linked = quiet_loud_and_a_link(tmp_path)
     code, out, _ = validate(str(linked), str(loud), str(quiet))  # quiet: the same file again
-    tx106 = [line.split(":")[0] for line in out.splitlines() if "TX106" in line]
-    assert code == 1 and tx106 == [str(loud)]
+    assert code == 1 and tx106_paths(out) == [str(loud)]
+    assert "in 2 files" in out
+
+
+def test_a_link_found_in_a_folder_walk_gets_its_targets_configuration(validate, tmp_path):
+    _, loud, _ = quiet_loud_and_a_link(tmp_path)
+    code, out, _ = validate(str(loud.parent))
+    assert code == 1 and tx106_paths(out) == [str(loud)]
     assert "in 2 files" in out
 
 

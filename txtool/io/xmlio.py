@@ -14,7 +14,7 @@ import stat
 import sys
 import threading
 from contextvars import ContextVar
-from dataclasses import dataclass
+from typing import NamedTuple
 
 from lxml import etree
 
@@ -330,8 +330,7 @@ class EntityRefused(XMLSyntax):
     """A document that declares entities, or refers to entities of a DTD (never loaded)."""
 
 
-@dataclass(frozen=True)
-class XacroOptions:
+class XacroOptions(NamedTuple):
     args: tuple[tuple[str, str], ...] = ()
     pkg_dirs: tuple[str, ...] = ()
     pkg_paths: tuple[tuple[str, str], ...] = ()

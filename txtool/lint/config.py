@@ -15,7 +15,7 @@ import sys
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 from txtool.io.xmlio import XacroOptions
 from txtool.lint.config_files import (  # noqa: F401 - this module's names before the split
@@ -105,7 +105,7 @@ class Settings:
                 args.update(extra)
         if not disabled and args == dict(self.xacro.args):
             return self
-        xacro = dataclasses.replace(self.xacro, args=tuple(args.items()))
+        xacro = self.xacro._replace(args=tuple(args.items()))
         return dataclasses.replace(self, enabled=self.enabled - disabled, xacro=xacro)
 
 
@@ -240,8 +240,7 @@ def _options(rule: Any, values: dict[str, Any], origin: str, where: str) -> Any:
         raise ConfigError(f"{origin}: key '{key}': {reason}") from None
 
 
-@dataclass(frozen=True)
-class Overrides:
+class Overrides(NamedTuple):
     """Command-line options that override or extend the configuration."""
 
     select: tuple[str, ...] | None = None
@@ -299,18 +298,20 @@ class SettingsCache:
         check_overrides(overrides)
         no_xacro_from_environment()  # a bad value stops the run before any file is read
 
-    def for_file(self, path: str) -> Settings:
+    def for_file(self, path: str, is_link: bool | None = None) -> Settings:
+        """The settings for ``path``; ``is_link`` says whether it is a symbolic link when a
+        folder walk already knows (None: asked here)."""
         known = self._by_path.get(path)
         if known is None:
-            known = self._by_path[path] = self._for_file(path)
+            known = self._by_path[path] = self._for_file(path, is_link)
         return known
 
-    def _for_file(self, path: str) -> Settings:
+    def _for_file(self, path: str, is_link: bool | None) -> Settings:
         if self.explicit is not None:
             config_path: Path | None = self.explicit
         elif path == "-":
             config_path = find_config(Path.cwd())
-        elif os.path.islink(path):
+        elif os.path.islink(path) if is_link is None else is_link:
             config_path = find_config(Path(path).resolve().parent)  # where the file really is
         else:
             config_path = self._config_of_folder(absolute_folder(path, self._absolute))
@@ -318,12 +319,12 @@ class SettingsCache:
             self._by_file[config_path] = self._settings(config_path)
         return self._by_file[config_path].for_path(path)
 
-    def excluded(self, path: str, is_folder: bool) -> bool:
+    def excluded(self, path: str, is_folder: bool, is_link: bool | None = None) -> bool:
         """Whether a folder walk passes over ``path``: the command line's ``--exclude`` and
         ``--extend-exclude`` (relative to the current folder), then its configuration's."""
         if self._cli_excludes.matches(path, is_folder):
             return True
-        return self.for_file(path).excludes.matches(path, is_folder)
+        return self.for_file(path, is_link).excludes.matches(path, is_folder)
 
     def respects_gitignore(self, folder: str) -> bool:
         return self.for_file(os.path.join(folder, "-.urdf")).respect_gitignore

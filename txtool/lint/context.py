@@ -2,9 +2,8 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from functools import cached_property
-from typing import TYPE_CHECKING, Any
+from collections.abc import Callable, Mapping
+from typing import TYPE_CHECKING, Any, Generic, TypeVar, overload
 
 from lxml import etree
 
@@ -24,6 +23,36 @@ from txtool.model.robot import (
 if TYPE_CHECKING:
     from txtool.io.locate import Locator, Position
     from txtool.lint.gazebo import Sim
+
+
+_T = TypeVar("_T")
+
+
+class lazy(Generic[_T]):  # noqa: N801 - a decorator, lower case like functools.cached_property
+    """``functools.cached_property`` without its lock: the value is computed on first access and
+    stored in the instance's ``__dict__``, where later reads find it without calling anything.
+
+    Python 3.11's version takes a lock on every first access (3.12 dropped it), which costs
+    validate of many small files measurably; a LintContext belongs to one thread.
+    """
+
+    def __init__(self, compute: Callable[[Any], _T]) -> None:
+        self.compute = compute
+        self.name = compute.__name__
+        self.__doc__ = compute.__doc__
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.name = name
+
+    @overload
+    def __get__(self, instance: None, owner: type | None = None) -> lazy[_T]: ...
+    @overload
+    def __get__(self, instance: object, owner: type | None = None) -> _T: ...
+    def __get__(self, instance: object | None, owner: type | None = None) -> Any:
+        if instance is None:
+            return self
+        value = instance.__dict__[self.name] = self.compute(instance)
+        return value
 
 
 _WALKED = ("transmission", "joint", "ros2_control")
@@ -70,7 +99,7 @@ class LintContext:
         for found in self.found:
             found.memo.clear()
 
-    @cached_property
+    @lazy
     def _walked(self) -> dict[str, list[etree._Element]]:
         """One walk of the tree for the elements rules look for at any depth."""
         # One walk per name: lxml matches tags in C, and reading each element's tag in Python
@@ -78,13 +107,13 @@ class LintContext:
         root = self.source.root
         return {name: list(root.iter(tag)) for name, tag in _WALKED_TAGS.items()}
 
-    @cached_property
+    @lazy
     def facts(self) -> list[Facts]:
         """What the rules read of each transmission (see :mod:`txtool.lint.facts`), in order."""
         hints = self.hints
         return [facts_of(found, hints) for found in self.found]
 
-    @cached_property
+    @lazy
     def hints(self) -> Hints:
         """What the bytes rule out: without a CDATA section an element's text nodes are its
         text; without the word, no role attribute and no ``<mimic>`` element (tag and attribute
@@ -98,26 +127,26 @@ class LintContext:
             mimics=form is None or b"mimic" in form,
         )
 
-    @cached_property
+    @lazy
     def locator(self) -> Locator:
         from txtool.io.locate import Locator  # only a document with findings needs positions
 
         return Locator(self.source)
 
-    @cached_property
+    @lazy
     def joint_elements(self) -> dict[str, etree._Element]:
         """The robot's ``<joint>`` elements by name (see :attr:`joints`)."""
         return joint_elements(self.source.root, self._walked["joint"])
 
-    @cached_property
+    @lazy
     def joints(self) -> Mapping[str, JointInfo]:
         return JointsOnDemand(self.joint_elements, limits=False)
 
-    @cached_property
+    @lazy
     def components(self) -> list[Component]:
         return components(self.source.root, self._walked["ros2_control"])
 
-    @cached_property
+    @lazy
     def is_robot(self) -> bool:
         return (not self.literal and local(self.source.root) == "robot"
                 and bool(self.joint_elements))
@@ -148,7 +177,7 @@ class LintContext:
         return Problem(self.source.path, where.line, where.column, code, message, fixable=fixable,
                        loader_severity=loader_severity)
 
-    @cached_property
+    @lazy
     def gazebo_sim(self) -> Sim | None:
         """The ``<plugin>`` that loads this robot into Gazebo through gazebo_ros_control, with
         a RobotHWSim whose rules are known, if any (see :mod:`txtool.lint.gazebo`)."""

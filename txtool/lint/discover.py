@@ -14,6 +14,7 @@ from __future__ import annotations
 import os
 import stat
 from collections.abc import Callable, Iterable, Iterator
+from operator import attrgetter
 from pathlib import Path
 
 from lxml import etree
@@ -25,8 +26,9 @@ from txtool.lint.patterns import Excludes, absolute_folder
 SUFFIXES = (".urdf", ".xacro")  # ``.urdf.xacro`` ends with ``.xacro``
 XML_ROOTS = frozenset({"robot", "ros2_control", "transmission"})
 
-# (path, is_folder) -> True when the path found in a folder walk must be passed over.
-Skip = Callable[[str, bool], bool]
+# (path, is_folder, is_link) -> True when the path found in a folder walk must be passed over.
+Skip = Callable[[str, bool, bool], bool]
+_NAME = attrgetter("name")
 
 
 def expand_paths(
@@ -76,29 +78,56 @@ def _identity(path: str) -> object:
 
 
 def _walk(folder: str, skip: Skip | None, gitignores: GitIgnores | None) -> Iterator[str]:
-    for root, dirs, files in os.walk(folder):
+    for root, dirs, files in scan(folder):
         if is_ignored(root) and root != folder:
             dirs[:] = []
             continue
         kept = []
-        for name in sorted(dirs):
-            path = os.path.join(root, name)
-            if name.startswith(".") or is_ignored(path):
+        for entry in sorted(dirs, key=_NAME):
+            path = entry.path
+            if entry.name.startswith(".") or is_ignored(path):
                 continue
             if gitignores is not None and gitignores.ignored(path, True):
                 continue
-            if skip is not None and skip(path, True):
+            if skip is not None and skip(path, True, entry.is_symlink()):
                 continue
-            kept.append(name)
+            kept.append(entry)
         dirs[:] = kept
-        for name in sorted(files):
-            path = os.path.join(root, name)
+        for entry in sorted(files, key=_NAME):
+            path = entry.path
             if not is_candidate(path):
                 continue
             if gitignores is not None and gitignores.ignored(path, False):
                 continue
-            if skip is None or not skip(path, False):
+            if skip is None or not skip(path, False, entry.is_symlink()):
                 yield path
+
+
+def scan(top: str) -> Iterator[tuple[str, list[os.DirEntry[str]], list[os.DirEntry[str]]]]:
+    """``os.walk(top)`` (top-down, unreadable folders passed over, linked folders listed but not
+    entered) with the folder's entries instead of their names.
+
+    An entry knows from the folder listing whether it is a symbolic link, where a name would
+    cost a system call per file to ask (the configuration that applies depends on it).
+    Changing the folder list in place prunes the walk, as with ``os.walk``.
+    """
+    stack = [top]
+    while stack:
+        root = stack.pop()
+        try:
+            with os.scandir(root) as listing:
+                entries = list(listing)
+        except OSError:
+            continue
+        dirs, files = [], []
+        for entry in entries:
+            try:
+                is_dir = entry.is_dir()
+            except OSError:
+                is_dir = False
+            (dirs if is_dir else files).append(entry)
+        yield root, dirs, files
+        stack.extend(entry.path for entry in reversed(dirs) if not entry.is_symlink())
 
 
 class GitIgnores:

@@ -9,8 +9,8 @@ from __future__ import annotations
 import math
 import re
 import sys
-from dataclasses import dataclass
 from functools import lru_cache
+from typing import NamedTuple
 
 # isspace() in the "C" locale: what std::stod skips before a number and what ros2_control strips.
 C_SPACE = " \t\n\v\f\r"
@@ -27,8 +27,7 @@ _NONZERO_DIGIT = re.compile(r"[1-9a-f]", re.IGNORECASE)
 _SMALLEST_NORMAL = sys.float_info.min
 
 
-@dataclass(frozen=True)
-class Stod:
+class Stod(NamedTuple):
     """What ``std::stod`` makes of a text.
 
     ``value`` is None where it throws: no number at the start (``std::invalid_argument``) or a

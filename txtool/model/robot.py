@@ -11,7 +11,7 @@ from collections.abc import Iterable, Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any
+from typing import Any, NamedTuple
 
 from lxml import etree
 
@@ -19,8 +19,7 @@ from txtool.io.xmlio import local
 from txtool.model.numbers import parse_strict
 
 
-@dataclass(frozen=True)
-class JointInfo:
+class JointInfo(NamedTuple):
     name: str
     type: str
     lower: float | None = None
@@ -48,8 +47,7 @@ class JointInfo:
         return -math.pi, math.pi
 
 
-@dataclass(frozen=True)
-class ComponentJoint:
+class ComponentJoint(NamedTuple):
     name: str
     command_interfaces: tuple[str, ...]
     state_interfaces: tuple[str, ...]
