@@ -364,14 +364,12 @@ def _top_level(tree: etree._ElementTree, encoding: str) -> list[bytes]:
     root = tree.getroot()
     before = list(root.itersiblings(preceding=True))[::-1]
     after = list(root.itersiblings())
-    nodes = []
-    if tree.docinfo.doctype:
-        nodes.append(tree.docinfo.doctype.encode(encoding))
+    parts = [tree.docinfo.doctype.encode(encoding)] if tree.docinfo.doctype else []
     for node in [*before, root, *after]:
-        nodes.append(etree.tostring(node, encoding=encoding, xml_declaration=False,
+        if parts:
+            parts.append(b"\n")
+        parts.append(etree.tostring(node, encoding=encoding, xml_declaration=False,
                                     with_tail=False))
-    parts = [b"\n"] * (2 * len(nodes) - 1)
-    parts[::2] = nodes
     return parts
 
 

@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-import functools
 import sys
 from collections.abc import Callable, Iterable, Iterator
+from functools import lru_cache
 
 from lxml import etree
 
@@ -261,17 +261,11 @@ Check = Callable[[LintContext], Iterable[Problem]]
 
 def per_transmission(check: Check) -> Check:
     """Mark the check of a rule that looks at one transmission at a time: a document whose
-    transmissions are all :func:`canonical` gives it nothing to say, so it returns at once
-    (and the linter does not call it for such a document)."""
-
-    @functools.wraps(check)
-    def checked(ctx: LintContext) -> Iterable[Problem]:
-        if all_canonical(ctx):
-            return ()
-        return check(ctx)
-
-    checked.per_transmission = True  # type: ignore[attr-defined]
-    return checked
+    transmissions are all :func:`canonical` gives it nothing to say, so the linter does not
+    call it for such a document (the check itself, called directly, looks at every
+    transmission)."""
+    check.per_transmission = True  # type: ignore[attr-defined]
+    return check
 
 
 def all_canonical(ctx: LintContext) -> bool:
@@ -327,16 +321,10 @@ def canonical(tx: Facts) -> bool:
 def _normal_number(element: etree._Element) -> bool:
     """An element without children (so, without CDATA, one text node) whose text parses as a
     plain, finite number of at least the smallest normal magnitude."""
-    if len(element):
-        return False
-    text = element.text
-    known = _NORMAL.get(text)  # type: ignore[arg-type]
-    if known is None:
-        value = parse_ros2(text)
-        known = value is not None and abs(value) >= _SMALLEST_NORMAL
-        if len(_NORMAL) < 1024:  # the few number texts documents repeat
-            _NORMAL[text] = known  # type: ignore[index]
-    return known
+    return not len(element) and _normal_text(element.text)
 
 
-_NORMAL: dict[str, bool] = {}  # _normal_number by text
+@lru_cache(maxsize=1024)  # the few number texts documents repeat
+def _normal_text(text: str | None) -> bool:
+    value = parse_ros2(text)
+    return value is not None and abs(value) >= _SMALLEST_NORMAL
