@@ -91,7 +91,7 @@ def converted(data: bytes, target: str, *, memo: bool = True) -> tuple:
     original = convert_module.Memo.keyed
     try:
         if not memo:
-            convert_module.Memo.keyed = lambda self, element: None  # type: ignore
+            convert_module.Memo.keyed = lambda self, element, data=None: None  # type: ignore
         result = convert_source(Source("<doc>", data, parse_bytes(data, "<doc>")), target)
     finally:
         convert_module.Memo.keyed = original  # type: ignore[method-assign]

@@ -30,6 +30,7 @@ from txtool.io.xmlio import MAX_DEPTH, InputError, Source, XMLSyntax, local, par
 from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
 from txtool.model.semantics import Effective, NotLoadable, effective, listed_against_roles
+from txtool.transform.baseline import rebuildable
 from txtool.transform.collector import paused
 from txtool.transform.memo import Follower, Memo, Record, Renaming
 from txtool.transform.placement import Placer
@@ -82,24 +83,38 @@ def convert_source(
     ``check=False`` leaves out the read-back check, for a caller that judges the result
     itself (``roundtrip``).
     """
-    baseline = None if source.expanded else serialize(source.tree, source.data)
+    carry = Carrier(source, target, reversible)
+    # Back to ROS 1 (each element may carry its original) and --reversible convert in full.
+    memo = None if carry.reversible or target == "ros1" else Memo()
+    # The tree as parsed, serialized before it changes or rebuilt after (:mod:`.baseline`).
+    lazy = memo is not None and not source.expanded and rebuildable(source.data)
+    baseline = None if source.expanded or lazy else serialize(source.tree, source.data)
     tree = source.tree if consume else copy.deepcopy(source.tree)
     elements = transmission_elements(tree.getroot())
     deep = _near_depth_limit(elements, tree.getroot())
     result = Conversion(data=b"", target=target, found=len(elements))
     placer = Placer(tree.getroot(), hardware_plugin)
-    carry = Carrier(source, target, reversible)
-    # Back to ROS 1 (each element may carry its original) and --reversible convert in full.
-    memo = None if carry.reversible or target == "ros1" else Memo()
+    texts: list[bytes | None] | None = None
+    if lazy:
+        def serialize_baseline() -> None:
+            nonlocal baseline
+            baseline = serialize(source.tree, source.data)
+
+        texts = []
+        placer.before_change, placer.texts = serialize_baseline, texts
     components: dict[etree._Element, Any] = {}
     items: list[Transmission | Follower] = []
     olds: dict[int, etree._Element] = {}  # the element of each item not a follower, by id
     root = tree.getroot()
     top = local(root) != "ros2_control"  # a child of the root is in no <ros2_control>
     for element in elements:
-        keyed = memo.keyed(element) if memo is not None and (
-            element.getparent() is root and top or enclosing_component(element) is None
-        ) else None
+        keyed = data = None
+        if memo is not None and (element.getparent() is root and top
+                                 or enclosing_component(element) is None):
+            data = etree.tostring(element, with_tail=False)
+            keyed = memo.keyed(element, data)
+        if texts is not None:
+            texts.append(data)
         if keyed.__class__ is Follower:
             assert isinstance(keyed, Follower)
             placer.place_follower(element, keyed, keyed.record.original.dialect)
@@ -134,9 +149,11 @@ def convert_source(
             item.built, item.element = placer.built.get(item.element), None
     virtual = {key: built for key, old in olds.items()
                if isinstance(built := placer.built.get(old), Written)}
-    del elements, olds  # the replaced elements are freed before the document is written
+    del elements, olds, texts  # the replaced elements are freed before the document is written
     placer.release()
     changed = _serialize(tree, source.data, placer)
+    if lazy and baseline is None:
+        baseline = changed if placer.baseline is None else placer.baseline
     if placer.unwritten:  # parsed into the tree after all
         for item in items:
             if isinstance(item, Follower) and item.built in placer.unwritten:
@@ -200,8 +217,13 @@ def _reads_back(data: bytes, path: str) -> None:
 
 
 def _serialize(tree: etree._ElementTree, original: bytes, placer: Placer) -> bytes:
-    """The converted document, the block :attr:`Placer.written` as text filled in."""
+    """The converted document, the block :attr:`Placer.written` as text filled in (and the
+    baseline rebuilt from it, where :attr:`Placer.rebuild` says how)."""
     data = serialize(tree, original)
+    if placer.rebuild is not None:
+        assert placer.written is not None
+        placer.baseline = placer.rebuild.baseline(data, placer.written[0])
+        placer.rebuild = None
     if placer.written is not None:
         filled = fill(data, *placer.written)
         if filled is not None:

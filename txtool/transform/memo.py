@@ -200,11 +200,14 @@ class Memo:
     records: dict[Hashable, Record | None] = field(default_factory=dict)
     _distinct: dict[tuple[bytes, ...], list[Record]] = field(default_factory=dict)
 
-    def keyed(self, element: etree._Element) -> Follower | Renaming | None:
+    def keyed(self, element: etree._Element, data: bytes | None = None
+              ) -> Follower | Renaming | None:
         """``element`` as a follower of the record of its key (:func:`renaming_of`) when
         there is one (its first said nothing), else its renaming (None: it has no key). A
-        record whose names are distinct is matched without the key being made."""
-        data = etree.tostring(element, with_tail=False)
+        record whose names are distinct is matched without the key being made. ``data``:
+        ``etree.tostring(element, with_tail=False)``, when the caller made it."""
+        if data is None:
+            data = etree.tostring(element, with_tail=False)
         parts = NAME.split(data)
         # A record's skeleton holds no "<!" or "<?", nor then does an element of the same
         # skeleton: its names, attribute values, hold no "<" (escaped).

@@ -22,6 +22,7 @@ from txtool.dialects.translate import translate
 from txtool.io.xmlio import local
 from txtool.model.core import Dialect, Transmission, replace
 from txtool.model.robot import children
+from txtool.transform.baseline import Rebuild
 from txtool.transform.layout import (
     append,
     become,
@@ -126,6 +127,14 @@ class Placer:
         self.written: tuple[etree._Comment, list[bytes]] | None = None
         self.unwritten: dict[Written, etree._Element] = {}  # by :meth:`unwrite`
         self._written_block: list[Written] = []  # the transmissions of :attr:`written`
+        # Set by the caller that serializes the tree as it was only before it changes
+        # (:mod:`.baseline`): called before the first change, unless the change is the
+        # written block replacing transmissions whose serializations ``texts`` holds (then
+        # :attr:`rebuild` tells how the baseline is made); None: the caller needs neither.
+        self.before_change: Callable[[], None] | None = None
+        self.texts: list[bytes | None] | None = None  # of every transmission, in order
+        self.rebuild: Rebuild | None = None
+        self.baseline: bytes | None = None  # made by the caller from :attr:`rebuild`
 
     def place(self, old: etree._Element, t: Transmission, carried: Carried | None = None,
               renaming: Renaming | None = None, dialect: Dialect | None = None) -> None:
@@ -145,16 +154,20 @@ class Placer:
             if existing is None:
                 self._into_new.append(move)
             else:
+                self._changing()
                 cut(old)
                 append(existing, self._build(move, *child_indentation(existing), existing))
         elif moving_in:
             # Inside a xacro macro or conditional (or a file whose root is not a <robot>): a
             # <ros2_control> of its own, in place, so that the transmission stays in the scope
             # of its ${...} parameters.
+            self._changing()
             self._wrap_in_place(move)
         elif t.dialect != "ros1" and (dialect or detect_dialect(old)) != "ros1":
+            self._changing()
             restyle_roles(old, t.dialect)  # Proposal 1 <-> 2: only the roles change
         else:
+            self._changing()
             new = self._build(move, *indentation(old), old)
             new.tail = old.tail
             if old.getparent() is None:
@@ -175,9 +188,18 @@ class Placer:
         else:
             self.place(old, follower.translated(), {}, follower.renaming(), dialect)
 
+    def _changing(self) -> None:
+        """Called before the tree changes (see :attr:`before_change`)."""
+        if self.before_change is not None:
+            self.before_change()
+            self.before_change = None
+
     def finish(self) -> None:
+        if self._out_of:
+            self._changing()
         if self._into_new:
             self._generate(self._into_new)
+        self.texts = None
         for component, moves in self._out_of.items():
             if self._is_generated(component, moves):
                 self._ungenerate(component, moves)
@@ -205,6 +227,14 @@ class Placer:
                                 alone=True)
             for old in runs[0][:-1]:
                 self.built[old].tail = reindent(old.tail, indent + step)
+        texts = self.texts
+        if self.before_change is not None and self.written is not None and len(runs) == 1 and (
+                texts is not None and len(texts) == len(moves) and None not in texts):
+            # Every transmission is a move, each in the order of the document: the texts
+            # are those of the run.
+            self.rebuild = Rebuild.make(block, self.written[0], runs[0], texts)  # type: ignore[arg-type]
+        if self.rebuild is None:
+            self._changing()
         for run in runs[1:]:
             for old in run:
                 cut(old)

@@ -1,0 +1,82 @@
+"""The document as it was serialized before a conversion, without serializing it twice.
+
+Splicing (:func:`txtool.transform.splice.splice`) compares the serialization of the tree as
+parsed (the baseline) with the serialization of the converted tree. A conversion changes the
+tree in place, so the baseline is serialized before the first change, unless the change is
+the common one for a large robot: its transmissions stand together and all go into the block
+generated for the document, written as text (:mod:`.written`). Then everything before and
+after that block is serialized alike in both, and the baseline is the converted document with
+the block's text replaced by the serializations of the transmissions it replaced (their
+``tostring``, which keying them already made, see :mod:`.memo`) and the blank text between
+them. :class:`Rebuild` keeps those; :meth:`Rebuild.baseline` puts them in.
+
+That holds where a transmission's ``tostring`` is the very text the whole document's
+serialization gives it: no namespace in scope (``tostring`` repeats the declarations on the
+element), and ASCII without character references (``tostring`` writes every other character
+as a reference, the document in its own encoding); :func:`rebuildable` and
+:meth:`Rebuild.make` check both.
+"""
+
+from __future__ import annotations
+
+from lxml import etree
+
+from txtool.io.encodings import detect_encoding
+
+_END = b"</ros2_control>"
+
+
+def rebuildable(original: bytes) -> bool:
+    """Whether the document stored as ``original`` may have its baseline rebuilt: one byte a
+    character for ASCII, no namespace declared, and no text like the block's marker (so the
+    serialization holds the marker once: ``<!--`` starts a comment only, and a comment's
+    text is literal)."""
+    return not detect_encoding(original).wide and b"xmlns" not in original and (
+        b"txtool-block-" not in original)
+
+
+def _blank(tail: str | None) -> bool:
+    return not (tail or "").strip(" \t\n")
+
+
+class Rebuild:
+    """What the baseline has in place of the written block: the transmissions it replaced,
+    each followed by its blank tail (the last one's stays, as the block's)."""
+
+    __slots__ = ("replaced", "_head")
+
+    def __init__(self, replaced: bytes, head: bytes) -> None:
+        self.replaced = replaced
+        self._head = head  # the block's text up to its marker
+
+    @classmethod
+    def make(cls, block: etree._Element, marker: etree._Comment,
+             run: list[etree._Element], texts: list[bytes]) -> Rebuild | None:
+        """For ``block`` (holding ``marker`` as its last child) replacing ``run``, elements
+        standing together whose serializations are ``texts``; None where those do not make
+        the baseline (see the module)."""
+        tails = [element.tail or "" for element in run[:-1]]
+        kinds = set(tails)
+        if not all(map(_blank, kinds)):
+            return None
+        if len(kinds) == 1:
+            replaced = kinds.pop().encode("ascii").join(texts)
+        else:
+            pieces = [piece for text, tail in zip(texts, tails, strict=False)
+                      for piece in (text, tail.encode("ascii"))]
+            pieces.append(texts[-1])
+            replaced = b"".join(pieces)
+        token = f"<!--{marker.text}-->".encode("ascii")
+        head, found, end = etree.tostring(block, with_tail=False).partition(token)
+        if not found or end != _END or b"&#" in head or b"&#" in replaced:
+            return None
+        return cls(replaced, head)
+
+    def baseline(self, data: bytes, marker: etree._Comment) -> bytes:
+        """The baseline, from ``data``: the converted document serialized with the block's
+        marker in it (before :func:`.written.fill`), which holds the block's text once."""
+        whole = self._head + f"<!--{marker.text}-->".encode("ascii") + _END
+        at = data.find(whole)
+        assert at >= 0 and data.find(whole, at + 1) < 0, "the written block is not found once"
+        view = memoryview(data)
+        return b"".join([view[:at], self.replaced, view[at + len(whole):]])
