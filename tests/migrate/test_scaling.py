@@ -149,3 +149,52 @@ def test_a_generated_block_taken_apart_leaves_each_replaced_transmission_on_its_
     assert [e.getparent() for e in elements] == [None, None, None]
     assert [e.get("name") for e in root.iter("transmission")] == ["t1", "t2", "t3"]
     assert not [*root.iter("ros2_control")]
+
+
+def test_a_large_diff_names_a_path_outside_ascii(tmp_path):
+    """The diff of a large ASCII document, written from its bytes, under a folder and a file
+    name outside ASCII: the header names them as the lines' diff would (this once stopped
+    with an internal error)."""
+    from txtool.transform.linediff import unified_text
+    from txtool.transform.migrate import diff_of
+
+    folder = tmp_path / "n\u00e9"
+    folder.mkdir()
+    path = folder / "r\u00f6bot arm.urdf"
+    path.write_text(chain(2_500))
+    result = CliRunner().invoke(cli, ["migrate", "--diff", "--to", "ros2-p2", str(path)])
+    assert result.exit_code == 1, result.output
+    name = str(path).lstrip("/")
+    assert result.stdout.startswith(f"--- a/{name}\n+++ b/{name}\n@@ ")
+    converted = CliRunner().invoke(cli, ["convert", "--to", "ros2-p2", str(path)]).stdout_bytes
+    before, after = path.read_bytes(), converted
+    assert isinstance(diff_of(str(path), before, after), str)  # the header is not ASCII
+    assert isinstance(diff_of("robot.urdf", before, after), bytes)  # written as it is
+    assert result.stdout == unified_text(before.decode().splitlines(keepends=True),
+                                         after.decode().splitlines(keepends=True),
+                                         f"a/{name}", f"b/{name}")
+
+
+def test_a_conversion_leaves_no_reference_cycles():
+    """Every object a large conversion makes is freed as soon as it is let go (a cycle, such
+    as a written transmission referring to its follower and back, waits for the collector,
+    whose pass then walks every object the command still holds)."""
+    import gc
+
+    from txtool.io.xmlio import Source, parse_bytes
+    from txtool.transform.convert import convert_source
+
+    data = chain(300).encode()
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        gc.collect()
+        for target in ("ros2-p2", "ros2-p1", "ros1"):
+            converted = convert_source(Source("r.urdf", data, parse_bytes(data, "r.urdf")),
+                                       target)  # type: ignore[arg-type]
+            assert converted.converted in (0, 300)
+            del converted
+            assert gc.collect() == 0, target
+    finally:
+        if enabled:
+            gc.enable()

@@ -70,8 +70,8 @@ def command(paths, target, check, diff, write, select, ignore, config_path, allo
         reversible=reversible,
     )
     report = migrate_paths(paths, options)
-    if report.diff:
-        click.echo(report.diff, nl=False)
+    for diff in report.diffs:  # ASCII bytes go to the binary stream as they are
+        click.echo(diff, nl=False)
     for message in report.messages:
         click.echo(message, err=True)
     return report.exit_code

@@ -20,6 +20,10 @@ _MARKS = (  # UTF-32 first: its little-endian mark starts like UTF-16's
 )
 
 
+# Encodings that store ASCII as ASCII, one byte each: a byte pattern finds every tag.
+SCANNABLE = frozenset({"utf-8", "ascii", "iso8859-1", "cp1252"})
+
+
 class Encoding(NamedTuple):
     """How a document's text is stored: the codec, the byte-order mark before the text (empty
     when there is none) and the name the XML declaration gives (None when it gives none)."""

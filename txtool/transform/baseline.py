@@ -72,11 +72,18 @@ class Rebuild:
             return None
         return cls(replaced, head)
 
-    def baseline(self, data: bytes, marker: etree._Comment) -> bytes:
+    def baseline(self, data: bytes, marker: etree._Comment, original: bytes) -> bytes:
         """The baseline, from ``data``: the converted document serialized with the block's
-        marker in it (before :func:`.written.fill`), which holds the block's text once."""
+        marker in it (before :func:`.written.fill`), which holds the block's text once;
+        ``original`` itself when they are the same (most generated documents: then no copy
+        is made)."""
         whole = self._head + f"<!--{marker.text}-->".encode("ascii") + _END
         at = data.find(whole)
         assert at >= 0 and data.find(whole, at + 1) < 0, "the written block is not found once"
         view = memoryview(data)
-        return b"".join([view[:at], self.replaced, view[at + len(whole):]])
+        after = at + len(whole)
+        if len(original) == len(data) - len(whole) + len(self.replaced) and (
+                original.startswith(view[:at]) and original.startswith(self.replaced, at)
+                and original.endswith(view[after:])):
+            return original
+        return b"".join([view[:at], self.replaced, view[after:]])

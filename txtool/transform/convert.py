@@ -25,7 +25,7 @@ from txtool.dialects.read import (
     transmission_elements,
 )
 from txtool.dialects.translate import family, is_expression, translate
-from txtool.io.encodings import detect_encoding
+from txtool.io.encodings import SCANNABLE, detect_encoding
 from txtool.io.xmlio import MAX_DEPTH, InputError, Source, XMLSyntax, local, parse_bytes, serialize
 from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
@@ -93,7 +93,8 @@ def convert_source(
     elements = transmission_elements(tree.getroot())
     deep = _near_depth_limit(elements, tree.getroot())
     result = Conversion(data=b"", target=target, found=len(elements))
-    placer = Placer(tree.getroot(), hardware_plugin)
+    placer = Placer(tree.getroot(), hardware_plugin, components=source.expanded or (
+        detect_encoding(source.data).codec not in SCANNABLE or b"ros2_control" in source.data))
     texts: list[bytes | None] | None = None
     if lazy:
         def serialize_baseline() -> None:
@@ -132,6 +133,8 @@ def convert_source(
         if not _convert_one(found, tree, target, result, placer, carry, memo, renaming, said):
             continue
         result.converted += 1
+    del texts  # the placer lets go of them once it has what it needs
+    element = found = keyed = None  # type: ignore[assignment]  # (the replaced go, below)
     # The declarations read go while their elements are in the tree: lxml frees an element
     # of a removed subtree (a generated block, replaced) by scanning all of that subtree.
     del components
@@ -144,12 +147,14 @@ def convert_source(
     placer.finish()
     carry.after(tree, placer.built)
     result.notes.extend(placer.notes)
+    built_for = placer.built.get
     for item in items:
-        if isinstance(item, Follower):
-            item.built, item.element = placer.built.get(item.element), None
+        if item.__class__ is Follower:
+            item.built, item.element = built_for(item.element), None  # type: ignore[union-attr]
+    del built_for  # it holds the replaced elements too
     virtual = {key: built for key, old in olds.items()
                if isinstance(built := placer.built.get(old), Written)}
-    del elements, olds, texts  # the replaced elements are freed before the document is written
+    del elements, olds  # the replaced elements are freed before the document is written
     placer.release()
     changed = _serialize(tree, source.data, placer)
     if lazy and baseline is None:
@@ -159,7 +164,7 @@ def convert_source(
             if isinstance(item, Follower) and item.built in placer.unwritten:
                 item.built = placer.unwritten[item.built]  # type: ignore[index]
         virtual = {}
-    alone = placer.alone
+    alone, in_tree = placer.alone, True
     del placer
     if source.expanded:
         result.data = changed
@@ -180,8 +185,9 @@ def convert_source(
         # Originals put back as bytes: only a parse of the output shows what it holds.
         del tree
         tree = parse_bytes(result.data, source.path, limit=None)
-        alone = set()
-    _check(Source(source.path, result.data, tree), result, items, alone, names, virtual)
+        alone, in_tree = set(), False
+    _check(Source(source.path, result.data, tree), result, items, alone, names, virtual,
+           in_tree)
     return result
 
 
@@ -222,7 +228,7 @@ def _serialize(tree: etree._ElementTree, original: bytes, placer: Placer) -> byt
     data = serialize(tree, original)
     if placer.rebuild is not None:
         assert placer.written is not None
-        placer.baseline = placer.rebuild.baseline(data, placer.written[0])
+        placer.baseline = placer.rebuild.baseline(data, placer.written[0], original)
         placer.rebuild = None
     if placer.written is not None:
         filled = fill(data, *placer.written)
@@ -364,7 +370,7 @@ def _same_binding(old, new) -> bool:
 
 def _check(output: Source, result: Conversion, originals: list[Transmission | Follower],
            alone: set[etree._Element | Written], names: Counter[str],
-           virtual: dict[int, Written]) -> None:
+           virtual: dict[int, Written], in_tree: bool) -> None:
     """Read the output back, convert it back, and compare with the original: on what the
     transmission itself defines (a value it leaves out is not judged, and interfaces that an
     existing ``<ros2_control>`` declares besides its own are a note, not a loss).
@@ -381,21 +387,31 @@ def _check(output: Source, result: Conversion, originals: list[Transmission | Fo
     follower (:mod:`.memo`) is not even read back when its record's first came back whole
     from the same place: both with a name of their own, in the block generated for the
     document (``alone``), declaring their joints there themselves.
+    When every original is written as text, none is left in a converted tree (``in_tree``):
+    it is not searched.
     """
-    apart = {item.built for item in originals if isinstance(item, Follower)
-             and item.built in alone and names[item.name] == 1}
-    firsts = {id(record.original): record for record in _records(originals)}
+    followers = [item for item in originals if item.__class__ is Follower]
+    built = [item.built for item in followers]  # type: ignore[union-attr]
+    apart = alone.intersection(built) if len(names) == len(originals) else {
+        item.built for item in followers  # type: ignore[union-attr]
+        if item.built in alone and names[item.name] == 1}
+    firsts = {id(record.original): record for record in _records(followers)}
     components: dict[etree._Element, Any] = {}
     survived: set[Hashable] = set()  # shapes (:mod:`.shapes`) that came back whole
     whole: set[int] = set()  # records whose verdict is in ``survived``, by id
     written: dict[tuple[str, bool], list[Found]] = {}
-    for element in transmission_elements(output.root, (
+    all_text = in_tree and len(virtual) == len(originals) - len(followers) and all(
+        item.__class__ is Written for item in built)
+    for element in () if all_text else transmission_elements(output.root, (
             e for e in output.root.iter("{*}transmission") if e not in apart)):
         found = Found(read_transmission(element, None, components), element)
         key = (found.transmission.name, found.transmission.kind == "other")
         written.setdefault(key, []).append(found)
     read = dict(zip(virtual, read_back(list(virtual.values())), strict=True))
     for item in originals:
+        if item.__class__ is Follower and id(item.record) in whole and (  # type: ignore[union-attr]
+                item.built in apart):  # type: ignore[union-attr]
+            continue  # judged whole: the test below, first
         is_follower = isinstance(item, Follower)
         record = item.record if is_follower else firsts.get(id(item))
         text = item.built if is_follower and isinstance(item.built, Written) else virtual.get(

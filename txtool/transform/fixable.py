@@ -18,7 +18,7 @@ from collections.abc import Callable, Sequence
 from lxml import etree
 
 from txtool.dialects.read import text_of
-from txtool.io.encodings import detect_encoding
+from txtool.io.encodings import SCANNABLE, detect_encoding
 from txtool.model.robot import children
 from txtool.rules import Rule
 from txtool.rules.tx204_unknown_interface import PREFIX, ROS1_INTERFACES, unprefixed_registered
@@ -67,8 +67,6 @@ def might_fix(root: etree._Element, rules: Sequence[Rule], data: bytes | None = 
                if rule.code not in settled)
 
 
-# Encodings that store ASCII as ASCII, one byte each: a byte pattern finds every tag.
-SCANNABLE = frozenset({"utf-8", "ascii", "iso8859-1", "cp1252"})
 # A <hardwareInterface> holding a prefixed name and nothing else, first in a <joint> written
 # with one name attribute (only white space between): its text names no unprefixed interface,
 # and its parent is no actuator. The usual ROS 1 layout; anything else is read in the tree.

@@ -180,12 +180,14 @@ def _range(start: int, stop: int) -> str:
 _CHUNK = 1 << 16
 
 
-def unified_ascii(a: bytes, b: bytes, fromfile: str, tofile: str) -> str | None:
-    """:func:`unified_text` of the lines of two large XML documents stored in ASCII, where
+def unified_ascii(a: bytes, b: bytes, fromfile: str, tofile: str
+                  ) -> tuple[str, list[bytes]] | None:
+    """:func:`unified_text` of the lines of two large XML documents stored in ASCII, as its
+    header and the pieces of the rest in ASCII (to join), where
     they differ in one run of lines that has no line in common: the anchored search then
     keeps the common head and tail and nothing between, and the diff is written from the
-    bytes without a Python object per line. None where that does not hold (the caller diffs
-    the lines) or ``a == b``.
+    bytes without a Python object per line, a piece at a time (no copy of either document).
+    None where that does not hold (the caller diffs the lines) or ``a == b``.
 
     Both must be well-formed XML, which holds no control character but tab, LF and CR: then
     only LF and CR end lines (as :meth:`str.splitlines` cuts them), and with no CR, LF alone.
@@ -194,10 +196,10 @@ def unified_ascii(a: bytes, b: bytes, fromfile: str, tofile: str) -> str | None:
         return None
     cut = a.rfind(b"\n", 0, _common_prefix(a, b)) + 1
     tail_bytes, tail = _common_tail(a, b, cut)
-    middle_a, middle_b = a[cut:len(a) - tail_bytes], b[cut:len(b) - tail_bytes]
+    middle_a, middle_b = (a, cut, len(a) - tail_bytes), (b, cut, len(b) - tail_bytes)
     head = a.count(b"\n", 0, cut)
-    lines_a = head + _line_count(middle_a) + tail
-    lines_b = head + _line_count(middle_b) + tail
+    lines_a = head + _line_count(*middle_a) + tail
+    lines_b = head + _line_count(*middle_b) + tail
     if lines_a * lines_b <= WHOLE:
         return None  # matched whole by difflib
     # Without their ends, lines that differ only there (a last line without one) count as
@@ -206,41 +208,45 @@ def unified_ascii(a: bytes, b: bytes, fromfile: str, tofile: str) -> str | None:
         return None
     end_a, end_b = lines_a - tail, lines_b - tail
     first = max(0, head - 3)
-    before = a[_line_start(a, cut, head - first):cut]
-    after = a[len(a) - tail_bytes:_line_end(a, len(a) - tail_bytes, min(tail, 3))]
+    before = (a, _line_start(a, cut, head - first), cut)
+    after = (a, len(a) - tail_bytes, _line_end(a, len(a) - tail_bytes, min(tail, 3)))
     header = (f"--- {fromfile}\n+++ {tofile}\n"
               f"@@ -{_range(first, min(end_a + 3, lines_a))} "
               f"+{_range(first, min(end_b + 3, lines_b))} @@\n")
-    parts: list[bytes | memoryview] = [header.encode("ascii")]
+    parts: list[bytes] = []
     for prefix, text in ((b" ", before), (b"-", middle_a), (b"+", middle_b), (b" ", after)):
-        parts += _prefixed(prefix, text)
-    return b"".join(parts).decode("ascii")
+        parts += _prefixed(prefix, *text)
+    return header, parts
 
 
-def _line_count(data: bytes) -> int:
-    return data.count(b"\n") + (0 if data.endswith(b"\n") or not data else 1)
+Stretch = tuple[bytes, int, int]  # a text and the range of it meant
+
+
+def _line_count(data: bytes, start: int, end: int) -> int:
+    """The lines of ``data[start:end]``."""
+    return data.count(b"\n", start, end) + (
+        0 if end == start or data[end - 1] == 0x0A else 1)
 
 
 _PIECE = 1 << 16
 
 
-def _share_a_line(a: bytes, b: bytes) -> bool:
-    """Whether two texts whose lines end with "\n" have a line in common (without its end),
-    their lines split a piece at a time: no list of every line, which for a large document
-    costs more memory than the document."""
+def _share_a_line(a: Stretch, b: Stretch) -> bool:
+    """Whether two stretches whose lines end with "\n" have a line in common (without its
+    end), their lines split a piece at a time: no list of every line, which for a large
+    document costs more memory than the document."""
     seen: set[bytes] = set()
-    for piece in _pieces(a):
+    for piece in _pieces(*a):
         seen.update(piece.splitlines())
-    return bool(seen) and any(not seen.isdisjoint(piece.splitlines()) for piece in _pieces(b))
+    return bool(seen) and any(not seen.isdisjoint(piece.splitlines()) for piece in _pieces(*b))
 
 
-def _pieces(text: bytes) -> Iterator[bytes]:
-    """``text`` in pieces of whole lines, of about :data:`_PIECE` bytes each."""
-    start = 0
-    while start < len(text):
-        end = text.find(b"\n", start + _PIECE) + 1 or len(text)
-        yield text[start:end]
-        start = end
+def _pieces(text: bytes, start: int, end: int) -> Iterator[bytes]:
+    """``text[start:end]`` in pieces of whole lines, of about :data:`_PIECE` bytes each."""
+    while start < end:
+        stop = min(text.find(b"\n", start + _PIECE, end) + 1 or end, end)
+        yield text[start:stop]
+        start = stop
 
 
 def _common_prefix(a: bytes, b: bytes) -> int:
@@ -288,11 +294,11 @@ def _common_tail(a: bytes, b: bytes, cut: int) -> tuple[int, int]:
     if same == room:  # one rest ends the other: whole if the other starts a line there
         longer = b if len(a) == cut + room else a
         if longer[len(longer) - same - 1:len(longer) - same] == b"\n":
-            return same, _line_count(tail)
+            return same, _line_count(tail, 0, len(tail))
     start = tail.find(b"\n") + 1
     if not start:
         return 0, 0
-    return same - start, _line_count(tail[start:])
+    return same - start, _line_count(tail, start, len(tail))
 
 
 def _line_start(data: bytes, at: int, lines: int) -> int:
@@ -310,11 +316,17 @@ def _line_end(data: bytes, at: int, lines: int) -> int:
     return at
 
 
-def _prefixed(prefix: bytes, text: bytes) -> list[bytes | memoryview]:
-    """Each line of ``text`` after ``prefix``, a last line without "\\n" marked as diff marks
-    it: the pieces to join (one copy of ``text``)."""
-    if not text:
+def _prefixed(prefix: bytes, text: bytes, start: int, end: int) -> list[bytes]:
+    """Each line of ``text[start:end]`` after ``prefix``, a last line without "\\n" marked as
+    diff marks it, as texts to join: a piece at a time, each piece's last "\\n" followed by
+    the next one's first prefix."""
+    if start >= end:
         return []
-    if text.endswith(b"\n"):  # without the prefix after the last "\n"
-        return [prefix, memoryview(text.replace(b"\n", b"\n" + prefix))[:-len(prefix)]]
-    return [prefix, text.replace(b"\n", b"\n" + prefix), NO_NEWLINE.encode()]
+    parts = [prefix]
+    newline = b"\n" + prefix
+    parts += (piece.replace(b"\n", newline) for piece in _pieces(text, start, end))
+    if text[end - 1] == 0x0A:
+        parts[-1] = parts[-1][:-len(prefix)]  # no prefix after the last "\n"
+    else:
+        parts.append(NO_NEWLINE.encode("ascii"))
+    return parts

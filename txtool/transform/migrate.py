@@ -22,7 +22,7 @@ from typing import Literal
 from lxml import etree
 
 from txtool.dialects.read import transmission_elements
-from txtool.io.encodings import detect_encoding, document_text
+from txtool.io.encodings import SCANNABLE, detect_encoding, document_text
 from txtool.io.xmlio import (
     InputError,
     Source,
@@ -40,7 +40,7 @@ from txtool.model.core import Dialect
 from txtool.rules import Rule, all_rules
 from txtool.transform.collector import paused
 from txtool.transform.convert import DEFAULT_HARDWARE_PLUGIN, convert_source
-from txtool.transform.fixable import SCANNABLE, might_fix, might_fix_text
+from txtool.transform.fixable import might_fix, might_fix_text
 from txtool.transform.linediff import unified_ascii, unified_text
 from txtool.transform.reversible import MARK
 from txtool.transform.splice import splice
@@ -98,8 +98,14 @@ class Report:
     mode: Mode
     files: list[FileResult] = field(default_factory=list)
     errors: list[str] = field(default_factory=list)
-    diff: str = ""
+    # Each changed file's diff; one of ASCII documents in bytes (written as they are).
+    diffs: list[str | bytes] = field(default_factory=list)
     messages: list[str] = field(default_factory=list)
+
+    @property
+    def diff(self) -> str:
+        """The diffs of all files, as one text."""
+        return "".join(d if isinstance(d, str) else d.decode("ascii") for d in self.diffs)
 
     @property
     def changed(self) -> list[FileResult]:
@@ -183,7 +189,7 @@ def _record(report: Report, result: FileResult, options: MigrateOptions) -> None
     if not result.changed:
         return
     if options.mode == "diff":
-        report.diff += unified_diff(result.path, result.original, result.data)
+        report.diffs.append(diff_of(result.path, result.original, result.data))
     if options.mode == "write":
         try:
             _write(result)
@@ -494,11 +500,22 @@ def _silenced(element: etree._Element, code: str, suppressions: Suppressions) ->
 
 def unified_diff(path: str, before: bytes, after: bytes) -> str:
     """A unified diff with ``a/PATH`` and ``b/PATH`` headers (``git apply`` / ``patch -p1``)."""
+    diff = diff_of(path, before, after)
+    return diff if isinstance(diff, str) else diff.decode("ascii")
+
+
+def diff_of(path: str, before: bytes, after: bytes) -> str | bytes:
+    """:func:`unified_diff`, ASCII-encoded where it is made from the bytes (a large document
+    in ASCII changed in one run of lines, see :func:`.linediff.unified_ascii`) and its path
+    is ASCII."""
     name = path.replace(os.sep, "/").lstrip("/")
     if {detect_encoding(before).codec, detect_encoding(after).codec} <= SCANNABLE:
         fast = unified_ascii(before, after, f"a/{name}", f"b/{name}")
         if fast is not None:
-            return fast
+            header, rest = fast
+            if header.isascii():
+                return b"".join([header.encode("ascii"), *rest])
+            return header + b"".join(rest).decode("ascii")
     return unified_text(
         document_text(before).splitlines(keepends=True),
         document_text(after).splitlines(keepends=True),

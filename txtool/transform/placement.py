@@ -106,14 +106,17 @@ class Placer:
     """Puts converted elements where their target dialect expects them; call :meth:`finish`
     once every transmission has been placed."""
 
-    def __init__(self, root: etree._Element, hardware_plugin: str) -> None:
+    def __init__(self, root: etree._Element, hardware_plugin: str, *,
+                 components: bool = True) -> None:
+        """``components=False``: the document is known to hold no ``<ros2_control>`` (its
+        tree is then not searched for one until a block is added)."""
         self.root = root
         self._robot = local(root) == "robot"
         self.hardware_plugin = hardware_plugin
         self.notes: list[str] = []
         self._into_new: list[_Move] = []
         self._out_of: dict[etree._Element, list[_Move]] = {}
-        self._components: list[etree._Element] | None = None
+        self._components: list[etree._Element] | None = None if components else []
         self._declared: dict[etree._Element, set[str]] = {}
         self.built: dict[etree._Element, etree._Element] = {}  # old element -> the last built
         # Built elements in the block generated for the document whose joints it declares
@@ -134,6 +137,7 @@ class Placer:
         self.before_change: Callable[[], None] | None = None
         self.texts: list[bytes | None] | None = None  # of every transmission, in order
         self.rebuild: Rebuild | None = None
+        self._replaced = etree.Element("replaced")  # what the generated block replaced
         self.baseline: bytes | None = None  # made by the caller from :attr:`rebuild`
 
     def place(self, old: etree._Element, t: Transmission, carried: Carried | None = None,
@@ -239,8 +243,9 @@ class Placer:
             for old in run:
                 cut(old)
         block.tail = runs[0][-1].tail
-        for old in runs[0][1:]:
-            old.getparent().remove(old)
+        # Moved into one element of their own (their tails go with them), not removed one by
+        # one: lxml frees a removed element by searching its subtree, once per element.
+        self._replaced.extend(runs[0][1:])
         first.getparent().replace(first, block)
         self._components = None
 
@@ -364,6 +369,7 @@ class Placer:
         """Let go of the elements replaced (and of :attr:`built`): they are freed before the
         document is written, and its text takes their memory."""
         self._into_new, self._out_of, self.crowded, self.built = [], {}, None, {}
+        self._replaced = etree.Element("replaced")  # freed as one subtree
 
     def unwrite(self) -> None:
         """Parse the text of :attr:`written` into the tree in place of its marker."""

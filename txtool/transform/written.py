@@ -69,7 +69,9 @@ class Written:
     __slots__ = ("block", "form", "values", "joints")
 
     def __init__(self, block: Block, form: str, values: tuple[str, ...],
-                 joints: list[str] | Follower) -> None:
+                 joints: list[str] | tuple[Record, tuple[str, ...]]) -> None:
+        """``joints``: the names of its joints, or a follower's record and names (not the
+        follower, which refers to this: no reference cycle to wait for the collector)."""
         self.block = block
         self.form = form
         self.values = values
@@ -79,7 +81,7 @@ class Written:
         """It in a ``<ros2_control>`` (without its name) declaring its joints."""
         declarations = self.block.declarations
         joints = self.joints if isinstance(self.joints, list) else [
-            name for name, _, _ in self.joints.record.joints_for(self.joints.names)]
+            name for name, _, _ in self.joints[0].joints_for(self.joints[1])]
         return b"".join([b"<ros2_control>",
                          *[declarations[name] for name in dict.fromkeys(joints)],
                          (self.form % self.values).encode(), b"</ros2_control>"])
@@ -143,9 +145,11 @@ def write(name: str, plugin: str, moves: Sequence[Move], tails: list[str], inden
     hardware.tail = block.text = newline
     comment = marker()
     block.append(comment)
-    heads = writer.heads
-    heads.append(("".join(writer.bodies) % tuple(writer.values)).encode())
-    return block, writer.written, writer.alone, (comment, heads)
+    writer.flush()
+    return block, writer.written, writer.alone, (comment, writer.heads + writer.texts)
+
+
+_PER_TEXT = 2 * 64  # forms and tails in one of :attr:`_Writer.texts`
 
 
 class _Writer:
@@ -159,6 +163,7 @@ class _Writer:
         self.heads: list[bytes] = []  # the declarations, each followed by a newline
         self.bodies: list[str] = []  # the forms of the transmissions, each with its tail
         self.values: list[str] = []  # what goes into the forms
+        self.texts: list[bytes] = []  # the transmissions filled in, a few at a time
         self.written: list[Written] = []
         self.alone: list[Written] = []  # those whose joints none before declared
         self._forms: dict[tuple, tuple[bytes, bytes]] = {}  # declarations by interfaces
@@ -196,12 +201,14 @@ class _Writer:
                     return False
             declarations[joint] = declared = declaration[0] + joint.encode() + declaration[1]
             self.heads += (declared, self.newline)
-        one = Written(self.part, form, args, follower)
+        one = Written(self.part, form, args, (record, names))
         self.bodies += (form, tail)
         self.values += args
         self.written.append(one)
         if own:
             self.alone.append(one)
+        if len(self.bodies) >= _PER_TEXT:
+            self.flush()
         return True
 
     def other(self, move: Move, tail: str) -> bool:
@@ -248,6 +255,17 @@ class _Writer:
         self.written.append(one)
         if own:
             self.alone.append(one)
+        if len(self.bodies) >= _PER_TEXT:
+            self.flush()
+
+    def flush(self) -> None:
+        """Fill in the transmissions added since the last time: texts of a few tens of
+        kilobytes, which the document's text is joined from (one large string filled in at
+        once, then encoded, would be two copies of the block more)."""
+        if self.bodies:
+            self.texts.append(("".join(self.bodies) % tuple(self.values)).encode())
+            self.bodies.clear()
+            self.values.clear()
 
 
 def marker() -> etree._Comment:
