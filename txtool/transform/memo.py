@@ -22,7 +22,7 @@ from __future__ import annotations
 import re
 from collections.abc import Hashable
 from dataclasses import dataclass, field
-from operator import itemgetter
+from operator import itemgetter, lt
 from typing import TYPE_CHECKING, NamedTuple
 
 from lxml import etree
@@ -143,12 +143,10 @@ class Record:
         key differs (or it has none). Only for a :attr:`distinct` record: then the key says
         that the names are distinct and not literal, the order they sort in, and where each
         literal name sorts among them. ``data``: the element's serialization."""
-        distinct = set(raws)
-        if len(distinct) != len(raws) or not distinct.isdisjoint(_LITERALS):
-            return None
-        every = raws + _LITERAL_LIST
-        if sorted(every) != list(self._order(every)) or b"&" in data and b"&" in b"".join(
-                raws):
+        # In the record's order, the names and the literal ones strictly increase: so they
+        # are distinct, none is literal, and they sort as the record's.
+        ordered = self._order(raws + _LITERAL_LIST)
+        if not all(map(lt, ordered, ordered[1:])) or b"&" in data and b"&" in b"".join(raws):
             return None
         return tuple(map(bytes.decode, raws))
 

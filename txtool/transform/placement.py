@@ -188,7 +188,7 @@ class Placer:
         if into_new and (self._components == [] or self._component_for(
                 lambda: {name for name, _, _ in follower.record.joints_for(follower.names)}
         ) is None):
-            self._into_new.append(_Move(old, None, {}, None, follower))
+            self._into_new.append(_Move(old, None, None, None, follower))
         else:
             self.place(old, follower.translated(), {}, follower.renaming(), dialect)
 

@@ -53,38 +53,44 @@ def blank(layout: str) -> bool:
 
 class Block:
     """The shared part of the transmissions of one written block: its name and the text of
-    the first declaration of each joint."""
+    the first declaration of each joint (before and after the joint's name)."""
 
     __slots__ = ("name", "declarations")
 
     def __init__(self, name: str) -> None:
         self.name = name
-        self.declarations: dict[str, bytes] = {}
+        self.declarations: dict[str, tuple[bytes, bytes]] = {}
 
 
 class Written:
     """A transmission of a written block, not parsed (see the module): its text is ``form %
-    values``."""
+    pick(names)``, a follower's (:mod:`.memo`) the form of its record's with its own names;
+    one converted in full has no ``pick`` and its form is its text."""
 
-    __slots__ = ("block", "form", "values", "joints")
+    __slots__ = ("block", "form", "pick", "record", "names")
 
-    def __init__(self, block: Block, form: str, values: tuple[str, ...],
-                 joints: list[str] | tuple[Record, tuple[str, ...]]) -> None:
-        """``joints``: the names of its joints, or a follower's record and names (not the
-        follower, which refers to this: no reference cycle to wait for the collector)."""
+    def __init__(self, block: Block, form: str, pick: Callable | None, record: Record | None,
+                 names: tuple[str, ...] | list[str]) -> None:
+        """``record`` and ``names``: a follower's (not the follower, which refers to this:
+        no reference cycle to wait for the collector); without a record, ``names`` are those
+        of its joints."""
         self.block = block
         self.form = form
-        self.values = values
-        self.joints = joints
+        self.pick = pick
+        self.record = record
+        self.names = names
 
     def source(self) -> bytes:
         """It in a ``<ros2_control>`` (without its name) declaring its joints."""
         declarations = self.block.declarations
-        joints = self.joints if isinstance(self.joints, list) else [
-            name for name, _, _ in self.joints[0].joints_for(self.joints[1])]
+        joints = self.names if self.record is None else [
+            name for name, _, _ in self.record.joints_for(self.names)]  # type: ignore[arg-type]
+        text = self.form if self.pick is None else self.form % self.pick(self.names)
         return b"".join([b"<ros2_control>",
-                         *[declarations[name] for name in dict.fromkeys(joints)],
-                         (self.form % self.values).encode(), b"</ros2_control>"])
+                         *[b"%s%s%s" % (declarations[name][0], name.encode(),
+                                        declarations[name][1])
+                           for name in dict.fromkeys(joints)],
+                         text.encode(), b"</ros2_control>"])
 
 
 def read_back(written: list[Written]) -> list[etree._Element]:
@@ -137,7 +143,7 @@ def write(name: str, plugin: str, moves: Sequence[Move], tails: list[str], inden
     declarations = writer.part.declarations
     if not plain_names("".join(declarations)):
         return None
-    newline = writer.newline.decode()
+    newline = writer.newline
     block = etree.Element("ros2_control", name=name, type="system")
     hardware = etree.SubElement(block, "hardware")
     etree.SubElement(hardware, "plugin").text = plugin
@@ -146,7 +152,7 @@ def write(name: str, plugin: str, moves: Sequence[Move], tails: list[str], inden
     comment = marker()
     block.append(comment)
     writer.flush()
-    return block, writer.written, writer.alone, (comment, writer.heads + writer.texts)
+    return block, writer.written, writer.alone, (comment, [*writer.heads(), *writer.texts])
 
 
 _PER_TEXT = 2 * 64  # forms and tails in one of :attr:`_Writer.texts`
@@ -159,14 +165,17 @@ class _Writer:
         self.part = part
         self.indent, self.step = indent, step
         self.templates = templates
-        self.newline = ("\n" + indent + step).encode()
-        self.heads: list[bytes] = []  # the declarations, each followed by a newline
+        self.newline = "\n" + indent + step
+        # The declarations' forms, each followed by a newline, and the joint names they take.
+        self.head_forms: list[str] = []
+        self.head_values: list[str] = []
         self.bodies: list[str] = []  # the forms of the transmissions, each with its tail
         self.values: list[str] = []  # what goes into the forms
         self.texts: list[bytes] = []  # the transmissions filled in, a few at a time
         self.written: list[Written] = []
         self.alone: list[Written] = []  # those whose joints none before declared
-        self._forms: dict[tuple, tuple[bytes, bytes]] = {}  # declarations by interfaces
+        # A declaration's text around its joint's name, and its form, by interfaces.
+        self._forms: dict[tuple, tuple[tuple[bytes, bytes], str]] = {}
         # A follower's form, what picks its names, and per joint of its record's the text of
         # its declaration once made, by record.
         self._by_record: dict[Record, tuple[str, Callable, list] | None] = {}
@@ -199,9 +208,10 @@ class _Writer:
                 declaration = made[k] = self._declaration(interfaces)
                 if declaration is None:
                     return False
-            declarations[joint] = declared = declaration[0] + joint.encode() + declaration[1]
-            self.heads += (declared, self.newline)
-        one = Written(self.part, form, args, (record, names))
+            declarations[joint] = declaration[0]
+            self.head_forms.append(declaration[1])
+            self.head_values.append(joint)
+        one = Written(self.part, form, pick, record, names)
         self.bodies += (form, tail)
         self.values += args
         self.written.append(one)
@@ -228,25 +238,32 @@ class _Writer:
             if declaration is None:
                 return False
             self._declare(joint, declaration)
-        self._add(Written(self.part, form, (), [joint for joint, _, _ in joints]), form, (),
-                  tail, own)
+        self._add(Written(self.part, text.decode(), None, None,
+                          [joint for joint, _, _ in joints]), form, (), tail, own)
         return True
 
-    def _declaration(self, interfaces: tuple) -> tuple[bytes, bytes] | None:
-        """A joint declaration's text before and after its name (made once per interfaces),
-        or None when it is not plain."""
-        form = self._forms.get(interfaces)
-        if form is None:
-            form = self._forms[interfaces] = self.templates.declaration(
-                interfaces, self.indent + self.step, self.step)
-            if not plain(form[0] + form[1]):
+    def _declaration(self, interfaces: tuple) -> tuple[tuple[bytes, bytes], str] | None:
+        """A joint declaration's text before and after its name, and the ``%`` form of it
+        followed by a newline (made once per interfaces), or None when it is not plain."""
+        known = self._forms.get(interfaces)
+        if known is None:
+            around = self.templates.declaration(interfaces, self.indent + self.step, self.step)
+            if not plain(around[0] + around[1]):
                 return None  # and the block is not written
-        return form
+            head, tail = (part.decode("ascii").replace("%", "%%") for part in around)
+            known = self._forms[interfaces] = (around, head + "%s" + tail + self.newline)
+        return known
 
-    def _declare(self, joint: str, declaration: tuple[bytes, bytes]) -> None:
-        self.part.declarations[joint] = declared = (
-            declaration[0] + joint.encode() + declaration[1])
-        self.heads += (declared, self.newline)
+    def _declare(self, joint: str, declaration: tuple[tuple[bytes, bytes], str]) -> None:
+        self.part.declarations[joint] = declaration[0]
+        self.head_forms.append(declaration[1])
+        self.head_values.append(joint)
+
+    def heads(self) -> list[bytes]:
+        """The declarations' texts, a few at a time (see :meth:`flush`)."""
+        forms, values = self.head_forms, self.head_values
+        return [("".join(forms[at:at + _PER_TEXT]) % tuple(values[at:at + _PER_TEXT])).encode()
+                for at in range(0, len(forms), _PER_TEXT)]
 
     def _add(self, one: Written, form: str, args: tuple[str, ...], tail: str,
              own: bool) -> None:
