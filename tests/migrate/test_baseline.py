@@ -67,6 +67,11 @@ REBUILT = {
                                                                        ).encode(),
     "a comment before": arm(head='<robot name="arm"><!-- <transmission> -->').encode(),
     "one transmission": arm(1).encode(),
+    "a namespace declared on one": arm().replace(
+        '<transmission name="t3">', '<transmission name="t3" xmlns:x="http://example.com/x">'
+    ).encode(),
+    "a default namespace on a joint": arm().replace(
+        '<joint name="j3"', '<joint xmlns="http://example.com/d" name="j3"').encode(),
 }
 NOT_REBUILT = {
     "namespace": arm(head='<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">'
@@ -104,7 +109,7 @@ def test_conversions_with_and_without_the_rebuild_write_the_same_bytes(target, m
     for data in [*REBUILT.values(), *NOT_REBUILT.values()]:
         tree = parse_bytes(data, "robot.urdf")
         fast = convert_source(Source("robot.urdf", data, tree), target).data
-        monkeypatch.setattr("txtool.transform.convert.rebuildable", lambda _: False)
+        monkeypatch.setattr("txtool.transform.convert.rebuildable", lambda *_: False)
         slow = convert_source(Source("robot.urdf", data, tree), target).data
         monkeypatch.undo()
         assert fast == slow

@@ -14,7 +14,8 @@ That holds where a transmission's ``tostring`` is the very text the whole docume
 serialization gives it: no namespace in scope (``tostring`` repeats the declarations on the
 element), and ASCII without character references (``tostring`` writes every other character
 as a reference, the document in its own encoding); :func:`rebuildable` and
-:meth:`Rebuild.make` check both.
+:meth:`Rebuild.make` check both. The transmissions the block replaces are children of the
+root: only the root's declarations are in scope.
 """
 
 from __future__ import annotations
@@ -26,12 +27,13 @@ from txtool.io.encodings import detect_encoding
 _END = b"</ros2_control>"
 
 
-def rebuildable(original: bytes) -> bool:
-    """Whether the document stored as ``original`` may have its baseline rebuilt: one byte a
-    character for ASCII, no namespace declared, and no text like the block's marker (so the
-    serialization holds the marker once: ``<!--`` starts a comment only, and a comment's
-    text is literal)."""
-    return not detect_encoding(original).wide and b"xmlns" not in original and (
+def rebuildable(original: bytes, root: etree._Element) -> bool:
+    """Whether the document stored as ``original`` (whose root element is ``root``) may have
+    its baseline rebuilt: one byte a character for ASCII, no namespace declared on the root
+    (the block and the transmissions it replaces are the root's children), and no text like
+    the block's marker (so the serialization holds the marker once: ``<!--`` starts a comment
+    only, and a comment's text is literal)."""
+    return not detect_encoding(original).wide and not root.nsmap and (
         b"txtool-block-" not in original)
 
 
@@ -51,17 +53,19 @@ class Rebuild:
 
     @classmethod
     def make(cls, block: etree._Element, marker: etree._Comment,
-             run: list[etree._Element], texts: list[bytes]) -> Rebuild | None:
+             run: list[etree._Element], texts: list[bytes], kinds: set[str | None]
+             ) -> Rebuild | None:
         """For ``block`` (holding ``marker`` as its last child) replacing ``run``, elements
-        standing together whose serializations are ``texts``; None where those do not make
-        the baseline (see the module)."""
-        tails = [element.tail or "" for element in run[:-1]]
-        kinds = set(tails)
+        standing together whose serializations are ``texts`` and whose tails (but the last
+        one's) are ``kinds``, each once; None where those do not make the baseline (see the
+        module)."""
         if not all(map(_blank, kinds)):
             return None
-        if len(kinds) == 1:
-            replaced = kinds.pop().encode("ascii").join(texts)
+        if len(kinds) <= 1:  # one tail between them all (none: one transmission)
+            between = next(iter(kinds), None) or ""
+            replaced = between.encode("ascii").join(texts)
         else:
+            tails = [element.tail or "" for element in run[:-1]]
             pieces = [piece for text, tail in zip(texts, tails, strict=False)
                       for piece in (text, tail.encode("ascii"))]
             pieces.append(texts[-1])

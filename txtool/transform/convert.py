@@ -87,7 +87,8 @@ def convert_source(
     # Back to ROS 1 (each element may carry its original) and --reversible convert in full.
     memo = None if carry.reversible or target == "ros1" else Memo()
     # The tree as parsed, serialized before it changes or rebuilt after (:mod:`.baseline`).
-    lazy = memo is not None and not source.expanded and rebuildable(source.data)
+    lazy = memo is not None and not source.expanded and rebuildable(source.data,
+                                                                    source.tree.getroot())
     baseline = None if source.expanded or lazy else serialize(source.tree, source.data)
     tree = source.tree if consume else copy.deepcopy(source.tree)
     elements = transmission_elements(tree.getroot())

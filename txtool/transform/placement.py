@@ -138,6 +138,7 @@ class Placer:
         self.texts: list[bytes | None] | None = None  # of every transmission, in order
         self.rebuild: Rebuild | None = None
         self._replaced = etree.Element("replaced")  # what the generated block replaced
+        self._first_tails: dict[str | None, str] = {}  # see :meth:`_tails`
         self.baseline: bytes | None = None  # made by the caller from :attr:`rebuild`
 
     def place(self, old: etree._Element, t: Transmission, carried: Carried | None = None,
@@ -236,7 +237,8 @@ class Placer:
                 texts is not None and len(texts) == len(moves) and None not in texts):
             # Every transmission is a move, each in the order of the document: the texts
             # are those of the run.
-            self.rebuild = Rebuild.make(block, self.written[0], runs[0], texts)  # type: ignore[arg-type]
+            self.rebuild = Rebuild.make(block, self.written[0], runs[0], texts,  # type: ignore[arg-type]
+                                        set(self._first_tails))
         if self.rebuild is None:
             self._changing()
         for run in runs[1:]:
@@ -334,7 +336,7 @@ class Placer:
         if crowded is None or namespace_of(like) is not None or not (blank(indent)
                                                                    and blank(step)):
             return None
-        if not crowded.isdisjoint([move.old for move in moves]):
+        if crowded and not crowded.isdisjoint([move.old for move in moves]):
             return None
         tails = self._tails(moves, runs, indent, step)
         if tails is None:
@@ -348,13 +350,14 @@ class Placer:
         self.alone.update(alone)
         return block
 
-    @staticmethod
-    def _tails(moves: list[_Move], runs: list[list[etree._Element]], indent: str, step: str
-               ) -> list[str] | None:
+    def _tails(self, moves: list[_Move], runs: list[list[etree._Element]], indent: str,
+               step: str) -> list[str] | None:
         """What follows each transmission of a generated block: the blank lines that followed
-        it in the first run, one line break, or the block's end; None when not blank."""
+        it in the first run, one line break, or the block's end; None when not blank. The
+        tails as they were, each once, are kept for :class:`.baseline.Rebuild`."""
         tails = ["\n" + indent + step] * len(moves)
         reindented: dict[str | None, str] = {}
+        self._first_tails = reindented
         for position, old in enumerate(runs[0][:-1]):
             tail = reindented.get(old.tail)
             if tail is None:

@@ -136,10 +136,8 @@ def write(name: str, plugin: str, moves: Sequence[Move], tails: list[str], inden
     declarations, then the transmissions by one ``%`` of the forms of their templates); None
     when a piece has no plain text."""
     writer = _Writer(Block(name), indent, step, templates)
-    for move, tail in zip(moves, tails, strict=True):
-        if move.carried or not (writer.follower(move, move.follower, tail) if (
-                move.follower is not None) else writer.other(move, tail)):
-            return None
+    if not writer.add(moves, tails):
+        return None
     declarations = writer.part.declarations
     if not plain_names("".join(declarations)):
         return None
@@ -180,46 +178,69 @@ class _Writer:
         # its declaration once made, by record.
         self._by_record: dict[Record, tuple[str, Callable, list] | None] = {}
 
-    def follower(self, move: Move, follower: Follower, tail: str) -> bool:
-        """Add a follower (the same key and dialect as its record's); False when it has no
-        plain text."""
-        record = follower.record
-        known = self._by_record.get(record, False)
-        if known is False:
-            form_of = self.templates.form(follower.renaming(), move.dialect,
-                                          self.indent + self.step, self.step, move, True)
-            known = self._by_record[record] = None if form_of is None else (
-                form_of[0], form_of[1], [None] * len(record.joint_plan))
-        if known is None:
-            return False
-        form, pick, made = known
-        names = follower.names
-        args = pick(names)
+    def add(self, moves: Sequence[Move], tails: list[str]) -> bool:
+        """Add each of ``moves`` followed by its tail; False when one has no plain text.
+
+        A follower (the same key and dialect as its record's) takes its record's form with its
+        own names, and declares those of its joints that none before declared; its steps are
+        written out here, with the lists they add to at hand, as thousands of them pass."""
         declarations = self.part.declarations
-        own = True
-        for k, (i, joint, interfaces) in enumerate(record.joint_plan):
-            if i is not None:
-                joint = names[i]
-            if joint in declarations:
-                own = False
-                continue
-            declaration = made[k]
-            if declaration is None:
-                declaration = made[k] = self._declaration(interfaces)
-                if declaration is None:
+        head_forms, head_values = self.head_forms, self.head_values
+        bodies, values = self.bodies, self.values
+        written, alone = self.written, self.alone
+        by_record = self._by_record
+        part = self.part
+        for move, tail in zip(moves, tails, strict=True):
+            follower = move.follower
+            if move.carried:
+                return False
+            if follower is None:
+                if not self.other(move, tail):
                     return False
-            declarations[joint] = declaration[0]
-            self.head_forms.append(declaration[1])
-            self.head_values.append(joint)
-        one = Written(self.part, form, pick, record, names)
-        self.bodies += (form, tail)
-        self.values += args
-        self.written.append(one)
-        if own:
-            self.alone.append(one)
-        if len(self.bodies) >= _PER_TEXT:
-            self.flush()
+                continue
+            record = follower.record
+            known = by_record.get(record, False)
+            if known is False:
+                known = self._form_of(move, follower)
+            if known is None:
+                return False
+            form, pick, made = known
+            names = follower.names
+            args = pick(names)
+            own = True
+            for k, (i, joint, interfaces) in enumerate(record.joint_plan):
+                if i is not None:
+                    joint = names[i]
+                if joint in declarations:
+                    own = False
+                    continue
+                declaration = made[k]
+                if declaration is None:
+                    declaration = made[k] = self._declaration(interfaces)
+                    if declaration is None:
+                        return False
+                declarations[joint] = declaration[0]
+                head_forms.append(declaration[1])
+                head_values.append(joint)
+            one = Written(part, form, pick, record, names)
+            bodies += (form, tail)
+            values += args
+            written.append(one)
+            if own:
+                alone.append(one)
+            if len(bodies) >= _PER_TEXT:
+                self.flush()
         return True
+
+    def _form_of(self, move: Move, follower: Follower) -> tuple[str, Callable, list] | None:
+        """A follower's form, what picks its names, and per joint of its record's the text of
+        its declaration once made (made once per record)."""
+        record = follower.record
+        form_of = self.templates.form(follower.renaming(), move.dialect,
+                                      self.indent + self.step, self.step, move, True)
+        known = self._by_record[record] = None if form_of is None else (
+            form_of[0], form_of[1], [None] * len(record.joint_plan))
+        return known
 
     def other(self, move: Move, tail: str) -> bool:
         """Add a transmission converted in full; False when it has no plain text."""
