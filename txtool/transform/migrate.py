@@ -305,7 +305,10 @@ def _convert_direct(result: FileResult, source: Source, rules: Sequence[Rule],
     if _empty_with_end_tag(data):
         return False
     after = _comment_texts(data) if comments else []
-    if after is None or might_fix_text(data, rules):
+    # The fixes look for <hardwareInterface> and a <transmission type="...">, which nothing
+    # converted to ROS 2 has, and the rest is as it was, where none found anything: only a
+    # conversion to ROS 1 writes what they read.
+    if after is None or options.target == "ros1" and might_fix_text(data, rules):
         # The bytes cannot tell: the parse of what was written can (it reads as the steps'
         # parse reads, see splice()).
         try:
