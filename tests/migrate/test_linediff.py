@@ -6,7 +6,7 @@ import difflib
 import time
 
 import pytest
-from hypothesis import given
+from hypothesis import example, given
 from hypothesis import strategies as st
 
 from txtool.transform.linediff import matching_blocks, unified, unified_ascii, unified_text
@@ -132,3 +132,28 @@ def test_large_documents_changed_in_one_run_are_diffed_from_the_bytes(
 def test_the_bytes_are_not_diffed_where_their_lines_may_not_be_cut_at_lf(a: bytes,
                                                                         b: bytes) -> None:
     assert unified_ascii(a, b, "a/f", "b/f") is None
+
+
+LINE = st.sampled_from(["", "a", "ab", "<joint>", "<joint n='1'/>", "<joint n='2'/>",
+                        "  <joint n='1'/>", "<plugin>x</plugin>", "abcdefgh", "abcdefghi"])
+
+
+@given(st.lists(LINE, min_size=1, max_size=12), st.lists(LINE, min_size=1, max_size=60),
+       st.booleans())
+@example(["abcdefghi"], ["abcdefghi", *["<plugin>x</plugin>"] * 8], True)  # b's first line
+@example(["ab"], [*["<plugin>x</plugin>"] * 8, "ab"], False)  # b's last, with no newline
+@example(["ab"], [*["<plugin>x</plugin>"] * 8, "abcdefgh"], True)  # starts alike only
+@example([""], [*["<plugin>x</plugin>"] * 8, ""], True)  # an empty line
+def test_two_stretches_share_a_line_as_their_sets_of_lines_say(a_lines: list[str],
+                                                               b_lines: list[str],
+                                                               final_newline: bool) -> None:
+    """Told apart by where their lines start (far fewer lines on one side) or by the lines
+    themselves, the answer is the sets' (a last line may lack its newline)."""
+    from txtool.transform.linediff import _line_count, _share_a_line
+
+    a = ("\n".join(a_lines) + "\n").encode()
+    b = ("\n".join(b_lines) + ("\n" if final_newline else "")).encode()
+    around_b = b"<head/>\n" + b + (b"" if not final_newline else b"<tail/>\n")
+    stretch_b = (around_b, 8, 8 + len(b))
+    expected = bool(set(a.splitlines()) & set(b.splitlines()))
+    assert _share_a_line((a, 0, len(a)), stretch_b, _line_count(*stretch_b)) == expected

@@ -204,7 +204,7 @@ def unified_ascii(a: bytes, b: bytes, fromfile: str, tofile: str
         return None  # matched whole by difflib
     # Without their ends, lines that differ only there (a last line without one) count as
     # common too: then the lines are diffed.
-    if _share_a_line(middle_a, middle_b):
+    if _share_a_line(middle_a, middle_b, lines_b - head - tail):
         return None
     end_a, end_b = lines_a - tail, lines_b - tail
     first = max(0, head - 3)
@@ -231,14 +231,37 @@ def _line_count(data: bytes, start: int, end: int) -> int:
 _PIECE = 1 << 16
 
 
-def _share_a_line(a: Stretch, b: Stretch) -> bool:
+_START = 8  # bytes that a line starts with, looked for in the other text
+_FEW_STARTS = 2  # each is a scan of the other text; splitting it costs about three
+
+
+def _share_a_line(a: Stretch, b: Stretch, lines_b: int) -> bool:
     """Whether two stretches whose lines end with "\n" have a line in common (without its
     end), their lines split a piece at a time: no list of every line, which for a large
-    document costs more memory than the document."""
+    document costs more memory than the document. The lines of ``b`` (``lines_b`` of them)
+    are split only where a few distinct starts of the far fewer different lines of ``a``
+    cannot show that none of them begins a line of ``b`` (a line in common would)."""
     seen: set[bytes] = set()
     for piece in _pieces(*a):
         seen.update(piece.splitlines())
-    return bool(seen) and any(not seen.isdisjoint(piece.splitlines()) for piece in _pieces(*b))
+    if not seen:
+        return False
+    if len(seen) * 4 <= lines_b:
+        starts: set[bytes] = set()
+        for line in seen:
+            starts.add(line[:_START])
+            if len(starts) > _FEW_STARTS:
+                break
+        else:
+            if not any(_begins_a_line(b, start) for start in starts):
+                return False
+    return any(not seen.isdisjoint(piece.splitlines()) for piece in _pieces(*b))
+
+
+def _begins_a_line(stretch: Stretch, start: bytes) -> bool:
+    """Whether a line of the stretch (whole lines) begins with ``start``."""
+    text, begin, end = stretch
+    return text.startswith(start, begin, end) or text.find(b"\n" + start, begin, end) >= 0
 
 
 def _pieces(text: bytes, start: int, end: int) -> Iterator[bytes]:
