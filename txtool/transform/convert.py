@@ -135,7 +135,9 @@ def convert_source(
             continue
         result.converted += 1
     del texts  # the placer lets go of them once it has what it needs
-    element = found = keyed = None  # type: ignore[assignment]  # (the replaced go, below)
+    # The loop's last element (and its found or follower) may be one the block replaces,
+    # freed below with the others.
+    element = found = keyed = None  # type: ignore[assignment]
     # The declarations read go while their elements are in the tree: lxml frees an element
     # of a removed subtree (a generated block, replaced) by scanning all of that subtree.
     del components
