@@ -310,3 +310,17 @@ def test_comments_from_the_bytes_or_none_where_they_cannot_tell(text: bytes,
 ])
 def test_an_element_written_empty_with_an_end_tag_is_found(text: bytes, empty: bool) -> None:
     assert migrate._empty_with_end_tag(text) == empty
+
+
+def test_a_conversion_to_ros2_is_not_scanned_again_for_ros1_spellings() -> None:
+    """What converting a document no fix finds anything in gives: to ROS 2 it needs no scan
+    for the fixes of ROS 1 spellings; to ROS 1, or with any other fix, its bytes are read."""
+    from txtool.transform.fixable import ROS1_ONLY, might_fix_converted
+
+    assert {rule.code for rule in FIXABLE} == ROS1_ONLY  # every fix today: a new one must be placed in or out
+    written = UNPREFIXED.encode()  # what the bytes would flag
+    assert might_fix_text(written, FIXABLE)
+    assert not might_fix_converted(written, FIXABLE, "ros2-p2")
+    assert might_fix_converted(written, FIXABLE, "ros1")
+    other = FIXABLE[0]._replace(code="TX399")
+    assert might_fix_converted(written, [*FIXABLE, other], "ros2-p1")

@@ -159,9 +159,9 @@ def convert_source(
                if isinstance(built := placer.built.get(old), Written)}
     del elements, olds  # the replaced elements are freed before the document is written
     placer.release()
-    changed = _serialize(tree, source.data, placer)
-    if lazy and baseline is None:
-        baseline = changed if placer.baseline is None else placer.baseline
+    changed, rebuilt = _serialize(tree, source.data, placer)
+    if lazy and baseline is None:  # rebuilt, or the tree never changed
+        baseline = changed if rebuilt is None else rebuilt
     if placer.unwritten:  # parsed into the tree after all
         for item in items:
             if isinstance(item, Follower) and item.built in placer.unwritten:
@@ -225,21 +225,22 @@ def _reads_back(data: bytes, path: str) -> None:
             f"{exc.reason}") from None
 
 
-def _serialize(tree: etree._ElementTree, original: bytes, placer: Placer) -> bytes:
-    """The converted document, the block :attr:`Placer.written` as text filled in (and the
-    baseline rebuilt from it, where :attr:`Placer.rebuild` says how)."""
+def _serialize(tree: etree._ElementTree, original: bytes, placer: Placer
+               ) -> tuple[bytes, bytes | None]:
+    """The converted document, the block :attr:`Placer.written` as text filled in, and the
+    baseline rebuilt from it where :attr:`Placer.rebuild` says how (else None)."""
     data = serialize(tree, original)
+    rebuilt = None
     if placer.rebuild is not None:
         assert placer.written is not None
-        placer.baseline = placer.rebuild.baseline(data, placer.written[0], original)
-        placer.rebuild = None
+        rebuilt = placer.rebuild.baseline(data, placer.written[0], original)
     if placer.written is not None:
         filled = fill(data, *placer.written)
         if filled is not None:
-            return filled
-        placer.unwrite()
+            return filled, rebuilt
+        placer.unwrite()  # (never with a rebuild: the marker is then found once)
         data = serialize(tree, original)
-    return data
+    return data, rebuilt
 
 
 def _convert_one(found: Found, tree: etree._ElementTree, target: Dialect, result: Conversion,

@@ -93,6 +93,20 @@ def settled_text(data: bytes, rules: Sequence[Rule]) -> set[str]:
     return settled & codes
 
 
+# The fixes that look only for ROS 1 spellings (``<hardwareInterface>``, a ``type`` attribute
+# on a ``<transmission>``), which a conversion to ROS 2 never writes.
+ROS1_ONLY = frozenset({"TX300", "TX301", "TX302"})
+
+
+def might_fix_converted(data: bytes, rules: Sequence[Rule], target: str) -> bool:
+    """:func:`might_fix_text` on ``data``, what converting to ``target`` a document in which
+    none of ``rules`` finds anything gave: a conversion to ROS 2 writes nothing that the fixes
+    of :data:`ROS1_ONLY` look for, and leaves the rest as it was."""
+    if target != "ros1" and all(rule.code in ROS1_ONLY for rule in rules):
+        return False
+    return might_fix_text(data, rules)
+
+
 def might_fix_text(data: bytes, rules: Sequence[Rule]) -> bool:
     """:func:`might_fix` on the parse of ``data``, from its bytes alone (it may say yes where
     the tree would say no)."""

@@ -198,13 +198,14 @@ def unified_ascii(a: bytes, b: bytes, fromfile: str, tofile: str
     tail_bytes, tail = _common_tail(a, b, cut)
     middle_a, middle_b = (a, cut, len(a) - tail_bytes), (b, cut, len(b) - tail_bytes)
     head = a.count(b"\n", 0, cut)
+    changed_b = _line_count(*middle_b)
     lines_a = head + _line_count(*middle_a) + tail
-    lines_b = head + _line_count(*middle_b) + tail
+    lines_b = head + changed_b + tail
     if lines_a * lines_b <= WHOLE:
         return None  # matched whole by difflib
     # Without their ends, lines that differ only there (a last line without one) count as
     # common too: then the lines are diffed.
-    if _share_a_line(middle_a, middle_b, lines_b - head - tail):
+    if _share_a_line(middle_a, middle_b, changed_b):
         return None
     end_a, end_b = lines_a - tail, lines_b - tail
     first = max(0, head - 3)

@@ -40,7 +40,7 @@ from txtool.model.core import Dialect
 from txtool.rules import Rule, all_rules
 from txtool.transform.collector import paused
 from txtool.transform.convert import DEFAULT_HARDWARE_PLUGIN, convert_source
-from txtool.transform.fixable import might_fix, might_fix_text
+from txtool.transform.fixable import might_fix, might_fix_converted
 from txtool.transform.linediff import unified_ascii, unified_text
 from txtool.transform.reversible import MARK
 from txtool.transform.splice import splice
@@ -101,11 +101,6 @@ class Report:
     # Each changed file's diff; one of ASCII documents in bytes (written as they are).
     diffs: list[str | bytes] = field(default_factory=list)
     messages: list[str] = field(default_factory=list)
-
-    @property
-    def diff(self) -> str:
-        """The diffs of all files, as one text."""
-        return "".join(d if isinstance(d, str) else d.decode("ascii") for d in self.diffs)
 
     @property
     def changed(self) -> list[FileResult]:
@@ -305,10 +300,7 @@ def _convert_direct(result: FileResult, source: Source, rules: Sequence[Rule],
     if _empty_with_end_tag(data):
         return False
     after = _comment_texts(data) if comments else []
-    # The fixes look for <hardwareInterface> and a <transmission type="...">, which nothing
-    # converted to ROS 2 has, and the rest is as it was, where none found anything: only a
-    # conversion to ROS 1 writes what they read.
-    if after is None or options.target == "ros1" and might_fix_text(data, rules):
+    if after is None or might_fix_converted(data, rules, options.target):
         # The bytes cannot tell: the parse of what was written can (it reads as the steps'
         # parse reads, see splice()).
         try:

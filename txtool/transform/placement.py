@@ -139,7 +139,6 @@ class Placer:
         self.rebuild: Rebuild | None = None
         self._replaced = etree.Element("replaced")  # what the generated block replaced
         self._first_tails: dict[str | None, str] = {}  # see :meth:`_tails`
-        self.baseline: bytes | None = None  # made by the caller from :attr:`rebuild`
 
     def place(self, old: etree._Element, t: Transmission, carried: Carried | None = None,
               renaming: Renaming | None = None, dialect: Dialect | None = None) -> None:
