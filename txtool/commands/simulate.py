@@ -81,7 +81,8 @@ def command(robot: str, configs: tuple[str, ...], params: tuple[str, ...],
 
     The plant uses ROBOT's transmissions; a computed-torque controller encodes its commands and
     decodes its measurements with each CANDIDATE's. Exit 0 when the tracking error stays within
-    --tolerance and no limit is exceeded, 1 when not, 2 on bad input. Under --no-xacro a
+    --tolerance and no limit is exceeded, 1 when not, 3 when nothing of a config could be
+    simulated (inconclusive), 2 on bad input. Under --no-xacro a
     .xacro ROBOT or CANDIDATE is refused: the model needs the expanded robot.
     """
     require_extra("pinocchio", "sim", "txtool simulate")

@@ -37,7 +37,7 @@ def judge(run: RunResult, series: Series, plant: Drive, ctrl: Drive, S: np.ndarr
         run.reasons += effort_path(series, plant, ctrl, S)
         run.reasons += chatter(series)
     found = diagnose.causes(plant, ctrl, S, series.units)
-    if not run.passed:
+    if run.failed:
         if found:
             run.reasons += [f"likely cause: {cause}" for cause in found]
         elif candidate:
