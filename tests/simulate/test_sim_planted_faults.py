@@ -67,3 +67,26 @@ def test_a_limit_cycle_counts_reversals_within_the_window(span, found):
         demand[k] = 2.0 if n % 2 == 0 else -2.0
     assert steps[-1] - steps[1] == span
     assert (_limit_cycle(demand, 1.0) is not None) == found
+
+
+def test_a_plant_left_singular_by_a_runaway_state_is_a_divergence_not_a_crash(tmp_path,
+                                                                            monkeypatch):
+    from txtool.simulation import plant
+
+    robot = write(tmp_path, "arm.urdf", arm_ros1().replace(
+        '<dynamics damping="0.05"/>', '<dynamics damping="0.05" friction="0.2"/>'))
+    real = plant.Dynamics._velocity
+    calls = 0
+
+    def singular_after_a_while(self, q, v, tau, h):
+        nonlocal calls
+        calls += 1
+        if calls > 1234:
+            raise np.linalg.LinAlgError("Singular matrix")
+        return real(self, q, v, tau, h)
+
+    monkeypatch.setattr(plant.Dynamics, "_velocity", singular_after_a_while)
+    run = simulate_one(Options(robot=robot, duration=2.0), None)
+    assert run.verdict == "fail"
+    assert run.reasons[0].startswith("the simulation diverged at t=")
+    assert all(np.isfinite(j.max_error) for j in run.joints.values())

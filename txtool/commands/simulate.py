@@ -28,7 +28,8 @@ from txtool.io.xmlio import XacroOptions
                    "pyproject.toml above ROBOT).")
 @click.option("--bandwidth", type=float, metavar="RAD/S",
               help="Closed-loop bandwidth w for default gains kp=w^2, kd=2w  [default: 20]")
-@click.option("--duration", type=float, metavar="S", help="Run length. Default: at least 5 s, stretched (up to 240 s) until the "
+@click.option("--duration", type=float, metavar="S",
+              help="Run length. Default: at least 5 s, stretched (up to 240 s) until the "
                    "default motion is feasible for the robot's limits; given, the motion "
                    "shrinks to fit it instead. A --trajectory CSV: its last time.")
 @click.option("--dt", type=float, metavar="S", help="Control and integration step  "
