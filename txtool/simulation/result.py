@@ -10,6 +10,7 @@ import numpy as np
 from txtool.simulation.params import GainSource
 
 LIMIT_SLACK = 1e-9  # position limits: ignore round-off at a limit
+SHOWN_REASONS = 2  # why a run checked nothing: the first reasons, in the verdict line
 
 
 @dataclass
@@ -130,9 +131,11 @@ class Coverage:
     def why_nothing(self) -> str:
         if not self.transmissions:
             return "the config has no transmission: every joint is driven directly"
-        reasons = sorted({why for _, why in self.skipped})
-        return (f"none of the config's {self.transmissions} transmissions can be simulated ("
-                + "; ".join(reasons) + ")")
+        reasons = list(dict.fromkeys(why for _, why in self.skipped))
+        shown = "; ".join(reasons[:SHOWN_REASONS])
+        if len(reasons) > SHOWN_REASONS:
+            shown += f"; {len(reasons) - SHOWN_REASONS} more reasons in the notes"
+        return f"none of the config's {self.transmissions} transmissions can be simulated ({shown})"
 
 
 @dataclass

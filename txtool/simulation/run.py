@@ -184,10 +184,12 @@ def prepare(options: Options, config: str | None, label: str | None = None
         if finder is not None:  # found on every tenth pose, applied at every step
             carry = finder(setup.gravity_along(robot, ref.q[::10]))
     carried, carry_notes, carry_table = None, [], {}
+    if table is not None and carry is not None:
+        carry_notes = carry.refused  # (the default motion's planner notes them itself)
     if carry is not None and carry.active:
         gravity = setup.gravity_along(robot, ref.q)
         carried = carry.carried(gravity)
-        carry_notes, carry_table = carry.notes(gravity), carry.table(gravity)
+        carry_notes, carry_table = carry_notes + carry.notes(gravity), carry.table(gravity)
     plan = setup.build_plan(robot, plant, ctrl, binding, rotor, effort_limit, controller, ref,
                             run_settings.dt, Sensing(options.delay, options.encoder_counts),
                             carried)
