@@ -206,3 +206,32 @@ def test_the_same_interface_in_another_dialect_is_no_change(tmp_path):
 
     run = run_pair(tmp_path, arm_ros1(), arm_ros2())
     assert not any("commands it through" in r for r in run.reasons)
+
+
+def twin_fingers(left_joint: str, right_joint: str) -> str:
+    """Two identical fingers on the base with identical transmissions: in the default motion
+    they move alike, so a config that swaps them tracks exactly."""
+    from tests.simulate.robots import link
+
+    def finger(name: str, child: str, y: float) -> str:
+        return (f'<joint name="{name}" type="revolute"><parent link="base"/>'
+                f'<child link="{child}"/><origin xyz="0 {y} 0"/><axis xyz="0 0 1"/>'
+                '<limit lower="-1" upper="1" effort="10" velocity="2"/></joint>')
+
+    def transmission(name: str, joint: str, actuator: str) -> str:
+        return (f'<transmission name="{name}"><type>transmission_interface/SimpleTransmission'
+                f'</type><joint name="{joint}"><hardwareInterface>hardware_interface/'
+                f'EffortJointInterface</hardwareInterface></joint><actuator name="{actuator}">'
+                '<mechanicalReduction>40</mechanicalReduction></actuator></transmission>')
+
+    return (f'<robot name="gripper"><link name="base"/>{link("l", 0.1, 0.05)}'
+            f'{link("r", 0.1, 0.05)}{finger("left", "l", 0.05)}{finger("right", "r", -0.05)}'
+            f'{transmission("t_left", left_joint, "m_left")}'
+            f'{transmission("t_right", right_joint, "m_right")}</robot>')
+
+
+def test_swapped_twin_joints_fail_though_they_track(tmp_path):
+    run = run_pair(tmp_path, twin_fingers("left", "right"), twin_fingers("right", "left"))
+    assert not any("tracking error" in r for r in run.reasons)
+    assert run.verdict == "fail"
+    assert any("joints 'left' and 'right' swapped" in r for r in run.reasons), run.reasons
