@@ -141,7 +141,9 @@ def convert(
 
 def simulate(robot: str, configs: Sequence[str] = (), **options: Any) -> list[Any]:
     """Run ``txtool simulate ROBOT --config ...`` and return one result per config (the robot's
-    own when ``configs`` is empty); each has ``passed`` and ``reasons``. ``options`` are those
+    own when ``configs`` is empty); each has ``verdict`` (``pass``, ``fail`` or ``inconclusive``:
+    nothing of the config could be simulated), ``passed``, ``reasons`` and ``coverage`` (what
+    was checked). ``options`` are those
     of :class:`txtool.simulation.run.Options` (``duration``, ``dt``, ``tolerance``, ...). Needs
     the ``sim`` extra (Pinocchio)."""
     from txtool.simulation.run import Options, simulate_one

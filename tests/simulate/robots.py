@@ -130,6 +130,18 @@ def arm_both() -> str:
     return arm_ros1(extra=ARM_ROS2_TRANSMISSIONS)
 
 
+def with_transmission(robot: str, joint: str, reduction: float = 1.0) -> str:
+    """``robot`` with a simple transmission on ``joint``: something for a run to check (a
+    robot without any is inconclusive and not simulated)."""
+    return robot.replace("</robot>", f"""
+  <transmission name="t_{joint}">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="{joint}">{EFFORT}</joint>
+    <actuator name="m_{joint}"><mechanicalReduction>{reduction}</mechanicalReduction></actuator>
+  </transmission>
+</robot>""")
+
+
 def write(folder: Path, name: str, text: str) -> str:
     path = folder / name
     path.write_text(text, encoding="utf-8")

@@ -173,3 +173,12 @@ def test_an_element_of_absurdly_many_attributes_is_refused_before_pinocchio(tmp_
     assert err == (f"txtool: {crowded}:{line}: <robot> has 20001 attributes; simulate refuses "
                    "more than 256 on one element (Pinocchio's URDF parser slows down "
                    "quadratically on them)\n")
+
+
+def test_help_says_the_default_duration_stretches_to_what_the_robot_can_follow():
+    result = CliRunner().invoke(cli, ["simulate", "--help"], terminal_width=200)
+    assert result.exit_code == 0
+    text = " ".join(result.output.split())
+    assert ("--duration S Run length. Default: at least 5 s, stretched (up to 240 s) until the "
+            "default motion is feasible for the robot's limits; given, the motion shrinks to "
+            "fit it instead.") in text

@@ -118,3 +118,21 @@ def test_the_carried_torque_follows_the_reference_pose(tmp_path):
     expected = gravity - np.clip(gravity, -KEEP * 2.0, KEEP * 2.0)
     assert run.counterbalance["swing"]["carried"] == pytest.approx(np.abs(expected).max(),
                                                                    rel=1e-6)
+
+
+def test_a_limit_far_below_the_static_load_is_a_finding_not_a_spring(tmp_path):
+    from tests.simulate.robots import arm_ros1
+
+    # The shoulder holds about 10.9 N·m at rest: a limit of 4 N·m (2.7x) may be a spring left
+    # out of the URDF; 0.8 N·m (13.6x) is a limit written wrong, and the run fails on it.
+    plausible = write(tmp_path, "a.urdf", arm_ros1().replace('effort="40"', 'effort="4"'))
+    run = simulate_one(Options(robot=plausible, duration=2.0), None)
+    assert run.passed and set(run.counterbalance) == {"shoulder"}
+    wrong = write(tmp_path, "b.urdf", arm_ros1().replace('effort="40"', 'effort="0.8"'))
+    run = simulate_one(Options(robot=wrong, duration=2.0), None)
+    assert run.verdict == "fail" and run.counterbalance == {}
+    assert run.reasons[0].startswith("actuator 'm_shoulder': holding joint 'shoulder' against "
+                                     "gravity needs")
+    assert ("joint 'shoulder': gravity needs up to 10.89 N·m, 13.6 times its effort limit "
+            "0.8 N·m: no counterbalance is assumed beyond 4 times the limit (the limit is more "
+            "likely wrong than a spring that large left out)") in run.notes

@@ -8,7 +8,7 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from tests.simulate.robots import arm_ros1, pendulum, planar_two_link, write
+from tests.simulate.robots import arm_ros1, pendulum, planar_two_link, with_transmission, write
 from txtool.io.load import load
 from txtool.mechanics.inertia import reflected_inertia
 from txtool.simulation.model import build
@@ -79,6 +79,7 @@ def test_continuous_configuration_is_pinocchio_integrate(tmp_path):
 def test_continuous_joint_tracks(tmp_path):
     text = planar_two_link(1, 1, 0.5, 0.2, 0.2, 0.01, 0.01).replace(
         'name="q2" type="revolute"', 'name="q2" type="continuous"')
+    text = with_transmission(text, "q2")
     run = simulate_one(Options(robot=write(tmp_path, "c.urdf", text), duration=3.0), None)
     assert run.passed, run.reasons
     assert run.joints["q2"].limit_margin is None
@@ -124,6 +125,7 @@ def test_mimic_joint_follows_its_leader(tmp_path):
         "<limit lower=\"-3\" upper=\"3\" effort=\"100\" velocity=\"5\"/></joint>\n</robot>",
         '<limit lower="-3" upper="3" effort="100" velocity="5"/>'
         '<mimic joint="q1" multiplier="0.5"/></joint>\n</robot>')
+    text = with_transmission(text, "q1")
     run = simulate_one(Options(robot=write(tmp_path, "m.urdf", text)), None)
     assert run.passed, run.reasons
     assert list(run.joints) == ["q1"]

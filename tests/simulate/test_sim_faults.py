@@ -134,12 +134,14 @@ def test_a_wrong_effort_map_fails_even_where_tracking_hides_it(tmp_path):
                                      "ros_control's (ROS 1) four-bar map")
 
 
-def test_a_difference_within_the_tolerance_is_a_note(tmp_path):
+def test_a_difference_within_the_tolerance_fails_all_the_same(tmp_path):
     run = run_pair(tmp_path, arm_ros1(), arm_ros1(offset=0.1005))
-    assert run.passed, run.reasons
-    assert ("the config differs from the robot (within the tolerance): joint 'elbow': offset "
-            "off by +0.0005 rad in the config's transmission 't_wrist' (0.1005, the robot's 0.1)"
-            in run.notes)
+    assert not any("tracking error" in r for r in run.reasons)
+    assert run.reasons == [
+        "the config's maps differ from the robot's (it tracks within the tolerance on this "
+        "motion): joint 'elbow': offset off by +0.0005 rad in the config's transmission "
+        "'t_wrist' (0.1005, the robot's 0.1)"]
+    assert run.verdict == "fail"
 
 
 def test_an_actuator_reduction_of_a_differential_is_named_on_the_actuator(tmp_path):
@@ -186,3 +188,50 @@ def test_a_self_check_that_fails_on_limits_blames_no_transmission(tmp_path):
     run = simulate_one(Options(robot=robot, params=params, trajectory=fast), copy)
     assert causes(run) == ["not the transmissions: the config's maps equal the robot's (look "
                            "at the gains, the limits or the reference)"]
+
+
+def test_a_changed_hardware_interface_fails_naming_both(tmp_path):
+    position = arm_ros1().replace(
+        '<joint name="shoulder"><hardwareInterface>hardware_interface/EffortJointInterface',
+        '<joint name="shoulder"><hardwareInterface>hardware_interface/PositionJointInterface')
+    assert position != arm_ros1()
+    run = run_pair(tmp_path, arm_ros1(), position)
+    assert "joint 'shoulder': the config commands it through position, the robot through " \
+           "effort" in run.reasons
+    assert run.verdict == "fail"
+
+
+def test_the_same_interface_in_another_dialect_is_no_change(tmp_path):
+    from tests.simulate.robots import arm_ros2
+
+    run = run_pair(tmp_path, arm_ros1(), arm_ros2())
+    assert not any("commands it through" in r for r in run.reasons)
+
+
+def twin_fingers(left_joint: str, right_joint: str) -> str:
+    """Two identical fingers on the base with identical transmissions: in the default motion
+    they move alike, so a config that swaps them tracks exactly."""
+    from tests.simulate.robots import link
+
+    def finger(name: str, child: str, y: float) -> str:
+        return (f'<joint name="{name}" type="revolute"><parent link="base"/>'
+                f'<child link="{child}"/><origin xyz="0 {y} 0"/><axis xyz="0 0 1"/>'
+                '<limit lower="-1" upper="1" effort="10" velocity="2"/></joint>')
+
+    def transmission(name: str, joint: str, actuator: str) -> str:
+        return (f'<transmission name="{name}"><type>transmission_interface/SimpleTransmission'
+                f'</type><joint name="{joint}"><hardwareInterface>hardware_interface/'
+                f'EffortJointInterface</hardwareInterface></joint><actuator name="{actuator}">'
+                '<mechanicalReduction>40</mechanicalReduction></actuator></transmission>')
+
+    return (f'<robot name="gripper"><link name="base"/>{link("l", 0.1, 0.05)}'
+            f'{link("r", 0.1, 0.05)}{finger("left", "l", 0.05)}{finger("right", "r", -0.05)}'
+            f'{transmission("t_left", left_joint, "m_left")}'
+            f'{transmission("t_right", right_joint, "m_right")}</robot>')
+
+
+def test_swapped_twin_joints_fail_though_they_track(tmp_path):
+    run = run_pair(tmp_path, twin_fingers("left", "right"), twin_fingers("right", "left"))
+    assert not any("tracking error" in r for r in run.reasons)
+    assert run.verdict == "fail"
+    assert any("joints 'left' and 'right' swapped" in r for r in run.reasons), run.reasons

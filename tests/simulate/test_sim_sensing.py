@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from tests.simulate.robots import arm_ros1, pendulum, planar_two_link, write
+from tests.simulate.robots import arm_ros1, pendulum, planar_two_link, with_transmission, write
 from txtool.cli import cli
 from txtool.simulation import loop
 from txtool.simulation.run import Options, prepare, simulate_one
@@ -114,7 +114,7 @@ def test_a_prismatic_joint_driven_directly_has_a_linear_actuator_not_quantised(t
         'name="q2" type="revolute"', 'name="q2" type="prismatic"').replace(
         'lower="-3" upper="3" effort="100" velocity="5"/></joint>\n</robot>',
         'lower="0" upper="0.2" effort="100" velocity="5"/></joint>\n</robot>')
-    robot = write(tmp_path, "slide.urdf", text)
+    robot = write(tmp_path, "slide.urdf", with_transmission(text, "q1"))
     p = prepare(Options(robot=robot, duration=0.5, encoder_counts=16), None)
     loop.run(p.plan)
     reading = p.plan.rows[:-1, p.plan.slots["enc"]]

@@ -28,7 +28,10 @@ from txtool.io.xmlio import XacroOptions
                    "pyproject.toml above ROBOT).")
 @click.option("--bandwidth", type=float, metavar="RAD/S",
               help="Closed-loop bandwidth w for default gains kp=w^2, kd=2w  [default: 20]")
-@click.option("--duration", type=float, metavar="S", help="Run length  [default: 5]")
+@click.option("--duration", type=float, metavar="S",
+              help="Run length. Default: at least 5 s, stretched (up to 240 s) until the "
+                   "default motion is feasible for the robot's limits; given, the motion "
+                   "shrinks to fit it instead. A --trajectory CSV: its last time.")
 @click.option("--dt", type=float, metavar="S", help="Control and integration step  "
               "[default: 0.001]")
 @click.option("--tolerance", type=float, metavar="RAD|M",
@@ -81,7 +84,8 @@ def command(robot: str, configs: tuple[str, ...], params: tuple[str, ...],
 
     The plant uses ROBOT's transmissions; a computed-torque controller encodes its commands and
     decodes its measurements with each CANDIDATE's. Exit 0 when the tracking error stays within
-    --tolerance and no limit is exceeded, 1 when not, 2 on bad input. Under --no-xacro a
+    --tolerance and no limit is exceeded, 1 when not, 3 when nothing of a config could be
+    simulated (inconclusive), 2 on bad input. Under --no-xacro a
     .xacro ROBOT or CANDIDATE is refused: the model needs the expanded robot.
     """
     require_extra("pinocchio", "sim", "txtool simulate")

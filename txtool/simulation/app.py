@@ -66,8 +66,9 @@ def main(options: Options, *, output: str = "text", csv_path: str | None = None,
     # The files first: an interrupted or failed write prints no verdict.
     if csv_path is not None:
         for index, run in enumerate(runs, 1):
-            report.write_csv(run, report.numbered(csv_path, index, len(runs)))
-    if plot_path is not None:
+            if run.series is not None:  # an inconclusive run simulated nothing
+                report.write_csv(run, report.numbered(csv_path, index, len(runs)))
+    if plot_path is not None and any(run.series is not None for run in runs):
         plot.plot(runs, plot_path)
     if output == "json":
         console.file.write(json.dumps(report.document(runs), indent=2,

@@ -29,24 +29,46 @@ CHATTER_REVERSALS = 8  # saturated sign reversals within the window: a period <=
 
 def judge(run: RunResult, series: Series, plant: Drive, ctrl: Drive, S: np.ndarray,
           candidate: bool, encoder: Encoder | None = None, delay: bool = True) -> None:
-    """Append the effort-path and chatter reasons, then causes (failing) or notes (passing).
+    """Append the effort-path and chatter reasons, then what differs between the maps: the
+    likely causes of a failure, or the failure itself where the run tracked anyway.
 
     ``candidate``: a config other than the robot's own was given.
     """
     with np.errstate(all="ignore"):
         run.reasons += effort_path(series, plant, ctrl, S)
         run.reasons += chatter(series)
+    run.reasons += interface_mismatch(plant, ctrl)
     found = diagnose.causes(plant, ctrl, S, series.units)
-    if not run.passed:
+    if run.failed:
         if found:
             run.reasons += [f"likely cause: {cause}" for cause in found]
         elif candidate:
             run.reasons.append("likely cause: not the transmissions: the config's maps equal "
                                "the robot's (look at the gains, the limits or the reference)")
     elif found:
-        run.notes += [f"the config differs from the robot (within the tolerance): {cause}"
-                      for cause in found]
+        # The maps are compared exactly: a config that differs is not the robot's, even where
+        # this motion and these gains happen to keep the tracking error within the tolerance.
+        run.reasons += [f"the config's maps differ from the robot's (it tracks within the "
+                        f"tolerance on this motion): {cause}" for cause in found]
     run.notes += sensing_notes(encoder, delay, plant)
+
+
+def interface_mismatch(plant: Drive, ctrl: Drive) -> list[str]:
+    """Joints the config commands through other interfaces than the robot's (effort where the
+    robot takes position, say): a controller written for one cannot drive the other. The
+    simulation itself runs on efforts, so only this comparison sees the difference."""
+    reasons = []
+    for joint, robot_kinds in plant.commands.items():
+        config_kinds = ctrl.commands.get(joint)
+        if config_kinds is None or config_kinds == robot_kinds:
+            continue
+        reasons.append(f"joint '{joint}': the config commands it through "
+                       f"{_kinds(config_kinds)}, the robot through {_kinds(robot_kinds)}")
+    return reasons
+
+
+def _kinds(kinds: frozenset[str]) -> str:
+    return " and ".join(sorted(kinds))
 
 
 def effort_path(series: Series, plant: Drive, ctrl: Drive, S: np.ndarray) -> list[str]:

@@ -24,6 +24,10 @@ from dataclasses import dataclass
 import numpy as np
 
 KEEP = 0.5  # share of a joint's torque capacity its actuator keeps for the static load
+# A static load beyond this many times the capacity is taken as a wrong effort limit, not as an
+# undescribed spring: real counterbalances leave the motor a sizeable share (PR2's shoulder
+# needs 1.5x its limit, TIAGo's suspension 1.16x); a limit written 50 times too small is not one.
+MAX_LOAD = 4.0
 
 Parts = tuple[np.ndarray, np.ndarray, np.ndarray]
 Dynamics = Callable[[np.ndarray, np.ndarray, np.ndarray], Parts]
@@ -56,6 +60,20 @@ class Counterbalance:
             return quadratic, linear, static - self.carried(gravity)
 
         return parts
+
+    @property
+    def refused(self) -> list[str]:
+        """Notes on the joints whose load is too far beyond their limit to assume a spring."""
+        notes = []
+        for v in np.nonzero(self.load > MAX_LOAD * self.capacity)[0]:
+            unit = "N" if self.units[v] == "m" else "N·m"
+            notes.append(
+                f"joint '{self.joints[v]}': gravity needs up to {self.load[v]:.4g} {unit}, "
+                f"{self.load[v] / self.capacity[v]:.3g} times its effort limit "
+                f"{self.capacity[v]:.4g} {unit}: no counterbalance is assumed beyond "
+                f"{MAX_LOAD:g} times the limit (the limit is more likely wrong than a spring "
+                "that large left out)")
+        return notes
 
     def notes(self, gravity: np.ndarray) -> list[str]:
         """One note per counterbalanced joint, from the gravity along the run's reference."""
@@ -95,5 +113,5 @@ def find(joints: tuple[str, ...], units: tuple[str, ...], gravity: np.ndarray,
     """The joints whose static load (rows of ``gravity``) exceeds their torque capacity."""
     limit = capacity(eff_j2a, actuator_effort)
     load = np.abs(gravity).max(axis=0, initial=0.0)
-    keep = np.where(load > limit, KEEP * limit, np.inf)
+    keep = np.where((load > limit) & (load <= MAX_LOAD * limit), KEEP * limit, np.inf)
     return Counterbalance(joints, units, keep, limit, load)

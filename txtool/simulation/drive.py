@@ -14,6 +14,7 @@ import numpy as np
 from lxml import etree
 
 from txtool.dialects.read import Found, read_source
+from txtool.dialects.translate import interface_kind
 from txtool.io.xmlio import InputError, Source, local
 from txtool.mechanics.convention import effort_convention
 from txtool.mechanics.inertia import reflected_inertia
@@ -54,6 +55,8 @@ class Drive:
     notes: list[str] = field(default_factory=list)  # transmissions left out, and why
     skipped: dict[str, str] = field(default_factory=dict)  # transmission name -> why
     names: tuple[str, ...] = ()  # every transmission read (simulated or not)
+    # Per joint of a simulated transmission: how it is commanded (position, velocity, effort).
+    commands: dict[str, frozenset[str]] = field(default_factory=dict)
 
     @property
     def na(self) -> int:
@@ -110,7 +113,24 @@ def read_drive(source: Source, robot: RobotModel, *, loader: str = "auto",
         notes.append("no transmission can be simulated: every joint is driven directly")
     drive.notes, drive.skipped = notes, skipped
     drive.names = tuple(item.transmission.name for item in found)
+    drive.commands = command_kinds(kept)
     return drive
+
+
+COMMANDS = ("position", "velocity", "effort")
+
+
+def command_kinds(kept: list[Found]) -> dict[str, frozenset[str]]:
+    """How each joint of these transmissions is commanded: its ROS 1 hardware interfaces or
+    ROS 2 command interfaces, as kinds (``hardware_interface/EffortJointInterface`` and
+    ``effort`` are both ``effort``). Joints that declare none are left out."""
+    kinds: dict[str, frozenset[str]] = {}
+    for item in kept:
+        for joint in item.transmission.joints:
+            declared = {kind for kind in map(interface_kind, joint.interfaces) if kind in COMMANDS}
+            if declared:
+                kinds[joint.name] = kinds.get(joint.name, frozenset()) | declared
+    return kinds
 
 
 def _skip_notes(path: str, skipped: dict[str, str], where: dict[str, str]) -> list[str]:

@@ -107,6 +107,7 @@ def plan_motion(ranges: list[tuple[float, float]], limits: Limits, dynamics: Dyn
     carry = None
     if counterbalance is not None:
         carry = counterbalance(dynamics(q, 0 * qd, 0 * qdd)[2])
+        notes += carry.refused
         if carry.active:
             dynamics = carry.relieve(dynamics)
         else:

@@ -16,7 +16,15 @@ import os
 
 from txtool.lint.workers import forked_map
 from txtool.simulation.result import RunResult
-from txtool.simulation.run import Options, Prepared, Progress, candidates, complete, prepare
+from txtool.simulation.run import (
+    Options,
+    Prepared,
+    Progress,
+    Unchecked,
+    candidates,
+    complete,
+    prepare,
+)
 
 MIN_LOOP_S = 0.005  # a fork costs about 10 ms of CPU: shorter runs go one after the other
 
@@ -46,9 +54,11 @@ def processes_for(jobs: int, configs: int) -> int:
     return max(1, min(jobs, configs, idle_cpus()))
 
 
-def loop_seconds(p: Prepared) -> float:
+def loop_seconds(p: Prepared | Unchecked) -> float:
     """A rough cost of a prepared run's loop: about 4 + 0.6 nv µs a step (docs/simulate.md,
     "Performance")."""
+    if isinstance(p, Unchecked):
+        return 0.0
     return p.plan.steps * (4.0 + 0.6 * p.robot.nv) * 1e-6
 
 

@@ -116,7 +116,17 @@ def run(plan: Plan, progress: Callable[[int], None] | None = None) -> Plan:
             _first_step_with_delay(plan)
         while plan.done < plan.steps:
             stop = min(plan.done + CHUNK, plan.steps)
-            _steps(plan, plan.done, stop)
+            try:
+                _steps(plan, plan.done, stop)
+            except np.linalg.LinAlgError:
+                # A state run away far enough leaves the plant's equations singular or
+                # non-finite: the rows not reached are marked so, and judged as divergence.
+                # (Rows start as zeros: the ones after the last with a non-zero state were
+                # not reached.)
+                ahead = plan.rows[plan.done + 1 : stop + 1]
+                moved = np.flatnonzero(ahead[:, plan.slots["x"].start : plan.slots["v"].stop]
+                                       .any(axis=1))
+                ahead[(int(moved[-1]) + 1 if len(moved) else 0):] = np.nan
             if not np.isfinite(plan.rows[plan.done + 1 : stop + 1, plan.slots["x"]]).all():
                 bad = np.nonzero(~np.isfinite(plan.rows[plan.done : stop + 1]).all(axis=1))[0]
                 plan.diverged_at = plan.done + int(bad[0])

@@ -1,9 +1,11 @@
 """``--plot``: every config of a run overlaid in one figure.
 
-One row per joint (reference and actual position; tracking error with the tolerance band) and
-one row per actuator (demanded effort and speed against their limits). Units are in every axis
-label. matplotlib is the optional extra ``plot``; :func:`require` fails early with a clear
-message. The file format follows the suffix: .png, .svg or .pdf.
+One cell per joint (reference and actual position above, tracking error with the tolerance band
+below) and one per actuator (demanded effort above, speed below, against their limits), laid
+out in a grid whose columns grow with the number of cells, so a 30-joint robot stays readable.
+Joints and actuators that fail come first, the worst first. Units are in every axis label.
+matplotlib is the optional extra ``plot``; :func:`require` fails early with a clear message.
+The file format follows the suffix: .png, .svg or .pdf.
 """
 
 from __future__ import annotations
@@ -20,7 +22,8 @@ from txtool.io.xmlio import InputError, write_atomic
 from txtool.simulation.result import RunResult
 
 SUFFIXES = (".png", ".svg", ".pdf")
-ROW_HEIGHT = 2.1  # inches
+CELL = (5.0, 3.4)  # inches: one joint or actuator, two stacked axes
+MAX_COLUMNS = 6
 REFERENCE = {"color": "black", "linestyle": "--", "linewidth": 1.0, "zorder": 3}
 LIMIT = {"color": "tab:red", "linestyle": ":", "linewidth": 1.0}
 BAND = {"color": "tab:green", "alpha": 0.15, "linewidth": 0}
@@ -47,16 +50,23 @@ def plot(runs: list[RunResult], path: str) -> None:
         raise ValueError("no run kept its time series")
     first = kept[0].series
     assert first is not None
-    rows = len(first.joints) + len(first.actuators)
-    figure, axes = plt.subplots(rows, 2, figsize=(11, ROW_HEIGHT * rows + 1.2), squeeze=False,
-                                sharex=True, layout="constrained")
+    cells = cell_order(kept)
+    columns, rows = grid(len(cells))
+    figure = plt.figure(figsize=(CELL[0] * columns, CELL[1] * rows + 1.2),
+                        layout="constrained")
+    outer = figure.add_gridspec(rows, columns)
     colors = [f"C{i % 10}" for i in range(len(kept))]
-    for v, joint in enumerate(first.joints):
-        _joint_row(axes[v], kept, colors, joint, first.units[v])
-    for i, actuator in enumerate(first.actuators):
-        _actuator_row(axes[len(first.joints) + i], kept, colors, actuator)
-    for ax in axes[-1]:
-        ax.set_xlabel("time (s)")
+    for index, (kind, name) in enumerate(cells):
+        inner = outer[index // columns, index % columns].subgridspec(2, 1)
+        top = figure.add_subplot(inner[0])
+        bottom = figure.add_subplot(inner[1], sharex=top)
+        top.tick_params(labelbottom=False)
+        bottom.set_xlabel("time (s)")
+        if kind == "joint":
+            units = first.units[first.joints.index(name)]
+            _joint_row((top, bottom), kept, colors, name, units)
+        else:
+            _actuator_row((top, bottom), kept, colors, name)
     handles = [plt.Line2D([], [], color=c, label=f"{run.config} ({run.verdict})")
                for run, c in zip(kept, colors, strict=True)]
     handles += [plt.Line2D([], [], label="reference", **REFERENCE),
@@ -68,6 +78,37 @@ def plot(runs: list[RunResult], path: str) -> None:
     figure.savefig(image, format=Path(path).suffix[1:].lower())
     plt.close(figure)
     write_atomic(path, image.getvalue())
+
+
+def grid(cells: int) -> tuple[int, int]:
+    """(columns, rows) for ``cells`` cells: about as wide as tall, at most MAX_COLUMNS wide."""
+    columns = max(1, min(MAX_COLUMNS, math.ceil(math.sqrt(cells * CELL[1] / CELL[0]))))
+    return columns, math.ceil(cells / columns)
+
+
+def cell_order(runs: list[RunResult]) -> list[tuple[str, str]]:
+    """("joint"|"actuator", name) in drawing order: joints, then actuators; within each, those
+    outside the tolerance or their limits in any run first, the worst first; the rest in the
+    robot's order."""
+    first = runs[0].series
+    assert first is not None
+    tolerance = runs[0].tolerance or 0.0
+
+    def joint_key(item: tuple[int, str]) -> tuple[bool, float, int]:
+        v, name = item
+        worst = max((r.joints[name].max_error for r in runs if name in r.joints), default=0.0)
+        return (not worst > tolerance, -worst if worst > tolerance else 0.0, v)
+
+    def actuator_key(item: tuple[int, str]) -> tuple[bool, float, int]:
+        i, name = item
+        over = max((max(r.actuators[name].peak_effort / r.actuators[name].effort_limit,
+                        r.actuators[name].peak_velocity / r.actuators[name].velocity_limit)
+                    for r in runs if name in r.actuators), default=0.0)
+        return (not over > 1.0, -over if over > 1.0 else 0.0, i)
+
+    joints = sorted(enumerate(first.joints), key=joint_key)
+    actuators = sorted(enumerate(first.actuators), key=actuator_key)
+    return [("joint", n) for _, n in joints] + [("actuator", n) for _, n in actuators]
 
 
 def _joint_row(axes: Any, runs: list[RunResult], colors: list[str], joint: str,

@@ -15,7 +15,7 @@ from rich.markup import escape
 from rich.table import Table
 
 from txtool.io.xmlio import write_atomic
-from txtool.simulation.result import GainsUsed, RunResult
+from txtool.simulation.result import Coverage, GainsUsed, RunResult
 
 TABLE_WIDTH = 100  # tables fit this many columns (or the terminal, when narrower)
 
@@ -57,15 +57,27 @@ def render_text(runs: list[RunResult], console: Console) -> None:
         console.print(f"{escape(run.config)}: {verdict_line(run)}", soft_wrap=True)
         for reason in run.reasons[1:]:
             console.print(f"  - {escape(reason)}", soft_wrap=True)
-    failed = [run.config for run in runs if not run.passed]
+    failed = [run.config for run in runs if run.failed]
+    unchecked = [run.config for run in runs if run.verdict == "inconclusive"]
     if failed:
         console.print(f"[bold red]FAIL[/]: {len(failed)} of {len(runs)} configs fail: "
                       + ", ".join(escape(c) for c in failed), soft_wrap=True)
+    elif unchecked:
+        console.print(f"[bold yellow]INCONCLUSIVE[/]: {len(unchecked)} of {len(runs)} configs "
+                      "could not be checked: " + ", ".join(escape(c) for c in unchecked),
+                      soft_wrap=True)
     else:
         console.print(f"[bold green]PASS[/]: all {len(runs)} configs track the reference")
 
 
 def render_run(run: RunResult, console: Console) -> None:
+    if run.verdict == "inconclusive":
+        console.print(f"[bold]simulate[/] {escape(run.robot)} with {escape(run.config)}: "
+                      "not simulated", soft_wrap=True)
+        for note in run.notes:
+            console.print(f"note: {escape(note)}", soft_wrap=True)
+        console.print(verdict_line(run), soft_wrap=True)
+        return
     console.print(f"[bold]simulate[/] {escape(run.robot)} with {escape(run.config)}: "
                   f"{run.steps} steps of {run.dt:g} s ({run.duration:g} s)", soft_wrap=True)
     console.print(f"reference: {escape(run.reference)}", soft_wrap=True)
@@ -84,12 +96,17 @@ def render_run(run: RunResult, console: Console) -> None:
 
 
 def verdict_line(run: RunResult) -> str:
+    """The verdict and why; a run that checked only part of the config says how much."""
+    covered = run.coverage
+    if run.verdict == "inconclusive":
+        return f"[bold yellow]INCONCLUSIVE[/]: nothing checked: {escape(covered.why_nothing())}"
+    part = f"; {covered.summary()}" if covered.partial else ""
     if run.passed:
         worst = max(run.joints.items(), key=lambda kv: kv[1].max_error)
         return (f"[bold green]PASS[/]: largest tracking error {worst[1].max_error:.3g} "
-                f"{worst[1].units} on '{escape(worst[0])}', no limit exceeded")
+                f"{worst[1].units} on '{escape(worst[0])}', no limit exceeded{part}")
     more = f" (and {len(run.reasons) - 1} more)" if len(run.reasons) > 1 else ""
-    return f"[bold red]FAIL[/]: {escape(run.reasons[0])}{more}"
+    return f"[bold red]FAIL[/]: {escape(run.reasons[0])}{more}{part}"
 
 
 def _table(title: str) -> Table:
@@ -199,8 +216,12 @@ def gain_origin(g: GainsUsed) -> str:
     return where
 
 
+VERDICT_CELL = {"pass": "[green]pass[/]", "fail": "[red]fail[/]",
+                "inconclusive": "[yellow]inconclusive[/]"}
+
+
 def comparison_table(runs: list[RunResult]) -> Table:
-    units = {max(r.joints.values(), key=lambda j: j.max_error).units for r in runs}
+    units = {max(r.joints.values(), key=lambda j: j.max_error).units for r in runs if r.joints}
     shown = units.pop() if len(units) == 1 else None
     table = _table("comparison")
     table.add_column("config", overflow="fold")
@@ -210,10 +231,13 @@ def comparison_table(runs: list[RunResult]) -> Table:
     table.add_column("peak effort\n% of limit", justify="right")
     table.add_column("peak speed\n% of limit", justify="right")
     for run in runs:
+        verdict = VERDICT_CELL[run.verdict]
+        if not run.joints:
+            table.add_row(escape(run.config), verdict, "-", "-", "-", "-")
+            continue
         joint, stats = max(run.joints.items(), key=lambda kv: kv[1].max_error)
         effort = max((a.effort_percent for a in run.actuators.values()), default=0.0)
         speed = max((a.velocity_percent for a in run.actuators.values()), default=0.0)
-        verdict = "[green]pass[/]" if run.passed else "[red]fail[/]"
         error = _num(stats.max_error, 3) + ("" if shown else f" {stats.units}")
         table.add_row(escape(run.config), verdict, escape(joint), error, f"{effort:.0f}%",
                       f"{speed:.0f}%")
@@ -250,12 +274,21 @@ def run_json(run: RunResult) -> dict[str, Any]:
         },
         "gains": {name: gains_json(g) for name, g in run.gains.items()},
         "counterbalance": {name: dict(entry) for name, entry in run.counterbalance.items()},
+        "checked": coverage_json(run.coverage),
         "tolerance": run.tolerance,
         "steps": run.steps,
         "dt": run.dt,
         "duration": run.duration,
         "time_units": "s",
     }
+
+
+def coverage_json(covered: Coverage) -> dict[str, Any]:
+    """What the run checked: the config's transmissions and the joints driven through them."""
+    return {"transmissions": covered.transmissions,
+            "simulated": list(covered.simulated),
+            "skipped": {name: why for name, why in covered.skipped},
+            "joints": covered.joints, "joints_checked": covered.joints_checked}
 
 
 def gains_json(g: GainsUsed) -> dict[str, Any]:
@@ -279,8 +312,14 @@ def document(runs: list[RunResult]) -> dict[str, Any]:
     """One run: its JSON; several: ``{"verdict", "runs": [...]}``. Non-finite numbers: null."""
     if len(runs) == 1:
         return _clean(run_json(runs[0]))
-    return _clean({"verdict": "pass" if all(r.passed for r in runs) else "fail",
+    return _clean({"verdict": overall_verdict(runs),
                    "runs": [run_json(r) for r in runs]})
+
+
+def overall_verdict(runs: list[RunResult]) -> str:
+    """``fail`` if any run fails, else ``inconclusive`` if any checked nothing, else ``pass``."""
+    verdicts = {run.verdict for run in runs}
+    return next(v for v in ("fail", "inconclusive", "pass") if v in verdicts)
 
 
 def _clean(value: Any) -> Any:

@@ -10,6 +10,7 @@ import numpy as np
 from txtool.simulation.params import GainSource
 
 LIMIT_SLACK = 1e-9  # position limits: ignore round-off at a limit
+SHOWN_REASONS = 2  # why a run checked nothing: the first reasons, in the verdict line
 
 
 @dataclass
@@ -100,6 +101,43 @@ class GainsUsed:
     inertia: float | None = None  # effort gains were divided by this M_ii (kg m^2 or kg)
 
 
+@dataclass(frozen=True)
+class Coverage:
+    """What a run checked: the config's transmissions driven through their maps, of those read.
+
+    A transmission that cannot be simulated (a custom type, a loader refusal, ``--skip``...)
+    leaves its joints driven directly, so nothing about it is checked.
+    """
+
+    transmissions: int = 0  # read from the config
+    simulated: tuple[str, ...] = ()  # driven and tracked through their maps
+    skipped: tuple[tuple[str, str], ...] = ()  # (transmission, why) left out
+    joints: int = 0  # moving joints of the model
+    joints_checked: int = 0  # joints driven through a simulated transmission
+
+    @property
+    def nothing(self) -> bool:
+        return not self.simulated
+
+    @property
+    def partial(self) -> bool:
+        return bool(self.simulated) and (len(self.simulated) < self.transmissions
+                                         or self.joints_checked < self.joints)
+
+    def summary(self) -> str:
+        return (f"checked {len(self.simulated)} of {self.transmissions} transmissions and "
+                f"{self.joints_checked} of {self.joints} joints")
+
+    def why_nothing(self) -> str:
+        if not self.transmissions:
+            return "the config has no transmission: every joint is driven directly"
+        reasons = list(dict.fromkeys(why for _, why in self.skipped))
+        shown = "; ".join(reasons[:SHOWN_REASONS])
+        if len(reasons) > SHOWN_REASONS:
+            shown += f"; {len(reasons) - SHOWN_REASONS} more reasons in the notes"
+        return f"none of the config's {self.transmissions} transmissions can be simulated ({shown})"
+
+
 @dataclass
 class RunResult:
     robot: str
@@ -118,14 +156,23 @@ class RunResult:
     tolerance: float | None = None
     # per joint: static_load, limit, carried (peaks) and units of an assumed counterbalance
     counterbalance: dict[str, dict[str, float | str]] = field(default_factory=dict)
+    coverage: Coverage = field(default_factory=Coverage)
+
+    @property
+    def failed(self) -> bool:
+        return bool(self.reasons)
 
     @property
     def passed(self) -> bool:
-        return not self.reasons
+        """Every check held, and at least one transmission of the config was checked."""
+        return not self.reasons and not self.coverage.nothing
 
     @property
     def verdict(self) -> str:
-        return "pass" if self.passed else "fail"
+        """``pass``, ``fail`` or ``inconclusive`` (nothing of the config could be checked)."""
+        if self.reasons:
+            return "fail"
+        return "inconclusive" if self.coverage.nothing else "pass"
 
 
 def joint_stats(series: Series) -> dict[str, JointStats]:

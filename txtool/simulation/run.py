@@ -109,7 +109,36 @@ class Prepared:
     unstable: list[str] = field(default_factory=list)  # joints whose sampled loop is unstable
 
 
-def prepare(options: Options, config: str | None, label: str | None = None) -> Prepared:
+@dataclass
+class Unchecked:
+    """A run with nothing to check: the config has no transmission that can be simulated.
+
+    It is judged before any motion is planned or simulated: driving every joint directly
+    would only test the controller against itself.
+    """
+
+    options: Options
+    label: str
+    notes: list[str]
+    coverage: result.Coverage
+
+    def judged(self) -> result.RunResult:
+        return result.RunResult(
+            robot=self.options.robot, config=self.label, dt=0.0, steps=0, duration=0.0,
+            reference="not simulated", joints={}, actuators={}, reasons=[],
+            notes=self.notes, coverage=self.coverage)
+
+
+def coverage_of(robot: RobotModel, ctrl: Drive) -> result.Coverage:
+    """What a run of ``ctrl`` on ``robot`` checks: the transmissions it drives, of those read."""
+    return result.Coverage(
+        transmissions=len(ctrl.names), simulated=tuple(m.name for m in ctrl.maps),
+        skipped=tuple(ctrl.skipped.items()), joints=len(robot.joints),
+        joints_checked=len(robot.joints) - len(ctrl.direct))
+
+
+def prepare(options: Options, config: str | None, label: str | None = None
+            ) -> Prepared | Unchecked:
     """Load ROBOT and the config, build the model, parameters, reference and loop matrices."""
     started = time.perf_counter()
     source = load(options.robot, xacro=options.xacro)
@@ -125,6 +154,10 @@ def prepare(options: Options, config: str | None, label: str | None = None) -> P
     if unknown:
         raise InputError(f"--skip: no transmission named {', '.join(map(repr, unknown))} in "
                          f"{options.robot}" + (f" or {config}" if config else ""))
+    label = label or (config if config is not None else options.robot)
+    covered = coverage_of(robot, ctrl)
+    if covered.nothing:
+        return Unchecked(options, label, _notes(robot, plant, ctrl, config is not None), covered)
     params = load_params(options.params, options.robot)
     params.check_names(set(plant.actuators) | set(ctrl.actuators), set(robot.joints),
                        options.robot)
@@ -151,19 +184,21 @@ def prepare(options: Options, config: str | None, label: str | None = None) -> P
         if finder is not None:  # found on every tenth pose, applied at every step
             carry = finder(setup.gravity_along(robot, ref.q[::10]))
     carried, carry_notes, carry_table = None, [], {}
+    if table is not None and carry is not None:
+        carry_notes = carry.refused  # (the default motion's planner notes them itself)
     if carry is not None and carry.active:
         gravity = setup.gravity_along(robot, ref.q)
         carried = carry.carried(gravity)
-        carry_notes, carry_table = carry.notes(gravity), carry.table(gravity)
+        carry_notes, carry_table = carry_notes + carry.notes(gravity), carry.table(gravity)
     plan = setup.build_plan(robot, plant, ctrl, binding, rotor, effort_limit, controller, ref,
                             run_settings.dt, Sensing(options.delay, options.encoder_counts),
                             carried)
     used = gains.used(robot, params, controller, run_settings.bandwidth, converted)
     stiff, unstable = _stability(robot, inertia, ref, used, plan)
-    return Prepared(options, config, label or (config if config is not None else options.robot),
-                    robot, plant, ctrl, binding, plan, ref, run_settings, duration, effort_limit,
-                    speed_limit, time.perf_counter() - started, carry_notes + ref_notes, weak,
-                    controller, used, params.notes + tuple(stiff), carry_table, unstable)
+    return Prepared(options, config, label, robot, plant, ctrl, binding, plan, ref,
+                    run_settings, duration, effort_limit, speed_limit,
+                    time.perf_counter() - started, carry_notes + ref_notes, weak, controller,
+                    used, params.notes + tuple(stiff), carry_table, unstable)
 
 
 def _stability(robot: RobotModel, inertia: np.ndarray, ref: reference.Reference,
@@ -191,8 +226,10 @@ def simulate_one(options: Options, config: str | None, label: str | None = None,
     return complete(prepare(options, config, label), progress)
 
 
-def complete(p: Prepared, progress: Progress | None = None) -> result.RunResult:
+def complete(p: Prepared | Unchecked, progress: Progress | None = None) -> result.RunResult:
     """Run a prepared loop to its end and judge it."""
+    if isinstance(p, Unchecked):
+        return p.judged()
     started = time.perf_counter()
     steps = p.plan.steps
     loop.run(p.plan, (lambda done: progress(done, steps)) if progress else None)
@@ -212,6 +249,7 @@ def finish(p: Prepared, loop_s: float) -> result.RunResult:
         run.notes.append(p.plan.dynamics.note)
     run.gains, run.tolerance = p.gains, p.settings.tolerance
     run.counterbalance = p.carried
+    run.coverage = coverage_of(p.robot, p.ctrl)
     checks.judge(run, series, p.plant, p.ctrl, p.binding.S, p.config is not None,
                  p.plan.encoder, p.plan.delay)
     run.timings = {"setup_s": p.setup_s, "loop_s": loop_s,
@@ -371,5 +409,11 @@ def candidates(options: Options) -> list[tuple[str | None, str | None]]:
     return list(zip(options.configs, labels, strict=True))
 
 
+EXIT_INCONCLUSIVE = 3
+
+
 def exit_code(runs: list[result.RunResult]) -> int:
-    return 0 if all(run.passed for run in runs) else 1
+    """0 when every run passes, 1 when one fails, else 3: a run that checked nothing."""
+    if any(run.failed for run in runs):
+        return 1
+    return EXIT_INCONCLUSIVE if any(run.coverage.nothing for run in runs) else 0

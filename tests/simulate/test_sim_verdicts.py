@@ -1,0 +1,105 @@
+"""Three verdicts: a run that checked nothing of the config is inconclusive, never a pass.
+
+A verifier that passes when it verified nothing is trusted wrongly in CI: a robot whose
+transmissions are all of custom types, or that has none, gets ``inconclusive`` and exit 3,
+before any motion is simulated. A run that checked part of the config says how much.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+
+from click.testing import CliRunner
+
+from tests.simulate.robots import ARM_BODY, EFFORT, arm_ros1, write
+from txtool.cli import cli
+from txtool.simulation.report import overall_verdict
+from txtool.simulation.result import Coverage, RunResult
+
+CUSTOM = """
+  <transmission name="{name}">
+    <type>acme_mechanism_model/MagicTransmission</type>
+    <joint name="{joint}">{effort}</joint>
+    <actuator name="m_{joint}"><mechanicalReduction>50</mechanicalReduction></actuator>
+  </transmission>"""
+
+
+def customs(*joints: str) -> str:
+    return "".join(CUSTOM.format(name=f"t_{j}", joint=j, effort=EFFORT) for j in joints)
+
+
+def txtool(*args: str) -> tuple[int, str, str]:
+    result = CliRunner().invoke(cli, ["simulate", *args], catch_exceptions=False)
+    return result.exit_code, result.stdout, result.stderr
+
+
+def test_only_custom_transmissions_is_inconclusive_exit_3_without_simulating(tmp_path):
+    robot = write(tmp_path, "custom.urdf",
+                  f'<robot name="arm">{ARM_BODY}{customs("shoulder", "elbow", "wrist")}</robot>')
+    started = time.perf_counter()
+    code, out, err = txtool(robot)
+    assert time.perf_counter() - started < 20  # nothing is simulated (it took over a minute)
+    assert (code, err) == (3, "")
+    assert "PASS" not in out
+    assert out.splitlines()[-1] == (
+        "INCONCLUSIVE: nothing checked: none of the config's 3 transmissions can be simulated "
+        "(custom type 'acme_mechanism_model/MagicTransmission' has no standard maths)")
+    code, out, err = txtool(robot, "--format", "json")
+    doc = json.loads(out)
+    assert (code, doc["verdict"]) == (3, "inconclusive")
+    assert doc["checked"] == {
+        "transmissions": 3, "simulated": [], "joints": 3, "joints_checked": 0,
+        "skipped": {f"t_{j}": "custom type 'acme_mechanism_model/MagicTransmission' has no "
+                              "standard maths" for j in ("shoulder", "elbow", "wrist")}}
+
+
+def test_a_robot_without_transmissions_is_inconclusive(tmp_path):
+    robot = write(tmp_path, "bare.urdf", f'<robot name="arm">{ARM_BODY}</robot>')
+    code, out, err = txtool(robot, "--duration", "1")
+    assert (code, err) == (3, "")
+    assert out.splitlines()[-1] == ("INCONCLUSIVE: nothing checked: the config has no "
+                                    "transmission: every joint is driven directly")
+
+
+def test_a_partial_run_says_how_much_it_checked(tmp_path):
+    robot = write(tmp_path, "custom.urdf", arm_ros1(shoulder=False, extra=customs("shoulder")))
+    code, out, err = txtool(robot, "--duration", "1")
+    assert (code, err) == (0, "")
+    verdict = out.splitlines()[-1]
+    assert verdict.startswith("PASS: largest tracking error")
+    assert verdict.endswith("; checked 1 of 2 transmissions and 2 of 3 joints")
+    doc = json.loads(txtool(robot, "--duration", "1", "--format", "json")[1])
+    assert doc["checked"]["simulated"] == ["t_wrist"]
+    assert (doc["checked"]["joints_checked"], doc["checked"]["joints"]) == (2, 3)
+
+
+def test_a_complete_run_says_nothing_about_coverage(tmp_path):
+    robot = write(tmp_path, "arm.urdf", arm_ros1())
+    code, out, _ = txtool(robot, "--duration", "1")
+    assert code == 0
+    assert "checked" not in out.splitlines()[-1]
+
+
+def test_several_configs_one_inconclusive_is_exit_3_and_named(tmp_path):
+    robot = write(tmp_path, "arm.urdf", arm_ros1())
+    blind = write(tmp_path, "blind.urdf",
+                  f'<robot name="arm">{ARM_BODY}{customs("shoulder", "elbow", "wrist")}</robot>')
+    code, out, err = txtool(robot, "--config", robot, "--config", blind, "--duration", "1")
+    assert (code, err) == (3, "")
+    assert out.splitlines()[-1] == f"INCONCLUSIVE: 1 of 2 configs could not be checked: {blind}"
+    doc = json.loads(txtool(robot, "--config", robot, "--config", blind, "--duration", "1",
+                            "--format", "json")[1])
+    assert doc["verdict"] == "inconclusive"
+    assert [r["verdict"] for r in doc["runs"]] == ["pass", "inconclusive"]
+
+
+def test_a_failure_outranks_an_inconclusive_run():
+    def run(reasons: list[str], simulated: tuple[str, ...]) -> RunResult:
+        return RunResult("r", "c", 0.001, 0, 0.0, "", {}, {}, reasons, [],
+                         coverage=Coverage(transmissions=1, simulated=simulated))
+    failing, blind, good = run(["x"], ("t",)), run([], ()), run([], ("t",))
+    assert [r.verdict for r in (failing, blind, good)] == ["fail", "inconclusive", "pass"]
+    assert overall_verdict([good, blind, failing]) == "fail"
+    assert overall_verdict([good, blind]) == "inconclusive"
+    assert overall_verdict([good, good]) == "pass"
