@@ -23,8 +23,12 @@ from txtool.io import signals as _signals
 if _signals.started_as_command():
     _signals.exit_on_signals()
 
+import os  # noqa: E402
 from collections.abc import Iterable, Mapping, Sequence  # noqa: E402
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Union
+
+PathLike = Union[str, "os.PathLike[str]"]
+DIALECT_CHOICES = ("ros1", "ros2-p1", "ros2-p2")
 
 __version__ = "0.1.0"
 
@@ -64,15 +68,15 @@ def __getattr__(name: str) -> Any:
 
 
 def validate(
-    paths: str | Iterable[str],
+    paths: PathLike | Iterable[PathLike],
     *,
     select: Sequence[str] | None = None,
     ignore: Sequence[str] = (),
-    config: str | None = None,
+    config: PathLike | None = None,
     no_xacro: bool = False,
     xacro_args: Mapping[str, str] | None = None,
-    pkg_dirs: Sequence[str] = (),
-    pkg_paths: Mapping[str, str] | None = None,
+    pkg_dirs: Sequence[PathLike] = (),
+    pkg_paths: Mapping[str, PathLike] | None = None,
     jobs: int = 1,
 ) -> list[Problem]:
     """Lint files and folders as ``txtool validate`` does; the findings in report order.
@@ -83,11 +87,14 @@ def validate(
     """
     from txtool.lint.api import LintOptions, lint_paths
 
-    given = [paths] if isinstance(paths, str) else list(paths)
+    if isinstance(paths, str | os.PathLike):
+        given = [os.fspath(paths)]
+    else:
+        given = [os.fspath(p) for p in paths]
     options = LintOptions(
         select=tuple(select) if select is not None else None,
         ignore=tuple(ignore),
-        config=config,
+        config=os.fspath(config) if config is not None else None,
         xacro=_xacro_options(xacro_args, pkg_dirs, pkg_paths),
         no_xacro=no_xacro,
         jobs=jobs,
@@ -101,12 +108,12 @@ def validate(
 
 
 def read(
-    path_or_text: str,
+    path_or_text: PathLike,
     *,
     expand: bool = True,
     xacro_args: Mapping[str, str] | None = None,
-    pkg_dirs: Sequence[str] = (),
-    pkg_paths: Mapping[str, str] | None = None,
+    pkg_dirs: Sequence[PathLike] = (),
+    pkg_paths: Mapping[str, PathLike] | None = None,
 ) -> list[Transmission]:
     """The transmissions of a file (xacro expanded unless ``expand`` is False) or of XML text
     (a string starting with ``<``), in document order, in txtool's canonical model."""
@@ -117,16 +124,20 @@ def read(
 
 
 def convert(
-    source: str,
+    source: PathLike,
     *,
     to: Dialect,
     expand: bool = True,
     xacro_args: Mapping[str, str] | None = None,
-    pkg_dirs: Sequence[str] = (),
-    pkg_paths: Mapping[str, str] | None = None,
+    pkg_dirs: Sequence[PathLike] = (),
+    pkg_paths: Mapping[str, PathLike] | None = None,
 ) -> Conversion:
     """Convert a file or XML text to ``to`` (``"ros1"``, ``"ros2-p1"`` or ``"ros2-p2"``) as
-    ``txtool convert`` does, keeping every byte it need not change; nothing is written."""
+    ``txtool convert`` does, keeping every byte it need not change; nothing is written.
+    Another ``to`` raises ``ValueError`` naming the choices."""
+    if to not in DIALECT_CHOICES:
+        raise ValueError(f"unknown target dialect {to!r}: choose one of "
+                         + ", ".join(map(repr, DIALECT_CHOICES)))
     from txtool.io.encodings import document_text
     from txtool.transform.api import Conversion
     from txtool.transform.convert import convert_source
@@ -154,11 +165,9 @@ def simulate(robot: str, configs: Sequence[str] = (), **options: Any) -> list[An
 
 def _xacro_options(
     args: Mapping[str, str] | None,
-    pkg_dirs: Sequence[str],
-    pkg_paths: Mapping[str, str] | None,
+    pkg_dirs: Sequence[PathLike],
+    pkg_paths: Mapping[str, PathLike] | None,
 ) -> XacroOptions:
-    import os
-
     from txtool.io.xmlio import XacroOptions
 
     return XacroOptions(
@@ -168,8 +177,10 @@ def _xacro_options(
     )
 
 
-def _source(path_or_text: str, expand: bool, xacro: XacroOptions) -> Source:
-    if path_or_text.lstrip().startswith("<"):
+def _source(path_or_text: PathLike, expand: bool, xacro: XacroOptions) -> Source:
+    if isinstance(path_or_text, os.PathLike):
+        path_or_text = os.fspath(path_or_text)
+    elif path_or_text.lstrip().startswith("<"):
         from txtool.io.xmlio import Source, parse_bytes
 
         data = path_or_text.encode("utf-8")

@@ -71,6 +71,22 @@ def test_convert_of_bad_input_raises_input_error():
         txtool.convert("<robot><transmission></robot>", to="ros2-p2")
 
 
+def test_paths_may_be_path_objects(tmp_path):
+    assert txtool.validate(Path(BROKEN)) == txtool.validate(BROKEN)
+    assert txtool.validate([Path(BROKEN)], config=None) == txtool.validate([BROKEN])
+    assert txtool.read(Path(DEMO)) == txtool.read(DEMO)
+    assert txtool.convert(Path(DEMO), to="ros2-p2").data == txtool.convert(DEMO,
+                                                                          to="ros2-p2").data
+    assert txtool.read(DEMO, pkg_dirs=[Path(tmp_path)]) == txtool.read(DEMO)
+
+
+@pytest.mark.parametrize("to", ["ros2", "ROS1", "ros2-p3", ""])
+def test_an_unknown_target_dialect_raises_value_error_naming_the_choices(to):
+    with pytest.raises(ValueError, match=r"unknown target dialect .*: choose one of 'ros1', "
+                                         r"'ros2-p1', 'ros2-p2'"):
+        txtool.convert(SNIPPET, to=to)  # type: ignore[arg-type]
+
+
 def test_simulate_returns_one_result_per_config(tmp_path):
     pytest.importorskip("pinocchio")
     (own,) = txtool.simulate(DEMO, duration=0.5)

@@ -164,3 +164,19 @@ def test_ros2_control_fragment_cannot_become_ros1(run, tmp_path):
     assert err.splitlines()[0] == (
         "error: transmission 't': a bare <ros2_control> fragment has no place for a top-level "
         "ROS 1 transmission; convert the robot description that holds it")
+
+
+def test_a_choice_takes_any_case_and_a_near_miss_gets_a_hint(run, fixtures):
+    demo = str(fixtures / "demo_robot.urdf")
+    code, out, err = run("convert", demo, "--to", "ros2")
+    assert (code, out) == (2, "")
+    assert err.splitlines()[-1] == (
+        "Error: Invalid value for '--to': 'ros2' is not one of 'ros1', 'ros2-p1', 'ros2-p2', "
+        "'bb'; did you mean 'ros2-p2' (role attributes, the form ros2_control parses) or "
+        "'ros2-p1'?")
+    code, out, err = run("migrate", demo, "--to", "ros2-p3", "--check")
+    assert code == 2 and err.splitlines()[-1].endswith("; did you mean 'ros2-p2'?")
+    code, upper, _ = run("convert", demo, "--to", "ROS2-P2")
+    assert (code, upper) == (0, run("convert", demo, "--to", "ros2-p2")[1])
+    code, out, _ = run("validate", demo, "--format", "JSON")
+    assert code == 0 and out.startswith("{")

@@ -20,6 +20,7 @@ from txtool.reporters.sarif import artifact_uri, sarif_log
 from txtool.reporters.text import summary_line
 
 GOLDEN = Path(__file__).parent / "golden"
+REPO = Path(__file__).resolve().parents[2]
 ROOT = Path(__file__).resolve().parents[2]
 SNIPPET = BROKEN.replace("<robot", "<!-- txtool: disable-file TX104 -->\n<robot", 1)
 
@@ -83,6 +84,7 @@ def _stable(log: dict) -> dict:
         result["ruleIndex"] = index[result["ruleId"]]
     run["tool"]["driver"]["rules"] = rules
     run["tool"]["driver"]["semanticVersion"] = "<version>"
+    run["tool"]["driver"]["version"] = "<version>"
     run["originalUriBaseIds"]["%SRCROOT%"]["uri"] = "file:///<working folder>/"
     return log
 
@@ -231,3 +233,38 @@ def test_github_annotates_unreadable_files(with_unreadable):
         "larger than the 67108864 limit",
         "::error file=urdf/missing.urdf,title=txtool::urdf/missing.urdf: no such file",
     ]
+
+
+def test_sarif_names_the_tool_and_each_rules_documentation_page(report):
+    from txtool import __version__
+    from txtool.rules import all_rules
+
+    _, out = report("sarif")
+    driver = json.loads(out)["runs"][0]["tool"]["driver"]
+    assert (driver["informationUri"], driver["version"]) == (
+        "https://github.com/txtool/txtool", __version__)
+    for rule in driver["rules"]:
+        assert rule["helpUri"] == (
+            f"https://github.com/txtool/txtool/blob/main/docs/rules/{rule['id']}.md")
+        assert (REPO / "docs" / "rules" / f"{rule['id']}.md").is_file()
+    assert len(driver["rules"]) == len(all_rules())
+
+
+@pytest.mark.parametrize("given, workspace, shown", [
+    ("./src/robot.urdf", None, "src/robot.urdf"),
+    ("src/./a/../robot.urdf", None, "src/robot.urdf"),
+    ("{cwd}/src/robot.urdf", None, "src/robot.urdf"),
+    ("robot.urdf", "{parent}", "{name}/robot.urdf"),
+    ("/elsewhere/robot.urdf", None, "/elsewhere/robot.urdf"),
+])
+def test_annotations_name_files_as_github_matches_them(given, workspace, shown, monkeypatch,
+                                                      tmp_path):
+    from txtool.reporters.github import annotation_path
+
+    work = tmp_path / "repo"
+    work.mkdir()
+    monkeypatch.chdir(work)
+    values = {"cwd": str(work), "parent": str(tmp_path), "name": "repo"}
+    if workspace is not None:
+        monkeypatch.setenv("GITHUB_WORKSPACE", workspace.format(**values))
+    assert annotation_path(given.format(**values)) == shown.format(**values)

@@ -15,6 +15,33 @@ from txtool.io.printable import printable
 from txtool.io.xmlio import InputError, XacroOptions, is_xacro
 
 
+class Choice(click.Choice):
+    """A choice given in any case; a value that is none of them gets the nearest as a hint."""
+
+    def __init__(self, choices: tuple[str, ...] | list[str],
+                 hints: dict[str, str] | None = None) -> None:
+        super().__init__(choices, case_sensitive=False)
+        self.hints = hints or {}
+
+    def convert(self, value: Any, param: click.Parameter | None,
+                ctx: click.Context | None) -> Any:
+        try:
+            return super().convert(value, param, ctx)
+        except click.BadParameter:
+            import difflib
+
+            text = str(value)
+            close = difflib.get_close_matches(text.lower(), list(self.choices), n=1, cutoff=0.6)
+            hint = self.hints.get(text.lower()) or (repr(close[0]) if close else "")
+            message = f"{text!r} is not one of {', '.join(map(repr, self.choices))}"
+            self.fail(message + (f"; did you mean {hint}?" if hint else ""), param, ctx)
+
+
+# A target dialect said the short way: both ROS 2 forms, the one ros2_control parses first.
+TARGET_HINTS = {"ros2": "'ros2-p2' (role attributes, the form ros2_control parses) or 'ros2-p1'",
+                "ros": "'ros1'", "ros2_control": "'ros2-p2'", "ros_control": "'ros1'"}
+
+
 def _pairs(values: tuple[str, ...], option: str) -> tuple[tuple[str, str], ...]:
     pairs = []
     for value in values:
@@ -129,7 +156,7 @@ def with_color(command: click.Command) -> None:
     if any(param.name == "color" for param in command.params) or command.callback is None:
         return
     command.params.append(click.Option(
-        ["--color"], type=click.Choice(COLOR_MODES), default="auto", show_default=True,
+        ["--color"], type=Choice(COLOR_MODES), default="auto", show_default=True,
         help="Colour the output: auto colours a terminal unless NO_COLOR is set "
              "(FORCE_COLOR colours a pipe too).",
     ))
@@ -159,6 +186,6 @@ def exit_on_input_error(function: Callable[..., int | None]) -> Callable[..., No
 
 
 FORMAT_OPTION = click.option(
-    "--format", "output_format", type=click.Choice(["text", "json"]), default="text",
+    "--format", "output_format", type=Choice(["text", "json"]), default="text",
     show_default=True, help="Output format.",
 )

@@ -9,6 +9,8 @@ import click
 
 from txtool.commands.common import (
     NO_XACRO_OPTION,
+    TARGET_HINTS,
+    Choice,
     exit_on_input_error,
     xacro_disabled,
     xacro_options,
@@ -19,7 +21,7 @@ TARGETS = ("ros1", "ros2-p1", "ros2-p2", "bb")
 
 @click.command("convert")
 @click.argument("path", metavar="INPUT")
-@click.option("--to", "target", type=click.Choice(TARGETS), required=True,
+@click.option("--to", "target", type=Choice(TARGETS, hints=TARGET_HINTS), required=True,
               help="Target dialect (bb: Beam Bots DSL blocks for simple transmissions).")
 @click.option("-o", "--output", type=click.Path(dir_okay=False),
               help="Write here (atomically) instead of stdout.")
@@ -33,7 +35,7 @@ TARGETS = ("ros1", "ros2-p1", "ros2-p2", "bb")
                    "so that converting back gives its bytes back.")
 @click.option("--stdin-filename", help="Name to report for '-' (stdin).")
 # --- Beam Bots (--to bb) options ---
-@click.option("--bb-direction", type=click.Choice(["reversed", "negative-reduction"]),
+@click.option("--bb-direction", type=Choice(["reversed", "negative-reduction"]),
               help="bb: write a reversed joint as 'reversed? true' (default) or as a negative "
                    "reduction (which BB's URDF exporter keeps).")
 @click.option("--bb-topology", is_flag=True,

@@ -4,22 +4,28 @@ from __future__ import annotations
 
 import click
 
-from txtool.commands.common import NO_XACRO_OPTION, refuse_unexpanded, xacro_disabled, xacro_options
+from txtool.commands.common import (
+    NO_XACRO_OPTION,
+    Choice,
+    refuse_unexpanded,
+    xacro_disabled,
+    xacro_options,
+)
 from txtool.io.xmlio import InputError
 
 
 @click.command("map")
 @click.argument("file")
 @click.option("--transmission", "-t", "name", required=True, help="Name of the transmission.")
-@click.option("--to", "to", required=True, type=click.Choice(["actuator", "joint"]),
+@click.option("--to", "to", required=True, type=Choice(["actuator", "joint"]),
               help="actuator: map joint values to the actuators; joint: the reverse.")
 @click.option("--position", metavar="V[,V]", help="Positions, in role order.")
 @click.option("--velocity", metavar="V[,V]", help="Velocities, in role order.")
 @click.option("--effort", metavar="V[,V]", help="Efforts (torques or forces), in role order.")
-@click.option("--effort-convention", "convention", type=click.Choice(["ros2", "ros1"]),
+@click.option("--effort-convention", "convention", type=Choice(["ros2", "ros1"]),
               help="Four-bar effort map: ros2_control's (power-conserving) or ros_control's. "
                    "Default: that of the loader reading FILE's transmission.")
-@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text",
+@click.option("--format", "fmt", type=Choice(["text", "json"]), default="text",
               show_default=True)
 @NO_XACRO_OPTION
 @xacro_options

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from txtool.commands.common import exit_on_input_error
+from txtool.commands.common import TARGET_HINTS, Choice, exit_on_input_error
 
 TARGETS = ("ros1", "ros2-p1", "ros2-p2")
 
@@ -22,7 +22,7 @@ def _mode(check: bool, diff: bool, write: bool) -> str:
 
 @click.command("migrate")
 @click.argument("paths", nargs=-1, required=True, type=click.Path())
-@click.option("--to", "target", type=click.Choice(TARGETS),
+@click.option("--to", "target", type=Choice(TARGETS, hints=TARGET_HINTS),
               help="Also convert the transmissions to this dialect.")
 @click.option("--check", is_flag=True, help="Write nothing; exit 1 if a file would change.")
 @click.option("--diff", is_flag=True,

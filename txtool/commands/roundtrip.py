@@ -9,6 +9,7 @@ import click
 from txtool.commands.common import (
     FORMAT_OPTION,
     NO_XACRO_OPTION,
+    Choice,
     exit_on_input_error,
     xacro_disabled,
     xacro_options,
@@ -19,7 +20,7 @@ from txtool.commands.common import (
 @click.argument("path", metavar="FILE")
 @click.option("--against", metavar="OTHER",
               help="Instead, compare FILE's transmissions with OTHER's behaviourally.")
-@click.option("--effort-convention", "convention", type=click.Choice(["ros2", "ros1"]),
+@click.option("--effort-convention", "convention", type=Choice(["ros2", "ros1"]),
               help="With --against: map four-bar efforts of both files with ros2_control's "
                    "or ros_control's map (default: each file with its own loader's).")
 @FORMAT_OPTION

@@ -6,12 +6,12 @@ import json
 
 import click
 
-from txtool.commands.common import exit_on_input_error
+from txtool.commands.common import Choice, exit_on_input_error
 
 
 @click.command("rules")
 @click.argument("code", required=False)
-@click.option("--format", "output_format", type=click.Choice(["text", "json"]), default="text",
+@click.option("--format", "output_format", type=Choice(["text", "json"]), default="text",
               show_default=True, help="Output format.")
 @exit_on_input_error
 def command(code: str | None, output_format: str) -> int:

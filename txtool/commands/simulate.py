@@ -7,6 +7,7 @@ import click
 from txtool.commands.common import (
     FORMAT_OPTION,
     NO_XACRO_OPTION,
+    Choice,
     exit_on_input_error,
     refuse_unexpanded,
     require_extra,
@@ -38,13 +39,13 @@ from txtool.io.xmlio import XacroOptions
               help="Largest tracking error that passes  [default: 0.01]")
 @click.option("--trajectory", type=click.Path(dir_okay=False), metavar="FILE.csv",
               help="Reference positions: header time,<joint>,... (default: minimum-jerk moves).")
-@click.option("--interpolation", type=click.Choice(["cubic", "linear"]), default="cubic",
+@click.option("--interpolation", type=Choice(["cubic", "linear"]), default="cubic",
               show_default=True, help="How --trajectory samples are interpolated.")
 @click.option("--allow-saturation", is_flag=True,
               help="Do not fail on actuator effort or speed limits (still reported).")
-@click.option("--loader", type=click.Choice(["auto", "ros1", "ros2"]), default="auto",
+@click.option("--loader", type=Choice(["auto", "ros1", "ros2"]), default="auto",
               show_default=True, help="Which transmissions to use when a file has both kinds.")
-@click.option("--effort-convention", "convention", type=click.Choice(["ros1", "ros2"]),
+@click.option("--effort-convention", "convention", type=Choice(["ros1", "ros2"]),
               default=None,
               help="Controller effort maps: ros_control's (ros1) or ros2_control's (ros2) for "
                    "every config  [default: each file's own loader]")

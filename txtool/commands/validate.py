@@ -7,7 +7,13 @@ import sys
 
 import click
 
-from txtool.commands.common import COLOR_MODES, color_wanted, exit_on_input_error, xacro_options
+from txtool.commands.common import (
+    COLOR_MODES,
+    Choice,
+    color_wanted,
+    exit_on_input_error,
+    xacro_options,
+)
 from txtool.io.printable import printable
 
 FORMATS = ("text", "json", "github", "sarif")
@@ -27,7 +33,7 @@ def use_color(mode: str, output_file: str | None = None) -> bool:
 
 @click.command("validate")
 @click.argument("paths", nargs=-1, type=click.Path())
-@click.option("--format", "output_format", type=click.Choice(FORMATS), default=None,
+@click.option("--format", "output_format", type=Choice(FORMATS), default=None,
               help="Output format [default: text; github when GITHUB_ACTIONS=true].")
 @click.option("--select", multiple=True, metavar="CODES",
               help="Only these rule codes or prefixes (comma-separated, repeatable).")
@@ -43,7 +49,7 @@ def use_color(mode: str, output_file: str | None = None) -> bool:
               help="The name to report (and find the configuration by) for '-'.")
 @click.option("-j", "--jobs", type=click.IntRange(min=0), default=0, show_default=True,
               help="Processes checking many files (0: one per CPU; 1: only this one).")
-@click.option("--color", type=click.Choice(COLOR_MODES), default="auto", show_default=True,
+@click.option("--color", type=Choice(COLOR_MODES), default="auto", show_default=True,
               help="Colour the text output: auto colours a terminal unless NO_COLOR is set "
                    "(FORCE_COLOR colours a pipe too).")
 @click.option("-o", "--output-file", type=click.Path(dir_okay=False), metavar="FILE",

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from collections.abc import Sequence
 
 from txtool.io.printable import printable
@@ -21,10 +22,24 @@ def _property(text: str) -> str:
     return _data(text).replace(":", "%3A").replace(",", "%2C")
 
 
+def annotation_path(path: str) -> str:
+    """The path as GitHub matches it to a pull request's files: relative to the workspace
+    (``GITHUB_WORKSPACE``, else the working folder), without ``./``; a file outside it keeps
+    its absolute path."""
+    if path == "-" or not path:
+        return path
+    root = os.environ.get("GITHUB_WORKSPACE") or os.getcwd()
+    absolute = os.path.normpath(os.path.join(os.getcwd(), path))
+    relative = os.path.relpath(absolute, root)
+    if relative == os.pardir or relative.startswith(os.pardir + os.sep):
+        return absolute
+    return relative.replace(os.sep, "/")
+
+
 def annotation(problem: Problem) -> str:
     end_line, end_column = end_of(problem)
     fields = [
-        f"file={_property(problem.path)}",
+        f"file={_property(annotation_path(problem.path))}",
         f"line={problem.line}",
         f"col={problem.column}",
         f"endLine={end_line}",
@@ -37,7 +52,7 @@ def annotation(problem: Problem) -> str:
 
 def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False) -> str:
     failures = (
-        f"::error file={_property(f.path)},title=txtool::{_data(f.message)}\n"
+        f"::error file={_property(annotation_path(f.path))},title=txtool::{_data(f.message)}\n"
         for f in summary.failures
     )
     return "".join(annotation(p) + "\n" for p in problems) + "".join(failures)

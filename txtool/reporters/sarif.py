@@ -22,6 +22,8 @@ from txtool.lint.ruledoc import markdown, plain
 from txtool.reporters import Summary, end_of
 
 SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
+HOME = "https://github.com/txtool/txtool"
+RULE_DOCS = HOME + "/blob/main/docs/rules/{code}.md"  # docs/generate_rules.py writes them
 SRCROOT = "%SRCROOT%"
 LEVELS = {"error": "error", "warning": "warning", "info": "note"}
 
@@ -40,6 +42,8 @@ def sarif_log(
     uris: dict[str, str] = {}  # one per file, not per problem
     driver = {
         "name": "txtool",
+        "informationUri": HOME,
+        "version": __version__,
         "semanticVersion": __version__,
         "rules": [_rule(rule) for rule in rules],
     }
@@ -65,6 +69,7 @@ def _rule(rule: Any) -> dict[str, Any]:
         "name": rule.name,
         "shortDescription": {"text": rule.summary},
         "fullDescription": {"text": _first_paragraphs(plain(doc))},
+        "helpUri": RULE_DOCS.format(code=rule.code),
         "help": {"text": plain(doc), "markdown": markdown(rule)},
         "defaultConfiguration": {"level": LEVELS[rule.severity]},
         "properties": {"tags": ["ros", "transmission"]},
