@@ -150,17 +150,20 @@ def convert(
     )
 
 
-def simulate(robot: str, configs: Sequence[str] = (), **options: Any) -> list[Any]:
+def simulate(robot: PathLike, configs: PathLike | Sequence[PathLike] = (),
+             **options: Any) -> list[Any]:
     """Run ``txtool simulate ROBOT --config ...`` and return one result per config (the robot's
-    own when ``configs`` is empty); each has ``verdict`` (``pass``, ``fail`` or ``inconclusive``:
-    nothing of the config could be simulated), ``passed``, ``reasons`` and ``coverage`` (what
-    was checked). ``options`` are those
-    of :class:`txtool.simulation.run.Options` (``duration``, ``dt``, ``tolerance``, ...). Needs
+    own when ``configs`` is empty; one config may be given alone). Each result has ``verdict``
+    (``pass``, ``fail`` or ``inconclusive``: nothing of the config could be simulated),
+    ``passed``, ``reasons`` and ``coverage`` (what was checked). ``options`` are those of
+    :class:`txtool.simulation.run.Options` (``duration``, ``dt``, ``tolerance``, ...). Needs
     the ``sim`` extra (Pinocchio)."""
     from txtool.simulation.run import Options, simulate_one
 
-    settings = Options(robot=robot, configs=tuple(configs), keep_series=False, **options)
-    return [simulate_one(settings, config) for config in (configs or (None,))]
+    given = [configs] if isinstance(configs, str | os.PathLike) else list(configs)
+    paths = tuple(os.fspath(c) for c in given)
+    settings = Options(robot=os.fspath(robot), configs=paths, keep_series=False, **options)
+    return [simulate_one(settings, config) for config in (paths or (None,))]
 
 
 def _xacro_options(

@@ -97,6 +97,8 @@ def test_simulate_returns_one_result_per_config(tmp_path):
     flipped, _ = flipped_copy(DEMO, tmp_path)
     (bad,) = txtool.simulate(DEMO, [str(flipped)], duration=0.5)
     assert not bad.passed and bad.reasons
+    (alone,) = txtool.simulate(Path(DEMO), Path(flipped), duration=0.5)  # one config, a Path
+    assert (alone.verdict, alone.reasons) == ("fail", bad.reasons)
 
 
 def test_the_api_is_what_all_says():
