@@ -166,6 +166,8 @@ def _main() -> None:
             sys.stdout.flush()  # a full disk shows here, not as a warning at exit
     except signals.Stopped as stop:
         _leave(stop.line, stop.exit_code)
+    except ClosedPipe:
+        _leave("", CLOSED_PIPE)
     except OutputError as exc:
         _leave(f"txtool: cannot write standard output: {exc}", 2)
     except SystemExit:
@@ -187,10 +189,12 @@ def _stopped() -> None:
 
 
 def _leave(line: str, code: int) -> None:
-    """Print ``line`` on stderr and exit ``code``; what is left for stdout goes nowhere."""
+    """Print ``line`` (if any) on stderr and exit ``code``; what is left for stdout goes
+    nowhere."""
     with contextlib.suppress(Exception):
-        sys.stderr.write(line + "\n")
-        sys.stderr.flush()
+        if line:
+            sys.stderr.write(line + "\n")
+            sys.stderr.flush()
     # What stdout still buffers would fail again when Python flushes it at exit.
     with contextlib.suppress(Exception):
         devnull = os.open(os.devnull, os.O_WRONLY)
@@ -199,7 +203,15 @@ def _leave(line: str, code: int) -> None:
 
 
 class OutputError(Exception):
-    """Standard output could not be written (disk full, closed pipe): one line, exit 2."""
+    """Standard output could not be written (a full disk): one line, exit 2."""
+
+
+class ClosedPipe(OutputError):
+    """The reader of standard output went away (``| head``): txtool ends quietly, as a Unix
+    tool that SIGPIPE stops does, with that exit code (128 + 13)."""
+
+
+CLOSED_PIPE = 141
 
 
 class GuardedStdout:
@@ -233,7 +245,7 @@ class GuardedStdout:
 
 def _output_error(exc: OSError) -> OutputError:
     if exc.errno == errno.EPIPE:
-        return OutputError("the pipe is closed (Broken pipe)")
+        return ClosedPipe()
     return OutputError(exc.strerror or str(exc))
 
 
