@@ -92,6 +92,11 @@ def test_a_sourced_workspace_resolves_to_the_install_space(workspace, monkeypatc
     code, out, err = run("show", "--format", "json", robot, cwd=workspace,
                          monkeypatch=monkeypatch)
     assert (code, err, reduction(out)) == (0, "", "50")  # nothing sourced: the sources
+    install(workspace.parent / "opt_ros", "other_pkg", "1")
+    monkeypatch.setenv("AMENT_PREFIX_PATH", str(workspace.parent / "opt_ros"))
+    code, out, err = run("show", "--format", "json", robot, cwd=workspace,
+                         monkeypatch=monkeypatch)
+    assert (code, err, reduction(out)) == (0, "", "50")  # only ROS sourced: the sources
     monkeypatch.setenv("AMENT_PREFIX_PATH", f"{workspace / 'install'}{os.pathsep}/opt/ros/x")
     code, out, err = run("show", "--format", "json", robot, cwd=workspace,
                          monkeypatch=monkeypatch)
@@ -149,6 +154,9 @@ def test_pkg_dir_takes_a_package_by_its_package_xml_name(tmp_path):
     real = package(deps / "vendor" / "arm-description-1.2", "arm_description")
     packages_below.cache_clear()
     assert find_package("arm_description", near=near, pkg_dirs=(str(deps),)) == str(real)
+    with pytest.raises(PackageNotFound, match=f"--pkg-dir {tmp_path / 'dpes'} "
+                                              r"\(no such folder\);"):
+        find_package("arm_description", near=near, pkg_dirs=(str(tmp_path / "dpes"),))
     # DIR may be the package itself, and may carry COLCON_IGNORE (an install/ folder, say)
     (real / "COLCON_IGNORE").write_text("")
     assert find_package("arm_description", near=near, pkg_dirs=(str(real),)) == str(real)

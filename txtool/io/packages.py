@@ -210,6 +210,8 @@ def _in_pkg_dirs(name: str, roots: tuple[str, ...], search: Search) -> str | Non
 
 def _namesake(root: str, name: str) -> str:
     """Why a folder called ``name`` in ``root`` is not the package, for the message."""
+    if not os.path.isdir(root):
+        return " (no such folder)"
     folder = os.path.join(root, name)
     if not os.path.isdir(folder):
         return ""
