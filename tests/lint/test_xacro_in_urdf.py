@@ -141,6 +141,9 @@ def test_an_expression_or_substitution_alone_makes_a_file_xacro():
         assert uses_xacro(data, parse_bytes(data, "r.urdf")), body
     data = b"<robot name='r'><?pi ${x}?><!-- $(find p) --><link name='$ {x}'/></robot>"
     assert not uses_xacro(data, parse_bytes(data, "r.urdf"))
+    for text in (XACRO_URDF, PLAIN_URDF):  # UTF-16: read on the parsed document
+        data = text.replace('"1.0"?>', '"1.0" encoding="UTF-16"?>', 1).encode("utf-16")
+        assert uses_xacro(data, parse_bytes(data, "r.urdf")) == (text == XACRO_URDF)
 
 
 def test_no_corpus_urdf_is_taken_for_xacro():
