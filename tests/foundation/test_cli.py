@@ -43,6 +43,7 @@ def test_missing_package_is_named_and_pkg_path_resolves_it(run, tmp_path, fixtur
     pkg = tmp_path / "demo_pkg" / "urdf"
     pkg.mkdir(parents=True)
     (pkg / "arm.urdf").write_text((fixtures / "demo_robot.urdf").read_text())
+    (pkg.parent / "package.xml").write_text("<package><name>demo_pkg</name></package>")
     robot = tmp_path / "top.urdf.xacro"
     robot.write_text('<robot name="top" xmlns:xacro="http://www.ros.org/wiki/xacro">'
                      '<xacro:include filename="$(find demo_pkg)/urdf/arm.urdf"/></robot>')

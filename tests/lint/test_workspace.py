@@ -27,12 +27,16 @@ def no_ros_environment(monkeypatch):
 @pytest.fixture
 def workspace(tmp_path) -> Path:
     """A copy of the shared workspace as colcon leaves it after a build: the package in
-    src/, again in build/ and install/share/, each of those marked with COLCON_IGNORE."""
+    src/, again in build/ and install/share/ (registered in the install's ament index), each
+    of those marked with COLCON_IGNORE."""
     ws = tmp_path / "ws"
     shutil.copytree(workspace_dir(), ws)
     source = ws / "src" / PACKAGE
     shutil.copytree(source, ws / "build" / PACKAGE)
     shutil.copytree(source, ws / "install" / "share" / PACKAGE)
+    index = ws / "install" / "share" / "ament_index" / "resource_index" / "packages"
+    index.mkdir(parents=True)
+    (index / PACKAGE).write_text("")
     for folder in ("build", "install", "log"):
         (ws / folder).mkdir(exist_ok=True)
         (ws / folder / "COLCON_IGNORE").write_text("")

@@ -12,7 +12,7 @@ from typing import Any
 import click
 
 from txtool.io.printable import printable
-from txtool.io.xmlio import InputError, XacroOptions, is_xacro
+from txtool.io.xmlio import InputError, XacroOptions
 
 
 class Choice(click.Choice):
@@ -98,9 +98,13 @@ def xacro_disabled(flag: bool, *paths: str | None) -> bool:
 
 
 def refuse_unexpanded(command: str, *paths: str | None) -> None:
-    """For commands that need a xacro file's expansion: one line and exit 2 under --no-xacro."""
+    """For commands that need a xacro file's expansion: one line and exit 2 under --no-xacro.
+
+    A xacro file is one named ``*.xacro`` or one that uses xacro (see txtool.io.load)."""
+    from txtool.io.load import file_needs_expansion
+
     for path in paths:
-        if path is not None and is_xacro(path):
+        if path is not None and path != "-" and file_needs_expansion(path):
             raise InputError(f"{path}: {command} needs the xacro expansion, and xacro is off "
                              "(--no-xacro, TXTOOL_NO_XACRO or no-xacro in the configuration); "
                              "expand it with xacro first")

@@ -92,6 +92,8 @@ def command(paths, output_format, select, ignore, strict, exit_zero, config_path
         extend_exclude=extend_exclude,
         respect_gitignore=respect_gitignore,
     )
+    if xacro.args:
+        _warn_unused_args(list(paths), no_xacro)
     result = lint_paths(list(paths) or ["."], options)
     for error in result.errors:
         click.echo(f"txtool: {printable(error.message)}", err=True)
@@ -108,6 +110,21 @@ def command(paths, output_format, select, ignore, strict, exit_zero, config_path
 
         write_atomic(output_file, report.encode("utf-8"))
     return exit_code(result, options)
+
+
+def _warn_unused_args(paths: list[str], no_xacro: bool) -> None:
+    """``--xacro-arg`` never silently dropped: xacro off by the command line or environment,
+    or only files named, none of which xacro expands."""
+    from txtool.commands.common import xacro_disabled
+    from txtool.io.load import OFF, PLAIN, STDIN, file_needs_expansion, warn_unused_args
+
+    if xacro_disabled(no_xacro):
+        warn_unused_args("validate", OFF)
+        return
+    only_files = paths and all(p == "-" or os.path.isfile(p) for p in paths)
+    if only_files and all(p == "-" or file_needs_expansion(p) is False for p in paths):
+        for path in paths:
+            warn_unused_args("<stdin>" if path == "-" else path, STDIN if path == "-" else PLAIN)
 
 
 def _report(fmt: str, problems, summary, colored: bool, quiet: bool, statistics: bool) -> str:

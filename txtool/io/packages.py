@@ -1,20 +1,38 @@
-"""Where ``$(find pkg)`` points: ROS packages found the way a ROS workspace finds them.
+"""Where ``$(find pkg)`` points: ROS packages found the way the real xacro finds them.
 
 The order, first match wins:
 
-1. ``--pkg-path NAME:=DIR`` (command line, then configuration);
-2. ``--pkg-dir DIR``: DIR/NAME, or a package below DIR whose ``package.xml`` names it;
-3. the package whose ``package.xml`` encloses the file being expanded;
-4. every package of the workspace or repository the file belongs to: below the nearest
-   ancestor holding ``.git``, else below the ``src`` folder of a colcon/catkin workspace;
-5. ``AMENT_PREFIX_PATH`` (``<prefix>/share/<pkg>``, as ament_index does), ``ROS_PACKAGE_PATH``
-   (folders crawled for packages, as rospack does) and ``CMAKE_PREFIX_PATH``
-   (``<prefix>/share/<pkg>``, where catkin installs packages).
+1. ``--pkg-path NAME:=DIR`` (command line, then configuration): DIR, as given;
+2. ``--pkg-dir DIR`` (command line, then configuration): the package below DIR (DIR itself
+   included) whose ``package.xml`` has ``<name>NAME</name>``. A folder that merely is called
+   NAME is not the package;
+3. ``AMENT_PREFIX_PATH``, as ROS 2 xacro resolves it: ``substitution_args._eval_find`` calls
+   ``ament_index_python.get_package_share_directory`` (ros/xacro, branch ros2,
+   xacro/substitution_args.py), which takes the first prefix, in order, holding the marker
+   ``PREFIX/share/ament_index/resource_index/packages/NAME`` and answers ``PREFIX/share/NAME``
+   (ament/ament_index, ament_index_python/packages.py ``get_package_share_directory``,
+   resources.py ``get_resource``; search_paths.py ``get_search_paths`` drops prefixes that do
+   not exist). So in a sourced colcon workspace a package resolves to its install space, not
+   to its sources, as it does when the robot is launched;
+4. ``ROS_PACKAGE_PATH``, as ROS 1 xacro resolves it (roslaunch's ``$(find)`` asks rospkg's
+   ``RosPack.get_path``): each folder crawled for ``package.xml`` files, named by their
+   ``<name>``, the first folder of the variable winning (ros-infrastructure/rospkg,
+   src/rospkg/rospack.py ``list_by_path`` and ``ManifestManager._update_location_cache``).
+   rospkg passes over folders holding ``CATKIN_IGNORE`` or ``rospack_nosubdirs``, and follows
+   symbolic links;
+5. with no sourced environment naming it: the package whose ``package.xml`` encloses the file
+   being expanded, then every package of the workspace or repository the file belongs to:
+   below the nearest ancestor holding ``.git``, else below the ``src`` folder of a
+   colcon/catkin workspace (as ``colcon build`` would find them);
+6. ``CMAKE_PREFIX_PATH``: ``<prefix>/share/<pkg>`` holding a ``package.xml`` (where catkin and
+   colcon install packages; a fallback of txtool's, which neither xacro reads).
 
-Crawls skip hidden folders and folders holding ``COLCON_IGNORE``, ``AMENT_IGNORE`` or
-``CATKIN_IGNORE`` (colcon's ``build/``, ``install/`` and ``log/`` carry one), do not descend
-into a package (packages do not nest), and stop after :data:`MAX_FOLDERS` folders, so a file in
-a huge tree costs a bounded look. A package is named by the ``<name>`` of its ``package.xml``.
+Crawls other than ROS_PACKAGE_PATH's skip folders holding ``COLCON_IGNORE``, ``AMENT_IGNORE``
+or ``CATKIN_IGNORE`` (colcon's ``build/``, ``install/`` and ``log/`` carry one; a folder given
+with ``--pkg-dir`` is crawled even if it carries one itself). Every crawl skips hidden
+folders, follows symbolic links (each real folder once), does not descend into a package
+(packages do not nest) and stops after :data:`MAX_FOLDERS` folders, so a file in a huge tree
+costs a bounded look.
 """
 
 from __future__ import annotations
@@ -27,8 +45,13 @@ from functools import lru_cache
 from pathlib import Path
 
 IGNORE_MARKERS = ("COLCON_IGNORE", "AMENT_IGNORE", "CATKIN_IGNORE")
+ROSPKG_MARKERS = ("CATKIN_IGNORE", "rospack_nosubdirs")  # rospkg's list_by_path
 MAX_FOLDERS = 20_000
+AMENT_INDEX = os.path.join("share", "ament_index", "resource_index", "packages")
+# ament_index_python's get_package_prefix refuses other names (REP 127, with its exemptions).
+_AMENT_NAME = re.compile(r"[a-zA-Z0-9][a-zA-Z0-9_-]+", re.ASCII)
 _NAME = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
+_COMMENT = re.compile(rb"<!--.*?-->", re.DOTALL)
 
 
 class PackageNotFound(Exception):
@@ -53,28 +76,48 @@ class Search:
 
 
 def package_name(manifest: Path) -> str | None:
-    """The ``<name>`` of a ``package.xml`` (read as bytes, no XML parser: it may be hostile)."""
+    """The ``<name>`` of a ``package.xml`` (read as bytes, no XML parser: it may be hostile).
+
+    The first ``<name>`` outside comments in the file's first 64 KiB: in every package.xml
+    format it is a child of ``<package>`` written before any ``<export>``.
+    """
     try:
         with manifest.open("rb") as handle:
             head = handle.read(64 * 1024)
     except OSError:
         return None
-    match = _NAME.search(head)
+    match = _NAME.search(_COMMENT.sub(b"", head))
     return match.group(1).decode("utf-8", "replace") if match else None
 
 
-def is_ignored(folder: str) -> bool:
-    return any(os.path.exists(os.path.join(folder, marker)) for marker in IGNORE_MARKERS)
+def folder_package_name(folder: str | Path) -> str | None:
+    """The package ``folder`` is: the ``<name>`` of its ``package.xml``; None if it is none.
+
+    A folder is a ROS package by its manifest, never by its own name: colcon, catkin, rospkg
+    and ament all name a package by ``package.xml``'s ``<name>``.
+    """
+    return package_name(Path(folder) / "package.xml")
 
 
-def crawl(root: str) -> Iterator[Path]:
+def is_ignored(folder: str, markers: tuple[str, ...] = IGNORE_MARKERS) -> bool:
+    return any(os.path.exists(os.path.join(folder, marker)) for marker in markers)
+
+
+def crawl(
+    root: str, markers: tuple[str, ...] = IGNORE_MARKERS, *, skip_ignored_root: bool = True,
+) -> Iterator[Path]:
     """``package.xml`` files below ``root`` (root itself included), not inside a package."""
     budget = MAX_FOLDERS
     stack = [root]
+    seen: set[str] = set()
     while stack and budget > 0:
         folder = stack.pop()
+        real = os.path.realpath(folder)
+        if real in seen:  # a symbolic link back up, or two links to one folder
+            continue
+        seen.add(real)
         budget -= 1
-        if is_ignored(folder):
+        if is_ignored(folder, markers) and (skip_ignored_root or folder != root):
             continue
         manifest = os.path.join(folder, "package.xml")
         if os.path.isfile(manifest):
@@ -84,17 +127,23 @@ def crawl(root: str) -> Iterator[Path]:
             entries = sorted(os.scandir(folder), key=lambda e: e.name, reverse=True)
         except OSError:
             continue
-        stack.extend(
-            e.path for e in entries
-            if not e.name.startswith(".") and e.is_dir(follow_symlinks=False)
-        )
+        stack.extend(e.path for e in entries if not e.name.startswith(".") and _is_dir(e))
+
+
+def _is_dir(entry: os.DirEntry[str]) -> bool:
+    try:
+        return entry.is_dir()  # through symbolic links, as colcon and rospkg crawl
+    except OSError:
+        return False
 
 
 @lru_cache(maxsize=64)
-def packages_below(root: str) -> Mapping[str, str]:
+def packages_below(
+    root: str, markers: tuple[str, ...] = IGNORE_MARKERS, skip_ignored_root: bool = True,
+) -> Mapping[str, str]:
     """Package name -> folder for every package below ``root`` (first found wins)."""
     found: dict[str, str] = {}
-    for manifest in crawl(root):
+    for manifest in crawl(root, markers, skip_ignored_root=skip_ignored_root):
         name = package_name(manifest)
         if name and name not in found:
             found[name] = str(manifest.parent)
@@ -126,45 +175,6 @@ def workspace_roots(path: str) -> list[str]:
     return roots
 
 
-def _in_folders(name: str, roots: tuple[str, ...], search: Search, label: str) -> str | None:
-    for root in roots:
-        search.looked.append(f"{label} {root}")
-        direct = os.path.join(root, name)
-        if os.path.isdir(direct):
-            return direct
-        hit = packages_below(root).get(name)
-        if hit:
-            return hit
-    return None
-
-
-def _in_prefixes(name: str, variable: str, search: Search) -> str | None:
-    value = os.environ.get(variable, "")
-    prefixes = [p for p in value.split(os.pathsep) if p]
-    if not prefixes:
-        search.looked.append(f"{variable} (unset)")
-        return None
-    search.looked.append(f"{variable} ({len(prefixes)} prefixes)")
-    for prefix in prefixes:
-        candidate = os.path.join(prefix, "share", name)
-        if os.path.isfile(os.path.join(candidate, "package.xml")):
-            return candidate
-    return None
-
-
-def _in_package_path(name: str, search: Search) -> str | None:
-    roots = [p for p in os.environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep) if p]
-    if not roots:
-        search.looked.append("ROS_PACKAGE_PATH (unset)")
-        return None
-    search.looked.append(f"ROS_PACKAGE_PATH ({len(roots)} folders)")
-    for root in roots:
-        hit = packages_below(os.path.abspath(root)).get(name)
-        if hit:
-            return hit
-    return None
-
-
 def find_package(
     name: str,
     *,
@@ -179,19 +189,71 @@ def find_package(
             return folder
     if pkg_paths:
         search.looked.append("--pkg-path " + ", ".join(pkg for pkg, _ in pkg_paths))
-    hit = _in_folders(name, pkg_dirs, search, "--pkg-dir")
-    if hit:
-        return hit
-    if near is not None:
-        hit = _near_file(name, near, search)
-        if hit:
-            return hit
     return (
-        _in_prefixes(name, "AMENT_PREFIX_PATH", search)
+        _in_pkg_dirs(name, pkg_dirs, search)
+        or _in_ament_index(name, search)
         or _in_package_path(name, search)
-        or _in_prefixes(name, "CMAKE_PREFIX_PATH", search)
+        or (_near_file(name, near, search) if near is not None else None)
+        or _in_cmake_prefixes(name, search)
         or _raise(name, search)
     )
+
+
+def _in_pkg_dirs(name: str, roots: tuple[str, ...], search: Search) -> str | None:
+    for root in roots:
+        hit = packages_below(root, IGNORE_MARKERS, False).get(name)
+        if hit:
+            return hit
+        search.looked.append(f"--pkg-dir {root}{_namesake(root, name)}")
+    return None
+
+
+def _namesake(root: str, name: str) -> str:
+    """Why a folder called ``name`` in ``root`` is not the package, for the message."""
+    if not os.path.isdir(root):
+        return " (no such folder)"
+    folder = os.path.join(root, name)
+    if not os.path.isdir(folder):
+        return ""
+    own = folder_package_name(folder)
+    if own is None:
+        return f" (its folder '{name}' holds no package.xml)"
+    return f" (its folder '{name}' is package '{own}')"
+
+
+def _prefixes(variable: str, search: Search, unit: str = "prefixes") -> list[str]:
+    prefixes = [p for p in os.environ.get(variable, "").split(os.pathsep) if p]
+    search.looked.append(f"{variable} ({len(prefixes)} {unit})" if prefixes
+                         else f"{variable} (unset)")
+    return prefixes
+
+
+def _in_ament_index(name: str, search: Search) -> str | None:
+    prefixes = _prefixes("AMENT_PREFIX_PATH", search)
+    if not prefixes or not _AMENT_NAME.fullmatch(name):
+        return None
+    for prefix in prefixes:
+        if os.path.isfile(os.path.join(prefix, AMENT_INDEX, name)):
+            return os.path.join(prefix, "share", name)
+    return None
+
+
+def _in_package_path(name: str, search: Search) -> str | None:
+    for root in _prefixes("ROS_PACKAGE_PATH", search, "folders"):
+        hit = packages_below(os.path.abspath(root), ROSPKG_MARKERS).get(name)
+        if hit:
+            return hit
+    return None
+
+
+def _in_cmake_prefixes(name: str, search: Search) -> str | None:
+    if not _AMENT_NAME.fullmatch(name):
+        return None
+    for prefix in _prefixes("CMAKE_PREFIX_PATH", search):
+        candidate = os.path.join(prefix, "share", name)
+        if folder_package_name(candidate) == name:
+            return candidate
+    return None
 
 
 def _near_file(name: str, near: str, search: Search) -> str | None:

@@ -20,11 +20,11 @@ from collections.abc import Callable, Iterable
 from typing import TYPE_CHECKING
 
 from txtool.io.encodings import document_text, text_lines
+from txtool.io.load import needs_expansion
 from txtool.io.xmlio import (
     InputError,
     Source,
     XMLSyntax,
-    is_xacro,
     parse_bytes,
     read_bytes,
 )
@@ -70,7 +70,7 @@ def _no_transmission(path: str, stdin_name: str | None, settings: Settings) -> l
     display, data = read_bytes(path, stdin_name=stdin_name)
     try:
         source = Source(path=display, data=data, tree=parse_bytes(data, display))
-        if not settings.no_xacro and is_xacro(display) and path != "-":
+        if not settings.no_xacro and needs_expansion(display, data, source.tree) and path != "-":
             from txtool.io.xacro import expand_xacro
 
             tree = expand_xacro(path, display, settings.xacro)
@@ -94,7 +94,7 @@ def _lint_file(path: str, settings: Settings, stdin_name: str | None) -> list[Pr
                       settings)
     source = Source(path=display, data=data, tree=tree)
     late = _late_declaration(display, data)
-    if path == "-" or settings.no_xacro or not is_xacro(display):
+    if path == "-" or settings.no_xacro or not needs_expansion(display, data, tree):
         return finish(late + _checked(source, settings), source, settings)
     from txtool.io.xacro import XacroError, expand_xacro
 
@@ -134,7 +134,8 @@ def context_for(source: Source, settings: Settings) -> LintContext:
     """The context the rules see (see the module documentation for the choice)."""
     options = settings.options
     if not source.expanded:
-        return LintContext(source, literal=is_xacro(source.path), options=options)
+        literal = needs_expansion(source.path, source.data, source.tree)
+        return LintContext(source, literal=literal, options=options)
     expanded = LintContext(source, options=options)
     if expanded.found or source.source_tree is None:
         return expanded
