@@ -6,7 +6,7 @@ import pytest
 
 from tests.simulate.robots import arm_ros1, write
 from txtool.io.xmlio import InputError
-from txtool.simulation.params import load_params
+from txtool.simulation.parameter_files import load_params
 from txtool.simulation.run import Options, prepare
 
 GOOD = """bandwidth = 30.0

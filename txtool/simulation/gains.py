@@ -15,9 +15,9 @@ import numpy as np
 import pinocchio as pin
 
 from txtool.simulation.drive import Drive
-from txtool.simulation.loop import Controller
 from txtool.simulation.model import RobotModel
 from txtool.simulation.params import JointGains, Params
+from txtool.simulation.plan import Controller
 from txtool.simulation.result import GainsUsed
 
 

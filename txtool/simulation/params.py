@@ -14,7 +14,8 @@
     ki = 0.0
     i_clamp = 0.5               # bound of |ki * integral(e)|
 
-YAML files hold the gains of ROS controllers (:mod:`txtool.simulation.yaml_gains`). Several
+YAML files hold the gains of ROS controllers (:mod:`txtool.simulation.yaml_gains`); which
+files are read, and how by their kind, is :mod:`txtool.simulation.parameter_files`. Several
 ``--params`` files merge in order, a later file's entry replacing an earlier one's. Names are
 checked against the robot later (:func:`Params.check_names`); everything else is checked here
 and reported as one ``path[:line]: reason`` line.
@@ -112,34 +113,6 @@ class Params:
                 raise InputError(f"{where}: no moving joint '{name}' in {robot}")
 
 
-def load_params(explicit: str | tuple[str, ...] | None, robot_path: str) -> Params:
-    """``--params FILE...`` if given, else the nearest pyproject.toml with the section."""
-    if isinstance(explicit, str):
-        explicit = (explicit,)
-    if explicit:
-        return merge([load_file(path) for path in explicit])
-    found = find_pyproject(robot_path)
-    if found is None:
-        return Params()
-    path, data, text = found
-    return parse_params(data, path, text, prefix="tool.txtool.simulate.")
-
-
-def load_file(given: str) -> Params:
-    """One ``--params`` file: controller YAML by its suffix (``FILE.yaml#NAME``: only controller
-    NAME), else TOML."""
-    path, only = given, None
-    base, mark, name = given.rpartition("#")
-    if mark and base.lower().endswith(YAML_SUFFIXES) and not Path(given).exists():
-        path, only = base, name
-    text = _read(path)
-    if path.lower().endswith(YAML_SUFFIXES):
-        from txtool.simulation.yaml_gains import parse_yaml
-
-        return parse_yaml(text, path, only)
-    return parse_params(_toml(text, path), path, text)
-
-
 def merge(files: list[Params]) -> Params:
     """Files in order; a later file's actuator, joint or setting replaces an earlier one's."""
     if len(files) == 1:
@@ -167,8 +140,8 @@ def find_pyproject(robot_path: str) -> tuple[str, dict[str, Any], str] | None:
         candidate = folder / "pyproject.toml"
         if not candidate.is_file():
             continue
-        text = _read(str(candidate))
-        data: Any = _toml(text, str(candidate))
+        text = read_text(str(candidate))
+        data: Any = parse_toml(text, str(candidate))
         for key in SECTION:
             data = data.get(key) if isinstance(data, dict) else None
         if data is not None:
@@ -238,7 +211,7 @@ def key_of(name: str) -> str:
     return name if re.fullmatch(r"[A-Za-z0-9_-]+", name) else f'"{name}"'
 
 
-def _read(path: str) -> str:
+def read_text(path: str) -> str:
     try:
         return Path(path).read_text(encoding="utf-8")
     except FileNotFoundError:
@@ -247,7 +220,7 @@ def _read(path: str) -> str:
         raise InputError(f"{path}: cannot read: {exc}") from None
 
 
-def _toml(text: str, path: str) -> dict[str, Any]:
+def parse_toml(text: str, path: str) -> dict[str, Any]:
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

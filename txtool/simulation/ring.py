@@ -24,7 +24,7 @@ import numpy as np
 import pinocchio as pin
 
 if TYPE_CHECKING:
-    from txtool.simulation.loop import Plan
+    from txtool.simulation.plan import Plan
 
 RING = 64  # steps per block
 

@@ -23,7 +23,9 @@ from txtool.simulation import (
 )
 from txtool.simulation.drive import Drive, read_drive
 from txtool.simulation.model import RobotModel, build
-from txtool.simulation.params import Params, load_params
+from txtool.simulation.parameter_files import load_params
+from txtool.simulation.params import Params
+from txtool.simulation.plan import Controller, Plan
 from txtool.simulation.sensing import Sensing
 
 DEFAULTS = {"bandwidth": 20.0, "duration": 5.0, "dt": 0.001, "tolerance": 0.01}
@@ -84,7 +86,7 @@ def settings(options: Options, params: Params) -> Settings:
 
 @dataclass
 class Prepared:
-    """Everything a run needs, built: the loop's :class:`loop.Plan` and what judges it."""
+    """Everything a run needs, built: the loop's :class:`plan.Plan` and what judges it."""
 
     options: Options
     config: str | None
@@ -93,7 +95,7 @@ class Prepared:
     plant: Drive
     ctrl: Drive
     binding: setup.Binding
-    plan: loop.Plan
+    plan: Plan
     ref: reference.Reference
     settings: Settings
     duration: float
@@ -102,7 +104,7 @@ class Prepared:
     setup_s: float
     reference_notes: list[str] = field(default_factory=list)
     cannot_hold: list[str] = field(default_factory=list)  # the robot, not the config, is short
-    controller: loop.Controller | None = None
+    controller: Controller | None = None
     gains: dict[str, result.GainsUsed] = field(default_factory=dict)
     notes: tuple[str, ...] = ()
     carried: dict[str, dict[str, float | str]] = field(default_factory=dict)
@@ -202,7 +204,7 @@ def prepare(options: Options, config: str | None, label: str | None = None
 
 
 def _stability(robot: RobotModel, inertia: np.ndarray, ref: reference.Reference,
-               used: dict[str, result.GainsUsed], plan: loop.Plan) -> tuple[list[str], list[str]]:
+               used: dict[str, result.GainsUsed], plan: Plan) -> tuple[list[str], list[str]]:
     """(notes, reasons) of :func:`gains.stability` at poses along the reference."""
     poses = np.arange(0, len(ref.q), max(1, len(ref.q) // setup.SAMPLES))
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -317,7 +319,7 @@ def _reference(options: Options, table: reference.Table, robot: RobotModel, s: S
     return ref, duration, notes
 
 
-def _series(plan: loop.Plan, robot: RobotModel, plant: Drive, ref: reference.Reference,
+def _series(plan: Plan, robot: RobotModel, plant: Drive, ref: reference.Reference,
             effort_limit: np.ndarray, speed_limit: np.ndarray) -> result.Series:
     end = plan.done if plan.diverged_at is None else max(plan.diverged_at - 1, 0)
     rows = plan.rows[: end + 1]

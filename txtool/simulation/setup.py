@@ -1,4 +1,4 @@
-"""From robot, drives, parameters and reference to the matrices of :class:`loop.Plan`."""
+"""From robot, drives, parameters and reference to the matrices of :class:`plan.Plan`."""
 
 from __future__ import annotations
 
@@ -13,9 +13,10 @@ from txtool.mechanics.limits import actuator_limits as implied_limits
 from txtool.simulation.drive import Drive
 from txtool.simulation.feasible import Limits, Parts
 from txtool.simulation.gains import condition, unstable
-from txtool.simulation.loop import Controller, Plan, configurer, layout, make_model
+from txtool.simulation.loop import configurer, make_model
 from txtool.simulation.model import RobotModel
 from txtool.simulation.params import Params
+from txtool.simulation.plan import Controller, Plan, layout
 from txtool.simulation.plant import Dynamics, smallest_inertia, substeps_for
 from txtool.simulation.reference import Reference
 from txtool.simulation.sensing import Sensing, encoder
