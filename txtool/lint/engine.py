@@ -62,7 +62,7 @@ def lint_file(
     :class:`~txtool.io.xmlio.InputError` when the file cannot be read.
     """
     problems = _lint_file(path, settings, stdin_name)
-    if named and "TX006" in settings.enabled and not problems:
+    if named and "TX006" in settings.enabled and not problems and problems.readers is None:
         return _no_transmission(path, stdin_name, settings)
     return problems
 
@@ -85,14 +85,14 @@ def _no_transmission(path: str, stdin_name: str | None, settings: Settings) -> l
     return finish([_pipeline(display, 1, 1, "TX006", message)], source, settings)
 
 
-def _lint_file(path: str, settings: Settings, stdin_name: str | None) -> list[Problem]:
+def _lint_file(path: str, settings: Settings, stdin_name: str | None) -> Findings:
     display, data = read_bytes(path, stdin_name=stdin_name)
     try:
         tree = parse_bytes(data, display)
     except XMLSyntax as exc:
         bare = Source(path=display, data=data, tree=None)  # type: ignore[arg-type]
-        return finish([_pipeline(display, exc.line, exc.column, "TX001", exc.reason)], bare,
-                      settings)
+        failed = _pipeline(display, exc.line, exc.column, "TX001", exc.reason)
+        return Findings(finish([failed], bare, settings))
     source = Source(path=display, data=data, tree=tree)
     late = _late_declaration(display, data)
     if path == "-" or settings.no_xacro or not is_xacro(display):

@@ -12,7 +12,11 @@ loading the transmissions after it (transmission_interface_loader.cpp:126-129).
 ros2_control's parser copies any text (ros-controls/ros2_control
 hardware_interface/src/component_parser.cpp:480-481 @157446a), but the hardware plugin's
 pluginlib lookup of the loader fails, so the transmission never exists. A near-miss gets a
-suggestion. Types in other namespaces are TX102's business.
+suggestion. A name that a package of the workspace, of ``AMENT_PREFIX_PATH`` or of
+``ROS_PACKAGE_PATH`` registers with pluginlib (its ``package.xml`` exports
+``<transmission_interface plugin="..."/>`` and that file lists a ``<class>`` of that name whose
+``base_class_type`` is a ``transmission_interface::`` class) is a plugin both loaders find: not
+reported. Types in other namespaces are TX102's business.
 
 Failing example::
 
@@ -49,8 +53,8 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         text = tx.type_text
         if not text or not text.startswith(TYPE_PREFIX) or text in STANDARD_NAMES:
             continue
-        if ctx.unknown(text):
-            continue
+        if ctx.unknown(text) or ctx.readers.known_type(text) is not None:
+            continue  # a value only xacro knows, or a type a package exports with pluginlib
         element = tx.type_element
         effect = (
             "ros_control refuses it (\"Unsupported type\")"
