@@ -63,6 +63,9 @@ DIFF_ROS2 = ('<transmission name="d"><plugin>transmission_interface/Differential
              'role="actuator2"/><joint name="k" role="joint1"/><joint name="j" role="joint2"/>'
              "</transmission>")
 
+GAZEBO2 = '<gazebo><plugin filename="libgazebo_ros2_control.so" name="gazebo_ros2_control"/></gazebo>'
+GZ = '<gazebo><plugin filename="gz_ros2_control-system" name="gz_ros2_control"/></gazebo>'
+
 # code: (severity, document, file name)
 TABLE: dict[str, tuple[str, str, str]] = {
     "TX001": ("error", "<robot>", "r.urdf"),
@@ -72,6 +75,7 @@ TABLE: dict[str, tuple[str, str, str]] = {
     "TX005": ("warning", robot("<!-- txtool: disable-nextline TX106 -->\n" + ros1()), "r.urdf"),
     # reported only for a file named on the command line: see the test below
     "TX006": ("info", robot(""), "named.urdf"),
+    "TX007": ("error", robot(ros1() + GAZEBO2), "r.urdf"),
     "TX100": ("error", robot(ros1(name="")), "r.urdf"),
     "TX101": ("error", robot(ros1().replace(f"<type>{SIMPLE}</type>", "")), "r.urdf"),
     "TX102": ("warning", robot(ros1(type_="my_hw/Reducer")), "r.urdf"),
@@ -112,6 +116,8 @@ TABLE: dict[str, tuple[str, str, str]] = {
     "TX303": ("error", robot(ros2(ros2_simple(joint_inner="<mechanicalReduction>2"
                                               "</mechanicalReduction>"))), "r.urdf"),
     "TX304": ("warning", robot(ros1() + ros2("")), "r.urdf"),
+    # a ROS 1 leftover beside the <ros2_control> block of a robot gz_ros2_control loads
+    "TX305": ("info", robot(ros1() + ros2("") + GZ), "r.urdf"),
     "TX400": ("warning", robot(ros1(joint=EFFORT + "<mechanicalReduction>2"
                                     "</mechanicalReduction>")), "r.urdf"),
     "TX401": ("error", robot(ros2(DIFF_ROS2)), "r.urdf"),

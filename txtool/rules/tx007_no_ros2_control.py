@@ -30,7 +30,17 @@ Failing example::
       </gazebo>
     </robot>
 
-Passing example: a ``<ros2_control>`` block with the robot's joints (and its transmissions).
+Passing example::
+
+    <robot name="arm">
+      <ros2_control name="arm" type="system">
+        <hardware><plugin>gazebo_ros2_control/GazeboSystem</plugin></hardware>
+        <joint name="j">...</joint>
+      </ros2_control>
+      <gazebo>
+        <plugin filename="libgazebo_ros2_control.so" name="gazebo_ros2_control"/>
+      </gazebo>
+    </robot>
 """
 
 from __future__ import annotations
