@@ -1,0 +1,44 @@
+"""The readers part of ``txtool show --effective``: which programs read the file, and why.
+
+The values each loader binds are :mod:`txtool.views.effective`'s; this says whose loaders
+those are for this file (:mod:`txtool.model.readers`), and which transmissions none of them
+reads.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from lxml import etree
+
+from txtool.model.readers import Assumption, placement_of
+
+
+def unread_names(assumption: Assumption, elements: list[etree._Element]) -> list[str]:
+    """The names of the transmissions (``elements``) none of the readers reads."""
+    if not assumption.decided:
+        return []
+    return [element.get("name", "") for element in elements
+            if not assumption.reads(placement_of(element))]
+
+
+def readers_text(assumption: Assumption, unread: list[str]) -> str:
+    """``Readers: ...`` lines printed above the effective values."""
+    if not assumption.readers:
+        lines = ["Readers: not known (nothing names them: each transmission is shown as the "
+                 "loader of its dialect reads it)"]
+    else:
+        lines = ["Readers:"]
+        lines += [f"  {name} ({why})" for name, why in
+                  zip(assumption.names(), assumption.because, strict=True)]
+        if not assumption.decided:
+            lines.append("  (others may read the top-level transmissions: nothing rules ROS 1 "
+                         "out)")
+    if unread:
+        lines.append("Read by none of them: " + ", ".join(f"'{n}'" for n in unread))
+    return "\n".join(lines) + "\n\n"
+
+
+def readers_json(assumption: Assumption, unread: list[str]) -> dict[str, Any]:
+    return {"readers": list(assumption.names()), "because": list(assumption.because),
+            "decided": assumption.decided, "unread": unread}
