@@ -6,8 +6,6 @@ import json
 
 import click
 
-from txtool.model.distro import CHOICES
-
 from txtool.commands.common import (
     FORMAT_OPTION,
     NO_XACRO_OPTION,
@@ -15,6 +13,7 @@ from txtool.commands.common import (
     xacro_disabled,
     xacro_options,
 )
+from txtool.model.distro import CHOICES
 
 
 @click.command("show")
@@ -72,8 +71,8 @@ def command(path, output_format, effective, actuator_limits, stdin_filename, ros
         from txtool.views.effective import effective_text
         from txtool.views.readers_view import readers_text
 
-        click.echo(readers_text(*readers), nl=False)
         click.echo(effective_text(source.path, transmissions, bindings_of(found)), nl=False)
+        click.echo(readers_text(*readers), nl=False)
     else:
         console.print(transmissions_table(transmissions, f"{source.path}: "
                                           f"{len(transmissions)} transmission(s)"))

@@ -23,7 +23,7 @@ def unread_names(assumption: Assumption, elements: list[etree._Element]) -> list
 
 
 def readers_text(assumption: Assumption, unread: list[str]) -> str:
-    """``Readers: ...`` lines printed above the effective values."""
+    """``Readers: ...`` lines printed below the effective values."""
     if not assumption.readers:
         lines = ["Readers: not known (nothing names them: each transmission is shown as the "
                  "loader of its dialect reads it)"]
@@ -36,7 +36,7 @@ def readers_text(assumption: Assumption, unread: list[str]) -> str:
                          "out)")
     if unread:
         lines.append("Read by none of them: " + ", ".join(f"'{n}'" for n in unread))
-    return "\n".join(lines) + "\n\n"
+    return "\n" + "\n".join(lines) + "\n"
 
 
 def readers_json(assumption: Assumption, unread: list[str]) -> dict[str, Any]:
