@@ -68,7 +68,9 @@ EXPECTED: dict[str, tuple[dict[str, int], set[str]]] = {
     "ros2_control_demos__example_8__rrbot_transmissions_system_position_only.urdf.xacro": (
         {"TX002": 1}, set()
     ),
-    # 'transmission_interface/RotationToLinerTansmission': no such loader plugin
+    # 'transmission_interface/RotationToLinerTansmission': no package here registers it and it is
+    # no near-miss of a standard name, so it loads only where a vendor package registers it
+    # (pluginlib createUniqueInstance(type), transmission_interface_loader.cpp load): a warning
     "ros2_control_test_assets__actuator_only_custom_plugin.urdf": ({"TX113": 1}, set()),
     "ros2_control_test_assets__diffbot_urdf.urdf": ({}, {"TX302", "TX304"}),
     # joint31415 is not in the component: the parser throws

@@ -18,10 +18,12 @@ Why
     gazebo_ros2_control, gz_ros2_control and mujoco_ros2_control all parse the robot with it.
 
 Severity
-    ``info`` for a leftover: ROS 1 transmissions beside the ``<ros2_control>`` blocks of a
-    ROS 2 robot, or ``<ros2_control>`` blocks in a ROS 1 package. ``warning`` where the
-    transmission looks meant to be read: a top-level transmission written in a ROS 2 form, or
-    the only transmissions of a ROS 2 robot that has no ``<ros2_control>`` block.
+    ``info`` for a leftover: ROS 1 transmissions in a ROS 2 robot (beside its
+    ``<ros2_control>`` blocks or not), or ``<ros2_control>`` blocks in a ROS 1 package.
+    ``warning`` where the transmission looks meant to be read: a top-level transmission
+    written in a ROS 2 form (``<plugin>``, ``role`` attributes), which ros2_control would read
+    inside a ``<ros2_control>`` block. A ROS 2 Gazebo plugin in a robot without any
+    ``<ros2_control>`` block is TX007's error.
 
 Failing example (in an ament_cmake package)::
 
@@ -67,12 +69,10 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             CODE, tx.found.element,
             f"{form}{tx.label} {where}, where none of this file's readers looks ({looks} read "
             f"it: {named}): nothing reads it, so its contents are not judged",
-            loader_severity=_severity(ctx, tx, top),
+            loader_severity=_severity(tx, top),
         )
 
 
-def _severity(ctx: LintContext, tx: Facts, top: bool) -> Severity:
+def _severity(tx: Facts, top: bool) -> Severity:
     """Warning where the transmission looks meant to be read (see the rule's documentation)."""
-    if top and (not tx.ros1 or not ctx.hints.components):
-        return "warning"
-    return "info"
+    return "warning" if top and not tx.ros1 else "info"

@@ -7,11 +7,15 @@ reads.
 
 from __future__ import annotations
 
+import textwrap
 from typing import Any
 
 from lxml import etree
 
 from txtool.model.readers import Assumption, placement_of
+
+
+WIDTH = 100  # the effective view's width
 
 
 def unread_names(assumption: Assumption, elements: list[etree._Element]) -> list[str]:
@@ -25,17 +29,18 @@ def unread_names(assumption: Assumption, elements: list[etree._Element]) -> list
 def readers_text(assumption: Assumption, unread: list[str]) -> str:
     """``Readers: ...`` lines printed below the effective values."""
     if not assumption.readers:
-        lines = ["Readers: not known (nothing names them: each transmission is shown as the "
-                 "loader of its dialect reads it)"]
+        lines = ["Readers: not known (nothing names them); each transmission is shown as",
+                 "  the loader of its dialect reads it"]
     else:
         lines = ["Readers:"]
-        lines += [f"  {name} ({why})" for name, why in
-                  zip(assumption.names(), assumption.because, strict=True)]
+        for name, why in zip(assumption.names(), assumption.because, strict=True):
+            lines += textwrap.wrap(f"  {name} ({why})", WIDTH, subsequent_indent="    ")
         if not assumption.decided:
-            lines.append("  (others may read the top-level transmissions: nothing rules ROS 1 "
-                         "out)")
+            lines.append("  (nothing rules ROS 1 out: ros_control may read the top-level ones)")
     if unread:
-        lines.append("Read by none of them: " + ", ".join(f"'{n}'" for n in unread))
+        names = ", ".join(f"'{n}'" for n in unread)
+        lines += textwrap.wrap(f"Read by none of them: {names}", WIDTH, subsequent_indent="  ",
+                               break_on_hyphens=False)
     return "\n" + "\n".join(lines) + "\n"
 
 
