@@ -14,7 +14,6 @@ from lxml import etree
 
 from txtool.model.readers import Assumption, placement_of
 
-
 WIDTH = 100  # the effective view's width
 
 
