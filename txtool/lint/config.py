@@ -233,8 +233,11 @@ def _stated(config: Values, origin: str, prefix: str) -> Stated:
     if config.readers is not None and not readers:
         raise ConfigError(f"{origin}: key '{prefix}readers': name at least one reader")
     where = "configuration" if origin in ("command line", "<defaults>") else origin
-    distro_origin = "--ros-distro" if config.ros_distro_cli else f"ros-distro in {where}"
-    return Stated(readers, distro, origin=where, distro_origin=distro_origin)
+    said = None
+    if distro is not None:
+        said = (f"--ros-distro {distro.value}" if config.ros_distro_cli
+                else f"ros-distro {distro.value} in {where}")
+    return Stated(readers, distro, origin=where, distro_said=said)
 
 
 def _expand(selectors: Iterable[str], rules: dict[str, Any], origin: str, key: str) -> set[str]:

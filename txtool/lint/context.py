@@ -138,16 +138,24 @@ class LintContext:
     @lazy
     def unread(self) -> list[Facts]:
         """The transmissions no reader of this document reads (none when nothing decides the
-        readers); in a xacro file read as written, one inside a macro may be instantiated
-        anywhere, so it counts as read."""
+        readers). In a xacro file read as written, a macro's transmission may be instantiated
+        anywhere: its form tells where it is meant to stand (a ROS 1 one at the top level,
+        where only ros_control looks; a ROS 2 one inside ``<ros2_control>``)."""
         readers = self.readers
         if not readers.decided:
             return []
-        from txtool.model.readers import placement_of
+        from txtool.model.readers import Placement, placement_of
 
-        return [tx for tx in self.every_fact
-                if not readers.reads(placement_of(tx.found.element))
-                and not self._in_macro(tx.found.element)]
+        unread = []
+        for tx in self.every_fact:
+            element = tx.found.element
+            if self._in_macro(element):
+                placement = Placement.TOP_LEVEL if tx.ros1 else Placement.IN_COMPONENT
+            else:
+                placement = placement_of(element)
+            if not readers.reads(placement):
+                unread.append(tx)
+        return unread
 
     def _in_macro(self, element: etree._Element) -> bool:
         if not self.literal:

@@ -276,7 +276,7 @@ class Stated:
     readers: tuple[Reader, ...] = ()
     distro: Distro | None = None
     origin: str = "configuration"  # where ``readers`` was said
-    distro_origin: str = "--ros-distro"
+    distro_said: str | None = None  # "--ros-distro jazzy", "ros-distro jazzy in FILE"
 
 
 @dataclass(frozen=True)
@@ -382,8 +382,8 @@ def assume(root: etree._Element, package: Package | None = None, stated: Stated 
         for reader in stated.readers:
             choice.add(reader, f"readers in the {stated.origin}")
     elif stated.distro is not None:
-        _by_generation(choice, seen, stated.distro.ros2, f"{stated.distro_origin} "
-                       f"{stated.distro.value}")
+        said = stated.distro_said or f"--ros-distro {stated.distro.value}"
+        _by_generation(choice, seen, stated.distro.ros2, said)
     elif seen.ros1_plugin is not None or seen.ros2_plugins:
         if seen.ros1_plugin is not None:
             _by_generation(choice, seen, False, _plugin_reason(seen.ros1_plugin))
