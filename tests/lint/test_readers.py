@@ -276,3 +276,34 @@ def test_show_effective_names_the_readers(tmp_path):
     assert json.loads(result.stdout)["readers"] == {
         "readers": ["ros2_control (humble)"], "because": ["--ros-distro humble"],
         "decided": True, "unread": ["trans1"]}
+
+
+def test_a_fragment_is_read_by_the_gazebo_plugin_its_package_names(validate, tmp_path):
+    # Modelled on RobotnikAutomation/summit_xl_common @bb11a00 summit_xl_description: a macro
+    # file of transmissions with an unprefixed interface (urdf/bases/summit_x_base.urdf.xacro)
+    # whose robots load them through libgazebo_ros_control.so, named in another file of the
+    # package (urdf/bases/summit_xl_base.gazebo.xacro), which accepts the unprefixed name.
+    folder = package(tmp_path, "base_description", "catkin", fmt=2)
+    (folder / "urdf" / "base.gazebo.xacro").write_text(
+        '<robot xmlns:xacro="http://ros.org/wiki/xacro"><xacro:macro name="ros_control">'
+        '<gazebo><plugin name="ros_control" filename="libgazebo_ros_control.so">'
+        "<robotSimType>gazebo_ros_control/DefaultRobotHWSim</robotSimType></plugin></gazebo>"
+        "</xacro:macro></robot>\n")
+    wheel = ROS1_BAD.replace('"trans1"', '"${name}_trans"').replace(
+        '<actuator name="actuator1"/>',
+        '<actuator name="m"><mechanicalReduction>1</mechanicalReduction></actuator>').replace(
+        "PositionJointInterface", "EffortJointInterface")
+    path = folder / "urdf" / "base.urdf.xacro"
+    path.write_text('<robot xmlns:xacro="http://ros.org/wiki/xacro">\n'
+                    '  <xacro:macro name="wheel" params="name">\n' + wheel +
+                    "  </xacro:macro>\n</robot>\n")
+    code, found, report = findings(validate, str(path))
+    assert code == 0 and {(c, s) for *_, c, s in found} == {("TX205", "warning"),
+                                                            ("TX300", "warning")}
+    assert report["readers"][0]["because"][0] == (
+        "<gazebo> plugin libgazebo_ros_control.so in urdf/base.gazebo.xacro")
+    (folder / "urdf" / "base.gazebo.xacro").unlink()
+    other = package(tmp_path / "other", "base_description", "catkin", fmt=2)
+    (other / "urdf" / "base.urdf.xacro").write_text(path.read_text())
+    code, found, _ = findings(validate, str(other / "urdf" / "base.urdf.xacro"))
+    assert code == 1 and ("TX205", "error") in {(c, s) for *_, c, s in found}

@@ -211,3 +211,42 @@ def exported_transmission_types(near: str | None) -> Mapping[str, ExportedType]:
 @lru_cache(maxsize=8)
 def _env_manifests(value: str) -> tuple[str, ...]:
     return tuple(_prefix_manifests("AMENT_PREFIX_PATH")) if value else ()
+
+
+# The <gazebo> plugin files that name a program reading the robot's transmissions.
+PLUGIN_MARKERS = (b"gazebo_ros_control.so", b"gazebo_ros2_control.so", b"ros2_control-system")
+DESCRIPTION_SUFFIXES = (".urdf", ".xacro", ".gazebo")
+MAX_SCANNED = 500
+
+
+@lru_cache(maxsize=256)
+def plugin_files(package_folder: str) -> tuple[str, ...]:
+    """The robot description files of a package (``.urdf``, ``.xacro``, ``.gazebo``; at most
+    :data:`MAX_SCANNED`, each within the manifest size limit) whose bytes name a ``<gazebo>``
+    plugin that reads transmissions, in path order."""
+    found: list[str] = []
+    scanned = 0
+    for folder, subfolders, files in os.walk(package_folder):
+        subfolders[:] = sorted(d for d in subfolders if not d.startswith("."))
+        for name in sorted(files):
+            if not name.endswith(DESCRIPTION_SUFFIXES):
+                continue
+            scanned += 1
+            if scanned > MAX_SCANNED:
+                return tuple(found)
+            path = os.path.join(folder, name)
+            try:
+                if os.path.getsize(path) > MAX_MANIFEST:
+                    continue
+                with open(path, "rb") as handle:
+                    data = handle.read()
+            except OSError:
+                continue
+            if any(marker in data for marker in PLUGIN_MARKERS):
+                found.append(path)
+    return tuple(found)
+
+
+def read_description(path: str) -> etree._Element | None:
+    """A description file's root element, safely parsed; None when it cannot be read."""
+    return _read_manifest(Path(path))

@@ -9,10 +9,11 @@ from __future__ import annotations
 
 import os
 from collections.abc import Mapping
+from dataclasses import replace
 from typing import NamedTuple
 
 from txtool.io.xmlio import Source
-from txtool.model.readers import Assumption, Package, Stated, assume
+from txtool.model.readers import Assumption, Package, Seen, Stated, assume, seen_in
 
 
 class FileReaders(NamedTuple):
@@ -53,7 +54,30 @@ def assumption_of(source: Source, stated: Stated) -> Assumption:
             known["types"] = {name: e.describe() for name, e in exported.items()}
         return known["types"]
 
-    return assume(source.root, package, stated, types)
+    def elsewhere() -> Seen | None:
+        if info is None:
+            return None
+        return plugins_of_package(os.path.dirname(info.manifest), path)
+
+    return assume(source.root, package, stated, types, elsewhere)
+
+
+def plugins_of_package(folder: str, path: str) -> Seen | None:
+    """The ``<gazebo>`` plugins of the first other description file of the package in
+    ``folder`` that names one (the reason names that file, relative to the package)."""
+    from txtool.io.package_xml import plugin_files, read_description
+
+    own = os.path.abspath(path)
+    for candidate in plugin_files(folder):
+        if os.path.abspath(candidate) == own:
+            continue
+        root = read_description(candidate)
+        if root is None:
+            continue
+        seen = seen_in(root)
+        if seen.plugins:
+            return replace(seen, where=os.path.relpath(candidate, folder))
+    return None
 
 
 def record(path: str, assumption: Assumption) -> FileReaders:

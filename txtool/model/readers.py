@@ -11,7 +11,8 @@ distribution), which types it loads, and what it does with what it cannot read.
 1. ``readers = [...]`` in the configuration: exactly those;
 2. ``--ros-distro`` (or ``ros-distro`` in the configuration): that ROS generation's readers;
 3. the document's ``<gazebo>`` plugins (``libgazebo_ros_control.so``, ``libgazebo_ros2_control.so``,
-   ``gz_ros2_control-system`` / ``ign_ros2_control-system``);
+   ``gz_ros2_control-system`` / ``ign_ros2_control-system``), else those another description
+   file of its package names (a fragment is read by what loads its robot);
 4. the enclosing package's ``package.xml`` (catkin: ROS 1; ament_cmake / ament_python: ROS 2);
 5. ``<ros2_control>`` blocks (ros2_control reads them; its ``<hardware><plugin>`` may name a
    simulator such as mujoco_ros2_control): this alone does not rule ROS 1 out;
@@ -24,7 +25,7 @@ transmission types exported with pluginlib known (:mod:`txtool.io.package_xml`).
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from enum import Enum
 
 from lxml import etree
@@ -230,6 +231,11 @@ class Seen:
     ros2_plugins: tuple[tuple[etree._Element, Reader], ...] = ()
     components: int = 0  # <ros2_control> elements
     hardware: tuple[tuple[str, Reader], ...] = ()  # simulator hardware plugins named
+    where: str = ""  # another file of the package, when the plugins were seen there
+
+    @property
+    def plugins(self) -> bool:
+        return self.ros1_plugin is not None or bool(self.ros2_plugins)
 
 
 def _kids(element: etree._Element, name: str) -> list[etree._Element]:
@@ -367,15 +373,26 @@ class _Choice:
             self.because.append(why)
 
 
-def _plugin_reason(plugin: etree._Element) -> str:
-    return f"<gazebo> plugin {(plugin.get('filename') or '').strip()}"
+def _plugin_reason(plugin: etree._Element, where: str = "") -> str:
+    said = f"<gazebo> plugin {(plugin.get('filename') or '').strip()}"
+    return f"{said} in {where}" if where else said
 
 
 def assume(root: etree._Element, package: Package | None = None, stated: Stated | None = None,
-           types: Callable[[], Mapping[str, str]] | None = None) -> Assumption:
-    """The readers of a document (see the module documentation for the order)."""
+           types: Callable[[], Mapping[str, str]] | None = None,
+           elsewhere: Callable[[], Seen | None] | None = None) -> Assumption:
+    """The readers of a document (see the module documentation for the order).
+
+    ``elsewhere`` gives the plugins another description file of the document's package names
+    (asked only when the document names none): a fragment is read by what loads its robot.
+    """
     stated = stated or Stated()
-    seen = seen_in(root)
+    own = seen = seen_in(root)
+    if not seen.plugins and elsewhere is not None:
+        other = elsewhere()
+        if other is not None and other.plugins:
+            seen = replace(seen, sim=other.sim, ros1_plugin=other.ros1_plugin,
+                           ros2_plugins=other.ros2_plugins, where=other.where)
     choice = _Choice(stated.distro)
     decided = True
     if stated.readers:
@@ -386,9 +403,10 @@ def assume(root: etree._Element, package: Package | None = None, stated: Stated 
         _by_generation(choice, seen, stated.distro.ros2, said)
     elif seen.ros1_plugin is not None or seen.ros2_plugins:
         if seen.ros1_plugin is not None:
-            _by_generation(choice, seen, False, _plugin_reason(seen.ros1_plugin))
+            _by_generation(choice, seen, False, _plugin_reason(seen.ros1_plugin, seen.where))
         if seen.ros2_plugins:
-            _by_generation(choice, seen, True, _plugin_reason(seen.ros2_plugins[0][0]))
+            _by_generation(choice, seen, True,
+                           _plugin_reason(seen.ros2_plugins[0][0], seen.where))
     elif package is not None and (package.ros1 or package.ros2):
         _by_generation(choice, seen, package.ros2, f"package.xml: {package.build_type}")
     else:
@@ -399,9 +417,9 @@ def assume(root: etree._Element, package: Package | None = None, stated: Stated 
                 choice.add(reader, f"<ros2_control> hardware plugin {text}")
     sim = seen.sim if any(not r.ros2 for r in choice.readers) or not decided else None
     missing = None
-    if not seen.components:
+    if not own.components:  # only the document's own plugins refuse it
         keys = {r.key for r in choice.readers}
-        missing = next((p for p, r in seen.ros2_plugins if r.key in keys), None)
+        missing = next((p for p, r in own.ros2_plugins if r.key in keys), None)
     return Assumption(tuple(choice.readers), tuple(choice.because), decided, sim, missing,
                       types)
 
@@ -411,7 +429,7 @@ def _by_generation(choice: _Choice, seen: Seen, ros2: bool, why: str) -> None:
     if not ros2:
         if seen.ros1_plugin is not None:
             sim = seen.sim
-            reason = _plugin_reason(seen.ros1_plugin)
+            reason = _plugin_reason(seen.ros1_plugin, seen.where)
             if sim is not None:
                 choice.add(sim.reader, reason)
             choice.add(ROS_CONTROL, why)
@@ -419,7 +437,7 @@ def _by_generation(choice: _Choice, seen: Seen, ros2: bool, why: str) -> None:
             choice.add(ROS_CONTROL, why)
         return
     for plugin, reader in seen.ros2_plugins:
-        choice.add(reader, _plugin_reason(plugin))
+        choice.add(reader, _plugin_reason(plugin, seen.where))
     for text, reader in seen.hardware:
         choice.add(reader, f"<ros2_control> hardware plugin {text}")
     choice.add(ROS2_CONTROL, why)
