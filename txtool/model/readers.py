@@ -432,7 +432,8 @@ def _by_generation(choice: _Choice, seen: Seen, ros2: bool, why: str) -> None:
             reason = _plugin_reason(seen.ros1_plugin, seen.where)
             if sim is not None:
                 choice.add(sim.reader, reason)
-            choice.add(ROS_CONTROL, why)
+            # DefaultRobotHWSim does not use ros_control's loaders; the real robot's RobotHW does
+            choice.add(ROS_CONTROL, f"a ROS 1 robot's own hardware: {why}")
         else:
             choice.add(ROS_CONTROL, why)
         return
