@@ -307,3 +307,15 @@ def test_a_fragment_is_read_by_the_gazebo_plugin_its_package_names(validate, tmp
     (other / "urdf" / "base.urdf.xacro").write_text(path.read_text())
     code, found, _ = findings(validate, str(other / "urdf" / "base.urdf.xacro"))
     assert code == 1 and ("TX205", "error") in {(c, s) for *_, c, s in found}
+
+
+def test_a_vendor_build_of_a_ros2_gazebo_plugin_is_recognised(validate, tmp_path):
+    # frankaemika/franka_description (robots/common/franka_arm.ros2_control.xacro) names
+    # franka_ign_ros2_control-system, a build of ign_ros2_control.
+    body = COMPONENT.format(hardware="franka_ign_ros2_control/IgnitionSystem", inner="") + \
+        GAZEBO.format(filename="franka_ign_ros2_control-system") + ROS1_BAD
+    path = tmp_path / "arm.urdf"
+    path.write_text(ROBOT.format(body=body))
+    code, found, report = findings(validate, str(path))
+    assert (code, found) == (0, [(11, 3, "TX305", "info")])
+    assert report["readers"][0]["readers"] == ["gz_ros2_control", "ros2_control"]

@@ -206,13 +206,18 @@ def accepts(interface: str) -> bool:
 
 # -- what the document says --------------------------------------------------------------------
 
+# <gazebo> plugin file names (without "lib" and ".so") by their ending: vendors ship renamed
+# builds of these plugins (franka_ros2's franka_ign_ros2_control-system).
 ROS2_SIM_FILES = {
-    "libgazebo_ros2_control.so": GAZEBO_ROS2_CONTROL,
+    "gazebo_ros2_control": GAZEBO_ROS2_CONTROL,
     "gz_ros2_control-system": GZ_ROS2_CONTROL,
-    "libgz_ros2_control-system.so": GZ_ROS2_CONTROL,
     "ign_ros2_control-system": GZ_ROS2_CONTROL,
-    "libign_ros2_control-system.so": GZ_ROS2_CONTROL,
 }
+
+
+def _ros2_sim(filename: str) -> Reader | None:
+    base = filename.rsplit("/", 1)[-1].removeprefix("lib").removesuffix(".so")
+    return next((r for end, r in ROS2_SIM_FILES.items() if base.endswith(end)), None)
 # <ros2_control><hardware><plugin> prefixes of the simulators' system plugins.
 HARDWARE_SIMS = {
     "gazebo_ros2_control/": GAZEBO_ROS2_CONTROL,
@@ -258,8 +263,8 @@ def seen_in(root: etree._Element) -> Seen:
             sim_type = (named[0].text or "").strip() if named else DEFAULT_SIM
             if sim is None and sim_type in KNOWN_SIMS:
                 sim = Sim(plugin, sim_type)
-        elif base in ROS2_SIM_FILES:
-            ros2.append((plugin, ROS2_SIM_FILES[base]))
+        elif (reader := _ros2_sim(base)) is not None:
+            ros2.append((plugin, reader))
     blocks = list(root.iter("{*}ros2_control", "ros2_control"))
     hardware = []
     for block in blocks:
