@@ -393,7 +393,10 @@ def assume(root: etree._Element, package: Package | None = None, stated: Stated 
     """
     stated = stated or Stated()
     own = seen = seen_in(root)
-    if not seen.plugins and elsewhere is not None:
+    # A ROS 2 package decides without them (and its plugins make no verdict milder): the
+    # package's other files are read only for a ROS 1 package or a file outside any package.
+    ros2_package = package is not None and package.ros2
+    if not seen.plugins and elsewhere is not None and not ros2_package and not stated.readers:
         other = elsewhere()
         if other is not None and other.plugins:
             seen = replace(seen, sim=other.sim, ros1_plugin=other.ros1_plugin,
