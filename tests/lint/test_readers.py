@@ -255,8 +255,9 @@ def test_a_ros1_macro_library_in_a_ros2_package_is_read_by_nothing(validate, tmp
              "  </xacro:macro>\n</robot>\n")
     path = folder / "urdf" / "arm.gazebo.xacro"
     path.write_text(macro)
-    code, found, _ = findings(validate, str(path))
+    code, found, report = findings(validate, str(path))
     assert (code, found) == (0, [(3, 3, "TX305", "info")])
+    assert "'${trans}' is written in the ROS 1 form in a macro" in report["problems"][0]["message"]
 
 
 def test_show_effective_names_the_readers(tmp_path):

@@ -149,7 +149,7 @@ class LintContext:
         unread = []
         for tx in self.every_fact:
             element = tx.found.element
-            if self._in_macro(element):
+            if self.in_macro(element):
                 placement = Placement.TOP_LEVEL if tx.ros1 else Placement.IN_COMPONENT
             else:
                 placement = placement_of(element)
@@ -157,7 +157,8 @@ class LintContext:
                 unread.append(tx)
         return unread
 
-    def _in_macro(self, element: etree._Element) -> bool:
+    def in_macro(self, element: etree._Element) -> bool:
+        """In a xacro file read as written: whether ``element`` stands in a macro body."""
         if not self.literal:
             return False
         parent = element.getparent()

@@ -60,15 +60,20 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         return
     named = ctx.readers.explain()
     for tx in unread:
-        top = placement_of(tx.found.element) is Placement.TOP_LEVEL
-        where = ("stands outside every <ros2_control> block" if top
-                 else "stands inside a <ros2_control> block")
+        element = tx.found.element
+        if ctx.in_macro(element):  # a macro's transmission stands where its form belongs
+            top = tx.ros1
+            where = f"is written in the {'ROS 1' if top else 'ROS 2'} form in a macro"
+        else:
+            top = placement_of(element) is Placement.TOP_LEVEL
+            where = ("stands outside every <ros2_control> block" if top
+                     else "stands inside a <ros2_control> block")
         looks = "only ROS 2 programs" if top else "only ROS 1 programs"
-        form = "ROS 1 " if tx.ros1 else ""
+        form = "ROS 1 " if tx.ros1 and not ctx.in_macro(element) else ""
         yield ctx.problem(
             CODE, tx.found.element,
             f"{form}{tx.label} {where}, where none of this file's readers looks ({looks} read "
-            f"it: {named}): nothing reads it, so its contents are not judged",
+            f"this file: {named}): nothing reads it, so its contents are not judged",
             loader_severity=_severity(tx, top),
         )
 
