@@ -63,6 +63,9 @@ DIFF_ROS2 = ('<transmission name="d"><plugin>transmission_interface/Differential
              'role="actuator2"/><joint name="k" role="joint1"/><joint name="j" role="joint2"/>'
              "</transmission>")
 
+GAZEBO2 = '<gazebo><plugin filename="libgazebo_ros2_control.so" name="gazebo_ros2_control"/></gazebo>'
+GZ = '<gazebo><plugin filename="gz_ros2_control-system" name="gz_ros2_control"/></gazebo>'
+
 # code: (severity, document, file name)
 TABLE: dict[str, tuple[str, str, str]] = {
     "TX001": ("error", "<robot>", "r.urdf"),
@@ -72,6 +75,7 @@ TABLE: dict[str, tuple[str, str, str]] = {
     "TX005": ("warning", robot("<!-- txtool: disable-nextline TX106 -->\n" + ros1()), "r.urdf"),
     # reported only for a file named on the command line: see the test below
     "TX006": ("info", robot(""), "named.urdf"),
+    "TX007": ("error", robot(ros1() + GAZEBO2), "r.urdf"),
     "TX100": ("error", robot(ros1(name="")), "r.urdf"),
     "TX101": ("error", robot(ros1().replace(f"<type>{SIMPLE}</type>", "")), "r.urdf"),
     "TX102": ("warning", robot(ros1(type_="my_hw/Reducer")), "r.urdf"),
@@ -90,7 +94,8 @@ TABLE: dict[str, tuple[str, str, str]] = {
     "TX111": ("warning", robot(ros1(actuator="<mechanicalReduction>50abc</mechanicalReduction>")),
               "r.urdf"),
     "TX112": ("error", robot(ros2(ros2_simple('role="joint1" read_only="yes"'))), "r.urdf"),
-    "TX113": ("error", robot(ros1(type_="transmission_interface/Reducer")), "r.urdf"),
+    # a near-miss of a standard name (another name may be a vendor's plugin: a warning)
+    "TX113": ("error", robot(ros1(type_="transmission_interface/SimpleTransmision")), "r.urdf"),
     "TX200": ("error", robot(ros1(joint_name="nowhere")), "r.urdf"),
     "TX201": ("error", robot(ros1()).replace('name="j" type="revolute"', 'name="j" type="fixed"'),
               "r.urdf"),
@@ -107,11 +112,14 @@ TABLE: dict[str, tuple[str, str, str]] = {
                                     "</hardwareInterface>")), "r.urdf"),
     "TX301": ("warning", robot(ros1(joint="", actuator=EFFORT + "<mechanicalReduction>1"
                                     "</mechanicalReduction>")), "r.urdf"),
-    "TX302": ("warning", robot(ros1().replace('name="t"', 'name="t" type="SimpleTransmission"')),
-              "r.urdf"),
+    # the legacy form (the attribute alone); beside a <type> element nothing reads it: info
+    "TX302": ("warning", robot(ros1().replace('name="t"', 'name="t" type="SimpleTransmission"')
+                               .replace(f"<type>{SIMPLE}</type>", "")), "r.urdf"),
     "TX303": ("error", robot(ros2(ros2_simple(joint_inner="<mechanicalReduction>2"
                                               "</mechanicalReduction>"))), "r.urdf"),
     "TX304": ("warning", robot(ros1() + ros2("")), "r.urdf"),
+    # a ROS 1 leftover beside the <ros2_control> block of a robot gz_ros2_control loads
+    "TX305": ("info", robot(ros1() + ros2("") + GZ), "r.urdf"),
     "TX400": ("warning", robot(ros1(joint=EFFORT + "<mechanicalReduction>2"
                                     "</mechanicalReduction>")), "r.urdf"),
     "TX401": ("error", robot(ros2(DIFF_ROS2)), "r.urdf"),

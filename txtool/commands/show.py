@@ -13,6 +13,7 @@ from txtool.commands.common import (
     xacro_disabled,
     xacro_options,
 )
+from txtool.model.distro import CHOICES
 
 
 @click.command("show")
@@ -24,11 +25,14 @@ from txtool.commands.common import (
 @click.option("--actuator-limits", is_flag=True,
               help="Also map each joint's URDF limits into actuator space.")
 @click.option("--stdin-filename", help="Name to report for '-' (stdin).")
+@click.option("--ros-distro", type=click.Choice(CHOICES), default=None,
+              help="The ROS distribution whose programs read the file (--effective names the "
+                   "readers; over the configuration's ros-distro).")
 @NO_XACRO_OPTION
 @xacro_options
 @exit_on_input_error
-def command(path, output_format, effective, actuator_limits, stdin_filename, no_xacro,
-            xacro) -> int:
+def command(path, output_format, effective, actuator_limits, stdin_filename, ros_distro,
+            no_xacro, xacro) -> int:
     """List the transmissions of FILE (URDF, xacro or a fragment; '-' for stdin).
 
     The JSON gives each transmission as written and, under "effective", what its loader
@@ -44,8 +48,13 @@ def command(path, output_format, effective, actuator_limits, stdin_filename, no_
     found = read_source(source)
     transmissions = [f.transmission for f in found]
     limits = _limits(source, transmissions) if actuator_limits else None
+    readers = _readers(source, found, ros_distro) if effective else None
     if output_format == "json":
         data: dict = {"transmissions": shown_json(transmissions, bindings_of(found))}
+        if readers is not None:
+            from txtool.views.readers_view import readers_json
+
+            data["readers"] = readers_json(*readers)
         if limits is not None:
             data["actuator_limits"] = [
                 {"transmission": t, "actuator": a, "position": lim.position,
@@ -58,16 +67,31 @@ def command(path, output_format, effective, actuator_limits, stdin_filename, no_
     from txtool.views.render import limits_table, transmissions_table
 
     console = make_console()
-    if effective:
+    if readers is not None:
         from txtool.views.effective import effective_text
+        from txtool.views.readers_view import readers_text
 
         click.echo(effective_text(source.path, transmissions, bindings_of(found)), nl=False)
+        click.echo(readers_text(*readers), nl=False)
     else:
         console.print(transmissions_table(transmissions, f"{source.path}: "
                                           f"{len(transmissions)} transmission(s)"))
     if limits is not None:
         console.print(limits_table(limits))
     return 0
+
+
+def _readers(source, found, ros_distro):
+    """The file's readers (the configuration's readers and ros-distro, --ros-distro over it)
+    and the names of the transmissions none of them reads."""
+    from txtool.lint.config import Overrides, SettingsCache
+    from txtool.lint.readers import assumption_of
+    from txtool.views.readers_view import unread_names
+
+    where = source.path if source.path != "-" else "-"
+    stated = SettingsCache(Overrides(ros_distro=ros_distro)).for_file(where).stated
+    assumption = assumption_of(source, stated)
+    return assumption, unread_names(assumption, [f.element for f in found])
 
 
 def _limits(source, transmissions):

@@ -15,8 +15,10 @@ from txtool.commands.common import (
     xacro_options,
 )
 from txtool.io.printable import printable
+from txtool.model.distro import CHOICES
 
 FORMATS = ("text", "json", "github", "sarif")
+
 
 
 def _codes(values: tuple[str, ...]) -> tuple[str, ...]:
@@ -65,11 +67,14 @@ def use_color(mode: str, output_file: str | None = None) -> bool:
               help="Like --exclude, but kept beside the configuration's exclude (repeatable).")
 @click.option("--respect-gitignore/--no-respect-gitignore", default=None,
               help="Pass over what .gitignore files ignore in folder walks [default: respect].")
+@click.option("--ros-distro", type=click.Choice(CHOICES), default=None,
+              help="The ROS distribution whose programs read the files (over the "
+                   "configuration's ros-distro and what package.xml and <gazebo> plugins say).")
 @xacro_options
 @exit_on_input_error
 def command(paths, output_format, select, ignore, strict, exit_zero, config_path, no_xacro,
             stdin_filename, jobs, color, output_file, quiet, statistics, exclude,
-            extend_exclude, respect_gitignore, xacro) -> int:
+            extend_exclude, respect_gitignore, ros_distro, xacro) -> int:
     """Check transmissions in files and folders (*.urdf, *.xacro, robot *.xml; '-' is stdin).
 
     Exit codes: 0 nothing at the failing level, 1 findings at it (errors; warnings too with
@@ -91,6 +96,7 @@ def command(paths, output_format, select, ignore, strict, exit_zero, config_path
         exclude=exclude or None,
         extend_exclude=extend_exclude,
         respect_gitignore=respect_gitignore,
+        ros_distro=ros_distro,
     )
     if xacro.args:
         _warn_unused_args(list(paths), no_xacro)
@@ -100,7 +106,8 @@ def command(paths, output_format, select, ignore, strict, exit_zero, config_path
     fmt = output_format or default_format()
     if (quiet or statistics) and fmt != "text":
         raise click.UsageError(f"--quiet and --statistics go with --format text, not {fmt}")
-    summary = Summary.of(result.problems, result.files, failures=result.errors)
+    summary = Summary.of(result.problems, result.files, failures=result.errors,
+                         readers=result.readers)
     colored = fmt == "text" and use_color(color, output_file)
     report = _report(fmt, result.problems, summary, colored, quiet, statistics)
     if output_file is None:

@@ -13,6 +13,7 @@ from txtool.lint.config import Overrides, Settings, SettingsCache
 from txtool.lint.discover import expand_paths
 from txtool.lint.engine import lint_file, lint_source
 from txtool.lint.problem import InputFailure, Problem
+from txtool.lint.readers import FileReaders
 
 __all__ = ["LintOptions", "LintResult", "exit_code", "lint_paths", "lint_source"]
 
@@ -32,17 +33,20 @@ class LintOptions(NamedTuple):
     exclude: tuple[str, ...] | None = None  # replaces the configuration's exclude
     extend_exclude: tuple[str, ...] = ()
     respect_gitignore: bool | None = None  # None: as configured (default True)
+    ros_distro: str | None = None  # --ros-distro: the distribution reading the files
 
 
 class LintResult:
     """Problems of every file in input order, how many files were read, and input errors."""
 
-    __slots__ = ("problems", "files", "errors")
+    __slots__ = ("problems", "files", "errors", "readers")
 
     def __init__(self) -> None:
         self.problems: list[Problem] = []
         self.files = 0
         self.errors: list[InputFailure] = []
+        # The readers each file holding transmissions was judged for, in input order.
+        self.readers: list[FileReaders] = []
 
     def count(self, severity: str) -> int:
         return sum(1 for p in self.problems if p.severity == severity)
@@ -60,6 +64,7 @@ def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions) -> Lint
         select=options.select, ignore=options.ignore, xacro=options.xacro,
         no_xacro=options.no_xacro, exclude=options.exclude,
         extend_exclude=options.extend_exclude, respect_gitignore=options.respect_gitignore,
+        ros_distro=options.ros_distro,
     )
     settings = SettingsCache(overrides, options.config)
     work: list[tuple[str, Settings]] = []
@@ -73,6 +78,9 @@ def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions) -> Lint
             continue
         result.files += 1
         result.problems.extend(outcome)
+        readers = getattr(outcome, "readers", None)
+        if readers is not None:
+            result.readers.append(readers)
     return result
 
 

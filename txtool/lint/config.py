@@ -30,6 +30,8 @@ from txtool.lint.config_files import (  # noqa: F401 - this module's names befor
 )
 from txtool.lint.patterns import Excludes, absolute_folder
 from txtool.lint.problem import Severity
+from txtool.model.distro import parse_distro
+from txtool.model.readers import Stated, parse_readers
 
 if TYPE_CHECKING:
     from txtool.lint.config_model import Config
@@ -70,12 +72,16 @@ class Values:
     respect_gitignore: bool = True
     per_file_ignores: dict[str, list[str]] = field(default_factory=dict)
     per_file_xacro_args: dict[str, dict[str, str]] = field(default_factory=dict)
+    readers: list[str] | tuple[str, ...] | None = None
+    ros_distro: str | None = None
+    ros_distro_cli: bool = False  # ros_distro came from --ros-distro
 
     @classmethod
     def of(cls, config: Config | None) -> Values:
         if config is None:
             return cls()
-        return cls(**{name: getattr(config, name) for name in cls.__dataclass_fields__})
+        return cls(**{name: getattr(config, name) for name in cls.__dataclass_fields__
+                      if name != "ros_distro_cli"})
 
 
 @dataclass(frozen=True)
@@ -92,6 +98,8 @@ class Settings:
     respect_gitignore: bool = True
     # (pattern, codes no longer run, xacro arguments added) for files matching the pattern
     per_file: tuple[tuple[str, frozenset[str], tuple[tuple[str, str], ...]], ...] = ()
+    # What the user said about the files' readers (see txtool.model.readers)
+    stated: Stated = field(default_factory=Stated)
 
     def for_path(self, path: str) -> Settings:
         """These settings with the per-file entries whose pattern matches ``path`` applied."""
@@ -204,7 +212,32 @@ def resolve(
         excludes=Excludes(str(folder), (*config.exclude, *config.extend_exclude)),
         respect_gitignore=config.respect_gitignore,
         per_file=per_file,
+        stated=_stated(config, origin, prefix),
     )
+
+
+def _stated(config: Values, origin: str, prefix: str) -> Stated:
+    """``readers`` and ``ros-distro`` checked against the readers model."""
+    try:
+        readers = parse_readers(config.readers or ())
+    except ValueError as exc:
+        raise ConfigError(f"{origin}: key '{prefix}readers': {exc}") from None
+    distro = None
+    if config.ros_distro is not None:
+        cli = origin == "command line" or config.ros_distro_cli
+        try:
+            distro = parse_distro(config.ros_distro)
+        except ValueError as exc:
+            where = "option '--ros-distro'" if cli else f"key '{prefix}ros-distro'"
+            raise ConfigError(f"{origin}: {where}: {exc}") from None
+    if config.readers is not None and not readers:
+        raise ConfigError(f"{origin}: key '{prefix}readers': name at least one reader")
+    where = "configuration" if origin in ("command line", "<defaults>") else origin
+    said = None
+    if distro is not None:
+        said = (f"--ros-distro {distro.value}" if config.ros_distro_cli
+                else f"ros-distro {distro.value} in {where}")
+    return Stated(readers, distro, origin=where, distro_said=said)
 
 
 def _expand(selectors: Iterable[str], rules: dict[str, Any], origin: str, key: str) -> set[str]:
@@ -250,6 +283,7 @@ class Overrides(NamedTuple):
     exclude: tuple[str, ...] | None = None  # --exclude replaces the configuration's exclude
     extend_exclude: tuple[str, ...] = ()
     respect_gitignore: bool | None = None
+    ros_distro: str | None = None  # --ros-distro, over the configuration's ros-distro
 
 
 def merged(config: Config | None, overrides: Overrides) -> Values:
@@ -267,6 +301,8 @@ def merged(config: Config | None, overrides: Overrides) -> Values:
             if overrides.respect_gitignore is None
             else overrides.respect_gitignore
         ),
+        ros_distro=overrides.ros_distro or values.ros_distro,
+        ros_distro_cli=overrides.ros_distro is not None,
     )
 
 

@@ -47,6 +47,16 @@ class Config(BaseModel):
         default_factory=dict, alias="per-file-ignores",
         description="Pattern -> rule codes or prefixes not run on matching files.",
     )
+    readers: list[str] | None = Field(
+        default=None,
+        description="The programs that read these files' transmissions (replaces detection), "
+        "e.g. [\"ros2_control\", \"gz_ros2_control\"].",
+    )
+    ros_distro: str | None = Field(
+        default=None, alias="ros-distro",
+        description="The ROS distribution reading these files: noetic, humble, jazzy, kilted or "
+        "rolling (--ros-distro overrides it).",
+    )
     per_file_xacro_args: dict[str, dict[str, str]] = Field(
         default_factory=dict, alias="per-file-xacro-args",
         description="Pattern -> xacro arguments for matching files (over xacro-args).",

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any, Generic, TypeVar, overload
 from lxml import etree
 
 from txtool.dialects.read import Found, transmission_elements
-from txtool.io.xmlio import Source, local
+from txtool.io.xmlio import Source, is_xacro_element, local
 from txtool.lint.facts import Facts, Hints, LintFound, facts_of
 from txtool.lint.problem import Problem, Severity
 from txtool.lint.text import scanned_form
@@ -22,7 +22,7 @@ from txtool.model.robot import (
 
 if TYPE_CHECKING:
     from txtool.io.locate import Locator, Position
-    from txtool.lint.gazebo import Sim
+    from txtool.model.readers import Assumption, Sim, Stated
 
 
 _T = TypeVar("_T")
@@ -74,8 +74,10 @@ class LintContext:
     """
 
     def __init__(self, source: Source, found: list[Found] | None = None, literal: bool = False,
-                 options: Mapping[str, Any] | None = None) -> None:
+                 options: Mapping[str, Any] | None = None, stated: Stated | None = None
+                 ) -> None:
         self.source = source
+        self.stated = stated
         self.literal = literal
         self.options: Mapping[str, Any] = {} if options is None else options
         # Facts about the whole document that several rules share (see txtool.lint.support).
@@ -109,9 +111,62 @@ class LintContext:
 
     @lazy
     def facts(self) -> list[Facts]:
-        """What the rules read of each transmission (see :mod:`txtool.lint.facts`), in order."""
+        """What the rules read of each transmission some reader of this document reads (see
+        :mod:`txtool.lint.facts`), in order: a transmission no reader reads gets one finding
+        (TX305), not the verdicts of a loader that never sees it."""
+        every = self.every_fact
+        unread = self.unread
+        if not unread:
+            return every
+        skipped = {id(tx) for tx in unread}
+        return [tx for tx in every if id(tx) not in skipped]
+
+    @lazy
+    def every_fact(self) -> list[Facts]:
+        """The facts of every transmission, read by a reader of this document or not."""
         hints = self.hints
         return [facts_of(found, hints) for found in self.found]
+
+    @lazy
+    def readers(self) -> Assumption:
+        """The programs that read this document (see :mod:`txtool.model.readers`)."""
+        from txtool.lint.readers import assumption_of
+        from txtool.model.readers import Stated
+
+        return assumption_of(self.source, self.stated or Stated())
+
+    @lazy
+    def unread(self) -> list[Facts]:
+        """The transmissions no reader of this document reads (none when nothing decides the
+        readers). In a xacro file read as written, a macro's transmission may be instantiated
+        anywhere: its form tells where it is meant to stand (a ROS 1 one at the top level,
+        where only ros_control looks; a ROS 2 one inside ``<ros2_control>``)."""
+        readers = self.readers
+        if not readers.decided:
+            return []
+        from txtool.model.readers import Placement, placement_of
+
+        unread = []
+        for tx in self.every_fact:
+            element = tx.found.element
+            if self.in_macro(element):
+                placement = Placement.TOP_LEVEL if tx.ros1 else Placement.IN_COMPONENT
+            else:
+                placement = placement_of(element)
+            if not readers.reads(placement):
+                unread.append(tx)
+        return unread
+
+    def in_macro(self, element: etree._Element) -> bool:
+        """In a xacro file read as written: whether ``element`` stands in a macro body."""
+        if not self.literal:
+            return False
+        parent = element.getparent()
+        while parent is not None:
+            if is_xacro_element(parent) and local(parent) == "macro":
+                return True
+            parent = parent.getparent()
+        return False
 
     @lazy
     def hints(self) -> Hints:
@@ -177,10 +232,9 @@ class LintContext:
         return Problem(self.source.path, where.line, where.column, code, message, fixable=fixable,
                        loader_severity=loader_severity)
 
-    @lazy
+    @property
     def gazebo_sim(self) -> Sim | None:
         """The ``<plugin>`` that loads this robot into Gazebo through gazebo_ros_control, with
-        a RobotHWSim whose rules are known, if any (see :mod:`txtool.lint.gazebo`)."""
-        from txtool.lint.gazebo import robot_hw_sim
-
-        return robot_hw_sim(self.source.root)
+        a RobotHWSim whose rules are known, when it is one of this document's readers (see
+        :class:`txtool.model.readers.Sim`)."""
+        return self.readers.sim

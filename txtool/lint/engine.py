@@ -31,6 +31,7 @@ from txtool.io.xmlio import (
 from txtool.lint.config import Settings, resolve
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
+from txtool.lint.readers import Findings, record
 from txtool.lint.support import all_canonical
 from txtool.lint.suppress import Suppressions
 from txtool.lint.suppress import parse as parse_suppressions
@@ -61,7 +62,7 @@ def lint_file(
     :class:`~txtool.io.xmlio.InputError` when the file cannot be read.
     """
     problems = _lint_file(path, settings, stdin_name)
-    if named and "TX006" in settings.enabled and not problems:
+    if named and "TX006" in settings.enabled and not problems and problems.readers is None:
         return _no_transmission(path, stdin_name, settings)
     return problems
 
@@ -84,18 +85,19 @@ def _no_transmission(path: str, stdin_name: str | None, settings: Settings) -> l
     return finish([_pipeline(display, 1, 1, "TX006", message)], source, settings)
 
 
-def _lint_file(path: str, settings: Settings, stdin_name: str | None) -> list[Problem]:
+def _lint_file(path: str, settings: Settings, stdin_name: str | None) -> Findings:
     display, data = read_bytes(path, stdin_name=stdin_name)
     try:
         tree = parse_bytes(data, display)
     except XMLSyntax as exc:
         bare = Source(path=display, data=data, tree=None)  # type: ignore[arg-type]
-        return finish([_pipeline(display, exc.line, exc.column, "TX001", exc.reason)], bare,
-                      settings)
+        failed = _pipeline(display, exc.line, exc.column, "TX001", exc.reason)
+        return Findings(finish([failed], bare, settings))
     source = Source(path=display, data=data, tree=tree)
     late = _late_declaration(display, data)
     if path == "-" or settings.no_xacro or not needs_expansion(display, data, tree):
-        return finish(late + _checked(source, settings), source, settings)
+        checked = _checked(source, settings)
+        return _carry(finish(late + checked, source, settings), checked)
     from txtool.io.xacro import XacroError, expand_xacro
 
     try:
@@ -103,10 +105,11 @@ def _lint_file(path: str, settings: Settings, stdin_name: str | None) -> list[Pr
     except XacroError as exc:
         line, column = _xacro_position(data, exc.reason)
         failed = _pipeline(display, line, column, "TX002", f"xacro: {exc.reason}")
-        problems = [*late, failed, *_checked(source, settings)]
-        return finish(problems, source, settings)
+        checked = _checked(source, settings)
+        return _carry(finish([*late, failed, *checked], source, settings), checked)
     full = Source(path=display, data=data, tree=expanded, expanded=True, source_tree=tree)
-    return finish(late + _checked(full, settings), full, settings)
+    checked = _checked(full, settings)
+    return _carry(finish(late + checked, full, settings), checked)
 
 
 def _late_declaration(path: str, data: bytes) -> list[Problem]:
@@ -133,21 +136,34 @@ def as_settings(config: Config | Settings | None) -> Settings:
 def context_for(source: Source, settings: Settings) -> LintContext:
     """The context the rules see (see the module documentation for the choice)."""
     options = settings.options
+    stated = settings.stated
     if not source.expanded:
         literal = needs_expansion(source.path, source.data, source.tree)
-        return LintContext(source, literal=literal, options=options)
-    expanded = LintContext(source, options=options)
+        return LintContext(source, literal=literal, options=options, stated=stated)
+    expanded = LintContext(source, options=options, stated=stated)
     if expanded.found or source.source_tree is None:
         return expanded
     as_written = Source(path=source.path, data=source.data, tree=source.source_tree)
-    literal = LintContext(as_written, literal=True, options=options)
+    literal = LintContext(as_written, literal=True, options=options, stated=stated)
     return literal if literal.found else expanded
 
 
-def _checked(source: Source, settings: Settings) -> list[Problem]:
-    """Read a document and run the rules on it, each element's children indexed once."""
+def _checked(source: Source, settings: Settings) -> Findings:
+    """Read a document and run the rules on it, each element's children indexed once; the
+    readers the document was judged for go with the problems."""
     with indexed_children():
-        return run_rules(context_for(source, settings), settings)
+        ctx = context_for(source, settings)
+        found = Findings(run_rules(ctx, settings))
+        if ctx.found:
+            found.readers = record(source.path, ctx.readers)
+        return found
+
+
+def _carry(problems: list[Problem], checked: Findings) -> Findings:
+    """``problems`` (``checked`` finished) with the readers ``checked`` was judged for."""
+    found = Findings(problems)
+    found.readers = checked.readers
+    return found
 
 
 def run_rules(ctx: LintContext, settings: Settings) -> list[Problem]:

@@ -11,6 +11,7 @@ from collections.abc import Sequence
 from typing import NamedTuple
 
 from txtool.lint.problem import InputFailure, Problem
+from txtool.lint.readers import FileReaders
 
 FORMATS: dict[str, str] = {
     "text": "text",
@@ -26,6 +27,7 @@ class Summary(NamedTuple):
     warnings: int
     infos: int
     failures: tuple[InputFailure, ...] = ()  # files that could not be read
+    readers: tuple[FileReaders, ...] = ()  # the readers each file was judged for
 
     @property
     def unreadable(self) -> int:
@@ -33,12 +35,14 @@ class Summary(NamedTuple):
 
     @classmethod
     def of(
-        cls, problems: Sequence[Problem], files: int, *, failures: Sequence[InputFailure] = ()
+        cls, problems: Sequence[Problem], files: int, *, failures: Sequence[InputFailure] = (),
+        readers: Sequence[FileReaders] = (),
     ) -> Summary:
         def count(level: str) -> int:
             return sum(1 for p in problems if p.severity == level)
 
-        return cls(files, count("error"), count("warning"), count("info"), tuple(failures))
+        return cls(files, count("error"), count("warning"), count("info"), tuple(failures),
+                   tuple(readers))
 
 
 def render(

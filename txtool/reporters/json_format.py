@@ -43,7 +43,12 @@ def report(problems: Sequence[Problem], summary: Summary) -> dict[str, Any]:
             "message": p.message, "fixable": bool(p.fixable),
         })
     errors = [{"path": f.path, "message": f.message} for f in summary.failures]
-    return {"problems": rows, "errors": errors, "summary": _totals(summary)}
+    return {"problems": rows, "errors": errors, "readers": _readers(summary),
+            "summary": _totals(summary)}
+
+
+def _readers(summary: Summary) -> list[dict[str, object]]:
+    return [file.as_json() for file in summary.readers]
 
 
 def _totals(summary: Summary) -> dict[str, int]:
@@ -57,7 +62,8 @@ def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False
 
 
 def _render(problems: Sequence[Problem], summary: Summary) -> str:
-    tail = {"errors": report((), summary)["errors"], "summary": _totals(summary)}
+    whole = report((), summary)
+    tail = {"errors": whole["errors"], "readers": whole["readers"], "summary": _totals(summary)}
     totals = json.dumps(tail, indent=2, ensure_ascii=False)[2:]  # '"errors": ...\n}'
     if not problems:
         return '{\n  "problems": [],\n' + totals + "\n"

@@ -39,6 +39,25 @@ class ReportError(BaseModel):
     message: str = Field(description="The one-line reason, as printed on stderr.")
 
 
+class ReportReaders(BaseModel):
+    """The programs a file's transmissions were judged for (see "Readers" in docs/loaders.md)."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    path: str = Field(description="The file as given on the command line (or --stdin-filename).")
+    readers: list[str] = Field(
+        description="Reader names, e.g. ros2_control (jazzy), gz_ros2_control, ros_control."
+    )
+    because: list[str] = Field(
+        description="Why each reader was assumed, in the same order, e.g. \"package.xml: "
+        "ament_cmake\", \"<gazebo> plugin libgazebo_ros2_control.so\", \"--ros-distro jazzy\"."
+    )
+    decided: bool = Field(
+        description="True when the readers are known (no other program reads the file); false "
+        "when nothing said, and each transmission was judged by the loader of its dialect."
+    )
+
+
 class ReportSummary(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
@@ -55,6 +74,9 @@ class Report(BaseModel):
 
     problems: list[ReportProblem]
     errors: list[ReportError] = Field(description="Files that could not be read or checked.")
+    readers: list[ReportReaders] = Field(
+        description="For each file holding transmissions, the readers it was judged for."
+    )
     summary: ReportSummary
 
 

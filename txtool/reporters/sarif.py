@@ -18,6 +18,7 @@ from urllib.parse import quote
 
 from txtool import __version__
 from txtool.lint.problem import InputFailure, Problem
+from txtool.lint.readers import FileReaders
 from txtool.lint.ruledoc import markdown, plain
 from txtool.reporters import Summary, end_of
 
@@ -29,12 +30,15 @@ LEVELS = {"error": "error", "warning": "warning", "info": "note"}
 
 
 def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False) -> str:
-    return json.dumps(sarif_log(problems, summary.failures), indent=2) + "\n"
+    return json.dumps(sarif_log(problems, summary.failures, summary.readers), indent=2) + "\n"
 
 
 def sarif_log(
-    problems: Sequence[Problem], failures: Sequence[InputFailure] = ()
+    problems: Sequence[Problem], failures: Sequence[InputFailure] = (),
+    readers: Sequence[FileReaders] = (),
 ) -> dict[str, Any]:
+    """The SARIF log; the run's ``properties.readers`` lists, for each file holding
+    transmissions, the readers it was judged for and why (as the JSON report's ``readers``)."""
     from txtool.rules import all_rules
 
     rules = list(all_rules().values())
@@ -57,6 +61,7 @@ def sarif_log(
                 "originalUriBaseIds": {SRCROOT: {"uri": Path(os.getcwd()).as_uri() + "/"}},
                 "columnKind": "unicodeCodePoints",
                 "results": [_result(p, index, uris) for p in problems],
+                "properties": {"readers": [file.as_json() for file in readers]},
             }
         ],
     }

@@ -29,6 +29,7 @@ RULE_MODULES: tuple[str, ...] = (
     "tx004_space_before_declaration",
     "tx005_invalid_suppression",
     "tx006_no_transmission",
+    "tx007_no_ros2_control",
     # TX1xx: one transmission as its loader reads it
     "tx100_missing_name",
     "tx101_missing_type",
@@ -56,6 +57,7 @@ RULE_MODULES: tuple[str, ...] = (
     "tx302_legacy_type_attribute",
     "tx303_wrong_dialect_tag",
     "tx304_outside_ros2_control",
+    "tx305_unread_transmission",
     "tx400_ignored_value",
     "tx401_role_order_mismatch",
     "tx402_four_bar_effort_ros1",

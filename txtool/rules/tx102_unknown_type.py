@@ -7,8 +7,11 @@ robot, so it is a warning: a near-miss of a standard name (``SimpleTransmission`
 ``transmission_interface/`` prefix) gets a suggestion; other custom types are reported once,
 since txtool cannot check them. Types of known custom families (``pr2_mechanism_model/``,
 ``sr_mechanism_model/``, ``franka_hw/``, plus the ``known-families`` option) are not
-reported. A type under ``transmission_interface/`` that is not one of the three standard ones
-can be no plugin at all: TX113's business (an error).
+reported, nor are types a package registers with pluginlib (its ``package.xml`` exports
+``<transmission_interface plugin="..."/>``; packages of the workspace, ``AMENT_PREFIX_PATH`` and
+``ROS_PACKAGE_PATH`` are read): the loaders find those. A type under
+``transmission_interface/`` that is not one of the three standard ones can be no plugin at
+all: TX113's business (an error).
 
 Applies to ``<type>`` (ROS 1) and ``<plugin>`` (ROS 2); the pre-Hydro ``type=`` attribute
 alone is TX302's business.
@@ -73,6 +76,8 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         text = tx.type_text
         if not text or text.startswith(prefixes) or ctx.unknown(text):
             continue  # no type element, or an empty one: TX101; transmission_interface/...: TX113
+        if ctx.readers.known_type(text) is not None:
+            continue  # a plugin a package exports: the loaders find it
         element = tx.type_element
         suggestion = nearest_standard(text)
         if suggestion is not None:

@@ -9,6 +9,15 @@ it. The coupled loaders fail with fewer than 2 joints or actuators and ``configu
 for more. Custom types are not counted, nor literal xacro transmissions whose members are
 produced by ``xacro:if`` or macro calls.
 
+Reader ros2_control: a SimpleTransmission listing one joint (or actuator) several times, by
+the same name, is a **warning**: the loader reads the first listing
+(ros-controls/ros2_control transmission_interface/src/simple_transmission_loader.cpp
+``SimpleTransmissionLoader::load``: ``joints.at(0)``), and ``SimpleTransmission::configure``
+accepts handles that all carry one name (transmission_interface/include/transmission_interface/
+simple_transmission.hpp ``configure``: ``are_names_identical``); the later listings are read
+by nothing. In a component of ``type="actuator"`` the parser still throws (component_parser.cpp
+``auto_fill_transmission_interfaces``).
+
 Failing example::
 
     <transmission name="t">
@@ -52,7 +61,31 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             continue
         message = _ros1(tx.found) if tx.ros1 else _ros2(tx.found)
         if message and not opaque(ctx, tx.element):
-            yield ctx.problem(CODE, tx.element, message)
+            lower = None if tx.ros1 else _repeated(tx.found)
+            yield ctx.problem(CODE, tx.element, lower or message,
+                              loader_severity="warning" if lower else None)
+
+
+def _repeated(found: Found) -> str | None:
+    """For a ROS 2 SimpleTransmission that lists one joint (and at most one actuator) several
+    times by the same name, outside an actuator component: what the loader does, else None."""
+    t = found.transmission
+    if t.kind != "simple" or len(t.joints) < 1:
+        return None
+    component = enclosing_component(found.element)
+    if component is not None and component.get("type") == "actuator" and len(t.joints) > 1:
+        return None
+    for members in (t.joints, t.actuators):
+        if len({m.name for m in members}) > 1:
+            return None
+    repeated = [(noun, ms) for noun, ms in (("joint", t.joints), ("actuator", t.actuators))
+                if len(ms) > 1]
+    listed = "; ".join(f"{noun} '{ms[0].name}' is listed {len(ms)} times" for noun, ms in repeated)
+    return (
+        f"{label(found)} (SimpleTransmission): {listed}: ros2_control's loader reads the first "
+        "listing and configure() accepts handles of one name, so it loads; the later listings "
+        "are read by nothing"
+    )
 
 
 def _counts_fine(tx: Facts) -> bool:

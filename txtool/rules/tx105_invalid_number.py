@@ -9,10 +9,13 @@ and ``nan`` are accepted and poison every value the transmission maps. A valid n
 by other text loads as that number: TX111's business.
 
 ros2_control parses the whole stripped text in the classic locale and, on any failure (junk,
-``inf``, ``nan``, out of range, empty), **silently** uses the default: 1.0 for
+``inf``, ``nan``, out of range), **silently** uses the default: 1.0 for
 ``<mechanical_reduction>``, 0.0 for ``<offset>`` (ros-controls/ros2_control
 hardware_interface/src/component_parser.cpp:134-161 @157446a; hardware_interface/src/
-lexical_casts.cpp:28-52 @146eb98).
+lexical_casts.cpp:28-52 @146eb98). An empty element (no text, or only blanks and comments) has
+no text for ``GetText()``, so ``get_parameter_value_or`` (component_parser.cpp) passes over it
+and returns the default, as if the element were absent: nothing written is lost, a
+**warning**.
 
 Both read the text TinyXML's ``GetText()`` returns: the first text node only, so
 ``5<!-- x -->0`` reads as 5 (TX111). Text that Python reads as a number but C++ does not
@@ -67,7 +70,14 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             else:
                 if plain is not None:
                     continue
-                problem = _ros2(number.text, default="0.0" if number.field == "offset" else "1.0")
+                default = "0.0" if number.field == "offset" else "1.0"
+                if not number.all_text().strip(C_SPACE):  # empty: read as absent
+                    message = (f"{number.describe()} of {tx.label} is empty: ros2_control reads "
+                               f"it as absent and uses the default {default}; nothing written "
+                               "is lost")
+                    yield ctx.problem(CODE, number.element, message, loader_severity="warning")
+                    continue
+                problem = _ros2(number.text, default=default)
             if problem:
                 message = f"{number.describe()} of {tx.label} {problem}"
                 yield ctx.problem(CODE, number.element, message)

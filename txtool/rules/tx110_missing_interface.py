@@ -32,10 +32,10 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from txtool.lint import gazebo
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.support import opaque, per_transmission
+from txtool.model.readers import accepts
 
 CODE = "TX110"
 NAME = "missing-interface"
@@ -59,7 +59,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             # gazebo_ros_control's DefaultRobotHWSim falls back on the first actuator's.
             taken = actuators[0].interfaces if actuators else []
             sim = ctx.gazebo_sim
-            if sim is not None and sim.default and taken and gazebo.accepts(taken[0]):
+            if sim is not None and sim.default and taken and accepts(taken[0]):
                 continue  # the robot's loader takes the actuator's: TX301 warns (and fixes)
             yield ctx.problem(
                 CODE,

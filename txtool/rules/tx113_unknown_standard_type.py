@@ -3,16 +3,28 @@
 ros_control registers exactly ``transmission_interface/SimpleTransmission``,
 ``transmission_interface/DifferentialTransmission`` and
 ``transmission_interface/FourBarLinkageTransmission`` with pluginlib (ros-controls/ros_control
-transmission_interface/ros_control_plugins.xml:4-28 @23284e8), and so does ros2_control: any
-other name in that namespace is a typo, not a plugin someone installed. ros_control fails
-with "Failed to load transmission 'T'. Unsupported type" (transmission_interface/src/
-transmission_interface_loader.cpp:139-147 @0a09467; loader test ``UnsupportedTransmissionType``,
-transmission_interface/test/transmission_interface_loader_test.cpp:125-135 @3e1dd9d) and stops
-loading the transmissions after it (transmission_interface_loader.cpp:126-129).
-ros2_control's parser copies any text (ros-controls/ros2_control
-hardware_interface/src/component_parser.cpp:480-481 @157446a), but the hardware plugin's
-pluginlib lookup of the loader fails, so the transmission never exists. A near-miss gets a
-suggestion. Types in other namespaces are TX102's business.
+transmission_interface/ros_control_plugins.xml:4-28 @23284e8), and so does ros2_control. Both
+look the type up by name among every class registered for their loader base class
+(ros_control transmission_interface/src/transmission_interface_loader.cpp
+``TransmissionInterfaceLoader::load``, ``createUniqueInstance(transmission_info.type_)``
+@0a09467), so a vendor may register another name under the same prefix (PAL's
+``transmission_interface/HalfDifferentialTransmission``).
+
+Readers: ros_control fails on a name nobody registered with "Failed to load transmission 'T'.
+Unsupported type" (transmission_interface_loader.cpp:139-147; loader test
+``UnsupportedTransmissionType``, transmission_interface/test/transmission_interface_loader_test.cpp
+:125-135 @3e1dd9d) and stops loading the transmissions after it
+(transmission_interface_loader.cpp:126-129). ros2_control's parser copies any text
+(ros-controls/ros2_control hardware_interface/src/component_parser.cpp:480-481 @157446a), but
+the hardware plugin's pluginlib lookup of the loader fails, so the transmission never exists.
+
+Severity: a near-miss of a standard name (``SimpleTansmission``) is a typo: an **error**, with
+a suggestion. A name that a package of the workspace, of ``AMENT_PREFIX_PATH`` or of
+``ROS_PACKAGE_PATH`` registers with pluginlib (its ``package.xml`` exports
+``<transmission_interface plugin="..."/>`` and that file lists a ``<class>`` of that name whose
+``base_class_type`` is a ``transmission_interface::`` class) loads: not reported. Any other
+name is a **warning**: it loads only where a package registering it is installed, which txtool
+cannot see. Types in other namespaces are TX102's business.
 
 Failing example::
 
@@ -49,8 +61,8 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         text = tx.type_text
         if not text or not text.startswith(TYPE_PREFIX) or text in STANDARD_NAMES:
             continue
-        if ctx.unknown(text):
-            continue
+        if ctx.unknown(text) or ctx.readers.known_type(text) is not None:
+            continue  # a value only xacro knows, or a type a package exports with pluginlib
         element = tx.type_element
         effect = (
             "ros_control refuses it (\"Unsupported type\")"
@@ -58,10 +70,20 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             else "ros2_control parses it, but no transmission loader has that name"
         )
         suggestion = nearest_standard(text)
-        hint = f"; did you mean '{suggestion}'?" if suggestion else ""
+        if suggestion is None:
+            loader = "ros_control" if tx.ros1 else "ros2_control"
+            yield ctx.problem(
+                CODE, element,
+                f"{tx.label} has type '{text}', not one of the three standard "
+                "transmission_interface types, and no package found here exports it with "
+                f"pluginlib: {loader} loads it only where a package registering it is "
+                "installed (\"Unsupported type\" otherwise)",
+                loader_severity="warning",
+            )
+            continue
         yield ctx.problem(
             CODE,
             element,
             f"{tx.label} has type '{text}', not one of the three transmission_interface "
-            f"types: {effect}{hint}",
+            f"types: {effect}; did you mean '{suggestion}'?",
         )

@@ -62,11 +62,11 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from txtool.dialects.read import Found
-from txtool.lint import gazebo
 from txtool.lint.context import LintContext
 from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
 from txtool.lint.support import label, opaque, per_transmission
+from txtool.model.readers import accepts
 from txtool.rules.tx204_unknown_interface import (
     PREFIX,
     REGISTERED,
@@ -119,7 +119,7 @@ def _check_ros1(ctx: LintContext, tx: Facts) -> Iterator[Problem]:
     message = (f"{tx.label} names no hardware interface ros_control knows ({shown}): "
                f"ros_control refuses it (\"It contains no valid hardware interfaces\")")
     sim = ctx.gazebo_sim
-    if sim is not None and sim.default and gazebo.accepts(names[0]):
+    if sim is not None and sim.default and accepts(names[0]):
         yield ctx.problem(
             CODE, joints[0].element,
             f"{message}; {sim.describe()} accepts '{names[0]}' with a deprecation "

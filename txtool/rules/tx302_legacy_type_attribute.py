@@ -11,7 +11,10 @@ Why
     ros_control reads the type only from the ``<type>`` child element. A legacy transmission
     is skipped with "No type element found in transmission 'T'", and a reduction standing
     directly under ``<transmission>`` is never read (the SimpleTransmission loader wants the
-    actuator's). In the hybrid form the attribute is ignored: harmless, but misleading.
+    actuator's): a warning. In the hybrid form the attribute is read by nothing
+    (ros-controls/ros_control transmission_interface/src/transmission_parser.cpp
+    ``TransmissionParser::parse`` takes the ``<type>`` child): harmless but misleading, an
+    ``info``.
 
 Fix
     * hybrid: removes the attribute;
@@ -77,7 +80,9 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             continue
         found = tx.found
         fixable = None if _fixed_by_us(found.element, attribute) else False
-        yield ctx.problem(CODE, found.element, _message(found, attribute), fixable=fixable)
+        hybrid = bool(_type_element_text(found.element))
+        yield ctx.problem(CODE, found.element, _message(found, attribute), fixable=fixable,
+                          loader_severity="info" if hybrid else None)
 
 
 def _fixed_by_us(transmission: etree._Element, attribute: str) -> bool:
@@ -89,7 +94,7 @@ def _message(found: Found, attribute: str) -> str:
     if _type_element_text(found.element):
         return (
             f"{label(found)} has a type=\"{attribute}\" attribute beside its <type> element: "
-            "ros_control ignores the attribute"
+            "ros_control ignores the attribute (nothing reads it)"
         )
     message = (
         f"{label(found)} gives its type as the legacy type=\"{attribute}\" attribute: "

@@ -18,6 +18,15 @@ Why
     "missing" (the transmission fails) or 1.0 in ROS 1; a ``<role>`` element without the
     attribute makes ros2_control throw "no attribute 'role' in 'joint' tag with name 'J'".
 
+Severity
+    An error where the loader reads something other than written: the type it loads is not the
+    one in ``<type>``, the reduction it uses is not the ``<mechanicalReduction>`` written. A
+    **warning** where ros2_control ends up with the written value anyway (component_parser.cpp
+    ``parse_transmission_from_xml`` reads ``<plugin>``, ``get_parameter_value_or`` reads
+    ``<mechanical_reduction>`` or defaults to 1.0): a ``<type>`` beside a ``<plugin>`` of the
+    same text, a ``<mechanicalReduction>`` equal to the ``<mechanical_reduction>`` beside it or,
+    without one, equal to 1.
+
 Failing example::
 
     <ros2_control name="HW" type="system">
@@ -39,11 +48,18 @@ from collections.abc import Iterator
 
 from lxml import etree
 
-from txtool.dialects.read import Found
+from txtool.dialects.read import Found, text_of
 from txtool.io.xmlio import local
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import ROS2_SPELLINGS, children, label, per_transmission
+from txtool.lint.support import (
+    ROS2_SPELLINGS,
+    children,
+    label,
+    loader_text,
+    per_transmission,
+)
+from txtool.model.numbers import parse_ros2
 from txtool.model.robot import child_index
 
 CODE = "TX303"
@@ -80,24 +96,41 @@ def _whose(found: Found, owner: etree._Element) -> str:
 
 
 def _check_ros2(ctx: LintContext, found: Found) -> Iterator[Problem]:
+    plugins = children(found.element, "plugin")
+    loaded = (text_of(plugins[0]) or "").strip() if plugins else None
     for element in children(found.element, "type"):
+        same = loaded is not None and (text_of(element) or "").strip() == loaded
         yield ctx.problem(
             CODE,
             element,
             f"{_whose(found, found.element)} uses the ROS 1 <type> element: ros2_control "
-            "ignores it and reads the type from <plugin>",
+            "ignores it and reads the type from <plugin>"
+            + (", which names the same type" if same else ""),
+            loader_severity="warning" if same else None,
         )
     for owner in [found.element, *_members(found)]:
         kids = child_index(owner)
         if not _ROS1_SPELLINGS.intersection(kids):
             continue
         where = _whose(found, owner)
+        used = _used_reduction(kids)
         for element in kids.get("mechanicalReduction", ()):
+            written = parse_ros2(loader_text(element))
+            if written is not None and written == used:
+                yield ctx.problem(
+                    CODE, element,
+                    f"{where} uses the ROS 1 <mechanicalReduction>: ros2_control reads only "
+                    f"<mechanical_reduction> and uses {used:g}, the value written here anyway",
+                    loader_severity="warning",
+                )
+                continue
             yield ctx.problem(
                 CODE,
                 element,
                 f"{where} uses the ROS 1 <mechanicalReduction>: ros2_control reads only "
-                "<mechanical_reduction>, so the reduction silently becomes 1.0",
+                + ("<mechanical_reduction>, so the reduction silently becomes 1.0"
+                   if "mechanical_reduction" not in kids else
+                   "the <mechanical_reduction> beside it, which says otherwise"),
             )
         for spelling in ("hardwareInterface", "hardware_interface"):
             for element in kids.get(spelling, ()):
@@ -110,6 +143,17 @@ def _check_ros2(ctx: LintContext, found: Found) -> Iterator[Problem]:
     for member in _members(found):
         for element in children(member, "role"):
             yield ctx.problem(CODE, element, _role_message(found, member))
+
+
+def _used_reduction(kids: dict[str, list[etree._Element]]) -> float | None:
+    """The reduction ros2_control takes from a member: its first ``<mechanical_reduction>``
+    with text, or 1.0 (component_parser.cpp ``get_parameter_value_or``); None when that text is
+    no number (TX105's business)."""
+    for element in kids.get("mechanical_reduction", ()):
+        text = loader_text(element)
+        if text is not None:
+            return parse_ros2(text)
+    return 1.0
 
 
 def _role_message(found: Found, member: etree._Element) -> str:

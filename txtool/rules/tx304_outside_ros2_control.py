@@ -4,7 +4,11 @@ What it checks
     A document that has ``<ros2_control>`` blocks, and also a transmission that is not inside
     any of them: typically a top-level ROS 1 transmission left over from before a port. In a
     xacro file read as written, transmissions inside a ``<xacro:macro>`` are not reported:
-    the macro may be instantiated inside a ``<ros2_control>`` block.
+    the macro may be instantiated inside a ``<ros2_control>`` block. This is the verdict where
+    nothing says which programs read the file (the ``<ros2_control>`` blocks alone do not rule
+    ros_control out); where the readers are known (``package.xml``, a ``<gazebo>`` plugin,
+    ``--ros-distro``, the configuration; see "Readers" in the loader documentation), a
+    transmission none of them reads is TX305's.
 
 Why
     ros2_control reads transmissions only from the ``<transmission>`` children of a

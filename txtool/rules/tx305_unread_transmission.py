@@ -1,0 +1,83 @@
+"""A transmission that none of the file's readers reads.
+
+What it checks
+    The file's readers are known (``package.xml``, a ``<gazebo>`` plugin, ``--ros-distro`` or
+    ``readers``/``ros-distro`` in the configuration; see "Readers" in the loader
+    documentation), and a ``<transmission>`` stands where none of them looks: a top-level one
+    when only ROS 2 programs read the file, one inside ``<ros2_control>`` when only ROS 1
+    programs do. It gets this one finding; its contents are not judged, since no loader ever
+    sees them (a missing reduction refuses nothing when nobody reads the transmission).
+
+Why
+    ros_control's ``TransmissionParser::parse`` reads only the children of the root element
+    (ros-controls/ros_control transmission_interface/src/transmission_parser.cpp:
+    ``root->FirstChildElement("transmission")``), and gazebo_ros_control's RobotHWSim plugins
+    take what it parses. ros2_control's component parser reads only the ``<transmission>``
+    children of ``<ros2_control>`` (ros-controls/ros2_control
+    hardware_interface/src/component_parser.cpp ``parse_resource_from_xml``), and
+    gazebo_ros2_control, gz_ros2_control and mujoco_ros2_control all parse the robot with it.
+
+Severity
+    ``info`` for a leftover: ROS 1 transmissions in a ROS 2 robot (beside its
+    ``<ros2_control>`` blocks or not), or ``<ros2_control>`` blocks in a ROS 1 package.
+    ``warning`` where the transmission looks meant to be read: a top-level transmission
+    written in a ROS 2 form (``<plugin>``, ``role`` attributes), which ros2_control would read
+    inside a ``<ros2_control>`` block. A ROS 2 Gazebo plugin in a robot without any
+    ``<ros2_control>`` block is TX007's error.
+
+Failing example (in an ament_cmake package)::
+
+    <robot name="arm">
+      <transmission name="t">
+        <type>transmission_interface/SimpleTransmission</type>
+        ...
+      </transmission>
+      <ros2_control name="arm" type="system">...</ros2_control>
+    </robot>
+
+Passing example: the transmission inside ``<ros2_control>`` (``txtool migrate --to ros2-p2``),
+or deleted.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from txtool.lint.context import LintContext
+from txtool.lint.facts import Facts
+from txtool.lint.problem import Problem, Severity
+from txtool.model.readers import Placement, placement_of
+
+CODE = "TX305"
+NAME = "unread-transmission"
+SEVERITY = "info"
+FIXABLE = False
+
+
+def check(ctx: LintContext) -> Iterator[Problem]:
+    unread = ctx.unread
+    if not unread:
+        return
+    named = ctx.readers.explain()
+    for tx in unread:
+        element = tx.found.element
+        if ctx.in_macro(element):  # a macro's transmission stands where its form belongs
+            top = tx.ros1
+            where = f"is written in the {'ROS 1' if top else 'ROS 2'} form in a macro"
+        else:
+            top = placement_of(element) is Placement.TOP_LEVEL
+            where = ("stands outside every <ros2_control> block" if top
+                     else "stands inside a <ros2_control> block")
+        looks = "only ROS 2 programs" if top else "only ROS 1 programs"
+        form = "ROS 1 " if tx.ros1 and not ctx.in_macro(element) else ""
+        yield ctx.problem(
+            CODE, tx.found.element,
+            f"{form}{tx.label} {where}, where none of this file's readers looks ({looks} read "
+            f"this file: {named}): nothing reads it, so its contents are not judged",
+            loader_severity=_severity(tx, top),
+        )
+
+
+def _severity(tx: Facts, top: bool) -> Severity:
+    """Warning where the transmission looks meant to be read (see the rule's documentation)."""
+    return "warning" if top and not tx.ros1 else "info"
