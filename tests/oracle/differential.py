@@ -18,7 +18,7 @@ from typing import Any
 
 from tests.oracle.reference import hex_float
 from txtool.dialects.read import read_source
-from txtool.io.xmlio import Source
+from txtool.io.xmlio import InputError, Source, parse_bytes
 from txtool.model.distro import Distro
 from txtool.model.semantics import ros2_value
 from txtool.views.effective import PARSER_REFUSES, bindings_of
@@ -56,10 +56,10 @@ def _oracle_member(m: dict) -> tuple:
 
 
 def _oracle_loader(loader: dict) -> View:
-    if not (loader["loaded"] and loader.get("configured")):
+    if not loader["loaded"]:
         return {"loaded": False}
     return {
-        "loaded": True,
+        "loaded": loader["configured"] or loader["configure_error"],
         "joint_reduction": [_number(hex_float(v)) for v in loader["joint_reduction"]],
         "joint_offset": [_number(hex_float(v)) for v in loader["joint_offset"]],
         "actuator_reduction": [_number(hex_float(v)) for v in loader["actuator_reduction"]],
@@ -68,8 +68,17 @@ def _oracle_loader(loader: dict) -> View:
     }
 
 
-def txtool_view(source: Source, distro: Distro) -> View:
-    """What txtool says ``distro``'s ros2_control makes of ``source``'s transmissions."""
+def txtool_view(data: bytes, distro: Distro) -> View:
+    """What txtool says ``distro``'s ros2_control makes of the document ``data``."""
+    try:
+        source = Source("variant.urdf", data, parse_bytes(data, "variant.urdf"))
+    except InputError as exc:
+        return {"accepted": False, "cause": "xml", "error": str(exc)}
+    return source_view(source, distro)
+
+
+def source_view(source: Source, distro: Distro) -> View:
+    """:func:`txtool_view` of a loaded (or expanded) document."""
     found = [f for f in read_source(source, locate=False) if _read_by_parser(f.element, source)]
     bindings = bindings_of(found, distro)
     refusals = [b.reason for b in bindings if b.reason and b.reason.startswith(PARSER_REFUSES)]
@@ -118,25 +127,56 @@ def _txtool_loader(binding: Any, kind: str) -> View:
     }
 
 
-def differences(oracle: View, txtool: View) -> list[str]:
-    """What differs, one line each, starting with its class (``verdict``, ``member`` ...)."""
+# What configure() says where a hardware plugin passes no actuator handle (ros2_control
+# transmission_interface simple_transmission.hpp, SimpleTransmission::configure).
+NO_ACTUATOR_HANDLES = "No actuator handles were passed in"
+
+
+def differences(oracle: View, txtool: View) -> list[tuple[str, str]]:
+    """What differs: (class, detail) pairs; a class is a documented judgement's key or one of
+    ``verdict``, ``count``, ``name``, ``member``, ``loaded``, ``value``."""
     if not oracle["accepted"] and oracle["cause"] == "other":
         return []  # the parser refuses the file for something other than its transmissions
+    if txtool.get("cause") == "xml":
+        return [("xml-1.0", f"txtool refuses the XML ({txtool['error']}), tinyxml2 reads it")]
     if oracle["accepted"] != txtool["accepted"]:
-        return [f"verdict: parser {'accepts' if oracle['accepted'] else 'refuses'}"
-                f" ({oracle.get('error', '')}), txtool {'accepts' if txtool['accepted'] else 'refuses'}"
-                f" ({txtool.get('error', '')})"]
+        said = {True: "accepts", False: "refuses"}
+        return [("verdict", f"parser {said[oracle['accepted']]} ({oracle.get('error', '')}), "
+                            f"txtool {said[txtool['accepted']]} ({txtool.get('error', '')})")]
     if not oracle["accepted"]:
-        return []  # both refuse; or the parser refuses for what txtool does not model
+        return []  # both refuse
     ours, theirs = txtool["transmissions"], oracle["transmissions"]
     if len(ours) != len(theirs):
-        return [f"count: parser reads {len(theirs)} transmissions, txtool {len(ours)}"]
+        return [("count", f"parser reads {len(theirs)} transmissions, txtool {len(ours)}")]
     found = []
     for a, b in zip(theirs, ours, strict=True):
-        for key in sorted(set(a) | set(b)):
-            if a.get(key) != b.get(key):
-                cls = "member" if key in ("joints", "actuators") else (
-                    "loaded" if key == "loaded" else "value" if key != "name" else "name")
-                found.append(f"{cls}: {a['name']!r} {key}: parser {a.get(key)!r}, "
-                             f"txtool {b.get(key)!r}")
+        found += _transmission_differences(a, b)
+    return found
+
+
+def _transmission_differences(parser: View, ours: View) -> list[tuple[str, str]]:
+    found = []
+    for key in ("name", "type", "joints", "actuators"):
+        if parser[key] != ours[key]:
+            cls = "member" if key in ("joints", "actuators") else "name"
+            found.append((cls, f"{parser['name']!r} {key}: parser {parser[key]!r}, "
+                               f"txtool {ours[key]!r}"))
+    if "loaded" not in parser:
+        return found
+    loaded = parser["loaded"]
+    if loaded == NO_ACTUATOR_HANDLES and ours["loaded"]:
+        found.append(("configure-without-actuators", f"{parser['name']!r}: {loaded}"))
+        loaded = True
+    elif isinstance(loaded, str):
+        loaded = False  # configure() refuses it
+    if loaded != ours["loaded"]:
+        return [*found, ("loaded", f"{parser['name']!r}: parser loader "
+                                   f"{parser['loaded']!r}, txtool {ours['loaded']!r}")]
+    skipped = {"name", "type", "joints", "actuators", "loaded"}
+    if parser["loaded"] == NO_ACTUATOR_HANDLES:
+        skipped.add("actuator_order")  # no actuator handle: txtool shows a stand-in name
+    for key in sorted(set(parser) - skipped):
+        if loaded and parser.get(key) != ours.get(key):
+            found.append(("value", f"{parser['name']!r} {key}: parser {parser.get(key)!r}, "
+                                   f"txtool {ours.get(key)!r}"))
     return found

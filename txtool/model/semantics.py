@@ -67,20 +67,24 @@ def loader_of(transmission: Transmission) -> Loader:
     return "ros1" if transmission.dialect == "ros1" else "ros2"
 
 
-def effective(transmission: Transmission, distro: Distro | None = None) -> Effective:
+def effective(transmission: Transmission, distro: Distro | None = None,
+              added_actuators: tuple[str, ...] = ()) -> Effective:
     """The loaded parameters, or :class:`NotLoadable` with the loader's reason.
 
     ``distro`` says which build of ros2_control reads a ROS 2 transmission's numbers
     (Humble's ``istringstream`` or Jazzy's and later ``from_chars``); None: the value every
     ROS 2 distribution reads, the default where they read the text differently or not at all
     (:func:`ros2_values_differ` tells these apart). ROS 1 reads with ``std::stod`` always.
+    ``added_actuators``: what ros2_control's parser appends (``actuator1`` in an actuator
+    component), which configure() takes as one more actuator handle.
     """
     if transmission.kind == "other":
         raise NotLoadable(f"custom type '{transmission.type}' has no standard maths")
     if loader_of(transmission) == "ros1":
         result = _ros1(transmission)
     else:
-        result = _ros2(transmission, None if distro is None else numbers_of(distro))
+        reading = None if distro is None else numbers_of(distro)
+        result = _ros2(transmission, reading, added_actuators)
     for value in result.actuator_reduction + result.joint_reduction:
         if value == 0.0:
             raise NotLoadable("reduction ratio cannot be zero")
@@ -193,12 +197,20 @@ def _ros2_number(number: Number | None, default: float, reading: NumberReading |
     return default if value is None else value
 
 
-def _ros2(t: Transmission, reading: NumberReading | None) -> Effective:
+def _ros2(t: Transmission, reading: NumberReading | None, added: tuple[str, ...]) -> Effective:
     if not t.joints:
         raise NotLoadable("no joints (ros2_control's loader reads joints.at(0))")
     if t.kind == "simple":
+        # SimpleTransmission::configure (simple_transmission.hpp) takes one handle name each:
+        # "Joint names given to transmissions should be identical", likewise actuators.
+        for noun, names in (("joint", [j.name for j in t.joints]),
+                            ("actuator", [a.name for a in t.actuators] + list(added))):
+            if len(set(names)) > 1:
+                listed = ", ".join(f"'{n}'" for n in dict.fromkeys(names))
+                raise NotLoadable(f"a simple transmission takes one {noun}, found {listed} "
+                                  f"(configure: {noun} names should be identical)")
         joint = t.joints[0]
-        actuator = t.actuators[0].name if t.actuators else "actuator1"
+        actuator = t.actuators[0].name if t.actuators else (added or ("actuator1",))[0]
         return Effective(
             name=t.name,
             kind="simple",

@@ -114,7 +114,7 @@ def binding(t: Transmission, component: Component | None = None, distro: Distro 
                        component_type=component_type,
                        added_actuators=() if reason.startswith(PARSER_REFUSES) else added)
     try:
-        eff = effective(t, distro)
+        eff = effective(t, distro, added)
     except NotLoadable as exc:
         return Binding(loader=loader, loadable=False, reason=str(exc),
                        component_type=component_type, added_actuators=added)
