@@ -164,14 +164,14 @@ def _transmission_differences(parser: View, ours: View) -> list[tuple[str, str]]
     if "loaded" not in parser:
         return found
     loaded = parser["loaded"]
-    if loaded == NO_ACTUATOR_HANDLES and ours["loaded"]:
+    if loaded == NO_ACTUATOR_HANDLES and ours.get("loaded"):
         found.append(("configure-without-actuators", f"{parser['name']!r}: {loaded}"))
         loaded = True
     elif isinstance(loaded, str):
         loaded = False  # configure() refuses it
-    if loaded != ours["loaded"]:
+    if loaded != ours.get("loaded"):
         return [*found, ("loaded", f"{parser['name']!r}: parser loader "
-                                   f"{parser['loaded']!r}, txtool {ours['loaded']!r}")]
+                                   f"{parser['loaded']!r}, txtool {ours.get('loaded')!r}")]
     skipped = {"name", "type", "joints", "actuators", "loaded"}
     if parser["loaded"] == NO_ACTUATOR_HANDLES:
         skipped.add("actuator_order")  # no actuator handle: txtool shows a stand-in name
