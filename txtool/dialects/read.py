@@ -182,18 +182,23 @@ def get_text(element: etree._Element) -> str | None:
 
     tinyxml2 keeps no text node that is only whitespace, so ``<a> <!--c--> 5 </a>`` gives
     ``" 5 "`` and ``<a>  </a>`` gives None; an element or a processing instruction before the
-    text gives None (tinyxml2.cpp ``XMLElement::GetText``, ``XMLDocument::Identify``).
+    text gives None, and a comment or CDATA section after it ends it (tinyxml2.cpp
+    ``XMLElement::GetText``, ``XMLDocument::Identify``). An element without children is read
+    from its ``text`` (a CDATA section inside such a text is not told apart).
     """
-    text = element.text
-    if text is not None and text.strip(_XML_SPACE):
-        return text
-    for child in element:
-        if not isinstance(child, etree._Comment):
+    if not len(element):
+        text = element.text
+        return text if text is not None and text.strip(_XML_SPACE) else None
+    for node in _NODES(element):
+        if isinstance(node, str):  # text or CDATA
+            if node.strip(_XML_SPACE):
+                return str(node)
+        elif not isinstance(node, etree._Comment):
             return None
-        tail = child.tail
-        if tail is not None and tail.strip(_XML_SPACE):
-            return tail
     return None
+
+
+_NODES = etree.XPath("node()")
 
 
 def first_child_text(element: etree._Element, name: str) -> str | None:

@@ -30,8 +30,8 @@ from lxml import etree
 from txtool.dialects.read import Found, enclosing_component
 from txtool.model.binding import Binding, Field, Slot
 from txtool.model.core import TYPE_PREFIX, Member, Number, Transmission
-from txtool.model.distro import Distro
-from txtool.model.numbers import C_SPACE, format_float
+from txtool.model.distro import Distro, numbers_of
+from txtool.model.numbers import C_SPACE, format_float, parse_ros2
 from txtool.model.robot import Component, children, component_of
 from txtool.model.semantics import (
     ROLES_ACTUATOR,
@@ -79,7 +79,7 @@ def _per_distro(item: Found, component: Component | None, distro: Distro | None)
     newest = bound[Distro.JAZZY]
     if bound[Distro.HUMBLE].slots == newest.slots:
         return newest
-    notes = [f"{label} {_values(bound[d])}" for d, label in _ROS2_BUILDS]
+    notes = [f"{label} {_values(bound[d], label)}" for d, label in _ROS2_BUILDS]
     import dataclasses
 
     return dataclasses.replace(newest, notes=(
@@ -87,13 +87,15 @@ def _per_distro(item: Found, component: Component | None, distro: Distro | None)
         *newest.notes))
 
 
-def _values(b: Binding) -> str:
+def _values(b: Binding, label: str) -> str:
+    verb = "bind" if " and " in label else "binds"
     if not b.loadable:
-        return f"does not load it ({b.reason})"
-    return "binds " + ", ".join(
-        f"#{s.index} joint reduction {number(s.joint_reduction)} offset {number(s.joint_offset)}"
+        return f"{'do' if verb == 'bind' else 'does'} not load it ({b.reason})"
+    return f"{verb} " + ", ".join(
+        f"#{s.index} joint reduction {_value(s, 'joint_reduction', s.joint_reduction)} offset "
+        f"{_value(s, 'joint_offset', s.joint_offset)}"
         + ("" if "actuator_reduction" in s.not_read
-           else f" actuator reduction {number(s.actuator_reduction)}")
+           else f" actuator reduction {_value(s, 'actuator_reduction', s.actuator_reduction)}")
         for s in b.slots)
 
 
@@ -118,7 +120,7 @@ def binding(t: Transmission, component: Component | None = None, distro: Distro 
     except NotLoadable as exc:
         return Binding(loader=loader, loadable=False, reason=str(exc),
                        component_type=component_type, added_actuators=added)
-    slots = _ros1_slots(t, eff) if loader == "ros1" else _ros2_slots(t, eff)
+    slots = _ros1_slots(t, eff) if loader == "ros1" else _ros2_slots(t, eff, distro)
     coupled = t.kind != "simple"
     return Binding(
         loader=loader,
@@ -193,16 +195,24 @@ def _written_refusal(element: etree._Element) -> str | None:
 
 
 def _defaults(loader: str, joint: Member, actuator: Member | None,
-              not_read: tuple[Field, ...]) -> tuple[Field, ...]:
-    """Fields whose value is the loader's fallback rather than the document's number."""
+              not_read: tuple[Field, ...], distro: Distro | None = None) -> tuple[Field, ...]:
+    """Fields whose value is the loader's fallback rather than the document's number
+    (ros2_control: absent, or a text ``distro``'s build does not read)."""
     numbers: dict[Field, Number | None] = {"joint_reduction": joint.mechanical_reduction,
                                            "joint_offset": joint.offset}
     if actuator is not None:
         numbers["actuator_reduction"] = actuator.mechanical_reduction
     return tuple(
         field for field, number in numbers.items()
-        if field not in not_read and (number is None or (loader == "ros2" and number.value is None))
+        if field not in not_read and (number is None or (loader == "ros2" and _unread(number,
+                                                                                     distro)))
     )
+
+
+def _unread(number: Number, distro: Distro | None) -> bool:
+    if distro is None:
+        return number.value is None
+    return parse_ros2(number.text, numbers_of(distro)) is None
 
 
 def _by_name(members: Sequence[Member], name: str) -> Member:
@@ -234,7 +244,7 @@ def _ros1_slots(t: Transmission, eff: Effective) -> tuple[Slot, ...]:
     return tuple(slots)
 
 
-def _ros2_slots(t: Transmission, eff: Effective) -> tuple[Slot, ...]:
+def _ros2_slots(t: Transmission, eff: Effective, distro: Distro | None) -> tuple[Slot, ...]:
     # ros2_control's simple transmission reads the joint's reduction only.
     not_read: tuple[Field, ...] = ("actuator_reduction",) if t.kind == "simple" else ()
     slots = []
@@ -250,7 +260,7 @@ def _ros2_slots(t: Transmission, eff: Effective) -> tuple[Slot, ...]:
             actuator_reduction=eff.actuator_reduction[i],
             joint=eff.joints[i],
             actuator=eff.actuators[i],
-            defaults=_defaults("ros2", joint, actuator, not_read),
+            defaults=_defaults("ros2", joint, actuator, not_read, distro),
             not_read=not_read,
         ))
     return tuple(slots)
