@@ -133,6 +133,18 @@ def attribute_variants() -> Iterator[tuple[str, str]]:
     yield ("plugin with spaces", robot(system, simple(member("joint", "j1", "joint1"))
            .replace("<plugin>", "<plugin> \n ").replace("</plugin>", " \t</plugin>")))
     yield ("undeclared joint", robot(system, simple(member("joint", "j9", "joint1"))))
+    yield ("two plugins", robot(system, simple(member("joint", "j1", "joint1")).replace(
+        "</plugin>", "</plugin><plugin>transmission_interface/DifferentialTransmission</plugin>",
+        1)))
+    yield ("empty plugin", robot(system, simple(member("joint", "j1", "joint1")).replace(
+        "transmission_interface/SimpleTransmission", "")))
+    yield ("tab inside a name", robot(system, simple(member("joint", "j&#9;1", "joint1")),
+                                      ("j&#9;1",)))
+    yield ("newline inside a name", robot(system, simple(member("joint", "j\n1", "joint1"))))
+    yield ("spaced transmission name", robot(system, simple(member("joint", "j1", "joint1"),
+                                                            name=" t ")))
+    yield ("role written twice", robot(system, simple(
+        '<joint name="j1" role="joint1"><role>joint2</role></joint>')))
 
 
 def component_variants() -> Iterator[tuple[str, str]]:
