@@ -33,6 +33,7 @@ _ISTRINGSTREAM = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]
 _FROM_CHARS = re.compile(r"-?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?", re.ASCII)
 _NONZERO_DIGIT = re.compile(r"[1-9a-f]", re.IGNORECASE)
 _SMALLEST_NORMAL = Fraction(2) ** -1022
+_MIN_NORMAL = float(_SMALLEST_NORMAL)
 
 
 class Stod(NamedTuple):
@@ -82,6 +83,14 @@ def _strtod_value(bare: str) -> float | None:
     """glibc ``strtod`` of an unsigned decimal or hexadecimal number (lower case); None where
     it sets ERANGE: overflow, or a result that is subnormal after rounding to 53 bits with an
     unbounded exponent (tininess after rounding) and inexact, zero included."""
+    try:
+        quick = float.fromhex(bare) if bare.startswith("0x") else float(bare)
+    except OverflowError:  # float.fromhex of a huge exponent
+        return None
+    if math.isinf(quick):
+        return None
+    if abs(quick) > _MIN_NORMAL:
+        return quick  # a normal result: no ERANGE, and Python rounds as glibc does
     exact = _exact(bare)
     if exact is None:  # an exponent far outside a double's range
         return None if _NONZERO_DIGIT.search(_mantissa(bare)) else 0.0
