@@ -164,6 +164,20 @@ def parse_ros2(text: str | None, reading: NumberReading | None = None) -> float 
 ROS2_READINGS = (NumberReading.ISTRINGSTREAM, NumberReading.FROM_CHARS)
 
 
+@lru_cache(maxsize=4096)
+def ros2_readings_differ(text: str | None) -> bool:
+    """Some ROS 2 builds read ``text`` as another value (or as none) than others do."""
+    if text is None:
+        return False
+    stripped = text.strip(C_SPACE)
+    if len(stripped) < 300 and _SHORT_DECIMAL.fullmatch(stripped):
+        return False  # no '+', no exponent, too short to overflow: read alike
+    return len({_read_ros2(stripped, r) for r in ROS2_READINGS}) > 1
+
+
+_SHORT_DECIMAL = re.compile(r"-?(?:[0-9]+\.?[0-9]*|\.[0-9]+)", re.ASCII)
+
+
 def ros2_readings(text: str | None) -> dict[NumberReading, float | None]:
     """What each ROS 2 build reads from ``text`` (None: it falls back to the default)."""
     return {reading: parse_ros2(text, reading) for reading in ROS2_READINGS}

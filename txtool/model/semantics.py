@@ -18,7 +18,7 @@ from typing import Literal
 
 from txtool.model.core import Member, Number, Transmission
 from txtool.model.distro import Distro, NumberReading, numbers_of
-from txtool.model.numbers import ROS2_READINGS, parse_ros2
+from txtool.model.numbers import parse_ros2, ros2_readings_differ
 
 Loader = Literal["ros1", "ros2"]
 ROLES_JOINT = ("joint1", "joint2")
@@ -183,8 +183,7 @@ def ros2_values_differ(t: Transmission) -> bool:
         return False
     for member in (*t.joints, *t.actuators):
         for number in (member.mechanical_reduction, member.offset):
-            if number is not None and number.text and len(
-                    {parse_ros2(number.text, r) for r in ROS2_READINGS}) > 1:
+            if number is not None and ros2_readings_differ(number.text):
                 return True
     return False
 

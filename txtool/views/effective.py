@@ -159,8 +159,12 @@ def _parser_refusal(t: Transmission, component: Component | None,
     written = _written_refusal(element) if element is not None else None
     if written:
         return PARSER_REFUSES + written
-    declared = {j.name.strip(C_SPACE) for j in component.joints}  # names are stripped
+    declared: set[str] | None = None
     for joint in t.joints:
+        if component.joint(joint.name) is not None:
+            continue
+        if declared is None:  # the parser compares stripped names
+            declared = {j.name.strip(C_SPACE) for j in component.joints}
         if joint.name not in declared:
             return (f"{PARSER_REFUSES}joint '{joint.name}' is not declared in "
                     f"<ros2_control name=\"{component.name}\">")
