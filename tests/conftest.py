@@ -15,7 +15,7 @@ import os
 import pytest
 
 # Variables the test suite itself reads: they steer the tests, not txtool.
-SUITE_CONTROLS = frozenset({"TXTOOL_REQUIRE_CORPUS", "TXTOOL_UPDATE_GOLDEN"})
+SUITE_CONTROLS = frozenset({"TXTOOL_REQUIRE_CORPUS", "TXTOOL_UPDATE_GOLDEN", "TXTOOL_ORACLE"})
 CLEARED = (
     "GITHUB_ACTIONS",
     "NO_COLOR",

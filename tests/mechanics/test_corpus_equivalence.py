@@ -23,8 +23,11 @@ from txtool.transform.convert import convert_source
 
 TARGETS = ("ros2-p1", "ros2-p2", "ros1")
 # Cases (file, target) that compare at least one loadable transmission, measured on the 48-file
-# corpus. Raise it when more compare; never lower it to make a change pass.
-COMPARED_FLOOR = 42
+# corpus. Raise it when more compare; never lower it to make a change pass. (41, not 42: the
+# simple transmission with two joints of ros2_control_test_assets__invalid_transmission_
+# too_many_joints.urdf is refused by ros2_control's SimpleTransmission::configure, so it was
+# never a loadable case to compare.)
+COMPARED_FLOOR = 41
 
 
 Case = tuple[list[Transmission], list[Transmission], dict]

@@ -144,13 +144,35 @@ def test_ros2_surrounding_c_whitespace_is_stripped():
     assert check(ROS2.format(reduction="\n   50\t ", offset="+0.5"), select=["TX105"]) == []
 
 
-def test_ros2_skips_an_element_whose_first_node_is_a_comment():
-    # GetText() is null for it, so get_parameter_value_or goes on to the next element
-    # (component_parser.cpp:145-146 @157446a).
+def test_ros2_reads_the_text_after_a_leading_comment():
+    # tinyxml2 9's GetText() passes over leading comments, so the parser reads "fifty" and
+    # uses the default instead of going on to the next element (component_parser.cpp:161-188
+    # get_parameter_value_or @53b9999; tests/oracle compares it with the compiled parser).
     xml = ROS2.format(reduction="<!-- x -->fifty", offset="0").replace(
         "</mechanical_reduction>", "</mechanical_reduction><mechanical_reduction>4"
         "</mechanical_reduction>", 1)
+    assert check(xml, select=["TX105"]) == [(7, 9, "TX105", "error")]
+    assert check(ROS2.format(reduction="<!-- ratio --> 50", offset="<!-- rad -->0.5"),
+                 select=["TX105"]) == []
+
+
+def test_ros2_skips_an_element_whose_text_is_only_a_comment():
+    xml = ROS2.format(reduction="<!-- x -->", offset="0").replace(
+        "</mechanical_reduction>", "</mechanical_reduction><mechanical_reduction>4"
+        "</mechanical_reduction>", 1)
     assert check(xml, select=["TX105"]) == []
+
+
+@pytest.mark.parametrize(("text", "humble", "jazzy"), [
+    ("+-1", "silently uses 1.0", "reads -1"),
+    ("1e-400", "reads 0", "silently uses 1.0"),
+])
+def test_ros2_a_number_distributions_read_differently_is_a_warning(text, humble, jazzy):
+    found = problems(ROS2.format(reduction=text, offset="0"), select=["TX105"])
+    assert [(p.line, p.severity) for p in found] == [(7, "warning")]
+    assert found[0].message.endswith(
+        f"is '{text}', read differently by ROS 2 distributions: Humble's ros2_control "
+        f"{humble}, Jazzy's and later {jazzy}")
 
 
 def test_ros2_whitespace_only_element_has_no_text_so_the_next_one_is_read():

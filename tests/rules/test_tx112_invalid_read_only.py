@@ -21,7 +21,7 @@ ROS2 = """
 """
 
 
-@pytest.mark.parametrize("value", ["yes", "1", " true", "tru", "", "ＴＲＵＥ"])
+@pytest.mark.parametrize("value", ["yes", "1", "\u00a0true", "tru", "", "ＴＲＵＥ"])
 def test_anything_but_true_or_false_is_an_error_on_each_member(value):
     found = problems(ROS2.format(attribute=f'read_only="{value}"'), select=["TX112"])
     assert [(p.line, p.column, p.code, p.severity) for p in found] == [
@@ -32,7 +32,7 @@ def test_anything_but_true_or_false_is_an_error_on_each_member(value):
 
 
 @pytest.mark.parametrize("attribute", ['read_only="true"', 'read_only="False"',
-                                       'read_only="TRUE"', ""])
+                                       'read_only="TRUE"', 'read_only=" true\t"', ""])
 def test_true_or_false_in_any_case_or_no_attribute_passes(attribute):
     assert check(ROS2.format(attribute=attribute), select=["TX112"]) == []
 

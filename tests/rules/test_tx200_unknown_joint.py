@@ -109,3 +109,13 @@ def test_xacro_names_are_matched_as_patterns():
 def test_xacro_pattern_does_not_hide_an_unrelated_literal_name():
     xml = MACRO_LIBRARY.replace("{joint}", "elbow")
     assert check(xml, select=["TX200"], filename="hw.xacro") == [(7, 9, "TX200", "error")]
+
+
+def test_ros2_names_are_compared_stripped_as_the_parser_strips_them():
+    # component_parser.cpp get_attribute_value strips both names (:133 @53b9999)
+    assert check(ROS2.format(joint=" joint1\t"), select=["TX200"]) == []
+    spaced = ROS2.replace('<joint name="joint1"><command', '<joint name=" joint1 "><command')
+    assert check(spaced.format(joint="joint1"), select=["TX200"]) == []
+    found = problems(ROS2.format(joint="\u00a0joint1"), select=["TX200"])  # no C space
+    assert [(p.code, p.severity) for p in found] == [("TX200", "error")]
+    assert "is not a <joint> of <ros2_control> 'RRBot'" in found[0].message

@@ -29,7 +29,7 @@ from txtool.model.core import (
     kind_of,
     replace,
 )
-from txtool.model.numbers import parse_ros1, parse_ros2
+from txtool.model.numbers import C_SPACE, parse_ros1, parse_ros2
 from txtool.model.robot import ComponentJoint, ancestor, child_index, children
 
 if TYPE_CHECKING:
@@ -60,7 +60,8 @@ class Declarations:
         if self._index is None:
             self._index = {}
             for declared in children(self._element, "joint"):
-                self._index.setdefault(declared.get("name", ""), declared)
+                # the parser strips names (component_parser.cpp get_attribute_value)
+                self._index.setdefault(declared.get("name", "").strip(C_SPACE), declared)
         element = self._index.get(name)
         self._read[name] = joint = None if element is None else ComponentJoint(
             name=name,
@@ -72,7 +73,7 @@ class Declarations:
 
 
 def _names(elements: list[etree._Element]) -> tuple[str, ...]:
-    return tuple([e.get("name", "") for e in elements])
+    return tuple([e.get("name", "").strip(C_SPACE) for e in elements])
 
 
 @dataclass(frozen=True)
@@ -172,6 +173,34 @@ def text_of(element: etree._Element | None) -> str | None:
     return element.text if element.text is not None else ""
 
 
+_XML_SPACE = " \t\n\r"
+
+
+def get_text(element: etree._Element) -> str | None:
+    """tinyxml2's ``XMLElement::GetText()`` (9.0 and later, as ros2_control's parser calls it):
+    the first text node after any leading comments, None where there is none.
+
+    tinyxml2 keeps no text node that is only whitespace, so ``<a> <!--c--> 5 </a>`` gives
+    ``" 5 "`` and ``<a>  </a>`` gives None; an element or a processing instruction before the
+    text gives None, and a comment or CDATA section after it ends it (tinyxml2.cpp
+    ``XMLElement::GetText``, ``XMLDocument::Identify``). An element without children is read
+    from its ``text`` (a CDATA section inside such a text is not told apart).
+    """
+    if not len(element):
+        text = element.text
+        return text if text is not None and text.strip(_XML_SPACE) else None
+    for node in _NODES(element):
+        if isinstance(node, str):  # text or CDATA
+            if node.strip(_XML_SPACE):
+                return str(node)
+        elif not isinstance(node, etree._Comment):
+            return None
+    return None
+
+
+_NODES = etree.XPath("node()")
+
+
 def first_child_text(element: etree._Element, name: str) -> str | None:
     """Text of the first ``name`` child (``""`` when it is empty), or None."""
     found = children(element, name)
@@ -260,8 +289,9 @@ def _read_ros2(
     components: dict[etree._Element, Declarations],
     kids: dict[str, list[etree._Element]],
 ) -> Transmission:
-    plugin = _first_text(kids, "plugin")
-    type_string = (plugin or "").strip()
+    plugins = kids.get("plugin")
+    # component_parser.cpp get_text_for_element: GetText() stripped, "" where it is null
+    type_string = (get_text(plugins[0]) or "").strip(C_SPACE) if plugins else ""
     component_element = enclosing_component(element)
     component = None
     if component_element is not None:
@@ -270,7 +300,7 @@ def _read_ros2(
             component = components[component_element] = Declarations(component_element)
     kind = kind_of(type_string)
     return _new_transmission(
-        name=element.get("name", ""),
+        name=element.get("name", "").strip(C_SPACE),
         type=type_string,
         kind=kind,
         joints=tuple([_ros2_member(j, locator, component) for j in kids.get("joint", ())]),
@@ -284,11 +314,13 @@ def _read_ros2(
 
 
 def _ros2_number(kids: dict[str, list[etree._Element]], name: str) -> Number | None:
-    # ros2_control takes the first matching child whose text is not null.
+    # ros2_control takes the first child of that name whose GetText() is not null, and its
+    # default where that text does not convert (component_parser.cpp get_parameter_value_or).
     found = kids.get(name, ())
     for child in found:
-        if child.text is not None:
-            return _new_number(value=parse_ros2(child.text), text=child.text)
+        text = get_text(child)
+        if text is not None:
+            return _new_number(value=parse_ros2(text), text=text)
     return _new_number(value=None, text="") if found else None
 
 
@@ -297,10 +329,12 @@ def _ros2_member(
 ) -> Member:
     kids = child_index(element)
     role = element.get("role")
-    if role is None:
+    if role is not None:
+        role = role.strip(C_SPACE)  # component_parser.cpp get_attribute_value strips
+    else:
         role_text = _first_text(kids, "role")
         role = role_text.strip() if role_text is not None else None
-    name = element.get("name", "")
+    name = element.get("name", "").strip(C_SPACE)
     declared = component.joint(name) if component is not None else None
     return _new_member(
         name=name,
@@ -309,7 +343,7 @@ def _ros2_member(
         offset=_ros2_number(kids, "offset"),
         interfaces=declared.command_interfaces if declared is not None else (),
         state_interfaces=declared.state_interfaces if declared is not None else (),
-        read_only=(element.get("read_only") or "").strip().lower() == "true",
+        read_only=(element.get("read_only") or "").strip(C_SPACE).lower() == "true",
         location=_location(element, locator) if locator is not None else None,
     )
 

@@ -124,7 +124,8 @@ def all_text(element: etree._Element) -> str:
     return "".join(str(node) for node in _TEXTS(element))
 
 
-def loader_text(element: etree._Element, plain: bool = False) -> str | None:
+def loader_text(element: etree._Element, plain: bool = False,
+                ros2: bool = False) -> str | None:
     """The text TinyXML's ``GetText()`` gives the loaders: the element's first child node when
     it is text (CDATA counts as text), else None.
 
@@ -134,13 +135,18 @@ def loader_text(element: etree._Element, plain: bool = False) -> str | None:
     tag; TinyXML 1 drops blank text), so it does not count.
 
     ``plain``: the document holds no CDATA section (see :attr:`Facts.plain`), so an element
-    without children (comments count) has at most one text node, its ``text``.
+    without children (comments count) has at most one text node, its ``text``. ``ros2``:
+    read as ros2_control's tinyxml2 (9.0 and later) reads it, whose ``GetText()`` passes over
+    leading comments (``<offset><!-- rad -->0.5</offset>`` is 0.5; see
+    :func:`txtool.dialects.read.get_text`).
     """
     if plain and not len(element):
         text = element.text
         return text if text is not None and text.strip(C_SPACE) else None
     for node in _NODES(element):
         if not isinstance(node, str):
+            if ros2 and isinstance(node, etree._Comment):
+                continue
             return None
         if node.strip(C_SPACE):
             return str(node)
@@ -182,8 +188,8 @@ def _read_numbers(facts: Facts) -> list[NumberRef]:
                 element = elements[0] if ros1 else _number_element(elements, plain)
                 field = "offset" if tag == "offset" else "reduction"
                 found.append(NumberRef(element, field, ref.noun, ref.name,
-                                       loader_text(element, plain), plain and not len(element),
-                                       element.text))
+                                       loader_text(element, plain, not ros1),
+                                       plain and not len(element), element.text))
     return found
 
 
@@ -191,7 +197,7 @@ def _number_element(found: list[etree._Element], plain: bool) -> etree._Element:
     """The element ros2_control reads: the first whose GetText() is not null
     (ros2_control hardware_interface/src/component_parser.cpp:134-161 @157446a); ros_control
     reads the first."""
-    return next((e for e in found if loader_text(e, plain) is not None), found[0])
+    return next((e for e in found if loader_text(e, plain, True) is not None), found[0])
 
 
 def coupled_groups(

@@ -17,6 +17,8 @@ from dataclasses import dataclass
 from typing import Literal
 
 from txtool.model.core import Member, Number, Transmission
+from txtool.model.distro import Distro, NumberReading, numbers_of
+from txtool.model.numbers import parse_ros2, ros2_readings_differ
 
 Loader = Literal["ros1", "ros2"]
 ROLES_JOINT = ("joint1", "joint2")
@@ -65,11 +67,24 @@ def loader_of(transmission: Transmission) -> Loader:
     return "ros1" if transmission.dialect == "ros1" else "ros2"
 
 
-def effective(transmission: Transmission) -> Effective:
-    """The loaded parameters, or :class:`NotLoadable` with the loader's reason."""
+def effective(transmission: Transmission, distro: Distro | None = None,
+              added_actuators: tuple[str, ...] = ()) -> Effective:
+    """The loaded parameters, or :class:`NotLoadable` with the loader's reason.
+
+    ``distro`` says which build of ros2_control reads a ROS 2 transmission's numbers
+    (Humble's ``istringstream`` or Jazzy's and later ``from_chars``); None: the value every
+    ROS 2 distribution reads, the default where they read the text differently or not at all
+    (:func:`ros2_values_differ` tells these apart). ROS 1 reads with ``std::stod`` always.
+    ``added_actuators``: what ros2_control's parser appends (``actuator1`` in an actuator
+    component), which configure() takes as one more actuator handle.
+    """
     if transmission.kind == "other":
         raise NotLoadable(f"custom type '{transmission.type}' has no standard maths")
-    result = _ros1(transmission) if loader_of(transmission) == "ros1" else _ros2(transmission)
+    if loader_of(transmission) == "ros1":
+        result = _ros1(transmission)
+    else:
+        reading = None if distro is None else numbers_of(distro)
+        result = _ros2(transmission, reading, added_actuators)
     for value in result.actuator_reduction + result.joint_reduction:
         if value == 0.0:
             raise NotLoadable("reduction ratio cannot be zero")
@@ -155,27 +170,54 @@ def by_role(members: tuple[Member, ...], roles: tuple[str, str], noun: str) -> l
     return [by_role[role] for role in roles]
 
 
-def _ros2_number(number: Number | None, default: float) -> float:
+def ros2_value(number: Number | None, default: float, distro: Distro | None = None) -> float:
+    """What ros2_control's parser stores for ``number`` (``<mechanical_reduction>`` or
+    ``<offset>``, as :mod:`txtool.dialects.read` found it): the default where it is absent or
+    its text does not convert (component_parser.cpp ``get_parameter_value_or``)."""
+    return _ros2_number(number, default, None if distro is None else numbers_of(distro))
+
+
+def ros2_values_differ(t: Transmission) -> bool:
+    """Some number of ROS 2 ``t`` is read differently by different ROS 2 distributions."""
+    if t.dialect == "ros1":
+        return False
+    for member in (*t.joints, *t.actuators):
+        for number in (member.mechanical_reduction, member.offset):
+            if number is not None and ros2_readings_differ(number.text):
+                return True
+    return False
+
+
+def _ros2_number(number: Number | None, default: float, reading: NumberReading | None) -> float:
     # ros2_control silently falls back to the default for absent or unparsable text.
-    if number is None or number.value is None:
+    if number is None:
         return default
-    return number.value
+    value = number.value if reading is None else parse_ros2(number.text, reading)
+    return default if value is None else value
 
 
-def _ros2(t: Transmission) -> Effective:
+def _ros2(t: Transmission, reading: NumberReading | None, added: tuple[str, ...]) -> Effective:
     if not t.joints:
         raise NotLoadable("no joints (ros2_control's loader reads joints.at(0))")
     if t.kind == "simple":
+        # SimpleTransmission::configure (simple_transmission.hpp) takes one handle name each:
+        # "Joint names given to transmissions should be identical", likewise actuators.
+        for noun, names in (("joint", [j.name for j in t.joints]),
+                            ("actuator", [a.name for a in t.actuators] + list(added))):
+            if len(set(names)) > 1:
+                listed = ", ".join(f"'{n}'" for n in dict.fromkeys(names))
+                raise NotLoadable(f"a simple transmission takes one {noun}, found {listed} "
+                                  f"(configure: {noun} names should be identical)")
         joint = t.joints[0]
-        actuator = t.actuators[0].name if t.actuators else "actuator1"
+        actuator = t.actuators[0].name if t.actuators else (added or ("actuator1",))[0]
         return Effective(
             name=t.name,
             kind="simple",
             joints=(joint.name,),
             actuators=(actuator,),
             actuator_reduction=(1.0,),
-            joint_reduction=(_ros2_number(joint.mechanical_reduction, 1.0),),
-            joint_offset=(_ros2_number(joint.offset, 0.0),),
+            joint_reduction=(_ros2_number(joint.mechanical_reduction, 1.0, reading),),
+            joint_offset=(_ros2_number(joint.offset, 0.0, reading),),
             loader="ros2",
         )
     if len(t.joints) < 2 or len(t.actuators) < 2:
@@ -192,9 +234,11 @@ def _ros2(t: Transmission) -> Effective:
         joints=tuple(joint_names),
         actuators=tuple(actuator_names),
         actuator_reduction=tuple(
-            _ros2_number(a.mechanical_reduction, 1.0) for a in t.actuators[:2]
+            _ros2_number(a.mechanical_reduction, 1.0, reading) for a in t.actuators[:2]
         ),
-        joint_reduction=tuple(_ros2_number(j.mechanical_reduction, 1.0) for j in t.joints[:2]),
-        joint_offset=tuple(_ros2_number(j.offset, 0.0) for j in t.joints[:2]),
+        joint_reduction=tuple(
+            _ros2_number(j.mechanical_reduction, 1.0, reading) for j in t.joints[:2]
+        ),
+        joint_offset=tuple(_ros2_number(j.offset, 0.0, reading) for j in t.joints[:2]),
         loader="ros2",
     )

@@ -11,11 +11,14 @@ by other text loads as that number: TX111's business.
 ros2_control parses the whole stripped text in the classic locale and, on any failure (junk,
 ``inf``, ``nan``, out of range), **silently** uses the default: 1.0 for
 ``<mechanical_reduction>``, 0.0 for ``<offset>`` (ros-controls/ros2_control
-hardware_interface/src/component_parser.cpp:134-161 @157446a; hardware_interface/src/
-lexical_casts.cpp:28-52 @146eb98). An empty element (no text, or only blanks and comments) has
-no text for ``GetText()``, so ``get_parameter_value_or`` (component_parser.cpp) passes over it
-and returns the default, as if the element were absent: nothing written is lost, a
-**warning**.
+hardware_interface/src/component_parser.cpp:161-188, ``get_parameter_value_or`` @53b9999).
+Humble builds it with ``istringstream`` and Jazzy and later with ``from_chars``
+(lexical_casts.cpp:65 ``impl::stod``), which read a few texts differently: ``+-1`` is -1 from
+Jazzy on and the default on Humble, ``1e-400`` is 0 on Humble and the default from Jazzy on.
+Where nothing says which distribution reads the file, such a value is a **warning** that gives
+each distribution's reading. An empty element (no text, or only blanks and comments) has no
+text for ``GetText()``, so ``get_parameter_value_or`` passes over it and returns the default,
+as if the element were absent: nothing written is lost, a **warning**.
 
 Both read the text TinyXML's ``GetText()`` returns: the first text node only, so
 ``5<!-- x -->0`` reads as 5 (TX111). Text that Python reads as a number but C++ does not
@@ -48,7 +51,8 @@ from collections.abc import Iterator
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.support import numbers_of, per_transmission
-from txtool.model.numbers import C_SPACE, parse_ros2, stod
+from txtool.model.distro import NumberReading
+from txtool.model.numbers import C_SPACE, format_float, parse_ros2, ros2_readings, stod
 
 CODE = "TX105"
 NAME = "invalid-number"
@@ -80,7 +84,10 @@ def check(ctx: LintContext) -> Iterator[Problem]:
                 problem = _ros2(number.text, default=default)
             if problem:
                 message = f"{number.describe()} of {tx.label} {problem}"
-                yield ctx.problem(CODE, number.element, message)
+                differs = not tx.ros1 and any(
+                    v is not None for v in ros2_readings(number.text).values())
+                yield ctx.problem(CODE, number.element, message,
+                                  loader_severity="warning" if differs else None)
 
 
 def _shown(text: str | None) -> str:
@@ -110,4 +117,13 @@ def _ros1(text: str | None) -> str | None:
 def _ros2(text: str | None, default: str) -> str | None:
     if parse_ros2(text) is not None:
         return None
-    return f"is {_shown(text)}, not a finite number: ros2_control silently uses {default}"
+    readings = ros2_readings(text)
+    if all(value is None for value in readings.values()):
+        return f"is {_shown(text)}, not a finite number: ros2_control silently uses {default}"
+    humble, jazzy = (readings[r] for r in (NumberReading.ISTRINGSTREAM, NumberReading.FROM_CHARS))
+    return (f"is {_shown(text)}, read differently by ROS 2 distributions: Humble's "
+            f"ros2_control {_reads(humble, default)}, Jazzy's and later {_reads(jazzy, default)}")
+
+
+def _reads(value: float | None, default: str) -> str:
+    return f"silently uses {default}" if value is None else f"reads {format_float(value)}"

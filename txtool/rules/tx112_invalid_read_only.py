@@ -1,9 +1,10 @@
 """A ROS 2 transmission joint or actuator whose ``read_only`` is not ``true`` or ``false``.
 
-ros2_control reads the attribute with ``parse_bool``, which lower-cases the text (ASCII) and
-accepts exactly ``true`` or ``false``; anything else, including surrounding spaces, ``1`` or
-``yes``, throws "Input string : 'x' is not a valid boolean value. Expected 'true' or 'false'."
-(ros-controls/ros2_control hardware_interface/src/lexical_casts.cpp:64-83 @146eb98). The
+ros2_control strips the attribute of C whitespace and reads it with ``parse_bool``, which
+lower-cases the text (ASCII) and accepts exactly ``true`` or ``false``; anything else, such as
+``1``, ``yes`` or a no-break space around the word, throws "Input string : 'x' is not a valid
+boolean value. Expected 'true' or 'false'." (ros-controls/ros2_control
+hardware_interface/src/component_parser.cpp:558-560 and lexical_casts.cpp:134 @53b9999). The
 exception leaves the component parser, so the whole ``robot_description`` fails to load. A
 missing attribute is fine (the default is false).
 
@@ -23,6 +24,7 @@ from collections.abc import Iterator
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.support import label, per_transmission
+from txtool.model.numbers import C_SPACE
 
 CODE = "TX112"
 NAME = "invalid-read-only"
@@ -45,7 +47,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         found = tx.found
         for ref in tx.members:
             value = ref.element.get("read_only")
-            if value is None or ctx.unknown(value) or valid_bool(value):
+            if value is None or ctx.unknown(value) or valid_bool(value.strip(C_SPACE)):
                 continue
             yield ctx.problem(
                 CODE,

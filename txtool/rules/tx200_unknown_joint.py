@@ -11,7 +11,9 @@ Why
     ros2_control copies each transmission joint's interfaces from the component; a joint the
     component does not declare makes the parser throw ``Error while parsing 'HW'. Transmission
     'T' declared joint 'J' is not available in component 'HW'.`` and nothing of the robot
-    loads. In ROS 1 a transmission joint that is not in the robot has no joint to drive
+    loads. The parser strips both names of spaces first (``name=" j1 "`` is ``j1``:
+    hardware_interface/src/component_parser.cpp ``get_attribute_value``:133 @53b9999). In
+    ROS 1 a transmission joint that is not in the robot has no joint to drive
     (gazebo_ros_control refuses it as "not in the gazebo model"). Names still holding xacro
     expressions (``${prefix}joint1``) are matched as patterns, never reported.
 
@@ -47,6 +49,7 @@ from txtool.lint.context import LintContext
 from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
 from txtool.lint.support import children, member_names, opaque
+from txtool.model.numbers import C_SPACE
 
 CODE = "TX200"
 NAME = "unknown-joint"
@@ -90,7 +93,10 @@ def _unknown(ctx: LintContext) -> Iterator[Problem]:
             joint = ref.element
             if not name or ("$" in name and ctx.unknown(name)):
                 continue
-            if declared is not None and name not in declared[1]:
+            # ros2_control's parser strips the names (component_parser.cpp
+            # get_attribute_value:133 @53b9999) before comparing them
+            stripped = name.strip(C_SPACE) if tx.component is not None else name
+            if declared is not None and stripped not in declared[1]:
                 yield ctx.problem(
                     CODE,
                     joint,
@@ -98,8 +104,8 @@ def _unknown(ctx: LintContext) -> Iterator[Problem]:
                     f"'{declared[0]}': ros2_control throws \"declared joint '{name}' is not "
                     "available in component\"",
                 )
-            elif robot_joints is not None and name not in robot_joints.exact and (
-                name not in robot_joints
+            elif robot_joints is not None and stripped not in robot_joints.exact and (
+                stripped not in robot_joints
             ):
                 yield ctx.problem(
                     CODE,
@@ -122,6 +128,6 @@ def _component_joints(
     if component is None or opaque(ctx, component):
         return None
     if component not in seen:
-        names = Names(j.get("name", "") for j in children(component, "joint"))
+        names = Names(j.get("name", "").strip(C_SPACE) for j in children(component, "joint"))
         seen[component] = (component.get("name", ""), names)
     return seen[component]

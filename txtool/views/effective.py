@@ -25,11 +25,14 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+from lxml import etree
+
 from txtool.dialects.read import Found, enclosing_component
 from txtool.model.binding import Binding, Field, Slot
 from txtool.model.core import TYPE_PREFIX, Member, Number, Transmission
-from txtool.model.numbers import format_float
-from txtool.model.robot import Component, component_of
+from txtool.model.distro import Distro, numbers_of
+from txtool.model.numbers import C_SPACE, format_float, parse_ros2
+from txtool.model.robot import Component, children, component_of
 from txtool.model.semantics import (
     ROLES_ACTUATOR,
     ROLES_JOINT,
@@ -38,13 +41,23 @@ from txtool.model.semantics import (
     by_role,
     effective,
     loader_of,
+    ros2_values_differ,
 )
 
 ADDED_ACTUATOR = "actuator1"
+PARSER_REFUSES = "ros2_control's parser refuses the component: "
+# The ROS 2 builds that read numbers differently: Humble's istringstream, Jazzy's from_chars
+# (Kilted and Rolling read as Jazzy).
+_ROS2_BUILDS = ((Distro.HUMBLE, "Humble"), (Distro.JAZZY, "Jazzy, Kilted and Rolling"))
 
 
-def bindings_of(found: Sequence[Found]) -> list[Binding]:
-    """The binding of each transmission read from ``found`` (its component matters)."""
+def bindings_of(found: Sequence[Found], distro: Distro | None = None) -> list[Binding]:
+    """The binding of each transmission read from ``found`` (its component matters).
+
+    ``distro`` picks the ROS 2 build whose number reading applies; None: every ROS 2
+    distribution may read the file, and where they read a number differently the binding is
+    Jazzy's with a note giving Humble's values.
+    """
     components: dict[object, Component] = {}  # each <ros2_control> read once
     result = []
     for item in found:
@@ -54,26 +67,60 @@ def bindings_of(found: Sequence[Found]) -> list[Binding]:
             component = components.get(element)
             if component is None:
                 component = components[element] = component_of(element)
-        result.append(binding(item.transmission, component))
+        result.append(_per_distro(item, component, distro))
     return result
 
 
-def binding(t: Transmission, component: Component | None = None) -> Binding:
-    """What ``t``'s loader binds; ``component`` is its enclosing ``<ros2_control>``, if any."""
+def _per_distro(item: Found, component: Component | None, distro: Distro | None) -> Binding:
+    t = item.transmission
+    if distro is not None or not ros2_values_differ(t):
+        return binding(t, component, distro, item.element)
+    bound = {d: binding(t, component, d, item.element) for d, _ in _ROS2_BUILDS}
+    newest = bound[Distro.JAZZY]
+    if bound[Distro.HUMBLE].slots == newest.slots:
+        return newest
+    notes = [f"{label} {_values(bound[d], label)}" for d, label in _ROS2_BUILDS]
+    import dataclasses
+
+    return dataclasses.replace(newest, notes=(
+        "ROS 2 distributions read the numbers differently: " + "; ".join(notes),
+        *newest.notes))
+
+
+def _values(b: Binding, label: str) -> str:
+    verb = "bind" if " and " in label else "binds"
+    if not b.loadable:
+        return f"{'do' if verb == 'bind' else 'does'} not load it ({b.reason})"
+    return f"{verb} " + ", ".join(
+        f"#{s.index} joint reduction {_value(s, 'joint_reduction', s.joint_reduction)} offset "
+        f"{_value(s, 'joint_offset', s.joint_offset)}"
+        + ("" if "actuator_reduction" in s.not_read
+           else f" actuator reduction {_value(s, 'actuator_reduction', s.actuator_reduction)}")
+        for s in b.slots)
+
+
+def binding(t: Transmission, component: Component | None = None, distro: Distro | None = None,
+            element: etree._Element | None = None) -> Binding:
+    """What ``t``'s loader binds; ``component`` is its enclosing ``<ros2_control>``, if any,
+    ``element`` the ``<transmission>`` it was read from (what the parser requires of its
+    attributes), ``distro`` as in :func:`bindings_of`."""
     loader = loader_of(t)
-    component_type = component.type if loader == "ros2" and component is not None else None
+    component_type = (component.type.strip(C_SPACE)
+                      if loader == "ros2" and component is not None else None)
     added = (ADDED_ACTUATOR,) if component_type == "actuator" else ()
-    refused = _unbound(t, component if loader == "ros2" else None)
+    refused = _unbound(t, component if loader == "ros2" else None,
+                       element if loader == "ros2" else None)
     if refused is not None:
         loadable, reason = refused
         return Binding(loader=loader, loadable=loadable, reason=reason,
-                       component_type=component_type)
+                       component_type=component_type,
+                       added_actuators=() if reason.startswith(PARSER_REFUSES) else added)
     try:
-        eff = effective(t)
+        eff = effective(t, distro, added)
     except NotLoadable as exc:
         return Binding(loader=loader, loadable=False, reason=str(exc),
                        component_type=component_type, added_actuators=added)
-    slots = _ros1_slots(t, eff) if loader == "ros1" else _ros2_slots(t, eff)
+    slots = _ros1_slots(t, eff) if loader == "ros1" else _ros2_slots(t, eff, distro)
     coupled = t.kind != "simple"
     return Binding(
         loader=loader,
@@ -87,9 +134,10 @@ def binding(t: Transmission, component: Component | None = None) -> Binding:
     )
 
 
-def _unbound(t: Transmission, component: Component | None) -> tuple[bool | None, str] | None:
+def _unbound(t: Transmission, component: Component | None,
+             element: etree._Element | None) -> tuple[bool | None, str] | None:
     """(loadable, reason) for what no standard loader binds: refused (False) or unknown."""
-    refusal = _parser_refusal(t, component)
+    refusal = _parser_refusal(t, component, element)
     if refusal:
         return False, refusal
     if t.kind != "other":
@@ -104,30 +152,71 @@ def _unbound(t: Transmission, component: Component | None) -> tuple[bool | None,
                   "installed, decides what it binds")
 
 
-def _parser_refusal(t: Transmission, component: Component | None) -> str | None:
+def _parser_refusal(t: Transmission, component: Component | None,
+                    element: etree._Element | None) -> str | None:
     if component is None:
         return None
+    written = _written_refusal(element) if element is not None else None
+    if written:
+        return PARSER_REFUSES + written
+    declared: set[str] | None = None
     for joint in t.joints:
-        if component.joint(joint.name) is None:
-            return (f"ros2_control's parser refuses the component: joint '{joint.name}' is not "
-                    f"declared in <ros2_control name=\"{component.name}\">")
-    if component.type == "actuator" and len(t.joints) != 1:
-        return ("ros2_control's parser refuses the component: a transmission of an actuator "
-                f"component must have exactly one joint, found {len(t.joints)}")
+        if component.joint(joint.name) is not None:
+            continue
+        if declared is None:  # the parser compares stripped names
+            declared = {j.name.strip(C_SPACE) for j in component.joints}
+        if joint.name not in declared:
+            return (f"{PARSER_REFUSES}joint '{joint.name}' is not declared in "
+                    f"<ros2_control name=\"{component.name}\">")
+    if component.type.strip(C_SPACE) == "actuator" and len(t.joints) != 1:
+        return (f"{PARSER_REFUSES}a transmission of an actuator component must have exactly "
+                f"one joint, found {len(t.joints)}")
+    return None
+
+
+def _written_refusal(element: etree._Element) -> str | None:
+    """What ros2_control's parser throws on in the ``<transmission>`` itself
+    (component_parser.cpp parse_transmission_from_xml :589, parse_transmission_joint_from_xml
+    :553 and parse_transmission_actuator_from_xml :568): no name, no ``<plugin>``, a member
+    without a name or a ``role`` attribute, a ``read_only`` other than true or false (any
+    case; parse_bool in lexical_casts.cpp)."""
+    if element.get("name") is None:
+        return "a <transmission> has no name attribute"
+    if not children(element, "plugin"):
+        return f"transmission '{element.get('name')}' has no <plugin>"
+    for member in element:
+        tag = member.tag if isinstance(member.tag, str) else ""
+        if tag not in ("joint", "actuator"):
+            continue
+        for attribute in ("name", "role"):
+            if member.get(attribute) is None:
+                return f"a <{tag}> of transmission '{element.get('name')}' has no {attribute}"
+        read_only = member.get("read_only")
+        if read_only is not None and read_only.strip(C_SPACE).lower() not in ("true", "false"):
+            return (f"<{tag} name=\"{member.get('name')}\"> read_only=\"{read_only}\" is not "
+                    "true or false")
     return None
 
 
 def _defaults(loader: str, joint: Member, actuator: Member | None,
-              not_read: tuple[Field, ...]) -> tuple[Field, ...]:
-    """Fields whose value is the loader's fallback rather than the document's number."""
+              not_read: tuple[Field, ...], distro: Distro | None = None) -> tuple[Field, ...]:
+    """Fields whose value is the loader's fallback rather than the document's number
+    (ros2_control: absent, or a text ``distro``'s build does not read)."""
     numbers: dict[Field, Number | None] = {"joint_reduction": joint.mechanical_reduction,
                                            "joint_offset": joint.offset}
     if actuator is not None:
         numbers["actuator_reduction"] = actuator.mechanical_reduction
     return tuple(
         field for field, number in numbers.items()
-        if field not in not_read and (number is None or (loader == "ros2" and number.value is None))
+        if field not in not_read and (number is None or (loader == "ros2" and _unread(number,
+                                                                                     distro)))
     )
+
+
+def _unread(number: Number, distro: Distro | None) -> bool:
+    if distro is None:
+        return number.value is None
+    return parse_ros2(number.text, numbers_of(distro)) is None
 
 
 def _by_name(members: Sequence[Member], name: str) -> Member:
@@ -159,7 +248,7 @@ def _ros1_slots(t: Transmission, eff: Effective) -> tuple[Slot, ...]:
     return tuple(slots)
 
 
-def _ros2_slots(t: Transmission, eff: Effective) -> tuple[Slot, ...]:
+def _ros2_slots(t: Transmission, eff: Effective, distro: Distro | None) -> tuple[Slot, ...]:
     # ros2_control's simple transmission reads the joint's reduction only.
     not_read: tuple[Field, ...] = ("actuator_reduction",) if t.kind == "simple" else ()
     slots = []
@@ -175,7 +264,7 @@ def _ros2_slots(t: Transmission, eff: Effective) -> tuple[Slot, ...]:
             actuator_reduction=eff.actuator_reduction[i],
             joint=eff.joints[i],
             actuator=eff.actuators[i],
-            defaults=_defaults("ros2", joint, actuator, not_read),
+            defaults=_defaults("ros2", joint, actuator, not_read, distro),
             not_read=not_read,
         ))
     return tuple(slots)
