@@ -71,12 +71,13 @@ def test_a_ros1_reduction_spelling_loses_only_a_different_value(inner, severity)
     ("<mechanical_reduction/>", "warning"),
     ("<mechanical_reduction><!-- later --></mechanical_reduction>", "warning"),
     ("<mechanical_reduction>fifty</mechanical_reduction>", "error"),
-    # text after a comment is written but not read (GetText() is null): a value is lost
-    ("<offset><!-- c -->0.5</offset>", "error"),
+    # tinyxml2 >= 9's GetText() skips a leading comment: 0.5 is read (the loaders' compiled
+    # parser agrees, tests/oracle), so nothing is lost and nothing is reported
+    ("<offset><!-- c -->0.5</offset>", None),
 ])
 def test_an_empty_number_is_read_as_absent(number, severity):
     found = problems(robot(f'<joint name="j" role="joint1">{number}</joint>'), select=["TX105"])
-    assert [p.severity for p in found] == [severity]
+    assert [p.severity for p in found] == ([severity] if severity else [])
     if severity == "warning":
         assert "nothing written is lost" in found[0].message
 
