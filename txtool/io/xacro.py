@@ -20,7 +20,7 @@ from typing import Any
 
 from lxml import etree
 
-from txtool.io.packages import PackageNotFound, find_package
+from txtool.io.packages import PackageNotFound, enclosing_manifest, find_package
 from txtool.io.xmlio import (
     ENTITY_REFUSAL,
     MAX_BYTES,
@@ -38,13 +38,18 @@ MAX_READ = MAX_BYTES  # what one expansion may read in all: the top file and eve
 
 
 class XacroError(InputError):
-    """xacro could not expand the file (missing arg, package or property). Lint code TX002."""
+    """xacro could not expand the file (missing arg, package or property). Lint code TX002.
 
-    def __init__(self, path: str, reason: str, line: int = 1) -> None:
+    ``missing`` is ``"argument"`` or ``"package"`` when what lacks is something the command
+    line gives (``--xacro-arg``, ``--pkg-dir``), not a fault of the files; else empty.
+    """
+
+    def __init__(self, path: str, reason: str, line: int = 1, missing: str = "") -> None:
         super().__init__(f"{path}:{line}: xacro: {reason}")
         self.path = path
         self.line = line
         self.reason = reason
+        self.missing = missing
 
 
 def expand_xacro(path: str, display: str, options: XacroOptions) -> etree._ElementTree:
@@ -64,7 +69,12 @@ def expand_xacro(path: str, display: str, options: XacroOptions) -> etree._Eleme
             doc = xacro.process_file(os.path.abspath(path), mappings=dict(options.args))
             text = doc.toxml()
     except Exception as exc:  # xacro raises many kinds, all user-facing
-        raise XacroError(display, _xacro_reason(_root_cause(exc))) from None
+        cause = _root_cause(exc)
+        reason, missing = _xacro_reason(cause), _missing(cause, path)
+        if missing == "package" and isinstance(cause, FileNotFoundError):
+            reason += (" (a file of another package, which the version found lacks: give "
+                       "--pkg-dir DIR or --pkg-path NAME:=DIR for the version this file needs)")
+        raise XacroError(display, reason, missing=missing) from None
     finally:
         substitution_args._eval_find = saved_find
         xacro.parse = saved_parse
@@ -167,6 +177,23 @@ def _root_cause(exc: BaseException) -> BaseException:
         exc = exc.exc  # type: ignore[attr-defined]
         seen += 1
     return exc
+
+
+def _missing(exc: BaseException, path: str) -> str:
+    """What the run lacks for the expansion to go on: an argument, a package, or a file of
+    another package (the version found is not the one the file was written for)."""
+    from xacro import substitution_args
+
+    if isinstance(exc, PackageNotFound):
+        return "package"
+    if isinstance(exc, substitution_args.ArgException):
+        return "argument"
+    absent = getattr(exc, "filename", None)
+    if isinstance(exc, FileNotFoundError) and isinstance(absent, str):
+        own = enclosing_manifest(path)
+        if own is not None and enclosing_manifest(absent) not in (None, own):
+            return "package"
+    return ""
 
 
 def _xacro_reason(exc: BaseException) -> str:

@@ -72,7 +72,7 @@ def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions) -> Lint
         where = options.stdin_filename if path == "-" and options.stdin_filename else path
         work.append((path, settings.for_file(where)))  # a ConfigError stops the run
     result = LintResult()
-    for outcome in _outcomes(work, options, paths):
+    for outcome in _outcomes(work, options, paths, _fragments(work, paths)):
         if isinstance(outcome, InputFailure):
             result.errors.append(outcome)
             continue
@@ -82,6 +82,19 @@ def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions) -> Lint
         if readers is not None:
             result.readers.append(readers)
     return result
+
+
+def _fragments(work: list[tuple[str, Settings]], given: list[str] | tuple[str, ...]
+               ) -> frozenset[str]:
+    """The files found in folder walks that another file of ``work`` includes."""
+    named = frozenset(given)
+    walked = [path for path, settings in work if path not in named and not settings.no_xacro]
+    if not walked:
+        return frozenset()
+    from txtool.lint.fragments import fragments
+
+    expanded = ((path, settings.xacro) for path, settings in work if not settings.no_xacro)
+    return fragments(expanded, walked)
 
 
 # Below this many files per process, forking costs more than it saves.
@@ -103,7 +116,8 @@ def worker_count(files: int, jobs: int) -> int:
 
 
 def _outcomes(
-    work: list[tuple[str, Settings]], options: LintOptions, given: tuple[str, ...] | list[str] = ()
+    work: list[tuple[str, Settings]], options: LintOptions, given: tuple[str, ...] | list[str] = (),
+    fragments: frozenset[str] = frozenset(),
 ) -> Iterator[list[Problem] | InputFailure]:
     """Each file's problems, or why it could not be read, in input order."""
     workers = worker_count(len(work), options.jobs)
@@ -111,21 +125,23 @@ def _outcomes(
     named = frozenset(given)
     if workers == 1 or any(path == "-" for path, _ in work):
         for index in range(len(work)):
-            yield _lint_one(index, work, stdin_name, named)
+            yield _lint_one(index, work, stdin_name, named, fragments)
         return
     from txtool.lint.workers import forked_map
 
     yield from forked_map(
-        lambda index: _lint_one(index, work, stdin_name, named), len(work), workers
+        lambda index: _lint_one(index, work, stdin_name, named, fragments), len(work), workers
     )
 
 
 def _lint_one(
-    index: int, work: list[tuple[str, Settings]], stdin_name: str | None, named: frozenset[str]
+    index: int, work: list[tuple[str, Settings]], stdin_name: str | None, named: frozenset[str],
+    fragments: frozenset[str] = frozenset(),
 ) -> list[Problem] | InputFailure:
     path, settings = work[index]
     try:
-        return lint_file(path, settings, stdin_name=stdin_name, named=path in named)
+        return lint_file(path, settings, stdin_name=stdin_name, named=path in named,
+                         fragment=path in fragments)
     except InputError as exc:
         shown = stdin_name if path == "-" and stdin_name else path
         return InputFailure(shown, str(exc))

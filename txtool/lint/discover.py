@@ -25,6 +25,7 @@ from txtool.lint.patterns import Excludes, absolute_folder
 
 SUFFIXES = (".urdf", ".xacro")  # ``.urdf.xacro`` ends with ``.xacro``
 XML_ROOTS = frozenset({"robot", "ros2_control", "transmission"})
+SEMANTIC = (".srdf.xacro",)  # MoveIt's semantic description: no transmission loader reads it
 
 # (path, is_folder, is_link) -> True when the path found in a folder walk must be passed over.
 Skip = Callable[[str, bool, bool], bool]
@@ -170,10 +171,10 @@ def _own_gitignore(folder: str) -> tuple[Excludes, ...]:
 
 
 def is_candidate(path: str) -> bool:
-    """A robot description by its name, or an ``.xml`` whose root says it is one."""
+    """A robot description by its name (not an SRDF), or an ``.xml`` whose root says it is one."""
     name = path.lower()
     if name.endswith(SUFFIXES):
-        return True
+        return not name.endswith(SEMANTIC)
     return name.endswith(".xml") and root_tag(Path(path)) in XML_ROOTS
 
 

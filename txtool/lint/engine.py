@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Callable, Iterable
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from txtool.io.encodings import document_text, text_lines
@@ -40,6 +41,7 @@ from txtool.model.robot import indexed_children
 from txtool.rules import Rule, all_rules
 
 if TYPE_CHECKING:
+    from txtool.io.xacro import XacroError
     from txtool.lint.config import Config
 
 PIPELINE_CODES = frozenset({"TX001", "TX002", "TX003", "TX005", "TX006"})
@@ -53,15 +55,18 @@ def lint_source(source: Source, config: Config | Settings | None = None) -> list
 
 
 def lint_file(
-    path: str, settings: Settings, *, stdin_name: str | None = None, named: bool = False
+    path: str, settings: Settings, *, stdin_name: str | None = None, named: bool = False,
+    fragment: bool = False,
 ) -> list[Problem]:
     """Problems of one file (or ``-``); malformed XML and failed xacro are findings.
 
     A file ``named`` on the command line that holds no transmission gets TX006 (a file found
-    in a folder walk, such as an included fragment, does not). Raises
+    in a folder walk, such as an included fragment, does not). A ``fragment`` (a file another
+    checked file includes, see :mod:`txtool.lint.fragments`) whose expansion alone fails is
+    checked as written, without TX002: its includer's expansion is its check. Raises
     :class:`~txtool.io.xmlio.InputError` when the file cannot be read.
     """
-    problems = _lint_file(path, settings, stdin_name)
+    problems = _lint_file(path, settings, stdin_name, fragment)
     if named and "TX006" in settings.enabled and not problems and problems.readers is None:
         return _no_transmission(path, stdin_name, settings)
     return problems
@@ -85,7 +90,9 @@ def _no_transmission(path: str, stdin_name: str | None, settings: Settings) -> l
     return finish([_pipeline(display, 1, 1, "TX006", message)], source, settings)
 
 
-def _lint_file(path: str, settings: Settings, stdin_name: str | None) -> Findings:
+def _lint_file(
+    path: str, settings: Settings, stdin_name: str | None, fragment: bool = False
+) -> Findings:
     display, data = read_bytes(path, stdin_name=stdin_name)
     try:
         tree = parse_bytes(data, display)
@@ -103,13 +110,22 @@ def _lint_file(path: str, settings: Settings, stdin_name: str | None) -> Finding
     try:
         expanded = expand_xacro(path, display, settings.xacro)
     except XacroError as exc:
-        line, column = _xacro_position(data, exc.reason)
-        failed = _pipeline(display, line, column, "TX002", f"xacro: {exc.reason}")
         checked = _checked(source, settings)
-        return _carry(finish([*late, failed, *checked], source, settings), checked)
+        failed = [] if fragment else [_xacro_failed(display, data, exc)]
+        return _carry(finish([*late, *failed, *checked], source, settings), checked)
     full = Source(path=display, data=data, tree=expanded, expanded=True, source_tree=tree)
     checked = _checked(full, settings)
     return _carry(finish(late + checked, full, settings), checked)
+
+
+def _xacro_failed(path: str, data: bytes, exc: XacroError) -> Problem:
+    """TX002 where the expansion failed. An argument or package the command line lacks is an
+    info that says how to give it: the file is not at fault, only the run did not expand it."""
+    line, column = _xacro_position(data, exc.reason)
+    if not exc.missing:
+        return _pipeline(path, line, column, "TX002", f"xacro: {exc.reason}")
+    message = f"not expanded, checked as written only: xacro: {exc.reason}"
+    return replace(_pipeline(path, line, column, "TX002", message), loader_severity="info")
 
 
 def _late_declaration(path: str, data: bytes) -> list[Problem]:

@@ -28,6 +28,7 @@ class Summary(NamedTuple):
     infos: int
     failures: tuple[InputFailure, ...] = ()  # files that could not be read
     readers: tuple[FileReaders, ...] = ()  # the readers each file was judged for
+    not_expanded: int = 0  # xacro files whose expansion failed (TX002): checked as written only
 
     @property
     def unreadable(self) -> int:
@@ -41,8 +42,9 @@ class Summary(NamedTuple):
         def count(level: str) -> int:
             return sum(1 for p in problems if p.severity == level)
 
+        not_expanded = len({p.path for p in problems if p.code == "TX002"})
         return cls(files, count("error"), count("warning"), count("info"), tuple(failures),
-                   tuple(readers))
+                   tuple(readers), not_expanded)
 
 
 def render(

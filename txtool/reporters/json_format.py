@@ -53,7 +53,7 @@ def _readers(summary: Summary) -> list[dict[str, object]]:
 
 def _totals(summary: Summary) -> dict[str, int]:
     return {"files": summary.files, "errors": summary.errors, "warnings": summary.warnings,
-            "infos": summary.infos}
+            "infos": summary.infos, "not_expanded": summary.not_expanded}
 
 
 def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False) -> str:

@@ -65,6 +65,10 @@ class ReportSummary(BaseModel):
     errors: int = Field(ge=0)
     warnings: int = Field(ge=0)
     infos: int = Field(ge=0)
+    not_expanded: int = Field(
+        ge=0, description="xacro files whose expansion failed (TX002), so checked as written "
+        "only: an argument or package to give, or an error in the file."
+    )
 
 
 class Report(BaseModel):

@@ -32,6 +32,8 @@ def summary_line(summary: Summary) -> str:
         if count
     ]
     line = f"Found {', '.join(counts)} in {files}" if counts else f"No problems in {files}"
+    if summary.not_expanded:
+        line += f"; {_plural(summary.not_expanded, 'file')} not expanded (TX002)"
     if summary.unreadable:
         line += f"; {_plural(summary.unreadable, 'file')} could not be read"
     return line + "."
