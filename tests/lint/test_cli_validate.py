@@ -108,7 +108,8 @@ def test_directories_are_searched_for_robot_files(validate, tmp_path, monkeypatc
     assert sorted({p["path"] for p in report["problems"]}) == [
         "pkg/config/robot.xml", "pkg/urdf/a.urdf"
     ]
-    assert report["summary"] == {"files": 3, "errors": 2, "warnings": 2, "infos": 0}
+    assert report["summary"] == {"files": 3, "errors": 2, "warnings": 2, "infos": 0,
+                                 "not_expanded": 0}
 
 
 def test_stdin_with_a_filename(validate, tmp_path, monkeypatch):

@@ -295,9 +295,9 @@ def _xacro_position(data: bytes, reason: str) -> tuple[int, int]:
     if not quoted:
         return 1, 1
     name = re.escape(quoted.group(1))
-    if "argument" in reason:
+    if reason.startswith("missing argument"):  # not "in": the reason may name folders
         pattern = rf"\$\(arg\s+{name}\s*\)"
-    elif "package" in reason:
+    elif reason.startswith("package"):
         pattern = rf"\$\(find\s+{name}\s*\)"
     else:
         pattern = rf"\$\{{[^}}]*\b{name}\b"
