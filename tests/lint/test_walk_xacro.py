@@ -173,3 +173,14 @@ def included(tmp_path, includer: str, *others: str) -> list[str]:
 def test_fragments_are_the_walked_files_an_include_names(tmp_path, include, expected):
     assert included(tmp_path, include, "urdf/parts/arm.xacro", "macros/arm.xacro",
                     "macros/left_arm.xacro") == expected
+
+
+def test_a_package_the_package_xml_does_not_declare_is_named_so(validate, package):
+    write(package / "my_robot/urdf/sensors.urdf.xacro", SENSORS.replace("vendor_sensors", "old_sensors"))
+    code, out, _ = validate("--select", "TX002", "my_robot/urdf/sensors.urdf.xacro")
+    assert (code, out.splitlines()) == (0, [
+        "my_robot/urdf/sensors.urdf.xacro:2:28: info TX002 xacro-failed: not expanded, checked "
+        f"as written only: xacro: {not_found(package, 'old_sensors')}; the package.xml of "
+        "'my_robot' does not declare it: a dependency to declare, or a package that was renamed",
+        "Found 1 info in 1 file; 1 file not expanded (TX002).",
+    ])

@@ -13,6 +13,7 @@ from __future__ import annotations
 import contextlib
 import io
 import os
+import re
 import xml.dom.minidom
 import xml.parsers.expat
 from collections.abc import Callable
@@ -20,7 +21,12 @@ from typing import Any
 
 from lxml import etree
 
-from txtool.io.packages import PackageNotFound, enclosing_manifest, find_package
+from txtool.io.packages import (
+    PackageNotFound,
+    enclosing_manifest,
+    find_package,
+    package_name,
+)
 from txtool.io.xmlio import (
     ENTITY_REFUSAL,
     MAX_BYTES,
@@ -70,10 +76,8 @@ def expand_xacro(path: str, display: str, options: XacroOptions) -> etree._Eleme
             text = doc.toxml()
     except Exception as exc:  # xacro raises many kinds, all user-facing
         cause = _root_cause(exc)
-        reason, missing = _xacro_reason(cause), _missing(cause, path)
-        if missing == "package" and isinstance(cause, FileNotFoundError):
-            reason += (" (a file of another package, which the version found lacks: give "
-                       "--pkg-dir DIR or --pkg-path NAME:=DIR for the version this file needs)")
+        missing = _missing(cause, path)
+        reason = _xacro_reason(cause) + (_hint(cause, path) if missing else "")
         raise XacroError(display, reason, missing=missing) from None
     finally:
         substitution_args._eval_find = saved_find
@@ -194,6 +198,29 @@ def _missing(exc: BaseException, path: str) -> str:
         if own is not None and enclosing_manifest(absent) not in (None, own):
             return "package"
     return ""
+
+
+_DEPEND = re.compile(rb"<(?:\w+_)?depend\b[^>]*>\s*([^<\s]+)\s*</")
+
+
+def _hint(exc: BaseException, path: str) -> str:
+    """What more to say of a package or file the run lacks."""
+    if isinstance(exc, FileNotFoundError):
+        return (" (a file of another package, which the version found lacks: give --pkg-dir "
+                "DIR or --pkg-path NAME:=DIR for the version this file needs)")
+    manifest = enclosing_manifest(path)
+    if not isinstance(exc, PackageNotFound) or manifest is None:
+        return ""
+    try:
+        declared = {m.decode("utf-8", "replace") for m in _DEPEND.findall(read_regular(
+            str(manifest), MAX_BYTES))}
+    except InputError:
+        return ""
+    if exc.name in declared:
+        return ""
+    own = package_name(manifest) or manifest.parent.name
+    return (f"; the package.xml of '{own}' does not declare it: a dependency to declare, or a "
+            "package that was renamed")
 
 
 def _xacro_reason(exc: BaseException) -> str:
