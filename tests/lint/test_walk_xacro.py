@@ -167,6 +167,7 @@ def included(tmp_path, includer: str, *others: str) -> list[str]:
     ('<xacro:include filename="$(find pkg)/$(arg kind)/arm.xacro"/>', ["macros/arm.xacro"]),
     # a name that could be any file marks none; an unknown package, a comment neither
     ('<xacro:include filename="$(arg extras)"/>', []),
+    ('<xacro:include filename="$(find pkg)/macros/${robot}.xacro"/>', []),
     ('<xacro:include filename="$(find other)/macros/arm.xacro"/>', []),
     ('<!-- <xacro:include filename="parts/arm.xacro"/> -->', []),
 ])

@@ -11,8 +11,8 @@ relative to the including file's folder, ``$(find pkg)`` is the package's folder
 the expansion, see :func:`~txtool.io.packages.find_package`), ``$(dirname)`` the including
 file's folder, and any other ``$(...)`` or ``${...}`` (``${side}_arm.transmission.xacro``)
 stands for any text within one folder name, like the glob patterns xacro also takes. A name
-whose file part is nothing but such a placeholder (``$(arg extras)``) could be any file and
-marks none.
+whose file part is nothing but such placeholders and a suffix (``$(arg extras)``,
+``${robot}.urdf.xacro``) could be any file and marks none.
 """
 
 from __future__ import annotations
@@ -69,8 +69,17 @@ def _included(path: str, options: XacroOptions, packages: Packages) -> Iterator[
     for match in _INCLUDE.finditer(_COMMENT.sub(b"", data)):
         raw = (match.group(1) or match.group(2) or b"").decode("utf-8", "replace").strip()
         name = _resolved(raw, path, folder, options, packages)
-        if name is not None and os.path.basename(name).strip(_ANY):
+        if name is not None and _names_a_file(os.path.basename(name)):
             yield name
+
+
+def _names_a_file(base: str) -> bool:
+    """Whether a file name holds more than placeholders and a suffix (``${name}.urdf.xacro``
+    could be any robot)."""
+    stem = base.replace(_ANY, "")
+    for suffix in (".xacro", ".urdf", ".xml"):
+        stem = stem.removesuffix(suffix)
+    return bool(stem.strip("._-"))
 
 
 def _resolved(
