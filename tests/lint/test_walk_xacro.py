@@ -71,10 +71,10 @@ def package(tmp_path, monkeypatch):
 
 
 def not_found(root, name):
-    return (f"package '{name}' not found (looked in: the enclosing package 'my_robot' "
-            f"({root}/my_robot/package.xml); the packages below {root}; AMENT_PREFIX_PATH (unset); "
-            f"ROS_PACKAGE_PATH (unset); CMAKE_PREFIX_PATH (unset)); give --pkg-dir DIR or "
-            f"--pkg-path {name}:=DIR")
+    return (f"package '{name}' not found (looked in: AMENT_PREFIX_PATH (unset); "
+            f"ROS_PACKAGE_PATH (unset); the enclosing package 'my_robot' "
+            f"({root}/my_robot/package.xml); the packages below {root}; CMAKE_PREFIX_PATH "
+            f"(unset)); give --pkg-dir DIR or --pkg-path {name}:=DIR")
 
 
 ZERO = ("my_robot/urdf/left_arm.transmission.xacro:5:36: error TX106 zero-reduction: reduction of "
