@@ -26,8 +26,20 @@ def _pairs(values: tuple[str, ...], option: str) -> tuple[tuple[str, str], ...]:
 
 
 def xacro_options(function: Callable[..., Any]) -> Callable[..., Any]:
-    """``--xacro-arg``, ``--pkg-dir``, ``--pkg-path``, gathered into ``xacro=XacroOptions``."""
+    """``--xacro-arg``, ``--pkg-dir``, ``--pkg-path``, ``--xacro-env``, ``--trust-xacro``,
+    gathered into ``xacro=XacroOptions``.
 
+    ``--trust-xacro`` exists only here, on the command line: a pull request can add a
+    configuration file, never change the runner's command.
+    """
+
+    @click.option("--trust-xacro", "trust_xacro", is_flag=True,
+                  help="Run upstream xacro with full Python evaluation, environment and file "
+                       "access: only for files you trust (default: a restricted evaluator in "
+                       "a bounded process; see docs/security.md).")
+    @click.option("--xacro-env", "xacro_env", multiple=True, metavar="NAME",
+                  help="An environment variable $(env NAME) may read (repeatable; names that "
+                       "look like secrets are never read).")
     @click.option("--xacro-arg", "xacro_args", multiple=True, metavar="NAME:=VALUE",
                   help="A xacro argument (repeatable).")
     @click.option("--pkg-dir", "pkg_dirs", multiple=True, metavar="DIR",
@@ -36,13 +48,16 @@ def xacro_options(function: Callable[..., Any]) -> Callable[..., Any]:
     @click.option("--pkg-path", "pkg_paths", multiple=True, metavar="NAME:=DIR",
                   help="Where one package is, for $(find NAME) (repeatable).")
     @functools.wraps(function)
-    def wrapper(*args: Any, xacro_args, pkg_dirs, pkg_paths, **kwargs: Any) -> Any:
+    def wrapper(*args: Any, xacro_args, pkg_dirs, pkg_paths, xacro_env, trust_xacro,
+                **kwargs: Any) -> Any:
         options = XacroOptions(  # folders relative to where the command runs, not to the file
             args=_pairs(xacro_args, "--xacro-arg"),
             pkg_dirs=tuple(os.path.abspath(d) for d in pkg_dirs),
             pkg_paths=tuple(
                 (name, os.path.abspath(d)) for name, d in _pairs(pkg_paths, "--pkg-path")
             ),
+            trust=trust_xacro,
+            env=tuple(xacro_env),
         )
         return function(*args, xacro=options, **kwargs)
 

@@ -234,3 +234,4 @@ def _reset_xacro_state(xacro) -> None:
     # xacro keeps the include and macro stacks in module globals.
     with contextlib.suppress(Exception):
         xacro.init_stacks(None)
+        del xacro.all_includes[:]

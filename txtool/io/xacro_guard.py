@@ -122,7 +122,10 @@ class XacroGuard:
 
     # -- expressions -------------------------------------------------------------------------
     def safe_eval(self, expression: str, symbols: Any, _locals: Any = None) -> Any:
-        return evaluate(expression, symbols, self.attribute)
+        try:
+            return evaluate(expression, symbols, self.attribute)
+        except EvalRefused as exc:
+            raise _refusal(str(exc), expression.strip()) from None
 
     @staticmethod
     def attribute(value: Any, name: str) -> Any:
@@ -201,7 +204,13 @@ class XacroGuard:
         if isinstance(cause, Refusal | NodeLimit | MemoryError | RecursionError):
             raise cause
         if isinstance(cause, EvalRefused):
-            raise Refusal(str(cause)) from None
+            raise _refusal(str(cause), None) from None
+
+
+def _refusal(reason: str, expression: str | None) -> Refusal:
+    if "--trust-xacro" not in reason and "safety limit" not in reason:
+        reason += " (txtool's restricted xacro evaluator; see --trust-xacro)"
+    return Refusal(reason, needle=expression[:200] if expression else None)
 
 
 class _SubstitutionNames(Mapping[str, Any]):

@@ -20,20 +20,25 @@ line, ``path: xacro: expansion exceeded ... (a safety limit)``.
 
 from __future__ import annotations
 
+import atexit
+import contextlib
 import json
 import os
+import select
 import subprocess
 import sys
+import time
 from typing import Any
 
 from txtool.io.xmlio import MAX_BYTES, InputError, XacroOptions
 
 DEFAULT_TIMEOUT = 30.0
 DEFAULT_MEMORY_MB = 2048
-MAX_NODES = 2_000_000
+MAX_NODES = 500_000
 MAX_OUTPUT = MAX_BYTES
 PACKAGE_VARIABLES = ("AMENT_PREFIX_PATH", "ROS_PACKAGE_PATH", "CMAKE_PREFIX_PATH")
-_BOOT = "import sys; sys.path.insert(0, sys.argv[1]); from txtool.io.xacro_sandbox import main; main()"
+_BOOT = ("import sys, json; sys.path[:0] = json.loads(sys.argv[1]); "
+         "from txtool.io.xacro_sandbox import main; main()")
 
 
 class XacroLimit(InputError):
@@ -41,6 +46,14 @@ class XacroLimit(InputError):
 
     def __init__(self, path: str, what: str) -> None:
         super().__init__(f"{path}: xacro: expansion exceeded {what} (a safety limit)")
+
+
+class XacroRefused(InputError):
+    """An untrusted file asked for something the restricted expansion does not do."""
+
+    def __init__(self, path: str, line: int, reason: str) -> None:
+        super().__init__(f"{path}:{line}: xacro: {reason}")
+        self.reason = reason
 
 
 def _limit_from_environment(name: str, default: float) -> float:
@@ -76,74 +89,193 @@ def expand_in_sandbox(path: str, display: str, options: XacroOptions) -> str:
         "env": {name: os.environ[name] for name in options.env if name in os.environ},
         "seconds": seconds, "memory": memory,
     }
-    source_root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    environment = {k: os.environ[k] for k in PACKAGE_VARIABLES if k in os.environ}
-    child = subprocess.Popen(
-        [sys.executable, "-E", "-s", "-X", "utf8", "-c", _BOOT, source_root],
-        stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
-        env=environment, close_fds=True,
-    )
+    worker = _worker(memory)
     try:
-        output, _ = child.communicate(json.dumps(request).encode("utf-8"), timeout=seconds)
-    except subprocess.TimeoutExpired:
-        child.kill()
-        child.communicate()
+        reply, text = worker.ask(request, seconds)
+    except TimeoutError:
+        _retire(worker)
         raise XacroLimit(display, f"{seconds:g} seconds") from None
-    except BaseException:
-        child.kill()
-        child.wait()
-        raise
-    header, _, text = output.partition(b"\n")
-    try:
-        reply = json.loads(header)
-    except ValueError:
+    except (OSError, ValueError):
+        _retire(worker)
         raise XacroLimit(display, f"{memory} MiB of memory, or stopped abnormally "
-                         f"(exit status {child.returncode})") from None
+                         f"(exit status {worker.process.poll()})") from None
+    except BaseException:
+        _retire(worker)
+        raise
+    if reply.get("retire"):
+        _retire(worker)
     if "limit" in reply:
         raise XacroLimit(display, reply["limit"])
+    if "refused" in reply:
+        raise XacroRefused(display, reply.get("line", 1), reply["refused"])
     if "error" in reply:
         raise XacroError(display, reply["error"], reply.get("line", 1))
-    if len(text) > MAX_OUTPUT:
-        raise XacroLimit(display, f"{MAX_OUTPUT} bytes of output")
     return text.decode("utf-8")
+
+
+class _Worker:
+    """One child process, reused for every file this process expands (a start costs about a
+    tenth of a second); retired after a limit is hit, replaced on the next file."""
+
+    def __init__(self, memory: int) -> None:
+        self.owner = os.getpid()
+        self.memory = memory
+        self.process = subprocess.Popen(
+            [sys.executable, "-I", "-S", "-X", "utf8", "-c", _BOOT, json.dumps(_import_path())],
+            stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+            env=_child_environment(), close_fds=True, cwd=os.getcwd(),
+        )
+
+    def ask(self, request: dict[str, Any], seconds: float) -> tuple[dict[str, Any], bytes]:
+        """Send one request; the reply header and text. TimeoutError, OSError on EOF."""
+        assert self.process.stdin is not None and self.process.stdout is not None
+        self.process.stdin.write(json.dumps(request).encode("utf-8") + b"\n")
+        self.process.stdin.flush()
+        reader = _Reader(self.process.stdout.fileno(), time.monotonic() + seconds)
+        reply = json.loads(reader.line())
+        size = int(reply.get("size", 0))
+        if size > MAX_OUTPUT:
+            raise ValueError("oversized reply")
+        return reply, reader.exactly(size)
+
+    def close(self) -> None:
+        with contextlib.suppress(OSError):
+            if self.process.stdin is not None:
+                self.process.stdin.close()
+        try:
+            self.process.wait(timeout=1)
+        except subprocess.TimeoutExpired:
+            self.process.kill()
+            self.process.wait()
+        if self.process.stdout is not None:
+            self.process.stdout.close()
+
+
+class _Reader:
+    """Reads a child's standard output against a deadline."""
+
+    def __init__(self, fd: int, deadline: float) -> None:
+        self.fd = fd
+        self.deadline = deadline
+        self.buffer = bytearray()
+
+    def _more(self) -> None:
+        left = self.deadline - time.monotonic()
+        if left <= 0 or not select.select([self.fd], [], [], left)[0]:
+            raise TimeoutError
+        chunk = os.read(self.fd, 1 << 20)
+        if not chunk:
+            raise OSError("the xacro worker ended")
+        self.buffer += chunk
+
+    def line(self) -> bytes:
+        while b"\n" not in self.buffer:
+            if len(self.buffer) > 1 << 20:
+                raise ValueError("oversized header")
+            self._more()
+        line, _, rest = bytes(self.buffer).partition(b"\n")
+        self.buffer = bytearray(rest)
+        return line
+
+    def exactly(self, size: int) -> bytes:
+        while len(self.buffer) < size:
+            self._more()
+        return bytes(self.buffer[:size])
+
+
+_current: _Worker | None = None
+
+
+def _worker(memory: int) -> _Worker:
+    global _current
+    worker = _current
+    if worker is None or worker.owner != os.getpid() or worker.memory != memory \
+            or worker.process.poll() is not None:
+        if worker is not None and worker.owner == os.getpid():
+            _retire(worker)
+        if _current is None or _current.owner != os.getpid():
+            atexit.register(_close_current)
+        _current = worker = _Worker(memory)
+    return worker
+
+
+def _retire(worker: _Worker) -> None:
+    global _current
+    with contextlib.suppress(OSError):
+        worker.process.kill()
+    worker.close()
+    if _current is worker:
+        _current = None
+
+
+def _close_current() -> None:
+    if _current is not None and _current.owner == os.getpid():
+        _current.close()
+
+
+def _import_path() -> list[str]:
+    """Where the child finds txtool, xacro, yaml and lxml: the folders this process found them
+    in, so that ``-I -S`` (no environment, no site-packages .pth files run) still works."""
+    import lxml
+    import xacro
+    import yaml
+
+    folders = []
+    for module in (sys.modules["txtool"], xacro, yaml, lxml):
+        folder = os.path.dirname(os.path.dirname(os.path.abspath(module.__file__ or "")))
+        if folder not in folders:
+            folders.append(folder)
+    return folders
+
+
+def _child_environment() -> dict[str, str]:
+    return {k: os.environ[k] for k in PACKAGE_VARIABLES if k in os.environ}
 
 
 # -- the child ------------------------------------------------------------------------------
 
 def _set_limits(seconds: float, memory_mb: int) -> None:
+    """This request's limits: CPU time from now on, address space, no file written."""
     try:
         import resource
     except ImportError:  # not POSIX: the parent's timeout still holds
         return
-    cpu = int(seconds) + 1
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    cpu = int(usage.ru_utime + usage.ru_stime + seconds) + 2
     for limit, value in ((resource.RLIMIT_CPU, cpu), (resource.RLIMIT_FSIZE, 0),
                          (resource.RLIMIT_CORE, 0), (resource.RLIMIT_AS, memory_mb << 20)):
-        soft, hard = resource.getrlimit(limit)
+        _soft, hard = resource.getrlimit(limit)
         if hard != resource.RLIM_INFINITY:
             value = min(value, hard)
-        try:
+        with contextlib.suppress(ValueError, OSError):
             resource.setrlimit(limit, (value, hard))
-        except (ValueError, OSError):
-            pass
 
 
-def _count_clones() -> None:
-    """Count the nodes xacro creates (cloneNode for macro bodies and blocks, parsed includes)."""
-    import xml.dom.minidom as minidom
+class _CloneCounter:
+    """Counts the nodes xacro creates by cloning (macro bodies, blocks), against MAX_NODES."""
 
-    from txtool.io.xacro_guard import NodeLimit
-
-    original = minidom._clone_node  # type: ignore[attr-defined]
     budget = MAX_NODES
+    installed = False
 
-    def clone(node: Any, deep: bool, new_owner: Any) -> Any:
-        nonlocal budget
-        budget -= 1
-        if budget < 0:
-            raise NodeLimit
-        return original(node, deep, new_owner)
+    @classmethod
+    def reset(cls) -> None:
+        import xml.dom.minidom as minidom
 
-    minidom._clone_node = clone  # type: ignore[attr-defined]
+        from txtool.io.xacro_guard import NodeLimit
+
+        cls.budget = MAX_NODES
+        if cls.installed:
+            return
+        original = minidom._clone_node  # type: ignore[attr-defined]
+
+        def clone(node: Any, deep: bool, new_owner: Any) -> Any:
+            cls.budget -= 1
+            if cls.budget < 0:
+                raise NodeLimit
+            return original(node, deep, new_owner)
+
+        minidom._clone_node = clone  # type: ignore[attr-defined]
+        cls.installed = True
 
 
 def _line_of(path: str, needle: str | None) -> int:
@@ -159,22 +291,38 @@ def _line_of(path: str, needle: str | None) -> int:
 
 
 def _answer(header: dict[str, Any], text: str = "") -> None:
+    data = text.encode("utf-8")
+    if len(data) > MAX_OUTPUT:
+        header, data = {"limit": f"{MAX_OUTPUT} bytes of output"}, b""
+    header["size"] = len(data)
     out = sys.stdout.buffer
     out.write(json.dumps(header).encode("utf-8") + b"\n")
-    out.write(text.encode("utf-8"))
+    out.write(data)
     out.flush()
 
 
 def main() -> None:
-    """The child: read the request, expand under the guard, answer header + text."""
+    """The child: answer each request line with a header line and the expanded text."""
     import io
 
-    request = json.loads(sys.stdin.buffer.read())
-    _set_limits(request["seconds"], request["memory"])
     sys.stderr = io.StringIO()  # xacro.warning(...) and friends: nobody reads it
+    from txtool.io import xacro as _xacro  # noqa: F401  (imported before the limits)
+    from txtool.io import xacro_guard as _guard  # noqa: F401
+
+    for line in sys.stdin.buffer:
+        request = json.loads(line)
+        sys.stderr = io.StringIO()
+        header, text = _expand(request)
+        _answer(header, text)
+        if header.get("retire"):
+            return
+
+
+def _expand(request: dict[str, Any]) -> tuple[dict[str, Any], str]:
     from txtool.io.xacro import XacroError, expand_text
     from txtool.io.xacro_guard import NodeLimit, Refusal, XacroGuard
 
+    _set_limits(request["seconds"], request["memory"])
     options = XacroOptions(
         args=tuple(tuple(pair) for pair in request["args"]),  # type: ignore[misc]
         pkg_dirs=tuple(request["pkg_dirs"]),
@@ -182,25 +330,18 @@ def main() -> None:
         env=tuple(request["env_names"]),
     )
     path, display = request["path"], request["display"]
-    _count_clones()
+    _CloneCounter.reset()
     try:
         guard = XacroGuard(path, options, request["env"])
-        text = expand_text(path, display, options, guard)
+        return {"ok": True}, expand_text(path, display, options, guard)
     except Refusal as exc:
-        _answer({"error": exc.reason, "line": _line_of(path, exc.needle)})
-        return
+        return {"refused": exc.reason, "line": _line_of(path, exc.needle)}, ""
     except XacroError as exc:
-        _answer({"error": exc.reason, "line": exc.line})
-        return
+        return {"error": exc.reason, "line": exc.line}, ""
     except (NodeLimit, MemoryError, RecursionError) as exc:
         what = {NodeLimit: f"{MAX_NODES} XML nodes", MemoryError: f"{request['memory']} MiB "
                 "of memory", RecursionError: "Python's recursion limit (macros nested too deep)"}
-        _answer({"limit": what[type(exc)]})
-        return
+        return {"limit": what[type(exc)], "retire": True}, ""
     except Exception as exc:  # reported as the parent reports its own internal errors
-        _answer({"error": f"internal error in the xacro sandbox: {type(exc).__name__}: {exc}"})
-        return
-    if len(text.encode("utf-8")) > MAX_OUTPUT:
-        _answer({"limit": f"{MAX_OUTPUT} bytes of output"})
-        return
-    _answer({"ok": True}, text)
+        return {"error": f"internal error in the xacro sandbox: {type(exc).__name__}: {exc}",
+                "retire": True}, ""
