@@ -1,10 +1,12 @@
 """Untrusted xacro expansion: a child process, an empty environment, bounded in every way.
 
-The parent (:func:`expand_in_sandbox`) starts ``python -E -s`` with no environment variable
-but the ROS package paths ``$(find)`` reads (``AMENT_PREFIX_PATH``, ``ROS_PACKAGE_PATH``,
-``CMAKE_PREFIX_PATH``), sends the request on its standard input (the values of the variables
-``xacro-env`` allows ride along in it) and reads back one JSON header line and the expanded
-text. The child (:func:`main`) sets its limits before it reads the file:
+The parent (:func:`expand_in_sandbox`) starts ``python -I -S`` with an empty environment
+(and no site-packages ``.pth`` file run), once per process, and sends it one request per file
+on its standard input: the file, the xacro options, the values of the variables ``xacro-env``
+allows and of the ROS package paths ``$(find)`` reads (``AMENT_PREFIX_PATH``,
+``ROS_PACKAGE_PATH``, ``CMAKE_PREFIX_PATH``); nothing else of the parent's environment ever
+reaches it. It reads back one JSON header line and the expanded text. For each request the
+child (:func:`main`) sets its limits before it reads the file:
 
 - wall time: :data:`DEFAULT_TIMEOUT` seconds (``TXTOOL_XACRO_TIMEOUT``), the parent kills it
   then; CPU time the same, as a backstop;
@@ -79,6 +81,7 @@ def limits() -> tuple[float, int]:
 
 def expand_in_sandbox(path: str, display: str, options: XacroOptions) -> str:
     """The expanded text of ``path``; :class:`XacroError` or :class:`XacroLimit` if none."""
+    from txtool.io import xacro as xacro_support
     from txtool.io.xacro import XacroError
 
     seconds, memory = limits()
@@ -87,7 +90,8 @@ def expand_in_sandbox(path: str, display: str, options: XacroOptions) -> str:
         "args": options.args, "pkg_dirs": options.pkg_dirs, "pkg_paths": options.pkg_paths,
         "env_names": options.env,
         "env": {name: os.environ[name] for name in options.env if name in os.environ},
-        "seconds": seconds, "memory": memory,
+        "seconds": seconds, "memory": memory, "max_read": xacro_support.MAX_READ,
+        "package_paths": {k: os.environ[k] for k in PACKAGE_VARIABLES if k in os.environ},
     }
     worker = _worker(memory)
     try:
@@ -123,7 +127,7 @@ class _Worker:
         self.process = subprocess.Popen(
             [sys.executable, "-I", "-S", "-X", "utf8", "-c", _BOOT, json.dumps(_import_path())],
             stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
-            env=_child_environment(), close_fds=True, cwd=os.getcwd(),
+            env={}, close_fds=True, cwd=os.getcwd(),
         )
 
     def ask(self, request: dict[str, Any], seconds: float) -> tuple[dict[str, Any], bytes]:
@@ -228,10 +232,6 @@ def _import_path() -> list[str]:
     return folders
 
 
-def _child_environment() -> dict[str, str]:
-    return {k: os.environ[k] for k in PACKAGE_VARIABLES if k in os.environ}
-
-
 # -- the child ------------------------------------------------------------------------------
 
 def _set_limits(seconds: float, memory_mb: int) -> None:
@@ -319,10 +319,15 @@ def main() -> None:
 
 
 def _expand(request: dict[str, Any]) -> tuple[dict[str, Any], str]:
+    from txtool.io import xacro as xacro_support
     from txtool.io.xacro import XacroError, expand_text
     from txtool.io.xacro_guard import NodeLimit, Refusal, XacroGuard
 
+    xacro_support.MAX_READ = request["max_read"]  # the parent's: one limit, set in one place
     _set_limits(request["seconds"], request["memory"])
+    for variable in PACKAGE_VARIABLES:  # what $(find) reads, as the parent has them now
+        os.environ.pop(variable, None)
+    os.environ.update(request["package_paths"])
     options = XacroOptions(
         args=tuple(tuple(pair) for pair in request["args"]),  # type: ignore[misc]
         pkg_dirs=tuple(request["pkg_dirs"]),
