@@ -59,14 +59,16 @@ class SafeFunction:
         return f"<function {self.name}>"
 
 
+_TOO_LONG = f"a value of more than {MAX_LENGTH} items (a safety limit)"
+_TOO_BIG = f"a number over {MAX_INT_BITS} bits (a safety limit)"
+
+
 def _refuse_large(value: Any) -> Any:
-    if isinstance(value, bool):
-        return value
-    if isinstance(value, int) and value.bit_length() > MAX_INT_BITS:
-        raise EvalRefused(f"a number over {MAX_INT_BITS} bits (a safety limit)")
-    if isinstance(value, str | bytes | list | tuple | set | frozenset | dict | range):
-        if len(value) > MAX_LENGTH:
-            raise EvalRefused(f"a value of more than {MAX_LENGTH} items (a safety limit)")
+    if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > MAX_INT_BITS:
+        raise EvalRefused(_TOO_BIG)
+    sized = isinstance(value, str | bytes | list | tuple | set | frozenset | dict | range)
+    if sized and len(value) > MAX_LENGTH:
+        raise EvalRefused(_TOO_LONG)
     return value
 
 
@@ -92,7 +94,7 @@ def deep_size(value: Any, budget: int = MAX_LENGTH) -> int:
 
 def _refuse_deep(value: Any) -> Any:
     if isinstance(value, list | tuple | set | frozenset | dict) and deep_size(value) > MAX_LENGTH:
-        raise EvalRefused(f"a value of more than {MAX_LENGTH} items (a safety limit)")
+        raise EvalRefused(_TOO_LONG)
     return value
 
 
@@ -106,22 +108,24 @@ def _sized(value: Any) -> int | None:
 
 def _check_binop(op: ast.operator, left: Any, right: Any) -> None:
     """Refuse, before computing it, a result that would be too large."""
-    if isinstance(op, ast.Pow) and isinstance(left, int) and isinstance(right, int):
-        if right > 0 and _int_size(left) > 1 and _int_size(left) * right > MAX_INT_BITS:
-            raise EvalRefused(f"a number over {MAX_INT_BITS} bits (a safety limit)")
+    if isinstance(op, ast.Pow):
+        base, exponent = _int_size(left), right if isinstance(right, int) else 0
+        if base > 1 and exponent > 0 and base * exponent > MAX_INT_BITS:
+            raise EvalRefused(_TOO_BIG)
     elif isinstance(op, ast.Mult):
-        for seq, count in ((left, right), (right, left)):
-            if _sized(seq) is not None and isinstance(count, int):
-                if _sized(seq) * max(count, 0) > MAX_LENGTH:  # type: ignore[operator]
-                    raise EvalRefused(f"a value of more than {MAX_LENGTH} items (a safety limit)")
+        for sequence, count in ((left, right), (right, left)):
+            size = _sized(sequence)
+            if size is not None and isinstance(count, int) and size * max(count, 0) > MAX_LENGTH:
+                raise EvalRefused(_TOO_LONG)
         if _int_size(left) + _int_size(right) > MAX_INT_BITS:
-            raise EvalRefused(f"a number over {MAX_INT_BITS} bits (a safety limit)")
+            raise EvalRefused(_TOO_BIG)
     elif isinstance(op, ast.LShift) and isinstance(right, int):
         if _int_size(left) + max(right, 0) > MAX_INT_BITS:
-            raise EvalRefused(f"a number over {MAX_INT_BITS} bits (a safety limit)")
-    elif isinstance(op, ast.Add) and _sized(left) is not None and _sized(right) is not None:
-        if _sized(left) + _sized(right) > MAX_LENGTH:  # type: ignore[operator]
-            raise EvalRefused(f"a value of more than {MAX_LENGTH} items (a safety limit)")
+            raise EvalRefused(_TOO_BIG)
+    elif isinstance(op, ast.Add):
+        sizes = _sized(left), _sized(right)
+        if sizes[0] is not None and sizes[1] is not None and sum(sizes) > MAX_LENGTH:  # type: ignore[arg-type]
+            raise EvalRefused(_TOO_LONG)
     elif isinstance(op, ast.Mod) and isinstance(left, str):
         _check_percent_format(left)
 
@@ -162,14 +166,14 @@ def _safe_replace(text: str, old: str, new: str, count: int = -1) -> str:
     if count >= 0:
         found = min(found, count)
     if len(text) + found * max(len(new) - len(old), 0) > MAX_LENGTH:
-        raise EvalRefused(f"a value of more than {MAX_LENGTH} items (a safety limit)")
+        raise EvalRefused(_TOO_LONG)
     return text.replace(old, new, count)
 
 
 def _safe_join(separator: str, items: Any) -> str:
     items = list(items)
     if deep_size(items) + len(separator) * len(items) > MAX_LENGTH:
-        raise EvalRefused(f"a value of more than {MAX_LENGTH} items (a safety limit)")
+        raise EvalRefused(_TOO_LONG)
     return separator.join(items)
 
 
@@ -196,8 +200,9 @@ STR_METHODS: dict[str, Callable[..., Any]] = {
         "removesuffix",
     )
 }
-STR_METHODS.update(format=_safe_format, join=_safe_join, replace=_safe_replace, center=_padded("center"),
-                   ljust=_padded("ljust"), rjust=_padded("rjust"), zfill=_padded("zfill"))
+STR_METHODS.update(format=_safe_format, join=_safe_join, replace=_safe_replace,
+                   center=_padded("center"), ljust=_padded("ljust"), rjust=_padded("rjust"),
+                   zfill=_padded("zfill"))
 SEQUENCE_METHODS = {"index": "index", "count": "count"}
 DICT_METHODS = {"keys": "keys", "values": "values", "items": "items", "get": "get"}
 

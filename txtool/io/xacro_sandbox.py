@@ -36,7 +36,7 @@ from txtool.io.xmlio import MAX_BYTES, InputError, XacroOptions
 
 DEFAULT_TIMEOUT = 30.0
 DEFAULT_MEMORY_MB = 2048
-MAX_NODES = 500_000
+MAX_NODES = 200_000
 MAX_OUTPUT = MAX_BYTES
 PACKAGE_VARIABLES = ("AMENT_PREFIX_PATH", "ROS_PACKAGE_PATH", "CMAKE_PREFIX_PATH")
 _BOOT = ("import sys, json; sys.path[:0] = json.loads(sys.argv[1]); "
