@@ -59,9 +59,21 @@ def xacro_options(function: Callable[..., Any]) -> Callable[..., Any]:
             trust=trust_xacro,
             env=tuple(xacro_env),
         )
+        if not (trust_xacro or kwargs.get("no_xacro")) and _names_a_xacro_file(kwargs.values()):
+            from txtool.io.xacro_sandbox import prestart
+
+            prestart()
         return function(*args, xacro=options, **kwargs)
 
     return wrapper
+
+
+def _names_a_xacro_file(values: Any) -> bool:
+    for value in values:
+        names = value if isinstance(value, tuple | list) else (value,)
+        if any(isinstance(name, str) and is_xacro(name) for name in names):
+            return True
+    return False
 
 
 NO_XACRO_OPTION = click.option(

@@ -117,6 +117,12 @@ def expand_in_sandbox(path: str, display: str, options: XacroOptions) -> str:
     return text.decode("utf-8")
 
 
+def prestart() -> None:
+    """Start the worker now, so that it boots while this process loads the command's code."""
+    with contextlib.suppress(InputError, OSError):
+        _worker(limits()[1])
+
+
 class _Worker:
     """One child process, reused for every file this process expands (a start costs about a
     tenth of a second); retired after a limit is hit, replaced on the next file."""
