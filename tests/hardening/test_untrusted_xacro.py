@@ -362,3 +362,24 @@ def test_corpus_validate_reports_the_same_in_both_modes():
     trusted = run("validate", "--format", "json", "--trust-xacro", *paths)
     assert json.loads(safe[1]) == json.loads(trusted[1])
     assert safe[0] == trusted[0]
+
+
+def test_a_package_path_is_a_root_only_when_it_is_a_package(repo):
+    err = refused(repo, '<xacro:include filename="$(find fake)/passwd"/>',
+                  "--pkg-path", "fake:=/etc")
+    assert "include of '/etc/passwd' is outside the repository" in err
+
+
+def test_no_configuration_file_can_trust_xacro(repo):
+    (repo / ".txtool.toml").write_text("trust-xacro = true\n")
+    path = repo / "robot.urdf.xacro"
+    path.write_text(robot('<link name="${python.type(1)}"/>'))
+    code, out, err, _ = run("validate", str(path))
+    assert code == 2 and "trust-xacro" in err and "python" not in out
+
+
+@pytest.mark.parametrize("command", ["validate", "show", "convert", "migrate", "map",
+                                     "roundtrip", "simulate"])
+def test_every_command_that_reads_xacro_takes_trust_xacro(command):
+    result = CliRunner().invoke(cli, [command, "--help"])
+    assert "--trust-xacro" in result.stdout
