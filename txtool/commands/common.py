@@ -60,12 +60,23 @@ def xacro_options(function: Callable[..., Any]) -> Callable[..., Any]:
             env=tuple(xacro_env),
         )
         if not (trust_xacro or kwargs.get("no_xacro")) and _names_a_xacro_file(kwargs.values()):
-            from txtool.io.xacro_sandbox import prestart
-
-            prestart()
+            _prestart_sandbox()
         return function(*args, xacro=options, **kwargs)
 
     return wrapper
+
+
+def _prestart_sandbox() -> None:
+    """Boot the xacro worker while the command loads (unless the environment turns xacro off:
+    then nothing of xacro is even imported)."""
+    from txtool.lint.config_files import ConfigError, no_xacro_from_environment
+
+    with contextlib.suppress(ConfigError):
+        if no_xacro_from_environment():
+            return
+        from txtool.io.xacro_sandbox import prestart
+
+        prestart()
 
 
 def _names_a_xacro_file(values: Any) -> bool:

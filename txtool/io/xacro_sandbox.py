@@ -224,17 +224,18 @@ def _close_current() -> None:
 
 
 def _import_path() -> list[str]:
-    """Where the child finds txtool, xacro, yaml and lxml: the folders this process found them
-    in, so that ``-I -S`` (no environment, no site-packages .pth files run) still works."""
-    import lxml
-    import xacro
-    import yaml
+    """Where the child finds txtool, xacro, yaml and lxml: the folders this process finds them
+    in (without importing them here), so that ``-I -S`` (no environment, no site-packages
+    ``.pth`` file run) still works."""
+    import importlib.util
 
-    folders = []
-    for module in (sys.modules["txtool"], xacro, yaml, lxml):
-        folder = os.path.dirname(os.path.dirname(os.path.abspath(module.__file__ or "")))
-        if folder not in folders:
-            folders.append(folder)
+    folders = [os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))]
+    for name in ("xacro", "yaml", "lxml"):
+        spec = importlib.util.find_spec(name)
+        if spec is not None and spec.origin:
+            folder = os.path.dirname(os.path.dirname(os.path.abspath(spec.origin)))
+            if folder not in folders:
+                folders.append(folder)
     return folders
 
 
