@@ -13,7 +13,7 @@ and knows only:
   namespaces; never ``type``, ``vars``, ``isinstance``, ``issubclass``, ``hash``);
 - attributes: namespaces (``math.pi``, ``xacro.load_yaml``, an include's ``ns``), keys of a
   loaded YAML dictionary (``limits.upper``, xacro's ``YamlDictWrapper``), and a few methods of
-  strings, lists and dicts (:data:`STR_METHODS`, ...); never a name starting with ``_``.
+  strings, lists and dicts (:data:`STR_METHODS`, ...); never a name starting with ``__``.
 
 No lambda, comprehension, walrus, starred call or keyword splat. Sizes are bounded: integers
 to :data:`MAX_INT_BITS` bits, strings and sequences to :data:`MAX_LENGTH` items, before they
@@ -311,7 +311,7 @@ class Evaluator:
             raise NameError(f"name '{node.id}' is not defined") from None
 
     def _Attribute(self, node: ast.Attribute) -> Any:
-        if node.attr.startswith("_"):
+        if node.attr.startswith("__"):  # (a YAML key may start with one underscore)
             raise EvalRefused(f"the attribute '{node.attr}' is not allowed")
         return self.attribute(self.run(node.value), node.attr)
 
@@ -440,7 +440,7 @@ def _describe(node: ast.AST) -> str:
 
 
 def _describe_value(value: Any) -> str:
-    return f"a {type(value).__name__}"
+    return f"a value of type '{type(value).__name__}'"
 
 
 def _div(left: Any, right: Any) -> Any:
