@@ -208,6 +208,7 @@ def test_files_outside_the_repository_are_refused(repo, tmp_path):
 
 DENIAL_OF_SERVICE = {
     "exponent": ('<link name="${9**9**9}"/>', "a number over 4096 bits (a safety limit)"),
+    "eval exponent": ('<link name="$(eval 9**9**9)"/>', ":4: xacro: a number over 4096 bits"),
     "pow()": ('<link name="${python.pow(10, 10**8)}"/>', "a number over 4096 bits"),
     "shift": ('<link name="${1 &lt;&lt; 10**9}"/>', "a number over 4096 bits"),
     "string repetition": ('<link name="${\'a\' * 10**10}"/>', "more than 1000000 items"),

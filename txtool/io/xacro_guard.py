@@ -118,7 +118,10 @@ class XacroGuard:
             "env": self.env, "optenv": self.optenv, "find": self.find,
         }
         names.update({k: SafeFunction(k, f) for k, f in functions.items()})
-        return str(evaluate(text, _SubstitutionNames(args, names), self.attribute))
+        try:
+            return str(evaluate(text, _SubstitutionNames(args, names), self.attribute))
+        except EvalRefused as exc:
+            raise _refusal(str(exc), "$(eval " + text.strip()) from None
 
     # -- expressions -------------------------------------------------------------------------
     def safe_eval(self, expression: str, symbols: Any, _locals: Any = None) -> Any:
