@@ -45,7 +45,10 @@ def test_validate_imports_nothing_heavy(tmp_path, output_format):
 def test_validate_of_xacro_imports_nothing_heavy(tmp_path):
     robot = tmp_path / "robot.urdf.xacro"
     robot.write_text(BROKEN.replace("<robot", '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"'))
-    probe = run_validate(str(robot))
+    probe = run_validate(str(robot))  # expanded in the sandbox's child process
+    assert probe["code"] == 1 and "xacro" not in probe["loaded"]
+    assert [name for name in HEAVY if name in probe["loaded"]] == []
+    probe = run_validate("--trust-xacro", str(robot))  # expanded here
     assert probe["code"] == 1 and "xacro" in probe["loaded"]
     assert [name for name in HEAVY if name in probe["loaded"]] == []
 

@@ -12,7 +12,7 @@ from typing import Any
 import click
 
 from txtool.io.printable import printable
-from txtool.io.xmlio import InputError, XacroOptions
+from txtool.io.xmlio import InputError, XacroOptions, is_xacro
 
 
 class Choice(click.Choice):
@@ -53,8 +53,20 @@ def _pairs(values: tuple[str, ...], option: str) -> tuple[tuple[str, str], ...]:
 
 
 def xacro_options(function: Callable[..., Any]) -> Callable[..., Any]:
-    """``--xacro-arg``, ``--pkg-dir``, ``--pkg-path``, gathered into ``xacro=XacroOptions``."""
+    """``--xacro-arg``, ``--pkg-dir``, ``--pkg-path``, ``--xacro-env``, ``--trust-xacro``,
+    gathered into ``xacro=XacroOptions``.
 
+    ``--trust-xacro`` exists only here, on the command line: a pull request can add a
+    configuration file, never change the runner's command.
+    """
+
+    @click.option("--trust-xacro", "trust_xacro", is_flag=True,
+                  help="Run upstream xacro with full Python evaluation, environment and file "
+                       "access: only for files you trust (default: a restricted evaluator in "
+                       "a bounded process; see docs/security.md).")
+    @click.option("--xacro-env", "xacro_env", multiple=True, metavar="NAME",
+                  help="An environment variable $(env NAME) may read (repeatable; names that "
+                       "look like secrets are never read).")
     @click.option("--xacro-arg", "xacro_args", multiple=True, metavar="NAME:=VALUE",
                   help="A xacro argument (repeatable).")
     @click.option("--pkg-dir", "pkg_dirs", multiple=True, metavar="DIR",
@@ -63,17 +75,43 @@ def xacro_options(function: Callable[..., Any]) -> Callable[..., Any]:
     @click.option("--pkg-path", "pkg_paths", multiple=True, metavar="NAME:=DIR",
                   help="Where one package is, for $(find NAME) (repeatable).")
     @functools.wraps(function)
-    def wrapper(*args: Any, xacro_args, pkg_dirs, pkg_paths, **kwargs: Any) -> Any:
+    def wrapper(*args: Any, xacro_args, pkg_dirs, pkg_paths, xacro_env, trust_xacro,
+                **kwargs: Any) -> Any:
         options = XacroOptions(  # folders relative to where the command runs, not to the file
             args=_pairs(xacro_args, "--xacro-arg"),
             pkg_dirs=tuple(os.path.abspath(d) for d in pkg_dirs),
             pkg_paths=tuple(
                 (name, os.path.abspath(d)) for name, d in _pairs(pkg_paths, "--pkg-path")
             ),
+            trust=trust_xacro,
+            env=tuple(xacro_env),
         )
+        if not (trust_xacro or kwargs.get("no_xacro")) and _names_a_xacro_file(kwargs.values()):
+            _prestart_sandbox()
         return function(*args, xacro=options, **kwargs)
 
     return wrapper
+
+
+def _prestart_sandbox() -> None:
+    """Boot the xacro worker while the command loads (unless the environment turns xacro off:
+    then nothing of xacro is even imported)."""
+    from txtool.lint.config_files import ConfigError, no_xacro_from_environment
+
+    with contextlib.suppress(ConfigError):
+        if no_xacro_from_environment():
+            return
+        from txtool.io.xacro_sandbox import prestart
+
+        prestart()
+
+
+def _names_a_xacro_file(values: Any) -> bool:
+    for value in values:
+        names = value if isinstance(value, tuple | list) else (value,)
+        if any(isinstance(name, str) and is_xacro(name) for name in names):
+            return True
+    return False
 
 
 NO_XACRO_OPTION = click.option(

@@ -43,9 +43,11 @@ def _mode(check: bool, diff: bool, write: bool) -> str:
                    "comment before it, so that migrating back gives its bytes back.")
 @click.option("--no-xacro", is_flag=True,
               help="Accepted for uniformity with the other commands: migrate never runs xacro.")
+@click.option("--trust-xacro", is_flag=True,
+              help="Accepted for uniformity with the other commands: migrate never runs xacro.")
 @exit_on_input_error
 def command(paths, target, check, diff, write, select, ignore, config_path, allow_lossy,
-            hardware_plugin, reversible, no_xacro) -> int:
+            hardware_plugin, reversible, no_xacro, trust_xacro) -> int:
     """Apply the fixable rules (and, with --to, the conversion) to files and folders in place.
 
     Folders are searched like validate does (*.urdf, *.xacro, robot *.xml). xacro files are

@@ -1,4 +1,7 @@
-"""In-process xacro expansion with the ``xacro`` package: no ROS install needed.
+"""xacro expansion with the ``xacro`` package: no ROS install needed.
+
+Untrusted by default: see :mod:`txtool.io.xacro_sandbox` and :mod:`txtool.io.xacro_guard`;
+``--trust-xacro`` runs upstream xacro in this process.
 
 ``$(find pkg)`` is resolved as in a ROS workspace, without flags: see :mod:`txtool.io.packages`.
 
@@ -16,8 +19,8 @@ import os
 import re
 import xml.dom.minidom
 import xml.parsers.expat
-from collections.abc import Callable
-from typing import Any
+from collections.abc import Callable, Iterator
+from typing import TYPE_CHECKING, Any
 
 from lxml import etree
 
@@ -39,6 +42,9 @@ from txtool.io.xmlio import (
     read_regular,
 )
 
+if TYPE_CHECKING:
+    from txtool.io.xacro_guard import XacroGuard
+
 MAX_DEPTH = 256  # libxml2's limit without huge_tree, so both parsers agree
 MAX_READ = MAX_BYTES  # what one expansion may read in all: the top file and every include
 
@@ -59,7 +65,28 @@ class XacroError(InputError):
 
 
 def expand_xacro(path: str, display: str, options: XacroOptions) -> etree._ElementTree:
-    """Expand ``path`` and parse the result safely."""
+    """Expand ``path`` and parse the result safely.
+
+    By default in a bounded child process with the restricted evaluator
+    (:mod:`txtool.io.xacro_sandbox`); with ``options.trust`` (``--trust-xacro``) here, by
+    upstream xacro with its own Python evaluation.
+    """
+    if options.trust:
+        text = expand_text(path, display, options)
+    else:
+        from txtool.io.xacro_sandbox import expand_in_sandbox
+
+        text = expand_in_sandbox(path, display, options)
+    try:
+        return parse_bytes(text.encode("utf-8"), display)
+    except XMLSyntax as exc:
+        raise XacroError(display, f"expanded document is not XML: {exc.reason}") from None
+
+
+def expand_text(path: str, display: str, options: XacroOptions,
+                guard: XacroGuard | None = None) -> str:
+    """The expansion of ``path`` as text, in this process: upstream xacro, or with ``guard``
+    its hooks installed (restricted evaluator, allowed environment, files inside the roots)."""
     import xacro
     from xacro import substitution_args
 
@@ -68,14 +95,16 @@ def expand_xacro(path: str, display: str, options: XacroOptions) -> etree._Eleme
 
     saved_find, saved_parse = substitution_args._eval_find, xacro.parse
     substitution_args._eval_find = eval_find
-    xacro.parse = _checked_parse(saved_parse, xacro)
+    xacro.parse = _checked_parse(saved_parse, xacro, guard)
     stderr = io.StringIO()
     try:
-        with contextlib.redirect_stderr(stderr), _quiet_cwd():
+        with contextlib.redirect_stderr(stderr), _quiet_cwd(), _installed(guard):
             doc = xacro.process_file(os.path.abspath(path), mappings=dict(options.args))
-            text = doc.toxml()
+            return str(doc.toxml())
     except Exception as exc:  # xacro raises many kinds, all user-facing
         cause = _root_cause(exc)
+        if guard is not None:
+            guard.reraise_refusal(cause)
         missing = _missing(cause, path)
         reason = _xacro_reason(cause) + (_hint(cause, path) if missing else "")
         raise XacroError(display, reason, missing=missing) from None
@@ -83,10 +112,15 @@ def expand_xacro(path: str, display: str, options: XacroOptions) -> etree._Eleme
         substitution_args._eval_find = saved_find
         xacro.parse = saved_parse
         _reset_xacro_state(xacro)
-    try:
-        return parse_bytes(text.encode("utf-8"), display)
-    except XMLSyntax as exc:
-        raise XacroError(display, f"expanded document is not XML: {exc.reason}") from None
+
+
+@contextlib.contextmanager
+def _installed(guard: XacroGuard | None) -> Iterator[None]:
+    if guard is None:
+        yield
+        return
+    with guard.installed():
+        yield
 
 
 class UnsafeXML(Exception):
@@ -96,11 +130,13 @@ class UnsafeXML(Exception):
         super().__init__(f"{path}:{line}: {reason}")
 
 
-def _checked_parse(original: Callable[..., Any], xacro: Any) -> Callable[..., Any]:
+def _checked_parse(original: Callable[..., Any], xacro: Any,
+                   guard: XacroGuard | None) -> Callable[..., Any]:
     """xacro's ``parse(inp, filename)``, reading files as bytes checked by refuse_unsafe_xml.
 
     Only regular files are read, and at most :data:`MAX_READ` bytes in all: a device or FIFO
-    included, or a file included over and over, cannot exhaust memory or block forever.
+    included, or a file included over and over, cannot exhaust memory or block forever. With a
+    guard, only files inside its roots (the repository and the packages ``$(find)`` found).
     """
     budget = MAX_READ
 
@@ -109,6 +145,8 @@ def _checked_parse(original: Callable[..., Any], xacro: Any) -> Callable[..., An
         if inp is not None or filename is None:
             return original(inp, filename)
         path = os.path.join(xacro.root_dir, filename)
+        if guard is not None:
+            guard.check_readable(path, "include")
         if not os.path.exists(path):
             return original(inp, filename)  # xacro reports a missing file its own way
         try:
@@ -249,3 +287,4 @@ def _reset_xacro_state(xacro) -> None:
     # xacro keeps the include and macro stacks in module globals.
     with contextlib.suppress(Exception):
         xacro.init_stacks(None)
+        del xacro.all_includes[:]

@@ -334,6 +334,8 @@ class XacroOptions(NamedTuple):
     args: tuple[tuple[str, str], ...] = ()
     pkg_dirs: tuple[str, ...] = ()
     pkg_paths: tuple[tuple[str, str], ...] = ()
+    trust: bool = False  # --trust-xacro: upstream xacro, in process; never from a file
+    env: tuple[str, ...] = ()  # names $(env)/$(optenv) may read (xacro-env)
 
 
 def serialize(tree: etree._ElementTree, original: bytes | None = None) -> bytes:

@@ -67,6 +67,7 @@ class Values:
     pkg_dirs: list[str] | tuple[str, ...] = ()
     pkg_paths: dict[str, str] = field(default_factory=dict)
     no_xacro: bool = False
+    xacro_env: list[str] | tuple[str, ...] = ()
     exclude: list[str] | tuple[str, ...] = ()
     extend_exclude: list[str] | tuple[str, ...] = ()
     respect_gitignore: bool = True
@@ -206,6 +207,7 @@ def resolve(
             args=tuple(config.xacro_args.items()),
             pkg_dirs=tuple(str(folder / d) for d in config.pkg_dirs),
             pkg_paths=tuple((name, str(folder / d)) for name, d in config.pkg_paths.items()),
+            env=tuple(config.xacro_env),
         ),
         no_xacro=config.no_xacro,
         origin=origin,
@@ -387,5 +389,7 @@ class SettingsCache:
             args=settings.xacro.args,
             pkg_dirs=extra.pkg_dirs + settings.xacro.pkg_dirs,
             pkg_paths=extra.pkg_paths + settings.xacro.pkg_paths,
+            trust=extra.trust,  # the command line only, never a file
+            env=extra.env + settings.xacro.env,
         )
         return dataclasses.replace(settings, xacro=xacro)

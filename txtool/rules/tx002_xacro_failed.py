@@ -1,6 +1,7 @@
 """xacro could not expand the file: an error in it, or an argument or package this run lacks.
 
-Produced by the pipeline when in-process xacro expansion fails; the finding points at the
+Produced by the pipeline when the xacro expansion fails (by txtool's restricted evaluator in
+a child process, or upstream xacro under ``--trust-xacro``); the finding points at the
 ``$(arg ...)``, ``$(find ...)``, ``${...}`` or ``<xacro:include>`` that failed. The
 transmissions written literally in the file are still checked, as for a macro library (values
 containing ``${...}`` or ``$(...)`` are then unknown). Every file with a TX002 finding is
@@ -30,6 +31,10 @@ its own expansion failing is no finding: its includer's expansion checks it, and
 checked as written. The includes are read without expanding (see
 :mod:`txtool.lint.fragments`). A file named on the command line is expanded alone and gets
 TX002 as any other.
+
+What the restricted expansion refuses (a Python attribute, ``$(env)`` of a name not allowed, a
+file outside the repository) or stops (a safety limit) is not a finding but an input error,
+exit 2: see the *Untrusted xacro* section of the security page.
 
 Failing example::
 

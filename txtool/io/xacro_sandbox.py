@@ -1,0 +1,359 @@
+"""Untrusted xacro expansion: a child process, an empty environment, bounded in every way.
+
+The parent (:func:`expand_in_sandbox`) starts ``python -I -S`` with an empty environment
+(and no site-packages ``.pth`` file run), once per process, and sends it one request per file
+on its standard input: the file, the xacro options, the values of the variables ``xacro-env``
+allows and of the ROS package paths ``$(find)`` reads (``AMENT_PREFIX_PATH``,
+``ROS_PACKAGE_PATH``, ``CMAKE_PREFIX_PATH``); nothing else of the parent's environment ever
+reaches it. It reads back one JSON header line and the expanded text. For each request the
+child (:func:`main`) sets its limits before it reads the file:
+
+- wall time: :data:`DEFAULT_TIMEOUT` seconds (``TXTOOL_XACRO_TIMEOUT``), the parent kills it
+  then; CPU time the same, as a backstop;
+- memory: :data:`DEFAULT_MEMORY_MB` MiB of address space (``TXTOOL_XACRO_MEMORY_MB``);
+- nodes: :data:`MAX_NODES` XML nodes created by macro calls, blocks and includes (a macro
+  fan-out is stopped while it grows, before memory runs out);
+- output: :data:`MAX_OUTPUT` bytes of expanded text;
+- no file may be written (``RLIMIT_FSIZE`` 0), no core dump.
+
+and expands with :class:`txtool.io.xacro_guard.XacroGuard` installed. Exceeding a limit is one
+line, ``path: xacro: expansion exceeded ... (a safety limit)``.
+"""
+
+from __future__ import annotations
+
+import atexit
+import contextlib
+import json
+import os
+import select
+import subprocess
+import sys
+import time
+from typing import Any
+
+from txtool.io.xmlio import MAX_BYTES, InputError, XacroOptions
+
+DEFAULT_TIMEOUT = 30.0
+DEFAULT_MEMORY_MB = 2048
+MAX_NODES = 200_000
+MAX_OUTPUT = MAX_BYTES
+PACKAGE_VARIABLES = ("AMENT_PREFIX_PATH", "ROS_PACKAGE_PATH", "CMAKE_PREFIX_PATH")
+_BOOT = ("import sys, json; sys.path[:0] = json.loads(sys.argv[1]); "
+         "from txtool.io.xacro_sandbox import main; main()")
+
+
+class XacroLimit(InputError):
+    """An untrusted expansion went past a safety limit."""
+
+    def __init__(self, path: str, what: str) -> None:
+        super().__init__(f"{path}: xacro: expansion exceeded {what} (a safety limit)")
+
+
+class XacroRefused(InputError):
+    """An untrusted file asked for something the restricted expansion does not do."""
+
+    def __init__(self, path: str, line: int, reason: str) -> None:
+        super().__init__(f"{path}:{line}: xacro: {reason}")
+        self.reason = reason
+
+
+def _limit_from_environment(name: str, default: float) -> float:
+    value = os.environ.get(name)
+    if value is None:
+        return default
+    try:
+        number = float(value)
+    except ValueError:
+        number = -1.0
+    if not number > 0:
+        raise InputError(f"{name}={value!r}: expected a positive number")
+    return number
+
+
+def limits() -> tuple[float, int]:
+    """(seconds, MiB) from ``TXTOOL_XACRO_TIMEOUT`` and ``TXTOOL_XACRO_MEMORY_MB``: the job's
+    environment sets them, never a file in the repository."""
+    seconds = _limit_from_environment("TXTOOL_XACRO_TIMEOUT", DEFAULT_TIMEOUT)
+    memory = int(_limit_from_environment("TXTOOL_XACRO_MEMORY_MB", DEFAULT_MEMORY_MB))
+    return seconds, memory
+
+
+def expand_in_sandbox(path: str, display: str, options: XacroOptions) -> str:
+    """The expanded text of ``path``; :class:`XacroError` or :class:`XacroLimit` if none."""
+    from txtool.io import xacro as xacro_support
+    from txtool.io.xacro import XacroError
+
+    seconds, memory = limits()
+    request = {
+        "path": os.path.abspath(path), "display": display,
+        "args": options.args, "pkg_dirs": options.pkg_dirs, "pkg_paths": options.pkg_paths,
+        "env_names": options.env,
+        "env": {name: os.environ[name] for name in options.env if name in os.environ},
+        "seconds": seconds, "memory": memory, "max_read": xacro_support.MAX_READ,
+        "package_paths": {k: os.environ[k] for k in PACKAGE_VARIABLES if k in os.environ},
+    }
+    worker = _worker(memory)
+    try:
+        reply, text = worker.ask(request, seconds)
+    except TimeoutError:
+        _retire(worker)
+        raise XacroLimit(display, f"{seconds:g} seconds") from None
+    except (OSError, ValueError):
+        _retire(worker)
+        raise XacroLimit(display, f"{memory} MiB of memory, or stopped abnormally "
+                         f"(exit status {worker.process.poll()})") from None
+    except BaseException:
+        _retire(worker)
+        raise
+    if reply.get("retire"):
+        _retire(worker)
+    if "limit" in reply:
+        raise XacroLimit(display, reply["limit"])
+    if "refused" in reply:
+        raise XacroRefused(display, reply.get("line", 1), reply["refused"])
+    if "error" in reply:
+        raise XacroError(display, reply["error"], reply.get("line", 1), reply.get("missing", ""))
+    return text.decode("utf-8")
+
+
+def prestart() -> None:
+    """Start the worker now, so that it boots while this process loads the command's code."""
+    with contextlib.suppress(InputError, OSError):
+        _worker(limits()[1])
+
+
+class _Worker:
+    """One child process, reused for every file this process expands (a start costs about a
+    tenth of a second); retired after a limit is hit, replaced on the next file."""
+
+    def __init__(self, memory: int) -> None:
+        self.owner = os.getpid()
+        self.memory = memory
+        self.process = subprocess.Popen(
+            [sys.executable, "-I", "-S", "-X", "utf8", "-c", _BOOT, json.dumps(_import_path())],
+            stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+            env={}, close_fds=True, cwd=os.getcwd(),
+        )
+
+    def ask(self, request: dict[str, Any], seconds: float) -> tuple[dict[str, Any], bytes]:
+        """Send one request; the reply header and text. TimeoutError, OSError on EOF."""
+        assert self.process.stdin is not None and self.process.stdout is not None
+        self.process.stdin.write(json.dumps(request).encode("utf-8") + b"\n")
+        self.process.stdin.flush()
+        reader = _Reader(self.process.stdout.fileno(), time.monotonic() + seconds)
+        reply = json.loads(reader.line())
+        size = int(reply.get("size", 0))
+        if size > MAX_OUTPUT:
+            raise ValueError("oversized reply")
+        return reply, reader.exactly(size)
+
+    def close(self) -> None:
+        with contextlib.suppress(OSError):
+            if self.process.stdin is not None:
+                self.process.stdin.close()
+        try:
+            self.process.wait(timeout=1)
+        except subprocess.TimeoutExpired:
+            self.process.kill()
+            self.process.wait()
+        if self.process.stdout is not None:
+            self.process.stdout.close()
+
+
+class _Reader:
+    """Reads a child's standard output against a deadline."""
+
+    def __init__(self, fd: int, deadline: float) -> None:
+        self.fd = fd
+        self.deadline = deadline
+        self.buffer = bytearray()
+
+    def _more(self) -> None:
+        left = self.deadline - time.monotonic()
+        if left <= 0 or not select.select([self.fd], [], [], left)[0]:
+            raise TimeoutError
+        chunk = os.read(self.fd, 1 << 20)
+        if not chunk:
+            raise OSError("the xacro worker ended")
+        self.buffer += chunk
+
+    def line(self) -> bytes:
+        while b"\n" not in self.buffer:
+            if len(self.buffer) > 1 << 20:
+                raise ValueError("oversized header")
+            self._more()
+        line, _, rest = bytes(self.buffer).partition(b"\n")
+        self.buffer = bytearray(rest)
+        return line
+
+    def exactly(self, size: int) -> bytes:
+        while len(self.buffer) < size:
+            self._more()
+        return bytes(self.buffer[:size])
+
+
+_current: _Worker | None = None
+
+
+def _worker(memory: int) -> _Worker:
+    global _current
+    worker = _current
+    if worker is None or worker.owner != os.getpid() or worker.memory != memory \
+            or worker.process.poll() is not None:
+        if worker is not None and worker.owner == os.getpid():
+            _retire(worker)
+        if _current is None or _current.owner != os.getpid():
+            atexit.register(_close_current)
+        _current = worker = _Worker(memory)
+    return worker
+
+
+def _retire(worker: _Worker) -> None:
+    global _current
+    with contextlib.suppress(OSError):
+        worker.process.kill()
+    worker.close()
+    if _current is worker:
+        _current = None
+
+
+def _close_current() -> None:
+    if _current is not None and _current.owner == os.getpid():
+        _current.close()
+
+
+def _import_path() -> list[str]:
+    """Where the child finds txtool, xacro, yaml and lxml: the folders this process finds them
+    in (without importing them here), so that ``-I -S`` (no environment, no site-packages
+    ``.pth`` file run) still works."""
+    import importlib.util
+
+    folders = [os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))]
+    for name in ("xacro", "yaml", "lxml"):
+        spec = importlib.util.find_spec(name)
+        if spec is not None and spec.origin:
+            folder = os.path.dirname(os.path.dirname(os.path.abspath(spec.origin)))
+            if folder not in folders:
+                folders.append(folder)
+    return folders
+
+
+# -- the child ------------------------------------------------------------------------------
+
+def _set_limits(seconds: float, memory_mb: int) -> None:
+    """This request's limits: CPU time from now on, address space, no file written."""
+    try:
+        import resource
+    except ImportError:  # not POSIX: the parent's timeout still holds
+        return
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    cpu = int(usage.ru_utime + usage.ru_stime + seconds) + 2
+    for limit, value in ((resource.RLIMIT_CPU, cpu), (resource.RLIMIT_FSIZE, 0),
+                         (resource.RLIMIT_CORE, 0), (resource.RLIMIT_AS, memory_mb << 20)):
+        _soft, hard = resource.getrlimit(limit)
+        if hard != resource.RLIM_INFINITY:
+            value = min(value, hard)
+        with contextlib.suppress(ValueError, OSError):
+            resource.setrlimit(limit, (value, hard))
+
+
+class _CloneCounter:
+    """Counts the nodes xacro creates by cloning (macro bodies, blocks), against MAX_NODES."""
+
+    budget = MAX_NODES
+    installed = False
+
+    @classmethod
+    def reset(cls) -> None:
+        import xml.dom.minidom as minidom
+
+        from txtool.io.xacro_guard import NodeLimit
+
+        cls.budget = MAX_NODES
+        if cls.installed:
+            return
+        original = minidom._clone_node  # type: ignore[attr-defined]
+
+        def clone(node: Any, deep: bool, new_owner: Any) -> Any:
+            cls.budget -= 1
+            if cls.budget < 0:
+                raise NodeLimit
+            return original(node, deep, new_owner)
+
+        minidom._clone_node = clone  # type: ignore[attr-defined]
+        cls.installed = True
+
+
+def _line_of(path: str, needle: str | None) -> int:
+    if not needle:
+        return 1
+    try:
+        with open(path, "rb") as handle:
+            data = handle.read(MAX_BYTES)
+    except OSError:
+        return 1
+    index = data.find(needle.encode("utf-8", "replace"))
+    return data.count(b"\n", 0, index) + 1 if index >= 0 else 1
+
+
+def _answer(header: dict[str, Any], text: str = "") -> None:
+    data = text.encode("utf-8")
+    if len(data) > MAX_OUTPUT:
+        header, data = {"limit": f"{MAX_OUTPUT} bytes of output"}, b""
+    header["size"] = len(data)
+    out = sys.stdout.buffer
+    out.write(json.dumps(header).encode("utf-8") + b"\n")
+    out.write(data)
+    out.flush()
+
+
+def main() -> None:
+    """The child: answer each request line with a header line and the expanded text."""
+    import io
+
+    sys.stderr = io.StringIO()  # xacro.warning(...) and friends: nobody reads it
+    from txtool.io import xacro as _xacro  # noqa: F401  (imported before the limits)
+    from txtool.io import xacro_guard as _guard  # noqa: F401
+
+    for line in sys.stdin.buffer:
+        request = json.loads(line)
+        sys.stderr = io.StringIO()
+        header, text = _expand(request)
+        _answer(header, text)
+        if header.get("retire"):
+            return
+
+
+def _expand(request: dict[str, Any]) -> tuple[dict[str, Any], str]:
+    from txtool.io import xacro as xacro_support
+    from txtool.io.xacro import XacroError, expand_text
+    from txtool.io.xacro_guard import NodeLimit, Refusal, XacroGuard
+
+    xacro_support.MAX_READ = request["max_read"]  # the parent's: one limit, set in one place
+    _set_limits(request["seconds"], request["memory"])
+    for variable in PACKAGE_VARIABLES:  # what $(find) reads, as the parent has them now
+        os.environ.pop(variable, None)
+    os.environ.update(request["package_paths"])
+    options = XacroOptions(
+        args=tuple(tuple(pair) for pair in request["args"]),  # type: ignore[misc]
+        pkg_dirs=tuple(request["pkg_dirs"]),
+        pkg_paths=tuple(tuple(pair) for pair in request["pkg_paths"]),  # type: ignore[misc]
+        env=tuple(request["env_names"]),
+    )
+    path, display = request["path"], request["display"]
+    _CloneCounter.reset()
+    try:
+        guard = XacroGuard(path, options, request["env"])
+        return {"ok": True}, expand_text(path, display, options, guard)
+    except Refusal as exc:
+        return {"refused": exc.reason, "line": _line_of(path, exc.needle)}, ""
+    except XacroError as exc:
+        return {"error": exc.reason, "line": exc.line, "missing": exc.missing}, ""
+    except (NodeLimit, MemoryError, RecursionError) as exc:
+        what = {NodeLimit: f"{MAX_NODES} XML nodes", MemoryError: f"{request['memory']} MiB "
+                "of memory", RecursionError: "Python's recursion limit (macros nested too deep)"}
+        return {"limit": what[type(exc)], "retire": True}, ""
+    except Exception as exc:  # reported as the parent reports its own internal errors
+        return {"error": f"internal error in the xacro sandbox: {type(exc).__name__}: {exc}",
+                "retire": True}, ""
