@@ -87,6 +87,8 @@ def command(paths, output_format, select, ignore, strict, exit_zero, config_path
         respect_gitignore=respect_gitignore,
     )
     result = lint_paths(list(paths) or ["."], options)
+    for note in result.notes:
+        click.echo(f"txtool: note: {printable(note)}", err=True)
     for error in result.errors:
         click.echo(f"txtool: {printable(error.message)}", err=True)
     fmt = output_format or default_format()
