@@ -212,7 +212,8 @@ class GitIgnores:
             text = read_regular(path, MAX_GITIGNORE_BYTES).decode("utf-8", "replace")
         except InputError as exc:
             reason = str(exc).removeprefix(f"{path}: ")
-            self._report(path, reason)
+            shown = os.path.relpath(path)  # as the walk names files, when below this folder
+            self._report(path if shown.startswith("..") else shown, reason)
             return ()
         lines = tuple(line for line in text.splitlines() if line.strip())
         return (Excludes(folder, lines),) if lines else ()
