@@ -215,3 +215,40 @@ def test_readme_rev_is_the_tag_of_this_version():
     readme = (ROOT / "README.md").read_text()
     revs = set(re.findall(r"rev: (v\S+)", readme)) | set(re.findall(r"txtool/txtool@(v\S+)", readme))
     assert revs == {f"v{__version__}"}
+
+
+def test_action_on_a_hostile_pull_request(tmp_path):
+    """A pull request's files chosen to turn the check green or stall it: a file named like an
+    option, a configuration silencing every rule dropped beside its files, a symbolic link loop,
+    a FIFO named .gitignore, a folder with a space. Its findings are still reported, the run
+    fails, and no name becomes an option."""
+    repo = tmp_path / "repo"
+    (repo / ".git").mkdir(parents=True)  # the top of the checkout
+    (repo / "urdf").mkdir()
+    (repo / "urdf" / "broken.urdf").write_text(BROKEN)
+    (repo / "urdf" / ".txtool.toml").write_text('ignore = ["ALL"]\nexclude = ["*"]\n')
+    (repo / "urdf" / "l1.urdf").symlink_to("l2.urdf")
+    (repo / "urdf" / "l2.urdf").symlink_to("l1.urdf")
+    os.mkfifo(repo / "urdf" / ".gitignore")
+    (repo / "--exit-zero").write_text(BROKEN)
+    (repo / "my robot").mkdir()
+    (repo / "my robot" / "arm.urdf").write_text(BROKEN)
+    output = tmp_path / "github_output"
+    done = action_step("validate", repo, TXTOOL_PATHS="--exit-zero\nurdf\nmy robot\n",
+                       GITHUB_OUTPUT=str(output))
+    assert done.returncode == 2 and output.read_text() == "exit-code=2\n"
+    found = {re.search(r"file=([^,]+),.*title=(\w+)", line).groups()
+             for line in done.stdout.splitlines() if line.startswith("::error ")}
+    assert {file for file, title in found if title.startswith("TX")} == {
+        "--exit-zero", "urdf/broken.urdf", "my robot/arm.urdf"}  # checked, each one
+    assert {file for file, title in found if title == "txtool"} == {
+        "urdf/.gitignore", "urdf/l1.urdf", "urdf/l2.urdf"}  # could not be read: exit 2
+    config = repo / "urdf" / ".txtool.toml"
+    assert done.stderr.splitlines() == [
+        f"txtool: note: {config}: not read: a configuration below the repository's root is "
+        "passed over (the defaults apply; --config names the file to use)",
+        "txtool: urdf/l1.urdf: symbolic link loop (too many levels of symbolic links)",
+        "txtool: urdf/l2.urdf: symbolic link loop (too many levels of symbolic links)",
+        "txtool: urdf/.gitignore: is a named pipe (FIFO), not a regular file; txtool reads only "
+        "regular files (or '-')",
+    ]
