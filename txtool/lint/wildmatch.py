@@ -170,7 +170,7 @@ def _required_text(tree: tuple) -> str:
 
 
 class Program:
-    """One regular expression, compiled for :meth:`match`."""
+    """One regular expression, compiled for :meth:`search`."""
 
     def __init__(self, regex: str) -> None:
         tree = _Parser(regex).parse()
