@@ -175,6 +175,18 @@ def test_simulate_refuses_a_xacro_candidate(run, robot, tmp_path):
         2, "", f"txtool: {robot}: simulate needs the xacro expansion, and xacro is off {OFF}\n")
 
 
+@pytest.mark.parametrize("command", [
+    ("show", "--format", "json"), ("convert", "--to", "ros2-p2"), ("roundtrip", "--format", "json"),
+    ("map", "-t", "elbow_trans", "--to", "actuator", "--position", "1"),
+])
+def test_config_names_the_configuration_of_every_command(run, robot, tmp_path, xacro_forbidden,
+                                                         command):
+    pinned = tmp_path / "ci.toml"  # not where the search would look
+    pinned.write_text("no-xacro = true\n")
+    assert run(*command, "--config", str(pinned), str(robot)) == run(
+        *command, "--no-xacro", str(robot))
+
+
 def test_validate_checks_the_file_as_written(run, robot, off):
     assert run("validate", *off, str(robot)) == (0, "No problems in 1 file.\n", "")
 

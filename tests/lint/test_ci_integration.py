@@ -50,7 +50,12 @@ def repo(tmp_path) -> Path:
 def test_action_is_a_composite_action_calling_its_script():
     action = yaml.safe_load((ROOT / "action.yml").read_text())
     assert action["runs"]["using"] == "composite"
-    assert set(action["inputs"]) == {"paths", "args", "sarif-file", "version", "python-version"}
+    assert set(action["inputs"]) == {"paths", "args", "sarif-file", "version", "python-version",
+                                     "config", "trust-xacro"}
+    validate = next(step for step in action["runs"]["steps"] if step.get("id") == "validate")
+    assert validate["env"]["TXTOOL_CONFIG"] == "${{ inputs.config }}"
+    assert validate["env"]["TXTOOL_TRUST_XACRO"] == "${{ inputs.trust-xacro }}"
+    assert action["inputs"]["trust-xacro"]["default"] == "false"
     scripts = [step["run"] for step in action["runs"]["steps"] if "run" in step]
     assert scripts == [f'bash "$TXTOOL_ACTION_PATH/.github/txtool-action.sh" {step}'
                        for step in ("install", "validate")]
@@ -88,6 +93,60 @@ def test_action_on_a_clean_tree_passes(repo):
     (repo / "urdf" / "broken.urdf").unlink()
     done = action_step("validate", repo)
     assert (done.returncode, done.stdout, done.stderr) == (0, "", "")
+
+
+def recorded_argv(cwd: Path, tmp_path: Path, **env: str) -> tuple[int, list[list[str]], str]:
+    """Run the validate step with a fake ``txtool`` first on PATH that records its arguments."""
+    fake = tmp_path / "fake-bin"
+    fake.mkdir(exist_ok=True)
+    log = tmp_path / "argv.log"
+    log.unlink(missing_ok=True)
+    (fake / "txtool").write_text(
+        f"#!{sys.executable}\nimport json, sys\n"
+        f"open({str(log)!r}, 'a').write(json.dumps(sys.argv[1:]) + '\\n')\n")
+    (fake / "txtool").chmod(0o755)
+    variables = {**os.environ, "PATH": f"{fake}{os.pathsep}{os.environ['PATH']}", **env}
+    done = subprocess.run(["bash", str(SCRIPT), "validate"], cwd=cwd, env=variables,
+                          capture_output=True, text=True, timeout=60)
+    calls = [json.loads(line) for line in log.read_text().splitlines()] if log.exists() else []
+    return done.returncode, calls, done.stderr
+
+
+def test_action_paths_are_one_a_line_after_a_double_dash(repo, tmp_path):
+    (repo / "my robot").mkdir()
+    code, calls, _ = recorded_argv(repo, tmp_path,
+                                   TXTOOL_PATHS="--exit-zero\nmy robot\n\n-\r\nurdf/clean.urdf\n")
+    assert code == 0
+    assert calls == [["validate", "--format", "github", "--",
+                      "--exit-zero", "my robot", "./-", "urdf/clean.urdf"]]
+
+
+@pytest.mark.parametrize(("paths", "expected"), [
+    ("urdf/clean.urdf urdf/broken.urdf", ["urdf/clean.urdf", "urdf/broken.urdf"]),  # as before
+    ("  my robot  ", ["my robot"]),  # one line naming an existing folder: taken whole
+    ("", ["."]),
+])
+def test_action_one_line_of_paths(repo, tmp_path, paths, expected):
+    (repo / "my robot").mkdir()
+    _, calls, _ = recorded_argv(repo, tmp_path, TXTOOL_PATHS=paths)
+    assert calls == [["validate", "--format", "github", "--", *expected]]
+
+
+def test_action_config_and_trust_xacro_inputs(repo, tmp_path):
+    _, calls, _ = recorded_argv(repo, tmp_path, TXTOOL_PATHS="urdf", TXTOOL_CONFIG="ci/txtool.toml",
+                                TXTOOL_TRUST_XACRO="true", TXTOOL_ARGS="--strict",
+                                TXTOOL_SARIF="out.sarif")
+    assert calls == [
+        ["validate", "--format", "sarif", "--exit-zero", "--output-file", "out.sarif",
+         "--config", "ci/txtool.toml", "--trust-xacro", "--strict", "--", "urdf"],
+        ["validate", "--format", "github", "--config", "ci/txtool.toml", "--trust-xacro",
+         "--strict", "--", "urdf"],
+    ]
+    _, calls, _ = recorded_argv(repo, tmp_path, TXTOOL_PATHS="urdf", TXTOOL_TRUST_XACRO="false")
+    assert calls == [["validate", "--format", "github", "--", "urdf"]]
+    code, calls, err = recorded_argv(repo, tmp_path, TXTOOL_TRUST_XACRO="yes")
+    assert (code, calls) == (2, [])
+    assert err == "txtool action: trust-xacro: expected true or false, got 'yes'\n"
 
 
 def test_action_install_asks_pip_for_the_requirement(tmp_path):
@@ -156,3 +215,40 @@ def test_readme_rev_is_the_tag_of_this_version():
     readme = (ROOT / "README.md").read_text()
     revs = set(re.findall(r"rev: (v\S+)", readme)) | set(re.findall(r"txtool/txtool@(v\S+)", readme))
     assert revs == {f"v{__version__}"}
+
+
+def test_action_on_a_hostile_pull_request(tmp_path):
+    """A pull request's files chosen to turn the check green or stall it: a file named like an
+    option, a configuration silencing every rule dropped beside its files, a symbolic link loop,
+    a FIFO named .gitignore, a folder with a space. Its findings are still reported, the run
+    fails, and no name becomes an option."""
+    repo = tmp_path / "repo"
+    (repo / ".git").mkdir(parents=True)  # the top of the checkout
+    (repo / "urdf").mkdir()
+    (repo / "urdf" / "broken.urdf").write_text(BROKEN)
+    (repo / "urdf" / ".txtool.toml").write_text('ignore = ["ALL"]\nexclude = ["*"]\n')
+    (repo / "urdf" / "l1.urdf").symlink_to("l2.urdf")
+    (repo / "urdf" / "l2.urdf").symlink_to("l1.urdf")
+    os.mkfifo(repo / "urdf" / ".gitignore")
+    (repo / "--exit-zero").write_text(BROKEN)
+    (repo / "my robot").mkdir()
+    (repo / "my robot" / "arm.urdf").write_text(BROKEN)
+    output = tmp_path / "github_output"
+    done = action_step("validate", repo, TXTOOL_PATHS="--exit-zero\nurdf\nmy robot\n",
+                       GITHUB_OUTPUT=str(output))
+    assert done.returncode == 2 and output.read_text() == "exit-code=2\n"
+    found = {re.search(r"file=([^,]+),.*title=(\w+)", line).groups()
+             for line in done.stdout.splitlines() if line.startswith("::error ")}
+    assert {file for file, title in found if title.startswith("TX")} == {
+        "--exit-zero", "urdf/broken.urdf", "my robot/arm.urdf"}  # checked, each one
+    assert {file for file, title in found if title == "txtool"} == {
+        "urdf/.gitignore", "urdf/l1.urdf", "urdf/l2.urdf"}  # could not be read: exit 2
+    config = repo / "urdf" / ".txtool.toml"
+    assert done.stderr.splitlines() == [
+        f"txtool: note: {config}: not read: a configuration below the repository's root is "
+        "passed over (the defaults apply; --config names the file to use)",
+        "txtool: urdf/l1.urdf: symbolic link loop (too many levels of symbolic links)",
+        "txtool: urdf/l2.urdf: symbolic link loop (too many levels of symbolic links)",
+        "txtool: urdf/.gitignore: is a named pipe (FIFO), not a regular file; txtool reads only "
+        "regular files (or '-')",
+    ]

@@ -240,14 +240,25 @@ def test_the_configuration_file_is_honoured(run, write):
 
 
 def test_a_bad_configuration_stops_the_run_with_nothing_written(run, write):
-    write("a/robot.urdf", ROBOT)
-    write("b/.txtool.toml", 'selectt = ["TX300"]\n')
+    # The configuration is the root's (nested ones are passed over, see the next test).
+    first = write("a/robot.urdf", ROBOT)
+    write(".txtool.toml", 'selectt = ["TX300"]\n')
     path = write("b/robot.urdf", ROBOT)
     code, out, err = run("migrate", "--write", "a", "b")
     assert (code, out) == (2, "")
     assert err.startswith("txtool: ") and err.count("\n") == 1
-    assert err.endswith("b/.txtool.toml: key 'selectt': unknown key\n")
-    assert path.read_text() == ROBOT.lstrip("\n")
+    assert err.endswith(".txtool.toml: key 'selectt': unknown key\n")
+    assert path.read_text() == first.read_text() == ROBOT.lstrip("\n")
+
+
+def test_a_configuration_below_the_root_is_passed_over_with_a_note(run, write, tmp_path):
+    write("b/.txtool.toml", 'selectt = ["TX300"]\n')  # not even read
+    write("b/robot.urdf", ROBOT)
+    code, out, err = run("migrate", "--check", "b")
+    assert (code, out) == (1, "")
+    assert err.splitlines()[0] == (
+        f"txtool: note: {tmp_path / 'b' / '.txtool.toml'}: not read: a configuration below the "
+        "repository's root is passed over (the defaults apply; --config names the file to use)")
 
 
 def test_suppression_comments_keep_a_fix_off(run, write):

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import os
+import re
+
 import pytest
 
 from tests.simulate.robots import arm_ros1, write
@@ -118,3 +121,25 @@ def test_a_pyproject_without_the_section_is_ignored(tmp_path):
     (tmp_path / "pyproject.toml").write_text("[project]\nname = 'x'\n")
     robot = write(tmp_path, "arm.urdf", arm_ros1())
     assert prepare(Options(robot=robot), None).settings.bandwidth == 20.0
+
+
+def test_a_pyproject_beside_the_robot_does_not_decide_inside_a_repository(tmp_path, monkeypatch):
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "pyproject.toml").write_text("[tool.txtool.simulate]\nbandwidth = 12.0\n")
+    folder = tmp_path / "robots"
+    folder.mkdir()
+    (folder / "pyproject.toml").write_text("[tool.txtool.simulate]\nbandwidth = 99.0\n")
+    robot = write(folder, "arm.urdf", arm_ros1())
+    monkeypatch.chdir(tmp_path)
+    assert prepare(Options(robot=robot), None).settings.bandwidth == 12.0
+
+
+@pytest.mark.parametrize(("text", "message"), [
+    ("x = " + "[" * 50_000 + "]" * 50_000 + "\n", "configuration nested too deep"),
+    (None, "is a named pipe (FIFO), not a regular file"),
+])
+def test_a_hostile_params_file_is_one_line(tmp_path, text, message):
+    path = tmp_path / "p.toml"
+    os.mkfifo(path) if text is None else path.write_text(text)
+    with pytest.raises(InputError, match=rf"^{path}: {re.escape(message)}"):
+        load_params(str(path), str(tmp_path / "robot.urdf"))

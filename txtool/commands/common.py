@@ -121,18 +121,25 @@ NO_XACRO_OPTION = click.option(
 )
 
 
-def xacro_disabled(flag: bool, *paths: str | None) -> bool:
+CONFIG_OPTION = click.option(
+    "--config", "config_path", type=click.Path(dir_okay=False), metavar="PATH",
+    help="Use this configuration file instead of the repository root's.",
+)
+
+
+def xacro_disabled(flag: bool, *paths: str | None, config: str | None = None) -> bool:
     """Whether xacro must not run for these inputs.
 
-    ``--no-xacro``, ``TXTOOL_NO_XACRO`` or the configuration of any input turns it off for the
-    whole run. None of them can turn it back on: a pull request may edit the repository's
-    configuration, but not the runner's command line or environment.
+    ``--no-xacro``, ``TXTOOL_NO_XACRO`` or the configuration of any input (``config``, the
+    ``--config`` file, if given) turns it off for the whole run. None of them can turn it back
+    on: a pull request may edit the repository's configuration, but not the runner's command
+    line or environment.
     """
     from txtool.lint.config_files import no_xacro_configured, no_xacro_from_environment
 
     if no_xacro_from_environment() or flag:
         return True
-    return any(no_xacro_configured(path) for path in paths if path is not None)
+    return any(no_xacro_configured(path, config) for path in paths if path is not None)
 
 
 def refuse_unexpanded(command: str, *paths: str | None) -> None:

@@ -8,6 +8,7 @@ import sys
 import click
 
 from txtool.commands.common import (
+    CONFIG_OPTION,
     NO_XACRO_OPTION,
     TARGET_HINTS,
     Choice,
@@ -42,10 +43,12 @@ TARGETS = ("ros1", "ros2-p1", "ros2-p2", "bb")
               help="bb: write a whole 'topology do ... end' of the robot's links and joints.")
 # --- end of Beam Bots options ---
 @NO_XACRO_OPTION
+@CONFIG_OPTION
 @xacro_options
 @exit_on_input_error
 def command(path, target, output, in_place, allow_lossy, hardware_plugin, reversible,
-            stdin_filename, bb_direction, bb_topology, no_xacro, xacro) -> int:
+            stdin_filename, bb_direction, bb_topology, no_xacro, config_path,
+            xacro) -> int:
     """Convert the transmissions of INPUT to another dialect, keeping the rest of the document.
 
     The result is read back and converted back; anything that does not survive, or that the
@@ -66,7 +69,7 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, revers
         raise InputError(f"{output}: is the input file; --to bb writes Elixir, not a robot")
     if in_place_target and not in_place:
         raise InputError(f"{output}: is the input file; add --write to convert it in place")
-    expand = not xacro_disabled(no_xacro, path)
+    expand = not xacro_disabled(no_xacro, path, config=config_path)
     source = load(path, xacro=xacro, stdin_name=stdin_filename, expand=expand)
     if in_place_target and source.expanded:
         raise InputError(f"{path}: converting a xacro file in place would replace it with its "

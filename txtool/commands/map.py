@@ -5,6 +5,7 @@ from __future__ import annotations
 import click
 
 from txtool.commands.common import (
+    CONFIG_OPTION,
     NO_XACRO_OPTION,
     Choice,
     refuse_unexpanded,
@@ -28,6 +29,7 @@ from txtool.io.xmlio import InputError
 @click.option("--format", "fmt", type=Choice(["text", "json"]), default="text",
               show_default=True)
 @NO_XACRO_OPTION
+@CONFIG_OPTION
 @xacro_options
 def command(
     file: str,
@@ -39,6 +41,7 @@ def command(
     convention: str | None,
     fmt: str,
     no_xacro: bool,
+    config_path: str | None,
     xacro,
 ) -> None:
     """Map positions, velocities or efforts through transmission NAME of FILE.
@@ -50,7 +53,7 @@ def command(
     from txtool.mechanics.mapcmd import render_text, run_map
 
     try:
-        if xacro_disabled(no_xacro, file):
+        if xacro_disabled(no_xacro, file, config=config_path):
             refuse_unexpanded("map", file)
     except InputError as exc:
         click.echo(f"txtool: {exc}", err=True)

@@ -7,6 +7,7 @@ import json
 import click
 
 from txtool.commands.common import (
+    CONFIG_OPTION,
     FORMAT_OPTION,
     NO_XACRO_OPTION,
     Choice,
@@ -25,9 +26,11 @@ from txtool.commands.common import (
                    "or ros_control's map (default: each file with its own loader's).")
 @FORMAT_OPTION
 @NO_XACRO_OPTION
+@CONFIG_OPTION
 @xacro_options
 @exit_on_input_error
-def command(path, against, convention, output_format, no_xacro, xacro) -> int:
+def command(path, against, convention, output_format, no_xacro, config_path,
+            xacro) -> int:
     """Convert FILE through every dialect cycle and report what survives.
 
     Columns: reduction, offset, direction, roles, interfaces (field by field, floats bit for
@@ -39,7 +42,7 @@ def command(path, against, convention, output_format, no_xacro, xacro) -> int:
 
     if convention and not against:
         raise InputError("--effort-convention applies to --against only")
-    expand = not xacro_disabled(no_xacro, path, against)
+    expand = not xacro_disabled(no_xacro, path, against, config=config_path)
     source = load(path, xacro=xacro, expand=expand)
     if against:
         return _against(source, load(against, xacro=xacro, expand=expand), output_format,

@@ -7,6 +7,7 @@ import json
 import click
 
 from txtool.commands.common import (
+    CONFIG_OPTION,
     FORMAT_OPTION,
     NO_XACRO_OPTION,
     exit_on_input_error,
@@ -29,10 +30,11 @@ from txtool.model.distro import CHOICES
               help="The ROS distribution whose programs read the file (--effective names the "
                    "readers; over the configuration's ros-distro).")
 @NO_XACRO_OPTION
+@CONFIG_OPTION
 @xacro_options
 @exit_on_input_error
 def command(path, output_format, effective, actuator_limits, stdin_filename, ros_distro,
-            no_xacro, xacro) -> int:
+            no_xacro, config_path, xacro) -> int:
     """List the transmissions of FILE (URDF, xacro or a fragment; '-' for stdin).
 
     The JSON gives each transmission as written and, under "effective", what its loader
@@ -43,7 +45,7 @@ def command(path, output_format, effective, actuator_limits, stdin_filename, ros
     from txtool.io.load import load
     from txtool.views.effective import bindings_of, shown_json
 
-    expand = not xacro_disabled(no_xacro, path)
+    expand = not xacro_disabled(no_xacro, path, config=config_path)
     source = load(path, xacro=xacro, stdin_name=stdin_filename, expand=expand)
     found = read_source(source)
     transmissions = [f.transmission for f in found]

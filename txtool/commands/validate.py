@@ -101,6 +101,8 @@ def command(paths, output_format, select, ignore, strict, exit_zero, config_path
     if xacro.args:
         _warn_unused_args(list(paths), no_xacro)
     result = lint_paths(list(paths) or ["."], options)
+    for note in result.notes:
+        click.echo(f"txtool: note: {printable(note)}", err=True)
     for error in result.errors:
         click.echo(f"txtool: {printable(error.message)}", err=True)
     fmt = output_format or default_format()

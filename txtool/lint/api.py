@@ -39,7 +39,7 @@ class LintOptions(NamedTuple):
 class LintResult:
     """Problems of every file in input order, how many files were read, and input errors."""
 
-    __slots__ = ("problems", "files", "errors", "readers")
+    __slots__ = ("problems", "files", "errors", "readers", "notes")
 
     def __init__(self) -> None:
         self.problems: list[Problem] = []
@@ -47,6 +47,7 @@ class LintResult:
         self.errors: list[InputFailure] = []
         # The readers each file holding transmissions was judged for, in input order.
         self.readers: list[FileReaders] = []
+        self.notes: list[str] = []  # configuration files passed over (see SettingsCache)
 
     def count(self, severity: str) -> int:
         return sum(1 for p in self.problems if p.severity == severity)
@@ -68,10 +69,15 @@ def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions) -> Lint
     )
     settings = SettingsCache(overrides, options.config)
     work: list[tuple[str, Settings]] = []
-    for path in expand_paths(paths, skip=settings.excluded, gitignore=settings.respects_gitignore):
+    unread: list[InputFailure] = []  # what a folder walk could not read; it went on
+    for path in expand_paths(paths, skip=settings.excluded, gitignore=settings.respects_gitignore,
+                             report=lambda where, reason: unread.append(
+                                 InputFailure(where, f"{where}: {reason}"))):
         where = options.stdin_filename if path == "-" and options.stdin_filename else path
         work.append((path, settings.for_file(where)))  # a ConfigError stops the run
     result = LintResult()
+    result.errors.extend(unread)
+    result.notes.extend(settings.notes)
     for outcome in _outcomes(work, options, paths, _fragments(work, paths)):
         if isinstance(outcome, InputFailure):
             result.errors.append(outcome)

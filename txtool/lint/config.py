@@ -1,8 +1,9 @@
 """Lint configuration: ``[tool.txtool]`` in ``pyproject.toml`` or a ``.txtool.toml``.
 
-The configuration of a file is the first one found searching upward from the file's folder
-(in each folder ``.txtool.toml`` wins over ``pyproject.toml``; a ``pyproject.toml`` without
-``[tool.txtool]`` is passed over). ``--config PATH`` replaces the search. Relative package
+The configuration is found from the run's root, not beside the files (see
+:func:`~txtool.lint.config_files.applicable_config`; in each folder ``.txtool.toml`` wins over
+``pyproject.toml``; a ``pyproject.toml`` without ``[tool.txtool]`` is passed over).
+``--config PATH`` replaces the search. Relative package
 folders are relative to the configuration file. Any mistake is a :class:`ConfigError` naming
 the file and the key (exit 2).
 """
@@ -24,9 +25,12 @@ from txtool.lint.config_files import (  # noqa: F401 - this module's names befor
     PYPROJECT,
     ConfigError,
     _has_txtool_table,
+    applicable_config,
     find_config,
     no_xacro_configured,
     no_xacro_from_environment,
+    read_config_text,
+    repository_root,
 )
 from txtool.lint.patterns import Excludes, absolute_folder
 from txtool.lint.problem import Severity
@@ -125,12 +129,13 @@ def load_config(path: Path) -> Config:
     else:  # pragma: no cover - exercised on Python 3.10 only
         import tomli as tomllib
 
+    text = read_config_text(path)  # a regular file of bounded size, else one line
     try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise ConfigError(f"{path}: {exc.strerror or exc}") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
         raise ConfigError(f"{path}: invalid TOML: {exc}") from None
+    except RecursionError:  # tomllib recurses once per level of nested arrays and tables
+        raise ConfigError(f"{path}: configuration nested too deep") from None
     table: Any = data
     prefix = ""
     if path.name == PYPROJECT:
@@ -328,6 +333,9 @@ class SettingsCache:
         self.explicit = Path(explicit) if explicit else None
         self._by_file: dict[Path | None, Settings] = {}
         self._by_folder: dict[str, Path | None] = {}
+        self._root = repository_root()
+        self.notes: list[str] = []  # nested configuration files passed over, one line each
+        self._noted: set[Path] = set()
         self._by_path: dict[str, Settings] = {}  # a folder walk asks first, then the linter
         self._absolute: dict[str, str] = {}  # folders made absolute (see absolute_folder)
         self._cli_excludes = Excludes(
@@ -348,9 +356,10 @@ class SettingsCache:
         if self.explicit is not None:
             config_path: Path | None = self.explicit
         elif path == "-":
-            config_path = find_config(Path.cwd())
+            config_path = self._applicable(os.getcwd())
         elif os.path.islink(path) if is_link is None else is_link:
-            config_path = find_config(Path(path).resolve().parent)  # where the file really is
+            # where the file really is (realpath: a link loop is reported when the file is read)
+            config_path = self._applicable(os.path.dirname(os.path.realpath(path)))
         else:
             config_path = self._config_of_folder(absolute_folder(path, self._absolute))
         if config_path not in self._by_file:
@@ -368,10 +377,20 @@ class SettingsCache:
         return self.for_file(os.path.join(folder, "-.urdf")).respect_gitignore
 
     def _config_of_folder(self, folder: str) -> Path | None:
-        # Resolving every file's path costs a system call per path component; once per folder.
         if folder not in self._by_folder:
-            self._by_folder[folder] = find_config(Path(folder).resolve())
+            self._by_folder[folder] = self._applicable(folder)
         return self._by_folder[folder]
+
+    def _applicable(self, folder: str) -> Path | None:
+        found = applicable_config(folder, self._root)
+        if found.ignored is not None and found.ignored not in self._noted:
+            self._noted.add(found.ignored)
+            used = f"{found.path} applies" if found.path else "the defaults apply"
+            self.notes.append(
+                f"{found.ignored}: not read: a configuration below the repository's root is "
+                f"passed over ({used}; --config names the file to use)"
+            )
+        return found.path
 
     def _settings(self, config_path: Path | None) -> Settings:
         prefix = ""
@@ -379,7 +398,7 @@ class SettingsCache:
         if config_path is None:
             origin, base = "command line", Path.cwd()
         else:
-            if not config_path.is_file():
+            if not os.path.lexists(config_path):
                 raise ConfigError(f"{config_path}: no such configuration file")
             config, origin, base = load_config(config_path), str(config_path), config_path.parent
             prefix = "tool.txtool." if config_path.name == PYPROJECT else ""

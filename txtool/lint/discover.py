@@ -11,6 +11,7 @@ device, FIFO or socket named ``*.urdf`` or ``*.xacro`` is passed on, so that loa
 
 from __future__ import annotations
 
+import errno
 import os
 import stat
 from collections.abc import Callable, Iterable, Iterator
@@ -19,8 +20,8 @@ from pathlib import Path
 
 from lxml import etree
 
-from txtool.io.packages import is_ignored
-from txtool.io.xmlio import SAFE_OPTIONS, InputError
+from txtool.io.packages import IGNORE_MARKERS
+from txtool.io.xmlio import SAFE_OPTIONS, InputError, read_regular
 from txtool.lint.patterns import Excludes, absolute_folder
 
 SUFFIXES = (".urdf", ".xacro")  # ``.urdf.xacro`` ends with ``.xacro``
@@ -32,11 +33,18 @@ Skip = Callable[[str, bool, bool], bool]
 _NAME = attrgetter("name")
 
 
+# (path, reason): something a walk could not read; reported as one line, the walk goes on.
+Report = Callable[[str, str], None]
+# A .gitignore over this is refused unread: each of its lines is matched against every path.
+MAX_GITIGNORE_BYTES = 256 * 1024
+
+
 def expand_paths(
     paths: Iterable[str],
     *,
     skip: Skip | None = None,
     gitignore: Callable[[str], bool] = lambda folder: True,
+    report: Report | None = None,
 ) -> Iterator[str]:
     """Files to lint, in a stable order: given files as they are, folders searched recursively.
 
@@ -45,12 +53,16 @@ def expand_paths(
     whatever its name and patterns; a missing one is passed on so that loading reports it.
     ``-`` (stdin) is passed on as well. Each file is produced once. A folder holding nothing to
     check is an :class:`~txtool.io.xmlio.InputError`: a CI step given the wrong folder must not
-    pass silently.
+    pass silently. What a walk cannot read (a folder it may not list, a symbolic link that
+    loops, a ``.gitignore`` that is no regular file) goes to ``report`` and the walk goes on
+    (without ``report``: an :class:`~txtool.io.xmlio.InputError`).
     """
+    tell = report or _raise
     seen: set[object] = set()
     for path in paths:
         if path != "-" and os.path.isdir(path):
-            found = _walk(path, skip, GitIgnores(path) if gitignore(path) else None)
+            ignores = GitIgnores(path, tell) if gitignore(path) else None
+            found = _walk(path, skip, ignores, tell)
         else:
             found = iter([path])
         empty = True
@@ -67,6 +79,10 @@ def expand_paths(
             )
 
 
+def _raise(path: str, reason: str) -> None:
+    raise InputError(f"{path}: {reason}")
+
+
 def _identity(path: str) -> object:
     """The file itself (device and inode, through links), else the path as given."""
     if path == "-":
@@ -78,15 +94,14 @@ def _identity(path: str) -> object:
     return (status.st_dev, status.st_ino)
 
 
-def _walk(folder: str, skip: Skip | None, gitignores: GitIgnores | None) -> Iterator[str]:
-    for root, dirs, files in scan(folder):
-        if is_ignored(root) and root != folder:
-            dirs[:] = []
-            continue
+def _walk(
+    folder: str, skip: Skip | None, gitignores: GitIgnores | None, report: Report
+) -> Iterator[str]:
+    for _root, dirs, files in scan(folder, report):
         kept = []
         for entry in sorted(dirs, key=_NAME):
             path = entry.path
-            if entry.name.startswith(".") or is_ignored(path):
+            if entry.name.startswith("."):
                 continue
             if gitignores is not None and gitignores.ignored(path, True):
                 continue
@@ -104,21 +119,29 @@ def _walk(folder: str, skip: Skip | None, gitignores: GitIgnores | None) -> Iter
                 yield path
 
 
-def scan(top: str) -> Iterator[tuple[str, list[os.DirEntry[str]], list[os.DirEntry[str]]]]:
-    """``os.walk(top)`` (top-down, unreadable folders passed over, linked folders listed but not
-    entered) with the folder's entries instead of their names.
+def scan(
+    top: str, report: Report | None = None
+) -> Iterator[tuple[str, list[os.DirEntry[str]], list[os.DirEntry[str]]]]:
+    """``os.walk(top)`` (top-down, linked folders listed but not entered) with the folder's
+    entries instead of their names; a folder holding ``COLCON_IGNORE``, ``AMENT_IGNORE`` or
+    ``CATKIN_IGNORE`` (``top`` aside) is passed over, known from its listing.
 
     An entry knows from the folder listing whether it is a symbolic link, where a name would
     cost a system call per file to ask (the configuration that applies depends on it).
-    Changing the folder list in place prunes the walk, as with ``os.walk``.
+    Changing the folder list in place prunes the walk, as with ``os.walk``. A folder that
+    cannot be listed and a symbolic link that loops go to ``report`` (None: passed over).
     """
     stack = [top]
     while stack:
         root = stack.pop()
         try:
             with os.scandir(root) as listing:
-                entries = list(listing)
-        except OSError:
+                entries = sorted(listing, key=_NAME)
+        except OSError as exc:
+            if report is not None:
+                report(root, f"cannot list this folder: {_reason(exc)}")
+            continue
+        if root != top and any(entry.name in IGNORE_MARKERS for entry in entries):
             continue
         dirs, files = [], []
         for entry in entries:
@@ -126,9 +149,24 @@ def scan(top: str) -> Iterator[tuple[str, list[os.DirEntry[str]], list[os.DirEnt
                 is_dir = entry.is_dir()
             except OSError:
                 is_dir = False
+            if not is_dir and report is not None and entry.is_symlink() and _loops(entry.path):
+                report(entry.path, "symbolic link loop (too many levels of symbolic links)")
+                continue
             (dirs if is_dir else files).append(entry)
         yield root, dirs, files
         stack.extend(entry.path for entry in reversed(dirs) if not entry.is_symlink())
+
+
+def _loops(path: str) -> bool:
+    try:
+        os.stat(path)
+    except OSError as exc:
+        return exc.errno == errno.ELOOP
+    return False
+
+
+def _reason(exc: OSError) -> str:
+    return (exc.strerror or str(exc)).lower()
 
 
 class GitIgnores:
@@ -139,9 +177,10 @@ class GitIgnores:
     only the folders walked count.
     """
 
-    def __init__(self, start: str) -> None:
+    def __init__(self, start: str, report: Report = _raise) -> None:
         self._by_folder: dict[str, tuple[Excludes, ...]] = {}
         self._absolute: dict[str, str] = {}
+        self._report = report
         start = os.path.abspath(start)
         self._top = next(
             (str(f) for f in (Path(start), *Path(start).parents) if (f / ".git").exists()), start
@@ -152,22 +191,33 @@ class GitIgnores:
         return bool(found) and any(rules.matches(path, is_folder) for rules in found)
 
     def _rules(self, folder: str) -> tuple[Excludes, ...]:
-        if folder not in self._by_folder:
+        """The rules of ``folder`` and its ancestors up to the top, each folder read once
+        (iteratively: a tree may be deeper than Python's recursion limit)."""
+        chain = []
+        while folder not in self._by_folder:
+            chain.append(folder)
             parent = os.path.dirname(folder)
-            inherited: tuple[Excludes, ...] = ()
-            if folder != self._top and parent != folder:
-                inherited = self._rules(parent)
-            self._by_folder[folder] = inherited + _own_gitignore(folder)
-        return self._by_folder[folder]
+            if folder == self._top or parent == folder:
+                break
+            folder = parent
+        inherited = self._by_folder.get(folder, ()) if folder not in chain else ()
+        for each in reversed(chain):
+            inherited = self._by_folder[each] = inherited + self._own(each)
+        return inherited
 
-
-def _own_gitignore(folder: str) -> tuple[Excludes, ...]:
-    try:
-        text = Path(folder, ".gitignore").read_text(encoding="utf-8", errors="replace")
-    except OSError:
-        return ()
-    lines = tuple(line for line in text.splitlines() if line.strip())
-    return (Excludes(folder, lines),) if lines else ()
+    def _own(self, folder: str) -> tuple[Excludes, ...]:
+        path = os.path.join(folder, ".gitignore")
+        if not os.path.lexists(path):
+            return ()
+        try:  # a FIFO would block, a link to /dev/zero never end: regular files only
+            text = read_regular(path, MAX_GITIGNORE_BYTES).decode("utf-8", "replace")
+        except InputError as exc:
+            reason = str(exc).removeprefix(f"{path}: ")
+            shown = os.path.relpath(path)  # as the walk names files, when below this folder
+            self._report(path if shown.startswith("..") else shown, reason)
+            return ()
+        lines = tuple(line for line in text.splitlines() if line.strip())
+        return (Excludes(folder, lines),) if lines else ()
 
 
 def is_candidate(path: str) -> bool:

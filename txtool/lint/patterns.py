@@ -1,9 +1,15 @@
-"""gitignore-style path patterns, for exclusions and per-file settings (pathspec, loaded lazily)."""
+"""gitignore-style path patterns, for exclusions and per-file settings.
+
+pathspec (loaded lazily) says what a pattern means; :mod:`txtool.lint.wildmatch` matches it
+without backtracking, so that no pattern a pull request writes can stall a walk.
+"""
 
 from __future__ import annotations
 
 import os
-from typing import Any, NamedTuple
+from typing import NamedTuple
+
+from txtool.lint.wildmatch import GitIgnore
 
 
 class Excludes(NamedTuple):
@@ -22,15 +28,14 @@ class Excludes(NamedTuple):
         return _spec(self.patterns).match_file(relative + ("/" if is_folder else ""))
 
 
-def _spec(patterns: tuple[str, ...]):
-    import pathspec  # only folder walks with patterns need it
+def _spec(patterns: tuple[str, ...]) -> GitIgnore:
+    spec = _SPECS.get(patterns)
+    if spec is None:
+        spec = _SPECS[patterns] = GitIgnore(patterns)
+    return spec
 
-    return _SPECS.get(patterns) or _SPECS.setdefault(
-        patterns, pathspec.GitIgnoreSpec.from_lines(patterns)
-    )
 
-
-_SPECS: dict[tuple[str, ...], Any] = {}
+_SPECS: dict[tuple[str, ...], GitIgnore] = {}
 
 
 def absolute_folder(path: str, known: dict[str, str]) -> str:

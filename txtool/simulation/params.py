@@ -24,6 +24,7 @@ and reported as one ``path[:line]: reason`` line.
 from __future__ import annotations
 
 import math
+import os
 import re
 import sys
 from dataclasses import dataclass, field
@@ -135,10 +136,19 @@ def merge(files: list[Params]) -> Params:
 
 
 def find_pyproject(robot_path: str) -> tuple[str, dict[str, Any], str] | None:
-    start = Path(robot_path).resolve().parent if robot_path != "-" else Path.cwd()
+    """The ``pyproject.toml`` whose ``[tool.txtool.simulate]`` applies: for a robot inside the
+    run's root (see :func:`~txtool.lint.config_files.applicable_config`), the first found from
+    the root upward, never one a pull request drops beside the robot; else the nearest above
+    the robot."""
+    from txtool.lint.config_files import repository_root
+
+    root = repository_root()
+    start = Path(os.path.realpath(robot_path)).parent if robot_path != "-" else Path(root)
+    if start == Path(root) or Path(root) in start.parents:
+        start = Path(root)
     for folder in (start, *start.parents):
         candidate = folder / "pyproject.toml"
-        if not candidate.is_file():
+        if not os.path.lexists(candidate):
             continue
         text = read_text(str(candidate))
         data: Any = parse_toml(text, str(candidate))
@@ -212,17 +222,22 @@ def key_of(name: str) -> str:
 
 
 def read_text(path: str) -> str:
+    """A parameter file's text: a regular file of at most 1 MB (a FIFO would block, a device
+    never end), else one line."""
+    from txtool.io.xmlio import read_regular
+    from txtool.lint.config_files import MAX_CONFIG_BYTES
+
     try:
-        return Path(path).read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise InputError(f"{path}: no such file") from None
-    except (OSError, UnicodeDecodeError) as exc:
+        return read_regular(path, MAX_CONFIG_BYTES).decode("utf-8")
+    except UnicodeDecodeError as exc:
         raise InputError(f"{path}: cannot read: {exc}") from None
 
 
 def parse_toml(text: str, path: str) -> dict[str, Any]:
     try:
         return tomllib.loads(text)
+    except RecursionError:  # tomllib recurses once per level of nested arrays and tables
+        raise InputError(f"{path}: configuration nested too deep") from None
     except tomllib.TOMLDecodeError as exc:
         match = re.search(r"\(at line (\d+), column \d+\)", str(exc))
         reason = re.sub(r"\s*\(at line .*\)$", "", str(exc))

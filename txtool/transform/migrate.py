@@ -140,7 +140,7 @@ def migrate_paths(paths: Iterable[str], options: MigrateOptions) -> Report:
     (:class:`~txtool.lint.config.ConfigError`, exit 2) stops the run with nothing written.
     """
     report = Report(mode=options.mode)
-    for path, rules in _plan(paths, options):
+    for path, rules in _plan(paths, options, report):
         try:
             result = migrate_file(path, rules, options)
         except InputError as exc:
@@ -152,15 +152,19 @@ def migrate_paths(paths: Iterable[str], options: MigrateOptions) -> Report:
     return report
 
 
-def _plan(paths: Iterable[str], options: MigrateOptions) -> list[tuple[str, list[Rule]]]:
+def _plan(
+    paths: Iterable[str], options: MigrateOptions, report: Report
+) -> list[tuple[str, list[Rule]]]:
     overrides = Overrides(select=options.select, ignore=options.ignore)
     settings = SettingsCache(overrides, options.config)
     plan = []
-    for path in expand_paths(paths):
+    unread = lambda where, reason: _error(report, f"{where}: {reason}")  # noqa: E731
+    for path in expand_paths(paths, report=unread):
         if path == "-":
             raise InputError("-: migrate rewrites files in place; standard input is not supported")
         enabled = settings.for_file(path).enabled
         plan.append((path, [r for r in all_rules().values() if r.fixable and r.code in enabled]))
+    report.messages.extend(f"txtool: note: {note}" for note in settings.notes)
     return plan
 
 
