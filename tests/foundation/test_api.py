@@ -211,3 +211,13 @@ def test_ros2_writer_writes_read_only_parameters_and_both_role_forms() -> None:
         '<actuator name="m"><role>actuator1</role></actuator>'
         '<joint name="j" read_only="true"><role>joint1</role></joint>'
         '<param name="mode">fast</param></transmission>')
+
+
+def test_validate_reads_a_configuration_changed_between_calls(tmp_path, monkeypatch):
+    (tmp_path / ".git").mkdir()
+    monkeypatch.chdir(tmp_path)
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(SNIPPET.replace("-50", "0"))
+    assert [p.code for p in txtool.validate(robot)] == ["TX106"]
+    (tmp_path / ".txtool.toml").write_text('ignore = ["TX106"]\n')
+    assert txtool.validate(robot) == []

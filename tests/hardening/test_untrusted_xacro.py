@@ -172,7 +172,8 @@ def test_allowed_env_from_the_command_line_and_the_configuration(repo, monkeypat
     assert code == 2 and "$(env ROBOT_MODEL) is not allowed" in err
     configured = repo / "configured"
     configured.mkdir()
-    (configured / ".txtool.toml").write_text('xacro-env = ["ROBOT_MODEL", "FAKE_GITHUB_TOKEN"]\n')
+    # the repository root's configuration (a nested one is passed over: docs/configuration.md)
+    (repo / ".txtool.toml").write_text('xacro-env = ["ROBOT_MODEL", "FAKE_GITHUB_TOKEN"]\n')
     path = configured / "robot.urdf.xacro"
     path.write_text(robot(TRANSMISSION.replace("JOINT", "$(env ROBOT_MODEL)_joint")))
     code, out, err, _ = run("validate", "--format", "json", str(path))

@@ -10,6 +10,7 @@ from typing import NamedTuple
 
 from txtool.io.xmlio import InputError, XacroOptions
 from txtool.lint.config import Overrides, Settings, SettingsCache
+from txtool.lint.config_files import find_config_cache_clear
 from txtool.lint.discover import expand_paths
 from txtool.lint.engine import lint_file, lint_source
 from txtool.lint.problem import InputFailure, Problem
@@ -67,6 +68,8 @@ def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions) -> Lint
         extend_exclude=options.extend_exclude, respect_gitignore=options.respect_gitignore,
         ros_distro=options.ros_distro,
     )
+    # Each run looks again: a script (or an editor) may change configuration files between runs.
+    find_config_cache_clear()
     settings = SettingsCache(overrides, options.config)
     work: list[tuple[str, Settings]] = []
     unread: list[InputFailure] = []  # what a folder walk could not read; it went on
