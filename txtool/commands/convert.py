@@ -69,7 +69,8 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, revers
     if in_place_target and source.expanded:
         raise InputError(f"{path}: converting a xacro file in place would replace it with its "
                          "expansion; use 'txtool migrate --write --to TARGET' (or --no-xacro)")
-    if target == "bb":
+    to_bb = target == "bb"  # Elixir, not a robot: kept off robot descriptions as a report is
+    if to_bb:
         data, losses, notes = _bb(source, bb_direction or "reversed", bb_topology)
     else:
         from txtool.transform.convert import convert_source
@@ -94,7 +95,7 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, revers
     if in_place_target:
         replace_if_unchanged(output, source.data, data, "conversion")
     elif output:
-        write_atomic(output, data)
+        write_atomic(output, data, report=to_bb, inputs=(path,))
     else:
         sys.stdout.flush()
         sys.stdout.buffer.write(data)

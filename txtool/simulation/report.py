@@ -329,4 +329,4 @@ def write_csv(run: RunResult, path: str) -> None:
             row.append(repr(float(series.velocity[k, i])))
         writer.writerow(row)
     # One atomic write: an interrupted run leaves the old file or none, never half a file.
-    write_atomic(path, handle.getvalue().encode("utf-8"))
+    write_atomic(path, handle.getvalue().encode("utf-8"), report=True)
