@@ -33,7 +33,6 @@ from txtool.io.xmlio import (
 )
 from txtool.lint.config import Overrides, SettingsCache
 from txtool.lint.discover import expand_paths
-from txtool.lint.problem import Problem
 from txtool.lint.suppress import Suppressions
 from txtool.lint.suppress import parse as parse_suppressions
 from txtool.model.core import Dialect
@@ -483,11 +482,7 @@ def _mentions(suppressions: Suppressions, code: str) -> bool:
 def _silenced(element: etree._Element, code: str, suppressions: Suppressions) -> bool:
     """Whether a directive covers ``code`` on any line of ``element`` (as originally parsed)."""
     lines = {e.sourceline for e in element.iter() if e.sourceline is not None}
-    return any(
-        directive.covers(Problem("", line, 1, code, ""))
-        for directive in suppressions.directives
-        for line in lines or {0}
-    )
+    return suppressions.silences(code, lines or {0})
 
 
 # Diff ------------------------------------------------------------------------------------------
