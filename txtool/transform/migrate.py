@@ -23,6 +23,7 @@ from lxml import etree
 
 from txtool.dialects.read import transmission_elements
 from txtool.io.encodings import SCANNABLE, detect_encoding, document_text
+from txtool.io.printable import printable
 from txtool.io.xmlio import (
     InputError,
     Source,
@@ -498,7 +499,7 @@ def diff_of(path: str, before: bytes, after: bytes) -> str | bytes:
     """:func:`unified_diff`, ASCII-encoded where it is made from the bytes (a large document
     in ASCII changed in one run of lines, see :func:`.linediff.unified_ascii`) and its path
     is ASCII."""
-    name = path.replace(os.sep, "/").lstrip("/")
+    name = printable(path.replace(os.sep, "/").lstrip("/"))  # a name's newline: not a new line
     if {detect_encoding(before).codec, detect_encoding(after).codec} <= SCANNABLE:
         fast = unified_ascii(before, after, f"a/{name}", f"b/{name}")
         if fast is not None:
