@@ -179,7 +179,10 @@ def test_a_file_in_a_folder_the_user_cannot_read_is_one_line(args):
         (shared / "locked" / "robot.urdf").write_bytes(DEMO)
         (shared / "locked").chmod(0o700)
         target = str(shared / "locked" / "robot.urdf")
-        CliRunner().invoke(cli, [*args, target])  # loads every module the fork will need
+        (shared / "open").mkdir()
+        (shared / "open" / "robot.urdf").write_bytes(DEMO)
+        # Loads every module the fork will need (in another folder: nothing found is cached).
+        CliRunner().invoke(cli, [*args, str(shared / "open" / "robot.urdf")])
         reader, writer = os.pipe()
         pid = os.fork()
         if pid == 0:  # pragma: no cover (runs in the fork)
