@@ -183,3 +183,26 @@ def test_temporaries_a_killed_run_left_are_removed_and_nothing_else(run, tmp_pat
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted([
         "robot.urdf", "new.urdf", fresh.name, *kept, ".txtool-linkedxx.tmp", "sub"])
     assert deeper.exists() and (tmp_path / "robot.urdf").read_bytes() == DEMO
+
+
+@pytest.mark.parametrize(("output", "link"), [("reports/report.txt", "reports"),
+                                              ("./reports/report.txt", "./reports"),
+                                              ("reports/../report.txt", "reports")])
+def test_a_planted_folder_link_in_a_relative_output_path_is_not_followed(run, tmp_path,
+                                                                         output, link):
+    """``reports -> /home/runner/.config`` in the checkout: the report is not written there
+    (nor in its parent, where ``reports/..`` leads)."""
+    (tmp_path / "robot.urdf").write_bytes(DEMO)
+    home = tmp_path / "home"
+    (home / ".config").mkdir(parents=True)
+    (home / "report.txt").write_bytes(SECRET)
+    (home / ".config" / "report.txt").write_bytes(SECRET)
+    (tmp_path / "reports").symlink_to(home / ".config")
+    code, out, err = run("validate", "robot.urdf", "--output-file", output)
+    assert (code, out, err) == (2, "", (
+        f"txtool: {output}: passes through the symbolic link {link}; txtool "
+        "writes a new output named by a relative path only inside real folders (name a folder "
+        "outside the checkout, or an absolute path)\n"))
+    assert (home / "report.txt").read_bytes() == SECRET
+    assert (home / ".config" / "report.txt").read_bytes() == SECRET
+    assert not (tmp_path / "report.txt").exists()

@@ -53,6 +53,11 @@ def refused_target(path: str, inputs: tuple[str, ...] = (), *, report: bool = Tr
     """Why ``path`` may not receive a new output, or None. ``inputs`` are the paths named on
     the command line; a ``report`` (not a robot description) also keeps off every existing
     file with the suffix of one (what a folder walk reads, when the inputs ran in forks)."""
+    linked = _linked_folder(path)
+    if linked is not None:
+        return (f"passes through the symbolic link {linked}; txtool writes a new output named "
+                "by a relative path only inside real folders (name a folder outside the "
+                "checkout, or an absolute path)")
     try:
         status = os.lstat(path)
     except OSError:
@@ -65,6 +70,24 @@ def refused_target(path: str, inputs: tuple[str, ...] = (), *, report: bool = Tr
     if report and path.lower().endswith(INPUT_SUFFIXES) and stat.S_ISREG(status.st_mode):
         return (f"is a robot description ({os.path.splitext(path)[1]}); txtool writes a "
                 "report, table or plot only to a file of another kind")
+    return None
+
+
+def _linked_folder(path: str) -> str | None:
+    """The first folder of a relative ``path`` that is a symbolic link (a checkout can hold
+    ``reports -> /home/runner``), or None. An absolute path is the workflow's own choice."""
+    if os.path.isabs(path):
+        return None
+    folders = path.replace(os.sep, "/").split("/")[:-1]
+    for depth in range(1, len(folders) + 1):
+        prefix = "/".join(folders[:depth])
+        if folders[depth - 1] in ("", "."):
+            continue
+        try:
+            if stat.S_ISLNK(os.lstat(prefix).st_mode):
+                return prefix
+        except OSError:
+            return None  # missing: the write says so
     return None
 
 
