@@ -206,3 +206,12 @@ def test_a_file_in_a_folder_the_user_cannot_read_is_one_line(args):
     first = err.splitlines()[0]
     assert code == "2" and first.startswith(f"txtool: {shared}/locked"), err
     assert first.endswith(": permission denied") and "internal error" not in err + out
+
+
+def test_simulate_keeps_each_joint_name_on_its_line(run, tmp_path):
+    forged = b'name="sh&#10;::error file=ok.urdf::forged[/]"'
+    (tmp_path / "robot.urdf").write_bytes(DEMO.replace(b'name="shoulder"', forged))
+    code, out, err = run("simulate", "robot.urdf", "--duration", "0.2")
+    assert code in (0, 1) and "internal error" not in err
+    assert "sh\\n::error file=ok.urdf::forged[/]" in out
+    _no_forged_line(out)

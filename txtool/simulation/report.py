@@ -11,11 +11,17 @@ from typing import Any
 
 from rich import box
 from rich.console import Console
-from rich.markup import escape
+from rich.markup import escape as escape_markup
 from rich.table import Table
 
+from txtool.io.printable import printable
 from txtool.io.xmlio import write_atomic
 from txtool.simulation.result import GainsUsed, RunResult
+
+
+def escape(text: str) -> str:
+    """A name or path from a file, printed through rich: one line, brackets as written."""
+    return escape_markup(printable(text))
 
 TABLE_WIDTH = 100  # tables fit this many columns (or the terminal, when narrower)
 
