@@ -158,6 +158,7 @@ def _main() -> None:
     xmlio = _xmlio_if_loaded()
     if xmlio is not None:
         xmlio.forget_reading()
+    _escape_what_cannot_be_encoded()
     sys.stdout = GuardedStdout(sys.stdout)  # type: ignore[assignment]
     try:
         try:
@@ -200,6 +201,18 @@ def _leave(line: str, code: int) -> None:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.__stdout__.fileno() if sys.__stdout__ else 1)
     raise SystemExit(code)
+
+
+def _escape_what_cannot_be_encoded() -> None:
+    """Under an encoding that cannot hold every character (``PYTHONIOENCODING=ascii``, a C
+    locale), print the others as ``\\u2192`` escapes rather than fail: a name from a file may
+    hold any character, and the tables draw arrows and ticks."""
+    for stream in (sys.stdout, sys.stderr):
+        reconfigure = getattr(stream, "reconfigure", None)
+        if reconfigure is not None and (getattr(stream, "encoding", "") or "").lower() not in (
+                "utf-8", "utf8"):
+            with contextlib.suppress(Exception):
+                reconfigure(errors="backslashreplace")
 
 
 class OutputError(Exception):

@@ -321,7 +321,7 @@ def test_migrate_imports_nothing_heavy(write, tmp_path):
 
 def test_a_file_that_cannot_be_written_is_one_line_and_exit_2(run, write, monkeypatch):
 
-    def refuse(path: str, data: bytes) -> None:
+    def refuse(path: str, data: bytes, **how: object) -> None:
         raise PermissionError(13, "Permission denied")
 
     from txtool.io import xmlio

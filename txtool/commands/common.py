@@ -224,14 +224,36 @@ def exit_on_input_error(function: Callable[..., int | None]) -> Callable[..., No
 
     @functools.wraps(function)
     def wrapper(*args: Any, **kwargs: Any) -> None:
+        from txtool.io.targets import forget_inputs
+
+        forget_inputs()
         try:
+            _working_folder()
             code = function(*args, **kwargs)
         except InputError as exc:
             click.echo(f"txtool: {printable(str(exc))}", err=True)
             sys.exit(2)
+        except OSError as exc:
+            if exc.filename is None:
+                raise
+            # A file or folder the command had to look at (a configuration file in an
+            # unreadable folder, say), refused by the system: named, as an input error is.
+            reason = (exc.strerror or str(exc)).lower()
+            click.echo(f"txtool: {printable(os.fsdecode(exc.filename))}: {reason}", err=True)
+            sys.exit(2)
         sys.exit(code or 0)
 
     return wrapper
+
+
+def _working_folder() -> None:
+    """Refuse to start in a working folder that was deleted (or cannot be read): relative
+    paths, configuration discovery and folder walks all start from it."""
+    try:
+        os.getcwd()
+    except OSError as exc:
+        raise InputError(f"the working folder cannot be used ({(exc.strerror or str(exc)).lower()}"
+                         "; was it deleted?): change to an existing folder") from None
 
 
 FORMAT_OPTION = click.option(

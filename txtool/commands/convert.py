@@ -16,6 +16,7 @@ from txtool.commands.common import (
     xacro_disabled,
     xacro_options,
 )
+from txtool.io.printable import printable
 
 TARGETS = ("ros1", "ros2-p1", "ros2-p2", "bb")
 
@@ -74,7 +75,8 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, revers
     if in_place_target and source.expanded:
         raise InputError(f"{path}: converting a xacro file in place would replace it with its "
                          "expansion; use 'txtool migrate --write --to TARGET' (or --no-xacro)")
-    if target == "bb":
+    to_bb = target == "bb"  # Elixir, not a robot: kept off robot descriptions as a report is
+    if to_bb:
         data, losses, notes = _bb(source, bb_direction or "reversed", bb_topology)
     else:
         from txtool.transform.convert import convert_source
@@ -83,15 +85,16 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, revers
                                 reversible=reversible)
         data, losses, notes = result.data, result.losses, result.notes
         for left in result.warnings:
-            click.echo(f"warning: {left}", err=True)
+            click.echo(f"warning: {printable(left)}", err=True)
         if not result.converted and not result.losses:
             held = (f"{result.found} found, {result.already} already {target}; the document is "
                     "unchanged" if result.found else "the document has no transmission")
-            click.echo(f"txtool: {source.path}: 0 transmissions converted ({held})", err=True)
+            click.echo(f"txtool: {printable(source.path)}: 0 transmissions converted ({held})",
+                       err=True)
     for note in notes:
-        click.echo(f"note: {note}", err=True)
+        click.echo(f"note: {printable(note)}", err=True)
     for loss in losses:
-        click.echo(f"{'warning' if allow_lossy else 'error'}: {loss}", err=True)
+        click.echo(f"{'warning' if allow_lossy else 'error'}: {printable(loss)}", err=True)
     if losses and not allow_lossy:
         click.echo(f"txtool: {len(losses)} item(s) would be lost; nothing written "
                    "(use --allow-lossy to accept)", err=True)
@@ -99,7 +102,7 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, revers
     if in_place_target:
         replace_if_unchanged(output, source.data, data, "conversion")
     elif output:
-        write_atomic(output, data)
+        write_atomic(output, data, report=to_bb, inputs=(path,))
     else:
         sys.stdout.flush()
         sys.stdout.buffer.write(data)

@@ -12,6 +12,7 @@ from txtool.commands.common import (
     xacro_disabled,
     xacro_options,
 )
+from txtool.io.printable import printable
 from txtool.io.xmlio import InputError
 
 
@@ -56,12 +57,12 @@ def command(
         if xacro_disabled(no_xacro, file, config=config_path):
             refuse_unexpanded("map", file)
     except InputError as exc:
-        click.echo(f"txtool: {exc}", err=True)
+        click.echo(f"txtool: {printable(str(exc))}", err=True)
         raise SystemExit(2) from None
 
     outcome = run_map(file, name, to, position=position, velocity=velocity, effort=effort,
                       convention=convention, xacro=xacro)
     if outcome.exit_code:
-        click.echo(f"txtool: {outcome.error}", err=True)
+        click.echo(f"txtool: {printable(outcome.error)}", err=True)
         raise SystemExit(outcome.exit_code)
     click.echo(outcome.to_json() if fmt == "json" else render_text(outcome), nl=fmt == "json")

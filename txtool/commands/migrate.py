@@ -5,6 +5,7 @@ from __future__ import annotations
 import click
 
 from txtool.commands.common import TARGET_HINTS, Choice, exit_on_input_error
+from txtool.io.printable import printable
 
 TARGETS = ("ros1", "ros2-p1", "ros2-p2")
 
@@ -74,6 +75,6 @@ def command(paths, target, check, diff, write, select, ignore, config_path, allo
     report = migrate_paths(paths, options)
     for diff in report.diffs:  # ASCII bytes go to the binary stream as they are
         click.echo(diff, nl=False)
-    for message in report.messages:
-        click.echo(message, err=True)
+    for message in report.messages:  # each one line, whatever the file names hold
+        click.echo(printable(message), err=True)
     return report.exit_code

@@ -15,6 +15,7 @@ from txtool.commands.common import (
     xacro_disabled,
     xacro_options,
 )
+from txtool.io.printable import printable
 
 
 @click.command("roundtrip")
@@ -92,9 +93,9 @@ def _print_rich_table(report) -> None:
     for row in report.rows:
         reason = row.equivalent.split(": ", 1)[1:] if row.equivalent != "yes" else []
         for detail in (*row.details, *reason):
-            out.print(f"{row.transmission} ({' → '.join(row.cycle)}): {detail}")
+            out.print(safe(f"{row.transmission} ({' → '.join(row.cycle)}): {detail}"))
     for skipped in report.skipped:
-        out.print(f"passed through untouched: {skipped}")
+        out.print(safe(f"passed through untouched: {skipped}"))
     out.print("all cycles keep every field" if report.ok else "[red]some cycles lose data "
               "or change behaviour[/red]")
 
@@ -133,5 +134,5 @@ def _against(a, b, output_format, convention) -> int:
         out.print("efforts: " + (f"{convention} maps for both (--effort-convention)" if convention
                                  else "each file through its own loader's maps"), markup=False)
         for line in bb_dropped:
-            click.echo(f"BB dropped: {line}")
+            click.echo(f"BB dropped: {printable(line)}")
     return 0 if report.equivalent and not bb_dropped else 1

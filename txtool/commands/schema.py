@@ -18,7 +18,7 @@ def command(output) -> int:
 
     text = schema_text()
     if output:
-        write_atomic(output, text.encode("utf-8"))
+        write_atomic(output, text.encode("utf-8"), report=True)
     else:
         click.echo(text, nl=False)
     return 0

@@ -117,7 +117,7 @@ def command(paths, output_format, select, ignore, strict, exit_zero, config_path
     else:
         from txtool.io.xmlio import write_atomic
 
-        write_atomic(output_file, report.encode("utf-8"))
+        write_atomic(output_file, report.encode("utf-8"), inputs=tuple(paths), report=True)
     return exit_code(result, options)
 
 

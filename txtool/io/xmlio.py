@@ -19,6 +19,7 @@ from typing import NamedTuple
 from lxml import etree
 
 from txtool.io.encodings import detect_encoding, mislabelled, parsing_form, utf8_form
+from txtool.io.targets import refused_target, remember_input, sweep_stale_temporaries
 
 XACRO_NS = "http://www.ros.org/wiki/xacro"
 XACRO_SUFFIXES = (".xacro",)
@@ -115,7 +116,12 @@ def read_bytes(path: str, *, stdin_name: str | None = None) -> tuple[str, bytes]
     stop_if_received()
     if path == "-":
         _reading.set(stdin_name or "<stdin>")
-        return stdin_name or "<stdin>", sys.stdin.buffer.read(MAX_BYTES + 1)
+        if sys.stdin is None:  # started with standard input closed (`<&-`)
+            raise InputError("-: standard input is closed; nothing to read")
+        try:
+            return stdin_name or "<stdin>", sys.stdin.buffer.read(MAX_BYTES + 1)
+        except OSError as exc:
+            raise InputError(f"-: cannot read standard input: {exc.strerror or exc}") from None
     _reading.set(path)
     return path, read_regular(path)
 
@@ -133,6 +139,7 @@ def read_regular(path: str, limit: int = MAX_BYTES) -> bytes:
         try:  # plain descriptor reads: a buffered file object costs more than a small read
             status = os.fstat(handle)
             refuse_special(path, status.st_mode)
+            remember_input(status)
             if status.st_size > limit:
                 raise TooLarge(f"{path}: file is {status.st_size} bytes, larger than the "
                                f"{limit} limit")
@@ -376,36 +383,63 @@ def _top_level(tree: etree._ElementTree, encoding: str) -> list[bytes]:
 
 
 def replace_if_unchanged(path: str, original: bytes, data: bytes, during: str) -> None:
-    """Write ``data`` over ``path`` atomically, unless the file no longer holds ``original``:
-    someone edited it while this command ran (``during`` names the command's work)."""
+    """Write ``data`` over ``path`` atomically (through a symbolic link), unless the file no
+    longer holds ``original``: someone edited it while this command ran (``during`` names the
+    command's work). The file's status when it is compared is checked again right before the
+    rename, so an edit made while the new text is written is not lost either."""
+    try:
+        status = os.stat(path)
+    except OSError as exc:
+        raise InputError(f"{path}: cannot write: {exc.strerror or exc}") from None
     _, current = read_bytes(path)
     if current != original:
         raise InputError(f"{path}: changed on disk during the {during}; not written")
-    write_atomic(path, data)
+    write_atomic(path, data, in_place=Unchanged(status, during))
 
 
-def write_atomic(path: str, data: bytes) -> None:
+class Unchanged(NamedTuple):
+    """An input rewritten in place: its status when its text was last compared."""
+
+    status: os.stat_result
+    during: str
+
+
+def write_atomic(path: str, data: bytes, *, in_place: Unchanged | None = None,
+                 inputs: tuple[str, ...] = (), report: bool = False) -> None:
     """Replace ``path`` with ``data``, or leave it byte for byte as it was.
 
     The data goes to a temp file in the same folder, is flushed to disk, gets the old file's
     owner, group, mode and extended attributes (ACLs among them; a new file: 0o666 less the
     umask, as ``open`` would) and is renamed over the target, whose folder is then flushed too.
-    A symbolic link is written through to its target. Refused, leaving it as it was: a target
-    that is not a regular file (device, FIFO, socket), one with several hard links (a rename
-    would split them), one the user could not write, one whose owner, group or attributes the
-    replacement could not keep. Any failure removes the temp file and is an
-    :class:`InputError`; so does SIGINT or SIGTERM (see :mod:`txtool.io.signals`).
+    Refused, leaving it as it was: a target that is not a regular file (device, FIFO, socket),
+    one with several hard links (a rename would split them), one the user could not write, one
+    whose owner, group or attributes the replacement could not keep. Any failure removes the
+    temp file and is an :class:`InputError`; so does SIGINT or SIGTERM (see
+    :mod:`txtool.io.signals`). Temporary files a killed run left in the folder are removed
+    (:func:`txtool.io.targets.sweep_stale_temporaries`).
+
+    A new output (``in_place`` None) is never written through a symbolic link nor over a file
+    read as an input (or named in ``inputs``); a ``report`` not over a robot description either
+    (:func:`txtool.io.targets.refused_target`). An input rewritten ``in_place`` is written
+    through a symbolic link to its target, and only if its status is still the one compared.
     """
     import tempfile
 
     from txtool.io.signals import held, stop_if_received
 
     stop_if_received()
-    target = os.path.realpath(path)
+    if in_place is None:
+        refusal = refused_target(path, inputs, report=report)
+        if refusal is not None:
+            raise InputError(f"{path}: {refusal}")
+    # A new output is renamed over the name as given (a link there is replaced, not followed;
+    # "x/../name" resolved by the system, not by text).
+    target = os.path.realpath(path) if in_place is not None else path
     folder = os.path.dirname(target) or "."
     temp = None
     try:
         old = _replaceable(path, target)
+        sweep_stale_temporaries(folder)
         with held():  # a signal must not fall between creating the file and naming it
             handle, temp = tempfile.mkstemp(prefix=".txtool-", suffix=".tmp", dir=folder)
         with os.fdopen(handle, "wb") as out:
@@ -416,6 +450,8 @@ def write_atomic(path: str, data: bytes) -> None:
             else:
                 _keep_identity(path, target, out.fileno(), old)
             os.fsync(out.fileno())
+        if in_place is not None:
+            _still_unchanged(path, target, in_place)
         os.replace(temp, target)
         temp = None
         _sync_folder(folder)
@@ -425,6 +461,23 @@ def write_atomic(path: str, data: bytes) -> None:
         if temp is not None:
             with held(), contextlib.suppress(OSError):
                 os.unlink(temp)
+
+
+def _still_unchanged(path: str, target: str, expected: Unchanged) -> None:
+    """Refuse when the file is no longer the one compared: another inode (replaced), another
+    size, modification or status-change time (written meanwhile)."""
+    try:
+        now = os.stat(target)
+    except OSError:
+        now = None
+    then = expected.status
+    if now is None or _identity(now) != _identity(then):
+        raise InputError(f"{path}: changed on disk during the {expected.during}; not written")
+
+
+def _identity(status: os.stat_result) -> tuple[int, ...]:
+    return (status.st_dev, status.st_ino, status.st_size, status.st_mtime_ns,
+            status.st_ctime_ns)
 
 
 def _replaceable(path: str, target: str) -> os.stat_result | None:

@@ -232,7 +232,7 @@ def finish(problems: list[Problem], source: Source, settings: Settings) -> list[
     if not kept:
         return kept
     rules = all_rules()
-    lines = text_lines(source.data)
+    lines = _Lines(text_lines(source.data))
     return sorted(_stamped(p, rules[p.code], settings, lines) for p in kept)
 
 
@@ -252,7 +252,7 @@ def _invalid_suppressions(
     return found
 
 
-def _stamped(problem: Problem, rule: Rule, settings: Settings, lines: list[str]) -> Problem:
+def _stamped(problem: Problem, rule: Rule, settings: Settings, lines: _Lines) -> Problem:
     """The problem with its registry name, configured severity, fixability and end."""
     return Problem(
         problem.path,
@@ -272,17 +272,36 @@ def _pipeline(path: str, line: int, column: int, code: str, message: str) -> Pro
     return Problem(path, max(line, 1), max(column, 1), code, message)
 
 
-def _end_column(problem: Problem, lines: list[str]) -> int:
-    """Exclusive end: the end of the tag (or text) starting at the position, on its line."""
-    if not 1 <= problem.line <= len(lines):
+class _Lines:
+    """The document's lines, and where the text of each ends (worked out once per line)."""
+
+    __slots__ = ("text", "_text_ends")
+
+    def __init__(self, text: list[str]) -> None:
+        self.text = text
+        self._text_ends: dict[int, int] = {}
+
+    def text_end(self, line: int) -> int:
+        """Characters up to the last one that is not white space on ``line`` (1-based)."""
+        end = self._text_ends.get(line)
+        if end is None:
+            end = self._text_ends[line] = len(self.text[line - 1].rstrip())
+        return end
+
+
+def _end_column(problem: Problem, lines: _Lines) -> int:
+    """Exclusive end: the end of the tag (or text) starting at the position, on its line.
+
+    Read in place, never by copying the rest of the line: a document written on one line
+    holds every problem on that line."""
+    if not 1 <= problem.line <= len(lines.text):
         return problem.column + 1
-    rest = lines[problem.line - 1][problem.column - 1 :]
-    match = _TAG_END.match(rest)
+    start = problem.column - 1
+    match = _TAG_END.match(lines.text[problem.line - 1], start)
     if match:
-        return problem.column + len(match.group(0))
-    if rest.strip():
-        return problem.column + len(rest.rstrip())
-    return problem.column + 1
+        return match.end() + 1
+    end = lines.text_end(problem.line)
+    return end + 1 if end > start else problem.column + 1
 
 
 def _xacro_position(data: bytes, reason: str) -> tuple[int, int]:

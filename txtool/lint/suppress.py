@@ -10,7 +10,7 @@ spaces or commas; without codes every rule is silenced. Text after ``;`` is a fr
 from __future__ import annotations
 
 import re
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from typing import NamedTuple
 
 from txtool.lint.problem import Problem
@@ -52,13 +52,22 @@ class Invalid(NamedTuple):
 
 
 class Suppressions:
-    """The directives of a document, and the comments that are none."""
+    """The directives of a document, and the comments that are none.
 
-    __slots__ = ("directives", "invalid")
+    Matching looks a problem's line and code up (a document may hold thousands of directives
+    on one line, and thousands of problems): which codes each line silences is worked out once,
+    and what was silenced is kept as (line, code) pairs, read back into each directive's
+    ``used`` when :meth:`unused` asks.
+    """
+
+    __slots__ = ("directives", "invalid", "_silenced", "_hits")
 
     def __init__(self) -> None:
         self.directives: list[Directive] = []
         self.invalid: list[Invalid] = []
+        # line (None: the whole file) -> the codes silenced there ("" for every code)
+        self._silenced: dict[int | None, set[str]] | None = None
+        self._hits: set[tuple[int | None, str]] = set()
 
     def __bool__(self) -> bool:
         return bool(self.directives or self.invalid)
@@ -66,34 +75,54 @@ class Suppressions:
     def suppressed(self, problem: Problem) -> bool:
         """Whether a directive silences ``problem`` (and remember that it was used)."""
         hit = False
-        for directive in self.directives:
-            if directive.covers(problem):
-                directive.used.add(problem.code)
+        for line in (None, problem.line):
+            if self._covers(line, problem.code):
+                self._hits.add((line, problem.code))
                 hit = True
         return hit
 
+    def silences(self, code: str, lines: Iterable[int]) -> bool:
+        """Whether a directive covers ``code`` on any of ``lines`` (nothing is marked used)."""
+        return self._covers(None, code) or any(self._covers(line, code) for line in lines)
+
+    def _covers(self, line: int | None, code: str) -> bool:
+        if self._silenced is None:
+            self._silenced = {}
+            for directive in self.directives:
+                codes = self._silenced.setdefault(directive.target, set())
+                codes.update(directive.codes or ("",))
+        codes = self._silenced.get(line)
+        return codes is not None and ("" in codes or code in codes)
+
     def unused(self, enabled: frozenset[str]) -> Iterator[tuple[Directive, str]]:
         """``(directive, code)`` for each enabled code a directive lists but never silenced."""
+        hit_lines = {line for line, _ in self._hits}
         for directive in self.directives:
             if not directive.codes:
-                if not directive.used:
+                if directive.target not in hit_lines:
                     yield directive, ""
                 continue
-            for code in sorted(directive.codes - directive.used):
-                if code in enabled:
+            for code in sorted(directive.codes):
+                if (directive.target, code) in self._hits:
+                    directive.used.add(code)
+                elif code in enabled:
                     yield directive, code
 
 
 def parse(data: bytes) -> Suppressions:
-    """The suppression comments of a document (cheap when there are none)."""
+    """The suppression comments of a document (cheap when there are none).
+
+    One pass: each comment is matched within its own bounds and lines are counted from the
+    previous comment on, so a document of many comments on one line (or none closed) costs
+    time in proportion to its size."""
     data = scanned_form(data)  # UTF-8 with LF line ends, lines where libxml2 counts them
     if _MARK not in data:
         return Suppressions()
     found = Suppressions()
-    for match in _DIRECTIVE.finditer(data):
-        start_line = data.count(b"\n", 0, match.start()) + 1
+    place = _Lines(data)
+    for match in _comments(data):
+        start_line, column = place.of(match.start())
         end_line = start_line + match.group(0).count(b"\n")
-        column = match.start() - (data.rfind(b"\n", 0, match.start()) + 1) + 1
         kind = match.group(1).decode("utf-8", "replace")
         if kind not in KINDS:
             found.invalid.append(Invalid(start_line, column, _misspelt(kind)))
@@ -110,6 +139,44 @@ def parse(data: bytes) -> Suppressions:
         codes = frozenset(t.upper() for t in tokens if _CODE.match(t))
         found.directives.append(Directive(kind, start_line, column, target, codes))
     return found
+
+
+def _comments(data: bytes) -> Iterator[re.Match[bytes]]:
+    """:data:`_DIRECTIVE` matches in order, each searched for only up to the end of its
+    comment (a regular-expression search from each ``<!--`` would read to the end of an
+    unclosed one every time)."""
+    start = data.find(b"<!--")
+    end = -1
+    while start >= 0:
+        if end < start + 4:
+            end = data.find(b"-->", start + 4)
+            if end < 0:
+                return
+        match = _DIRECTIVE.match(data, start, end + 3)
+        if match is not None:
+            yield match
+            start = data.find(b"<!--", match.end())
+        else:
+            start = data.find(b"<!--", start + 4)
+
+
+class _Lines:
+    """Line and column (1-based) of increasing offsets, counted from the offset before."""
+
+    __slots__ = ("data", "offset", "line", "line_start")
+
+    def __init__(self, data: bytes) -> None:
+        self.data = data
+        self.offset = self.line_start = 0
+        self.line = 1
+
+    def of(self, offset: int) -> tuple[int, int]:
+        newlines = self.data.count(b"\n", self.offset, offset)
+        if newlines:
+            self.line += newlines
+            self.line_start = self.data.rfind(b"\n", self.offset, offset) + 1
+        self.offset = offset
+        return self.line, offset - self.line_start + 1
 
 
 def _misspelt(kind: str) -> str:

@@ -6,17 +6,23 @@ import tempfile
 from pathlib import Path
 
 from rich.console import Console
-from rich.markup import escape
+from rich.markup import escape as escape_markup
 from rich.rule import Rule
 
 from txtool.dialects.read import read_source
 from txtool.io.load import load
+from txtool.io.printable import printable
 from txtool.io.resources import shipped
 from txtool.io.xmlio import InputError, serialize
 from txtool.model.robot import children
 from txtool.model.semantics import loader_of
 from txtool.simulation import report
 from txtool.simulation.run import Options, simulate_one
+
+
+def escape(text: str) -> str:
+    """A name or path from a file, printed through rich: one line, brackets as written."""
+    return escape_markup(printable(text))
 
 
 def demo_runs(console: Console, robot: Path | None = None) -> None:

@@ -77,7 +77,7 @@ def plot(runs: list[RunResult], path: str) -> None:
     image = io.BytesIO()  # then one atomic write: an interrupted run leaves no half an image
     figure.savefig(image, format=Path(path).suffix[1:].lower())
     plt.close(figure)
-    write_atomic(path, image.getvalue())
+    write_atomic(path, image.getvalue(), report=True)
 
 
 def grid(cells: int) -> tuple[int, int]:

@@ -11,11 +11,17 @@ from typing import Any
 
 from rich import box
 from rich.console import Console
-from rich.markup import escape
+from rich.markup import escape as escape_markup
 from rich.table import Table
 
+from txtool.io.printable import printable
 from txtool.io.xmlio import write_atomic
 from txtool.simulation.result import Coverage, GainsUsed, RunResult
+
+
+def escape(text: str) -> str:
+    """A name or path from a file, printed through rich: one line, brackets as written."""
+    return escape_markup(printable(text))
 
 TABLE_WIDTH = 100  # tables fit this many columns (or the terminal, when narrower)
 
@@ -368,4 +374,4 @@ def write_csv(run: RunResult, path: str) -> None:
             row.append(repr(float(series.velocity[k, i])))
         writer.writerow(row)
     # One atomic write: an interrupted run leaves the old file or none, never half a file.
-    write_atomic(path, handle.getvalue().encode("utf-8"))
+    write_atomic(path, handle.getvalue().encode("utf-8"), report=True)

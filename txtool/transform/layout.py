@@ -110,10 +110,11 @@ def with_comments(new: etree._Element, old: etree._Element, indent: str | None =
     for parent in parents:
         target = new if parent is old else targets.get((local(parent), parent.get("name")), new)
         comments = [etree.Comment(c.text) for c in parent if isinstance(c, etree._Comment)]
-        for position, comment in enumerate(comments):
-            if target is new:
-                new.insert(position, comment)
-            else:
+        if target is new:  # at the top, in order: each put first, the last one first
+            for comment in reversed(comments):  # (lxml walks to an index: insert(i) costs i)
+                new.insert(0, comment)
+        else:
+            for comment in comments:
                 target.append(comment)
     if indent is not None and step is not None and has_comment(new):
         dialects.pretty(new, indent, step)

@@ -23,6 +23,7 @@ from lxml import etree
 
 from txtool.dialects.read import transmission_elements
 from txtool.io.encodings import SCANNABLE, detect_encoding, document_text
+from txtool.io.printable import printable
 from txtool.io.xmlio import (
     InputError,
     Source,
@@ -33,7 +34,6 @@ from txtool.io.xmlio import (
 )
 from txtool.lint.config import Overrides, SettingsCache
 from txtool.lint.discover import expand_paths
-from txtool.lint.problem import Problem
 from txtool.lint.suppress import Suppressions
 from txtool.lint.suppress import parse as parse_suppressions
 from txtool.model.core import Dialect
@@ -487,11 +487,7 @@ def _mentions(suppressions: Suppressions, code: str) -> bool:
 def _silenced(element: etree._Element, code: str, suppressions: Suppressions) -> bool:
     """Whether a directive covers ``code`` on any line of ``element`` (as originally parsed)."""
     lines = {e.sourceline for e in element.iter() if e.sourceline is not None}
-    return any(
-        directive.covers(Problem("", line, 1, code, ""))
-        for directive in suppressions.directives
-        for line in lines or {0}
-    )
+    return suppressions.silences(code, lines or {0})
 
 
 # Diff ------------------------------------------------------------------------------------------
@@ -507,7 +503,7 @@ def diff_of(path: str, before: bytes, after: bytes) -> str | bytes:
     """:func:`unified_diff`, ASCII-encoded where it is made from the bytes (a large document
     in ASCII changed in one run of lines, see :func:`.linediff.unified_ascii`) and its path
     is ASCII."""
-    name = path.replace(os.sep, "/").lstrip("/")
+    name = printable(path.replace(os.sep, "/").lstrip("/"))  # a name's newline: not a new line
     if {detect_encoding(before).codec, detect_encoding(after).codec} <= SCANNABLE:
         fast = unified_ascii(before, after, f"a/{name}", f"b/{name}")
         if fast is not None:

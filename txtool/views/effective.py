@@ -356,15 +356,17 @@ def effective_text(path: str, transmissions: Sequence[Transmission],
 
     from rich.console import Console
 
+    from txtool.io.printable import printable
+
     buffer = io.StringIO()
     out = Console(file=buffer, width=WIDTH, color_system=None, highlight=False)
-    out.print(path, soft_wrap=True, markup=False)
+    out.print(printable(path), soft_wrap=True, markup=False)
     out.print(f"{len(transmissions)} transmission(s), as their loaders bind them", markup=False)
     for t, b in zip(transmissions, bindings, strict=True):
         out.print()
         for line in _block(t, b):
-            if isinstance(line, str):
-                out.print(line, soft_wrap=True, markup=False)
+            if isinstance(line, str):  # names from the file: one line each, no escapes
+                out.print(printable(line), soft_wrap=True, markup=False)
             else:
                 out.print(line)
     # Padding fills lines to the console's width; the text view needs no trailing blanks.

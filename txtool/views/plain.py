@@ -99,9 +99,9 @@ def roundtrip_text(report: Any) -> str | None:
         rows.append([printable(row.transmission), *rest])
         if row.details or row.equivalent != "yes":
             reason = row.equivalent.split(": ", 1)[1:] if row.equivalent != "yes" else []
-            lines.extend(f"{row.transmission} ({cycle}): {detail}"
+            lines.extend(printable(f"{row.transmission} ({cycle}): {detail}")
                          for detail in (*row.details, *reason))
-    lines.extend(f"passed through untouched: {skipped}" for skipped in report.skipped)
+    lines.extend(printable(f"passed through untouched: {skipped}") for skipped in report.skipped)
     lines.append("all cycles keep every field" if report.ok
                  else "some cycles lose data or change behaviour")
     columns = ("transmission", "cycle", *FIELDS, "equivalent")
