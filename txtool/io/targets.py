@@ -35,6 +35,16 @@ def remember_input(status: os.stat_result) -> None:
     _inputs.add(_key(status))
 
 
+def inputs_read() -> list[tuple[int, int, int]]:
+    """The identities of the inputs read so far (a xacro expansion's child sends them back)."""
+    return sorted(_inputs)
+
+
+def remember_inputs(identities: list[tuple[int, int, int]] | list[list[int]]) -> None:
+    """Note inputs another process read for this command (a xacro expansion's includes)."""
+    _inputs.update((int(a), int(b), int(c)) for a, b, c in identities)
+
+
 def forget_inputs() -> None:
     """Start a command: what earlier commands of this process read is not its input."""
     _inputs.clear()

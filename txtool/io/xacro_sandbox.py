@@ -32,6 +32,7 @@ import sys
 import time
 from typing import Any
 
+from txtool.io import targets
 from txtool.io.xmlio import MAX_BYTES, InputError, XacroOptions
 
 DEFAULT_TIMEOUT = 30.0
@@ -108,6 +109,7 @@ def expand_in_sandbox(path: str, display: str, options: XacroOptions) -> str:
         raise
     if reply.get("retire"):
         _retire(worker)
+    targets.remember_inputs(reply.get("inputs", []))
     if "limit" in reply:
         raise XacroLimit(display, reply["limit"])
     if "refused" in reply:
@@ -343,9 +345,12 @@ def _expand(request: dict[str, Any]) -> tuple[dict[str, Any], str]:
     )
     path, display = request["path"], request["display"]
     _CloneCounter.reset()
+    targets.forget_inputs()
     try:
         guard = XacroGuard(path, options, request["env"])
-        return {"ok": True}, expand_text(path, display, options, guard)
+        text = expand_text(path, display, options, guard)
+        # what it read (the top file and its includes): no output of the command replaces them
+        return {"ok": True, "inputs": targets.inputs_read()}, text
     except Refusal as exc:
         return {"refused": exc.reason, "line": _line_of(path, exc.needle)}, ""
     except XacroError as exc:
