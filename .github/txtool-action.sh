@@ -59,16 +59,17 @@ validate() {
            record 2
            return 2 ;;
     esac
-    local code=0
+    local code=0 sarif=0
     if [ -n "${TXTOOL_SARIF:-}" ]; then
+        # --exit-zero: only files that could not be read (recorded in the SARIF too) or a
+        # report that could not be written end it non-zero; the annotations run either way.
         txtool validate --format sarif --exit-zero --output-file "$TXTOOL_SARIF" \
-            "${options[@]}" "${args[@]}" -- "${paths[@]}" || code=$?
-        if [ "$code" -ne 0 ]; then
-            record "$code"
-            return "$code"
-        fi
+            "${options[@]}" "${args[@]}" -- "${paths[@]}" || sarif=$?
     fi
     txtool validate --format github "${options[@]}" "${args[@]}" -- "${paths[@]}" || code=$?
+    if [ "$code" -lt 2 ] && [ "$sarif" -ne 0 ]; then
+        code=$sarif
+    fi
     record "$code"
     return "$code"
 }

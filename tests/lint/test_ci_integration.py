@@ -252,3 +252,39 @@ def test_action_on_a_hostile_pull_request(tmp_path):
         "txtool: urdf/.gitignore: is a named pipe (FIFO), not a regular file; txtool reads only "
         "regular files (or '-')",
     ]
+
+
+def test_action_on_a_pull_request_whose_xacro_attacks_the_runner(tmp_path):
+    """A pull request's xacro that tries to run code and to read the runner's secret into the
+    report: with the Action's defaults nothing runs, the secret is in no output (annotations,
+    log, SARIF), the attacks are refused one line each, and the other findings are reported."""
+    secret = "ghp_not_a_real_token_0123456789"
+    marker = tmp_path / "pwned"
+    repo = tmp_path / "repo"
+    (repo / ".git").mkdir(parents=True)
+    (repo / "urdf").mkdir()
+    (repo / "urdf" / "broken.urdf").write_text(BROKEN)
+    head = '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+    (repo / "urdf" / "run.urdf.xacro").write_text(
+        f"""{head}<link name="${{open('{marker}', 'w').write('x')}}"/></robot>""")
+    (repo / "urdf" / "leak.urdf.xacro").write_text(
+        f'{head}<link name="$(env GITHUB_TOKEN)"/><link name="$(optenv GITHUB_TOKEN none)"/>'
+        "</robot>")
+    (repo / "urdf" / "escape.urdf.xacro").write_text(
+        head + "<link name=\"${''.__class__.__mro__[1].__subclasses__()}\"/></robot>")
+    sarif = tmp_path / "report.sarif"
+    done = action_step("validate", repo, TXTOOL_PATHS="urdf", TXTOOL_SARIF=str(sarif),
+                       GITHUB_TOKEN=secret)
+    assert not marker.exists()
+    assert secret not in done.stdout + done.stderr + sarif.read_text()
+    assert done.returncode == 2  # the refused files could not be checked
+    refused = {re.search(r"file=([^,]+),", line).group(1) for line in done.stdout.splitlines()
+               if line.startswith("::error ") and "title=txtool::" in line}
+    assert refused == {"urdf/leak.urdf.xacro", "urdf/escape.urdf.xacro"}
+    # open is no name the restricted evaluator knows: the expansion fails as any other would
+    assert any("title=TX002" in line and "file=urdf/run.urdf.xacro" in line
+               and "name 'open' is not defined" in line for line in done.stdout.splitlines())
+    assert any("title=TX106" in line and "file=urdf/broken.urdf" in line
+               for line in done.stdout.splitlines())
+    results = json.loads(sarif.read_text())["runs"][0]["results"]
+    assert {r["ruleId"] for r in results} >= {"TX106"}
