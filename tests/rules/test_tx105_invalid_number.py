@@ -188,3 +188,31 @@ def test_ros1_whitespace_only_element_is_refused_as_empty():
     found = problems(ROS1.format(offset="0", reduction="   "), select=["TX105"])
     assert [(p.code, p.severity) for p in found] == [("TX105", "error")]
     assert "is empty, not a number" in found[0].message
+
+
+@pytest.mark.parametrize(("distro", "shown"), [
+    (None, "warning TX105"),  # Humble falls back to 0.0, Jazzy reads -1: it depends
+    ("humble", "error TX105"),
+    ("jazzy", None),  # from_chars after the one '+' lexical_casts.cpp drops: -1
+])
+def test_a_stated_distribution_decides_a_number_read_differently(tmp_path, distro, shown):
+    from click.testing import CliRunner
+
+    from txtool.cli import cli
+
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(
+        '<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="revolute">'
+        '<parent link="a"/><child link="b"/><limit effort="1" velocity="1" lower="-1" '
+        'upper="1"/></joint><ros2_control name="s" type="system"><hardware><plugin>'
+        'mock_components/GenericSystem</plugin></hardware><joint name="j">'
+        '<command_interface name="position"/></joint><transmission name="t"><plugin>'
+        'transmission_interface/SimpleTransmission</plugin><actuator name="m" role="actuator1"/>'
+        '<joint name="j" role="joint1"><offset>+-1</offset></joint></transmission>'
+        "</ros2_control></robot>")
+    args = ["validate", "--select", "TX105", str(robot)]
+    if distro:
+        args += ["--ros-distro", distro]
+    out = CliRunner().invoke(cli, args).stdout
+    found = [line for line in out.splitlines() if "TX105" in line]
+    assert [shown in line for line in found] == ([True] if shown else []), out

@@ -16,7 +16,9 @@ Humble builds it with ``istringstream`` and Jazzy and later with ``from_chars``
 (lexical_casts.cpp:65 ``impl::stod``), which read a few texts differently: ``+-1`` is -1 from
 Jazzy on and the default on Humble, ``1e-400`` is 0 on Humble and the default from Jazzy on.
 Where nothing says which distribution reads the file, such a value is a **warning** that gives
-each distribution's reading. An empty element (no text, or only blanks and comments) has no
+each distribution's reading; with ``--ros-distro`` (or ``ros-distro`` in the configuration)
+only that distribution's reading counts: an error where it falls back to the default, nothing
+where it reads a number. An empty element (no text, or only blanks and comments) has no
 text for ``GetText()``, so ``get_parameter_value_or`` passes over it and returns the default,
 as if the element were absent: nothing written is lost, a **warning**.
 
@@ -52,6 +54,7 @@ from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.support import numbers_of, per_transmission
 from txtool.model.distro import NumberReading
+from txtool.model.distro import numbers_of as numbers_of_distro
 from txtool.model.numbers import C_SPACE, format_float, parse_ros2, ros2_readings, stod
 
 CODE = "TX105"
@@ -81,11 +84,12 @@ def check(ctx: LintContext) -> Iterator[Problem]:
                                "is lost")
                     yield ctx.problem(CODE, number.element, message, loader_severity="warning")
                     continue
-                problem = _ros2(number.text, default=default)
+                problem = _ros2(number.text, default, _readings_of(ctx))
             if problem:
                 message = f"{number.describe()} of {tx.label} {problem}"
+                readings = _readings_of(ctx)
                 differs = not tx.ros1 and any(
-                    v is not None for v in ros2_readings(number.text).values())
+                    parse_ros2(number.text, r) is not None for r in readings)
                 yield ctx.problem(CODE, number.element, message,
                                   loader_severity="warning" if differs else None)
 
@@ -114,13 +118,21 @@ def _ros1(text: str | None) -> str | None:
     return None
 
 
-def _ros2(text: str | None, default: str) -> str | None:
-    if parse_ros2(text) is not None:
-        return None
-    readings = ros2_readings(text)
-    if all(value is None for value in readings.values()):
+def _readings_of(ctx: LintContext) -> tuple[NumberReading, ...]:
+    """How the ROS 2 distributions that read this file read numbers (every ROS 2 build's when
+    nothing says which: ``--ros-distro``, ``ros-distro`` in the configuration)."""
+    readings = tuple(dict.fromkeys(numbers_of_distro(d) for d in ctx.readers.distros if d.ros2))
+    return readings or (NumberReading.ISTRINGSTREAM, NumberReading.FROM_CHARS)
+
+
+def _ros2(text: str | None, default: str, readings: tuple[NumberReading, ...]) -> str | None:
+    values = {reading: parse_ros2(text, reading) for reading in readings}
+    if len(set(values.values())) == 1 and None not in values.values():
+        return None  # every distribution reading the file reads this one value
+    if all(value is None for value in values.values()):
         return f"is {_shown(text)}, not a finite number: ros2_control silently uses {default}"
-    humble, jazzy = (readings[r] for r in (NumberReading.ISTRINGSTREAM, NumberReading.FROM_CHARS))
+    humble, jazzy = (ros2_readings(text)[r] for r in (NumberReading.ISTRINGSTREAM,
+                                                        NumberReading.FROM_CHARS))
     return (f"is {_shown(text)}, read differently by ROS 2 distributions: Humble's "
             f"ros2_control {_reads(humble, default)}, Jazzy's and later {_reads(jazzy, default)}")
 
