@@ -185,9 +185,14 @@ def _carry(problems: list[Problem], checked: Findings) -> Findings:
 def run_rules(ctx: LintContext, settings: Settings) -> list[Problem]:
     """The problems of every enabled rule, as the rules made them (:func:`finish` stamps them)."""
     problems: list[Problem] = []
-    if not ctx.found:
-        return problems  # every rule is about transmissions
     every, whole = _checks(settings.enabled)
+    if not ctx.found:
+        # Nearly every rule is about transmissions; a few are about what makes the loader
+        # refuse the whole robot, transmissions or not (support.whole_robot).
+        for check in every:
+            if getattr(check, "whole_robot", False):
+                problems.extend(check(ctx))
+        return problems
     # A document of canonical transmissions: the rules about one transmission at a time have
     # nothing to say (see support.per_transmission); the others look at the whole document.
     for check in whole if len(whole) < len(every) and all_canonical(ctx) else every:

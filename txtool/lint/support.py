@@ -265,6 +265,13 @@ _SMALLEST_NORMAL = sys.float_info.min
 Check = Callable[[LintContext], Iterable[Problem]]
 
 
+def whole_robot(check: Check) -> Check:
+    """Mark a rule that also speaks about a document without transmissions: what makes the
+    loader refuse the whole robot (the linter runs only these on such a document)."""
+    check.whole_robot = True  # type: ignore[attr-defined]
+    return check
+
+
 def per_transmission(check: Check) -> Check:
     """Mark the check of a rule that looks at one transmission at a time: a document whose
     transmissions are all :func:`canonical` gives it nothing to say, so the linter does not

@@ -49,6 +49,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
+from txtool.lint.support import whole_robot
 
 CODE = "TX007"
 NAME = "no-ros2-control"
@@ -56,6 +57,7 @@ SEVERITY = "error"
 FIXABLE = False
 
 
+@whole_robot
 def check(ctx: LintContext) -> Iterator[Problem]:
     plugin = ctx.readers.missing_components
     if plugin is None or ctx.literal:
