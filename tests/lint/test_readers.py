@@ -272,6 +272,9 @@ def test_show_effective_names_the_readers(tmp_path):
     assert result.exit_code == 0
     assert result.stdout.endswith("\nReaders:\n  ros2_control (package.xml: ament_cmake)\n"
                                   "Read by none of them: 'trans1'\n")
+    # the transmission itself says it too, not "read by ros_control"
+    assert ("trans1 (line 5): SimpleTransmission\n  read by none of this file's readers "
+            "(written for ros_control; below, what it would bind)") in result.stdout
     result = CliRunner().invoke(cli, ["show", "--effective", "--format", "json",
                                       "--ros-distro", "humble", str(path)])
     assert json.loads(result.stdout)["readers"] == {
@@ -320,3 +323,21 @@ def test_a_vendor_build_of_a_ros2_gazebo_plugin_is_recognised(validate, tmp_path
     code, found, report = findings(validate, str(path))
     assert (code, found) == (0, [(11, 3, "TX305", "info")])
     assert report["readers"][0]["readers"] == ["gz_ros2_control", "ros2_control"]
+
+
+@pytest.mark.parametrize(("distro", "offset"), [("humble", "0 (default)"), ("jazzy", "-1")])
+def test_show_effective_shows_the_stated_distributions_values(tmp_path, distro, offset):
+    from click.testing import CliRunner
+
+    from txtool.cli import cli
+
+    folder = package(tmp_path, "arm_description", "ament_cmake")
+    inner = ('    <transmission name="t"><plugin>transmission_interface/SimpleTransmission'
+             '</plugin><actuator name="m" role="actuator1"/><joint name="joint1" role="joint1">'
+             "<offset>+-1</offset></joint></transmission>\n")
+    body = COMPONENT.format(hardware="mock_components/GenericSystem", inner=inner)
+    path = robot_file(folder, body)
+    result = CliRunner().invoke(cli, ["show", "--effective", "--ros-distro", distro, str(path)])
+    assert result.exit_code == 0
+    row = next(line for line in result.stdout.splitlines() if line.strip().startswith("0 "))
+    assert offset in row, result.stdout

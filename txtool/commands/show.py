@@ -52,7 +52,8 @@ def command(path, output_format, effective, actuator_limits, stdin_filename, ros
     limits = _limits(source, transmissions) if actuator_limits else None
     readers = _readers(source, found, ros_distro) if effective else None
     if output_format == "json":
-        data: dict = {"transmissions": shown_json(transmissions, bindings_of(found))}
+        distro = _one_ros2_distro(readers[0]) if readers is not None else None
+        data: dict = {"transmissions": shown_json(transmissions, bindings_of(found, distro))}
         if readers is not None:
             from txtool.views.readers_view import readers_json
 
@@ -73,7 +74,10 @@ def command(path, output_format, effective, actuator_limits, stdin_filename, ros
         from txtool.views.effective import effective_text
         from txtool.views.readers_view import readers_text
 
-        click.echo(effective_text(source.path, transmissions, bindings_of(found)), nl=False)
+        assumption, unread = readers
+        click.echo(effective_text(source.path, transmissions,
+                                  bindings_of(found, _one_ros2_distro(assumption)), unread),
+                   nl=False)
         click.echo(readers_text(*readers), nl=False)
     else:
         console.print(transmissions_table(transmissions, f"{source.path}: "
@@ -94,6 +98,13 @@ def _readers(source, found, ros_distro):
     stated = SettingsCache(Overrides(ros_distro=ros_distro)).for_file(where).stated
     assumption = assumption_of(source, stated)
     return assumption, unread_names(assumption, [f.element for f in found])
+
+
+def _one_ros2_distro(assumption):
+    """The ROS 2 distribution whose parser reads the file, when one alone does (stated with
+    --ros-distro or ros-distro): its values are shown; else every distribution's differences."""
+    ros2 = [d for d in assumption.distros if d.ros2]
+    return ros2[0] if len(ros2) == 1 else None
 
 
 def _limits(source, transmissions):

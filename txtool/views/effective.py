@@ -350,8 +350,10 @@ def shown_json(transmissions: Sequence[Transmission], bindings: Sequence[Binding
 
 
 def effective_text(path: str, transmissions: Sequence[Transmission],
-                   bindings: Sequence[Binding]) -> str:
-    """The effective view as plain text, at most 100 columns wide."""
+                   bindings: Sequence[Binding], unread: Sequence[str] = ()) -> str:
+    """The effective view as plain text, at most 100 columns wide. ``unread``: the names of
+    the transmissions none of the file's readers reads (shown as what their dialect's loader
+    would bind, and said so)."""
     import io
 
     from rich.console import Console
@@ -364,7 +366,7 @@ def effective_text(path: str, transmissions: Sequence[Transmission],
     out.print(f"{len(transmissions)} transmission(s), as their loaders bind them", markup=False)
     for t, b in zip(transmissions, bindings, strict=True):
         out.print()
-        for line in _block(t, b):
+        for line in _block(t, b, t.name in unread):
             if isinstance(line, str):  # names from the file: one line each, no escapes
                 out.print(printable(line), soft_wrap=True, markup=False)
             else:
@@ -373,7 +375,7 @@ def effective_text(path: str, transmissions: Sequence[Transmission],
     return "".join(line.rstrip() + "\n" for line in buffer.getvalue().splitlines())
 
 
-def _block(t: Transmission, b: Binding) -> list:
+def _block(t: Transmission, b: Binding, unread: bool = False) -> list:
     import textwrap
 
     from rich.padding import Padding
@@ -382,6 +384,9 @@ def _block(t: Transmission, b: Binding) -> list:
     kind = t.type.removeprefix("transmission_interface/") or "(no type)"
     lines: list = [_fit(f"{t.name}{where}: {kind}")]
     how = f"read by {LOADERS[b.loader]}"
+    if unread:
+        how = (f"read by none of this file's readers (written for {LOADERS[b.loader]}; "
+               "below, what it would bind)")
     if b.component_type:
         how += f" in {_article(b.component_type)} {b.component_type} component"
     if b.loadable:
