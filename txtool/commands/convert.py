@@ -79,6 +79,8 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, revers
         data, losses, notes = result.data, result.losses, result.notes
         for left in result.warnings:
             click.echo(f"warning: {left}", err=True)
+        if allow_lossy and result.placeholder is not None:
+            click.echo(f"warning: {result.placeholder}", err=True)
         if not result.converted and not result.losses:
             held = (f"{result.found} found, {result.already} already {target}; the document is "
                     "unchanged" if result.found else "the document has no transmission")

@@ -33,14 +33,13 @@ from txtool.model.semantics import Effective, NotLoadable, effective, listed_aga
 from txtool.transform.baseline import rebuildable
 from txtool.transform.collector import paused
 from txtool.transform.memo import Follower, Memo, Record, Renaming
-from txtool.transform.placement import Placer
+from txtool.transform.placement import DEFAULT_HARDWARE_PLUGIN, Placer
 from txtool.transform.reversible import Carrier
 from txtool.transform.shapes import shape
 from txtool.transform.splice import splice
 from txtool.transform.written import Written, fill, read_back
 from txtool.views.tables import FIELDS, view
 
-DEFAULT_HARDWARE_PLUGIN = "mock_components/GenericSystem"
 KNOWN_CHILDREN = {
     "ros1": {
         "transmission": {"type", "joint", "actuator", "mechanicalReduction"},
@@ -65,6 +64,10 @@ class Conversion:
     converted: int = 0
     found: int = 0  # transmissions in the document
     already: int = 0  # of them, already in the target dialect
+    # Which generated blocks name the placeholder plugin (the default --hardware-plugin),
+    # said as a warning where losses are accepted (--allow-lossy): the result is then
+    # written to be finished by hand, and that plugin must be replaced.
+    placeholder: str | None = None
 
 
 @paused
@@ -152,6 +155,7 @@ def convert_source(
     carry.after(tree, placer.built)
     result.notes.extend(placer.notes)
     result.losses.extend(placer.losses)
+    result.placeholder = placer.placeholder
     built_for = placer.built.get
     for item in items:
         if item.__class__ is Follower:

@@ -43,6 +43,10 @@ from txtool.transform.memo import Follower, Renaming
 from txtool.transform.templates import Templates, parse_children
 from txtool.transform.written import Written, blank, write
 
+# ros2_control's mock hardware (hardware_interface/src/mock_components/generic_system.cpp):
+# it sets each state to its command and drives nothing, a stand-in for the robot's own plugin.
+DEFAULT_HARDWARE_PLUGIN = "mock_components/GenericSystem"
+
 Carried = dict[tuple[str, str | None], list[etree._Element]]
 Joints = list[tuple[str, tuple[str, ...], tuple[str, ...]]]  # names and interfaces
 
@@ -142,6 +146,9 @@ class Placer:
         self._first_tails: dict[str | None, str] = {}  # see :meth:`_tails`
         # What the conversion cannot do as the document asks (it says why).
         self.losses: list[str] = []
+        # Set when a block names the placeholder plugin: which blocks, and what to do.
+        self.placeholder: str | None = None
+        self._placeholders: list[str] = []  # blocks generated with the default plugin
         # Old elements that go back to ROS 1 just after their <ros2_control>, where they
         # stood before --reversible moved them in (:mod:`.reversible`); the rest go before.
         self.after: set[etree._Element] = set()
@@ -216,6 +223,7 @@ class Placer:
         if self._into_new:
             self._generate(self._into_new)
         self.texts = None
+        self._placeholder_warning()
         for component, moves in self._out_of.items():
             if self._is_generated(component, moves):
                 self._ungenerate(component, moves)
@@ -482,6 +490,21 @@ class Placer:
                     "it by hand")
                 return
 
+    def _placeholder_warning(self) -> None:
+        """Which generated blocks name the placeholder plugin, which must be replaced."""
+        names = self._placeholders
+        if not names:
+            return
+        shown = ", ".join(f"'{name}'" for name in names[:3]) + (", ..." if len(names) > 3
+                                                               else "")
+        blocks = (f"<ros2_control name=\"{names[0]}\">" if len(names) == 1 else
+                  f"{len(names)} <ros2_control> blocks ({shown})")
+        self.placeholder = (
+            f"{blocks} generated with the placeholder hardware plugin "
+            f"'{DEFAULT_HARDWARE_PLUGIN}' (ros2_control's mock hardware: it copies commands "
+            "to states and drives no robot); replace it with the robot's hardware plugin, "
+            "or convert with --hardware-plugin PLUGIN")
+
     def _fresh_name(self, base: str, what: str) -> str:
         """``base``, or ``base_2``, ``base_3``... when another ``<ros2_control>`` has that name
         (ros2_control's resource manager refuses two hardware components of one name:
@@ -496,6 +519,8 @@ class Placer:
             number += 1
             name = f"{base}_{number}"
         self._taken.add(name.strip())
+        if self.hardware_plugin == DEFAULT_HARDWARE_PLUGIN:
+            self._placeholders.append(name)
         if name != base:
             self.notes.append(f"{what} is named '{name}': another <ros2_control> is named "
                               f"'{base}' (ros2_control refuses two hardware components of "
