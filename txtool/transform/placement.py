@@ -31,7 +31,6 @@ from txtool.transform.layout import (
     cut,
     has_comment,
     indentation,
-    leading_space,
     namespace_of,
     qualifier,
     reindent,
