@@ -9,11 +9,13 @@ from __future__ import annotations
 
 import codecs
 
+from click.testing import CliRunner
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from lxml import etree
 
 from txtool import dialects
+from txtool.cli import cli
 from txtool.io.xmlio import Source, parse_bytes
 from txtool.model.core import Member, Number, Transmission, standard_type
 from txtool.transform.convert import convert_source
@@ -183,12 +185,14 @@ TWO_SPACES_BEFORE = (b"<robot name='r'>\n  <transmission name='t0'>\n"
        declaration=st.sampled_from([b"<?xml version='1.0'?>",
                                     b'<?xml version="1.0" encoding="UTF-8" ?>']),
        document=documents(), target=st.sampled_from(["ros1", "ros2-p1", "ros2-p2"]))
-def test_what_convert_writes_begins_as_xml_requires(prolog, bom, declaration, document,
+def test_what_convert_prints_begins_as_xml_requires(prolog, bom, declaration, document,
                                                      target):
     body = document[0].removeprefix(codecs.BOM_UTF8)
     body = body[body.index(b"<robot"):]  # without the generated declaration and licence
     data = (codecs.BOM_UTF8 if bom else b"") + prolog + declaration + b"\n" + body
-    out = convert_source(Source("r.urdf", data, parse_bytes(data, "r.urdf")), target).data
+    result = CliRunner().invoke(cli, ["convert", "-", "--to", target], input=data)
+    assert result.exit_code == 0, result.stderr
+    out = result.stdout_bytes
     etree.fromstring(out)  # well-formed for a strict parser: nothing before the declaration
     if not prolog.strip():  # whitespace only: it goes, the declaration stays first
         assert out.startswith((codecs.BOM_UTF8 if bom else b"") + declaration)

@@ -73,10 +73,14 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, revers
         data, losses, notes = _bb(source, bb_direction or "reversed", bb_topology)
     else:
         from txtool.transform.convert import convert_source
+        from txtool.transform.splice import without_late_declaration
 
         result = convert_source(source, target, hardware_plugin=hardware_plugin, consume=True,
                                 reversible=reversible)
-        data, losses, notes = result.data, result.losses, result.notes
+        # Well-formed even where nothing changed: a declaration after a comment or spaces
+        # (which txtool reads) is not printed there.
+        data = without_late_declaration(result.data)
+        losses, notes = result.losses, result.notes
         for left in result.warnings:
             click.echo(f"warning: {left}", err=True)
         if allow_lossy and result.placeholder is not None:

@@ -36,7 +36,7 @@ from txtool.transform.memo import Follower, Memo, Record, Renaming
 from txtool.transform.placement import DEFAULT_HARDWARE_PLUGIN, Placer
 from txtool.transform.reversible import Carrier
 from txtool.transform.shapes import shape
-from txtool.transform.splice import splice, without_late_declaration
+from txtool.transform.splice import splice
 from txtool.transform.written import Written, fill, read_back
 from txtool.views.tables import FIELDS, view
 
@@ -181,8 +181,6 @@ def convert_source(
         assert baseline is not None
         result.data = splice(source.data, baseline, changed)
     del baseline
-    # Written well-formed even where nothing changed (see without_late_declaration).
-    result.data = without_late_declaration(result.data)
     spliced = result.data
     result.data = carry.restore(result.data)
     result.notes.extend(carry.notes)
