@@ -27,7 +27,8 @@ TARGETS = ("ros1", "ros2-p1", "ros2-p2", "bb")
 @click.option("--allow-lossy", is_flag=True,
               help="Exit 0 even when something cannot be carried (it is still reported).")
 @click.option("--hardware-plugin", default="mock_components/GenericSystem", show_default=True,
-              help="<plugin> of a <ros2_control> block created for ROS 1 transmissions.")
+              help="<plugin> of a <ros2_control> block created for ROS 1 transmissions "
+                   "(the default, ros2_control's mock hardware, is a placeholder to replace).")
 @click.option("--reversible", is_flag=True,
               help="To ROS 2: keep each transmission's original text in a comment before it, "
                    "so that converting back gives its bytes back.")
