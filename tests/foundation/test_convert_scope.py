@@ -307,3 +307,18 @@ def test_migrate_allow_lossy_says_so_too(run, tmp_path):
     code, _, err = run("migrate", "--write", "--to", "ros2-p2", "--allow-lossy", str(path))
     assert code == 0
     assert f"warning: {path}: {PLACEHOLDER[len('warning: '):]}" in err
+
+
+def test_every_transmission_of_a_repeated_shape_is_checked_for_its_scope(run, tmp_path):
+    # The second is converted as a repeat of the first (transform/memo.py), under its names.
+    path = tmp_path / "arm.urdf.xacro"
+    path.write_text(CONDITIONAL_BLOCK.replace(
+        "    </ros2_control>",
+        '      <joint name="wrist">\n        <command_interface name="position"/>\n'
+        "      </joint>\n    </ros2_control>").replace(
+        "</robot>", _transmission("wrist_trans", "wrist") + "</robot>"))
+    code, out, err = run("convert", "--no-xacro", str(path), "--to", "ros2-p2")
+    assert (code, out) == (1, "")
+    assert [line.split(":")[0] for line in err.splitlines()] == [
+        "error", "error", "txtool"]
+    assert "transmission 'wrist_trans': <ros2_control name=\"GazeboSystem\">" in err

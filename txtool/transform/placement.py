@@ -206,6 +206,8 @@ class Placer:
         if into_new and (self._components == [] or self._component_for(
                 lambda: {name for name, _, _ in follower.record.joints_for(follower.names)}
         ) is None):
+            if self._components:  # (the check reads the follower's joints)
+                self._not_in_scope(follower.translated())
             self._into_new.append(_Move(old, None, None, None, follower))
         else:
             self.place(old, follower.translated(), {}, follower.renaming(), dialect)
