@@ -9,11 +9,13 @@ from __future__ import annotations
 
 import codecs
 
-from hypothesis import given, settings
+from click.testing import CliRunner
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from lxml import etree
 
 from txtool import dialects
+from txtool.cli import cli
 from txtool.io.xmlio import Source, parse_bytes
 from txtool.model.core import Member, Number, Transmission, standard_type
 from txtool.transform.convert import convert_source
@@ -159,6 +161,43 @@ def test_a_declaration_after_a_comment_is_not_written_again():
     out = convert(data, "ros2-p2")
     assert out.startswith(b"<!-- licence -->\n<robot name='r'>\n  <ros2_control")
     etree.fromstring(out)  # well-formed for a strict parser
+
+
+# What may stand before an XML declaration in a file txtool reads (tinyxml2 skips whitespace
+# there; licence comments are common) but that no strict parser (expat, libxml2) accepts.
+PROLOGS = [b" ", b"\n", b"\t\r\n  ", b"<!-- licence -->\n", b"<!-- licence -->",
+           b"\n<!-- a -->\n  ", b"<?pi x?>\n", b"<!-- a --> <?pi x?>"]
+TWO_SPACES_BEFORE = (b"<robot name='r'>\n  <transmission name='t0'>\n"
+                     b"    <type>transmission_interface/SimpleTransmission</type>\n"
+                     b"    <joint name='j0'>\n      <hardwareInterface>hardware_interface/"
+                     b"PositionJointInterface</hardwareInterface>\n    </joint>\n"
+                     b"    <actuator name='m0'>\n      <mechanicalReduction>50"
+                     b"</mechanicalReduction>\n    </actuator>\n  </transmission>\n</robot>\n")
+
+
+@settings(max_examples=30, deadline=None)
+# Found by the fuzz tests: spaces before the declaration were written back before it.
+@example(prolog=b"  ", bom=False, declaration=b"<?xml version='1.0'?>",
+         document=(TWO_SPACES_BEFORE, True), target="ros2-p2")
+@example(prolog=b"\n", bom=True, declaration=b"<?xml version='1.0'?>",
+         document=(TWO_SPACES_BEFORE, True), target="ros1")
+@given(prolog=st.sampled_from(PROLOGS), bom=st.booleans(),
+       declaration=st.sampled_from([b"<?xml version='1.0'?>",
+                                    b'<?xml version="1.0" encoding="UTF-8" ?>']),
+       document=documents(), target=st.sampled_from(["ros1", "ros2-p1", "ros2-p2"]))
+def test_what_convert_prints_begins_as_xml_requires(prolog, bom, declaration, document,
+                                                     target):
+    body = document[0].removeprefix(codecs.BOM_UTF8)
+    body = body[body.index(b"<robot"):]  # without the generated declaration and licence
+    data = (codecs.BOM_UTF8 if bom else b"") + prolog + declaration + b"\n" + body
+    result = CliRunner().invoke(cli, ["convert", "-", "--to", target], input=data)
+    assert result.exit_code == 0, result.stderr
+    out = result.stdout_bytes
+    etree.fromstring(out)  # well-formed for a strict parser: nothing before the declaration
+    if not prolog.strip():  # whitespace only: it goes, the declaration stays first
+        assert out.startswith((codecs.BOM_UTF8 if bom else b"") + declaration)
+    else:  # after a comment or instruction, no declaration may stand: it goes
+        assert b"<?xml" not in out and prolog.strip() in out[:out.index(b"<robot")]
 
 
 @settings(max_examples=40, deadline=None)

@@ -15,6 +15,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from lxml import etree
 
 from tests.corpus import corpus_dir, corpus_file
 from tests.hardening.hostile_inputs import one_line_error, robot, run
@@ -122,7 +123,11 @@ def test_declaration_after_a_comment_is_read_and_flagged():
     assert [(p["code"], p["line"]) for p in problems] == [("TX001", declaration_line)]
     code, out, err = run("convert", "--to", "ros2-p2", str(path))
     assert code == 0 and err.count("is not converted") == 24  # custom types, left as written
-    assert out.encode() == path.read_bytes()
+    # Printed byte for byte but for the declaration, which strict parsers refuse there.
+    lines = path.read_bytes().split(b"\n")
+    del lines[declaration_line - 1]
+    assert out.encode() == b"\n".join(lines)
+    etree.fromstring(out.encode())
 
 
 BLANK_REASON = "document is empty"

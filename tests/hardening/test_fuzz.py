@@ -30,7 +30,7 @@ EXAMPLES_PER_COMMAND = 120  # x 19 commands: 2,280 examples
 
 
 @pytest.mark.parametrize("command", sorted(COMMANDS))
-@settings(max_examples=EXAMPLES_PER_COMMAND, deadline=None, derandomize=True, database=None,
+@settings(max_examples=EXAMPLES_PER_COMMAND, deadline=None,
           suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large,
                                   HealthCheck.large_base_example])
 @given(document=documents(), data=st.data())

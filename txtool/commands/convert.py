@@ -31,7 +31,8 @@ TARGETS = ("ros1", "ros2-p1", "ros2-p2", "bb")
 @click.option("--allow-lossy", is_flag=True,
               help="Exit 0 even when something cannot be carried (it is still reported).")
 @click.option("--hardware-plugin", default="mock_components/GenericSystem", show_default=True,
-              help="<plugin> of a <ros2_control> block created for ROS 1 transmissions.")
+              help="<plugin> of a <ros2_control> block created for ROS 1 transmissions "
+                   "(the default, ros2_control's mock hardware, is a placeholder to replace).")
 @click.option("--reversible", is_flag=True,
               help="To ROS 2: keep each transmission's original text in a comment before it, "
                    "so that converting back gives its bytes back.")
@@ -80,12 +81,18 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, revers
         data, losses, notes = _bb(source, bb_direction or "reversed", bb_topology)
     else:
         from txtool.transform.convert import convert_source
+        from txtool.transform.splice import without_late_declaration
 
         result = convert_source(source, target, hardware_plugin=hardware_plugin, consume=True,
                                 reversible=reversible)
-        data, losses, notes = result.data, result.losses, result.notes
+        # Well-formed even where nothing changed: a declaration after a comment or spaces
+        # (which txtool reads) is not printed there.
+        data = without_late_declaration(result.data)
+        losses, notes = result.losses, result.notes
         for left in result.warnings:
             click.echo(f"warning: {printable(left)}", err=True)
+        if allow_lossy and result.placeholder is not None:
+            click.echo(f"warning: {printable(result.placeholder)}", err=True)
         if not result.converted and not result.losses:
             held = (f"{result.found} found, {result.already} already {target}; the document is "
                     "unchanged" if result.found else "the document has no transmission")

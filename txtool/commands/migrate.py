@@ -38,7 +38,8 @@ def _mode(check: bool, diff: bool, write: bool) -> str:
 @click.option("--allow-lossy", is_flag=True,
               help="Convert even when something cannot be carried (it is still reported).")
 @click.option("--hardware-plugin", default="mock_components/GenericSystem", show_default=True,
-              help="<plugin> of a <ros2_control> block created for ROS 1 transmissions.")
+              help="<plugin> of a <ros2_control> block created for ROS 1 transmissions "
+                   "(the default, ros2_control's mock hardware, is a placeholder to replace).")
 @click.option("--reversible", is_flag=True,
               help="With --to ros2-p1/ros2-p2: keep each transmission's original text in a "
                    "comment before it, so that migrating back gives its bytes back.")

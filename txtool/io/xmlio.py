@@ -361,7 +361,7 @@ def serialize(tree: etree._ElementTree, original: bytes | None = None) -> bytes:
     parts = _top_level(tree, encoding)
     if declaration:
         gap = re.match(rb"\s*", original[declaration.end() :]).group(0)  # type: ignore[union-attr, index]
-        parts[:0] = (declaration.group(0).lstrip(), gap or b"\n")
+        parts[:0] = (re.sub(rb"^(\xef\xbb\xbf)?\s*", rb"\1", declaration.group(0)), gap or b"\n")
     if original is not None and original.endswith(b"\n") and not parts[-1].endswith(b"\n"):
         parts.append(b"\n")
     return b"".join(parts)  # one copy of the document, however many parts

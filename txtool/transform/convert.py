@@ -33,14 +33,13 @@ from txtool.model.semantics import Effective, NotLoadable, effective, listed_aga
 from txtool.transform.baseline import rebuildable
 from txtool.transform.collector import paused
 from txtool.transform.memo import Follower, Memo, Record, Renaming
-from txtool.transform.placement import Placer
+from txtool.transform.placement import DEFAULT_HARDWARE_PLUGIN, Placer
 from txtool.transform.reversible import Carrier
 from txtool.transform.shapes import shape
 from txtool.transform.splice import splice
 from txtool.transform.written import Written, fill, read_back
 from txtool.views.tables import FIELDS, view
 
-DEFAULT_HARDWARE_PLUGIN = "mock_components/GenericSystem"
 KNOWN_CHILDREN = {
     "ros1": {
         "transmission": {"type", "joint", "actuator", "mechanicalReduction"},
@@ -65,6 +64,10 @@ class Conversion:
     converted: int = 0
     found: int = 0  # transmissions in the document
     already: int = 0  # of them, already in the target dialect
+    # Which generated blocks name the placeholder plugin (the default --hardware-plugin),
+    # said as a warning where losses are accepted (--allow-lossy): the result is then
+    # written to be finished by hand, and that plugin must be replaced.
+    placeholder: str | None = None
 
 
 @paused
@@ -96,6 +99,7 @@ def convert_source(
     result = Conversion(data=b"", target=target, found=len(elements))
     placer = Placer(tree.getroot(), hardware_plugin, components=source.expanded or (
         detect_encoding(source.data).codec not in SCANNABLE or b"ros2_control" in source.data))
+    placer.after = carry.after_block
     texts: list[bytes | None] | None = None
     if lazy:
         def serialize_baseline() -> None:
@@ -150,6 +154,8 @@ def convert_source(
     placer.finish()
     carry.after(tree, placer.built)
     result.notes.extend(placer.notes)
+    result.losses.extend(placer.losses)
+    result.placeholder = placer.placeholder
     built_for = placer.built.get
     for item in items:
         if item.__class__ is Follower:
@@ -404,6 +410,7 @@ def _check(output: Source, result: Conversion, originals: list[Transmission | Fo
     survived: set[Hashable] = set()  # shapes (:mod:`.shapes`) that came back whole
     whole: set[int] = set()  # records whose verdict is in ``survived``, by id
     written: dict[tuple[str, bool], list[Found]] = {}
+    kept: set[str | None] | None = None  # the names of the output's <ros2_control> blocks
     all_text = in_tree and len(virtual) == len(originals) - len(followers) and all(
         item.__class__ is Written for item in built)
     for element in () if all_text else transmission_elements(output.root, (
@@ -457,6 +464,13 @@ def _check(output: Source, result: Conversion, originals: list[Transmission | Fo
         if in_component:
             lost.pop("interfaces", None)
             _interfaces(t, *_defined(a_view["interfaces"], b_view["interfaces"]), result)
+        elif "interfaces" in lost and t.ros2_control is not None:
+            if kept is None:
+                kept = {e.get("name") for e in output.root.iter("{*}ros2_control")}
+            if t.ros2_control in kept:
+                lost.pop("interfaces")
+                _kept_declaration(t, *_defined(a_view["interfaces"], b_view["interfaces"]),
+                                  result)
         for key_, change in lost.items():
             result.losses.append(f"transmission '{t.name}' did not survive the round trip: "
                                  f"{key_}: {change}")
@@ -520,6 +534,24 @@ def _interfaces(t: Transmission, a: dict, b: dict, result: Conversion) -> None:
             result.notes.append(
                 f"joint '{joint}': its <ros2_control> declaration also commands "
                 f"{_show(back - kinds)}, which transmission '{t.name}' does not name; kept")
+
+
+def _kept_declaration(t: Transmission, a: dict, b: dict, result: Conversion) -> None:
+    """Back to ROS 1 out of a ``<ros2_control>`` that stays in the document: what the block
+    declares besides what the ROS 1 transmission names stays declared there (a file that
+    had both before ``--reversible`` took it to ROS 2 gets both back), not a loss."""
+    for joint, kinds in a.items():
+        back = b.get(joint, frozenset()) - {"state"}
+        kinds = kinds - {"state"}
+        if back - kinds:
+            result.losses.append(
+                f"joint '{joint}': transmission '{t.name}' names {_show(back - kinds)} in "
+                f"ros1, which <ros2_control name=\"{t.ros2_control}\"> does not command")
+        elif kinds - back:
+            result.notes.append(
+                f"joint '{joint}': <ros2_control name=\"{t.ros2_control}\"> also commands "
+                f"{_show(kinds - back)}, which transmission '{t.name}' does not name in ros1; "
+                "the block stays")
 
 
 def _same(x: Any, y: Any) -> bool:

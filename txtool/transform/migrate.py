@@ -317,6 +317,8 @@ def _convert_direct(result: FileResult, source: Source, rules: Sequence[Rule],
         del tree
     result.notes.extend(conversion.notes)
     result.warnings.extend(conversion.warnings)
+    if options.allow_lossy and conversion.placeholder is not None:
+        result.warnings.append(conversion.placeholder)
     result.losses.extend(conversion.losses)
     result.converted = conversion.converted
     result.losses.extend(_dropped(comments, after))
@@ -384,6 +386,8 @@ def _convert(result: FileResult, source: Source, rules: Sequence[Rule],
         return source.data, []
     result.notes.extend(conversion.notes)
     result.warnings.extend(conversion.warnings)
+    if options.allow_lossy and conversion.placeholder is not None:
+        result.warnings.append(conversion.placeholder)
     result.losses.extend(conversion.losses)
     result.converted = conversion.converted
     tree = parse_bytes(conversion.data, result.path, limit=None)

@@ -11,6 +11,7 @@ Removing an element removes its lines and keeps the blank lines around it.
 from __future__ import annotations
 
 import copy
+import re
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -30,7 +31,6 @@ from txtool.transform.layout import (
     cut,
     has_comment,
     indentation,
-    leading_space,
     namespace_of,
     qualifier,
     reindent,
@@ -41,6 +41,10 @@ from txtool.transform.layout import (
 from txtool.transform.memo import Follower, Renaming
 from txtool.transform.templates import Templates, parse_children
 from txtool.transform.written import Written, blank, write
+
+# ros2_control's mock hardware (hardware_interface/src/mock_components/generic_system.cpp):
+# it sets each state to its command and drives nothing, a stand-in for the robot's own plugin.
+DEFAULT_HARDWARE_PLUGIN = "mock_components/GenericSystem"
 
 Carried = dict[tuple[str, str | None], list[etree._Element]]
 Joints = list[tuple[str, tuple[str, ...], tuple[str, ...]]]  # names and interfaces
@@ -139,6 +143,17 @@ class Placer:
         self.rebuild: Rebuild | None = None
         self._replaced = etree.Element("replaced")  # what the generated block replaced
         self._first_tails: dict[str | None, str] = {}  # see :meth:`_tails`
+        # What the conversion cannot do as the document asks (it says why).
+        self.losses: list[str] = []
+        # Set when a block names the placeholder plugin: which blocks, and what to do.
+        self.placeholder: str | None = None
+        self._placeholders: list[str] = []  # blocks generated with the default plugin
+        # Old elements that go back to ROS 1 just after their <ros2_control>, where they
+        # stood before --reversible moved them in (:mod:`.reversible`); the rest go before.
+        self.after: set[etree._Element] = set()
+        # The names of the <ros2_control> elements in the document (stripped, as ros2_control
+        # reads them), once known: a block txtool adds takes a name none has.
+        self._taken: set[str] | None = None if components else set()
 
     def place(self, old: etree._Element, t: Transmission, carried: Carried | None = None,
               renaming: Renaming | None = None, dialect: Dialect | None = None) -> None:
@@ -152,10 +167,13 @@ class Placer:
         moving_in = (t.dialect != "ros1" and component is None and old.getparent() is not None
                      and (dialect or detect_dialect(old)) == "ros1")
         if moving_out and component.getparent() is not None:
+            if not self._conditions_between(old, component, t.name):
+                return
             self._out_of.setdefault(component, []).append(move)
         elif moving_in and old.getparent() is self.root and local(self.root) == "robot":
             existing = self._component_for(lambda: {j.name for j in t.joints})
             if existing is None:
+                self._not_in_scope(t)
                 self._into_new.append(move)
             else:
                 self._changing()
@@ -188,6 +206,8 @@ class Placer:
         if into_new and (self._components == [] or self._component_for(
                 lambda: {name for name, _, _ in follower.record.joints_for(follower.names)}
         ) is None):
+            if self._components:  # (the check reads the follower's joints)
+                self._not_in_scope(follower.translated())
             self._into_new.append(_Move(old, None, None, None, follower))
         else:
             self.place(old, follower.translated(), {}, follower.renaming(), dialect)
@@ -204,6 +224,7 @@ class Placer:
         if self._into_new:
             self._generate(self._into_new)
         self.texts = None
+        self._placeholder_warning()
         for component, moves in self._out_of.items():
             if self._is_generated(component, moves):
                 self._ungenerate(component, moves)
@@ -212,10 +233,37 @@ class Placer:
                     "for its transmissions; replaced by them"
                 )
                 continue
-            for move in moves:
-                cut(move.old)
-                new = self._build(move, *indentation(component), component)
-                new.tail = "\n" + leading_space(component)
+            self._move_out(component, moves)
+
+    def _move_out(self, component: etree._Element, moves: list[_Move]) -> None:
+        """Put the ROS 1 conversions of ``moves`` beside ``component``: just before it, or
+        just after it for those in :attr:`after`; each inside copies of the ``xacro:if`` /
+        ``xacro:unless`` it stood in within the block, so that the robot has it for the same
+        arguments."""
+        indent, step = indentation(component)
+        anchor = component
+        for move in moves:
+            chain = _conditions(move.old, component)
+            cut(move.old)
+            for condition in chain:
+                if len(condition) == 0 and not (condition.text or "").strip():
+                    cut(condition)  # left empty: it held the transmission alone
+            new = self._build(move, indent + step * len(chain), step, component)
+            for depth, condition in enumerate(chain, start=1):
+                # Made in the document, where its namespace is declared already.
+                wrapper = etree.SubElement(component.getparent(), condition.tag,
+                                           dict(condition.attrib))
+                wrapper.text = "\n" + indent + step * (len(chain) - depth + 1)
+                new.tail = "\n" + indent + step * (len(chain) - depth)
+                wrapper.append(new)
+                new = wrapper
+            if move.old in self.after:
+                new.tail = anchor.tail
+                anchor.tail = "\n" + indent
+                anchor.addnext(new)
+                anchor = new
+            else:
+                new.tail = "\n" + indent
                 component.addprevious(new)
 
     # ROS 1 -> ROS 2 ----------------------------------------------------------------------
@@ -224,7 +272,8 @@ class Placer:
         first = moves[0].old
         indent, step = indentation(first)
         runs = runs_of([m.old for m in moves])
-        name = self.root.get("name", "robot")
+        name = self._fresh_name(self.root.get("name", "robot"),
+                                "the <ros2_control> generated for the document")
         block = self._write_block(name, moves, runs, first, indent, step)
         if block is None:
             block = self._block(name, self.hardware_plugin, moves, first, indent, step,
@@ -417,9 +466,83 @@ class Placer:
             return None
         names = joints()
         for element in self._components:
-            if names <= self._joints_of(element):
+            # One inside a xacro:if or macro is not there for every argument set: a
+            # transmission moved into it would be too.
+            if element.getparent() is self.root and names <= self._joints_of(element):
                 return element
         return None
+
+    def _not_in_scope(self, t: Transmission) -> None:
+        """A loss when the joints of ``t``, going into a block of their own, are declared by
+        a ``<ros2_control>`` that stands in a xacro conditional or macro: moving ``t`` in
+        there would take it out of the robot for other arguments, and its own block declares
+        the joints a second time where that one is there too."""
+        if not self._components:
+            return
+        names = {j.name for j in t.joints}
+        for element in self._components:
+            if element.getparent() is not self.root and names & self._joints_of(element):
+                scope = element.getparent()
+                self.losses.append(
+                    f"transmission '{t.name}': <ros2_control name=\"{element.get('name')}\"> "
+                    f"declares its joints but stands inside <{_prefixed(scope)}>: the "
+                    "transmission is not moved in there (the robot would lose it for other "
+                    "arguments), and the block generated for it declares them again; place "
+                    "it by hand")
+                return
+
+    def _placeholder_warning(self) -> None:
+        """Which generated blocks name the placeholder plugin, which must be replaced."""
+        names = self._placeholders
+        if not names:
+            return
+        shown = ", ".join(f"'{name}'" for name in names[:3]) + (", ..." if len(names) > 3
+                                                               else "")
+        blocks = (f"<ros2_control name=\"{names[0]}\">" if len(names) == 1 else
+                  f"{len(names)} <ros2_control> blocks ({shown})")
+        self.placeholder = (
+            f"{blocks} generated with the placeholder hardware plugin "
+            f"'{DEFAULT_HARDWARE_PLUGIN}' (ros2_control's mock hardware: it copies commands "
+            "to states and drives no robot); replace it with the robot's hardware plugin, "
+            "or convert with --hardware-plugin PLUGIN")
+
+    def _fresh_name(self, base: str, what: str) -> str:
+        """``base``, or ``base_2``, ``base_3``... when another ``<ros2_control>`` has that name
+        (ros2_control's resource manager refuses two hardware components of one name:
+        ros2_control hardware_interface/src/resource_manager.cpp,
+        ResourceManager::load_and_initialize_components, "Hardware name %s is duplicated"; the
+        component parser strips the names first). ``what``: the block, for the note."""
+        if self._taken is None:
+            self._taken = {(e.get("name") or "").strip()
+                           for e in self.root.iter("{*}ros2_control")}
+        name, number = base, 1
+        while name.strip() in self._taken:
+            number += 1
+            name = f"{base}_{number}"
+        self._taken.add(name.strip())
+        if self.hardware_plugin == DEFAULT_HARDWARE_PLUGIN:
+            self._placeholders.append(name)
+        if name != base:
+            self.notes.append(f"{what} is named '{name}': another <ros2_control> is named "
+                              f"'{base}' (ros2_control refuses two hardware components of "
+                              "one name)")
+        return name
+
+    def _conditions_between(self, old: etree._Element, component: etree._Element,
+                            name: str) -> bool:
+        """Whether ``old`` can move out of ``component``: what stands between them is
+        ``xacro:if`` / ``xacro:unless`` at most (copied around it), not a macro."""
+        parent = old.getparent()
+        while parent is not None and parent is not component:
+            if not _is_condition(parent):
+                self.losses.append(
+                    f"transmission '{name}': stands inside <{_prefixed(parent)}> within "
+                    f"<ros2_control name=\"{component.get('name')}\">: a ROS 1 transmission "
+                    "must stand outside the block, and it cannot leave that element; left as "
+                    "written")
+                return False
+            parent = parent.getparent()
+        return True
 
     def _joints_of(self, component: etree._Element) -> set[str]:
         if component not in self._declared:
@@ -429,7 +552,9 @@ class Placer:
     def _wrap_in_place(self, move: _Move) -> None:
         old = move.old
         indent, step = indentation(old)
-        block = self._block(move.new.name, self.hardware_plugin, [move], old, indent, step)
+        name = self._fresh_name(move.new.name, f"the <ros2_control> around transmission "
+                                f"'{move.new.name}'")
+        block = self._block(name, self.hardware_plugin, [move], old, indent, step)
         block.tail = old.tail
         old.getparent().replace(old, block)
         self._components = None
@@ -438,10 +563,10 @@ class Placer:
 
     def _is_generated(self, component: etree._Element, moves: list[_Move]) -> bool:
         inside = [e for e in component.iter("{*}transmission") if e is not component]
-        names = {self.root.get("name", "robot")}  # a block for the document
+        bases = [self.root.get("name", "robot")]  # a block for the document
         if len(moves) == 1:
-            names.add(moves[0].new.name)  # a block wrapped around one, in a xacro macro
-        if [m.old for m in moves] != inside or component.get("name") not in names:
+            bases.append(moves[0].new.name)  # a block wrapped around one, in a xacro macro
+        if [m.old for m in moves] != inside or not _named_after(component.get("name"), bases):
             return False
         plugins = [p for h in children(component, "hardware") for p in children(h, "plugin")]
         if len(plugins) != 1 or not plugins[0].text:
@@ -531,6 +656,43 @@ class Placer:
         if record:
             self.built[move.old] = new
         return new
+
+
+_XACRO = ("http://www.ros.org/wiki/xacro", "http://ros.org/wiki/xacro")
+_CONDITIONS = {"if", "unless"}
+
+
+def _is_condition(element: etree._Element) -> bool:
+    return namespace_of(element) in _XACRO and local(element) in _CONDITIONS
+
+
+def _conditions(old: etree._Element, component: etree._Element) -> list[etree._Element]:
+    """The ``xacro:if`` / ``xacro:unless`` elements between ``old`` and ``component``,
+    innermost first."""
+    chain = []
+    parent = old.getparent()
+    while parent is not None and parent is not component:
+        chain.append(parent)
+        parent = parent.getparent()
+    return chain
+
+
+def _prefixed(element: etree._Element) -> str:
+    tag = local(element)
+    if namespace_of(element) in _XACRO:
+        return f"xacro:{tag}" + (f" value=\"{element.get('value')}\""
+                                  if element.get("value") is not None else
+                                  f" name=\"{element.get('name')}\""
+                                  if element.get("name") is not None else "")
+    return tag
+
+
+def _named_after(name: str | None, bases: list[str]) -> bool:
+    """Whether ``name`` is one txtool gives a block generated under one of ``bases``
+    (:meth:`Placer._fresh_name`)."""
+    return name is not None and any(
+        name == base or re.fullmatch(re.escape(base) + r"_([2-9]|[1-9][0-9]+)", name)
+        for base in bases)
 
 
 def _declared(moves: list[_Move]) -> tuple[list[tuple[str, tuple]], set[etree._Element]]:

@@ -31,6 +31,9 @@ from txtool.io.xmlio import InputError, Source, local, parse_bytes
 from txtool.model.core import Member, Transmission
 
 MARK = "txtool-original"
+# Before the payload: the transmission stood after the <ros2_control> it went into (base64
+# has no spaces, so the word cannot be part of a payload).
+AFTER = "after"
 MAX_ORIGINAL = 1 << 20  # a transmission block is a few hundred bytes
 _END = re.compile(rb"</([\w.-]+:)?transmission\s*>")
 _START = re.compile(rb"<([\w.-]+:)?transmission[\s/>]")
@@ -62,14 +65,16 @@ def block_of(data: bytes, element: etree._Element) -> bytes | None:
     return text if len(_START.findall(text)) == 1 else None
 
 
-def comment_for(block: bytes) -> etree._Comment:
+def comment_for(block: bytes, after: bool = False) -> etree._Comment:
+    """The comment carrying ``block``; ``after``: the transmission stood after the
+    ``<ros2_control>`` it went into, and goes back there (:data:`AFTER`)."""
     payload = base64.b64encode(zlib.compress(block, 9)).decode("ascii")
-    return etree.Comment(f" {MARK} {payload} ")
+    return etree.Comment(f" {MARK} {AFTER + ' ' if after else ''}{payload} ")
 
 
-def annotate(element: etree._Element, block: bytes) -> None:
+def annotate(element: etree._Element, block: bytes, after: bool = False) -> None:
     """Put the comment carrying ``block`` on its own line before ``element``."""
-    comment = comment_for(block)
+    comment = comment_for(block, after)
     previous = element.getprevious()
     before = (previous.tail if previous is not None else element.getparent().text) or ""
     indent = before.rpartition("\n")[2] if "\n" in before else ""
@@ -83,13 +88,25 @@ def original_of(element: etree._Element) -> bytes | None:
     comment = _marker(element)
     if comment is None:
         return None
-    payload = (comment.text or "").strip()[len(MARK):].strip()
+    payload = _payload(comment)
     try:
         inflater = zlib.decompressobj()
         data = inflater.decompress(base64.b64decode(payload, validate=True), MAX_ORIGINAL)
     except (binascii.Error, ValueError, zlib.error):
         return b""
     return b"" if inflater.unconsumed_tail else data
+
+
+def _payload(comment: etree._Comment) -> str:
+    payload = (comment.text or "").strip()[len(MARK):].strip()
+    return payload[len(AFTER):].strip() if payload.startswith(AFTER + " ") else payload
+
+
+def goes_after(element: etree._Element) -> bool:
+    """Whether the comment before ``element`` says it goes back after its block."""
+    comment = _marker(element)
+    return comment is not None and (comment.text or "").strip()[len(MARK):].strip().startswith(
+        AFTER + " ")
 
 
 def drop_marker(element: etree._Element) -> None:
@@ -185,7 +202,9 @@ class Carrier:
         if reversible and source.expanded:
             self.notes.append("--reversible: a xacro expansion has no original lines to carry "
                               "(use migrate, or --no-xacro, to convert the source itself)")
-        self._carried: list[tuple[str, bytes]] = []
+        self._carried: list[tuple[str, bytes, etree._Element]] = []
+        # Elements going back to ROS 1 after their <ros2_control> (the placer's ``after``).
+        self.after_block: set[etree._Element] = set()
         self._restores: list[Restore] = []
         self._pending: list[tuple[etree._Element, Restore]] = []
         self._text = utf8_form(source.data) if self.reversible else b""
@@ -201,23 +220,24 @@ class Carrier:
                 self.notes.append(f"transmission '{t.name}': shares its lines with other "
                                   "elements; its original is not carried (--reversible)")
             else:
-                self._carried.append((t.name, block))
+                self._carried.append((t.name, block, found.element))
 
     def after(self, tree: etree._ElementTree,
               built: dict[etree._Element, etree._Element]) -> None:
         """Put each carried original before its converted transmission; name each block
         to be put back by its token (``built``: old element -> what the placer built)."""
         for old, restore_ in self._pending:
-            built[old].set("name", restore_.token)
+            if old in built:  # (not when it could not be moved: see Placer.losses)
+                built[old].set("name", restore_.token)
         if not self._carried:
             return
         placed = [e for e in tree.getroot().iter() if isinstance(e.tag, str)
                   and local(e) == "transmission" and _in_component(e)]
-        for name, block in self._carried:
+        for name, block, old in self._carried:
             element = next((e for e in placed if e.get("name") == name), None)
             if element is not None:
                 placed.remove(element)
-                annotate(element, block)
+                annotate(element, block, _stood_after(old, element.getparent()))
 
     def restore(self, data: bytes) -> bytes:
         if self._restores:
@@ -231,6 +251,8 @@ class Carrier:
         original = original_of(found.element)
         if original is None:
             return
+        if goes_after(found.element):
+            self.after_block.add(found.element)
         drop_marker(found.element)
         if original and restorable(found, original):
             token = f"txtool-restore-{len(self._restores)}-{os.urandom(8).hex()}"
@@ -239,6 +261,13 @@ class Carrier:
         else:
             self.notes.append(f"transmission '{name}': changed since it was converted with "
                               "--reversible; written as txtool writes it")
+
+
+def _stood_after(old: etree._Element, component: etree._Element) -> bool:
+    """Whether ``old`` stood after ``component``, a block of the document (one txtool
+    generates has no source line)."""
+    return (component.sourceline is not None and old.sourceline is not None
+            and old.sourceline > component.sourceline)
 
 
 def _in_component(element: etree._Element) -> bool:

@@ -21,7 +21,11 @@ from txtool.io.encodings import detect_encoding, utf8_form
 from txtool.io.xmlio import InputError, parse_bytes, serialize
 from txtool.transform.linediff import matching_blocks
 
-_LATE_DECLARATION = re.compile(rb"<\?xml\s[^>]*\?>[ \t]*(\r\n|\r|\n)?")
+# An XML declaration after what may stand before the root element (whitespace, comments,
+# processing instructions), each matched one at a time so that a long run cannot backtrack.
+_LATE_DECLARATION = re.compile(
+    rb"(\xef\xbb\xbf)?((?:[ \t\r\n]|<!--.*?-->|<\?(?!xml[ \t\r\n?])[^>]*\?>)*)"
+    rb"(<\?xml[ \t\r\n][^>]*\?>[ \t]*(?:\r\n|\r|\n)?)", re.S)
 
 
 def rewrite(original: bytes, before: etree._ElementTree, after: etree._ElementTree) -> bytes:
@@ -56,7 +60,7 @@ def splice(original: bytes, baseline: bytes, changed: bytes) -> bytes:
         except InputError:
             return changed
         if _same_document(merged, changed):
-            return _without_late_declaration(_keep_ends(original, merged))
+            return without_late_declaration(_keep_ends(original, merged))
     return changed
 
 
@@ -245,13 +249,25 @@ def _keep_ends(original: bytes, merged: bytes) -> bytes:
     return merged
 
 
-def _without_late_declaration(data: bytes) -> bytes:
-    """An XML declaration after a comment (some published URDFs put a licence first) makes
-    the document malformed for strict parsers; txtool reads it, but never writes it."""
-    late = _LATE_DECLARATION.search(data)
-    if late is None or not data[:late.start()].strip(codecs.BOM_UTF8 + b" \t\r\n"):
+def without_late_declaration(data: bytes) -> bytes:
+    """``data`` with its XML declaration first, or without it. A declaration after anything
+    but a byte-order mark (some published URDFs put a licence comment, a blank line or spaces
+    first; one fuzzed a processing instruction) makes the document malformed for strict
+    parsers (expat, libxml2); txtool reads it, but never writes it: after whitespace alone the
+    whitespace goes (the declaration may name the encoding), after anything else the
+    declaration. UTF-16 and UTF-32 text is worked on in its UTF-8 form."""
+    stored = detect_encoding(data)
+    if stored.wide:
+        text = utf8_form(data)
+        fixed = without_late_declaration(text)
+        return data if fixed == text else stored.from_utf8(fixed)
+    late = _LATE_DECLARATION.match(data)
+    if late is None or not late.group(2):
         return data
-    return data[:late.start()] + data[late.end():]
+    bom, head = late.group(1) or b"", late.group(2)
+    if not head.strip(b" \t\r\n"):
+        return bom + data[late.start(3):]
+    return data[:late.start(3)] + data[late.end(3):]
 
 
 def _same_document(a: bytes, b: bytes) -> bool:
