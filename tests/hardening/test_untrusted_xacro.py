@@ -385,3 +385,137 @@ def test_no_configuration_file_can_trust_xacro(repo):
 def test_every_command_that_reads_xacro_takes_trust_xacro(command):
     result = CliRunner().invoke(cli, [command, "--help"])
     assert "--trust-xacro" in result.stdout
+
+
+# The guard itself, in this process: the same attacks with its hooks installed in upstream
+# xacro but without the child process and its limits around it. Whatever the process boundary
+# adds, the guard alone must refuse each of them (and run none).
+def guarded(repo: Path, body: str, env: dict[str, str] | None = None) -> str:
+    from txtool.io.xacro_guard import XacroGuard
+
+    path = repo / "robot.urdf.xacro"
+    path.write_text(robot(body))
+    options = XacroOptions(env=tuple(env or ()))
+    return expand_text(str(path), str(path), options, XacroGuard(str(path), options, env or {}))
+
+
+@pytest.mark.parametrize("expression", CODE_EXECUTION.values(), ids=CODE_EXECUTION.keys())
+def test_the_guard_alone_refuses_code_execution(repo, expression):
+    from txtool.io.xacro import XacroError
+    from txtool.io.xacro_guard import Refusal
+
+    body = (TEMPLATES + f'<link name="{expression}"/>').replace("${close}", ")")
+    with pytest.raises((Refusal, XacroError)):
+        guarded(repo, body)
+    assert not (repo / MARKER).exists()
+
+
+@pytest.mark.parametrize("body", LEAKS.values(), ids=LEAKS.keys())
+def test_the_guard_alone_reads_no_secret(repo, body, monkeypatch):
+    from txtool.io.xacro import XacroError
+    from txtool.io.xacro_guard import Refusal
+
+    monkeypatch.setenv("DEPLOY_NOTE", SECRET)
+    monkeypatch.setenv("FAKE_GITHUB_TOKEN", SECRET)
+    try:
+        text = guarded(repo, body)
+    except (Refusal, XacroError) as exc:
+        text = str(exc)
+    assert SECRET not in text
+
+
+@pytest.mark.parametrize(("body", "reason"), DENIAL_OF_SERVICE.values(),
+                         ids=DENIAL_OF_SERVICE.keys())
+def test_the_guard_alone_refuses_oversized_values(repo, body, reason):
+    from txtool.io.xacro import XacroError
+    from txtool.io.xacro_guard import Refusal
+
+    with pytest.raises((Refusal, XacroError)) as raised:
+        guarded(repo, body)
+    shown = getattr(raised.value, "reason", str(raised.value))
+    assert reason.split(": xacro: ")[-1] in shown
+
+
+def test_the_guard_alone_reads_an_allowed_variable(repo):
+    text = guarded(repo, '<link name="$(env ROBOT_MODEL)_base"/>', {"ROBOT_MODEL": "ur5e"})
+    assert 'name="ur5e_base"' in text
+
+
+@pytest.mark.parametrize("path", _xacro_files(), ids=lambda p: p.name)
+def test_corpus_xacro_expands_identically_under_the_guard_alone(path):
+    from txtool.io.xacro_guard import XacroGuard
+
+    if not path.is_file():
+        pytest.skip("corpus not found")
+    outcomes = []
+    for guard in (None, XacroGuard(str(path), XacroOptions(), {})):
+        try:
+            outcomes.append(canonical(expand_text(str(path), str(path), XacroOptions(), guard)))
+        except Exception as exc:  # noqa: BLE001 (a missing package fails both the same way)
+            outcomes.append(str(exc).encode())
+    assert outcomes[0] == outcomes[1]
+
+
+@pytest.fixture
+def child_here(monkeypatch):
+    """The child's request handling run in this process: without its process limits (a
+    request would set them on the test run itself), its node counter undone afterwards."""
+    import xml.dom.minidom as minidom
+
+    from txtool.io import xacro_sandbox as sandbox
+
+    monkeypatch.setattr(sandbox, "_set_limits", lambda seconds, memory: None)
+    monkeypatch.setattr(minidom, "_clone_node", minidom._clone_node)
+    monkeypatch.setattr(sandbox._CloneCounter, "installed", False)
+    for name in sandbox.PACKAGE_VARIABLES:  # the request's package paths replace them
+        monkeypatch.setenv(name, "")
+        monkeypatch.delenv(name)
+    return sandbox
+
+
+def request_for(path: Path, **changes):
+    from txtool.io import xacro as xacro_support
+
+    request = {"path": str(path), "display": path.name, "args": [], "pkg_dirs": [],
+               "pkg_paths": [], "env_names": [], "env": {}, "seconds": 30, "memory": 2048,
+               "max_read": xacro_support.MAX_READ, "package_paths": {}}
+    return {**request, **changes}
+
+
+def test_the_childs_answers_to_each_kind_of_request(repo, child_here):
+    path = repo / "robot.urdf.xacro"
+    path.write_text(robot('<link name="${2 * 3}"/>'))
+    header, text = child_here._expand(request_for(path))
+    assert header["ok"] and 'name="6"' in text and header["inputs"]
+    path.write_text(robot("\n<link name=\"${''.__class__}\"/>"))
+    header, text = child_here._expand(request_for(path))
+    assert (set(header), header["line"], text) == ({"refused", "line"}, 5, "")
+    path.write_text(robot('<link name="$(arg missing)"/>'))
+    header, _ = child_here._expand(request_for(path))
+    assert header["missing"] == "argument" and "missing" in header["error"]
+    path.write_text(robot(fan_out(3, 10, "<group>" + "<g/>" * 1000 + "</group>")))
+    header, _ = child_here._expand(request_for(path))
+    assert header == {"limit": f"{child_here.MAX_NODES} XML nodes", "retire": True}
+
+
+def test_the_child_answers_one_line_and_the_text(repo, child_here, monkeypatch):
+    import io
+    import sys
+
+    path = repo / "robot.urdf.xacro"
+    path.write_text(robot('<link name="${1 + 1}"/>'))
+
+    class Stream(io.BytesIO):
+        @property
+        def buffer(self):
+            return self
+
+    stdin = Stream((json.dumps(request_for(path)) + "\n").encode())
+    stdout = Stream()
+    monkeypatch.setattr(sys, "stdin", stdin)
+    monkeypatch.setattr(sys, "stdout", stdout)
+    monkeypatch.setattr(sys, "stderr", sys.stderr)
+    child_here.main()
+    head, _, body = stdout.getvalue().partition(b"\n")
+    header = json.loads(head)
+    assert header["ok"] and header["size"] == len(body) and b'name="2"' in body
