@@ -203,3 +203,23 @@ def test_config_pins_the_configuration(repo, validate, tmp_path):
     assert validate(".")[0] == 0
     code, out, err = validate("--quiet", "--config", str(pinned), ".")
     assert (code, [line.split()[2] for line in out.splitlines()], err) == (1, ["TX106"], "")
+
+
+@pytest.mark.parametrize("planted", ["package.xml", "urdf/package.xml"])
+def test_a_package_xml_that_is_a_fifo_is_passed_over_unread(tmp_path, monkeypatch, planted):
+    """The readers and $(find) look for package.xml upward from each file: a FIFO there would
+    block the run until the job's timeout."""
+    import subprocess
+    import sys
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "urdf").mkdir()
+    (tmp_path / "urdf" / "robot.urdf").write_text(
+        '<robot name="r"><transmission name="t"><type>transmission_interface/'
+        'SimpleTransmission</type><joint name="j"><hardwareInterface>hardware_interface/'
+        'EffortJointInterface</hardwareInterface></joint><actuator name="m">'
+        "<mechanicalReduction>0</mechanicalReduction></actuator></transmission></robot>")
+    os.mkfifo(tmp_path / planted)
+    done = subprocess.run([sys.executable, "-m", "txtool", "validate", "urdf"], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 1 and "TX106" in done.stdout

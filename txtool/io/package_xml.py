@@ -27,7 +27,7 @@ from pathlib import Path
 from lxml import etree
 
 from txtool.io.packages import crawl, enclosing_manifest, workspace_roots
-from txtool.io.xmlio import InputError, local, parse_bytes
+from txtool.io.xmlio import InputError, local, parse_bytes, read_regular
 
 MAX_MANIFEST = 1024 * 1024
 # The base classes of ros_control's and ros2_control's transmission plugins
@@ -55,13 +55,22 @@ class PackageInfo:
         return self.build_type in ROS2_BUILD
 
 
-def _read_manifest(path: Path) -> etree._Element | None:
+def read_small(path: str, limit: int = MAX_MANIFEST) -> bytes | None:
+    """The bytes of a regular file of at most ``limit`` bytes, else None: a package.xml or a
+    plugin description a pull request made a FIFO or a device is passed over, never read."""
     try:
-        if path.stat().st_size > MAX_MANIFEST:
-            return None
-        data = path.read_bytes()
-        return parse_bytes(data, str(path)).getroot()
+        return read_regular(path, limit)
     except (OSError, InputError):
+        return None
+
+
+def _read_manifest(path: Path) -> etree._Element | None:
+    data = read_small(str(path))
+    if data is None:
+        return None
+    try:
+        return parse_bytes(data, str(path)).getroot()
+    except InputError:
         return None
 
 
@@ -132,10 +141,8 @@ class ExportedType:
 @lru_cache(maxsize=1024)
 def exports_of(manifest: str) -> tuple[ExportedType, ...]:
     """The transmission types the package of ``manifest`` exports (none for most packages)."""
-    try:
-        with open(manifest, "rb") as handle:
-            head = handle.read(MAX_MANIFEST)
-    except OSError:
+    head = read_small(manifest)
+    if head is None:
         return ()
     if b"transmission_interface" not in head or b"plugin" not in head:
         return ()  # the common case, without an XML parse
@@ -235,12 +242,8 @@ def plugin_files(package_folder: str) -> tuple[str, ...]:
             if scanned > MAX_SCANNED:
                 return tuple(found)
             path = os.path.join(folder, name)
-            try:
-                if os.path.getsize(path) > MAX_MANIFEST:
-                    continue
-                with open(path, "rb") as handle:
-                    data = handle.read()
-            except OSError:
+            data = read_small(path)
+            if data is None:
                 continue
             if any(marker in data for marker in PLUGIN_MARKERS):
                 found.append(path)

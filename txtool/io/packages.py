@@ -44,6 +44,8 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
 
+from txtool.io.xmlio import InputError, read_regular
+
 IGNORE_MARKERS = ("COLCON_IGNORE", "AMENT_IGNORE", "CATKIN_IGNORE")
 ROSPKG_MARKERS = ("CATKIN_IGNORE", "rospack_nosubdirs")  # rospkg's list_by_path
 MAX_FOLDERS = 20_000
@@ -52,6 +54,7 @@ AMENT_INDEX = os.path.join("share", "ament_index", "resource_index", "packages")
 _AMENT_NAME = re.compile(r"[a-zA-Z0-9][a-zA-Z0-9_-]+", re.ASCII)
 _NAME = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
 _COMMENT = re.compile(rb"<!--.*?-->", re.DOTALL)
+MANIFEST_BYTES = 1024 * 1024  # a package.xml is a few KiB; a larger file is no manifest
 
 
 class PackageNotFound(Exception):
@@ -82,10 +85,9 @@ def package_name(manifest: Path) -> str | None:
     format it is a child of ``<package>`` written before any ``<export>``.
     """
     try:
-        with manifest.open("rb") as handle:
-            head = handle.read(64 * 1024)
-    except OSError:
-        return None
+        head = read_regular(str(manifest), MANIFEST_BYTES)[: 64 * 1024]
+    except (OSError, InputError):
+        return None  # not a regular file of a manifest's size (a FIFO would block)
     match = _NAME.search(_COMMENT.sub(b"", head))
     return match.group(1).decode("utf-8", "replace") if match else None
 
