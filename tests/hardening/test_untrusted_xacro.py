@@ -519,3 +519,43 @@ def test_the_child_answers_one_line_and_the_text(repo, child_here, monkeypatch):
     head, _, body = stdout.getvalue().partition(b"\n")
     header = json.loads(head)
     assert header["ok"] and header["size"] == len(body) and b'name="2"' in body
+
+
+def test_the_guard_alone_expands_what_real_robots_write(repo):
+    """$(eval) with arguments, load_yaml of a file in the repository (units, dotted keys,
+    methods of a dict), $(find) of a package, optenv's default: all as upstream."""
+    (repo / "config").mkdir()
+    (repo / "config" / "limits.yaml").write_text(
+        "shoulder:\n  upper: !degrees 90\n  lower: -1.5\nnames: [a, b]\n")
+    (repo / "arm_description").mkdir()
+    (repo / "arm_description" / "package.xml").write_text(
+        "<package format='3'><name>arm_description</name></package>")
+    body = ('<xacro:arg name="scale" default="2"/>'
+            '<xacro:property name="limits" value="${xacro.load_yaml(\'config/limits.yaml\')}"/>'
+            '<link name="$(eval 3 * scale)"/>'
+            '<link name="$(eval scale + 1)"/>'
+            '<link name="${limits.shoulder.upper}"/>'
+            '<link name="${limits[\'shoulder\'][\'lower\']}"/>'
+            '<link name="${\'-\'.join(limits.names)}"/>'
+            '<link name="${python.sorted(limits.shoulder.keys())[0]}"/>'
+            '<link name="${limits.get(\'missing\', 7)}"/>'
+            '<link name="$(find arm_description)"/>'
+            '<link name="$(optenv NOT_ALLOWED fallback)"/>')
+    text = guarded(repo, body)
+    for shown in ('name="6"', 'name="3"', f'name="{math.pi / 2}"', 'name="-1.5"', 'name="a-b"',
+                  'name="lower"', 'name="7"', f'name="{repo / "arm_description"}"',
+                  'name="fallback"'):
+        assert shown in text, shown
+
+
+def test_the_guard_alone_refuses_a_yaml_alias_bomb_and_eval_attributes(repo):
+    from txtool.io.xacro_guard import Refusal
+
+    lines = ["a0: &a0 [x, x, x, x, x, x, x, x, x, x]"]
+    lines += [f"a{i}: &a{i} [*a{i - 1}, *a{i - 1}, *a{i - 1}, *a{i - 1}, *a{i - 1}, "
+              f"*a{i - 1}, *a{i - 1}, *a{i - 1}, *a{i - 1}, *a{i - 1}]" for i in range(1, 8)]
+    (repo / "bomb.yaml").write_text("\n".join(lines) + "\n")
+    with pytest.raises(Refusal, match="once its aliases are expanded"):
+        guarded(repo, '<link name="${xacro.load_yaml(\'bomb.yaml\')}"/>')
+    with pytest.raises(Refusal, match="__class__"):
+        guarded(repo, '<link name="$(eval arg.__class__)"/>')
