@@ -103,3 +103,13 @@ def test_a_failure_outranks_an_inconclusive_run():
     assert overall_verdict([good, blind, failing]) == "fail"
     assert overall_verdict([good, blind]) == "inconclusive"
     assert overall_verdict([good, good]) == "pass"
+
+
+def test_an_inconclusive_run_writes_no_csv_or_plot(tmp_path):
+    robot = write(tmp_path, "custom.urdf",
+                  f'<robot name="arm">{ARM_BODY}{customs("shoulder", "elbow", "wrist")}</robot>')
+    csv, plot = tmp_path / "run.csv", tmp_path / "run.png"
+    code, out, err = txtool(robot, "--csv", str(csv), "--plot", str(plot))
+    assert (code, err) == (3, "")
+    assert out.splitlines()[-1].startswith("INCONCLUSIVE: nothing checked")
+    assert not csv.exists() and not plot.exists()  # nothing was simulated: no time series
