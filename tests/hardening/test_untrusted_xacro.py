@@ -12,6 +12,7 @@ fail.
 from __future__ import annotations
 
 import json
+import os
 import math
 import time
 from pathlib import Path
@@ -559,3 +560,26 @@ def test_the_guard_alone_refuses_a_yaml_alias_bomb_and_eval_attributes(repo):
         guarded(repo, '<link name="${xacro.load_yaml(\'bomb.yaml\')}"/>')
     with pytest.raises(Refusal, match="__class__"):
         guarded(repo, '<link name="$(eval arg.__class__)"/>')
+
+
+@pytest.mark.parametrize(("body", "said"), [
+    ('<link name="$(env ROBOT_MODEL)"/>', "environment variable 'ROBOT_MODEL' is not set"),
+    ('<xacro:property name="y" value="${xacro.load_yaml(\'l.yaml\')}"/><link name="${y.nope}"/>',
+     "nope"),
+    ('<link name="${math.nope}"/>', "name 'nope' is not defined"),
+    ('<link name="${xacro.load_yaml(\'fifo.yaml\')}"/>', "not a regular file"),
+])
+def test_the_guard_alone_fails_as_xacro_fails_where_nothing_is_refused(repo, body, said):
+    """An allowed variable that is unset, a key or name that does not exist, a YAML file that
+    is no regular file: ordinary xacro errors (TX002), not refusals."""
+    from txtool.io.xacro import XacroError
+
+    (repo / "l.yaml").write_text("a: 1\n")
+    os.mkfifo(repo / "fifo.yaml")
+    from txtool.io.xacro_guard import XacroGuard
+
+    path = repo / "robot.urdf.xacro"
+    path.write_text(robot(body))
+    options = XacroOptions(env=("ROBOT_MODEL",))  # allowed, and not set
+    with pytest.raises(XacroError, match=said):
+        expand_text(str(path), str(path), options, XacroGuard(str(path), options, {}))

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import importlib.util
 import json
+import math
 import os
 import re
 from pathlib import Path
@@ -158,3 +159,13 @@ def test_unknown_plot_suffix_is_one_line_exit_2(tmp_path, slider, name):
     assert (code, out) == (2, "")
     assert err == f"txtool: {tmp_path / name}: --plot writes .png, .svg or .pdf files " \
                   "(by the suffix)\n"
+
+
+@pytest.mark.parametrize(("value", "shown"), [
+    (None, "-"), (math.inf, "none"), (-math.inf, "-inf"), (math.nan, "nan"),
+    (123456.0, "1.235e5"), (0.0001234, "1.234e-4"), (0.0, "0"), (12.5, "12.5"),
+])
+def test_numbers_in_tables_are_short_and_say_what_is_not_a_number(value, shown):
+    from txtool.simulation.report import _num
+
+    assert _num(value) == shown
