@@ -12,8 +12,8 @@ fail.
 from __future__ import annotations
 
 import json
-import os
 import math
+import os
 import time
 from pathlib import Path
 
