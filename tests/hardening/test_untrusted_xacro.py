@@ -309,6 +309,10 @@ ACCEPTED = [
     "python.sorted([3, 1, 2])", "python.list(python.range(3))", "'{}_{}'.format('l', 2)",
     "'%s_%d' % ('a', 3)", "f'{2:.2f}'", "round(2.567, 2)", "bool(0)", "True", "None",
     "python.sum([1, 2.5])", "e", "tau", "inf > 1", "isnan(nan)", "1 if 1 in [1, 2] else 0",
+    "f'{\"a\"!r}'", "f'{1!s}'", "f'{\"é\"!a}'", "len({1, 2, 2})", "'ab'.rjust(5)",
+    "'ab'.ljust(4) + 'x'.center(3)", "'a-b'.replace('-', '_')", "0 or 'x'", "1 and 0",
+    "(1, 2) + (3,)", "[1] * 3", "2 << 3", "'x'.join(['a', 'b'])", "[1, 2, 3].index(2)",
+    "{'a': 1}.get('b', 2)", "python.list({'a': 1}.keys())",
 ]
 
 
@@ -326,7 +330,12 @@ class _Python:
 
 
 @pytest.mark.parametrize("expression", ["x.__class__", "().__class__", "python.sum(['a'], '')",
-                                        "{**{}}", "[*'ab']", "print(1)", "1j", "b'x'"])
+                                        "{**{}}", "[*'ab']", "print(1)", "1j", "b'x'",
+                                        "max(*[1, 2])", "python.dict(**{'a': 1})",
+                                        "'{0.real}'.format(1)", "'{:{}}'.format(1, 5)",
+                                        "'a'.rjust(10**7)", "(1).real", "len[0]",
+                                        "'a' * 10**7", "[0] * 10**7 + [1]",
+                                        "'ab' + 'c' * 999999"])
 def test_outside_the_grammar_is_refused_or_undefined(expression):
     with pytest.raises((EvalRefused, NameError)):
         evaluate(expression, Table(make_globals({}), x=1))
