@@ -15,10 +15,8 @@ from collections.abc import Callable
 from pathlib import Path
 
 import pytest
-from click.testing import CliRunner
 
 from tests.hardening.test_atomic_writes import DEMO, ROBOT
-from txtool.cli import cli
 
 Run = Callable[..., tuple[int, str, str]]
 SECRET = b"export TOKEN=runner-secret\n"
@@ -27,15 +25,6 @@ LINK_REFUSED = ("is a symbolic link; txtool writes a new output only to a regula
 INPUT_REFUSED = "is an input of this command; its output is not written over it"
 
 
-@pytest.fixture
-def run(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Run:
-    monkeypatch.chdir(tmp_path)
-
-    def invoke(*args: str) -> tuple[int, str, str]:
-        result = CliRunner().invoke(cli, list(args), catch_exceptions=False)
-        return result.exit_code, result.stdout, result.stderr
-
-    return invoke
 
 
 WRITERS = {
