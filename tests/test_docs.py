@@ -57,3 +57,10 @@ def test_the_site_builds_strictly(tmp_path):
     )
     assert done.returncode == 0, done.stderr[-3000:]
     assert (tmp_path / "rules" / "TX106" / "index.html").is_file()
+
+
+def test_the_site_index_is_the_readme():
+    """docs/index.md is README.md with its links made relative to docs/ (regenerate it with
+    ``sed 's#](docs/#](#g' README.md > docs/index.md``)."""
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    assert (DOCS / "index.md").read_text(encoding="utf-8") == readme.replace("](docs/", "](")

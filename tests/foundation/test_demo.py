@@ -142,3 +142,22 @@ def test_demo_step_shows_its_result(step):
     body = sections(out).get(step)
     assert body is not None, f"the demo skipped {step!r}"
     CHECKS[step](body)
+
+
+def test_demo_copy_lays_out_the_documentation_examples(tmp_path):
+    examples = Path(__file__).resolve().parents[2] / "fixtures" / "examples"
+    target = tmp_path / "try"
+    result = CliRunner().invoke(cli, ["demo", "--copy", str(target)])
+    assert result.exit_code == 0, result.output
+    assert result.output.startswith(f"wrote 12 files into {target}: ")
+    assert (target / "robot.urdf").read_bytes() == (examples / "robot.urdf").read_bytes()
+    assert (target / "fixtures" / "demo_robot.urdf").is_file()
+
+    again = CliRunner().invoke(cli, ["demo", "--copy", str(target)])
+    assert again.exit_code == 2
+    assert again.output.endswith(": exists; nothing written (choose an empty folder)\n")
+
+    a_file = tmp_path / "file"
+    a_file.write_text("x")
+    refused = CliRunner().invoke(cli, ["demo", "--copy", str(a_file)])
+    assert (refused.exit_code, refused.output) == (2, f"txtool: {a_file}: not a folder\n")

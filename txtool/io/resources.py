@@ -23,3 +23,25 @@ def shipped(folder: str, name: str) -> Path:
         if candidate.is_file():
             return candidate
     raise InputError(f"{folder}/{name}: not found in this txtool installation (reinstall it)")
+
+
+def shipped_files(folder: str) -> dict[str, Path]:
+    """Every shipped file below ``folder`` by its path relative to it (``examples/robot.urdf``);
+    :class:`InputError` if this install lacks the folder."""
+    for place in _PLACES:
+        root = place / folder
+        if root.is_dir():
+            return {p.relative_to(root).as_posix(): p for p in sorted(root.rglob("*"))
+                    if p.is_file() and "__pycache__" not in p.parts}
+    raise InputError(f"{folder}: not found in this txtool installation (reinstall it)")
+
+
+def example_layout() -> dict[str, Path]:
+    """The files the documentation's examples run on, by where they go in a fresh folder: the
+    demo robots as ``fixtures/NAME`` and the examples of ``fixtures/examples`` at the top."""
+    layout: dict[str, Path] = {}
+    for relative, path in shipped_files("fixtures").items():
+        if relative.startswith("examples/"):
+            layout[relative.removeprefix("examples/")] = path
+        layout[f"fixtures/{relative}"] = path
+    return layout

@@ -1,0 +1,112 @@
+"""Every console example in README.md and docs/*.md runs as written and prints what it shows.
+
+A ```console block is a session: lines starting with ``$ `` are commands (a trailing ``\\``
+continues one), the lines after a command are what it prints (standard output and standard
+error together). A line ``...`` stands for any number of lines, and a line ending in ``...``
+for any line that starts with what comes before it. A command followed by no lines prints
+nothing. The commands of a page run one after another, in one folder laid out as
+``txtool demo --copy DIR`` lays it out (the shipped ``fixtures/``, and ``fixtures/examples/*``
+at its top), so a page can change a file and look at it again.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+BLOCK = re.compile(r"^```console\n(.*?)^```$", re.M | re.S)
+
+
+@dataclass
+class Step:
+    command: str
+    expected: list[str] = field(default_factory=list)
+
+
+def sessions(text: str) -> list[list[Step]]:
+    """The console blocks of a page, each as its commands and their shown output."""
+    blocks = []
+    for match in BLOCK.finditer(text):
+        steps: list[Step] = []
+        continued = False
+        for line in match.group(1).splitlines():
+            if continued:
+                steps[-1].command += "\n" + line
+                continued = line.endswith("\\")
+            elif line.startswith("$ "):
+                steps.append(Step(line[2:]))
+                continued = line.endswith("\\")
+            else:
+                assert steps, f"output before any command: {line!r}"
+                steps[-1].expected.append(line)
+        blocks.append(steps)
+    return blocks
+
+
+def matches(expected: list[str], actual: list[str]) -> bool:
+    """Whether ``actual`` is what ``expected`` shows, ``...`` lines and line ends as wildcards."""
+    if not expected:
+        return not actual
+    head, rest = expected[0], expected[1:]
+    if head == "...":
+        return any(matches(rest, actual[i:]) for i in range(len(actual) + 1))
+    if not actual:
+        return False
+    line = actual[0].rstrip()
+    if head.endswith("...") and line.startswith(head[:-3].rstrip()):
+        return matches(rest, actual[1:])
+    return line == head.rstrip() and matches(rest, actual[1:])
+
+
+def workspace(tmp_path: Path) -> Path:
+    """A folder laid out as ``txtool demo --copy`` lays it out."""
+    from txtool.io.resources import example_layout
+
+    for name, source in example_layout().items():
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copyfile(source, tmp_path / name)
+    return tmp_path
+
+
+def run(step: Step, cwd: Path) -> list[str]:
+    env = {key: value for key, value in os.environ.items()
+           if not key.startswith(("TXTOOL_", "GITHUB_", "ROS_", "AMENT_", "FORCE_COLOR"))}
+    env.update(NO_COLOR="1", COLUMNS="100", PYTHONUNBUFFERED="1",
+               PATH=os.pathsep.join([str(Path(sys.executable).parent), env.get("PATH", "")]))
+    done = subprocess.run(["bash", "-c", step.command], cwd=cwd, env=env, timeout=300,
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    return done.stdout.splitlines()
+
+
+def test_the_session_reader_and_the_wildcards():
+    text = "```console\n$ a \\\n  b\none\n...\n$ c\n```\n"
+    assert [(s.command, s.expected) for s in sessions(text)[0]] == [
+        ("a \\\n  b", ["one", "..."]), ("c", [])]
+    assert matches(["one", "...", "four"], ["one", "two", "three", "four"])
+    assert matches(["one ..."], ["one two"])
+    assert not matches(["one"], ["one", "two"])
+    assert not matches([], ["unexpected"])
+    assert not matches(["one", "...", "four"], ["one", "two"])
+
+
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: p.relative_to(ROOT).as_posix())
+def test_console_examples_print_what_they_show(page, tmp_path):
+    blocks = sessions(page.read_text(encoding="utf-8"))
+    if not blocks:
+        pytest.skip("no console example")
+    cwd = workspace(tmp_path)
+    for steps in blocks:
+        for step in steps:
+            actual = run(step, cwd)
+            assert matches(step.expected, actual), (
+                f"$ {step.command}\n--- shown\n" + "\n".join(step.expected)
+                + "\n--- printed\n" + "\n".join(actual))
