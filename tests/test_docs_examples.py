@@ -6,7 +6,8 @@ error together). A line ``...`` stands for any number of lines, and a line endin
 for any line that starts with what comes before it. A command followed by no lines prints
 nothing. The commands of a page run one after another, in one folder laid out as
 ``txtool demo --copy DIR`` lays it out (the shipped ``fixtures/``, and ``fixtures/examples/*``
-at its top), so a page can change a file and look at it again.
+at its top), so a page can change a file and look at it again; a ``$ cd DIR`` moves the
+commands that follow into ``DIR``.
 """
 
 from __future__ import annotations
@@ -106,6 +107,9 @@ def test_console_examples_print_what_they_show(page, tmp_path):
     cwd = workspace(tmp_path)
     for steps in blocks:
         for step in steps:
+            if step.command.startswith("cd ") and not step.expected:
+                cwd = cwd / step.command[3:].strip()  # as the shell would, for what follows
+                continue
             actual = run(step, cwd)
             assert matches(step.expected, actual), (
                 f"$ {step.command}\n--- shown\n" + "\n".join(step.expected)
