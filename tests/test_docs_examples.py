@@ -58,7 +58,7 @@ def matches(expected: list[str], actual: list[str]) -> bool:
     if not expected:
         return not actual
     head, rest = expected[0], expected[1:]
-    if head == "...":
+    if head.strip() == "...":
         return any(matches(rest, actual[i:]) for i in range(len(actual) + 1))
     if not actual:
         return False
@@ -80,7 +80,7 @@ def workspace(tmp_path: Path) -> Path:
 
 def run(step: Step, cwd: Path) -> list[str]:
     env = {key: value for key, value in os.environ.items()
-           if not key.startswith(("TXTOOL_", "GITHUB_", "ROS_", "AMENT_", "FORCE_COLOR"))}
+           if not key.startswith(("TXTOOL_", "GITHUB_", "ROS_", "AMENT_", "CMAKE_", "FORCE_COLOR"))}
     env.update(NO_COLOR="1", COLUMNS="100", PYTHONUNBUFFERED="1",
                PATH=os.pathsep.join([str(Path(sys.executable).parent), env.get("PATH", "")]))
     done = subprocess.run(["bash", "-c", step.command], cwd=cwd, env=env, timeout=300,

@@ -17,7 +17,7 @@ from txtool.commands.common import (
 from txtool.io.printable import printable
 from txtool.model.distro import CHOICES
 
-FORMATS = ("text", "json", "github", "sarif")
+FORMATS = ("text", "json", "github", "sarif", "junit")
 
 
 
@@ -109,7 +109,8 @@ def command(paths, output_format, select, ignore, strict, exit_zero, config_path
     if (quiet or statistics) and fmt != "text":
         raise click.UsageError(f"--quiet and --statistics go with --format text, not {fmt}")
     summary = Summary.of(result.problems, result.files, failures=result.errors,
-                         readers=result.readers)
+                         readers=result.readers,
+                         failing=("error", "warning") if strict else ("error",))
     colored = fmt == "text" and use_color(color, output_file)
     report = _report(fmt, result.problems, summary, colored, quiet, statistics)
     if output_file is None:

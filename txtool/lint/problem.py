@@ -40,3 +40,9 @@ class Problem:
     # A rule sets this below its registered severity for a finding the file's own loader
     # accepts (gazebo_ros_control's, say); a configured severity still wins.
     loader_severity: Severity | None = field(default=None, compare=False)
+
+    def __str__(self) -> str:
+        """The finding as ``txtool validate`` prints it: ``path:line:col: severity CODE name:
+        message``."""
+        rule = f"{self.code} {self.name}" if self.name else self.code
+        return f"{self.path}:{self.line}:{self.column}: {self.severity} {rule}: {self.message}"

@@ -18,6 +18,7 @@ FORMATS: dict[str, str] = {
     "json": "json_format",
     "github": "github",
     "sarif": "sarif",
+    "junit": "junit",
 }
 
 
@@ -29,6 +30,7 @@ class Summary(NamedTuple):
     failures: tuple[InputFailure, ...] = ()  # files that could not be read
     readers: tuple[FileReaders, ...] = ()  # the readers each file was judged for
     not_expanded: int = 0  # xacro files whose expansion failed (TX002): checked as written only
+    failing: tuple[str, ...] = ("error",)  # the severities that fail the run (--strict: warnings)
 
     @property
     def unreadable(self) -> int:
@@ -37,14 +39,14 @@ class Summary(NamedTuple):
     @classmethod
     def of(
         cls, problems: Sequence[Problem], files: int, *, failures: Sequence[InputFailure] = (),
-        readers: Sequence[FileReaders] = (),
+        readers: Sequence[FileReaders] = (), failing: Sequence[str] = ("error",),
     ) -> Summary:
         def count(level: str) -> int:
             return sum(1 for p in problems if p.severity == level)
 
         not_expanded = len({p.path for p in problems if p.code == "TX002"})
         return cls(files, count("error"), count("warning"), count("info"), tuple(failures),
-                   tuple(readers), not_expanded)
+                   tuple(readers), not_expanded, tuple(failing))
 
 
 def render(
