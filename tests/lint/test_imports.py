@@ -94,3 +94,51 @@ def test_roundtrip_of_a_robot_loads_neither_numpy_nor_rich_s_console(tmp_path, o
     assert "rich" not in probe["loaded"]
     # Nor the network stack that xml.sax.saxutils brings (urllib.request, http.client, ssl).
     assert [name for name in ("ssl", "http", "email", "urllib") if name in probe["loaded"]] == []
+
+
+# numpy is not a base dependency (it comes with the 'sim' extra): every other command runs
+# where importing it fails, as in a base install.
+NO_NUMPY = """
+import sys
+class Refuse:
+    def find_spec(self, name, path=None, target=None):
+        if name == "numpy" or name.startswith("numpy."):
+            raise ModuleNotFoundError(f"No module named {name!r}", name=name)
+sys.meta_path.insert(0, Refuse())
+from txtool.cli import main
+sys.argv = ["txtool", *sys.argv[1:]]
+main()
+"""
+
+FIXTURES = __import__("pathlib").Path(__file__).resolve().parents[2] / "fixtures"
+
+
+@pytest.mark.parametrize("args", [
+    ["validate", "{demo}"],
+    ["show", "{demo}", "--effective", "--actuator-limits", "--format", "json"],
+    ["convert", "{demo}", "--to", "ros2-p2"],
+    ["migrate", "--check", "--to", "ros2-p2", "{p2}"],
+    ["migrate", "--diff", "--to", "ros2-p1", "{demo}"],
+    ["roundtrip", "{demo}", "--against", "{p2}"],
+    ["map", "{diff}", "-t", "wrist_trans", "--to", "joint", "--position", "3,5",
+     "--format", "json"],
+    ["map", "{four_bar}", "-t", "four_bar_trans", "--to", "actuator", "--effort", "1,2"],
+    ["rules", "TX106"],
+], ids=lambda args: " ".join(args[:2]))
+def test_the_base_commands_need_no_numpy(args):
+    names = {"demo": FIXTURES / "demo_robot.urdf", "p2": FIXTURES / "demo_robot.ros2-p2.urdf",
+             "diff": FIXTURES / "differential_golden.urdf",
+             "four_bar": FIXTURES / "four_bar.ros1.urdf"}
+    done = subprocess.run([sys.executable, "-c", NO_NUMPY,
+                           *(a.format(**{k: str(v) for k, v in names.items()}) for a in args)],
+                          capture_output=True, text=True, timeout=120)
+    converts = args[:2] == ["migrate", "--diff"]  # exit 1: it would change the file
+    assert done.returncode == (1 if converts else 0), done.stderr
+    assert "numpy" not in done.stderr
+
+
+def test_the_probe_refuses_numpy():
+    done = subprocess.run([sys.executable, "-c", NO_NUMPY.replace(
+        "from txtool.cli import main", "import numpy  # noqa")],
+        capture_output=True, text=True, timeout=120)
+    assert done.returncode == 1 and "No module named 'numpy'" in done.stderr

@@ -7,12 +7,15 @@ import math
 import sys
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from txtool.mechanics import points
 from txtool.mechanics.equivalence import _Loaded
 from txtool.mechanics.formulas import FORMULAS, formula_key
 from txtool.mechanics.maps import from_effective
+from txtool.mechanics.points import ZeroReduction
 from txtool.mechanics.samples import axis, joint_samples
 from txtool.model.robot import JointInfo
 from txtool.model.semantics import Effective
@@ -60,12 +63,67 @@ def test_python_floats_map_as_numpy_does(load, quantity, pairs):
         ours_back = [aj(row, eff.actuator_reduction, eff.joint_reduction, eff.joint_offset)
                      for row in rows]
     except ZeroDivisionError:
-        return  # numpy's inf or nan: the equivalence check maps such a case with numpy
+        return  # the equivalence check maps such a case with IEEE division (points)
     assert all(same_bits(x, y) for a, b in zip(ours_back, back, strict=True)
                for x, y in zip(a, b, strict=True))
 
 
-def test_an_underflowing_reduction_falls_back_to_numpy_s_infinities():
+@settings(max_examples=300, deadline=None)
+@given(loaded(), st.sampled_from(["position", "velocity", "effort", "absolute_position"]),
+       st.tuples(FINITE, FINITE), st.booleans())
+def test_point_maps_give_numpy_s_bits_both_ways_division_by_zero_included(load, quantity,
+                                                                            pair, to_joint):
+    """map and show --actuator-limits compute with txtool.mechanics.points (no numpy)."""
+    row = pair[: len(load.joints)]
+    maps = points.from_effective(load.eff, load.convention)
+    numpy_map = from_effective(load.eff, load.convention)
+    if to_joint:
+        ours = maps.actuator_to_joint(quantity, row)
+        with np.errstate(all="ignore"):
+            reference = numpy_map.actuator_to_joint(quantity, np.array(row)).tolist()
+    else:
+        if quantity == "absolute_position":
+            quantity = "position"
+        ours = maps.joint_to_actuator(quantity, row)
+        with np.errstate(all="ignore"):
+            reference = numpy_map.joint_to_actuator(quantity, np.array(row)).tolist()
+    assert all(same_bits(x, y) for x, y in zip(ours, reference, strict=True))
+
+
+@pytest.mark.parametrize(("a", "b", "expected"), [
+    (1.0, 0.0, math.inf), (-1.0, 0.0, -math.inf), (1.0, -0.0, -math.inf),
+    (-2.0, -0.0, math.inf), (0.0, 0.0, math.nan), (math.nan, 0.0, math.nan),
+    (math.inf, -0.0, -math.inf), (3.0, 2.0, 1.5),
+])
+def test_ieee_division(a, b, expected):
+    with np.errstate(all="ignore"):
+        assert same_bits(points.divide(a, b), expected)
+        assert same_bits(points.divide(a, b), float(np.float64(a) / np.float64(b)))
+    assert same_bits(points.IEEE(a) / b, expected) and same_bits(a / points.IEEE(b), expected)
+
+
+def test_ieee_arithmetic_stays_ieee():
+    x = points.IEEE(2.0)
+    for value in (x + 1, 1 + x, x - 1, 1 - x, x * 3, 3 * x, x / 2, 2 / x, -x, 2.0 * x):
+        assert type(value) is points.IEEE
+    assert (1 - x, 2 / x, -x) == (-1.0, 1.0, -2.0)
+
+
+def test_a_zero_reduction_is_not_loadable_in_point_maps():
+    eff = Effective("t", "simple", ("a",), ("m",), (0.0,), (1.0,), (0.0,), "ros2")
+    with pytest.raises(ZeroReduction, match="reduction ratio cannot be zero"):
+        points.from_effective(eff)
+    maps = points.from_effective(
+        Effective("t", "simple", ("a",), ("m",), (2.0,), (1.0,), (0.0,), "ros2"))
+    with pytest.raises(ValueError, match="maps 1 value"):
+        maps.joint_to_actuator("position", (1.0, 2.0))
+    with pytest.raises(ValueError, match="cannot map 'absolute_position' from joint"):
+        maps.joint_to_actuator("absolute_position", (1.0,))
+    with pytest.raises(ValueError, match="cannot map 'mass' from actuator"):
+        maps.actuator_to_joint("mass", (1.0,))
+
+
+def test_an_underflowing_reduction_gives_numpy_s_infinities():
     eff = Effective("t", "simple", ("a",), ("m",), (1e-200,), (1e-200,), (0.0,), "ros2")
     # 1e-200 * 1e-200 is 0.0: Python refuses to divide by it, numpy gives inf and nan
     mapped = _Loaded(eff, "ros2").joint_to_actuator("effort", [(2.0,), (-1.0,), (0.0,)])

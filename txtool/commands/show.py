@@ -109,7 +109,7 @@ def _one_ros2_distro(assumption):
 
 def _limits(source, transmissions):
     from txtool.mechanics.limits import actuator_limits
-    from txtool.mechanics.maps import from_transmission
+    from txtool.mechanics.points import from_transmission
     from txtool.model.robot import robot_joints
     from txtool.model.semantics import NotLoadable
 

@@ -1,7 +1,7 @@
 """Transmission mechanics: joint/actuator maps, checks, limits, inertia and equivalence.
 
 The names below load lazily, so importing :mod:`txtool.mechanics.linear` (as the linter does)
-never loads numpy.
+never loads numpy; :mod:`txtool.mechanics.points` (``map``, ``show``, ``roundtrip``) needs none.
 """
 
 from __future__ import annotations
@@ -13,15 +13,15 @@ if TYPE_CHECKING:
     from txtool.mechanics.inertia import reflected_inertia
     from txtool.mechanics.maps import (
         TransmissionMap,
-        ZeroReduction,
         from_effective,
         from_parameters,
         from_transmission,
     )
+    from txtool.mechanics.points import ZeroReduction
 
 _EXPORTS = {
     "TransmissionMap": "maps",
-    "ZeroReduction": "maps",
+    "ZeroReduction": "points",
     "from_effective": "maps",
     "from_parameters": "maps",
     "from_transmission": "maps",

@@ -11,7 +11,8 @@ unless one convention is imposed on both. By default, therefore, a ROS 1 four-ba
 conversion differ in effort, as ros_control and ros2_control do.
 
 The handful of sampled values is mapped in plain Python floats (the same IEEE operations as
-:mod:`txtool.mechanics.maps`, so the same bits), which spares ``roundtrip`` importing numpy.
+:mod:`txtool.mechanics.maps`, so the same bits, with :mod:`txtool.mechanics.points` where a
+division by zero needs IEEE's infinities), so ``roundtrip`` needs no numpy.
 """
 
 from __future__ import annotations
@@ -113,14 +114,15 @@ class _Loaded(NamedTuple):
         try:
             return [formula(row, ar, jr, off) for row in rows]
         except ZeroDivisionError:  # reductions whose product underflows to 0
-            return self._with_numpy(quantity, rows)
+            return self._ieee(quantity, rows)
 
-    def _with_numpy(self, quantity: str, rows: list[Sample]) -> list[Sample]:
-        """numpy's inf and nan where Python refuses to divide by zero."""
-        from txtool.mechanics.maps import from_effective
+    def _ieee(self, quantity: str, rows: list[Sample]) -> list[Sample]:
+        """IEEE's infinities and NaN (as numpy and the loaders' C++ give them) where Python
+        refuses to divide by zero."""
+        from txtool.mechanics.points import from_effective
 
-        mapped = from_effective(self.eff, self.convention).joint_to_actuator(quantity, rows)
-        return [tuple(row) for row in mapped.tolist()]
+        maps = from_effective(self.eff, self.convention)
+        return [maps.joint_to_actuator(quantity, row) for row in rows]
 
 
 def _load(t: Transmission, convention: str | None) -> _Loaded:

@@ -9,13 +9,25 @@ so the extremes sit at the box corners.
 from __future__ import annotations
 
 import itertools
-from collections.abc import Mapping
+import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import Protocol
 
-import numpy as np
-
-from txtool.mechanics.maps import TransmissionMap
 from txtool.model.robot import JointInfo
+
+
+class Maps(Protocol):
+    """What the limits need of a transmission's maps: :class:`txtool.mechanics.points.PointMap`
+    (``show``) or :class:`txtool.mechanics.maps.TransmissionMap` (``simulate``)."""
+
+    @property
+    def joints(self) -> tuple[str, ...]: ...
+
+    @property
+    def actuators(self) -> tuple[str, ...]: ...
+
+    def joint_to_actuator(self, quantity: str, values: Sequence[float]) -> Sequence[float]: ...
 
 
 @dataclass(frozen=True)
@@ -29,18 +41,18 @@ class ActuatorLimit:
     effort: float | None
 
 
-def actuator_limits(
-    tmap: TransmissionMap, joints: Mapping[str, JointInfo]
-) -> list[ActuatorLimit]:
+Box = tuple[float, float] | None
+
+
+def actuator_limits(tmap: Maps, joints: Mapping[str, JointInfo]) -> list[ActuatorLimit]:
     """One entry per actuator, in ``tmap.actuators`` order."""
     infos = [joints.get(name) for name in tmap.joints]
     position = [_position_range(info) for info in infos]
     velocity = [_symmetric(info.velocity if info else None) for info in infos]
     effort = [_symmetric(info.effort if info else None) for info in infos]
     # Which joints each actuator's value depends on, per quantity.
-    unit = np.eye(tmap.size)
-    motion = tmap.joint_to_actuator("velocity", unit).T != 0.0
-    force = tmap.joint_to_actuator("effort", unit).T != 0.0
+    motion = _dependence(tmap, "velocity")
+    force = _dependence(tmap, "effort")
     return [
         ActuatorLimit(
             actuator=name,
@@ -52,56 +64,52 @@ def actuator_limits(
     ]
 
 
-def _position_range(info: JointInfo | None) -> tuple[float, float] | None:
+def _dependence(tmap: Maps, quantity: str) -> list[list[bool]]:
+    """``[actuator][joint]``: whether the actuator's ``quantity`` moves with the joint's."""
+    n = len(tmap.joints)
+    columns = [tmap.joint_to_actuator(quantity, [float(j == k) for k in range(n)])
+               for j in range(n)]
+    return [[float(columns[j][i]) != 0.0 for j in range(n)] for i in range(len(tmap.actuators))]
+
+
+def _position_range(info: JointInfo | None) -> Box:
     if info is None or info.type == "continuous" or info.lower is None or info.upper is None:
         return None
     return (info.lower, info.upper)
 
 
-def _symmetric(limit: float | None) -> tuple[float, float] | None:
+def _symmetric(limit: float | None) -> Box:
     return None if limit is None else (-abs(limit), abs(limit))
 
 
 def _corner_values(
-    tmap: TransmissionMap,
-    quantity: str,
-    boxes: list[tuple[float, float] | None],
-    needed: np.ndarray,
-    index: int,
-) -> np.ndarray | None:
-    """Actuator ``index``'s value at every corner of the joint box; None if a bound is absent."""
-    sides = []
+    tmap: Maps, quantity: str, boxes: list[Box], needed: list[bool], index: int,
+) -> list[float] | None:
+    """Actuator ``index``'s value at every corner of the joint box; None if a bound is absent
+    or a value is not finite."""
+    sides: list[Sequence[float]] = []
     for box, need in zip(boxes, needed, strict=True):
         if box is None and need:
             return None
         # A joint this actuator does not depend on can sit anywhere: use 0.
         sides.append(box if box is not None and need else (0.0,))
-    corners = np.array(list(itertools.product(*sides)), dtype=float)
-    return tmap.joint_to_actuator(quantity, corners)[:, index]
+    values = [float(tmap.joint_to_actuator(quantity, [float(v) for v in corner])[index])
+              for corner in itertools.product(*sides)]
+    return values if all(math.isfinite(v) for v in values) else None
 
 
 def _interval(
-    tmap: TransmissionMap,
-    quantity: str,
-    boxes: list[tuple[float, float] | None],
-    needed: np.ndarray,
-    index: int,
+    tmap: Maps, quantity: str, boxes: list[Box], needed: list[bool], index: int,
 ) -> tuple[float, float] | None:
     values = _corner_values(tmap, quantity, boxes, needed, index)
-    if values is None or not np.isfinite(values).all():
+    if values is None:
         return None
     # + 0.0 turns -0.0 (a reversed zero bound) into 0.0.
-    return (float(values.min()) + 0.0, float(values.max()) + 0.0)
+    return (min(values) + 0.0, max(values) + 0.0)
 
 
 def _magnitude(
-    tmap: TransmissionMap,
-    quantity: str,
-    boxes: list[tuple[float, float] | None],
-    needed: np.ndarray,
-    index: int,
+    tmap: Maps, quantity: str, boxes: list[Box], needed: list[bool], index: int,
 ) -> float | None:
     values = _corner_values(tmap, quantity, boxes, needed, index)
-    if values is None or not np.isfinite(values).all():
-        return None
-    return float(np.abs(values).max())
+    return None if values is None else max(abs(v) for v in values)

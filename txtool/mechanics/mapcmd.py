@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from txtool.io.load import load
 from txtool.io.xmlio import InputError, XacroOptions
 from txtool.mechanics.convention import effort_convention, source_of
-from txtool.mechanics.maps import TransmissionMap, from_effective
+from txtool.mechanics.points import PointMap, from_effective
 from txtool.model.core import Member, Transmission
 from txtool.model.numbers import format_float, parse_strict
 from txtool.model.semantics import ROLES_ACTUATOR, ROLES_JOINT, NotLoadable, effective
@@ -139,7 +139,7 @@ def _role_order(members: tuple[Member, ...], roles: tuple[str, ...], loaded: tup
     return [loaded.index(n) for n in ordered]
 
 
-def _names(tmap: TransmissionMap, to: str, order: list[int], is_input: bool) -> list[str]:
+def _names(tmap: PointMap, to: str, order: list[int], is_input: bool) -> list[str]:
     joint_side = (to == "actuator") == is_input
     names = tmap.joints if joint_side else tmap.actuators
     return [names[i] for i in order]
@@ -159,7 +159,7 @@ def _parse(quantity: str, text: str, count: int, name: str) -> list[float]:
     return values
 
 
-def _map(tmap: TransmissionMap, to: str, quantity: str, given: list[float],
+def _map(tmap: PointMap, to: str, quantity: str, given: list[float],
          source: list[int], target: list[int]) -> list[float]:
     x = [0.0] * len(given)
     for k, index in enumerate(source):

@@ -15,20 +15,13 @@ from numpy.typing import ArrayLike
 
 from txtool.mechanics import linear
 from txtool.mechanics.formulas import EFFORT_ALIASES, FORMULAS, Formula, formula_key
+from txtool.mechanics.points import ZeroReduction  # noqa: F401 - also a name of this module
 from txtool.model.core import Transmission
-from txtool.model.semantics import Effective, NotLoadable, effective
+from txtool.model.semantics import Effective, effective
 
 KINDS = ("simple", "differential", "four_bar")
 TO_ACTUATOR = ("position", "velocity", *EFFORT_ALIASES)
 TO_JOINT = (*TO_ACTUATOR, "absolute_position")
-
-
-class ZeroReduction(NotLoadable):
-    """A reduction ratio of zero: neither ROS loader constructs such a transmission."""
-
-    def __init__(self, name: str) -> None:
-        super().__init__(f"transmission '{name}': reduction ratio cannot be zero")
-        self.transmission = name
 
 
 
