@@ -147,3 +147,14 @@ def test_both_dialects_run_the_ros2_transmissions(tmp_path, loader):
     assert (code, err) == (0, "")
     said = any("the ROS 2 ones are simulated" in n for n in doc["notes"])
     assert said == (loader == "auto")
+
+
+def test_a_robot_without_inertias_says_so(tmp_path):
+    robot = write(tmp_path, "bare.urdf", '<robot name="r"><link name="a"/><link name="b"/>'
+                  '<joint name="elbow" type="revolute"><parent link="a"/><child link="b"/>'
+                  '<axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/>'
+                  "</joint></robot>")
+    code, out, err = txtool(robot)
+    assert (code, out) == (2, "")
+    assert err.strip() == (f"txtool: {robot}: no joint moves a link with mass or inertia "
+                           "(joints elbow): simulate needs the URDF's <inertial> elements")

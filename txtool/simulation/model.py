@@ -109,6 +109,10 @@ def build(source: Source) -> RobotModel:
                          f"({', '.join(links)}): it is locked and not simulated")
     joints = [name for name, joint in zip(model.names[1:], model.joints[1:], strict=True)
               if joint.nv > 0]  # a mimic joint has no DoF of its own
+    if not joints and locked:
+        raise InputError(f"{source.path}: no joint moves a link with mass or inertia "
+                         f"(joints {', '.join(sorted(locked))}): simulate needs the URDF's "
+                         "<inertial> elements")
     if not joints:
         raise InputError(f"{source.path}: the robot has no moving joints")
     order = sorted(joints, key=lambda n: model.joints[model.getJointId(n)].idx_v)
