@@ -23,6 +23,7 @@ line, ``path: xacro: expansion exceeded ... (a safety limit)``.
 from __future__ import annotations
 
 import atexit
+import base64
 import contextlib
 import json
 import os
@@ -80,8 +81,10 @@ def limits() -> tuple[float, int]:
     return seconds, memory
 
 
-def expand_in_sandbox(path: str, display: str, options: XacroOptions) -> str:
-    """The expanded text of ``path``; :class:`XacroError` or :class:`XacroLimit` if none."""
+def expand_in_sandbox(path: str, display: str, options: XacroOptions,
+                      data: bytes | None = None) -> str:
+    """The expanded text of ``path`` (with ``data`` read for it when given, see
+    :func:`txtool.io.xacro.expand_xacro`); :class:`XacroError` or :class:`XacroLimit` if none."""
     from txtool.io import xacro as xacro_support
     from txtool.io.xacro import XacroError
 
@@ -93,6 +96,7 @@ def expand_in_sandbox(path: str, display: str, options: XacroOptions) -> str:
         "env": {name: os.environ[name] for name in options.env if name in os.environ},
         "seconds": seconds, "memory": memory, "max_read": xacro_support.MAX_READ,
         "package_paths": {k: os.environ[k] for k in PACKAGE_VARIABLES if k in os.environ},
+        "data": None if data is None else base64.b64encode(data).decode("ascii"),
     }
     worker = _worker(memory)
     try:
@@ -348,7 +352,9 @@ def _expand(request: dict[str, Any]) -> tuple[dict[str, Any], str]:
     targets.forget_inputs()
     try:
         guard = XacroGuard(path, options, request["env"])
-        text = expand_text(path, display, options, guard)
+        given = request.get("data")
+        data = None if given is None else base64.b64decode(given)
+        text = expand_text(path, display, options, guard, data)
         # what it read (the top file and its includes): no output of the command replaces them
         return {"ok": True, "inputs": targets.inputs_read()}, text
     except Refusal as exc:
