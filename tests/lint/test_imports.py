@@ -94,3 +94,19 @@ def test_roundtrip_of_a_robot_loads_neither_numpy_nor_rich_s_console(tmp_path, o
     assert "rich" not in probe["loaded"]
     # Nor the network stack that xml.sax.saxutils brings (urllib.request, http.client, ssl).
     assert [name for name in ("ssl", "http", "email", "urllib") if name in probe["loaded"]] == []
+
+
+EDITOR = ("pygls", "lsprotocol")  # the lsp extra: only `txtool lsp` loads it
+
+
+@pytest.mark.parametrize("command", [["validate"], ["show", "--effective"],
+                                     ["convert", "--to", "ros2-p2"], ["--help"]])
+def test_only_the_language_server_loads_the_lsp_extra(tmp_path, command):
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(BROKEN)
+    paths = [] if command == ["--help"] else [str(robot)]  # --help lists `lsp` too
+    result = subprocess.run([sys.executable, "-c", PROBE, *command, *paths],
+                            capture_output=True, text=True, timeout=120)
+    probe = json.loads(result.stderr.strip().splitlines()[-1])
+    assert probe["code"] in (0, 1)
+    assert [name for name in EDITOR if name in probe["loaded"]] == []

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import os
+import sys
+
 import click
 
 from txtool.commands.common import (
@@ -50,15 +53,17 @@ def command(tcp, ros_distro, no_xacro, config_path, xacro) -> int:
     from txtool.commands.lsp_document import Options
     from txtool.commands.lsp_server import build
 
-    if config_path is not None and not _is_file(config_path):
+    if config_path is not None and not os.path.isfile(config_path):
         raise InputError(f"{config_path}: no such file")
     server = build(Options(xacro=xacro, no_xacro=no_xacro, config=config_path,
                            ros_distro=ros_distro))
     if address is not None:
-        server.start_tcp(*address)
+        _quiet_exit_over_tcp()
+        try:
+            server.start_tcp(*address)
+        except OSError as exc:  # the address is taken, or not this machine's
+            raise InputError(f"--tcp {tcp}: {(exc.strerror or str(exc)).lower()}") from None
         return 0
-    import sys
-
     # The protocol owns standard output: anything else printed goes to standard error.
     stdin, stdout = sys.stdin.buffer, sys.__stdout__.buffer
     sys.stdout = sys.stderr
@@ -66,7 +71,12 @@ def command(tcp, ros_distro, no_xacro, config_path, xacro) -> int:
     return 0
 
 
-def _is_file(path: str) -> bool:
-    import os
+def _quiet_exit_over_tcp() -> None:
+    """pygls leaves on the ``exit`` notification by raising SystemExit in the connection's
+    task, which asyncio logs with a traceback before it ends the process: not an error."""
+    import logging
 
-    return os.path.isfile(path)
+    def not_the_exit(record: logging.LogRecord) -> bool:
+        return not (record.exc_info and isinstance(record.exc_info[1], SystemExit))
+
+    logging.getLogger("asyncio").addFilter(not_the_exit)

@@ -291,14 +291,16 @@ class _CloneCounter:
         cls.installed = True
 
 
-def _line_of(path: str, needle: str | None) -> int:
+def _line_of(path: str, needle: str | None, data: bytes | None = None) -> int:
+    """The line of ``needle`` in ``data``, else in the file at ``path``; 1 if not found."""
     if not needle:
         return 1
-    try:
-        with open(path, "rb") as handle:
-            data = handle.read(MAX_BYTES)
-    except OSError:
-        return 1
+    if data is None:
+        try:
+            with open(path, "rb") as handle:
+                data = handle.read(MAX_BYTES)
+        except OSError:
+            return 1
     index = data.find(needle.encode("utf-8", "replace"))
     return data.count(b"\n", 0, index) + 1 if index >= 0 else 1
 
@@ -350,15 +352,15 @@ def _expand(request: dict[str, Any]) -> tuple[dict[str, Any], str]:
     path, display = request["path"], request["display"]
     _CloneCounter.reset()
     targets.forget_inputs()
+    given = request.get("data")
+    data = None if given is None else base64.b64decode(given)
     try:
         guard = XacroGuard(path, options, request["env"])
-        given = request.get("data")
-        data = None if given is None else base64.b64decode(given)
         text = expand_text(path, display, options, guard, data)
         # what it read (the top file and its includes): no output of the command replaces them
         return {"ok": True, "inputs": targets.inputs_read()}, text
     except Refusal as exc:
-        return {"refused": exc.reason, "line": _line_of(path, exc.needle)}, ""
+        return {"refused": exc.reason, "line": _line_of(path, exc.needle, data)}, ""
     except XacroError as exc:
         return {"error": exc.reason, "line": exc.line, "missing": exc.missing}, ""
     except (NodeLimit, MemoryError, RecursionError) as exc:
