@@ -264,3 +264,36 @@ def test_a_refused_expansion_is_one_error_at_its_line(repo: Path) -> None:
     found = diagnostics_of(document(repo / "arm.urdf.xacro", text), [str(repo)], OPTIONS)
     assert len(found) == 1 and found[0].severity == lsp.DiagnosticSeverity.Error
     assert found[0].range.start.line == 2 and "xacro" in found[0].message
+
+
+def test_a_macro_s_transmission_is_hovered_as_each_call_produces_it(repo: Path) -> None:
+    text = ('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+            '  <xacro:macro name="drive" params="j ratio">\n'
+            '    <transmission name="${j}_trans">\n'
+            '      <type>transmission_interface/SimpleTransmission</type>\n'
+            '      <joint name="${j}"><hardwareInterface>hardware_interface/'
+            'EffortJointInterface</hardwareInterface></joint>\n'
+            '      <actuator name="${j}_motor"><mechanicalReduction>${ratio}'
+            '</mechanicalReduction></actuator>\n'
+            '    </transmission>\n  </xacro:macro>\n'
+            '  <link name="a"/><link name="b"/>\n'
+            '  <joint name="one" type="revolute"><parent link="a"/><child link="b"/>'
+            '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>\n'
+            '  <xacro:drive j="one" ratio="10"/>\n  <xacro:drive j="two" ratio="0"/>\n'
+            '</robot>\n')
+    hover = hover_of(document(repo / "r.urdf.xacro", text), lsp.Position(line=4, character=8),
+                     [str(repo)], OPTIONS)
+    assert hover is not None
+    shown = hover.contents.value  # type: ignore[union-attr]
+    assert shown.startswith("```text\n2 transmission(s)")
+    assert "one_trans (line 3)" in shown and "two_trans (line 3)" in shown
+    assert "not loaded: reduction ratio cannot be zero" in shown
+
+
+def test_a_suppressed_finding_is_not_fixed(repo: Path) -> None:
+    interface = "      <hardwareInterface>PositionJointInterface</hardwareInterface>"
+    silenced = ARM.replace(interface, "      <!-- txtool: disable-next-line TX300 -->\n"
+                           + interface)
+    buffer = document(repo / "arm.urdf", silenced)
+    assert "TX300" not in codes(diagnostics_of(buffer, [str(repo)], OPTIONS))
+    assert code_actions(buffer, lsp.CodeActionContext(diagnostics=[]), [str(repo)], OPTIONS) == []
