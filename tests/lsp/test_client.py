@@ -34,8 +34,8 @@ class Editor(LanguageClient):
         def on_diagnostics(params: lsp.PublishDiagnosticsParams) -> None:
             self.published.put_nowait(params)
 
-    async def diagnostics(self, uri: str, version: int) -> list[lsp.Diagnostic]:
-        """The diagnostics published for ``version`` of ``uri``."""
+    async def diagnostics(self, uri: str, version: int | None) -> list[lsp.Diagnostic]:
+        """The diagnostics published for ``version`` of ``uri`` (None: of no version)."""
         while True:
             params = await asyncio.wait_for(self.published.get(), WAIT)
             if params.uri == uri and params.version == version:
@@ -160,6 +160,14 @@ async def _edits(editor: Editor, repository: Path) -> None:
                              + REDUCTION)
     editor.text_document_did_change(full_change(uri, 4, silenced))
     assert await editor.diagnostics(uri, 4) == []
+    # Saving checks again; closing clears what was published.
+    (repository / "urdf" / "arm.urdf").write_text(silenced)
+    editor.text_document_did_save(lsp.DidSaveTextDocumentParams(
+        text_document=lsp.TextDocumentIdentifier(uri=uri)))
+    assert await editor.diagnostics(uri, 4) == []
+    editor.text_document_did_close(lsp.DidCloseTextDocumentParams(
+        text_document=lsp.TextDocumentIdentifier(uri=uri)))
+    assert await editor.diagnostics(uri, None) == []
 
     # An unsaved xacro buffer is expanded as typed, not as saved (ratio 50 on disk).
     xacro_uri = (repository / "urdf" / "arm.urdf.xacro").as_uri()

@@ -297,3 +297,86 @@ def test_a_suppressed_finding_is_not_fixed(repo: Path) -> None:
     buffer = document(repo / "arm.urdf", silenced)
     assert "TX300" not in codes(diagnostics_of(buffer, [str(repo)], OPTIONS))
     assert code_actions(buffer, lsp.CodeActionContext(diagnostics=[]), [str(repo)], OPTIONS) == []
+
+
+def test_the_root_is_the_workspace_s_repository_else_the_file_s(tmp_path: Path) -> None:
+    from txtool.commands.lsp_document import root_of
+
+    (tmp_path / "ws" / ".git").mkdir(parents=True)
+    (tmp_path / "ws" / "pkg" / "urdf").mkdir(parents=True)
+    (tmp_path / "elsewhere").mkdir()
+    robot = tmp_path / "ws" / "pkg" / "urdf" / "arm.urdf"
+    inner = str(tmp_path / "ws" / "pkg")
+    assert root_of(str(robot), [str(tmp_path / "elsewhere"), inner]) == str(tmp_path / "ws")
+    assert root_of(str(robot), [str(tmp_path / "elsewhere")]) == str(tmp_path / "ws")
+    loose = tmp_path / "elsewhere" / "arm.urdf"
+    assert root_of(str(loose), [inner]) == str(tmp_path / "elsewhere")
+
+
+def test_a_buffer_is_read_in_the_encoding_its_declaration_names(repo: Path) -> None:
+    latin = ARM.replace('<?xml version="1.0"?>', '<?xml version="1.0" encoding="ISO-8859-1"?>')
+    latin = latin.replace(REDUCTION, "      <!--é--><mechanicalReduction>0</mechanicalReduction>")
+    found = diagnostics_of(document(repo / "arm.urdf", latin), [str(repo)], OPTIONS)
+    zero = next(d for d in found if d.code == "TX106")
+    assert zero.range.start.character == len("      <!--é-->")
+    actions = code_actions(document(repo / "arm.urdf", latin),
+                           lsp.CodeActionContext(diagnostics=[]), [str(repo)], OPTIONS)
+    fixed = applied(latin, actions[0].edit.changes[(repo / "arm.urdf").as_uri()])  # type: ignore
+    assert fixed == latin.replace(">PositionJointInterface<",
+                                  ">hardware_interface/PositionJointInterface<")
+    # An encoding that cannot hold the text, or that is no encoding: UTF-8.
+    from txtool.commands.lsp_document import encode
+
+    assert encode('<?xml version="1.0" encoding="ascii"?><r>é</r>')[1] == "utf-8"
+    assert encode('<?xml version="1.0" encoding="no-such"?><r/>')[1] == "utf-8"
+
+
+def test_a_stale_diagnostic_gets_no_fix_where_there_is_none(repo: Path) -> None:
+    buffer = document(repo / "arm.urdf", ARM)
+    stale = [d for d in diagnostics_of(buffer, [str(repo)], OPTIONS) if d.code == "TX300"]
+    quick = lsp.CodeActionContext(diagnostics=stale, only=[lsp.CodeActionKind.QuickFix])
+    fixed = document(repo / "arm.urdf", ARM.replace(">PositionJointInterface<",
+                                                    ">hardware_interface/PositionJointInterface<"))
+    assert code_actions(fixed, quick, [str(repo)], OPTIONS) == []  # fixed since
+    broken = document(repo / "arm.urdf", ARM.replace("</robot>", ""))
+    assert code_actions(broken, quick, [str(repo)], OPTIONS) == []  # not XML as it stands
+    (repo / ".txtool.toml").write_text('ignore = ["TX300"]\n')
+    assert code_actions(buffer, quick, [str(repo)], OPTIONS) == []  # turned off since
+
+
+def test_line_edits_reach_the_end_of_a_document_with_or_without_its_last_newline() -> None:
+    from txtool.commands.lsp_document import end_of, line_edits
+
+    for before, after in [("a\nb", "a\nc"), ("a\nb\n", "a\nb\nc\n"), ("a", "a\nb"), ("", "x\n"),
+                          ("a\r\nb\r\n", "a\r\nc\r\n")]:
+        edits = [lsp.TextEdit(range=lsp.Range(start=lsp.Position(*end_of(before, e.start)),
+                                              end=lsp.Position(*end_of(before, e.end))),
+                              new_text=e.text) for e in line_edits(before, after)]
+        assert applied(before, edits) == after, (before, after)
+
+
+def test_the_hover_of_an_unexpanded_xacro_file_is_of_its_text(repo: Path) -> None:
+    text = ARM_XACRO.replace('value="0"', 'value="$(arg ratio)"')  # no argument given
+    hover = hover_of(document(repo / "arm.urdf.xacro", text), lsp.Position(line=16, character=8),
+                     [str(repo)], OPTIONS)
+    assert hover is not None and "shoulder_trans (line 11)" in hover.contents.value  # type: ignore
+
+
+def test_no_hover_on_a_macro_no_call_produces(repo: Path) -> None:
+    called = ARM_XACRO.replace('value="0"', 'value="10"')
+    unused = ('  <xacro:macro name="unused">\n    <transmission name="never"/>\n'
+              '  </xacro:macro>\n</robot>')
+    text = called.replace("</robot>", unused)
+    lines = text.splitlines()
+    line = next(i for i, each in enumerate(lines) if 'name="never"' in each)
+    buffer = document(repo / "arm.urdf.xacro", text)
+    assert hover_of(buffer, lsp.Position(line=line, character=8), [str(repo)], OPTIONS) is None
+    assert hover_of(buffer, lsp.Position(line=12, character=8), [str(repo)], OPTIONS) is not None
+
+
+def test_a_start_tag_left_open_runs_to_the_end() -> None:
+    from txtool.commands.lsp_hover import transmission_at
+
+    text = '<robot>\n  <transmission name="t"'
+    assert transmission_at(text, len(text) - 1) == 2
+    assert transmission_at(text, 3) is None
