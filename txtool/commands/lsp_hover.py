@@ -5,9 +5,14 @@
 from __future__ import annotations
 
 import re
+from typing import TYPE_CHECKING
 
 from txtool.commands.lsp_document import Options, load_buffer, root_of, settings_for
-from txtool.io.xmlio import InputError
+from txtool.io.xmlio import InputError, Source
+
+if TYPE_CHECKING:
+    from txtool.dialects.read import Found
+    from txtool.lint.config import Settings
 
 _COMMENT = re.compile(r"<!--.*?-->", re.DOTALL)
 _START = re.compile(r"<(?:([\w.-]+):)?transmission(?=[\s/>])")
@@ -59,8 +64,6 @@ def hover_markdown(path: str, text: str, line: int, character: int,
         return None
     found = read_source(source)
     if not found and source.source_tree is not None:  # a macro library: read as written
-        from txtool.io.xmlio import Source
-
         source = Source(path=path, data=source.data, tree=source.source_tree)
         found = read_source(source)
     here = [f for f in found if f.transmission.location and
@@ -70,7 +73,9 @@ def hover_markdown(path: str, text: str, line: int, character: int,
     return _effective(source, found, here, settings)
 
 
-def _effective(source, found, here, settings) -> str:
+def _effective(source: Source, found: list[Found], here: list[Found],
+               settings: Settings) -> str:
+    """``show --effective`` of the transmissions ``here`` (of ``found``, all the file's)."""
     from txtool.lint.readers import assumption_of
     from txtool.views.effective import bindings_of, effective_text
     from txtool.views.readers_view import readers_text, unread_names
