@@ -380,3 +380,34 @@ def test_a_start_tag_left_open_runs_to_the_end() -> None:
     text = '<robot>\n  <transmission name="t"'
     assert transmission_at(text, len(text) - 1) == 2
     assert transmission_at(text, 3) is None
+
+
+def test_an_unsaved_xacro_buffer_counts_in_what_an_expansion_may_read(repo: Path,
+                                                                     monkeypatch) -> None:
+    from txtool.io import xacro as xacro_support
+
+    monkeypatch.setattr(xacro_support, "MAX_READ", len(ARM_XACRO.encode()) - 1)
+    found = diagnostics_of(document(repo / "arm.urdf.xacro", ARM_XACRO), [str(repo)], OPTIONS)
+    failed = [d for d in found if d.code == "TX002"]
+    assert len(failed) == 1 and "xacro would read more than" in failed[0].message
+    monkeypatch.setattr(xacro_support, "MAX_READ", len(ARM_XACRO.encode()))
+    found = diagnostics_of(document(repo / "arm.urdf.xacro", ARM_XACRO), [str(repo)], OPTIONS)
+    assert codes(found) == ["TX106"]
+
+
+def test_a_configuration_that_cannot_be_read_is_said_once_and_offers_nothing(
+        repo: Path, monkeypatch) -> None:
+    (repo / ".txtool.toml").write_text('select = ["XX"]\n')
+    buffer = document(repo / "arm.urdf", ARM)
+    context = lsp.CodeActionContext(diagnostics=[])
+    assert code_actions(buffer, context, [str(repo)], OPTIONS) == []
+    assert hover_of(buffer, lsp.Position(line=10, character=4), [str(repo)], OPTIONS) is None
+    from txtool.commands import lsp_document
+
+    def refused(*_: object) -> None:
+        raise PermissionError(13, "Permission denied", str(repo / ".txtool.toml"))
+
+    monkeypatch.setattr(lsp_document, "settings_for", refused)
+    found = diagnostics_of(buffer, [str(repo)], OPTIONS)
+    assert [d.message for d in found] == [f"{repo / '.txtool.toml'}: permission denied"]
+    assert code_actions(buffer, context, [str(repo)], OPTIONS) == []

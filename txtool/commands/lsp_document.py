@@ -103,6 +103,10 @@ def problems_of(path: str, text: str, root: str, options: Options) -> list[Probl
         return lint_buffer(path, encode(text)[0], settings)
     except InputError as exc:
         return failure(str(exc), path)
+    except OSError as exc:  # a configuration file in a folder that cannot be read, say
+        if exc.filename is None:
+            raise
+        return Failure(0, f"{os.fsdecode(exc.filename)}: {(exc.strerror or str(exc)).lower()}")
 
 
 def failure(message: str, path: str) -> Failure:
@@ -116,8 +120,12 @@ def failure(message: str, path: str) -> Failure:
 
 def fixable_rules(path: str, root: str, options: Options,
                   codes: Sequence[str] | None = None) -> list[Rule]:
-    """The fixable rules enabled for ``path`` (of ``codes`` only, when given)."""
-    enabled = settings_for(path, root, options).enabled
+    """The fixable rules enabled for ``path`` (of ``codes`` only, when given); none when the
+    configuration cannot be read (the diagnostics say why)."""
+    try:
+        enabled = settings_for(path, root, options).enabled
+    except (InputError, OSError):
+        return []
     return [rule for rule in all_rules().values()
             if rule.fixable and rule.code in enabled and (codes is None or rule.code in codes)]
 

@@ -60,7 +60,7 @@ def hover_markdown(path: str, text: str, line: int, character: int,
     try:
         settings = settings_for(path, root_of(path, workspace), options)
         source = load_buffer(path, text, settings)
-    except InputError:
+    except (InputError, OSError):  # the diagnostics say why
         return None
     found = read_source(source)
     if not found and source.source_tree is not None:  # a macro library: read as written
