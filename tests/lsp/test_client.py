@@ -146,9 +146,12 @@ async def _edits(editor: Editor, repository: Path) -> None:
     assert "read by ros_control; not loaded: reduction ratio cannot be zero" in (
         hover.contents.value)
 
-    # Typing the fix clears the diagnostics.
-    typed = fixed.replace(REDUCTION, REDUCTION.replace(">0<", ">50<"))
-    editor.text_document_did_change(full_change(uri, 3, typed))
+    # Typing the fix clears the diagnostics: "5" before the zero, sent as an editor sends it.
+    where = lsp.Position(line=REDUCTION_LINE, character=REDUCTION.index(">0<") + 1)
+    editor.text_document_did_change(lsp.DidChangeTextDocumentParams(
+        text_document=lsp.VersionedTextDocumentIdentifier(uri=uri, version=3),
+        content_changes=[lsp.TextDocumentContentChangePartial(
+            range=lsp.Range(start=where, end=where), text="5")]))
     assert await editor.diagnostics(uri, 3) == []
     hover = await asyncio.wait_for(editor.text_document_hover_async(lsp.HoverParams(
         text_document=lsp.TextDocumentIdentifier(uri=uri),
