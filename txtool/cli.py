@@ -35,6 +35,7 @@ COMMAND_MODULES = (
     "simulate",
     "schema",
     "demo",
+    "lsp",
 )
 
 
@@ -77,6 +78,8 @@ EXAMPLES: dict[str, tuple[str, ...]] = {
     "rules": ("txtool rules", "txtool rules TX106", "txtool rules zero-reduction --format json"),
     "schema": ("txtool schema -o transmission.schema.json",),
     "demo": ("txtool demo",),
+    "lsp": ("txtool lsp                          # stdio, started by the editor",
+            "txtool lsp --tcp 127.0.0.1:2087"),
 }
 
 

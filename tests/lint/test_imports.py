@@ -142,3 +142,17 @@ def test_the_probe_refuses_numpy():
         "from txtool.cli import main", "import numpy  # noqa")],
         capture_output=True, text=True, timeout=120)
     assert done.returncode == 1 and "No module named 'numpy'" in done.stderr
+EDITOR = ("pygls", "lsprotocol")  # the lsp extra: only `txtool lsp` loads it
+
+
+@pytest.mark.parametrize("command", [["validate"], ["show", "--effective"],
+                                     ["convert", "--to", "ros2-p2"], ["--help"]])
+def test_only_the_language_server_loads_the_lsp_extra(tmp_path, command):
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(BROKEN)
+    paths = [] if command == ["--help"] else [str(robot)]  # --help lists `lsp` too
+    result = subprocess.run([sys.executable, "-c", PROBE, *command, *paths],
+                            capture_output=True, text=True, timeout=120)
+    probe = json.loads(result.stderr.strip().splitlines()[-1])
+    assert probe["code"] in (0, 1)
+    assert [name for name in EDITOR if name in probe["loaded"]] == []

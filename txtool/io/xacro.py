@@ -64,19 +64,22 @@ class XacroError(InputError):
         self.missing = missing
 
 
-def expand_xacro(path: str, display: str, options: XacroOptions) -> etree._ElementTree:
-    """Expand ``path`` and parse the result safely.
+def expand_xacro(path: str, display: str, options: XacroOptions,
+                 data: bytes | None = None) -> etree._ElementTree:
+    """Expand ``path`` and parse the result safely; ``data``: the text to read for the file
+    at ``path`` instead of what the file holds (an editor's unsaved buffer), its includes
+    and ``$(find)`` still found from where it is.
 
     By default in a bounded child process with the restricted evaluator
     (:mod:`txtool.io.xacro_sandbox`); with ``options.trust`` (``--trust-xacro``) here, by
     upstream xacro with its own Python evaluation.
     """
     if options.trust:
-        text = expand_text(path, display, options)
+        text = expand_text(path, display, options, data=data)
     else:
         from txtool.io.xacro_sandbox import expand_in_sandbox
 
-        text = expand_in_sandbox(path, display, options)
+        text = expand_in_sandbox(path, display, options, data=data)
     try:
         return parse_bytes(text.encode("utf-8"), display)
     except XMLSyntax as exc:
@@ -84,9 +87,10 @@ def expand_xacro(path: str, display: str, options: XacroOptions) -> etree._Eleme
 
 
 def expand_text(path: str, display: str, options: XacroOptions,
-                guard: XacroGuard | None = None) -> str:
+                guard: XacroGuard | None = None, data: bytes | None = None) -> str:
     """The expansion of ``path`` as text, in this process: upstream xacro, or with ``guard``
-    its hooks installed (restricted evaluator, allowed environment, files inside the roots)."""
+    its hooks installed (restricted evaluator, allowed environment, files inside the roots);
+    ``data``, when given, is read for the file at ``path`` (see :func:`expand_xacro`)."""
     import xacro
     from xacro import substitution_args
 
@@ -95,7 +99,8 @@ def expand_text(path: str, display: str, options: XacroOptions,
 
     saved_find, saved_parse = substitution_args._eval_find, xacro.parse
     substitution_args._eval_find = eval_find
-    xacro.parse = _checked_parse(saved_parse, xacro, guard)
+    top = (os.path.abspath(path), data) if data is not None else None
+    xacro.parse = _checked_parse(saved_parse, xacro, guard, top)
     stderr = io.StringIO()
     try:
         with contextlib.redirect_stderr(stderr), _quiet_cwd(), _installed(guard):
@@ -130,13 +135,14 @@ class UnsafeXML(Exception):
         super().__init__(f"{path}:{line}: {reason}")
 
 
-def _checked_parse(original: Callable[..., Any], xacro: Any,
-                   guard: XacroGuard | None) -> Callable[..., Any]:
+def _checked_parse(original: Callable[..., Any], xacro: Any, guard: XacroGuard | None,
+                   top: tuple[str, bytes] | None = None) -> Callable[..., Any]:
     """xacro's ``parse(inp, filename)``, reading files as bytes checked by refuse_unsafe_xml.
 
     Only regular files are read, and at most :data:`MAX_READ` bytes in all: a device or FIFO
     included, or a file included over and over, cannot exhaust memory or block forever. With a
     guard, only files inside its roots (the repository and the packages ``$(find)`` found).
+    ``top``: (absolute path, bytes) read for that file instead of the file itself.
     """
     budget = MAX_READ
 
@@ -147,10 +153,11 @@ def _checked_parse(original: Callable[..., Any], xacro: Any,
         path = os.path.join(xacro.root_dir, filename)
         if guard is not None:
             guard.check_readable(path, "include")
-        if not os.path.exists(path):
+        given = top is not None and os.path.abspath(path) == top[0]
+        if not given and not os.path.exists(path):
             return original(inp, filename)  # xacro reports a missing file its own way
         try:
-            data = read_regular(path, budget)
+            data = _given(top[1], budget) if given else read_regular(path, budget)
         except TooLarge:
             reason = (f"xacro would read more than {MAX_READ} bytes in all (the top file and "
                       "its includes; a safety limit)")
@@ -163,6 +170,13 @@ def _checked_parse(original: Callable[..., Any], xacro: Any,
         return xml.dom.minidom.parseString(data)
 
     return parse
+
+
+def _given(data: bytes, budget: int) -> bytes:
+    """``data`` read as :func:`read_regular` reads a file of that content."""
+    if len(data) > budget:
+        raise TooLarge(f"larger than {budget} bytes")
+    return data
 
 
 def refuse_unsafe_xml(data: bytes, path: str) -> None:

@@ -23,6 +23,7 @@ line, ``path: xacro: expansion exceeded ... (a safety limit)``.
 from __future__ import annotations
 
 import atexit
+import base64
 import contextlib
 import json
 import os
@@ -80,8 +81,10 @@ def limits() -> tuple[float, int]:
     return seconds, memory
 
 
-def expand_in_sandbox(path: str, display: str, options: XacroOptions) -> str:
-    """The expanded text of ``path``; :class:`XacroError` or :class:`XacroLimit` if none."""
+def expand_in_sandbox(path: str, display: str, options: XacroOptions,
+                      data: bytes | None = None) -> str:
+    """The expanded text of ``path`` (with ``data`` read for it when given, see
+    :func:`txtool.io.xacro.expand_xacro`); :class:`XacroError` or :class:`XacroLimit` if none."""
     from txtool.io import xacro as xacro_support
     from txtool.io.xacro import XacroError
 
@@ -93,6 +96,7 @@ def expand_in_sandbox(path: str, display: str, options: XacroOptions) -> str:
         "env": {name: os.environ[name] for name in options.env if name in os.environ},
         "seconds": seconds, "memory": memory, "max_read": xacro_support.MAX_READ,
         "package_paths": {k: os.environ[k] for k in PACKAGE_VARIABLES if k in os.environ},
+        "data": None if data is None else base64.b64encode(data).decode("ascii"),
     }
     worker = _worker(memory)
     try:
@@ -287,14 +291,16 @@ class _CloneCounter:
         cls.installed = True
 
 
-def _line_of(path: str, needle: str | None) -> int:
+def _line_of(path: str, needle: str | None, data: bytes | None = None) -> int:
+    """The line of ``needle`` in ``data``, else in the file at ``path``; 1 if not found."""
     if not needle:
         return 1
-    try:
-        with open(path, "rb") as handle:
-            data = handle.read(MAX_BYTES)
-    except OSError:
-        return 1
+    if data is None:
+        try:
+            with open(path, "rb") as handle:
+                data = handle.read(MAX_BYTES)
+        except OSError:
+            return 1
     index = data.find(needle.encode("utf-8", "replace"))
     return data.count(b"\n", 0, index) + 1 if index >= 0 else 1
 
@@ -346,13 +352,15 @@ def _expand(request: dict[str, Any]) -> tuple[dict[str, Any], str]:
     path, display = request["path"], request["display"]
     _CloneCounter.reset()
     targets.forget_inputs()
+    given = request.get("data")
+    data = None if given is None else base64.b64decode(given)
     try:
         guard = XacroGuard(path, options, request["env"])
-        text = expand_text(path, display, options, guard)
+        text = expand_text(path, display, options, guard, data)
         # what it read (the top file and its includes): no output of the command replaces them
         return {"ok": True, "inputs": targets.inputs_read()}, text
     except Refusal as exc:
-        return {"refused": exc.reason, "line": _line_of(path, exc.needle)}, ""
+        return {"refused": exc.reason, "line": _line_of(path, exc.needle, data)}, ""
     except XacroError as exc:
         return {"error": exc.reason, "line": exc.line, "missing": exc.missing}, ""
     except (NodeLimit, MemoryError, RecursionError) as exc:

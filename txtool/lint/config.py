@@ -328,12 +328,15 @@ def check_overrides(overrides: Overrides) -> None:
 class SettingsCache:
     """Settings per configuration file, found once per folder."""
 
-    def __init__(self, overrides: Overrides, explicit: str | None = None) -> None:
+    def __init__(self, overrides: Overrides, explicit: str | None = None,
+                 root: str | None = None) -> None:
         self.overrides = overrides
         self.explicit = Path(explicit) if explicit else None
         self._by_file: dict[Path | None, Settings] = {}
         self._by_folder: dict[str, Path | None] = {}
-        self._root = repository_root()
+        # The run's root (see applicable_config): the repository of the working folder, or
+        # ``root`` given (an editor's workspace, whatever folder the editor started in).
+        self._root = root or repository_root()
         self.notes: list[str] = []  # nested configuration files passed over, one line each
         self._noted: set[Path] = set()
         self._by_path: dict[str, Settings] = {}  # a folder walk asks first, then the linter

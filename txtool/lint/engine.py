@@ -72,6 +72,13 @@ def lint_file(
     return problems
 
 
+def lint_buffer(path: str, data: bytes, settings: Settings) -> list[Problem]:
+    """Problems of ``data``, the unsaved text of the file at ``path`` (an editor's buffer),
+    checked as :func:`lint_file` checks that file found in a folder walk (no TX006): ``path``
+    names it, and a xacro expansion finds its includes and packages from where it is."""
+    return _lint_file(path, settings, None, data=data)
+
+
 def _no_transmission(path: str, stdin_name: str | None, settings: Settings) -> list[Problem]:
     display, data = read_bytes(path, stdin_name=stdin_name)
     try:
@@ -91,9 +98,11 @@ def _no_transmission(path: str, stdin_name: str | None, settings: Settings) -> l
 
 
 def _lint_file(
-    path: str, settings: Settings, stdin_name: str | None, fragment: bool = False
+    path: str, settings: Settings, stdin_name: str | None, fragment: bool = False,
+    data: bytes | None = None,
 ) -> Findings:
-    display, data = read_bytes(path, stdin_name=stdin_name)
+    buffer = data
+    display, data = read_bytes(path, stdin_name=stdin_name) if buffer is None else (path, buffer)
     try:
         tree = parse_bytes(data, display)
     except XMLSyntax as exc:
@@ -108,7 +117,7 @@ def _lint_file(
     from txtool.io.xacro import XacroError, expand_xacro
 
     try:
-        expanded = expand_xacro(path, display, settings.xacro)
+        expanded = expand_xacro(path, display, settings.xacro, data=buffer)
     except XacroError as exc:
         checked = _checked(source, settings)
         failed = [] if fragment else [_xacro_failed(display, data, exc)]

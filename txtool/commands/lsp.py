@@ -1,0 +1,82 @@
+"""``txtool lsp``: the language server for editors (the ``lsp`` extra): argument parsing only."""
+
+from __future__ import annotations
+
+import os
+import sys
+
+import click
+
+from txtool.commands.common import (
+    CONFIG_OPTION,
+    NO_XACRO_OPTION,
+    exit_on_input_error,
+    require_extra,
+    xacro_options,
+)
+from txtool.io.xmlio import InputError
+from txtool.model.distro import CHOICES
+
+
+def _address(value: str | None) -> tuple[str, int] | None:
+    if value is None:
+        return None
+    host, _, port = value.rpartition(":")
+    if not host or not port.isdigit() or not 0 < int(port) < 65536:
+        raise click.BadParameter(f"expected HOST:PORT, got {value!r}", param_hint="--tcp")
+    return host, int(port)
+
+
+@click.command("lsp")
+@click.option("--tcp", "tcp", metavar="HOST:PORT",
+              help="Listen on this address instead of speaking on standard input and output.")
+@click.option("--ros-distro", type=click.Choice(CHOICES), default=None,
+              help="The ROS distribution whose programs read the files (over the "
+                   "configuration's ros-distro).")
+@NO_XACRO_OPTION
+@CONFIG_OPTION
+@xacro_options
+@exit_on_input_error
+def command(tcp, ros_distro, no_xacro, config_path, xacro) -> int:
+    """Run the language server: diagnostics as you type in .urdf, .xacro and robot .xml files,
+    quick fixes for the fixable rules, and on a <transmission> a hover showing what each loader
+    reads of it (show --effective).
+
+    The editor's unsaved text is checked as validate checks the saved file: the same rules,
+    configuration (decided from the repository of the editor's workspace) and suppressions;
+    xacro runs in its sandbox unless --trust-xacro. Needs the 'lsp' extra
+    (pip install 'txtool[lsp]'); see docs/editors.md.
+    """
+    address = _address(tcp)
+    for module in ("pygls", "lsprotocol"):
+        require_extra(module, "lsp", "txtool lsp")
+    from txtool.commands.lsp_document import Options
+    from txtool.commands.lsp_server import build
+
+    if config_path is not None and not os.path.isfile(config_path):
+        raise InputError(f"{config_path}: no such file")
+    server = build(Options(xacro=xacro, no_xacro=no_xacro, config=config_path,
+                           ros_distro=ros_distro))
+    if address is not None:
+        _quiet_exit_over_tcp()
+        try:
+            server.start_tcp(*address)
+        except OSError as exc:  # the address is taken, or not this machine's
+            raise InputError(f"--tcp {tcp}: {(exc.strerror or str(exc)).lower()}") from None
+        return 0
+    # The protocol owns standard output: anything else printed goes to standard error.
+    stdin, stdout = sys.stdin.buffer, sys.__stdout__.buffer
+    sys.stdout = sys.stderr
+    server.start_io(stdin, stdout)
+    return 0
+
+
+def _quiet_exit_over_tcp() -> None:
+    """pygls leaves on the ``exit`` notification by raising SystemExit in the connection's
+    task, which asyncio logs with a traceback before it ends the process: not an error."""
+    import logging
+
+    def not_the_exit(record: logging.LogRecord) -> bool:
+        return not (record.exc_info and isinstance(record.exc_info[1], SystemExit))
+
+    logging.getLogger("asyncio").addFilter(not_the_exit)
