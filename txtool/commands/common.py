@@ -135,10 +135,12 @@ def xacro_disabled(flag: bool, *paths: str | None, config: str | None = None) ->
     on: a pull request may edit the repository's configuration, but not the runner's command
     line or environment.
     """
-    from txtool.lint.config_files import no_xacro_configured, no_xacro_from_environment
+    from txtool.lint.config_files import no_xacro_from_environment
 
     if no_xacro_from_environment() or flag:
         return True
+    from txtool.lint.config import no_xacro_configured
+
     return any(no_xacro_configured(path, config) for path in paths if path is not None)
 
 

@@ -30,12 +30,14 @@ from txtool.io.packages import (
     find_package,
     package_name,
 )
+from txtool.io.xacro_sandbox import expand_in_sandbox
 from txtool.io.xmlio import (
     ENTITY_REFUSAL,
     MAX_BYTES,
     EntityRefused,
     InputError,
     TooLarge,
+    XacroError,
     XacroOptions,
     XMLSyntax,
     parse_bytes,
@@ -49,21 +51,6 @@ MAX_DEPTH = 256  # libxml2's limit without huge_tree, so both parsers agree
 MAX_READ = MAX_BYTES  # what one expansion may read in all: the top file and every include
 
 
-class XacroError(InputError):
-    """xacro could not expand the file (missing arg, package or property). Lint code TX002.
-
-    ``missing`` is ``"argument"`` or ``"package"`` when what lacks is something the command
-    line gives (``--xacro-arg``, ``--pkg-dir``), not a fault of the files; else empty.
-    """
-
-    def __init__(self, path: str, reason: str, line: int = 1, missing: str = "") -> None:
-        super().__init__(f"{path}:{line}: xacro: {reason}")
-        self.path = path
-        self.line = line
-        self.reason = reason
-        self.missing = missing
-
-
 def expand_xacro(path: str, display: str, options: XacroOptions) -> etree._ElementTree:
     """Expand ``path`` and parse the result safely.
 
@@ -74,9 +61,7 @@ def expand_xacro(path: str, display: str, options: XacroOptions) -> etree._Eleme
     if options.trust:
         text = expand_text(path, display, options)
     else:
-        from txtool.io.xacro_sandbox import expand_in_sandbox
-
-        text = expand_in_sandbox(path, display, options)
+        text = expand_in_sandbox(path, display, options, max_read=MAX_READ)
     try:
         return parse_bytes(text.encode("utf-8"), display)
     except XMLSyntax as exc:

@@ -337,6 +337,21 @@ class EntityRefused(XMLSyntax):
     """A document that declares entities, or refers to entities of a DTD (never loaded)."""
 
 
+class XacroError(InputError):
+    """xacro could not expand the file (missing arg, package or property). Lint code TX002.
+
+    ``missing`` is ``"argument"`` or ``"package"`` when what lacks is something the command
+    line gives (``--xacro-arg``, ``--pkg-dir``), not a fault of the files; else empty.
+    """
+
+    def __init__(self, path: str, reason: str, line: int = 1, missing: str = "") -> None:
+        super().__init__(f"{path}:{line}: xacro: {reason}")
+        self.path = path
+        self.line = line
+        self.reason = reason
+        self.missing = missing
+
+
 class XacroOptions(NamedTuple):
     args: tuple[tuple[str, str], ...] = ()
     pkg_dirs: tuple[str, ...] = ()
