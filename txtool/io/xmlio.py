@@ -1,4 +1,7 @@
-"""Safe XML parsing, loading of inputs (files, stdin, xacro) and atomic writing.
+"""Safe XML parsing, reading an input's bytes (a file or stdin) and atomic writing.
+
+xacro is expanded elsewhere (:mod:`txtool.io.xacro`, through :mod:`txtool.io.load`); what every
+input step shares is here: :class:`Source`, the input errors, :class:`XacroOptions`.
 
 Every reader goes through :func:`safe_parser`: no entity expansion, no DTD loading, no network
 access, no huge trees. Parsed elements keep ``sourceline`` for diagnostics.

@@ -49,7 +49,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import whole_robot
+from txtool.lint.rule_helpers import whole_robot
 
 CODE = "TX007"
 NAME = "no-ros2-control"

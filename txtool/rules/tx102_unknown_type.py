@@ -42,7 +42,7 @@ from typing import Any
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import KNOWN_FAMILIES, per_transmission
+from txtool.lint.rule_helpers import KNOWN_FAMILIES, per_transmission
 from txtool.model.core import STANDARD_TYPES, TYPE_PREFIX
 
 CODE = "TX102"

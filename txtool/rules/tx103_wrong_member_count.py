@@ -44,7 +44,7 @@ from txtool.dialects.read import Found, enclosing_component
 from txtool.lint.context import LintContext
 from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
-from txtool.lint.support import label, opaque, per_transmission
+from txtool.lint.rule_helpers import label, opaque, per_transmission
 
 CODE = "TX103"
 NAME = "wrong-member-count"

@@ -39,7 +39,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import opaque, per_transmission
+from txtool.lint.rule_helpers import opaque, per_transmission
 
 CODE = "TX104"
 NAME = "missing-reduction"

@@ -52,7 +52,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import numbers_of, per_transmission
+from txtool.lint.rule_helpers import numbers_of, per_transmission
 from txtool.model.distro import NumberReading
 from txtool.model.distro import numbers_of as numbers_of_distro
 from txtool.model.numbers import C_SPACE, format_float, parse_ros2, ros2_readings, stod

@@ -25,7 +25,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import numbers_of, per_transmission
+from txtool.lint.rule_helpers import numbers_of, per_transmission
 from txtool.model.numbers import parse_ros1
 
 CODE = "TX106"

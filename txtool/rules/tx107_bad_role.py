@@ -35,7 +35,7 @@ from collections.abc import Iterator
 from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import MemberRef, children, label, members, opaque, per_transmission
+from txtool.lint.rule_helpers import MemberRef, children, label, members, opaque, per_transmission
 
 CODE = "TX107"
 NAME = "bad-role"

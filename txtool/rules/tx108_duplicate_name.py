@@ -30,7 +30,7 @@ from collections.abc import Iterable, Iterator
 from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import scope
+from txtool.lint.rule_helpers import scope
 
 CODE = "TX108"
 NAME = "duplicate-name"

@@ -32,7 +32,7 @@ from collections.abc import Iterable, Iterator
 from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import label, member_names, scope
+from txtool.lint.rule_helpers import label, member_names, scope
 
 CODE = "TX109"
 NAME = "shared-member"

@@ -34,7 +34,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import opaque, per_transmission
+from txtool.lint.rule_helpers import opaque, per_transmission
 from txtool.model.readers import accepts
 
 CODE = "TX110"

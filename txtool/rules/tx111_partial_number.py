@@ -34,7 +34,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import NumberRef, numbers_of, per_transmission
+from txtool.lint.rule_helpers import NumberRef, numbers_of, per_transmission
 from txtool.model.numbers import C_SPACE, format_float, parse_ros1, parse_ros2, stod
 
 CODE = "TX111"

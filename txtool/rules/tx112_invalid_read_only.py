@@ -23,7 +23,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import label, per_transmission
+from txtool.lint.rule_helpers import label, per_transmission
 from txtool.model.numbers import C_SPACE
 
 CODE = "TX112"

@@ -45,7 +45,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import per_transmission
+from txtool.lint.rule_helpers import per_transmission
 from txtool.model.core import TYPE_PREFIX
 from txtool.rules.tx102_unknown_type import STANDARD_NAMES, nearest_standard
 

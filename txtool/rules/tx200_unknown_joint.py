@@ -48,7 +48,7 @@ from lxml import etree
 from txtool.lint.context import LintContext
 from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
-from txtool.lint.support import children, member_names, opaque
+from txtool.lint.rule_helpers import children, member_names, opaque
 from txtool.model.numbers import C_SPACE
 
 CODE = "TX200"

@@ -40,7 +40,7 @@ from lxml import etree
 from txtool.dialects.read import enclosing_component
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import children, label, robot_joints_of_transmissions
+from txtool.lint.rule_helpers import children, label, robot_joints_of_transmissions
 
 CODE = "TX201"
 NAME = "fixed-joint"

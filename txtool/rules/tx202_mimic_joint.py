@@ -37,7 +37,7 @@ from collections.abc import Iterable, Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import label, robot_joints_of_transmissions
+from txtool.lint.rule_helpers import label, robot_joints_of_transmissions
 
 CODE = "TX202"
 NAME = "mimic-joint"

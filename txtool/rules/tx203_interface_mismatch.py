@@ -53,7 +53,7 @@ from lxml import etree
 from txtool.dialects.read import Found, enclosing_component
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import children, label, members, opaque, per_transmission
+from txtool.lint.rule_helpers import children, label, members, opaque, per_transmission
 
 CODE = "TX203"
 NAME = "interface-mismatch"

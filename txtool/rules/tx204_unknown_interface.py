@@ -70,7 +70,7 @@ from lxml import etree
 from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import (
+from txtool.lint.rule_helpers import (
     PREFIX,
     REGISTERED,
     ROS1_INTERFACES,

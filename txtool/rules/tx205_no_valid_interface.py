@@ -65,7 +65,7 @@ from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
 from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
-from txtool.lint.support import label, opaque, per_transmission
+from txtool.lint.rule_helpers import label, opaque, per_transmission
 from txtool.model.readers import accepts
 from txtool.rules.tx204_unknown_interface import (
     PREFIX,

@@ -48,7 +48,7 @@ from collections.abc import Iterable, Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import whole_robot
+from txtool.lint.rule_helpers import whole_robot
 from txtool.model.distro import Distro
 
 CODE = "TX206"

@@ -49,7 +49,7 @@ from txtool.dialects.read import detect_dialect, ros1_type, text_of, transmissio
 from txtool.io.xmlio import local
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import OWN_LOADER_FAMILIES, children, label, per_transmission
+from txtool.lint.rule_helpers import OWN_LOADER_FAMILIES, children, label, per_transmission
 from txtool.rules.tx204_unknown_interface import PREFIX, UNPREFIXED, unprefixed_registered
 
 CODE = "TX300"

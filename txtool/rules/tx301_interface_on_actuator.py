@@ -58,7 +58,7 @@ from lxml import etree
 from txtool.dialects.read import detect_dialect, ros1_type, text_of, transmission_elements
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import (
+from txtool.lint.rule_helpers import (
     OWN_LOADER_FAMILIES,
     children,
     is_xacro,

@@ -57,7 +57,7 @@ from lxml import etree
 from txtool.dialects.read import Found, detect_dialect, first_child_text, transmission_elements
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import children, label, per_transmission
+from txtool.lint.rule_helpers import children, label, per_transmission
 
 CODE = "TX302"
 NAME = "legacy-type-attribute"

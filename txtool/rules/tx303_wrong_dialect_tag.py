@@ -52,7 +52,7 @@ from txtool.dialects.read import Found, text_of
 from txtool.io.xmlio import local
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import (
+from txtool.lint.rule_helpers import (
     ROS2_SPELLINGS,
     children,
     label,

@@ -40,7 +40,7 @@ from lxml import etree
 from txtool.io.xmlio import local
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import is_xacro, label
+from txtool.lint.rule_helpers import is_xacro, label
 
 CODE = "TX304"
 NAME = "outside-ros2-control"

@@ -41,7 +41,7 @@ from lxml import etree
 from txtool.lint.context import LintContext
 from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
-from txtool.lint.support import per_transmission
+from txtool.lint.rule_helpers import per_transmission
 
 CODE = "TX400"
 NAME = "ignored-value"

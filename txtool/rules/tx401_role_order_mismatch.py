@@ -40,7 +40,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import coupled_groups, label, per_transmission
+from txtool.lint.rule_helpers import coupled_groups, label, per_transmission
 from txtool.model.core import Member
 
 CODE = "TX401"

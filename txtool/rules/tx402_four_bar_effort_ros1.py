@@ -29,7 +29,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import per_transmission
+from txtool.lint.rule_helpers import per_transmission
 
 CODE = "TX402"
 NAME = "four-bar-effort-ros1"

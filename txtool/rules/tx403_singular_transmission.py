@@ -44,7 +44,7 @@ from typing import Any
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import label, per_transmission
+from txtool.lint.rule_helpers import label, per_transmission
 from txtool.model.core import Transmission
 
 CODE = "TX403"
