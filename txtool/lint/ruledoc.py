@@ -22,7 +22,7 @@ SECTIONS = ("What it does", "Why it matters", "Loader", "Failing example", "Expe
             "Passing example", "Fix")
 _EXAMPLES = ("Failing example", "Passing example")
 _LABEL = re.compile(r"^(" + "|".join(SECTIONS) + r")(?: \(([^)]*)\))?(::?)(?:[ \t]+|$)")
-_SOURCE_FILE = re.compile(r"[\w.-]+/[\w./-]*\.(?:cpp|hpp|h|cc|py|ex|exs|xml|md)\b")
+_SOURCE_FILE = re.compile(r"\b[\w./-]*\w\.(?:cpp|hpp|h|cc|py|ex|exs|xml)\b")
 _FINDING = re.compile(r"``(\d+):(\d+) (error|warning|info) (TX\d{3}) ([^`]+)``")
 _ROLE = re.compile(r":(?:func|mod|class|meth|data|attr):`~?([^`]+)`")
 _LITERAL = re.compile(r"``([^`]+)``")
