@@ -22,17 +22,21 @@ Failing example::
     <robot name="r">
       <transmission name="t">
         <type>transmission_interface/SimpleTransmission</type>
-        <joint name="a"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+        <joint name="a">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
         <actuator name="ma"><mechanicalReduction>50</mechanicalReduction></actuator>
       </transmission>
       <transmission name="t">
         <type>transmission_interface/SimpleTransmission</type>
-        <joint name="b"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+        <joint name="b">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
         <actuator name="mb"><mechanicalReduction>50</mechanicalReduction></actuator>
       </transmission>
     </robot>
 
-Expected finding: ``7:3 warning TX108 transmission name 't' is already used on line 2:
+Expected finding: ``9:3 warning TX108 transmission name 't' is already used on line 2:
 ros_control loads both and the later one overwrites the handles of the earlier``
 
 Passing example::
@@ -40,12 +44,16 @@ Passing example::
     <robot name="r">
       <transmission name="ta">
         <type>transmission_interface/SimpleTransmission</type>
-        <joint name="a"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+        <joint name="a">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
         <actuator name="ma"><mechanicalReduction>50</mechanicalReduction></actuator>
       </transmission>
       <transmission name="tb">
         <type>transmission_interface/SimpleTransmission</type>
-        <joint name="b"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+        <joint name="b">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
         <actuator name="mb"><mechanicalReduction>50</mechanicalReduction></actuator>
       </transmission>
     </robot>

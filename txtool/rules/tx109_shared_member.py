@@ -24,17 +24,21 @@ Failing example::
     <robot name="r">
       <transmission name="a">
         <type>transmission_interface/SimpleTransmission</type>
-        <joint name="elbow"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+        <joint name="elbow">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
         <actuator name="ma"><mechanicalReduction>50</mechanicalReduction></actuator>
       </transmission>
       <transmission name="b">
         <type>transmission_interface/SimpleTransmission</type>
-        <joint name="elbow"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+        <joint name="elbow">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
         <actuator name="mb"><mechanicalReduction>50</mechanicalReduction></actuator>
       </transmission>
     </robot>
 
-Expected finding: ``9:5 warning TX109 joint 'elbow' of transmission 'b' is also in transmission
+Expected finding: ``11:5 warning TX109 joint 'elbow' of transmission 'b' is also in transmission
 'a' (line 2): both load, but where both are applied the one applied last overwrites the joint's
 state``
 
@@ -43,12 +47,16 @@ Passing example::
     <robot name="r">
       <transmission name="a">
         <type>transmission_interface/SimpleTransmission</type>
-        <joint name="elbow"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+        <joint name="elbow">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
         <actuator name="ma"><mechanicalReduction>50</mechanicalReduction></actuator>
       </transmission>
       <transmission name="b">
         <type>transmission_interface/SimpleTransmission</type>
-        <joint name="wrist"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+        <joint name="wrist">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
         <actuator name="mb"><mechanicalReduction>50</mechanicalReduction></actuator>
       </transmission>
     </robot>
