@@ -25,23 +25,12 @@ from txtool.rules import all_rules
 
 ROOT = Path(__file__).resolve().parents[2]
 
-# Rules whose documentation is still in the older free layout, to be rewritten; the test below
-# fails for a rule listed here once its documentation has the layout: delete it from the list.
-OLDER_LAYOUT = frozenset({
-    "TX103",
-    "TX401", "TX402", "TX403", "TX404",
-})
 RULES = sorted(all_rules())
-IN_LAYOUT = [code for code in RULES if code not in OLDER_LAYOUT]
 
 
 @pytest.mark.parametrize("code", RULES)
 def test_the_documentation_has_the_layout(code):
-    found = layout_problems(code, all_rules()[code].doc)
-    if code in OLDER_LAYOUT:
-        assert found, f"{code} has the layout now: delete it from OLDER_LAYOUT"
-    else:
-        assert found == []
+    assert layout_problems(code, all_rules()[code].doc) == []
 
 
 def findings(section) -> list[Finding]:
@@ -56,7 +45,7 @@ def findings(section) -> list[Finding]:
             for p in found]
 
 
-@pytest.mark.parametrize("code", IN_LAYOUT)
+@pytest.mark.parametrize("code", RULES)
 def test_the_failing_example_gives_the_expected_finding_and_the_passing_example_none(code):
     by_label = {section.label: section for section in sections(all_rules()[code].doc)}
     expected = expected_finding(by_label["Expected finding"].text)
