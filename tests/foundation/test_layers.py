@@ -2,7 +2,9 @@
 
 A newcomer reads the pipeline from the folder list: input (``io``), the model, the dialects,
 mechanics and views, lint, transforms and reporters, simulation, commands, the CLI. These tests
-read every module's imports (no module is run) and hold that shape.
+read every module's imports (no module is run) and hold that shape, and that no modules import
+each other in a circle, whether the import is at module level, inside a function, or under
+``if TYPE_CHECKING`` (see :func:`dependencies` for why all three count).
 """
 
 from __future__ import annotations
@@ -45,8 +47,9 @@ def layer_of(module: str) -> int:
     return LAYERS[parts[1]]
 
 
-def imports(path: Path) -> tuple[set[str], set[str], set[str]]:
-    """(module-level imports, type-checking imports, imports in functions) of txtool modules."""
+def imports(path: Path, root: Path = PACKAGE.parent) -> tuple[set[str], set[str], set[str]]:
+    """(module-level imports, type-checking imports, imports in functions) of txtool modules
+    (found under ``root``, the folder holding the package)."""
     tree = ast.parse(path.read_text(encoding="utf-8"))
     top_nodes = {id(node) for node in _module_level(tree.body)}
     # ``if TYPE_CHECKING:`` imports never run: they count for layers, not for circles.
@@ -67,7 +70,7 @@ def imports(path: Path) -> tuple[set[str], set[str], set[str]]:
         elif isinstance(node, ast.Import):
             names = [a.name for a in node.names if a.name.startswith("txtool")]
         where = top if id(node) in top_nodes else inner
-        (typing if id(node) in typing_only else where).update(_existing(n) for n in names)
+        (typing if id(node) in typing_only else where).update(_existing(n, root) for n in names)
     return top, typing, inner
 
 
@@ -81,10 +84,10 @@ def _module_level(body: list[ast.stmt]):
             yield from _module_level(node.orelse)
 
 
-def _existing(name: str) -> str:
+def _existing(name: str, root: Path) -> str:
     """``txtool.x.y`` where y may be a name inside module x: the module that exists."""
     while name.count(".") > 0:
-        as_path = PACKAGE.parent / name.replace(".", "/")
+        as_path = root / name.replace(".", "/")
         if as_path.with_suffix(".py").exists() or (as_path / "__init__.py").exists():
             return name
         name = name.rsplit(".", 1)[0]
@@ -115,19 +118,100 @@ def test_imports_only_point_down(kind):
     assert upward == []
 
 
-def test_no_import_circle_at_module_level():
-    edges = {module: {t for t in top if t != module} for module, (top, _, _) in graph().items()}
-    circles = []
-    for start in edges:
-        stack = [(start, (start,))]
-        while stack:
-            node, trail = stack.pop()
-            for nxt in edges.get(node, ()):
-                if nxt == start:
-                    circles.append(" -> ".join((*trail, nxt)))
-                elif nxt not in trail and len(trail) < 12:
-                    stack.append((nxt, (*trail, nxt)))
-    assert circles == []
+def circles(edges: dict[str, set[str]]) -> list[list[str]]:
+    """Every import circle: the strongly connected components of more than one module, or of
+    one that imports itself (Tarjan's algorithm, iterative), each sorted, in sorted order."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on_stack: set[str] = set()
+    found: list[list[str]] = []
+    for root in sorted(edges):
+        if root in index:
+            continue
+        work = [(root, iter(sorted(edges.get(root, ()))))]
+        index[root] = low[root] = len(index)
+        stack.append(root)
+        on_stack.add(root)
+        while work:
+            node, targets = work[-1]
+            target = next(targets, None)
+            if target is not None:
+                if target not in index:
+                    index[target] = low[target] = len(index)
+                    stack.append(target)
+                    on_stack.add(target)
+                    work.append((target, iter(sorted(edges.get(target, ())))))
+                elif target in on_stack:
+                    low[node] = min(low[node], index[target])
+                continue
+            work.pop()
+            if work:
+                low[work[-1][0]] = min(low[work[-1][0]], low[node])
+            if low[node] == index[node]:
+                component = []
+                while True:
+                    member = stack.pop()
+                    on_stack.discard(member)
+                    component.append(member)
+                    if member == node:
+                        break
+                if len(component) > 1 or node in edges.get(node, ()):
+                    found.append(sorted(component))
+    return sorted(found)
+
+
+def dependencies(modules: dict[str, tuple[set[str], set[str], set[str]]]) -> dict[str, set[str]]:
+    """Who imports whom, in any of the three ways: at module level, inside functions, and
+    under ``if TYPE_CHECKING``. A lazy import is still a dependency (the function runs sooner
+    or later), and a type-checking one too: the annotation names the other module's type, and
+    a type checker (and ``typing.get_type_hints``) resolves it. Hiding an import in a function
+    or a type-checking block hides a circle from Python's import machinery, not from a reader.
+    The package itself (``txtool``: its version only) is no module of a layer."""
+    return {module: {t for t in top | typing | inner if t != "txtool"}
+            for module, (top, typing, inner) in modules.items()}
+
+
+# The writer's records and templates name each other's types under ``if TYPE_CHECKING`` only;
+# the writer (transform/ but bb*) is being rewritten. Recorded here so that it is seen, and
+# to be deleted with the rewrite: the test below fails once the circle is gone.
+KNOWN_TYPE_ONLY_CIRCLES = [
+    ["txtool.transform.memo", "txtool.transform.templates", "txtool.transform.written"],
+]
+
+
+def test_no_import_circle():
+    """No circle, with every kind of import counted (see :func:`dependencies`), each circle
+    reported with all its modules."""
+    found = circles(dependencies(graph()))
+    assert [c for c in found if c not in KNOWN_TYPE_ONLY_CIRCLES] == []
+    assert found == KNOWN_TYPE_ONLY_CIRCLES, "a recorded circle is gone: delete its entry"
+    runtime = {module: {t for t in top | inner if t != "txtool"}
+               for module, (top, _, inner) in graph().items()}
+    assert circles(runtime) == []
+
+
+def test_the_circle_test_finds_every_circle(tmp_path):
+    """Planted circles are caught, whatever the kind of import that closes them: a
+    function-level import closing a circle, a type-checking one, and two separate circles
+    each reported (not only the first found)."""
+    fake = tmp_path / "txtool" / "fake"
+    fake.mkdir(parents=True)
+    files = {
+        "a": "from txtool.fake import b\n",
+        "b": "def later():\n    from txtool.fake.a import something\n",
+        "c": "from typing import TYPE_CHECKING\n\nif TYPE_CHECKING:\n    from txtool.fake import d\n",
+        "d": "import txtool.fake.c\n",
+        "e": "from txtool.fake import a\n",  # imports into a circle, is in none
+    }
+    for name, text in files.items():
+        (fake / f"{name}.py").write_text(text)
+    modules = {f"txtool.fake.{name}": imports(fake / f"{name}.py", root=tmp_path)
+               for name in files}
+    assert modules["txtool.fake.b"][2] == {"txtool.fake.a"}
+    assert circles(dependencies(modules)) == [
+        ["txtool.fake.a", "txtool.fake.b"], ["txtool.fake.c", "txtool.fake.d"]]
+    assert circles({"x": {"x"}, "y": set()}) == [["x"]]
 
 
 def test_the_layer_test_sees_an_upward_import(tmp_path):

@@ -472,15 +472,15 @@ def child_here(monkeypatch):
     request would set them on the test run itself), its node counter undone afterwards."""
     import xml.dom.minidom as minidom
 
-    from txtool.io import xacro_sandbox as sandbox
+    from txtool.io import xacro_child as child
 
-    monkeypatch.setattr(sandbox, "_set_limits", lambda seconds, memory: None)
+    monkeypatch.setattr(child, "_set_limits", lambda seconds, memory: None)
     monkeypatch.setattr(minidom, "_clone_node", minidom._clone_node)
-    monkeypatch.setattr(sandbox._CloneCounter, "installed", False)
-    for name in sandbox.PACKAGE_VARIABLES:  # the request's package paths replace them
+    monkeypatch.setattr(child._CloneCounter, "installed", False)
+    for name in child.PACKAGE_VARIABLES:  # the request's package paths replace them
         monkeypatch.setenv(name, "")
         monkeypatch.delenv(name)
-    return sandbox
+    return child
 
 
 def request_for(path: Path, **changes):

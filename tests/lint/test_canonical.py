@@ -1,5 +1,5 @@
 """A document of canonical ROS 1 SimpleTransmissions lets the per-transmission rules return at
-once (txtool/lint/support.py ``canonical``): the findings must be those the rules make when
+once (txtool/lint/rule_helpers.py ``canonical``): the findings must be those the rules make when
 they look at every transmission.
 
 Each document is linted twice with every rule: as the linter runs, and with the document-level
@@ -19,7 +19,7 @@ from txtool.io.xmlio import Source, parse_bytes, read_bytes
 from txtool.lint.config import Config, resolve
 from txtool.lint.engine import context_for, finish, run_rules
 from txtool.lint.problem import Problem
-from txtool.lint.support import all_canonical
+from txtool.lint.rule_helpers import all_canonical
 from txtool.model.robot import indexed_children
 
 EVERY_RULE = resolve(Config(select=["ALL"]))

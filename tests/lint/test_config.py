@@ -78,6 +78,16 @@ def test_command_line_ignore_extends_and_select_replaces(validate, tmp_path):
     assert "TX106" in validate("--select", "TX106", str(robot))[1]
 
 
+def test_command_line_ignore_adds_to_the_configured_ignore_list(validate, tmp_path):
+    """docs/commands.md: ``--ignore`` adds to the configuration's ``ignore``; both apply."""
+    write(tmp_path / ".txtool.toml", 'ignore = ["TX106"]\n')
+    robot = write(tmp_path / "robot.urdf", BROKEN)
+    find_config.cache_clear()
+    code, out, _ = validate(str(robot))
+    assert code == 0 and "warning TX102" in out and "TX106" not in out
+    assert validate("--ignore", "TX102", str(robot)) == (0, "No problems in 1 file.\n", "")
+
+
 def test_explicit_config_replaces_the_search(validate, tmp_path):
     write(tmp_path / ".txtool.toml", 'ignore = ["TX106", "TX102"]\n')
     other = write(tmp_path / "elsewhere" / "strict.toml", 'select = ["TX106"]\n')

@@ -20,7 +20,7 @@ from txtool.lint.config import Config, resolve
 from txtool.lint.engine import context_for, lint_source
 from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
-from txtool.lint.support import loader_text, numbers_of
+from txtool.lint.rule_helpers import loader_text, numbers_of
 from txtool.model.robot import indexed_children
 
 T = "transmission_interface/"

@@ -226,3 +226,61 @@ def test_the_command_line_wins_over_the_configuration(tmp_path, monkeypatch, con
 def test_folder_package_name_reads_the_manifest_not_the_folder(tmp_path):
     assert folder_package_name(package(tmp_path / "x", "arm_description")) == "arm_description"
     assert folder_package_name(tmp_path) is None
+
+
+def reduction_read_by(command: str, out: str) -> str:
+    """The reduction each command shows of ROBOT's transmission."""
+    if command == "show":
+        return reduction(out)
+    if command == "map":
+        return format(json.loads(out)["position"][0], "g")
+    return out.split("<mechanical_reduction>")[1].split("<")[0]  # convert
+
+
+COMMANDS = {
+    "show": ["show", "robot.urdf.xacro", "--format", "json"],
+    "convert": ["convert", "robot.urdf.xacro", "--to", "ros2-p2"],
+    "map": ["map", "robot.urdf.xacro", "-t", "t", "--to", "actuator", "--position", "1",
+            "--format", "json"],
+}
+
+
+@pytest.fixture
+def configured_repo(tmp_path) -> Path:
+    """A repository whose configuration names a package folder outside it (ratio 7); another
+    folder outside it holds the same package with ratio 10."""
+    repo = tmp_path / "repo"
+    (repo / ".git").mkdir(parents=True)
+    package(tmp_path / "configured" / "arm_description", "arm_description", "7")
+    package(tmp_path / "cli" / "arm_description", "arm_description", "10")
+    (repo / "robot.urdf.xacro").write_text(ROBOT)
+    (repo / ".txtool.toml").write_text('pkg-dirs = ["../configured"]\n')
+    return repo
+
+
+@pytest.mark.parametrize("command", sorted(COMMANDS))
+def test_every_command_reads_the_configured_package_folders_after_the_command_lines(
+        configured_repo, monkeypatch, command):
+    """docs/configuration.md: pkg-dirs come after --pkg-dir, for every command that takes a
+    configuration (not validate alone)."""
+    code, out, err = run(*COMMANDS[command], cwd=configured_repo, monkeypatch=monkeypatch)
+    assert (code, err, reduction_read_by(command, out)) == (0, "", "7")
+    code, out, err = run(*COMMANDS[command], "--pkg-dir", "../cli", cwd=configured_repo,
+                         monkeypatch=monkeypatch)
+    assert (code, err, reduction_read_by(command, out)) == (0, "", "10")
+
+
+def test_roundtrip_reads_the_configured_package_folders_and_config_names_the_file(
+        configured_repo, monkeypatch):
+    code, out, _ = run("roundtrip", "robot.urdf.xacro", "--format", "json",
+                       cwd=configured_repo, monkeypatch=monkeypatch)
+    assert code == 0 and json.loads(out)
+    (configured_repo / ".txtool.toml").write_text("")
+    elsewhere = configured_repo.parent / "other.toml"
+    elsewhere.write_text('pkg-dirs = ["cli"]\n')
+    code, out, err = run("show", "robot.urdf.xacro", "--format", "json", "--config",
+                         str(elsewhere), cwd=configured_repo, monkeypatch=monkeypatch)
+    assert (code, err, reduction(out)) == (0, "", "10")
+    code, out, err = run("show", "robot.urdf.xacro", cwd=configured_repo,
+                         monkeypatch=monkeypatch)
+    assert code == 2 and out == "" and "package 'arm_description' not found" in err

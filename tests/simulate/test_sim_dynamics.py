@@ -96,7 +96,7 @@ rotor_inertia = 1e-5
 rotor_inertia = 3e-5
 """)
     p = prepare(Options(robot=write(tmp_path, "arm.urdf", arm_ros1()), params=params), None)
-    plant_model = p.plan.plant[0]
+    plant_model = p.plan.plant
     # the plant's armature also carries dt * damping: the implicit damping term (shoulder 0.05)
     h = p.plan.dt / p.plan.dynamics.substeps
     assert plant_model.armature[0] == pytest.approx(2e-5 * 50**2 + h * 0.05)
@@ -115,7 +115,7 @@ def test_drake_rotor_inertia_tag_is_read(tmp_path):
         '<actuator name="m_shoulder"><drake:rotor_inertia value="4e-5"/>'
         '<drake:gear_ratio value="60"/>')
     p = prepare(Options(robot=write(tmp_path, "arm.urdf", text)), None)
-    assert p.plan.ctrl[0].armature[0] == pytest.approx(4e-5 * 50**2)
+    assert p.plan.ctrl.armature[0] == pytest.approx(4e-5 * 50**2)
     run = simulate_one(Options(robot=p.options.robot, duration=0.5), None)
     assert any("drake:gear_ratio 60 differs" in note for note in run.notes)
 

@@ -44,7 +44,7 @@ def test_params_reach_the_run(tmp_path):
     i = p.plant.actuators.index("m_shoulder")
     assert p.effort_limit[i] == 2.5 and p.speed_limit[i] == 400.0
     # Defaults elsewhere: URDF effort / |reduction|, velocity * |reduction|.
-    assert p.plan.ctrl[0].armature[0] == pytest.approx(1e-5 * 2500)
+    assert p.plan.ctrl.armature[0] == pytest.approx(1e-5 * 2500)
     cli = prepare(Options(robot=robot, params=p.options.params, bandwidth=10.0), None)
     assert cli.settings.bandwidth == 10.0
 

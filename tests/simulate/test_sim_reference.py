@@ -9,9 +9,11 @@ from tests.simulate.robots import arm_ros1, write
 from txtool.io.xmlio import InputError
 from txtool.simulation.feasible import Motion, sample
 from txtool.simulation.reference import (
+    Reference,
     from_table,
     minimum_jerk,
     read_csv,
+    saturate,
     step_times,
 )
 from txtool.simulation.run import Options, prepare, simulate_one
@@ -118,3 +120,19 @@ def test_the_default_motion_is_each_joints_profile_to_the_bit(move, dt):
         down = minimum_jerk(ref.time, move, 2 * move, middle + half, middle - half)
         for got, a, b in zip((ref.q, ref.qd, ref.qdd), up, down, strict=True):
             assert got[:, i].tobytes() == np.where(second, b, a).tobytes()
+
+
+def test_saturated_joints_are_carried_as_data_not_read_back_from_the_notes():
+    """The run's "exceeds the limits of joint ..." reason names the joints of
+    ``Reference.saturated``: a name with a quote in it is kept whole."""
+    t = np.linspace(0.0, 1.0, 11)
+    q = np.column_stack([2.0 * t, 0.5 * t, 0.1 * t])  # over its limit, too fast, within both
+    qd = np.column_stack([np.full_like(t, 2.0), np.full_like(t, 0.5), np.full_like(t, 0.1)])
+    ref = Reference(t, q, qd, np.zeros_like(q), "test")
+    joints = ("o'hare knee", "wrist", "elbow")
+    limits = np.array([1.0, 1.0, 1.0])
+    saturated, notes = saturate(ref, joints, -limits, limits, np.array([5.0, 0.2, 5.0]), 0.1)
+    assert saturated.saturated == ("o'hare knee", "wrist")
+    assert len(notes) == 2 and saturate(ref, joints, -3 * limits, 3 * limits,
+                                         np.full(3, 5.0), 0.1) == (ref, [])
+    assert ref.saturated == ()

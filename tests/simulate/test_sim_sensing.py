@@ -47,8 +47,8 @@ def test_the_delay_changes_the_motion_but_a_sound_loop_still_tracks(tmp_path):
 def test_encoder_readings_are_whole_counts_and_velocity_their_difference(tmp_path):
     robot = write(tmp_path, "arm.urdf", arm_ros1())
     p = prepare(Options(robot=robot, duration=0.5, encoder_counts=1000), None)
-    loop.run(p.plan)
-    rows, s = p.plan.rows[:-1], p.plan.slots
+    state = loop.run(p.plan)
+    rows, s = state.rows[:-1], p.plan.slots
     reading, speed = rows[:, s["enc"]], rows[:, s["encv"]]
     counts = reading / (2 * math.pi / 1000)
     assert np.allclose(counts, np.rint(counts), rtol=0, atol=1e-6)
@@ -116,9 +116,9 @@ def test_a_prismatic_joint_driven_directly_has_a_linear_actuator_not_quantised(t
         'lower="0" upper="0.2" effort="100" velocity="5"/></joint>\n</robot>')
     robot = write(tmp_path, "slide.urdf", with_transmission(text, "q1"))
     p = prepare(Options(robot=robot, duration=0.5, encoder_counts=16), None)
-    loop.run(p.plan)
-    reading = p.plan.rows[:-1, p.plan.slots["enc"]]
-    true = p.plan.rows[:-1, p.plan.slots["x"]]
+    state = loop.run(p.plan)
+    reading = state.column("enc")[:-1]
+    true = state.column("x")[:-1]
     assert np.array_equal(reading[:, 1], true[:, 1])  # the slide: exact, in metres
     counts = reading[:, 0] / (2 * math.pi / 16)
     assert np.allclose(counts, np.rint(counts), rtol=0, atol=1e-9) and np.ptp(counts) >= 3

@@ -135,11 +135,24 @@ def xacro_disabled(flag: bool, *paths: str | None, config: str | None = None) ->
     on: a pull request may edit the repository's configuration, but not the runner's command
     line or environment.
     """
-    from txtool.lint.config_files import no_xacro_configured, no_xacro_from_environment
+    from txtool.lint.config_files import no_xacro_from_environment
 
     if no_xacro_from_environment() or flag:
         return True
+    from txtool.lint.config import no_xacro_configured
+
     return any(no_xacro_configured(path, config) for path in paths if path is not None)
+
+
+def configured_packages(xacro: XacroOptions, path: str, config: str | None) -> XacroOptions:
+    """``xacro`` with the configuration's ``pkg-dirs`` and ``pkg-paths`` after the command
+    line's ``--pkg-dir`` and ``--pkg-path`` (the first match wins): the configuration that
+    applies to ``path``, or ``config`` (``--config``)."""
+    from txtool.lint.config import Overrides, SettingsCache
+
+    configured = SettingsCache(Overrides(), config).for_file(path).xacro
+    return xacro._replace(pkg_dirs=xacro.pkg_dirs + configured.pkg_dirs,
+                          pkg_paths=xacro.pkg_paths + configured.pkg_paths)
 
 
 def refuse_unexpanded(command: str, *paths: str | None) -> None:

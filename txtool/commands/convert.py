@@ -12,6 +12,7 @@ from txtool.commands.common import (
     NO_XACRO_OPTION,
     TARGET_HINTS,
     Choice,
+    configured_packages,
     exit_on_input_error,
     xacro_disabled,
     xacro_options,
@@ -72,6 +73,8 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, revers
     if in_place_target and not in_place:
         raise InputError(f"{output}: is the input file; add --write to convert it in place")
     expand = not xacro_disabled(no_xacro, path, config=config_path)
+    if expand:
+        xacro = configured_packages(xacro, path, config_path)
     source = load(path, xacro=xacro, stdin_name=stdin_filename, expand=expand)
     if in_place_target and source.expanded:
         raise InputError(f"{path}: converting a xacro file in place would replace it with its "

@@ -8,6 +8,7 @@ from txtool.commands.common import (
     CONFIG_OPTION,
     NO_XACRO_OPTION,
     Choice,
+    configured_packages,
     refuse_unexpanded,
     xacro_disabled,
     xacro_options,
@@ -56,6 +57,8 @@ def command(
     try:
         if xacro_disabled(no_xacro, file, config=config_path):
             refuse_unexpanded("map", file)
+        else:
+            xacro = configured_packages(xacro, file, config_path)
     except InputError as exc:
         click.echo(f"txtool: {printable(str(exc))}", err=True)
         raise SystemExit(2) from None

@@ -11,6 +11,7 @@ from txtool.commands.common import (
     FORMAT_OPTION,
     NO_XACRO_OPTION,
     Choice,
+    configured_packages,
     exit_on_input_error,
     xacro_disabled,
     xacro_options,
@@ -44,9 +45,11 @@ def command(path, against, convention, output_format, no_xacro, config_path,
     if convention and not against:
         raise InputError("--effort-convention applies to --against only")
     expand = not xacro_disabled(no_xacro, path, against, config=config_path)
-    source = load(path, xacro=xacro, expand=expand)
+    source = load(path, xacro=configured_packages(xacro, path, config_path) if expand else xacro,
+                  expand=expand)
     if against:
-        return _against(source, load(against, xacro=xacro, expand=expand), output_format,
+        other = configured_packages(xacro, against, config_path) if expand else xacro
+        return _against(source, load(against, xacro=other, expand=expand), output_format,
                         convention)
     from txtool.transform.roundtrip import roundtrip
 

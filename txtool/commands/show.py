@@ -10,6 +10,7 @@ from txtool.commands.common import (
     CONFIG_OPTION,
     FORMAT_OPTION,
     NO_XACRO_OPTION,
+    configured_packages,
     exit_on_input_error,
     xacro_disabled,
     xacro_options,
@@ -46,6 +47,8 @@ def command(path, output_format, effective, actuator_limits, stdin_filename, ros
     from txtool.views.effective import bindings_of, shown_json
 
     expand = not xacro_disabled(no_xacro, path, config=config_path)
+    if expand:
+        xacro = configured_packages(xacro, path, config_path)
     source = load(path, xacro=xacro, stdin_name=stdin_filename, expand=expand)
     found = read_source(source)
     transmissions = [f.transmission for f in found]

@@ -80,7 +80,7 @@ def _names(elements: list[etree._Element]) -> tuple[str, ...]:
 class Found:
     """A transmission and the element it was read from (in ``Source.tree``).
 
-    ``memo`` keeps answers that lint rules share (see :mod:`txtool.lint.support`).
+    ``memo`` keeps answers that lint rules share (see :mod:`txtool.lint.rule_helpers`).
     """
 
     transmission: Transmission

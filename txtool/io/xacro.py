@@ -30,12 +30,14 @@ from txtool.io.packages import (
     find_package,
     package_name,
 )
+from txtool.io.xacro_sandbox import expand_in_sandbox
 from txtool.io.xmlio import (
     ENTITY_REFUSAL,
     MAX_BYTES,
     EntityRefused,
     InputError,
     TooLarge,
+    XacroError,
     XacroOptions,
     XMLSyntax,
     parse_bytes,
@@ -47,21 +49,6 @@ if TYPE_CHECKING:
 
 MAX_DEPTH = 256  # libxml2's limit without huge_tree, so both parsers agree
 MAX_READ = MAX_BYTES  # what one expansion may read in all: the top file and every include
-
-
-class XacroError(InputError):
-    """xacro could not expand the file (missing arg, package or property). Lint code TX002.
-
-    ``missing`` is ``"argument"`` or ``"package"`` when what lacks is something the command
-    line gives (``--xacro-arg``, ``--pkg-dir``), not a fault of the files; else empty.
-    """
-
-    def __init__(self, path: str, reason: str, line: int = 1, missing: str = "") -> None:
-        super().__init__(f"{path}:{line}: xacro: {reason}")
-        self.path = path
-        self.line = line
-        self.reason = reason
-        self.missing = missing
 
 
 def expand_xacro(path: str, display: str, options: XacroOptions,
@@ -77,9 +64,7 @@ def expand_xacro(path: str, display: str, options: XacroOptions,
     if options.trust:
         text = expand_text(path, display, options, data=data)
     else:
-        from txtool.io.xacro_sandbox import expand_in_sandbox
-
-        text = expand_in_sandbox(path, display, options, data=data)
+        text = expand_in_sandbox(path, display, options, max_read=MAX_READ, data=data)
     try:
         return parse_bytes(text.encode("utf-8"), display)
     except XMLSyntax as exc:
@@ -157,7 +142,7 @@ def _checked_parse(original: Callable[..., Any], xacro: Any, guard: XacroGuard |
         if not given and not os.path.exists(path):
             return original(inp, filename)  # xacro reports a missing file its own way
         try:
-            data = _given(top[1], budget) if given else read_regular(path, budget)
+            data = _given(top[1], budget) if given and top else read_regular(path, budget)
         except TooLarge:
             reason = (f"xacro would read more than {MAX_READ} bytes in all (the top file and "
                       "its includes; a safety limit)")

@@ -6,7 +6,7 @@ on its standard input: the file, the xacro options, the values of the variables 
 allows and of the ROS package paths ``$(find)`` reads (``AMENT_PREFIX_PATH``,
 ``ROS_PACKAGE_PATH``, ``CMAKE_PREFIX_PATH``); nothing else of the parent's environment ever
 reaches it. It reads back one JSON header line and the expanded text. For each request the
-child (:func:`main`) sets its limits before it reads the file:
+child (:func:`txtool.io.xacro_child.main`) sets its limits before it reads the file:
 
 - wall time: :data:`DEFAULT_TIMEOUT` seconds (``TXTOOL_XACRO_TIMEOUT``), the parent kills it
   then; CPU time the same, as a backstop;
@@ -34,7 +34,7 @@ import time
 from typing import Any
 
 from txtool.io import targets
-from txtool.io.xmlio import MAX_BYTES, InputError, XacroOptions
+from txtool.io.xmlio import MAX_BYTES, InputError, XacroError, XacroOptions
 
 DEFAULT_TIMEOUT = 30.0
 DEFAULT_MEMORY_MB = 2048
@@ -42,7 +42,7 @@ MAX_NODES = 200_000
 MAX_OUTPUT = MAX_BYTES
 PACKAGE_VARIABLES = ("AMENT_PREFIX_PATH", "ROS_PACKAGE_PATH", "CMAKE_PREFIX_PATH")
 _BOOT = ("import sys, json; sys.path[:0] = json.loads(sys.argv[1]); "
-         "from txtool.io.xacro_sandbox import main; main()")
+         "from txtool.io.xacro_child import main; main()")
 
 
 class XacroLimit(InputError):
@@ -81,20 +81,19 @@ def limits() -> tuple[float, int]:
     return seconds, memory
 
 
-def expand_in_sandbox(path: str, display: str, options: XacroOptions,
-                      data: bytes | None = None) -> str:
+def expand_in_sandbox(path: str, display: str, options: XacroOptions, *,
+                      max_read: int = MAX_BYTES, data: bytes | None = None) -> str:
     """The expanded text of ``path`` (with ``data`` read for it when given, see
-    :func:`txtool.io.xacro.expand_xacro`); :class:`XacroError` or :class:`XacroLimit` if none."""
-    from txtool.io import xacro as xacro_support
-    from txtool.io.xacro import XacroError
+    :func:`txtool.io.xacro.expand_xacro`); :class:`XacroError` or :class:`XacroLimit` if none.
 
+    ``max_read`` is what the expansion may read in all (:data:`txtool.io.xacro.MAX_READ`)."""
     seconds, memory = limits()
     request = {
         "path": os.path.abspath(path), "display": display,
         "args": options.args, "pkg_dirs": options.pkg_dirs, "pkg_paths": options.pkg_paths,
         "env_names": options.env,
         "env": {name: os.environ[name] for name in options.env if name in os.environ},
-        "seconds": seconds, "memory": memory, "max_read": xacro_support.MAX_READ,
+        "seconds": seconds, "memory": memory, "max_read": max_read,
         "package_paths": {k: os.environ[k] for k in PACKAGE_VARIABLES if k in os.environ},
         "data": None if data is None else base64.b64encode(data).decode("ascii"),
     }
@@ -243,130 +242,3 @@ def _import_path() -> list[str]:
             if folder not in folders:
                 folders.append(folder)
     return folders
-
-
-# -- the child ------------------------------------------------------------------------------
-
-def _set_limits(seconds: float, memory_mb: int) -> None:
-    """This request's limits: CPU time from now on, address space, no file written."""
-    try:
-        import resource
-    except ImportError:  # not POSIX: the parent's timeout still holds
-        return
-    usage = resource.getrusage(resource.RUSAGE_SELF)
-    cpu = int(usage.ru_utime + usage.ru_stime + seconds) + 2
-    for limit, value in ((resource.RLIMIT_CPU, cpu), (resource.RLIMIT_FSIZE, 0),
-                         (resource.RLIMIT_CORE, 0), (resource.RLIMIT_AS, memory_mb << 20)):
-        _soft, hard = resource.getrlimit(limit)
-        if hard != resource.RLIM_INFINITY:
-            value = min(value, hard)
-        with contextlib.suppress(ValueError, OSError):
-            resource.setrlimit(limit, (value, hard))
-
-
-class _CloneCounter:
-    """Counts the nodes xacro creates by cloning (macro bodies, blocks), against MAX_NODES."""
-
-    budget = MAX_NODES
-    installed = False
-
-    @classmethod
-    def reset(cls) -> None:
-        import xml.dom.minidom as minidom
-
-        from txtool.io.xacro_guard import NodeLimit
-
-        cls.budget = MAX_NODES
-        if cls.installed:
-            return
-        original = minidom._clone_node  # type: ignore[attr-defined]
-
-        def clone(node: Any, deep: bool, new_owner: Any) -> Any:
-            cls.budget -= 1
-            if cls.budget < 0:
-                raise NodeLimit
-            return original(node, deep, new_owner)
-
-        minidom._clone_node = clone  # type: ignore[attr-defined]
-        cls.installed = True
-
-
-def _line_of(path: str, needle: str | None, data: bytes | None = None) -> int:
-    """The line of ``needle`` in ``data``, else in the file at ``path``; 1 if not found."""
-    if not needle:
-        return 1
-    if data is None:
-        try:
-            with open(path, "rb") as handle:
-                data = handle.read(MAX_BYTES)
-        except OSError:
-            return 1
-    index = data.find(needle.encode("utf-8", "replace"))
-    return data.count(b"\n", 0, index) + 1 if index >= 0 else 1
-
-
-def _answer(header: dict[str, Any], text: str = "") -> None:
-    data = text.encode("utf-8")
-    if len(data) > MAX_OUTPUT:
-        header, data = {"limit": f"{MAX_OUTPUT} bytes of output"}, b""
-    header["size"] = len(data)
-    out = sys.stdout.buffer
-    out.write(json.dumps(header).encode("utf-8") + b"\n")
-    out.write(data)
-    out.flush()
-
-
-def main() -> None:
-    """The child: answer each request line with a header line and the expanded text."""
-    import io
-
-    sys.stderr = io.StringIO()  # xacro.warning(...) and friends: nobody reads it
-    from txtool.io import xacro as _xacro  # noqa: F401  (imported before the limits)
-    from txtool.io import xacro_guard as _guard  # noqa: F401
-
-    for line in sys.stdin.buffer:
-        request = json.loads(line)
-        sys.stderr = io.StringIO()
-        header, text = _expand(request)
-        _answer(header, text)
-        if header.get("retire"):
-            return
-
-
-def _expand(request: dict[str, Any]) -> tuple[dict[str, Any], str]:
-    from txtool.io import xacro as xacro_support
-    from txtool.io.xacro import XacroError, expand_text
-    from txtool.io.xacro_guard import NodeLimit, Refusal, XacroGuard
-
-    xacro_support.MAX_READ = request["max_read"]  # the parent's: one limit, set in one place
-    _set_limits(request["seconds"], request["memory"])
-    for variable in PACKAGE_VARIABLES:  # what $(find) reads, as the parent has them now
-        os.environ.pop(variable, None)
-    os.environ.update(request["package_paths"])
-    options = XacroOptions(
-        args=tuple(tuple(pair) for pair in request["args"]),  # type: ignore[misc]
-        pkg_dirs=tuple(request["pkg_dirs"]),
-        pkg_paths=tuple(tuple(pair) for pair in request["pkg_paths"]),  # type: ignore[misc]
-        env=tuple(request["env_names"]),
-    )
-    path, display = request["path"], request["display"]
-    _CloneCounter.reset()
-    targets.forget_inputs()
-    given = request.get("data")
-    data = None if given is None else base64.b64decode(given)
-    try:
-        guard = XacroGuard(path, options, request["env"])
-        text = expand_text(path, display, options, guard, data)
-        # what it read (the top file and its includes): no output of the command replaces them
-        return {"ok": True, "inputs": targets.inputs_read()}, text
-    except Refusal as exc:
-        return {"refused": exc.reason, "line": _line_of(path, exc.needle, data)}, ""
-    except XacroError as exc:
-        return {"error": exc.reason, "line": exc.line, "missing": exc.missing}, ""
-    except (NodeLimit, MemoryError, RecursionError) as exc:
-        what = {NodeLimit: f"{MAX_NODES} XML nodes", MemoryError: f"{request['memory']} MiB "
-                "of memory", RecursionError: "Python's recursion limit (macros nested too deep)"}
-        return {"limit": what[type(exc)], "retire": True}, ""
-    except Exception as exc:  # reported as the parent reports its own internal errors
-        return {"error": f"internal error in the xacro sandbox: {type(exc).__name__}: {exc}",
-                "retire": True}, ""

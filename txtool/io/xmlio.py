@@ -1,4 +1,7 @@
-"""Safe XML parsing, loading of inputs (files, stdin, xacro) and atomic writing.
+"""Safe XML parsing, reading an input's bytes (a file or stdin) and atomic writing.
+
+xacro is expanded elsewhere (:mod:`txtool.io.xacro`, through :mod:`txtool.io.load`); what every
+input step shares is here: :class:`Source`, the input errors, :class:`XacroOptions`.
 
 Every reader goes through :func:`safe_parser`: no entity expansion, no DTD loading, no network
 access, no huge trees. Parsed elements keep ``sourceline`` for diagnostics.
@@ -335,6 +338,21 @@ class XMLSyntax(InputError):
 
 class EntityRefused(XMLSyntax):
     """A document that declares entities, or refers to entities of a DTD (never loaded)."""
+
+
+class XacroError(InputError):
+    """xacro could not expand the file (missing arg, package or property). Lint code TX002.
+
+    ``missing`` is ``"argument"`` or ``"package"`` when what lacks is something the command
+    line gives (``--xacro-arg``, ``--pkg-dir``), not a fault of the files; else empty.
+    """
+
+    def __init__(self, path: str, reason: str, line: int = 1, missing: str = "") -> None:
+        super().__init__(f"{path}:{line}: xacro: {reason}")
+        self.path = path
+        self.line = line
+        self.reason = reason
+        self.missing = missing
 
 
 class XacroOptions(NamedTuple):

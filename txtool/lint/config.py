@@ -27,7 +27,6 @@ from txtool.lint.config_files import (  # noqa: F401 - this module's names befor
     _has_txtool_table,
     applicable_config,
     find_config,
-    no_xacro_configured,
     no_xacro_from_environment,
     read_config_text,
     repository_root,
@@ -120,6 +119,23 @@ class Settings:
             return self
         xacro = self.xacro._replace(args=tuple(args.items()))
         return dataclasses.replace(self, enabled=self.enabled - disabled, xacro=xacro)
+
+
+def no_xacro_configured(path: str, explicit: str | None = None) -> bool:
+    """``no-xacro`` of the configuration that applies to the file ``path`` (see
+    :func:`~txtool.lint.config_files.applicable_config`), or of ``explicit`` (``--config``).
+
+    Only ``true`` counts: a configuration can turn xacro off, never back on.
+    """
+    if explicit is not None:
+        config_path: Path | None = Path(explicit)
+    elif path == "-":
+        config_path = applicable_config(os.getcwd()).path
+    else:
+        config_path = applicable_config(os.path.dirname(os.path.abspath(path))).path
+    if config_path is None:
+        return False
+    return load_config(config_path).no_xacro
 
 
 def load_config(path: Path) -> Config:

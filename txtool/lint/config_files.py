@@ -1,8 +1,8 @@
 """Which configuration file applies to a file, and whether xacro is off: without reading one.
 
 Every command asks this before it reads its input (``--no-xacro``, ``TXTOOL_NO_XACRO``, the
-``no-xacro`` of the file's configuration); :mod:`txtool.lint.config` and its dataclasses load
-only when a configuration file is found.
+``no-xacro`` of the file's configuration, :func:`txtool.lint.config.no_xacro_configured`);
+:mod:`txtool.lint.config_model` (pydantic) loads only when a configuration file is found.
 """
 
 from __future__ import annotations
@@ -164,25 +164,6 @@ def no_xacro_from_environment() -> bool:
         return False
     raise ConfigError(f"{NO_XACRO_ENV}: expected 1 or 0 (or true/false, "
                       f"yes/no, on/off), got {raw!r}")
-
-
-def no_xacro_configured(path: str, explicit: str | None = None) -> bool:
-    """``no-xacro`` of the configuration that applies to the file ``path`` (see
-    :func:`applicable_config`), or of ``explicit`` (``--config``).
-
-    Only ``true`` counts: a configuration can turn xacro off, never back on.
-    """
-    if explicit is not None:
-        config_path: Path | None = Path(explicit)
-    elif path == "-":
-        config_path = applicable_config(os.getcwd()).path
-    else:
-        config_path = applicable_config(os.path.dirname(os.path.abspath(path))).path
-    if config_path is None:
-        return False
-    from txtool.lint.config import load_config
-
-    return load_config(config_path).no_xacro
 
 
 def _has_txtool_table(pyproject: Path | str) -> bool:

@@ -80,7 +80,7 @@ class LintContext:
         self.stated = stated
         self.literal = literal
         self.options: Mapping[str, Any] = {} if options is None else options
-        # Facts about the whole document that several rules share (see txtool.lint.support).
+        # Facts about the whole document that several rules share (see txtool.lint.rule_helpers).
         self.memo: dict[str, Any] = {}
         if not found:
             # Each transmission's model is read when a rule first asks for it (see facts).

@@ -33,7 +33,7 @@ from txtool.lint.config import Settings, resolve
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.readers import Findings, record
-from txtool.lint.support import all_canonical
+from txtool.lint.rule_helpers import all_canonical
 from txtool.lint.suppress import Suppressions
 from txtool.lint.suppress import parse as parse_suppressions
 from txtool.lint.text import scanned_form
@@ -197,13 +197,13 @@ def run_rules(ctx: LintContext, settings: Settings) -> list[Problem]:
     every, whole = _checks(settings.enabled)
     if not ctx.found:
         # Nearly every rule is about transmissions; a few are about what makes the loader
-        # refuse the whole robot, transmissions or not (support.whole_robot).
+        # refuse the whole robot, transmissions or not (rule_helpers.whole_robot).
         for check in every:
             if getattr(check, "whole_robot", False):
                 problems.extend(check(ctx))
         return problems
     # A document of canonical transmissions: the rules about one transmission at a time have
-    # nothing to say (see support.per_transmission); the others look at the whole document.
+    # nothing to say (see rule_helpers.per_transmission); the others look at the whole document.
     for check in whole if len(whole) < len(every) and all_canonical(ctx) else every:
         problems.extend(check(ctx))
     ctx.release()
@@ -216,7 +216,7 @@ _CHECKS: dict[frozenset[str], tuple[Checks, Checks]] = {}
 
 def _checks(enabled: frozenset[str]) -> tuple[Checks, Checks]:
     """The check functions of the enabled rules run on a context, in code order: all of them,
-    and those not marked :func:`~txtool.lint.support.per_transmission`."""
+    and those not marked :func:`~txtool.lint.rule_helpers.per_transmission`."""
     known = _CHECKS.get(enabled)
     if known is None:
         every = [

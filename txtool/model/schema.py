@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import json
 
-from txtool.model.binding import ShowDocument
 from txtool.model.core import json_schema
+from txtool.model.show_document import ShowDocument
 
 SCHEMA_FILES = {"transmission.schema.json": ShowDocument}
 

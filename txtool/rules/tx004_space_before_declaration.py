@@ -1,22 +1,48 @@
 """Whitespace before the ``<?xml ...?>`` declaration: ROS loads it, strict XML tools do not.
 
-The XML specification requires the declaration to be the very first thing in the document.
-tinyxml2, which urdfdom and ros2_control's component parser use, skips leading whitespace
-before it (``XMLDocument::Parse`` calls ``SkipWhiteSpace`` first), so ROS loads such a file.
-Strict parsers refuse it: expat ("XML or text declaration not at start of entity", used by
-xacro and Python's xml modules), libxml2 (lxml, xmllint) and most editors' XML validation.
-txtool reads the document anyway (the declaration only carries the encoding) and warns. Remove
-the blank lines or spaces before ``<?xml``.
+What it does: reports blank lines or spaces before the document's ``<?xml ...?>``
+declaration. txtool reads the document anyway (the declaration only carries the encoding).
+
+Why it matters: the XML specification requires the declaration to be the very first thing in
+the document. ROS loads such a file, but strict parsers refuse it: expat ("XML or text
+declaration not at start of entity", used by xacro and Python's xml modules), libxml2 (lxml,
+xmllint) and most editors' XML validation. A warning.
+
+Loader: tinyxml2, which urdfdom and ros2_control's component parser use, skips leading
+whitespace before the declaration (leethomason/tinyxml2 tinyxml2.cpp ``XMLDocument::Parse``
+calls ``XMLUtil::SkipWhiteSpace`` first).
 
 Failing example::
 
       <?xml version="1.0"?>
-    <robot name="r">...</robot>
+    <robot name="r">
+      <transmission name="t">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="j">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
+      </transmission>
+    </robot>
+
+Expected finding: ``1:3 warning TX004 whitespace before the XML declaration: tinyxml2 (urdfdom,
+ros2_control) skips it and loads the file, but strict XML parsers (xacro's expat, libxml2)
+reject it; remove it``
 
 Passing example::
 
     <?xml version="1.0"?>
-    <robot name="r">...</robot>
+    <robot name="r">
+      <transmission name="t">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="j">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
+      </transmission>
+    </robot>
+
+Fix: delete the blank lines or spaces before ``<?xml``.
 """
 
 from __future__ import annotations

@@ -1,22 +1,39 @@
 """A file named on the command line that holds no transmission.
 
-``txtool validate robot.urdf`` on a file with no ``<transmission>`` (after xacro expansion,
-and none inside xacro macros either) checks nothing; saying "no problems" would suggest the
-robot's transmissions were checked. Reported only for files named on the command line: a folder
-walk meets many included fragments (materials, macros) that rightly hold none. Produced by the
-pipeline; severity ``info``, so it never fails a run.
+What it does: reports a file named on the command line (``txtool validate links.urdf``) with
+no ``<transmission>`` after xacro expansion, and none inside xacro macros either. Files met in
+a folder walk are not reported: a walk meets many included fragments (materials, macros) that
+rightly hold none. Produced by the pipeline.
+
+Why it matters: such a run checks nothing, and saying "no problems" would suggest the robot's
+transmissions were checked. Nothing is wrong with the file for any loader: severity ``info``,
+so it never fails a run.
+
+Loader: none; txtool's pipeline decides it (txtool/lint/engine.py ``_no_transmission``).
 
 Failing example::
 
-    <!-- txtool validate links.urdf -->
-    <robot name="r"><link name="base"/></robot>
+    <robot name="r">
+      <link name="base"/>
+    </robot>
+
+Expected finding: ``1:1 info TX006 no <transmission> in this file: nothing to check``
 
 Passing example::
 
-    <!-- txtool validate robot.urdf -->
     <robot name="r">
-      <transmission name="t">...</transmission>
+      <link name="base"/>
+      <transmission name="t">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="j">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
+      </transmission>
     </robot>
+
+Fix: name the file that holds the transmissions (the top xacro file, say), or leave the
+finding: it only says that nothing was checked.
 """
 
 from __future__ import annotations

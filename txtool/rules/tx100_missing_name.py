@@ -1,24 +1,47 @@
 """A transmission, joint or actuator without a ``name`` attribute, or with an empty one.
 
-ros_control (ROS 1) logs "No name attribute specified for transmission." and skips the
-transmission; a joint or actuator without ``name`` makes it drop every joint (or actuator) of
-the transmission, so the transmission is skipped too; an empty member name skips that member.
-ros2_control's parser throws ``no attribute 'name' in '<tag>' tag`` and the hardware
-component fails to load; an empty name is accepted but nothing can refer to it.
+What it does: reports a ``<transmission>``, or a ``<joint>`` or ``<actuator>`` of one, whose
+``name`` attribute is missing or empty, in either dialect.
+
+Why it matters: ros_control (ROS 1) logs "No name attribute specified for transmission." and
+skips the transmission; a joint or actuator without ``name`` makes it drop every joint (or
+actuator) of the transmission, so the transmission is skipped too; an empty member name skips
+that member. ros2_control's parser throws ``no attribute 'name' in '<tag>' tag`` and the
+hardware component fails to load; an empty name is accepted but nothing can refer to it.
+
+Loader: ros_control (ros-controls/ros_control transmission_interface/src/transmission_parser.cpp
+``TransmissionParser::parse``, ``parseJoints``, ``parseActuators``); ros2_control
+(ros-controls/ros2_control hardware_interface/src/component_parser.cpp ``get_attribute_value``,
+called by ``parse_transmission_from_xml``).
 
 Failing example::
 
-    <transmission>
-      <type>transmission_interface/SimpleTransmission</type>
-      <joint name="">...</joint>
-    </transmission>
+    <robot name="r">
+      <transmission>
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="j">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
+      </transmission>
+    </robot>
+
+Expected finding: ``2:3 error TX100 unnamed transmission has no name: ros_control skips it``
 
 Passing example::
 
-    <transmission name="shoulder_trans">
-      <type>transmission_interface/SimpleTransmission</type>
-      <joint name="shoulder">...</joint>
-    </transmission>
+    <robot name="r">
+      <transmission name="shoulder_trans">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="j">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
+      </transmission>
+    </robot>
+
+Fix: name the transmission (the joint's name with ``_trans``, say) and each member after the
+URDF joint or the actuator it stands for.
 """
 
 from __future__ import annotations
@@ -29,7 +52,7 @@ from lxml import etree
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import per_transmission
+from txtool.lint.rule_helpers import per_transmission
 
 CODE = "TX100"
 NAME = "missing-name"

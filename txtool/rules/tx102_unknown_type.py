@@ -1,37 +1,57 @@
 """A transmission type outside ``transmission_interface/`` that txtool does not know.
 
-Both loaders look the type up by its exact pluginlib name
-(ros-controls/ros_control transmission_interface/src/transmission_interface_loader.cpp:139-147
-@0a09467: "Unsupported type"). A type in another namespace may be a plugin installed on the
-robot, so it is a warning: a near-miss of a standard name (``SimpleTransmission`` without its
-``transmission_interface/`` prefix) gets a suggestion; other custom types are reported once,
-since txtool cannot check them. Types of known custom families (``pr2_mechanism_model/``,
-``sr_mechanism_model/``, ``franka_hw/``, plus the ``known-families`` option) are not
-reported, nor are types a package registers with pluginlib (its ``package.xml`` exports
+What it does: reports a ``<type>`` (ROS 1) or ``<plugin>`` (ROS 2) in another namespace than
+``transmission_interface/``: a near-miss of a standard name (``SimpleTransmission`` without its
+``transmission_interface/`` prefix) with a suggestion; other custom types once, since txtool
+cannot check them. Types of known custom families (``pr2_mechanism_model/``,
+``sr_mechanism_model/``, ``franka_hw/``, plus the ``known-families`` option) are not reported,
+nor are types a package registers with pluginlib (its ``package.xml`` exports
 ``<transmission_interface plugin="..."/>``; packages of the workspace, ``AMENT_PREFIX_PATH`` and
 ``ROS_PACKAGE_PATH`` are read): the loaders find those. A type under
-``transmission_interface/`` that is not one of the three standard ones can be no plugin at
-all: TX113's business (an error).
+``transmission_interface/`` that is not one of the three standard ones is TX113's business;
+the pre-Hydro ``type=`` attribute alone is TX302's. Options
+(``[tool.txtool.rules.TX102]``): ``known-families``, extra type prefixes to accept, e.g.
+``["my_robot_hw/"]`` (default: none).
 
-Applies to ``<type>`` (ROS 1) and ``<plugin>`` (ROS 2); the pre-Hydro ``type=`` attribute
-alone is TX302's business.
+Why it matters: both loaders look the type up by its exact pluginlib name and refuse a name
+nobody registered ("Unsupported type"). A type in another namespace may be a plugin installed
+on the robot, so it is a warning.
 
-Options (``[tool.txtool.rules.TX102]``):
-
-``known-families``
-    extra type prefixes to accept, e.g. ``["my_robot_hw/"]`` (default: none).
+Loader: ros_control (ros-controls/ros_control
+transmission_interface/src/transmission_interface_loader.cpp:139-147 @0a09467); ros2_control's
+hardware plugins look the loader up with pluginlib the same way (ros-controls/ros2_control
+hardware_interface/src/component_parser.cpp ``parse_transmission_from_xml`` copies the name).
 
 Failing example::
 
-    <transmission name="t">
-      <plugin>SimpleTransmission</plugin>
-    </transmission>
+    <robot name="r">
+      <transmission name="t">
+        <type>SimpleTransmission</type>
+        <joint name="j">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
+      </transmission>
+    </robot>
+
+Expected finding: ``3:5 warning TX102 transmission 't' has type 'SimpleTransmission': no loader
+knows it unless a plugin of that name is installed; did you mean
+'transmission_interface/SimpleTransmission'?``
 
 Passing example::
 
-    <transmission name="t">
-      <plugin>transmission_interface/SimpleTransmission</plugin>
-    </transmission>
+    <robot name="r">
+      <transmission name="t">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="j">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
+      </transmission>
+    </robot>
+
+Fix: write the full pluginlib name (``transmission_interface/SimpleTransmission``), or add the
+family of a type your robot's packages provide to ``known-families``.
 """
 
 from __future__ import annotations
@@ -42,7 +62,7 @@ from typing import Any
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import KNOWN_FAMILIES, per_transmission
+from txtool.lint.rule_helpers import KNOWN_FAMILIES, per_transmission
 from txtool.model.core import STANDARD_TYPES, TYPE_PREFIX
 
 CODE = "TX102"

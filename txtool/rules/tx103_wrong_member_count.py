@@ -1,39 +1,58 @@
 """A standard transmission with the wrong number of joints or actuators.
 
-SimpleTransmission takes 1 joint and 1 actuator; DifferentialTransmission and
-FourBarLinkageTransmission take 2 of each. ros_control (ROS 1) refuses any other count
-("Expected 1 actuators, got 2."). ros2_control's simple loader reads only the first joint (it
-fails with none, and a component of ``type="actuator"`` throws for more than one); a simple
-transmission needs no ``<actuator>`` there, since the parser or the hardware plugin supplies
-it. The coupled loaders fail with fewer than 2 joints or actuators and ``configure`` throws
-for more. Custom types are not counted, nor literal xacro transmissions whose members are
-produced by ``xacro:if`` or macro calls.
+What it does: reports a SimpleTransmission without 1 joint and 1 actuator, and a
+DifferentialTransmission or FourBarLinkageTransmission without 2 of each. In ros2_control a
+simple transmission needs no ``<actuator>``, since the parser or the hardware plugin supplies
+it; a SimpleTransmission listing one joint (or actuator) several times, by the same name, is a
+**warning** there: the loader reads the first listing and the later ones are read by nothing
+(in a component of ``type="actuator"`` the parser still throws). Custom types are not counted,
+nor literal xacro transmissions whose members are produced by ``xacro:if`` or macro calls.
 
-Reader ros2_control: a SimpleTransmission listing one joint (or actuator) several times, by
-the same name, is a **warning**: the loader reads the first listing
-(ros-controls/ros2_control transmission_interface/src/simple_transmission_loader.cpp
-``SimpleTransmissionLoader::load``: ``joints.at(0)``), and ``SimpleTransmission::configure``
-accepts handles that all carry one name (transmission_interface/include/transmission_interface/
-simple_transmission.hpp ``configure``: ``are_names_identical``); the later listings are read
-by nothing. In a component of ``type="actuator"`` the parser still throws (component_parser.cpp
+Why it matters: ros_control (ROS 1) refuses any other count ("Expected 1 actuators, got 2.").
+ros2_control's simple loader reads only the first joint (it fails with none, and a component
+of ``type="actuator"`` throws for more than one); the coupled loaders fail with fewer than 2
+joints or actuators and ``configure`` throws for more.
+
+Loader: ros_control (ros-controls/ros_control
+transmission_interface/src/simple_transmission_loader.cpp ``SimpleTransmissionLoader::load``,
+``checkJointDimension``/``checkActuatorDimension``); ros2_control (ros-controls/ros2_control
+transmission_interface/src/simple_transmission_loader.cpp ``SimpleTransmissionLoader::load``:
+``joints.at(0)``; transmission_interface/include/transmission_interface/simple_transmission.hpp
+``configure``: ``are_names_identical``; hardware_interface/src/component_parser.cpp
 ``auto_fill_transmission_interfaces``).
 
 Failing example::
 
-    <transmission name="t">
-      <type>transmission_interface/SimpleTransmission</type>
-      <joint name="a">...</joint>
-      <joint name="b">...</joint>
-      <actuator name="m">...</actuator>
-    </transmission>
+    <robot name="r">
+      <transmission name="t">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="a">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <joint name="b">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
+      </transmission>
+    </robot>
+
+Expected finding: ``2:3 error TX103 transmission 't' (SimpleTransmission) has 2 joints and 1
+actuator: ros_control needs exactly 1 joint and 1 actuator and refuses it``
 
 Passing example::
 
-    <transmission name="t">
-      <type>transmission_interface/SimpleTransmission</type>
-      <joint name="a">...</joint>
-      <actuator name="m">...</actuator>
-    </transmission>
+    <robot name="r">
+      <transmission name="t">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="a">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
+      </transmission>
+    </robot>
+
+Fix: one transmission per joint for simple ones; a coupled pair of joints is one
+DifferentialTransmission (or FourBarLinkageTransmission) with two actuators.
 """
 
 from __future__ import annotations
@@ -44,7 +63,7 @@ from txtool.dialects.read import Found, enclosing_component
 from txtool.lint.context import LintContext
 from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
-from txtool.lint.support import label, opaque, per_transmission
+from txtool.lint.rule_helpers import label, opaque, per_transmission
 
 CODE = "TX103"
 NAME = "wrong-member-count"

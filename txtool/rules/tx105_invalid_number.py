@@ -1,48 +1,62 @@
 """A reduction or offset the loader refuses, or reads as a value that is not a finite number.
 
-ros_control (ROS 1) converts with ``std::stod(element->GetText())`` and catches
-``std::logic_error`` (ros-controls/ros_control transmission_interface/src/transmission_loader.cpp
-:60-61, :95-96, :130-131 @63b6afd): text without a leading number (``fifty``, an empty
-element, one that starts with a comment), and a number outside the range of a double
-(``1.8e308``, ``1e-400``: ``std::out_of_range``), make it refuse the transmission; ``inf``
-and ``nan`` are accepted and poison every value the transmission maps. A valid number followed
-by other text loads as that number: TX111's business.
+What it does: reports a reduction or offset the loader reads whose text is no number for it
+(``fifty``, an empty element, one that starts with a comment), is out of the range of a
+double (``1.8e308``, ``1e-400``), or is ``inf`` or ``nan``. Only values the loader reads are
+checked (ROS 1: actuator reductions, joint offsets, and joint reductions of coupled types;
+ROS 2: joint reductions and offsets, and actuator reductions of coupled types). Values
+containing ``${...}`` in a literal xacro file are unknown and not checked. A valid number
+followed by other text loads as that number: TX111's business. Text that Python reads as a
+number but C++ does not counts as C++ has it: Arabic-Indic digits and a no-break space before
+the number are no number for either loader, and ``1_000`` is none for ros2_control.
 
-ros2_control parses the whole stripped text in the classic locale and, on any failure (junk,
+Why it matters: ros_control refuses the transmission (an error); ``inf`` and ``nan`` are
+accepted and poison every value the transmission maps. ros2_control, on any failure (junk,
 ``inf``, ``nan``, out of range), **silently** uses the default: 1.0 for
-``<mechanical_reduction>``, 0.0 for ``<offset>`` (ros-controls/ros2_control
-hardware_interface/src/component_parser.cpp:161-188, ``get_parameter_value_or`` @53b9999).
-Humble builds it with ``istringstream`` and Jazzy and later with ``from_chars``
-(lexical_casts.cpp:65 ``impl::stod``), which read a few texts differently: ``+-1`` is -1 from
-Jazzy on and the default on Humble, ``1e-400`` is 0 on Humble and the default from Jazzy on.
-Where nothing says which distribution reads the file, such a value is a **warning** that gives
-each distribution's reading; with ``--ros-distro`` (or ``ros-distro`` in the configuration)
-only that distribution's reading counts: an error where it falls back to the default, nothing
-where it reads a number. An empty element (no text, or only blanks and comments) has no
-text for ``GetText()``, so ``get_parameter_value_or`` passes over it and returns the default,
-as if the element were absent: nothing written is lost, a **warning**.
+``<mechanical_reduction>``, 0.0 for ``<offset>``. Humble reads with ``istringstream`` and Jazzy
+and later with ``from_chars``, which read a few texts differently (``+-1`` is -1 from Jazzy on
+and the default on Humble; ``1e-400`` is 0 on Humble and the default from Jazzy on): where
+nothing says which distribution reads the file, such a value is a **warning** that gives each
+distribution's reading; with ``--ros-distro`` (or ``ros-distro`` in the configuration) only that
+distribution's reading counts. An empty element has no text for ``GetText()``, so
+ros2_control passes over it and uses the default, as if the element were absent: a
+**warning**. Both read the first text node only, so ``5<!-- x -->0`` reads as 5 (TX111).
 
-Both read the text TinyXML's ``GetText()`` returns: the first text node only, so
-``5<!-- x -->0`` reads as 5 (TX111). Text that Python reads as a number but C++ does not
-counts as C++ has it: Arabic-Indic digits and a no-break space before the number are no
-number for either loader, and ``1_000`` is none for ros2_control (``std::stod`` reads 1).
-
-Only values the loader reads are checked (ROS 1: actuator reductions, joint offsets, and joint
-reductions of coupled types; ROS 2: joint reductions and offsets, and actuator reductions of
-coupled types). Values containing ``${...}`` in a literal xacro file are unknown and not
-checked.
+Loader: ros_control converts with ``std::stod(element->GetText())`` and catches
+``std::logic_error`` (ros-controls/ros_control transmission_interface/src/transmission_loader.cpp
+:60-61, :95-96, :130-131 @63b6afd); ros2_control parses the whole stripped text in the classic
+locale (ros-controls/ros2_control hardware_interface/src/component_parser.cpp:161-188,
+``get_parameter_value_or`` @53b9999; hardware_interface/src/lexical_casts.cpp:65
+``impl::stod``).
 
 Failing example::
 
-    <joint name="j" role="joint1">
-      <mechanical_reduction>fifty</mechanical_reduction>
-    </joint>
+    <robot name="r">
+      <transmission name="t">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="j">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>fifty</mechanicalReduction></actuator>
+      </transmission>
+    </robot>
+
+Expected finding: ``7:24 error TX105 reduction of actuator 'm' of transmission 't' is 'fifty',
+not a number: ros_control refuses the transmission``
 
 Passing example::
 
-    <joint name="j" role="joint1">
-      <mechanical_reduction>50</mechanical_reduction>
-    </joint>
+    <robot name="r">
+      <transmission name="t">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="j">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
+      </transmission>
+    </robot>
+
+Fix: write the number in decimal (``50``, ``0.5``, ``-1``).
 """
 
 from __future__ import annotations
@@ -52,7 +66,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import numbers_of, per_transmission
+from txtool.lint.rule_helpers import numbers_of, per_transmission
 from txtool.model.distro import NumberReading
 from txtool.model.distro import numbers_of as numbers_of_distro
 from txtool.model.numbers import C_SPACE, format_float, parse_ros2, ros2_readings, stod

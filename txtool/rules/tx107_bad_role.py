@@ -1,31 +1,72 @@
 """Roles a loader refuses: coupled ROS 1 roles missing, empty, duplicated or misspelt; a ROS 2
 member without the ``role`` attribute.
 
-ros_control's DifferentialTransmission and FourBarLinkageTransmission loaders require a
-``<role>`` on both joints and both actuators, exactly ``joint1``/``joint2`` and
-``actuator1``/``actuator2`` (case-sensitive) and all different ("Joint 'J' of transmission 'T'
-does not specify a valid <role> element."); they sort the members by role. SimpleTransmission
-ignores roles. ros2_control's parser requires a ``role`` attribute on every ``<joint>`` and
-``<actuator>`` of a transmission and throws "no attribute 'role' in 'joint' tag" without it
-(a ``<role>`` child element instead is TX303's business); the value itself is not used.
+What it does: reports, in a ROS 1 DifferentialTransmission or FourBarLinkageTransmission, a
+joint or actuator whose ``<role>`` is missing, empty, not exactly ``joint1``/``joint2`` or
+``actuator1``/``actuator2`` (case-sensitive), or the same as another member's; and in ROS 2, a
+``<joint>`` or ``<actuator>`` of a transmission without the ``role`` attribute (a ``<role>``
+child element instead is TX303's business). SimpleTransmission ignores roles.
+
+Why it matters: ros_control's coupled loaders refuse the transmission ("Joint 'J' of
+transmission 'T' does not specify a valid <role> element."); they sort the members by role.
+ros2_control's parser throws "no attribute 'role' in 'joint' tag" and the hardware component
+fails to load; the value itself is not used.
+
+Loader: ros_control (ros-controls/ros_control transmission_interface/src/transmission_loader.cpp
+``TransmissionLoader::getJointRole``, ``getActuatorRole``, called by
+differential_transmission_loader.cpp and four_bar_linkage_transmission_loader.cpp);
+ros2_control (ros-controls/ros2_control hardware_interface/src/component_parser.cpp
+``parse_transmission_from_xml``).
 
 Failing example::
 
-    <transmission name="wrist">
-      <type>transmission_interface/DifferentialTransmission</type>
-      <joint name="a"><role>joint1</role>...</joint>
-      <joint name="b"><role>joint1</role>...</joint>
-      ...
-    </transmission>
+    <robot name="r">
+      <transmission name="wrist">
+        <type>transmission_interface/DifferentialTransmission</type>
+        <joint name="a">
+          <role>joint1</role>
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <joint name="b">
+          <role>joint1</role>
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="ma">
+          <role>actuator1</role><mechanicalReduction>50</mechanicalReduction>
+        </actuator>
+        <actuator name="mb">
+          <role>actuator2</role><mechanicalReduction>50</mechanicalReduction>
+        </actuator>
+      </transmission>
+    </robot>
+
+Expected finding: ``9:7 error TX107 joint 'b' of transmission 'wrist' has role 'joint1' like
+joint 'a': roles must differ; ros_control refuses the transmission``
 
 Passing example::
 
-    <transmission name="wrist">
-      <type>transmission_interface/DifferentialTransmission</type>
-      <joint name="a"><role>joint1</role>...</joint>
-      <joint name="b"><role>joint2</role>...</joint>
-      ...
-    </transmission>
+    <robot name="r">
+      <transmission name="wrist">
+        <type>transmission_interface/DifferentialTransmission</type>
+        <joint name="a">
+          <role>joint1</role>
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <joint name="b">
+          <role>joint2</role>
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="ma">
+          <role>actuator1</role><mechanicalReduction>50</mechanicalReduction>
+        </actuator>
+        <actuator name="mb">
+          <role>actuator2</role><mechanicalReduction>50</mechanicalReduction>
+        </actuator>
+      </transmission>
+    </robot>
+
+Fix: give the two joints ``joint1`` and ``joint2`` and the two actuators ``actuator1`` and
+``actuator2``, in the order of the transmission's maths (see ``txtool map``).
 """
 
 from __future__ import annotations
@@ -35,7 +76,7 @@ from collections.abc import Iterator
 from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import MemberRef, children, label, members, opaque, per_transmission
+from txtool.lint.rule_helpers import MemberRef, children, label, members, opaque, per_transmission
 
 CODE = "TX107"
 NAME = "bad-role"

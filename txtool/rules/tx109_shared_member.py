@@ -1,28 +1,68 @@
 """A joint or actuator in more than one transmission of the same loader: both load, a warning.
 
-Neither loader rejects it: ros_control resolves each transmission's members on its own
-(transmission_interface/src/transmission_interface_loader.cpp:39-86 @0a09467), and
-ros2_control's parser appends transmissions and their members without comparing them
-(hardware_interface/src/component_parser.cpp:474-507, :611-614 @157446a). Its own test robot
-shares joints between a differential and a four-bar transmission (ros2_control_test_assets
-``minimal_robot_hardware_resources``, in the corpus), and ros2_control never applies
-transmissions itself: the hardware plugin does. It bites when both transmissions are
-applied in the same direction: two transmissions writing one joint (actuator to joint) or
-one actuator (joint to actuator) overwrite each other, and the one applied last wins.
-Reading one shared actuator into several joints (a motor that drives coupled fingers) is a
-legitimate design. Compared as for TX108 (per loader, per ``<ros2_control>`` component,
-xacro-aware); custom types are skipped, since some (``franka_hw/...``) list joints on
-purpose that standard transmissions also drive.
+What it does: reports a joint or actuator that a transmission names when another transmission
+of the same loader already does. Compared as for TX108 (per loader, per ``<ros2_control>``
+component, xacro-aware); custom types are skipped, since some (``franka_hw/...``) list joints
+on purpose that standard transmissions also drive.
+
+Why it matters: neither loader rejects it, and ros2_control never applies transmissions
+itself: the hardware plugin does (its own test robot shares joints between a differential
+and a four-bar transmission, ros2_control_test_assets ``minimal_robot_hardware_resources``, in
+the corpus). It bites when both transmissions are applied in the same direction: two
+transmissions writing one joint (actuator to joint) or one actuator (joint to actuator)
+overwrite each other, and the one applied last wins. Reading one shared actuator into several
+joints (a motor that drives coupled fingers) is a legitimate design: a warning.
+
+Loader: ros_control resolves each transmission's members on its own
+(ros-controls/ros_control transmission_interface/src/transmission_interface_loader.cpp:39-86
+@0a09467); ros2_control appends transmissions and their members without comparing them
+(ros-controls/ros2_control hardware_interface/src/component_parser.cpp:474-507, :611-614
+@157446a).
 
 Failing example::
 
-    <transmission name="a">...<joint name="elbow">...</joint>...</transmission>
-    <transmission name="b">...<joint name="elbow">...</joint>...</transmission>
+    <robot name="r">
+      <transmission name="a">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="elbow">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="ma"><mechanicalReduction>50</mechanicalReduction></actuator>
+      </transmission>
+      <transmission name="b">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="elbow">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="mb"><mechanicalReduction>50</mechanicalReduction></actuator>
+      </transmission>
+    </robot>
+
+Expected finding: ``11:5 warning TX109 joint 'elbow' of transmission 'b' is also in transmission
+'a' (line 2): both load, but where both are applied the one applied last overwrites the joint's
+state``
 
 Passing example::
 
-    <transmission name="a">...<joint name="elbow">...</joint>...</transmission>
-    <transmission name="b">...<joint name="wrist">...</joint>...</transmission>
+    <robot name="r">
+      <transmission name="a">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="elbow">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="ma"><mechanicalReduction>50</mechanicalReduction></actuator>
+      </transmission>
+      <transmission name="b">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="wrist">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="mb"><mechanicalReduction>50</mechanicalReduction></actuator>
+      </transmission>
+    </robot>
+
+Fix: give each joint and each actuator to one transmission; a coupled pair is one
+differential (or four-bar) transmission, not two simple ones.
 """
 
 from __future__ import annotations
@@ -32,7 +72,7 @@ from collections.abc import Iterable, Iterator
 from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import label, member_names, scope
+from txtool.lint.rule_helpers import label, member_names, scope
 
 CODE = "TX109"
 NAME = "shared-member"

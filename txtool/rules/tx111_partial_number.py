@@ -1,30 +1,49 @@
 """A number the loader reads only part of: text after it, hexadecimal, or split by a comment.
 
-ros_control converts reductions and offsets with ``std::stod`` (ros-controls/ros_control
-transmission_interface/src/transmission_loader.cpp:60, :95, :130 @63b6afd), which takes the
-longest valid prefix and ignores the rest: ``50abc`` and ``5_0`` load as 50 and 5, ``0x10``
-as 16. The transmission loads, so this is a warning, but the value is not what the file seems
-to say, and ros2_control reads the same text as no number at all: after a port it silently
-uses the default, 1.0 for a reduction and 0.0 for an offset (ros-controls/ros2_control
-hardware_interface/src/component_parser.cpp:152-155 @157446a). Trailing C whitespace is
-harmless and not reported.
+What it does: reports a reduction or offset the loader reads as a number followed by other
+text (``50abc``, ``5_0``), in hexadecimal (``0x10``), or split by a comment or CDATA section
+(``5<!-- gear -->0``). Trailing C whitespace is harmless and not reported.
 
-Both loaders read the text TinyXML's ``GetText()`` returns, the element's first text node
-(component_parser.cpp:145; transmission_loader.cpp:60), so a number split by a comment or a
-CDATA section (``5<!-- gear -->0``) is read up to the split only: reported for both
-dialects.
+Why it matters: the transmission loads (a warning), but the value is not what the file seems
+to say: ``std::stod`` takes the longest valid prefix and ignores the rest, so ``50abc`` and
+``5_0`` load as 50 and 5, ``0x10`` as 16. ros2_control reads the same text as no number at
+all: after a port it silently uses the default, 1.0 for a reduction and 0.0 for an offset.
+Both loaders read the text TinyXML's ``GetText()`` returns, the element's first text node, so
+a number split by a comment is read up to the split only: reported for both dialects.
+
+Loader: ros_control (ros-controls/ros_control transmission_interface/src/transmission_loader.cpp
+:60, :95, :130 @63b6afd, ``std::stod``); ros2_control (ros-controls/ros2_control
+hardware_interface/src/component_parser.cpp:145, :152-155 @157446a).
 
 Failing example::
 
-    <actuator name="m">
-      <mechanicalReduction>50abc</mechanicalReduction>
-    </actuator>
+    <robot name="r">
+      <transmission name="t">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="j">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>50abc</mechanicalReduction></actuator>
+      </transmission>
+    </robot>
+
+Expected finding: ``7:24 warning TX111 reduction of actuator 'm' of transmission 't' is '50abc':
+ros_control's std::stod reads 50 and ignores 'abc' after it; ros2_control would not read it and
+silently use 1.0``
 
 Passing example::
 
-    <actuator name="m">
-      <mechanicalReduction>50</mechanicalReduction>
-    </actuator>
+    <robot name="r">
+      <transmission name="t">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="j">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
+      </transmission>
+    </robot>
+
+Fix: write the number alone, in decimal, with any comment outside the element.
 """
 
 from __future__ import annotations
@@ -34,7 +53,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import NumberRef, numbers_of, per_transmission
+from txtool.lint.rule_helpers import NumberRef, numbers_of, per_transmission
 from txtool.model.numbers import C_SPACE, format_float, parse_ros1, parse_ros2, stod
 
 CODE = "TX111"

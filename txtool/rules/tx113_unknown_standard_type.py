@@ -1,42 +1,61 @@
 """A type under ``transmission_interface/`` that is not one of the three standard ones.
 
-ros_control registers exactly ``transmission_interface/SimpleTransmission``,
-``transmission_interface/DifferentialTransmission`` and
-``transmission_interface/FourBarLinkageTransmission`` with pluginlib (ros-controls/ros_control
-transmission_interface/ros_control_plugins.xml:4-28 @23284e8), and so does ros2_control. Both
-look the type up by name among every class registered for their loader base class
-(ros_control transmission_interface/src/transmission_interface_loader.cpp
-``TransmissionInterfaceLoader::load``, ``createUniqueInstance(transmission_info.type_)``
-@0a09467), so a vendor may register another name under the same prefix (PAL's
-``transmission_interface/HalfDifferentialTransmission``).
-
-Readers: ros_control fails on a name nobody registered with "Failed to load transmission 'T'.
-Unsupported type" (transmission_interface_loader.cpp:139-147; loader test
-``UnsupportedTransmissionType``, transmission_interface/test/transmission_interface_loader_test.cpp
-:125-135 @3e1dd9d) and stops loading the transmissions after it
-(transmission_interface_loader.cpp:126-129). ros2_control's parser copies any text
-(ros-controls/ros2_control hardware_interface/src/component_parser.cpp:480-481 @157446a), but
-the hardware plugin's pluginlib lookup of the loader fails, so the transmission never exists.
-
-Severity: a near-miss of a standard name (``SimpleTansmission``) is a typo: an **error**, with
-a suggestion. A name that a package of the workspace, of ``AMENT_PREFIX_PATH`` or of
+What it does: reports a ``<type>`` or ``<plugin>`` under ``transmission_interface/`` other
+than ``SimpleTransmission``, ``DifferentialTransmission`` and ``FourBarLinkageTransmission``.
+A near-miss of a standard name (``SimpleTansmission``) is a typo: an **error**, with a
+suggestion. A name that a package of the workspace, of ``AMENT_PREFIX_PATH`` or of
 ``ROS_PACKAGE_PATH`` registers with pluginlib (its ``package.xml`` exports
 ``<transmission_interface plugin="..."/>`` and that file lists a ``<class>`` of that name whose
 ``base_class_type`` is a ``transmission_interface::`` class) loads: not reported. Any other
 name is a **warning**: it loads only where a package registering it is installed, which txtool
-cannot see. Types in other namespaces are TX102's business.
+cannot see (a vendor may register another name under the same prefix, PAL's
+``transmission_interface/HalfDifferentialTransmission``). Types in other namespaces are
+TX102's business.
+
+Why it matters: ros_control fails on a name nobody registered with "Failed to load
+transmission 'T'. Unsupported type" and stops loading the transmissions after it.
+ros2_control's parser copies any text, but the hardware plugin's pluginlib lookup of the loader
+fails, so the transmission never exists.
+
+Loader: ros_control registers exactly the three (ros-controls/ros_control
+transmission_interface/ros_control_plugins.xml:4-28 @23284e8) and looks the type up by name
+(transmission_interface/src/transmission_interface_loader.cpp ``TransmissionInterfaceLoader::load``,
+:126-129, :139-147 @0a09467; loader test ``UnsupportedTransmissionType``,
+transmission_interface/test/transmission_interface_loader_test.cpp:125-135 @3e1dd9d);
+ros2_control (ros-controls/ros2_control hardware_interface/src/component_parser.cpp:480-481
+@157446a).
 
 Failing example::
 
-    <transmission name="t">
-      <plugin>transmission_interface/SimpleTansmission</plugin>
-    </transmission>
+    <robot name="r">
+      <transmission name="t">
+        <type>transmission_interface/SimpleTansmission</type>
+        <joint name="j">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
+      </transmission>
+    </robot>
+
+Expected finding: ``3:5 error TX113 transmission 't' has type
+'transmission_interface/SimpleTansmission', not one of the three transmission_interface types:
+ros_control refuses it ("Unsupported type"); did you mean
+'transmission_interface/SimpleTransmission'?``
 
 Passing example::
 
-    <transmission name="t">
-      <plugin>transmission_interface/SimpleTransmission</plugin>
-    </transmission>
+    <robot name="r">
+      <transmission name="t">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="j">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
+      </transmission>
+    </robot>
+
+Fix: write one of the three standard names, or install (and declare a dependency on) the
+package that registers the type.
 """
 
 from __future__ import annotations
@@ -45,7 +64,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import per_transmission
+from txtool.lint.rule_helpers import per_transmission
 from txtool.model.core import TYPE_PREFIX
 from txtool.rules.tx102_unknown_type import STANDARD_NAMES, nearest_standard
 

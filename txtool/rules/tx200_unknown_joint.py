@@ -1,41 +1,56 @@
 """A transmission names a joint that does not exist.
 
-What it checks
-    Every ``<joint name="...">`` of a transmission must be
+What it does: reports a ``<joint name="...">`` of a transmission that is not a ``<joint>`` of
+the robot (when the document is a robot with joints; a bare ``<transmission>`` fragment or a
+macro library is not cross-checked), or, in ROS 2, not a ``<joint>`` of the enclosing
+``<ros2_control>`` component. Names still holding xacro expressions (``${prefix}joint1``) are
+matched as patterns, never reported.
 
-    * a ``<joint>`` of the robot, when the document is a robot with joints (a bare
-      ``<transmission>`` fragment or a macro library is not cross-checked), and
-    * in ROS 2, a ``<joint>`` of the enclosing ``<ros2_control>`` component.
+Why it matters: ros2_control copies each transmission joint's interfaces from the component; a
+joint the component does not declare makes the parser throw ``Error while parsing 'HW'.
+Transmission 'T' declared joint 'J' is not available in component 'HW'.`` and nothing of the
+robot loads. The parser strips both names of spaces first (``name=" j1 "`` is ``j1``). In ROS 1
+a transmission joint that is not in the robot has no joint to drive (gazebo_ros_control refuses
+it as "not in the gazebo model").
 
-Why
-    ros2_control copies each transmission joint's interfaces from the component; a joint the
-    component does not declare makes the parser throw ``Error while parsing 'HW'. Transmission
-    'T' declared joint 'J' is not available in component 'HW'.`` and nothing of the robot
-    loads. The parser strips both names of spaces first (``name=" j1 "`` is ``j1``:
-    hardware_interface/src/component_parser.cpp ``get_attribute_value``:133 @53b9999). In
-    ROS 1 a transmission joint that is not in the robot has no joint to drive
-    (gazebo_ros_control refuses it as "not in the gazebo model"). Names still holding xacro
-    expressions (``${prefix}joint1``) are matched as patterns, never reported.
+Loader: ros2_control (ros-controls/ros2_control hardware_interface/src/component_parser.cpp
+``get_attribute_value``:133 and ``auto_fill_transmission_interfaces`` @53b9999);
+gazebo_ros_pkgs gazebo_ros_control/src/default_robot_hw_sim.cpp ``initSim`` @01c3a2c.
 
 Failing example::
 
-    <ros2_control name="RRBot" type="system">
-      <joint name="joint1"><command_interface name="position"/></joint>
-      <transmission name="transmission1">
-        <plugin>transmission_interface/SimpleTransmission</plugin>
-        <joint name="joint31415" role="joint1"/>
-      </transmission>
-    </ros2_control>
+    <robot name="r">
+      <ros2_control name="RRBot" type="system">
+        <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+        <joint name="joint1"><command_interface name="position"/></joint>
+        <transmission name="transmission1">
+          <plugin>transmission_interface/SimpleTransmission</plugin>
+          <joint name="joint31415" role="joint1"/>
+          <actuator name="motor1" role="actuator1"/>
+        </transmission>
+      </ros2_control>
+    </robot>
+
+Expected finding: ``7:7 error TX200 joint 'joint31415' of transmission 'transmission1' is not a
+<joint> of <ros2_control> 'RRBot': ros2_control throws "declared joint 'joint31415' is not
+available in component"``
 
 Passing example::
 
-    <ros2_control name="RRBot" type="system">
-      <joint name="joint1"><command_interface name="position"/></joint>
-      <transmission name="transmission1">
-        <plugin>transmission_interface/SimpleTransmission</plugin>
-        <joint name="joint1" role="joint1"/>
-      </transmission>
-    </ros2_control>
+    <robot name="r">
+      <ros2_control name="RRBot" type="system">
+        <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+        <joint name="joint1"><command_interface name="position"/></joint>
+        <transmission name="transmission1">
+          <plugin>transmission_interface/SimpleTransmission</plugin>
+          <joint name="joint1" role="joint1"/>
+          <actuator name="motor1" role="actuator1"/>
+        </transmission>
+      </ros2_control>
+    </robot>
+
+Fix: name the URDF joint the transmission drives (and, in ROS 2, declare it in the
+``<ros2_control>`` component with its interfaces).
 """
 
 from __future__ import annotations
@@ -48,7 +63,7 @@ from lxml import etree
 from txtool.lint.context import LintContext
 from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
-from txtool.lint.support import children, member_names, opaque
+from txtool.lint.rule_helpers import children, member_names, opaque
 from txtool.model.numbers import C_SPACE
 
 CODE = "TX200"

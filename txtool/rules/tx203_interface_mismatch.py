@@ -1,47 +1,74 @@
 """The joints of a transmission cannot share its interfaces.
 
-What it checks
-    * ROS 1: all joints of one transmission must list the same set of
-      ``<hardwareInterface>`` names (any order). Joints without any are left to other rules.
-    * ROS 2: each transmission joint that the enclosing ``<ros2_control>`` component declares
-      must have at least one ``<command_interface>`` or ``<state_interface>`` there.
+What it does: reports, in ROS 1, a transmission whose joints do not all list the same set of
+``<hardwareInterface>`` names (any order; joints without any are left to other rules); in
+ROS 2, a transmission joint that the enclosing ``<ros2_control>`` component declares without
+any ``<command_interface>`` or ``<state_interface>`` (``<joint name="joint1"/>``).
 
-Why
-    ros_control's transmission loader refuses a transmission whose joints differ: "Failed to
-    load transmission 'T'. It has joints with different hardware interfaces. This is
-    currently unsupported." ros2_control copies the interface names of the component's
-    ``<joint>`` into the transmission; a joint with none gives the transmission no handle, and
-    configuring it throws "None of the provided joint handles are valid or from the required
-    interfaces".
+Why it matters: ros_control's transmission loader refuses a transmission whose joints differ:
+"Failed to load transmission 'T'. It has joints with different hardware interfaces. This is
+currently unsupported." ros2_control copies the interface names of the component's
+``<joint>`` into the transmission; a joint with none gives the transmission no handle, and
+configuring it throws "None of the provided joint handles are valid or from the required
+interfaces".
 
-Failing example (ROS 1)::
+Loader: ros_control (ros-controls/ros_control
+transmission_interface/src/transmission_interface_loader.cpp ``TransmissionInterfaceLoader::load``
+@0a09467); ros2_control (ros-controls/ros2_control
+transmission_interface/include/transmission_interface/simple_transmission.hpp and
+differential_transmission.hpp ``configure``).
 
-    <transmission name="wrist">
-      <type>transmission_interface/DifferentialTransmission</type>
-      <joint name="flex">
-        <role>joint1</role>
-        <hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>
-      </joint>
-      <joint name="roll">
-        <role>joint2</role>
-        <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
-      </joint>
-      ...
-    </transmission>
+Failing example::
 
-Passing example: both joints list ``hardware_interface/PositionJointInterface``.
-
-Failing example (ROS 2)::
-
-    <ros2_control name="HW" type="system">
-      <joint name="joint1"/>
-      <transmission name="t">
-        <plugin>transmission_interface/SimpleTransmission</plugin>
-        <joint name="joint1" role="joint1"/>
+    <robot name="r">
+      <transmission name="wrist">
+        <type>transmission_interface/DifferentialTransmission</type>
+        <joint name="flex">
+          <role>joint1</role>
+          <hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>
+        </joint>
+        <joint name="roll">
+          <role>joint2</role>
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m1">
+          <role>actuator1</role><mechanicalReduction>50</mechanicalReduction>
+        </actuator>
+        <actuator name="m2">
+          <role>actuator2</role><mechanicalReduction>50</mechanicalReduction>
+        </actuator>
       </transmission>
-    </ros2_control>
+    </robot>
 
-Passing example: ``<joint name="joint1"><command_interface name="position"/></joint>``.
+Expected finding: ``8:5 error TX203 joint 'roll' of transmission 'wrist' lists hardware
+interfaces [hardware_interface/EffortJointInterface] but joint 'flex' lists
+[hardware_interface/PositionJointInterface]: ros_control refuses joints with different hardware
+interfaces``
+
+Passing example::
+
+    <robot name="r">
+      <transmission name="wrist">
+        <type>transmission_interface/DifferentialTransmission</type>
+        <joint name="flex">
+          <role>joint1</role>
+          <hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>
+        </joint>
+        <joint name="roll">
+          <role>joint2</role>
+          <hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m1">
+          <role>actuator1</role><mechanicalReduction>50</mechanicalReduction>
+        </actuator>
+        <actuator name="m2">
+          <role>actuator2</role><mechanicalReduction>50</mechanicalReduction>
+        </actuator>
+      </transmission>
+    </robot>
+
+Fix: list the same interfaces in every joint of the transmission (ROS 1), or declare the
+joint's interfaces in the ``<ros2_control>`` component (ROS 2).
 """
 
 from __future__ import annotations
@@ -53,7 +80,7 @@ from lxml import etree
 from txtool.dialects.read import Found, enclosing_component
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import children, label, members, opaque, per_transmission
+from txtool.lint.rule_helpers import children, label, members, opaque, per_transmission
 
 CODE = "TX203"
 NAME = "interface-mismatch"

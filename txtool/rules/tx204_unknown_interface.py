@@ -1,64 +1,67 @@
 """An interface name the transmission loader does not know, beside ones it does: a warning.
 
-What it checks
-    * ROS 1: every ``<hardwareInterface>`` of a ``<joint>`` of a standard transmission must be
-      one of the names ros_control registers with pluginlib:
-      ``hardware_interface/JointStateInterface``,
-      ``hardware_interface/{Position,Velocity,Effort}JointInterface`` and
-      ``hardware_interface/BiDirectional{Position,Velocity,Effort}JointInterface``
-      (ros-controls/ros_control transmission_interface/ros_control_plugins.xml:30-92
-      @23284e8). A registered name written without the prefix is TX300's business; anything
-      else is reported here with the nearest registered name. ``<hardwareInterface>`` in an
-      ``<actuator>`` is optional for the parser and never looked up by the loader, which
-      takes the first joint's list (transmission_interface/src/transmission_parser.cpp
-      :221-241 @14e64ea; transmission_interface_loader.cpp:152 @0a09467), so it is not
-      checked.
-    * ROS 2: the interfaces the enclosing ``<ros2_control>`` component declares for a
-      transmission joint. Transmissions map ``position``, ``velocity`` and ``effort``
-      (Simple and Differential also ``torque``, ``force`` and ``absolute_position`` on
-      ros2_control master). A declared name that is close to one of those (``Position``,
-      ``efort``, ``hardware_interface/EffortJointInterface``) is reported with the
-      suggestion. Other extra interfaces (``acceleration``, ``max_velocity``) are fine: the
-      transmission just skips them.
+What it does: reports, in ROS 1, a ``<hardwareInterface>`` of a ``<joint>`` of a standard
+transmission that is not one of the names ros_control registers with pluginlib:
+``hardware_interface/JointStateInterface``,
+``hardware_interface/{Position,Velocity,Effort}JointInterface`` and
+``hardware_interface/BiDirectional{Position,Velocity,Effort}JointInterface``, with the nearest
+registered name. A registered name written without the prefix is TX300's business.
+``<hardwareInterface>`` in an ``<actuator>`` is optional for the parser and never looked up by
+the loader, which takes the first joint's list, so it is not checked. In ROS 2, it reports an
+interface the enclosing ``<ros2_control>`` component declares for a transmission joint that is
+close to one transmissions map (``position``, ``velocity``, ``effort``; Simple and Differential
+also ``torque``, ``force`` and ``absolute_position`` on ros2_control master): ``Position``,
+``efort``, ``hardware_interface/EffortJointInterface``. Other extra interfaces
+(``acceleration``, ``max_velocity``) are fine: the transmission just skips them. Custom
+transmission types and names holding xacro expressions are not checked. When no usable
+interface is left, the loader refuses the transmission: TX205 reports that as an error.
 
-    Custom transmission types and names holding xacro expressions are not checked. When no
-    usable interface is left, the loader refuses the transmission: TX205 reports that as an
-    error.
+Why it matters: ros_control follows a best-effort policy: it looks each interface of the first
+joint up as a pluginlib class, warns "Failed to process the 'X' hardware interface for
+transmission 'T'" for an unknown name and goes on with the others. The transmission loads, but
+without that interface. ros2_control's transmissions silently skip every handle whose
+interface name they do not map, so a misspelt name means that interface is never transmitted.
 
-Why
-    ros_control follows a best-effort policy: it looks each interface of the first joint up
-    as a pluginlib class, warns "Failed to process the 'X' hardware interface for
-    transmission 'T'" for an unknown name and goes on with the others
-    (ros-controls/ros_control transmission_interface/src/transmission_interface_loader.cpp
-    :169-183 @0a09467; the loader test ``UnsupportedHwInterfaceType`` loads a transmission
-    with one unsupported interface beside a valid one, transmission_interface/test/
-    transmission_interface_loader_test.cpp:153-160 @3e1dd9d). The transmission loads, but
-    without that interface. ros2_control's transmissions silently skip every handle whose
-    interface name they do not map, so a misspelt name means that interface is never
-    transmitted.
+Loader: ros_control registers the names (ros-controls/ros_control
+transmission_interface/ros_control_plugins.xml:30-92 @23284e8) and looks them up
+(transmission_interface/src/transmission_interface_loader.cpp:152, :169-183 @0a09467;
+transmission_interface/src/transmission_parser.cpp:221-241 @14e64ea; the loader test
+``UnsupportedHwInterfaceType``, transmission_interface/test/transmission_interface_loader_test.cpp
+:153-160 @3e1dd9d).
 
-Failing example (ROS 1)::
+Failing example::
 
-    <joint name="j1">
-      <hardwareInterface>hardware_interface/PositionJointInterfaces</hardwareInterface>
-    </joint>
-
-Passing example: ``hardware_interface/PositionJointInterface``.
-
-Failing example (ROS 2; with no valid interface left it is TX205's error instead)::
-
-    <ros2_control name="HW" type="system">
-      <joint name="j1">
-        <command_interface name="position"/>
-        <command_interface name="Velocity"/>
-      </joint>
+    <robot name="r">
       <transmission name="t">
-        <plugin>transmission_interface/SimpleTransmission</plugin>
-        <joint name="j1" role="joint1"/>
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="j1">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+          <hardwareInterface>hardware_interface/PositionJointInterfaces</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
       </transmission>
-    </ros2_control>
+    </robot>
 
-Passing example: ``<command_interface name="velocity"/>``.
+Expected finding: ``6:7 warning TX204 hardware interface
+'hardware_interface/PositionJointInterfaces' of joint 'j1' in transmission 't' is not a
+ros_control interface: ros_control warns and loads the transmission without it; did you mean
+'hardware_interface/PositionJointInterface'?``
+
+Passing example::
+
+    <robot name="r">
+      <transmission name="t">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="j1">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+          <hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
+      </transmission>
+    </robot>
+
+Fix: write the registered name the message suggests (ROS 1), or the lower-case interface name
+ros2_control maps (ROS 2).
 """
 
 from __future__ import annotations
@@ -70,7 +73,7 @@ from lxml import etree
 from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import (
+from txtool.lint.rule_helpers import (
     PREFIX,
     REGISTERED,
     ROS1_INTERFACES,

@@ -1,60 +1,63 @@
 """A transmission left with no interface its loader can use: the loader refuses it.
 
-What it checks
-    * ROS 1: the ``<hardwareInterface>`` names of the transmission's joints (the loader reads
-      the first joint's; the others must list the same set, TX203), when none of them is a
-      name ros_control registers (``hardware_interface/PositionJointInterface`` and the
-      others listed under TX204). The usual cause is the unprefixed ``PositionJointInterface``
-      or ``EffortJointInterface`` that gazebo_ros_control accepts with a deprecation warning.
-    * ROS 2: a transmission joint whose ``<joint>`` in the enclosing ``<ros2_control>``
-      declares interfaces, none of which the transmission maps (``position``, ``velocity``,
-      ``effort``; Simple and Differential also ``torque``, ``force``, ``absolute_position``).
+What it does: reports, in ROS 1, a transmission none of whose joints' ``<hardwareInterface>``
+names is one ros_control registers (``hardware_interface/PositionJointInterface`` and the
+others listed under TX204; the loader reads the first joint's, the others must list the same
+set, TX203). The usual cause is the unprefixed ``PositionJointInterface`` or
+``EffortJointInterface`` that gazebo_ros_control accepts with a deprecation warning. In ROS 2,
+a transmission joint whose ``<joint>`` in the enclosing ``<ros2_control>`` declares interfaces,
+none of which the transmission maps (``position``, ``velocity``, ``effort``; Simple and
+Differential also ``torque``, ``force``, ``absolute_position``): ``Position``, say. Custom
+transmission types, families with loaders of their own and names holding xacro expressions are
+not checked; nor is a ROS 1 transmission outside every ``<ros2_control>`` block of a document
+that has such blocks (the robot's loader is then ros2_control, which never reads it: TX304).
+A robot that Gazebo loads through gazebo_ros_control's DefaultRobotHWSim (a
+``libgazebo_ros_control.so`` plugin, or one built on it, without another ``<robotSimType>``)
+gets a warning instead where that loader accepts the first interface.
 
-    Custom transmission types, families with loaders of their own and names holding xacro
-    expressions are not checked; nor is a ROS 1 transmission outside every ``<ros2_control>``
-    block of a document that has such blocks: the robot's loader is then ros2_control, which
-    never reads it (TX304 says so), so nothing refuses it.
+Why it matters: ros_control warns for each name its pluginlib lookup does not find and, when no
+interface is left, logs "Failed to load transmission 'T'. It contains no valid hardware
+interfaces." and returns false; loading stops at that transmission. ros2_control's
+transmissions get no handle they can map, and ``configure`` throws "None of the provided joint
+handles are valid or from the required interfaces".
 
-    A robot that Gazebo loads through gazebo_ros_control's DefaultRobotHWSim (a
-    ``libgazebo_ros_control.so`` plugin, or one built on it, without another
-    ``<robotSimType>``) gets a warning instead where that loader accepts the first interface:
-    it takes the unprefixed names with a deprecation warning (gazebo_ros_pkgs
-    gazebo_ros_control/src/default_robot_hw_sim.cpp ``initSim`` @01c3a2c).
+Loader: ros_control (ros-controls/ros_control
+transmission_interface/src/transmission_interface_loader.cpp:126-129, :169-194 @0a09467; the
+loader test ``UnsupportedHwInterfaceType``,
+transmission_interface/test/transmission_interface_loader_test.cpp:143-151 @3e1dd9d);
+gazebo_ros_pkgs gazebo_ros_control/src/default_robot_hw_sim.cpp ``initSim`` @01c3a2c.
 
-Why
-    ros_control warns for each name its pluginlib lookup does not find and, when no interface
-    is left, logs "Failed to load transmission 'T'. It contains no valid hardware
-    interfaces." and returns false (ros-controls/ros_control transmission_interface/src/
-    transmission_interface_loader.cpp:169-194 @0a09467; the loader test
-    ``UnsupportedHwInterfaceType``, transmission_interface/test/
-    transmission_interface_loader_test.cpp:143-151 @3e1dd9d); loading stops at that
-    transmission (:126-129). ros2_control's transmissions get no handle they can map, and
-    ``configure`` throws "None of the provided joint handles are valid or from the required
-    interfaces".
+Failing example::
 
-Failing example (ROS 1)::
+    <robot name="r">
+      <transmission name="t">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="j1">
+          <hardwareInterface>PositionJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
+      </transmission>
+    </robot>
 
-    <joint name="j1">
-      <hardwareInterface>PositionJointInterface</hardwareInterface>
-    </joint>
+Expected finding: ``4:5 error TX205 transmission 't' names no hardware interface ros_control
+knows ('PositionJointInterface'): ros_control refuses it ("It contains no valid hardware
+interfaces"); write 'hardware_interface/PositionJointInterface' (gazebo_ros_control accepts the
+unprefixed name with a deprecation warning, ros_control does not)``
 
 Passing example::
 
-    <joint name="j1">
-      <hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>
-    </joint>
-
-Failing example (ROS 2)::
-
-    <ros2_control name="HW" type="system">
-      <joint name="j1"><command_interface name="Position"/></joint>
+    <robot name="r">
       <transmission name="t">
-        <plugin>transmission_interface/SimpleTransmission</plugin>
-        <joint name="j1" role="joint1"/>
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="j1">
+          <hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
       </transmission>
-    </ros2_control>
+    </robot>
 
-Passing example: ``<command_interface name="position"/>``.
+Fix: write the registered name (``hardware_interface/PositionJointInterface``; ``txtool
+migrate --write`` adds the prefix, TX300), or in ROS 2 the lower-case interface name.
 """
 
 from __future__ import annotations
@@ -65,7 +68,7 @@ from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
 from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
-from txtool.lint.support import label, opaque, per_transmission
+from txtool.lint.rule_helpers import label, opaque, per_transmission
 from txtool.model.readers import accepts
 from txtool.rules.tx204_unknown_interface import (
     PREFIX,

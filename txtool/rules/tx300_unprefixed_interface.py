@@ -1,42 +1,58 @@
 """A ROS 1 hardware interface without ``hardware_interface/``.
 
-What it checks
-    A ``<hardwareInterface>`` of a ROS 1 joint written as a registered interface
-    name without its namespace: ``PositionJointInterface`` instead of
-    ``hardware_interface/PositionJointInterface`` (likewise Velocity, Effort, JointState and
-    the BiDirectional ones).
+What it does: reports a ``<hardwareInterface>`` of a ROS 1 joint written as a registered
+interface name without its namespace: ``PositionJointInterface`` instead of
+``hardware_interface/PositionJointInterface`` (likewise Velocity, Effort, JointState and the
+BiDirectional ones). An actuator's ``<hardwareInterface>`` is never read by ros_control, so it
+is not reported. Transmission families with loaders of their own (``pr2_mechanism_model/``,
+``sr_mechanism_model/``) are neither reported nor fixed.
 
-Why
-    ros_control looks the name up as a pluginlib class, and only the prefixed names are
-    registered: it warns "Failed to process the 'PositionJointInterface' hardware interface
-    for transmission 'T'" and loads the transmission with its other interfaces
-    (ros-controls/ros_control transmission_interface/src/transmission_interface_loader.cpp
-    :169-183 @0a09467). With no valid interface left it refuses the transmission: TX205
-    reports that as an error. An actuator's ``<hardwareInterface>`` is never read by
-    ros_control, so it is not reported.
-    gazebo_ros_control accepts both spellings but warns "Deprecated syntax, please prepend
-    'hardware_interface/'" (gazebo_ros_pkgs#550), so a robot can work in simulation and fail
-    on the real hardware.
+Why it matters: ros_control looks the name up as a pluginlib class, and only the prefixed
+names are registered: it warns "Failed to process the 'PositionJointInterface' hardware
+interface for transmission 'T'" and loads the transmission with its other interfaces; with no
+valid interface left it refuses the transmission (TX205 reports that as an error).
+gazebo_ros_control accepts both spellings but warns "Deprecated syntax, please prepend
+'hardware_interface/'" (gazebo_ros_pkgs#550), so a robot can work in simulation and fail on
+the real hardware.
 
-Fix
-    Prepends ``hardware_interface/``, keeping the whitespace around the name, in the joints
-    and in the actuators too, so the two spellings stay alike (older gazebo_ros_control falls
-    back to the actuator's). Names holding xacro expressions are left as written.
-
-    Transmission families with loaders of their own (``pr2_mechanism_model/``,
-    ``sr_mechanism_model/``) are neither reported nor fixed.
+Loader: ros_control (ros-controls/ros_control
+transmission_interface/src/transmission_interface_loader.cpp:169-183 @0a09467).
 
 Failing example::
 
-    <joint name="j1">
-      <hardwareInterface>PositionJointInterface</hardwareInterface>
-    </joint>
+    <robot name="r">
+      <transmission name="t">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="j">
+          <hardwareInterface>PositionJointInterface</hardwareInterface>
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
+      </transmission>
+    </robot>
+
+Expected finding: ``5:7 warning TX300 hardware interface 'PositionJointInterface' of joint 'j'
+in transmission 't' lacks the 'hardware_interface/' prefix: ros_control does not find it
+('Failed to process the hardware interface') and drops it; write
+'hardware_interface/PositionJointInterface'``
 
 Passing example::
 
-    <joint name="j1">
-      <hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>
-    </joint>
+    <robot name="r">
+      <transmission name="t">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="j">
+          <hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
+      </transmission>
+    </robot>
+
+Fix: ``txtool migrate --write`` prepends ``hardware_interface/``, keeping the whitespace
+around the name, in the joints and in the actuators too, so the two spellings stay alike
+(older gazebo_ros_control falls back to the actuator's). Names holding xacro expressions are
+left as written.
 """
 
 from __future__ import annotations
@@ -49,7 +65,7 @@ from txtool.dialects.read import detect_dialect, ros1_type, text_of, transmissio
 from txtool.io.xmlio import local
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import OWN_LOADER_FAMILIES, children, label, per_transmission
+from txtool.lint.rule_helpers import OWN_LOADER_FAMILIES, children, label, per_transmission
 from txtool.rules.tx204_unknown_interface import PREFIX, UNPREFIXED, unprefixed_registered
 
 CODE = "TX300"

@@ -1,51 +1,59 @@
 """The hardware interface sits only on the actuator.
 
-What it checks
-    A ROS 1 transmission ``<joint>`` with no (non-empty) ``<hardwareInterface>`` while an
-    ``<actuator>`` of the same transmission has one: the placement from before ROS Indigo.
+What it does: reports a ROS 1 transmission ``<joint>`` with no (non-empty)
+``<hardwareInterface>`` while an ``<actuator>`` of the same transmission has one: the placement
+from before ROS Indigo. TX110 (missing-interface) reports the same joints as errors; this rule
+adds the cause and the fix. Families with loaders of their own (``pr2_mechanism_model/``,
+``sr_mechanism_model/``) are skipped.
 
-Why
-    Since Indigo, ros_control requires the interface on the joint (ros_control#177): the
-    parser logs "No valid hardware interface element found in joint 'J'" and skips the joint,
-    and a transmission left without joints fails to load. gazebo_ros_control still falls back
-    to the actuator's interface with a warning (gazebo_ros_pkgs#184), so such robots often
-    work in simulation only.
+Why it matters: since Indigo, ros_control requires the interface on the joint (ros_control#177):
+the parser logs "No valid hardware interface element found in joint 'J'" and skips the joint,
+and a transmission left without joints fails to load. gazebo_ros_control still falls back to
+the actuator's interface with a warning (gazebo_ros_pkgs#184), so such robots often work in
+simulation only.
 
-Fix
-    *Copies* the actuator's ``<hardwareInterface>`` elements into the joint (as its first
-    children, text kept verbatim, so ``${...}`` survives). The actuator keeps its copy:
-    ros_control accepts an actuator interface as optional, and tools that still read it
-    there (older gazebo_ros_control) keep working, so copying changes nothing for any
-    consumer except the one that was broken. When the actuators list different interfaces the
-    right choice is ambiguous and the problem is reported but not fixed. Families with
-    loaders of their own (``pr2_mechanism_model/``, ``sr_mechanism_model/``) are skipped.
-
-    TX110 (missing-interface) reports the same joints as errors; this rule adds the cause
-    and the fix.
+Loader: ros_control (ros-controls/ros_control transmission_interface/src/transmission_parser.cpp
+:155-175 @14e64ea); gazebo_ros_pkgs gazebo_ros_control/src/default_robot_hw_sim.cpp
+``initSim`` @01c3a2c.
 
 Failing example::
 
-    <transmission name="tran1">
-      <type>transmission_interface/SimpleTransmission</type>
-      <joint name="joint1"/>
-      <actuator name="motor1">
-        <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
-        <mechanicalReduction>1</mechanicalReduction>
-      </actuator>
-    </transmission>
+    <robot name="r">
+      <transmission name="tran1">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="joint1"/>
+        <actuator name="motor1">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+          <mechanicalReduction>1</mechanicalReduction>
+        </actuator>
+      </transmission>
+    </robot>
 
-Passing example (what the fix writes)::
+Expected finding: ``4:5 warning TX301 joint 'joint1' of transmission 'tran1' has no
+<hardwareInterface>, only actuator 'motor1' has: ros_control (since Indigo) skips the joint ('No
+valid hardware interface')``
 
-    <transmission name="tran1">
-      <type>transmission_interface/SimpleTransmission</type>
-      <joint name="joint1">
-        <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
-      </joint>
-      <actuator name="motor1">
-        <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
-        <mechanicalReduction>1</mechanicalReduction>
-      </actuator>
-    </transmission>
+Passing example::
+
+    <robot name="r">
+      <transmission name="tran1">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="joint1">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="motor1">
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+          <mechanicalReduction>1</mechanicalReduction>
+        </actuator>
+      </transmission>
+    </robot>
+
+Fix: ``txtool migrate --write`` *copies* the actuator's ``<hardwareInterface>`` elements into
+the joint (as its first children, text kept verbatim, so ``${...}`` survives), as in the
+passing example. The actuator keeps its copy: ros_control accepts an actuator interface as
+optional, and tools that still read it there (older gazebo_ros_control) keep working. When the
+actuators list different interfaces the right choice is ambiguous and the problem is reported
+but not fixed.
 """
 
 from __future__ import annotations
@@ -58,7 +66,7 @@ from lxml import etree
 from txtool.dialects.read import detect_dialect, ros1_type, text_of, transmission_elements
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import (
+from txtool.lint.rule_helpers import (
     OWN_LOADER_FAMILIES,
     children,
     is_xacro,

@@ -1,51 +1,57 @@
 """The transmission type given as a ``type="..."`` attribute.
 
-What it checks
-    A ROS 1 ``<transmission type="...">``. Two forms occur in published robots:
+What it does: reports a ROS 1 ``<transmission type="...">``, in either form published robots
+use: legacy (pre-Hydro, pr2_mechanism_model era), where the attribute is the only type, often
+with ``<mechanicalReduction>`` directly under ``<transmission>``; and hybrid, the attribute
+*and* a ``<type>`` element (husky, urdf_sim_tutorial).
 
-    * legacy (pre-Hydro, pr2_mechanism_model era): the attribute is the only type, often with
-      ``<mechanicalReduction>`` directly under ``<transmission>``;
-    * hybrid: the attribute *and* a ``<type>`` element (husky, urdf_sim_tutorial).
+Why it matters: ros_control reads the type only from the ``<type>`` child element. A legacy
+transmission is skipped with "No type element found in transmission 'T'", and a reduction
+standing directly under ``<transmission>`` is never read (the SimpleTransmission loader wants
+the actuator's): a warning. In the hybrid form the attribute is read by nothing: harmless but
+misleading, an ``info``.
 
-Why
-    ros_control reads the type only from the ``<type>`` child element. A legacy transmission
-    is skipped with "No type element found in transmission 'T'", and a reduction standing
-    directly under ``<transmission>`` is never read (the SimpleTransmission loader wants the
-    actuator's): a warning. In the hybrid form the attribute is read by nothing
-    (ros-controls/ros_control transmission_interface/src/transmission_parser.cpp
-    ``TransmissionParser::parse`` takes the ``<type>`` child): harmless but misleading, an
-    ``info``.
-
-Fix
-    * hybrid: removes the attribute;
-    * legacy ``SimpleTransmission`` or ``transmission_interface/SimpleTransmission``: adds
-      ``<type>transmission_interface/SimpleTransmission</type>`` as the first child and
-      removes the attribute;
-    * for both, when the type is SimpleTransmission, a ``<mechanicalReduction>`` directly under
-      ``<transmission>`` moves into the single ``<actuator>`` (unless that actuator already
-      has one), keeping its text, so xacro expressions survive.
-
-    Custom attribute types (``pr2_mechanism_model/*``) have loaders of their own and no
-    standard equivalent; they are reported, not fixed. New and moved elements take the
-    indentation of the surrounding XML.
+Loader: ros_control (ros-controls/ros_control transmission_interface/src/transmission_parser.cpp
+``TransmissionParser::parse`` takes the ``<type>`` child).
 
 Failing example::
 
-    <transmission name="wheel_trans" type="SimpleTransmission">
-      <actuator name="wheel_motor"/>
-      <joint name="wheel"/>
-      <mechanicalReduction>1</mechanicalReduction>
-    </transmission>
-
-Passing example (what the fix writes)::
-
-    <transmission name="wheel_trans">
-      <type>transmission_interface/SimpleTransmission</type>
-      <actuator name="wheel_motor">
+    <robot name="r">
+      <transmission name="wheel_trans" type="SimpleTransmission">
+        <joint name="wheel">
+          <hardwareInterface>hardware_interface/VelocityJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="wheel_motor"/>
         <mechanicalReduction>1</mechanicalReduction>
-      </actuator>
-      <joint name="wheel"/>
-    </transmission>
+      </transmission>
+    </robot>
+
+Expected finding: ``2:3 warning TX302 transmission 'wheel_trans' gives its type as the legacy
+type="SimpleTransmission" attribute: ros_control reads only a <type> element and skips it ('No
+type element found')``
+
+Passing example::
+
+    <robot name="r">
+      <transmission name="wheel_trans">
+        <type>transmission_interface/SimpleTransmission</type>
+        <joint name="wheel">
+          <hardwareInterface>hardware_interface/VelocityJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="wheel_motor">
+          <mechanicalReduction>1</mechanicalReduction>
+        </actuator>
+      </transmission>
+    </robot>
+
+Fix: ``txtool migrate --write`` writes the passing example: in the hybrid form it removes the
+attribute; for a legacy ``SimpleTransmission`` or ``transmission_interface/SimpleTransmission``
+it adds ``<type>transmission_interface/SimpleTransmission</type>`` as the first child and
+removes the attribute; and when the type is SimpleTransmission, a ``<mechanicalReduction>``
+directly under ``<transmission>`` moves into the single ``<actuator>`` (unless that actuator
+already has one), keeping its text, so xacro expressions survive. Custom attribute types
+(``pr2_mechanism_model/*``) have loaders of their own and no standard equivalent; they are
+reported, not fixed. New and moved elements take the indentation of the surrounding XML.
 """
 
 from __future__ import annotations
@@ -57,7 +63,7 @@ from lxml import etree
 from txtool.dialects.read import Found, detect_dialect, first_child_text, transmission_elements
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import children, label, per_transmission
+from txtool.lint.rule_helpers import children, label, per_transmission
 
 CODE = "TX302"
 NAME = "legacy-type-attribute"

@@ -1,45 +1,67 @@
 """A ROS 1 spelling in a ROS 2 transmission, or the reverse.
 
-What it checks
-    * In a ROS 2 transmission (inside ``<ros2_control>`` or carrying ``<plugin>``):
-      a ``<type>`` element (ros2_control reads ``<plugin>``), ``<mechanicalReduction>``
-      (it reads ``<mechanical_reduction>``), ``<hardwareInterface>`` or
-      ``<hardware_interface>`` (interfaces come from the component's ``<joint>``), and a
-      ``<role>`` element on a joint or actuator (ros2_control reads the ``role=`` attribute;
-      a transmission written that way is Proposal 1 of the ROS 2 format, which ros2_control
-      never adopted).
-    * In a ROS 1 transmission: ``<mechanical_reduction>`` and ``<hardware_interface>``
-      (ros_control reads ``<mechanicalReduction>`` and ``<hardwareInterface>``).
+What it does: reports, in a ROS 2 transmission (inside ``<ros2_control>`` or carrying
+``<plugin>``), a ``<type>`` element (ros2_control reads ``<plugin>``), ``<mechanicalReduction>``
+(it reads ``<mechanical_reduction>``), ``<hardwareInterface>`` or ``<hardware_interface>``
+(interfaces come from the component's ``<joint>``), and a ``<role>`` element on a joint or
+actuator (ros2_control reads the ``role=`` attribute; a transmission written that way is
+Proposal 1 of the ROS 2 format, which ros2_control never adopted); in a ROS 1 transmission,
+``<mechanical_reduction>`` and ``<hardware_interface>`` (ros_control reads
+``<mechanicalReduction>`` and ``<hardwareInterface>``).
 
-Why
-    Both loaders ignore elements they do not know, without a word (dynamixel_hardware#67:
-    "Everything loads smoothly, but the system is simply ignoring the mechanical reduction").
-    A reduction in the other dialect's spelling silently becomes 1.0 in ROS 2 and is
-    "missing" (the transmission fails) or 1.0 in ROS 1; a ``<role>`` element without the
-    attribute makes ros2_control throw "no attribute 'role' in 'joint' tag with name 'J'".
+Why it matters: both loaders ignore elements they do not know, without a word
+(dynamixel_hardware#67: "Everything loads smoothly, but the system is simply ignoring the
+mechanical reduction"). A reduction in the other dialect's spelling silently becomes 1.0 in
+ROS 2 and is "missing" (the transmission fails) or 1.0 in ROS 1; a ``<role>`` element without
+the attribute makes ros2_control throw "no attribute 'role' in 'joint' tag with name 'J'". An
+error where the loader reads something other than written; a **warning** where ros2_control
+ends up with the written value anyway: a ``<type>`` beside a ``<plugin>`` of the same text, a
+``<mechanicalReduction>`` equal to the ``<mechanical_reduction>`` beside it or, without one,
+equal to 1.
 
-Severity
-    An error where the loader reads something other than written: the type it loads is not the
-    one in ``<type>``, the reduction it uses is not the ``<mechanicalReduction>`` written. A
-    **warning** where ros2_control ends up with the written value anyway (component_parser.cpp
-    ``parse_transmission_from_xml`` reads ``<plugin>``, ``get_parameter_value_or`` reads
-    ``<mechanical_reduction>`` or defaults to 1.0): a ``<type>`` beside a ``<plugin>`` of the
-    same text, a ``<mechanicalReduction>`` equal to the ``<mechanical_reduction>`` beside it or,
-    without one, equal to 1.
+Loader: ros2_control (ros-controls/ros2_control hardware_interface/src/component_parser.cpp
+``parse_transmission_from_xml`` reads ``<plugin>``, ``get_parameter_value_or`` reads
+``<mechanical_reduction>`` or defaults to 1.0); ros_control (ros-controls/ros_control
+transmission_interface/src/transmission_loader.cpp ``getActuatorReduction``).
 
 Failing example::
 
-    <ros2_control name="HW" type="system">
-      <joint name="joint1"><command_interface name="position"/></joint>
-      <transmission name="t">
-        <plugin>transmission_interface/SimpleTransmission</plugin>
-        <joint name="joint1" role="joint1">
-          <mechanicalReduction>50</mechanicalReduction>
-        </joint>
-      </transmission>
-    </ros2_control>
+    <robot name="r">
+      <ros2_control name="HW" type="system">
+        <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+        <joint name="joint1"><command_interface name="position"/></joint>
+        <transmission name="t">
+          <plugin>transmission_interface/SimpleTransmission</plugin>
+          <joint name="joint1" role="joint1">
+            <mechanicalReduction>50</mechanicalReduction>
+          </joint>
+          <actuator name="m" role="actuator1"/>
+        </transmission>
+      </ros2_control>
+    </robot>
 
-Passing example: ``<mechanical_reduction>50</mechanical_reduction>``.
+Expected finding: ``8:9 error TX303 joint 'joint1' of transmission 't' uses the ROS 1
+<mechanicalReduction>: ros2_control reads only <mechanical_reduction>, so the reduction silently
+becomes 1.0``
+
+Passing example::
+
+    <robot name="r">
+      <ros2_control name="HW" type="system">
+        <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+        <joint name="joint1"><command_interface name="position"/></joint>
+        <transmission name="t">
+          <plugin>transmission_interface/SimpleTransmission</plugin>
+          <joint name="joint1" role="joint1">
+            <mechanical_reduction>50</mechanical_reduction>
+          </joint>
+          <actuator name="m" role="actuator1"/>
+        </transmission>
+      </ros2_control>
+    </robot>
+
+Fix: write the element as the dialect spells it (``txtool migrate --write`` converts a whole
+transmission: ``--to ros2-p2``).
 """
 
 from __future__ import annotations
@@ -52,7 +74,7 @@ from txtool.dialects.read import Found, text_of
 from txtool.io.xmlio import local
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import (
+from txtool.lint.rule_helpers import (
     ROS2_SPELLINGS,
     children,
     label,

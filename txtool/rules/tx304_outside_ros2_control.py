@@ -1,34 +1,58 @@
 """A transmission that ros2_control will never read.
 
-What it checks
-    A document that has ``<ros2_control>`` blocks, and also a transmission that is not inside
-    any of them: typically a top-level ROS 1 transmission left over from before a port. In a
-    xacro file read as written, transmissions inside a ``<xacro:macro>`` are not reported:
-    the macro may be instantiated inside a ``<ros2_control>`` block. This is the verdict where
-    nothing says which programs read the file (the ``<ros2_control>`` blocks alone do not rule
-    ros_control out); where the readers are known (``package.xml``, a ``<gazebo>`` plugin,
-    ``--ros-distro``, the configuration; see "Readers" in the loader documentation), a
-    transmission none of them reads is TX305's.
+What it does: reports, in a document that has ``<ros2_control>`` blocks, a transmission that is
+not inside any of them: typically a top-level ROS 1 transmission left over from before a port.
+In a xacro file read as written, transmissions inside a ``<xacro:macro>`` are not reported: the
+macro may be instantiated inside a ``<ros2_control>`` block. This is the verdict where nothing
+says which programs read the file (the ``<ros2_control>`` blocks alone do not rule ros_control
+out); where the readers are known (``package.xml``, a ``<gazebo>`` plugin, ``--ros-distro``,
+the configuration; see "Readers" in the loader documentation), a transmission none of them
+reads is TX305's.
 
-Why
-    ros2_control reads transmissions only from the ``<transmission>`` children of a
-    ``<ros2_control>`` element; a top-level one is ignored without a message. Its reduction
-    and offset therefore have no effect on the ROS 2 robot, although the file suggests they
-    do. Move it into the component that owns its joints (``txtool migrate`` converts it), or
-    delete it if the ROS 1 description is no longer used.
+Why it matters: ros2_control reads transmissions only from the ``<transmission>`` children of a
+``<ros2_control>`` element; a top-level one is ignored without a message. Its reduction and
+offset therefore have no effect on the ROS 2 robot, although the file suggests they do.
+
+Loader: ros2_control (ros-controls/ros2_control hardware_interface/src/component_parser.cpp
+``parse_resource_from_xml``).
 
 Failing example::
 
     <robot name="diffbot">
-      ...
-      <transmission name="wheel_left_trans">
+      <transmission name="wheel_trans">
         <type>transmission_interface/SimpleTransmission</type>
-        ...
+        <joint name="wheel">
+          <hardwareInterface>hardware_interface/VelocityJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="wheel_motor"><mechanicalReduction>50</mechanicalReduction></actuator>
       </transmission>
-      <ros2_control name="DiffBot" type="system">...</ros2_control>
+      <ros2_control name="DiffBot" type="system">
+        <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+        <joint name="wheel"><command_interface name="velocity"/></joint>
+      </ros2_control>
     </robot>
 
-Passing example: the transmission, in the ROS 2 form, inside ``<ros2_control>``.
+Expected finding: ``2:3 warning TX304 ROS 1 transmission 'wheel_trans' stands outside every
+<ros2_control> block of this document: ros2_control ignores it``
+
+Passing example::
+
+    <robot name="diffbot">
+      <ros2_control name="DiffBot" type="system">
+        <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+        <joint name="wheel"><command_interface name="velocity"/></joint>
+        <transmission name="wheel_trans">
+          <plugin>transmission_interface/SimpleTransmission</plugin>
+          <joint name="wheel" role="joint1">
+            <mechanical_reduction>50</mechanical_reduction>
+          </joint>
+          <actuator name="wheel_motor" role="actuator1"/>
+        </transmission>
+      </ros2_control>
+    </robot>
+
+Fix: move it into the component that owns its joints (``txtool migrate --write --to ros2-p2``
+converts it), or delete it if the ROS 1 description is no longer used.
 """
 
 from __future__ import annotations
@@ -40,7 +64,7 @@ from lxml import etree
 from txtool.io.xmlio import local
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import is_xacro, label
+from txtool.lint.rule_helpers import is_xacro, label
 
 CODE = "TX304"
 NAME = "outside-ros2-control"

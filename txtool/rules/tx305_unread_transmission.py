@@ -1,42 +1,74 @@
 """A transmission that none of the file's readers reads.
 
-What it checks
-    The file's readers are known (``package.xml``, a ``<gazebo>`` plugin, ``--ros-distro`` or
-    ``readers``/``ros-distro`` in the configuration; see "Readers" in the loader
-    documentation), and a ``<transmission>`` stands where none of them looks: a top-level one
-    when only ROS 2 programs read the file, one inside ``<ros2_control>`` when only ROS 1
-    programs do. It gets this one finding; its contents are not judged, since no loader ever
-    sees them (a missing reduction refuses nothing when nobody reads the transmission).
+What it does: reports, when the file's readers are known (``package.xml``, a ``<gazebo>``
+plugin, ``--ros-distro`` or ``readers``/``ros-distro`` in the configuration; see "Readers" in the
+loader documentation), a ``<transmission>`` standing where none of them looks: a top-level one
+when only ROS 2 programs read the file, one inside ``<ros2_control>`` when only ROS 1 programs
+do. It gets this one finding; its contents are not judged, since no loader ever sees them (a
+missing reduction refuses nothing when nobody reads the transmission).
 
-Why
-    ros_control's ``TransmissionParser::parse`` reads only the children of the root element
-    (ros-controls/ros_control transmission_interface/src/transmission_parser.cpp:
-    ``root->FirstChildElement("transmission")``), and gazebo_ros_control's RobotHWSim plugins
-    take what it parses. ros2_control's component parser reads only the ``<transmission>``
-    children of ``<ros2_control>`` (ros-controls/ros2_control
-    hardware_interface/src/component_parser.cpp ``parse_resource_from_xml``), and
-    gazebo_ros2_control, gz_ros2_control and mujoco_ros2_control all parse the robot with it.
+Why it matters: the transmission has no effect. ``info`` for a leftover: ROS 1 transmissions in
+a ROS 2 robot (beside its ``<ros2_control>`` blocks or not), or ``<ros2_control>`` blocks in a
+ROS 1 package. ``warning`` where the transmission looks meant to be read: a top-level
+transmission written in a ROS 2 form (``<plugin>``, ``role`` attributes), which ros2_control
+would read inside a ``<ros2_control>`` block. A ROS 2 Gazebo plugin in a robot without any
+``<ros2_control>`` block is TX007's error.
 
-Severity
-    ``info`` for a leftover: ROS 1 transmissions in a ROS 2 robot (beside its
-    ``<ros2_control>`` blocks or not), or ``<ros2_control>`` blocks in a ROS 1 package.
-    ``warning`` where the transmission looks meant to be read: a top-level transmission
-    written in a ROS 2 form (``<plugin>``, ``role`` attributes), which ros2_control would read
-    inside a ``<ros2_control>`` block. A ROS 2 Gazebo plugin in a robot without any
-    ``<ros2_control>`` block is TX007's error.
+Loader: ros_control's ``TransmissionParser::parse`` reads only the children of the root element
+(ros-controls/ros_control transmission_interface/src/transmission_parser.cpp
+``root->FirstChildElement("transmission")``), and gazebo_ros_control's RobotHWSim plugins take
+what it parses. ros2_control's component parser reads only the ``<transmission>`` children of
+``<ros2_control>`` (ros-controls/ros2_control hardware_interface/src/component_parser.cpp
+``parse_resource_from_xml``), and gazebo_ros2_control, gz_ros2_control and mujoco_ros2_control
+all parse the robot with it.
 
-Failing example (in an ament_cmake package)::
+Failing example::
 
-    <robot name="arm">
-      <transmission name="t">
+    <robot name="diffbot">
+      <transmission name="wheel_trans">
         <type>transmission_interface/SimpleTransmission</type>
-        ...
+        <joint name="wheel">
+          <hardwareInterface>hardware_interface/VelocityJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="wheel_motor"><mechanicalReduction>50</mechanicalReduction></actuator>
       </transmission>
-      <ros2_control name="arm" type="system">...</ros2_control>
+      <ros2_control name="DiffBot" type="system">
+        <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+        <joint name="wheel"><command_interface name="velocity"/></joint>
+      </ros2_control>
+      <gazebo>
+        <plugin filename="gz_ros2_control-system"
+                name="gz_ros2_control::GazeboSimROS2ControlPlugin"/>
+      </gazebo>
     </robot>
 
-Passing example: the transmission inside ``<ros2_control>`` (``txtool migrate --to ros2-p2``),
-or deleted.
+Expected finding: ``2:3 info TX305 ROS 1 transmission 'wheel_trans' stands outside every
+<ros2_control> block, where none of this file's readers looks (only ROS 2 programs read this
+file: gz_ros2_control, ros2_control (<gazebo> plugin gz_ros2_control-system)): nothing reads it,
+so its contents are not judged``
+
+Passing example::
+
+    <robot name="diffbot">
+      <ros2_control name="DiffBot" type="system">
+        <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+        <joint name="wheel"><command_interface name="velocity"/></joint>
+        <transmission name="wheel_trans">
+          <plugin>transmission_interface/SimpleTransmission</plugin>
+          <joint name="wheel" role="joint1">
+            <mechanical_reduction>50</mechanical_reduction>
+          </joint>
+          <actuator name="wheel_motor" role="actuator1"/>
+        </transmission>
+      </ros2_control>
+      <gazebo>
+        <plugin filename="gz_ros2_control-system"
+                name="gz_ros2_control::GazeboSimROS2ControlPlugin"/>
+      </gazebo>
+    </robot>
+
+Fix: move the transmission inside ``<ros2_control>`` (``txtool migrate --write --to
+ros2-p2``), or delete it.
 """
 
 from __future__ import annotations

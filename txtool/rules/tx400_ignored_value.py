@@ -1,35 +1,62 @@
 """A value the ROS loader never reads.
 
-What it checks
-    Values written in a standard transmission that its loader does not use:
+What it does: reports values written in a standard transmission that its loader does not use:
+in a ROS 2 SimpleTransmission, the actuator's ``<mechanical_reduction>`` and ``<offset>``
+(ros2_control takes both from the joint; ROS 1 took the reduction from the actuator); in a
+ROS 2 Differential / FourBarLinkage, actuator ``<offset>`` elements, and joints or actuators
+past the second; in a ROS 1 SimpleTransmission, the joint's ``<mechanicalReduction>``
+(ros_control reads the actuator's); in ROS 1, any standard type, an actuator ``<offset>`` (only
+joint offsets exist), and a ``<mechanicalReduction>`` directly under ``<transmission>`` (with a
+``type=`` attribute this is TX302's case).
 
-    * ROS 2 SimpleTransmission: the actuator's ``<mechanical_reduction>`` and ``<offset>``
-      (ros2_control takes both from the joint; ROS 1 took the reduction from the actuator);
-    * ROS 2 Differential / FourBarLinkage: actuator ``<offset>`` elements, and joints or
-      actuators past the second (the loaders read ``joints.at(0..1)`` and
-      ``actuators.at(0..1)``);
-    * ROS 1 SimpleTransmission: the joint's ``<mechanicalReduction>`` (ros_control reads the
-      actuator's);
-    * ROS 1, any standard type: an actuator ``<offset>`` (only joint offsets exist), and a
-      ``<mechanicalReduction>`` directly under ``<transmission>`` (the loaders read the
-      ``<actuator>``'s and ``<joint>``'s; with a ``type=`` attribute this is TX302's case).
+Why it matters: a value that is never read looks like configuration but changes nothing: the
+robot runs with the default (1.0 or 0.0) while the file says otherwise. Usually it was written
+on the wrong side during a port between ROS 1 and ROS 2.
 
-Why
-    A value that is never read looks like configuration but changes nothing: the robot runs
-    with the default (1.0 or 0.0) while the file says otherwise. Usually it was written on the
-    wrong side during a port between ROS 1 and ROS 2.
+Loader: ros2_control (ros-controls/ros2_control
+transmission_interface/src/simple_transmission_loader.cpp ``SimpleTransmissionLoader::load``
+reads ``joints.at(0)``; differential_transmission_loader.cpp and
+four_bar_linkage_transmission_loader.cpp read ``joints.at(0..1)`` and ``actuators.at(0..1)``);
+ros_control (ros-controls/ros_control transmission_interface/src/simple_transmission_loader.cpp
+``SimpleTransmissionLoader::load`` reads the actuator's reduction and the joint's offset).
 
 Failing example::
 
-    <transmission name="t">
-      <plugin>transmission_interface/SimpleTransmission</plugin>
-      <actuator name="m" role="actuator1">
-        <mechanical_reduction>50</mechanical_reduction>
-      </actuator>
-      <joint name="j" role="joint1"/>
-    </transmission>
+    <robot name="r">
+      <ros2_control name="HW" type="system">
+        <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+        <joint name="j"><command_interface name="position"/></joint>
+        <transmission name="t">
+          <plugin>transmission_interface/SimpleTransmission</plugin>
+          <joint name="j" role="joint1"></joint>
+          <actuator name="m" role="actuator1">
+            <mechanical_reduction>50</mechanical_reduction>
+          </actuator>
+        </transmission>
+      </ros2_control>
+    </robot>
 
-Passing example: the ``<mechanical_reduction>`` on the ``<joint>``.
+Expected finding: ``9:9 warning TX400 <mechanical_reduction> of actuator 'm' in transmission 't'
+is never read: ros2_control's SimpleTransmission takes reduction and offset from the joint``
+
+Passing example::
+
+    <robot name="r">
+      <ros2_control name="HW" type="system">
+        <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+        <joint name="j"><command_interface name="position"/></joint>
+        <transmission name="t">
+          <plugin>transmission_interface/SimpleTransmission</plugin>
+          <joint name="j" role="joint1">
+            <mechanical_reduction>50</mechanical_reduction>
+          </joint>
+          <actuator name="m" role="actuator1"></actuator>
+        </transmission>
+      </ros2_control>
+    </robot>
+
+Fix: write the value where the loader reads it (on the ``<joint>`` in ROS 2, on the
+``<actuator>`` in ROS 1), or delete it.
 """
 
 from __future__ import annotations
@@ -41,7 +68,7 @@ from lxml import etree
 from txtool.lint.context import LintContext
 from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
-from txtool.lint.support import per_transmission
+from txtool.lint.rule_helpers import per_transmission
 
 CODE = "TX400"
 NAME = "ignored-value"

@@ -1,39 +1,74 @@
 """The transmission's linear map cannot be inverted reliably.
 
-What it checks
-    For a loadable standard transmission, the matrix ``A`` with
-    ``actuator velocity = A · joint velocity``, built from the reductions the ROS loader
-    actually binds (:func:`txtool.model.semantics.effective`), must be invertible and well
-    conditioned: its 2-norm condition number at most ``max-condition``. Transmissions the
-    loader refuses (a zero or non-numeric reduction) are TX106's and other rules' business.
+What it does: for a loadable standard transmission, builds the matrix ``A`` with ``actuator
+velocity = A · joint velocity`` from the reductions the ROS loader actually binds
+(:func:`txtool.model.semantics.effective`) and reports it when it is singular or its 2-norm
+condition number exceeds ``max-condition``. Simple transmissions always pass (a 1x1 map).
+Transmissions the loader refuses (a zero or non-numeric reduction) are TX106's and other rules'
+business. Options (``[tool.txtool.rules.TX403]``): ``max-condition``, the largest acceptable
+condition number (default ``1e12``).
 
-Why
-    ``actuator_to_joint`` applies ``A⁻¹`` and ``joint_to_actuator`` applies ``A``: with a
-    singular or near-singular ``A`` a tiny encoder reading becomes a huge joint value, or
-    two joints become indistinguishable from the actuators. Simple transmissions always pass
-    (a 1x1 map); a coupled one fails when its reductions differ by many orders of magnitude
-    or underflow.
+Why it matters: ``actuator_to_joint`` applies ``A⁻¹`` and ``joint_to_actuator`` applies ``A``:
+with a singular or near-singular ``A`` a tiny encoder reading becomes a huge joint value, or two
+joints become indistinguishable from the actuators. A coupled transmission fails when its
+reductions differ by many orders of magnitude or underflow.
 
-Options (``[tool.txtool.rules.TX403]``):
-
-``max-condition``
-    the largest acceptable condition number (default ``1e12``).
+Loader: the maps of ros_control (ros-controls/ros_control
+transmission_interface/include/transmission_interface/differential_transmission.h
+``DifferentialTransmission::actuatorToJointPosition``) and ros2_control
+(ros-controls/ros2_control
+transmission_interface/include/transmission_interface/differential_transmission.hpp
+``actuator_to_joint``).
 
 Failing example::
 
-    <transmission name="diff">
-      <type>transmission_interface/DifferentialTransmission</type>
-      <actuator name="a1">
-        <role>actuator1</role><mechanicalReduction>1</mechanicalReduction>
-      </actuator>
-      <actuator name="a2">
-        <role>actuator2</role><mechanicalReduction>1e-13</mechanicalReduction>
-      </actuator>
-      <joint name="j1"><role>joint1</role>...</joint>
-      <joint name="j2"><role>joint2</role>...</joint>
-    </transmission>
+    <robot name="r">
+      <transmission name="wrist">
+        <type>transmission_interface/DifferentialTransmission</type>
+        <joint name="j1">
+          <role>joint1</role><mechanicalReduction>1</mechanicalReduction>
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <joint name="j2">
+          <role>joint2</role><mechanicalReduction>1</mechanicalReduction>
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m1">
+          <role>actuator1</role><mechanicalReduction>50</mechanicalReduction>
+        </actuator>
+        <actuator name="m2">
+          <role>actuator2</role><mechanicalReduction>1e-13</mechanicalReduction>
+        </actuator>
+      </transmission>
+    </robot>
 
-Passing example: the same with both actuator reductions ``50``.
+Expected finding: ``2:3 error TX403 transmission 'wrist': the velocity map A is ill-conditioned
+(condition number 5e+14); the joint state cannot be recovered reliably from the actuators``
+
+Passing example::
+
+    <robot name="r">
+      <transmission name="wrist">
+        <type>transmission_interface/DifferentialTransmission</type>
+        <joint name="j1">
+          <role>joint1</role><mechanicalReduction>1</mechanicalReduction>
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <joint name="j2">
+          <role>joint2</role><mechanicalReduction>1</mechanicalReduction>
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m1">
+          <role>actuator1</role><mechanicalReduction>50</mechanicalReduction>
+        </actuator>
+        <actuator name="m2">
+          <role>actuator2</role><mechanicalReduction>50</mechanicalReduction>
+        </actuator>
+      </transmission>
+    </robot>
+
+Fix: write the reductions as the mechanism has them (a reduction of ``1e-13`` is a typo for an
+exponent, usually).
 """
 
 from __future__ import annotations
@@ -44,7 +79,7 @@ from typing import Any
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import label, per_transmission
+from txtool.lint.rule_helpers import label, per_transmission
 from txtool.model.core import Transmission
 
 CODE = "TX403"

@@ -1,37 +1,73 @@
 """A ROS 1 coupled transmission whose members are listed against their roles.
 
-What it checks
-    A ROS 1 Differential or FourBarLinkage transmission whose two joints, or two actuators,
-    have valid distinct roles written in the reverse order (``joint2`` listed before
-    ``joint1``, ``actuator2`` before ``actuator1``).
+What it does: reports a ROS 1 Differential or FourBarLinkage transmission whose two joints, or
+two actuators, have valid distinct roles written in the reverse order (``joint2`` listed before
+``joint1``, ``actuator2`` before ``actuator1``). ``txtool show --effective`` shows the binding;
+``map``, ``equivalence`` and ``simulate`` use it.
 
-Why
-    ros_control takes the reductions and offsets by ``<role>`` (ros-controls/ros_control
-    transmission_interface/src/four_bar_linkage_transmission_loader.cpp:49 @17b626a and the
-    differential loader's ``getJointConfig``: "Indices sorted according to role"), but fills
-    the data vectors the maths maps in XML order: ``jnt_state_data.position[i]`` is
-    ``transmission_info.joints_[i]`` (transmission_interface/src/
-    joint_state_interface_provider.cpp:132 @133d768; actuators through ``getActuatorHandles(
-    transmission_info.actuators_)`` in the same file). Nothing reorders ``joints_`` in between
-    (transmission_interface_loader.cpp, ``TransmissionInterfaceLoader::load``). So the member
-    listed first is driven with the values written on the ``joint1`` member: the reduction and
-    offset land on the other joint, silently. ``txtool show --effective`` shows the binding;
-    ``map``, ``equivalence`` and ``simulate`` use it.
+Why it matters: ros_control takes the reductions and offsets by ``<role>`` ("Indices sorted
+according to role"), but fills the data vectors the maths maps in XML order:
+``jnt_state_data.position[i]`` is ``transmission_info.joints_[i]``, and nothing reorders
+``joints_`` in between. So the member listed first is driven with the values written on the
+``joint1`` member: the reduction and offset land on the other joint, silently.
+
+Loader: ros_control (ros-controls/ros_control
+transmission_interface/src/four_bar_linkage_transmission_loader.cpp:49 @17b626a and the
+differential loader's ``getJointConfig``;
+transmission_interface/src/joint_state_interface_provider.cpp:132 @133d768, actuators through
+``getActuatorHandles(transmission_info.actuators_)`` in the same file;
+transmission_interface_loader.cpp ``TransmissionInterfaceLoader::load``).
 
 Failing example::
 
-    <transmission name="wrist">
-      <type>transmission_interface/DifferentialTransmission</type>
-      <joint name="wrist_flex"><role>joint2</role><mechanicalReduction>-2</mechanicalReduction>
-        ...</joint>
-      <joint name="wrist_roll"><role>joint1</role><mechanicalReduction>2</mechanicalReduction>
-        ...</joint>
-      ...
-    </transmission>
+    <robot name="r">
+      <transmission name="wrist">
+        <type>transmission_interface/DifferentialTransmission</type>
+        <joint name="wrist_flex">
+          <role>joint2</role><mechanicalReduction>-2</mechanicalReduction>
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <joint name="wrist_roll">
+          <role>joint1</role><mechanicalReduction>2</mechanicalReduction>
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m1">
+          <role>actuator1</role><mechanicalReduction>50</mechanicalReduction>
+        </actuator>
+        <actuator name="m2">
+          <role>actuator2</role><mechanicalReduction>50</mechanicalReduction>
+        </actuator>
+      </transmission>
+    </robot>
 
-    (``wrist_flex`` is driven with reduction 2, written on ``wrist_roll``.)
+Expected finding: ``4:5 error TX404 transmission 'wrist': joint 'wrist_flex' (role joint2) is
+listed before 'wrist_roll' (role joint1); ros_control takes the values by role but the joint
+data in XML order, so 'wrist_flex' is driven with the values written on 'wrist_roll' and the
+other way round: list the joints in role order``
 
-Passing example: ``wrist_roll`` (role ``joint1``) listed before ``wrist_flex``.
+Passing example::
+
+    <robot name="r">
+      <transmission name="wrist">
+        <type>transmission_interface/DifferentialTransmission</type>
+        <joint name="wrist_roll">
+          <role>joint1</role><mechanicalReduction>2</mechanicalReduction>
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <joint name="wrist_flex">
+          <role>joint2</role><mechanicalReduction>-2</mechanicalReduction>
+          <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+        </joint>
+        <actuator name="m1">
+          <role>actuator1</role><mechanicalReduction>50</mechanicalReduction>
+        </actuator>
+        <actuator name="m2">
+          <role>actuator2</role><mechanicalReduction>50</mechanicalReduction>
+        </actuator>
+      </transmission>
+    </robot>
+
+Fix: list the members in the order of their roles (``joint1`` first, ``actuator1`` first).
 """
 
 from __future__ import annotations
@@ -40,7 +76,7 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.support import coupled_groups, label, per_transmission
+from txtool.lint.rule_helpers import coupled_groups, label, per_transmission
 
 CODE = "TX404"
 NAME = "ros1-members-against-roles"

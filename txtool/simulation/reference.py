@@ -28,6 +28,7 @@ class Reference:
     qd: np.ndarray
     qdd: np.ndarray
     source: str
+    saturated: tuple[str, ...] = ()  # joints whose setpoint :func:`saturate` changed
 
 
 def step_times(duration: float, dt: float) -> np.ndarray:
@@ -204,7 +205,8 @@ def saturate(ref: Reference, joints: tuple[str, ...], lower: np.ndarray, upper: 
     velocity is that difference and the acceleration feed-forward the next one's change over
     ``dt`` (what makes the plant land on the next setpoint); elsewhere the analytic values
     stay. Meeting a limit at speed thus asks for a large effort for one step, as it would.
-    Returns the setpoint and one note per saturated joint.
+    Returns the setpoint (its ``saturated``: the joints whose setpoint changed) and one note per
+    saturated joint.
     """
     step = velocity * dt
     slack = 1e-9 + 1e-9 * np.abs(ref.q).max(initial=0.0)
@@ -239,4 +241,6 @@ def saturate(ref: Reference, joints: tuple[str, ...], lower: np.ndarray, upper: 
             notes.append(f"reference: joint '{name}' moves at up to {peak:.4g}, beyond its "
                          f"velocity limit {velocity[v]:.4g}; the setpoint is rate-limited as "
                          "computed_torque_controllers does")
-    return Reference(ref.time, q, qd, qdd, ref.source), notes
+    saturated = tuple(name for v, name in enumerate(joints)
+                      if over_position[:, v].any() or over_speed[:, v].any())
+    return Reference(ref.time, q, qd, qdd, ref.source, saturated), notes

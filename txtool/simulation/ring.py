@@ -24,16 +24,16 @@ import numpy as np
 import pinocchio as pin
 
 if TYPE_CHECKING:
-    from txtool.simulation.plan import Plan
+    from txtool.simulation.plan import Plan, RunState
 
 RING = 64  # steps per block
 
 
 class Ring:
-    """Working rows and their views; built once per run (``plan.extras["ring"]``)."""
+    """Working rows and their views; built once per run (``state.ring``)."""
 
     def __init__(self, plan: Plan) -> None:
-        s, nv, width, na = plan.slots, plan.robot.nv, plan.rows.shape[1], plan.limit.size
+        s, nv, width, na = plan.slots, plan.robot.nv, plan.width, plan.limit.size
         self.big = next_row(plan)
         self.static = slice(s["one"].start, width)
         self.record = slice(0, s["one"].start)
@@ -65,13 +65,13 @@ class Ring:
         self.saturated = False  # in the last block: the next one clips at once
 
 
-def delayed_steps(plan: Plan, start: int, stop: int) -> None:
+def delayed_steps(plan: Plan, state: RunState, start: int, stop: int) -> None:
     """Steps ``start`` to ``stop`` of the delayed loop; row ``start`` holds x, v and the
     applied effort, and row ``stop`` gets them."""
-    ring = plan.extras.get("ring")
+    ring = state.ring
     if not isinstance(ring, Ring):
-        ring = plan.extras["ring"] = Ring(plan)
-    rows, s, work = plan.rows, plan.slots, ring.work
+        ring = state.ring = Ring(plan)
+    rows, s, work = state.rows, plan.slots, ring.work
     work[0, : rows.shape[1]] = rows[start]
     est = work[0, s["est"]]
     est[: plan.H.shape[0]] = plan.H @ rows[start]
@@ -82,15 +82,15 @@ def delayed_steps(plan: Plan, start: int, stop: int) -> None:
         n = min(RING, stop - k)
         work[:n, ring.later] = rows[k + 1 : k + n + 1, ring.static]
         if ring.saturated:
-            _block(plan, ring, ring.clipped, n, clip=True)
+            _block(plan, state, ring, ring.clipped, n, clip=True)
             ring.saturated = _changed(work[:n, s["ta"]], work[:n, ring.satn])
         else:
             ring.saved[...] = work[0]
-            _block(plan, ring, ring.checked, n, clip=False)
+            _block(plan, state, ring, ring.checked, n, clip=False)
             demand = work[:n, ring.satn]
             if _changed(demand, ring.clip(demand, low, limit, out=ring.scratch[:n])):
                 work[0] = ring.saved
-                _block(plan, ring, ring.clipped, n, clip=True)
+                _block(plan, state, ring, ring.clipped, n, clip=True)
                 ring.saturated = True
             else:
                 work[:n, s["ta"]] = demand
@@ -105,10 +105,10 @@ def _changed(a: np.ndarray, b: np.ndarray) -> bool:
     return not np.array_equal(a.view(np.uint64), b.view(np.uint64))
 
 
-def _block(plan: Plan, ring: Ring, views: list[tuple[np.ndarray, ...]], n: int, *,
-           clip: bool) -> None:
+def _block(plan: Plan, state: RunState, ring: Ring, views: list[tuple[np.ndarray, ...]], n: int,
+           *, clip: bool) -> None:
     """``n`` steps on working rows 0 to n; the last step's head lands in row n."""
-    (cm, cdata), (pm, pdata) = plan.ctrl, plan.plant
+    cm, cdata, pm, pdata = plan.ctrl, state.ctrl_data, plan.plant, state.plant_data
     # The method skips np.dot's dispatch (about 1,400 of a step's 40,000 instructions).
     rnea, aba, step, C = pin.rnea, pin.aba, ring.big.dot, plan.C
     if ring.same and not plan.bias and not clip:  # the common case, without branches
@@ -139,7 +139,7 @@ def next_row(plan: Plan) -> np.ndarray:
     Folding ``Phi`` into ``H`` and ``PD`` saves two products per step; only the rounding of
     the sums changes (results agree with the unfolded loop to about 1e-15).
     """
-    s, nv, width, na = plan.slots, plan.robot.nv, plan.rows.shape[1], plan.limit.size
+    s, nv, width, na = plan.slots, plan.robot.nv, plan.width, plan.limit.size
     dynamic = ("a", "ta", "est", "tj")
     for matrix in (plan.H, plan.PD):
         if any(np.any(matrix[:, s[name]]) for name in dynamic):

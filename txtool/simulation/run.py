@@ -25,7 +25,7 @@ from txtool.simulation.drive import Drive, read_drive
 from txtool.simulation.model import RobotModel, build
 from txtool.simulation.parameter_files import load_params
 from txtool.simulation.params import Params
-from txtool.simulation.plan import Controller, Plan
+from txtool.simulation.plan import Controller, Plan, RunState
 from txtool.simulation.sensing import Sensing
 
 DEFAULTS = {"bandwidth": 20.0, "duration": 5.0, "dt": 0.001, "tolerance": 0.01}
@@ -234,15 +234,15 @@ def complete(p: Prepared | Unchecked, progress: Progress | None = None) -> resul
         return p.judged()
     started = time.perf_counter()
     steps = p.plan.steps
-    loop.run(p.plan, (lambda done: progress(done, steps)) if progress else None)
-    return finish(p, time.perf_counter() - started)
+    state = loop.run(p.plan, (lambda done: progress(done, steps)) if progress else None)
+    return finish(p, state, time.perf_counter() - started)
 
 
-def finish(p: Prepared, loop_s: float) -> result.RunResult:
-    """Metrics, reasons and notes of a prepared run whose loop has run."""
+def finish(p: Prepared, state: RunState, loop_s: float) -> result.RunResult:
+    """Metrics, reasons and notes of a prepared run whose loop has run (to ``state``)."""
     with np.errstate(all="ignore"):  # a diverged run may hold huge values
-        series = _series(p.plan, p.robot, p.plant, p.ref, p.effort_limit, p.speed_limit)
-        run = _judge(p, series)
+        series = _series(p.plan, state, p.robot, p.plant, p.ref, p.effort_limit, p.speed_limit)
+        run = _judge(p, state, series)
     run.config = p.label
     run.reference = p.ref.source
     run.notes = _notes(p.robot, p.plant, p.ctrl, p.config is not None) + list(p.notes) \
@@ -255,7 +255,7 @@ def finish(p: Prepared, loop_s: float) -> result.RunResult:
     checks.judge(run, series, p.plant, p.ctrl, p.binding.S, p.config is not None,
                  p.plan.encoder, p.plan.delay)
     run.timings = {"setup_s": p.setup_s, "loop_s": loop_s,
-                   "step_us": 1e6 * loop_s / max(p.plan.done, 1)}
+                   "step_us": 1e6 * loop_s / max(state.done, 1)}
     if not p.options.keep_series:
         run.series = None
     return run
@@ -319,10 +319,11 @@ def _reference(options: Options, table: reference.Table, robot: RobotModel, s: S
     return ref, duration, notes
 
 
-def _series(plan: Plan, robot: RobotModel, plant: Drive, ref: reference.Reference,
-            effort_limit: np.ndarray, speed_limit: np.ndarray) -> result.Series:
-    end = plan.done if plan.diverged_at is None else max(plan.diverged_at - 1, 0)
-    rows = plan.rows[: end + 1]
+def _series(plan: Plan, state: RunState, robot: RobotModel, plant: Drive,
+            ref: reference.Reference, effort_limit: np.ndarray, speed_limit: np.ndarray
+            ) -> result.Series:
+    end = state.done if state.diverged_at is None else max(state.diverged_at - 1, 0)
+    rows = state.rows[: end + 1]
     velocity = rows[:, plan.slots["v"]] @ plant.vel_j2a.T
     return result.Series(
         time=ref.time[: end + 1], joints=robot.joints,
@@ -336,15 +337,15 @@ def _series(plan: Plan, robot: RobotModel, plant: Drive, ref: reference.Referenc
     )
 
 
-def _judge(p: Prepared, series: result.Series) -> result.RunResult:
+def _judge(p: Prepared, state: RunState, series: result.Series) -> result.RunResult:
     options, plan, binding, s, duration = p.options, p.plan, p.binding, p.settings, p.duration
     plant, ctrl = p.plant, p.ctrl
     joints = result.joint_stats(series)
     actuators = result.actuator_stats(series)
     reasons = [] if options.allow_saturation else list(p.cannot_hold)
-    if plan.diverged_at is not None:
-        cause = setup.divergence_cause(plan, p.controller) if p.controller else ""
-        reasons.append(f"the simulation diverged at t={plan.diverged_at * s.dt:.3f} s: {cause}")
+    if state.diverged_at is not None:
+        cause = setup.divergence_cause(plan, state, p.controller) if p.controller else ""
+        reasons.append(f"the simulation diverged at t={state.diverged_at * s.dt:.3f} s: {cause}")
     reasons += p.unstable
     for name in binding.unbound:
         reasons.append(f"actuator '{name}' of the config is not an actuator of the robot")
@@ -355,9 +356,8 @@ def _judge(p: Prepared, series: result.Series) -> result.RunResult:
         reasons.append(f"joint '{name}': the config cannot measure it")
     reasons += result.verdict_reasons(series, joints, actuators, s.tolerance,
                                       options.allow_saturation)
-    saturated = [n.split("'")[1] for n in p.reference_notes if n.startswith("reference: joint")]
-    if reasons and saturated:
-        names = ", ".join(f"'{j}'" for j in dict.fromkeys(saturated))
+    if reasons and p.ref.saturated:
+        names = ", ".join(f"'{j}'" for j in p.ref.saturated)
         reasons.insert(0, f"the reference exceeds the limits of joint {names} and was saturated "
                           "(see the notes): the failures may come from the reference, not the "
                           "config")

@@ -16,7 +16,7 @@ from txtool.simulation.gains import condition, unstable
 from txtool.simulation.loop import configurer, make_model
 from txtool.simulation.model import RobotModel
 from txtool.simulation.params import Params
-from txtool.simulation.plan import Controller, Plan, layout
+from txtool.simulation.plan import Controller, Plan, RunState, layout
 from txtool.simulation.plant import Dynamics, smallest_inertia, substeps_for
 from txtool.simulation.reference import Reference
 from txtool.simulation.sensing import Sensing, encoder
@@ -150,9 +150,8 @@ def build_plan(robot: RobotModel, plant: Drive, ctrl: Drive, binding: Binding,
     if not general:  # the fast loop: damping explicit in PD, implicit through the armature
         PD[:, s["v"]] = -np.diag(robot.damping)
     return Plan(
-        robot=robot, dt=dt, steps=steps, rows=rows, slots=s, H=H, C=C, PD=PD,
-        Phi=_euler(s, width, nv, dt), limit=limit,
-        plant=(dynamics.model, dynamics.data), ctrl=(ctrl_model, ctrl_model.createData()),
+        robot=robot, dt=dt, steps=steps, start_rows=rows, slots=s, H=H, C=C, PD=PD,
+        Phi=_euler(s, width, nv, dt), limit=limit, plant=dynamics.model, ctrl=ctrl_model,
         plant_block=dynamics.block, ctrl_block=ctrl_block, dynamics=dynamics, bias=bias,
         q_ref=ref.q, ki=gains.ki if use_ki else None, i_limit=gains.i_limit if use_ki else None,
         delay=sensing.delay, encoder=encoder(sensing.counts, plant, robot),
@@ -294,11 +293,11 @@ def motion_limits(robot: RobotModel, plant: Drive, inertia: np.ndarray, gains: C
                   inverse_mass)
 
 
-def divergence_cause(plan: Plan, gains: Controller) -> str:
+def divergence_cause(plan: Plan, state: RunState, gains: Controller) -> str:
     """Which joint ran away first and the likeliest reason, from the last finite rows."""
-    end = max((plan.diverged_at or 0) - 1, 0)
+    end = max((state.diverged_at or 0) - 1, 0)
     start = max(end - 20, 0)
-    x = plan.rows[start : end + 1, plan.slots["x"]]
+    x = state.rows[start : end + 1, plan.slots["x"]]
     error = np.abs(x - plan.q_ref[start : end + 1])
     growth = np.nan_to_num(error[-1] - error[0], nan=np.inf, posinf=np.inf)
     v = int(np.argmax(growth))

@@ -17,7 +17,7 @@ from collections.abc import Sequence
 from lxml import etree
 
 from txtool.io.xmlio import Source
-from txtool.transform.bb import Attachment, Direction, actuator_lines, decimal_text
+from txtool.transform.bb_actuators import Attachment, Direction, actuator_lines, decimal_text
 from txtool.transform.bb_names import RobotNames, UrdfJoint, elixir_atom
 
 # importer.ex @cardinal_axes (:25-32): unit axes as fixed rotations of +Z, in degrees

@@ -28,7 +28,6 @@ from collections.abc import Sequence
 from lxml import etree
 
 from txtool.dialects.read import Found, enclosing_component
-from txtool.model.binding import Binding, Field, Slot
 from txtool.model.core import TYPE_PREFIX, Member, Number, Transmission
 from txtool.model.distro import Distro, numbers_of
 from txtool.model.numbers import C_SPACE, format_float, parse_ros2
@@ -43,6 +42,7 @@ from txtool.model.semantics import (
     loader_of,
     ros2_values_differ,
 )
+from txtool.model.show_document import Binding, Field, Slot
 
 ADDED_ACTUATOR = "actuator1"
 PARSER_REFUSES = "ros2_control's parser refuses the component: "
@@ -339,8 +339,8 @@ def shown_json(transmissions: Sequence[Transmission], bindings: Sequence[Binding
     """Each transmission as written plus its ``effective`` binding, as JSON-ready data."""
     import dataclasses
 
-    from txtool.model.binding import ShownTransmission
     from txtool.model.core import dump
+    from txtool.model.show_document import ShownTransmission
 
     return [
         dump(ShownTransmission(**{f.name: getattr(t, f.name) for f in dataclasses.fields(t)},

@@ -1,0 +1,104 @@
+"""Every rule's documentation has one layout, and its examples do what they say.
+
+The layout (txtool/lint/ruledoc.py, docs/contributing.md): what it does, why it matters, the
+loader and its source, a failing example with the finding ``txtool validate`` prints for it, a
+passing example, the fix. Each example is a whole document, run through the whole pipeline as
+``txtool validate`` runs it: the failing one must give the expected finding (line, column,
+severity, code and message), the passing one no finding of the rule.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import pytest
+
+from txtool.lint.config import Config, resolve
+from txtool.lint.engine import lint_file
+from txtool.lint.ruledoc import Finding, expected_finding, layout_problems, sections
+from txtool.rules import all_rules
+
+ROOT = Path(__file__).resolve().parents[2]
+
+RULES = sorted(all_rules())
+
+
+@pytest.mark.parametrize("code", RULES)
+def test_the_documentation_has_the_layout(code):
+    assert layout_problems(code, all_rules()[code].doc) == []
+
+
+def findings(section) -> list[Finding]:
+    """The findings of ``txtool validate FILE`` for an example (a file named on the command
+    line), with the default configuration."""
+    with tempfile.TemporaryDirectory(prefix="txtool-rule-doc-") as folder:
+        path = Path(folder) / (section.filename or "robot.urdf")
+        path.write_text(section.text, encoding="utf-8")
+        settings = resolve(Config.model_validate({}), origin="defaults", base=Path(folder))
+        found = lint_file(str(path), settings, named=True)
+    return [Finding(p.line, p.column, p.severity, p.code, " ".join(p.message.split()))
+            for p in found]
+
+
+@pytest.mark.parametrize("code", RULES)
+def test_the_failing_example_gives_the_expected_finding_and_the_passing_example_none(code):
+    by_label = {section.label: section for section in sections(all_rules()[code].doc)}
+    expected = expected_finding(by_label["Expected finding"].text)
+    assert expected in findings(by_label["Failing example"])
+    assert [f for f in findings(by_label["Passing example"]) if f.code == code] == []
+
+
+def test_the_layout_check_names_what_is_missing():
+    doc = all_rules()["TX104"].doc
+    assert layout_problems("TX104", doc) == []
+    without_fix = doc[: doc.index("\nFix:")]
+    assert layout_problems("TX104", without_fix) == [
+        "sections ['What it does', 'Why it matters', 'Loader', 'Failing example', 'Expected "
+        "finding', 'Passing example'], expected ['What it does', 'Why it matters', 'Loader', "
+        "'Failing example', 'Expected finding', 'Passing example', 'Fix'] in that order, each "
+        "once"]
+    unsourced = doc.replace("simple_transmission_loader.cpp", "the loader").replace(
+        "default_robot_hw_sim.cpp", "it").replace("franka_hw_sim.cpp", "it")
+    assert layout_problems("TX104", unsourced) == [
+        "'Loader' names no source file (repository path/file.cpp, with the line or function)"]
+    assert layout_problems("TX106", doc) == ["'Expected finding' is a TX104, not a TX106"]
+
+
+def test_a_failing_example_that_does_not_fail_is_caught():
+    doc = all_rules()["TX104"].doc
+    section = next(s for s in sections(doc.replace('<actuator name="m"/>', '<actuator name="m">'
+                   "<mechanicalReduction>5</mechanicalReduction></actuator>", 1))
+                   if s.label == "Failing example")
+    assert [f for f in findings(section) if f.code == "TX104"] == []
+
+
+def test_the_new_rule_script_writes_a_registered_rule_in_the_layout(tmp_path):
+    """``python docs/new_rule.py TX499 kebab-name``, in a copy of the package: a module in the
+    layout, registered in code order, that the registry loads."""
+    shutil.copytree(ROOT / "txtool", tmp_path / "txtool",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    (tmp_path / "docs").mkdir()
+    shutil.copy(ROOT / "docs" / "new_rule.py", tmp_path / "docs")
+    env = {**os.environ, "PYTHONPATH": str(tmp_path)}
+    made = subprocess.run([sys.executable, "docs/new_rule.py", "TX499", "example-rule"],
+                          cwd=tmp_path, env=env, capture_output=True, text=True, timeout=60)
+    assert made.returncode == 0, made.stderr
+    assert made.stdout == "wrote txtool/rules/tx499_example_rule.py (registered)\n"
+    check = ("from txtool.rules import RULE_MODULES, all_rules\n"
+             "from txtool.lint.ruledoc import layout_problems\n"
+             "rule = all_rules()['TX499']\n"
+             "print(rule.name, rule.severity, RULE_MODULES.index('tx499_example_rule')"
+             " == RULE_MODULES.index('tx404_ros1_members_against_roles') + 1,"
+             " layout_problems('TX499', rule.doc))\n")
+    loaded = subprocess.run([sys.executable, "-c", check], cwd=tmp_path, env=env,
+                            capture_output=True, text=True, timeout=60)
+    assert loaded.stdout == "example-rule warning True []\n", loaded.stderr
+    again = subprocess.run([sys.executable, "docs/new_rule.py", "TX499", "example-rule"],
+                           cwd=tmp_path, env=env, capture_output=True, text=True, timeout=60)
+    assert (again.returncode, again.stdout) == (2, "")
+    assert again.stderr == "new_rule.py: txtool/rules/tx499_example_rule.py: exists already\n"
