@@ -12,11 +12,61 @@
 set -uo pipefail
 
 install() {
-    local requirement="${TXTOOL_VERSION:-}"
-    if [ -z "$requirement" ]; then
-        requirement="${TXTOOL_ACTION_PATH:?TXTOOL_ACTION_PATH is not set}"
+    local requirement="${TXTOOL_VERSION:-}" cache="${TXTOOL_CACHE:-$HOME/.cache/txtool-action}"
+    case "$requirement" in
+        -*) echo "txtool action: version: expected a requirement such as txtool==0.1.0," \
+                 "got '$requirement'" >&2
+            return 2 ;;
+        "") requirement="$(wheel_of "${TXTOOL_ACTION_PATH:?TXTOOL_ACTION_PATH is not set}" \
+                                    "$cache")" || return $? ;;
+    esac
+    if command -v uv > /dev/null 2>&1; then
+        UV_CACHE_DIR="$cache/uv" uv pip install --quiet --python "$(command -v python)" \
+            -- "$requirement"
+    else
+        PIP_CACHE_DIR="$cache/pip" python -m pip install --quiet --disable-pip-version-check \
+            -- "$requirement"
     fi
-    python -m pip install --quiet --disable-pip-version-check "$requirement"
+}
+
+# The wheel of the checkout at $1, built once into a folder of $2/wheels named by a digest of
+# what the wheel is made of (a cache restored from another version of the action holds other
+# folders). Prints the wheel's path.
+wheel_of() {
+    local source="$1" cache="$2" wheels="$2/wheels" digest folder building
+    digest="$(python - "$source" <<'PYTHON'
+import hashlib, sys
+from pathlib import Path
+
+root = Path(sys.argv[1])
+digest = hashlib.sha256()
+for top in ("pyproject.toml", "README.md", "LICENSE", "txtool", "fixtures", "schemas"):
+    found = [root / top] if (root / top).is_file() else sorted((root / top).rglob("*"))
+    for path in found:
+        if path.is_file() and "__pycache__" not in path.parts:
+            name = path.relative_to(root).as_posix().encode()
+            digest.update(name + b"\0" + path.read_bytes() + b"\0")
+print(digest.hexdigest())
+PYTHON
+)" || return 2
+    folder="$wheels/$digest"
+    if [ ! -d "$folder" ]; then
+        mkdir -p "$wheels" && building="$(mktemp -d "$wheels/.building.XXXXXX")" || return 2
+        PIP_CACHE_DIR="$cache/pip" python -m pip wheel \
+            --quiet --disable-pip-version-check --no-deps --wheel-dir "$building" -- "$source" \
+            >&2 || { rm -rf "$building"; return 2; }
+        if [ -d "$folder" ]; then  # built meanwhile by another run sharing the cache
+            rm -rf "$building"
+        else
+            mv "$building" "$folder" || return 2
+        fi
+    fi
+    local wheel
+    for wheel in "$folder"/txtool-*.whl; do
+        [ -f "$wheel" ] || { echo "txtool action: no wheel built in $folder" >&2; return 2; }
+        printf '%s\n' "$wheel"
+        return 0
+    done
 }
 
 # The paths input, one path a line (a path may hold spaces). A single line that names no
@@ -59,17 +109,13 @@ validate() {
            record 2
            return 2 ;;
     esac
-    local code=0 sarif=0
+    local -a formats=(--format github)
     if [ -n "${TXTOOL_SARIF:-}" ]; then
-        # --exit-zero: only files that could not be read (recorded in the SARIF too) or a
-        # report that could not be written end it non-zero; the annotations run either way.
-        txtool validate --format sarif --exit-zero --output-file "$TXTOOL_SARIF" \
-            "${options[@]}" "${args[@]}" -- "${paths[@]}" || sarif=$?
+        # One run: the annotations on stdout, the SARIF report written to its file.
+        formats+=(--format "sarif:$TXTOOL_SARIF")
     fi
-    txtool validate --format github "${options[@]}" "${args[@]}" -- "${paths[@]}" || code=$?
-    if [ "$code" -lt 2 ] && [ "$sarif" -ne 0 ]; then
-        code=$sarif
-    fi
+    local code=0
+    txtool validate "${formats[@]}" "${options[@]}" "${args[@]}" -- "${paths[@]}" || code=$?
     record "$code"
     return "$code"
 }
