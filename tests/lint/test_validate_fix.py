@@ -121,6 +121,16 @@ def test_fix_applies_migrates_fixes_then_reports_what_remains(robots):
     assert (robots / "legacy.urdf").stat().st_mtime == OLD  # a fixed point: nothing to write
 
 
+def test_fix_that_cannot_write_fails_with_the_reason(robots):
+    os.link(robots / "legacy.urdf", robots / "legacy-link.urdf")
+    code, out, err = run("validate", "--fix", "urdf/legacy.urdf")
+    assert code == 2 and out.count(" [*] ") == 3  # still there, still fixable
+    assert err == ("txtool: urdf/legacy.urdf: has 2 hard links; replacing it would leave the "
+                   "other names with the old text, so it is not written (copy the file to break "
+                   "the link)\n")
+    assert (robots / "legacy.urdf").read_text() == LEGACY
+
+
 def test_fix_is_migrates_write(robots, tmp_path):
     """The bytes --fix writes are those migrate --write writes."""
     twin = tmp_path / "twin"

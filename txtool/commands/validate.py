@@ -28,8 +28,6 @@ class OutputFormat(Choice):
     name = "format"
 
     def convert(self, value, param, ctx) -> tuple[str, str | None]:
-        if isinstance(value, tuple):
-            return value
         name, colon, path = str(value).partition(":")
         if colon and not path:
             self.fail(f"{value!r}: no file name after ':'", param, ctx)

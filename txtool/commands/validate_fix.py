@@ -69,9 +69,7 @@ def _marked(problem: Problem, fixed: Mapping[str, FileResult],
             stdin_name: str | None) -> Problem:
     if not problem.fixable or problem.path == stdin_name:
         return problem
-    result = fixed.get(problem.path)
-    if result is None:  # not read again by migrate (the same file by another name)
-        return problem
-    if result.changed and result.fixes.get(problem.code):
+    result = fixed.get(problem.path)  # None: not read again (the same file by another name)
+    if result is None or (result.changed and result.fixes.get(problem.code)):
         return problem
     return dataclasses.replace(problem, fixable=False)
