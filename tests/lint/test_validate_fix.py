@@ -103,6 +103,11 @@ def test_diff_prints_what_fix_would_change_and_writes_nothing(robots):
     assert (robots / "legacy.urdf").read_text() == LEGACY
 
 
+def test_diff_wins_over_fix(robots):
+    assert run("validate", "--fix", "--diff", "urdf") == run("validate", "--diff", "urdf")
+    assert (robots / "legacy.urdf").read_text() == LEGACY
+
+
 def test_diff_with_nothing_to_fix_exits_0(robots):
     assert run("validate", "--diff", "urdf/zero.urdf") == (0, "", "txtool: nothing to fix\n")
 
@@ -190,7 +195,7 @@ def test_json_says_which_findings_are_fixable(robots):
     (["--format", "text", "--format", "json", "x.urdf"], "give one, not 2"),
     (["--format", "json:a.json", "--format", "sarif:a.json", "x.urdf"],
      "two reports named the same file"),
-    (["--format", "json:a.json", "-o", "a.json", "x.urdf"], "two reports named the same file"),
+    (["--format", "json:a.json", "-o", "./a.json", "x.urdf"], "two reports named the same file"),
     (["--format", "sarif:", "x.urdf"], "'sarif:': no file name after ':'"),
     (["--format", "xml:a.xml", "x.urdf"], "'xml' is not one of"),
     (["--format", "json", "--statistics", "x.urdf"], "go with --format text, not json"),
@@ -308,3 +313,12 @@ def test_fix_on_real_corpus_files(tmp_path, monkeypatch):
     assert not [p for p in after_problems if p["fixable"]]
     key = lambda p: (p["path"], p["code"], p["message"])  # noqa: E731
     assert {key(p) for p in after_problems} <= {key(p) for p in before_problems}
+
+
+def test_diff_tells_a_configuration_note_once(robots):
+    (robots.parent / ".git").mkdir()
+    (robots / ".txtool.toml").write_text('ignore = ["ALL"]\n')
+    code, out, err = run("validate", "--diff", "urdf/legacy.urdf")
+    assert code == 1 and out.startswith("--- a/urdf/legacy.urdf")
+    notes = [line for line in err.splitlines() if line.startswith("txtool: note: ")]
+    assert len(notes) == 1 and "not read" in notes[0]

@@ -162,7 +162,8 @@ def _outputs(formats: tuple[tuple[str, str | None], ...],
         raise click.UsageError("--format without a FILE names the report on stdout (or in "
                                f"--output-file): give one, not {len(shown)}")
     files = [(name, path) for name, path in formats if path is not None]
-    paths = [path for _, path in files] + ([output_file] if output_file else [])
+    paths = [os.path.abspath(path) for _, path in files] + (
+        [os.path.abspath(output_file)] if output_file else [])
     if len(set(paths)) < len(paths):
         raise click.UsageError("two reports named the same file")
     return (shown[0] if shown else default_format()), files
@@ -188,7 +189,8 @@ def _diff(result, selection) -> int:
     for text in report.diffs:  # ASCII bytes go to the binary stream as they are
         click.echo(text, nl=False)
     for message in report.messages:
-        click.echo(printable(message), err=True)
+        if not message.startswith("txtool: note: "):  # the configuration's, told above
+            click.echo(printable(message), err=True)
     return 2 if result.errors else report.exit_code
 
 
