@@ -103,6 +103,14 @@ def test_diff_prints_what_fix_would_change_and_writes_nothing(robots):
     assert (robots / "legacy.urdf").read_text() == LEGACY
 
 
+def test_diff_of_a_walk_of_the_working_folder_names_files_without_dot(robots):
+    code, out, err = run("validate", "--diff", ".")
+    assert code == 1 and out.startswith("--- a/urdf/legacy.urdf\n+++ b/urdf/legacy.urdf\n")
+    assert err.startswith("would change urdf/legacy.urdf ")
+    code, _, err = run("validate", "--fix", ".")
+    assert err == "txtool: fixed urdf/legacy.urdf (TX300 x1, TX301 x1, TX302 x1)\n"
+
+
 def test_diff_wins_over_fix(robots):
     assert run("validate", "--fix", "--diff", "urdf") == run("validate", "--diff", "urdf")
     assert (robots / "legacy.urdf").read_text() == LEGACY

@@ -181,7 +181,7 @@ def _diff(result, selection) -> int:
     from txtool.commands.validate_fix import fixable_paths, run_fixes
 
     _tell(result)
-    paths = fixable_paths(result.problems, None)
+    paths = [_without_dot(path) for path in fixable_paths(result.problems, None)]
     if not paths:
         click.echo("txtool: nothing to fix", err=True)
         return 2 if result.errors else 0
@@ -199,7 +199,7 @@ def _fix(result, selection) -> tuple[bool, bool]:
     and whether a write failed."""
     from txtool.commands.validate_fix import fixable_paths, run_fixes
 
-    paths = fixable_paths(result.problems, None)
+    paths = [_without_dot(path) for path in fixable_paths(result.problems, None)]
     if not paths:
         return False, False
     report = run_fixes(paths, "write", selection)
@@ -208,6 +208,14 @@ def _fix(result, selection) -> tuple[bool, bool]:
     for error in report.errors:
         click.echo(f"txtool: {printable(error)}", err=True)
     return bool(report.changed), bool(report.errors)
+
+
+def _without_dot(path: str) -> str:
+    """``./src/x.urdf`` (a walk of ``.``) as ``src/x.urdf``: diff headers ``a/src/x.urdf``."""
+    for prefix in ("./", "." + os.sep):
+        while path.startswith(prefix) and len(path) > len(prefix):
+            path = path[len(prefix):]
+    return path
 
 
 def _report_all(result, main: str, files: list[tuple[str, str]], output_file: str | None,
