@@ -102,7 +102,7 @@ def command(paths, output_formats, select, ignore, strict, exit_zero, config_pat
     Exit codes: 0 nothing at the failing level, 1 findings at it (errors; warnings too with
     --strict; infos never), 2 usage, configuration or input error.
     """
-    from txtool.commands.validate_fix import FixSelection
+    from txtool.commands.validate_fix import FixSelection, apply_fixes, print_diff
     from txtool.lint.api import LintOptions, exit_code, lint_paths
 
     main, files = _outputs(output_formats, output_file)
@@ -136,12 +136,13 @@ def command(paths, output_formats, select, ignore, strict, exit_zero, config_pat
     result = lint_paths(targets, options)
     fix_failed = False
     if diff:
-        return _diff(result, selection)
+        tell(result)
+        return print_diff(result, selection)
     if fix:
-        fixed, fix_failed = _fix(result, selection)
+        fixed, fix_failed = apply_fixes(result, selection)
         if fixed:
             result = lint_paths(targets, options)
-    _tell(result)
+    tell(result)
     stdin_name = (stdin_filename or "<stdin>") if "-" in paths else None
     code = _report_all(result, main, files, output_file, stdin_name, selection,
                        _Look(use_color(color, output_file), quiet, statistics), paths)
@@ -169,53 +170,12 @@ def _outputs(formats: tuple[tuple[str, str | None], ...],
     return (shown[0] if shown else default_format()), files
 
 
-def _tell(result) -> None:
+def tell(result) -> None:
+    """The notes and input errors of a lint run, on stderr."""
     for note in result.notes:
         click.echo(f"txtool: note: {printable(note)}", err=True)
     for error in result.errors:
         click.echo(f"txtool: {printable(error.message)}", err=True)
-
-
-def _diff(result, selection) -> int:
-    """``--diff``: migrate's diff of the files holding fixable findings; nothing written."""
-    from txtool.commands.validate_fix import fixable_paths, run_fixes
-
-    _tell(result)
-    paths = [_without_dot(path) for path in fixable_paths(result.problems, None)]
-    if not paths:
-        click.echo("txtool: nothing to fix", err=True)
-        return 2 if result.errors else 0
-    report = run_fixes(paths, "diff", selection)
-    for text in report.diffs:  # ASCII bytes go to the binary stream as they are
-        click.echo(text, nl=False)
-    for message in report.messages:
-        if not message.startswith("txtool: note: "):  # the configuration's, told above
-            click.echo(printable(message), err=True)
-    return 2 if result.errors else report.exit_code
-
-
-def _fix(result, selection) -> tuple[bool, bool]:
-    """``--fix``: migrate rewrites the files holding fixable findings; whether it changed one,
-    and whether a write failed."""
-    from txtool.commands.validate_fix import fixable_paths, run_fixes
-
-    paths = [_without_dot(path) for path in fixable_paths(result.problems, None)]
-    if not paths:
-        return False, False
-    report = run_fixes(paths, "write", selection)
-    for changed in report.changed:
-        click.echo(f"txtool: fixed {printable(changed.path)} ({changed.describe()})", err=True)
-    for error in report.errors:
-        click.echo(f"txtool: {printable(error)}", err=True)
-    return bool(report.changed), bool(report.errors)
-
-
-def _without_dot(path: str) -> str:
-    """``./src/x.urdf`` (a walk of ``.``) as ``src/x.urdf``: diff headers ``a/src/x.urdf``."""
-    for prefix in ("./", "." + os.sep):
-        while path.startswith(prefix) and len(path) > len(prefix):
-            path = path[len(prefix):]
-    return path
 
 
 def _report_all(result, main: str, files: list[tuple[str, str]], output_file: str | None,

@@ -11,10 +11,16 @@ to prefix.
 from __future__ import annotations
 
 import dataclasses
+import os
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
 
+import click
+
+from txtool.io.printable import printable
+
 if TYPE_CHECKING:
+    from txtool.lint.api import LintResult
     from txtool.lint.problem import Problem
     from txtool.reporters.fixes import Edit
     from txtool.transform.migrate import FileResult, Report
@@ -33,6 +39,49 @@ def fixable_paths(problems: Sequence[Problem], stdin_name: str | None) -> list[s
     """The files holding findings marked fixable, in order; never standard input's."""
     paths = (p.path for p in problems if p.fixable and p.path != stdin_name)
     return list(dict.fromkeys(paths))
+
+
+def print_diff(result: LintResult, selection: FixSelection) -> int:
+    """``--diff``: migrate's diff of the files holding fixable findings; nothing written.
+    2 if a file could not be read, 1 if one would change, else 0."""
+    paths = _targets(result.problems)
+    if not paths:
+        click.echo("txtool: nothing to fix", err=True)
+        return 2 if result.errors else 0
+    report = run_fixes(paths, "diff", selection)
+    for text in report.diffs:  # ASCII bytes go to the binary stream as they are
+        click.echo(text, nl=False)
+    for message in report.messages:
+        if not message.startswith("txtool: note: "):  # the configuration's, told already
+            click.echo(printable(message), err=True)
+    return 2 if result.errors else report.exit_code
+
+
+def apply_fixes(result: LintResult, selection: FixSelection) -> tuple[bool, bool]:
+    """``--fix``: migrate rewrites the files holding fixable findings; whether it changed one,
+    and whether a write failed."""
+    paths = _targets(result.problems)
+    if not paths:
+        return False, False
+    report = run_fixes(paths, "write", selection)
+    for changed in report.changed:
+        click.echo(f"txtool: fixed {printable(changed.path)} ({changed.describe()})", err=True)
+    for error in report.errors:
+        click.echo(f"txtool: {printable(error)}", err=True)
+    return bool(report.changed), bool(report.errors)
+
+
+def _targets(problems: Sequence[Problem]) -> list[str]:
+    """:func:`fixable_paths` without a leading ``./`` (a walk of ``.``), so that diff headers
+    read ``a/src/x.urdf``; ``--fix`` and ``--diff`` refuse standard input beforehand."""
+    return [_without_dot(path) for path in fixable_paths(problems, None)]
+
+
+def _without_dot(path: str) -> str:
+    for prefix in ("./", "." + os.sep):
+        while path.startswith(prefix) and len(path) > len(prefix):
+            path = path[len(prefix):]
+    return path
 
 
 def run_fixes(paths: Sequence[str], mode: str, selection: FixSelection) -> Report:
