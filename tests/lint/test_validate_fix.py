@@ -85,6 +85,16 @@ def test_text_marks_the_fixable_findings_and_counts_them(robots):
     assert code == 1 and "[*]" not in out and "fixable" not in out
 
 
+def test_statistics_mark_the_rules_with_fixable_findings(robots):
+    code, out, _ = run("validate", "--statistics", "urdf/legacy.urdf")
+    assert (code, out) == (1, "1  TX110  error        missing-interface\n"
+                              "1  TX300  warning  [*] unprefixed-interface\n"
+                              "1  TX301  warning  [*] interface-on-actuator\n"
+                              "1  TX302  warning  [*] legacy-type-attribute\n"
+                              "Found 1 error, 3 warnings in 1 file; 3 fixable with "
+                              "`txtool validate --fix`.\n")
+
+
 def test_colored_text_marks_them_too(robots):
     code, out, _ = run("validate", "--color", "always", "urdf/legacy.urdf")
     assert code == 1 and out.count("[*]") == 3 and "\x1b[" in out

@@ -68,14 +68,18 @@ def render_quiet(problems: Sequence[Problem], *, color: bool = False) -> str:
 
 
 def statistics(problems: Sequence[Problem], summary: Summary) -> str:
-    """``validate --statistics``: one row per rule, most frequent first, then the summary."""
+    """``validate --statistics``: one row per rule, most frequent first, ``[*]`` where some of
+    its findings are fixable, then the summary."""
     counts: dict[tuple[str, str, str], int] = {}
+    fixable = {p.code for p in problems if p.fixable}
     for p in problems:
         key = (p.code, p.name, p.severity)
         counts[key] = counts.get(key, 0) + 1
     rows = sorted(counts.items(), key=lambda item: (-item[1], item[0][0]))
     width = max((len(str(n)) for _, n in rows), default=1)
-    lines = [f"{n:>{width}}  {code}  {severity:<7}  {name}" for (code, name, severity), n in rows]
+    blank = " " * len(FIXABLE)
+    lines = [f"{n:>{width}}  {code}  {severity:<7}  {FIXABLE if code in fixable else blank} "
+             f"{name}" for (code, name, severity), n in rows]
     return "\n".join([*lines, summary_line(summary)]) + "\n"
 
 
