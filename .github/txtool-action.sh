@@ -1,15 +1,35 @@
 #!/usr/bin/env bash
 # The steps of the txtool GitHub Action (action.yml), kept in a script so they can be tested
 # outside GitHub. Inputs come from the environment:
-#   install:  TXTOOL_VERSION (pip requirement; empty: the action's checkout, TXTOOL_ACTION_PATH)
+#   cache-key: TXTOOL_VERSION, TXTOOL_ACTION_REF (github.action_ref), RUNNER_OS
+#   install:  TXTOOL_VERSION (pip requirement; empty: the action's checkout, TXTOOL_ACTION_PATH),
+#             TXTOOL_CACHE (the folder action.yml caches between runs; default
+#             ~/.cache/txtool-action)
 #   validate: TXTOOL_PATHS (one path a line; see paths_of), TXTOOL_ARGS (options, split on
 #             spaces), TXTOOL_SARIF (empty: no SARIF), TXTOOL_CONFIG (empty: the repository's
 #             own configuration), TXTOOL_TRUST_XACRO (true or false, default false)
-# validate writes workflow-command annotations (--format github) and, when asked, SARIF; its
-# exit code is txtool's, also written to GITHUB_OUTPUT as exit-code.
+# cache-key writes to GITHUB_OUTPUT the key and the prefix to restore the cache by.
+# install uses uv where it is on PATH, else pip, each with its cache in TXTOOL_CACHE; the
+# action's checkout is built into a wheel once per content (wheel_of), not on every run.
+# validate writes workflow-command annotations (--format github) and, when asked, SARIF, in
+# one run; its exit code is txtool's, also written to GITHUB_OUTPUT as exit-code.
 # Paths are file names a pull request chooses: they go after "--", so that a file named
 # "--exit-zero" is a file, and "-" becomes "./-" (after "--" txtool still reads "-" as stdin).
 set -uo pipefail
+
+# The cache's key: the runner's OS, the Python version and a digest of the version input and
+# the action's ref (the cache refuses keys holding a comma, which a requirement may hold).
+cache_key() {
+    local prefix digest
+    prefix="txtool-action-${RUNNER_OS:-local}-$(python -c \
+        'import sys; print("py%d.%d.%d" % sys.version_info[:3])')-" || return 2
+    digest="$(printf '%s\n%s' "${TXTOOL_VERSION:-}" "${TXTOOL_ACTION_REF:-}" | python -c \
+        'import hashlib, sys; print(hashlib.sha256(sys.stdin.buffer.read()).hexdigest()[:16])'
+    )" || return 2
+    if [ -n "${GITHUB_OUTPUT:-}" ]; then
+        printf 'key=%s%s\nprefix=%s\n' "$prefix" "$digest" "$prefix" >> "$GITHUB_OUTPUT"
+    fi
+}
 
 install() {
     local requirement="${TXTOOL_VERSION:-}" cache="${TXTOOL_CACHE:-$HOME/.cache/txtool-action}"
@@ -127,7 +147,8 @@ record() {
 }
 
 case "${1:-}" in
+    cache-key) cache_key ;;
     install) install ;;
     validate) validate ;;
-    *) echo "usage: $0 install|validate" >&2; exit 2 ;;
+    *) echo "usage: $0 cache-key|install|validate" >&2; exit 2 ;;
 esac

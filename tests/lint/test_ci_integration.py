@@ -57,11 +57,14 @@ def test_action_is_a_composite_action_calling_its_script():
     assert validate["env"]["TXTOOL_TRUST_XACRO"] == "${{ inputs.trust-xacro }}"
     assert action["inputs"]["trust-xacro"]["default"] == "false"
     cache = next(step for step in action["runs"]["steps"] if "actions/cache" in step.get("uses", ""))
-    assert cache["with"]["path"] == "~/.cache/txtool-action"  # the script's default cache
-    assert "${{ inputs.version }}" in cache["with"]["key"]
+    assert cache["with"] == {"path": "~/.cache/txtool-action",  # the script's default cache
+                             "key": "${{ steps.cache-key.outputs.key }}",
+                             "restore-keys": "${{ steps.cache-key.outputs.prefix }}"}
+    key = next(step for step in action["runs"]["steps"] if step.get("id") == "cache-key")
+    assert key["env"]["TXTOOL_VERSION"] == "${{ inputs.version }}"
     scripts = [step["run"] for step in action["runs"]["steps"] if "run" in step]
     assert scripts == [f'bash "$TXTOOL_ACTION_PATH/.github/txtool-action.sh" {step}'
-                       for step in ("install", "validate")]
+                       for step in ("cache-key", "install", "validate")]
     assert action["outputs"]["exit-code"]["value"] == "${{ steps.validate.outputs.exit-code }}"
 
 
@@ -213,6 +216,27 @@ def test_action_install_builds_the_checkout_once_and_installs_its_wheel(tmp_path
     code, _, calls = install(env, log, **inputs)
     assert code == 0 and [call[3] for call in calls] == ["wheel", "install"]  # a new checkout
     assert len(list((cache / "wheels").iterdir())) == 2
+
+
+def cache_key(tmp_path: Path, **env: str) -> dict[str, str]:
+    output = tmp_path / "github_output"
+    output.unlink(missing_ok=True)
+    variables = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}",
+                 "GITHUB_OUTPUT": str(output), "RUNNER_OS": "Linux", **env}
+    subprocess.run(["bash", str(SCRIPT), "cache-key"], env=variables, check=True, timeout=60)
+    return dict(line.split("=", 1) for line in output.read_text().splitlines())
+
+
+def test_action_cache_key_holds_no_comma_and_changes_with_the_version(tmp_path):
+    version = "{}.{}.{}".format(*sys.version_info[:3])
+    pinned = cache_key(tmp_path, TXTOOL_VERSION="txtool>=0.1,<0.2", TXTOOL_ACTION_REF="v0.1.0")
+    assert pinned["prefix"] == f"txtool-action-Linux-py{version}-"
+    assert re.fullmatch(re.escape(pinned["prefix"]) + "[0-9a-f]{16}", pinned["key"])
+    other = cache_key(tmp_path, TXTOOL_VERSION="txtool==0.1.0", TXTOOL_ACTION_REF="v0.1.0")
+    moved = cache_key(tmp_path, TXTOOL_VERSION="txtool>=0.1,<0.2", TXTOOL_ACTION_REF="v0.2.0")
+    assert len({pinned["key"], other["key"], moved["key"]}) == 3
+    assert cache_key(tmp_path, TXTOOL_VERSION="txtool>=0.1,<0.2",
+                     TXTOOL_ACTION_REF="v0.1.0") == pinned
 
 
 def test_action_install_uses_uv_where_it_is(tmp_path, checkout):
