@@ -1,22 +1,92 @@
 #!/usr/bin/env bash
 # The steps of the txtool GitHub Action (action.yml), kept in a script so they can be tested
 # outside GitHub. Inputs come from the environment:
-#   install:  TXTOOL_VERSION (pip requirement; empty: the action's checkout, TXTOOL_ACTION_PATH)
+#   cache-key: TXTOOL_VERSION, TXTOOL_ACTION_REF (github.action_ref), RUNNER_OS
+#   install:  TXTOOL_VERSION (pip requirement; empty: the action's checkout, TXTOOL_ACTION_PATH),
+#             TXTOOL_CACHE (the folder action.yml caches between runs; default
+#             ~/.cache/txtool-action)
 #   validate: TXTOOL_PATHS (one path a line; see paths_of), TXTOOL_ARGS (options, split on
 #             spaces), TXTOOL_SARIF (empty: no SARIF), TXTOOL_CONFIG (empty: the repository's
 #             own configuration), TXTOOL_TRUST_XACRO (true or false, default false)
-# validate writes workflow-command annotations (--format github) and, when asked, SARIF; its
-# exit code is txtool's, also written to GITHUB_OUTPUT as exit-code.
+# cache-key writes to GITHUB_OUTPUT the key and the prefix to restore the cache by.
+# install uses uv where it is on PATH, else pip, each with its cache in TXTOOL_CACHE; the
+# action's checkout is built into a wheel once per content (wheel_of), not on every run.
+# validate writes workflow-command annotations (--format github) and, when asked, SARIF, in
+# one run; its exit code is txtool's, also written to GITHUB_OUTPUT as exit-code.
 # Paths are file names a pull request chooses: they go after "--", so that a file named
 # "--exit-zero" is a file, and "-" becomes "./-" (after "--" txtool still reads "-" as stdin).
 set -uo pipefail
 
-install() {
-    local requirement="${TXTOOL_VERSION:-}"
-    if [ -z "$requirement" ]; then
-        requirement="${TXTOOL_ACTION_PATH:?TXTOOL_ACTION_PATH is not set}"
+# The cache's key: the runner's OS, the Python version and a digest of the version input and
+# the action's ref (the cache refuses keys holding a comma, which a requirement may hold).
+cache_key() {
+    local prefix digest
+    prefix="txtool-action-${RUNNER_OS:-local}-$(python -c \
+        'import sys; print("py%d.%d.%d" % sys.version_info[:3])')-" || return 2
+    digest="$(printf '%s\n%s' "${TXTOOL_VERSION:-}" "${TXTOOL_ACTION_REF:-}" | python -c \
+        'import hashlib, sys; print(hashlib.sha256(sys.stdin.buffer.read()).hexdigest()[:16])'
+    )" || return 2
+    if [ -n "${GITHUB_OUTPUT:-}" ]; then
+        printf 'key=%s%s\nprefix=%s\n' "$prefix" "$digest" "$prefix" >> "$GITHUB_OUTPUT"
     fi
-    python -m pip install --quiet --disable-pip-version-check "$requirement"
+}
+
+install() {
+    local requirement="${TXTOOL_VERSION:-}" cache="${TXTOOL_CACHE:-$HOME/.cache/txtool-action}"
+    case "$requirement" in
+        -*) echo "txtool action: version: expected a requirement such as txtool==0.1.0," \
+                 "got '$requirement'" >&2
+            return 2 ;;
+        "") requirement="$(wheel_of "${TXTOOL_ACTION_PATH:?TXTOOL_ACTION_PATH is not set}" \
+                                    "$cache")" || return $? ;;
+    esac
+    if command -v uv > /dev/null 2>&1; then
+        UV_CACHE_DIR="$cache/uv" uv pip install --quiet --python "$(command -v python)" \
+            -- "$requirement"
+    else
+        PIP_CACHE_DIR="$cache/pip" python -m pip install --quiet --disable-pip-version-check \
+            -- "$requirement"
+    fi
+}
+
+# The wheel of the checkout at $1, built once into a folder of $2/wheels named by a digest of
+# what the wheel is made of (a cache restored from another version of the action holds other
+# folders). Prints the wheel's path.
+wheel_of() {
+    local source="$1" cache="$2" wheels="$2/wheels" digest folder building
+    digest="$(python - "$source" <<'PYTHON'
+import hashlib, sys
+from pathlib import Path
+
+root = Path(sys.argv[1])
+digest = hashlib.sha256()
+for top in ("pyproject.toml", "README.md", "LICENSE", "txtool", "fixtures", "schemas"):
+    found = [root / top] if (root / top).is_file() else sorted((root / top).rglob("*"))
+    for path in found:
+        if path.is_file() and "__pycache__" not in path.parts:
+            name = path.relative_to(root).as_posix().encode()
+            digest.update(name + b"\0" + path.read_bytes() + b"\0")
+print(digest.hexdigest())
+PYTHON
+)" || return 2
+    folder="$wheels/$digest"
+    if [ ! -d "$folder" ]; then
+        mkdir -p "$wheels" && building="$(mktemp -d "$wheels/.building.XXXXXX")" || return 2
+        PIP_CACHE_DIR="$cache/pip" python -m pip wheel \
+            --quiet --disable-pip-version-check --no-deps --wheel-dir "$building" -- "$source" \
+            >&2 || { rm -rf "$building"; return 2; }
+        if [ -d "$folder" ]; then  # built meanwhile by another run sharing the cache
+            rm -rf "$building"
+        else
+            mv "$building" "$folder" || return 2
+        fi
+    fi
+    local wheel
+    for wheel in "$folder"/txtool-*.whl; do
+        [ -f "$wheel" ] || { echo "txtool action: no wheel built in $folder" >&2; return 2; }
+        printf '%s\n' "$wheel"
+        return 0
+    done
 }
 
 # The paths input, one path a line (a path may hold spaces). A single line that names no
@@ -59,17 +129,13 @@ validate() {
            record 2
            return 2 ;;
     esac
-    local code=0 sarif=0
+    local -a formats=(--format github)
     if [ -n "${TXTOOL_SARIF:-}" ]; then
-        # --exit-zero: only files that could not be read (recorded in the SARIF too) or a
-        # report that could not be written end it non-zero; the annotations run either way.
-        txtool validate --format sarif --exit-zero --output-file "$TXTOOL_SARIF" \
-            "${options[@]}" "${args[@]}" -- "${paths[@]}" || sarif=$?
+        # One run: the annotations on stdout, the SARIF report written to its file.
+        formats+=(--format "sarif:$TXTOOL_SARIF")
     fi
-    txtool validate --format github "${options[@]}" "${args[@]}" -- "${paths[@]}" || code=$?
-    if [ "$code" -lt 2 ] && [ "$sarif" -ne 0 ]; then
-        code=$sarif
-    fi
+    local code=0
+    txtool validate "${formats[@]}" "${options[@]}" "${args[@]}" -- "${paths[@]}" || code=$?
     record "$code"
     return "$code"
 }
@@ -81,7 +147,8 @@ record() {
 }
 
 case "${1:-}" in
+    cache-key) cache_key ;;
     install) install ;;
     validate) validate ;;
-    *) echo "usage: $0 install|validate" >&2; exit 2 ;;
+    *) echo "usage: $0 cache-key|install|validate" >&2; exit 2 ;;
 esac

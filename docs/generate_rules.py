@@ -20,7 +20,8 @@ def rule_pages() -> dict[str, str]:
     pages: dict[str, str] = {}
     intro = ("Every rule has a stable code and a kebab-case name; `txtool rules CODE` prints the "
              "same text in a terminal. The severity is the default (configurable per rule); "
-             "*fix* marks the rules `txtool migrate` fixes.")
+             "*fix* marks the rules `txtool validate --fix` and `txtool migrate` fix "
+             "(`[*]` in validate's text output).")
     rows = ["# Rules", "", intro, "",
             "| code | name | severity | fix | what |", "|---|---|---|---|---|"]
     for rule in all_rules().values():
@@ -28,7 +29,8 @@ def rule_pages() -> dict[str, str]:
         rows.append(f"| [{rule.code}]({rule.code}.md) | `{rule.name}` | {rule.severity} | {fix} "
                     f"| {rule.summary} |")
         header = (f"*Default severity: {rule.severity}"
-                  + ("; fixed by `txtool migrate`" if rule.fixable else "") + ".*\n\n")
+                  + ("; fixed by `txtool validate --fix` and `txtool migrate`" if rule.fixable
+                     else "") + ".*\n\n")
         body = markdown(rule, heading="#")
         title, _, rest = body.partition("\n\n")
         pages[f"rules/{rule.code}.md"] = f"{title}\n\n{header}{rest}\n"

@@ -5,7 +5,7 @@ continues one), the lines after a command are what it prints (standard output an
 error together). A line ``...`` stands for any number of lines, and a line ending in ``...``
 for any line that starts with what comes before it. A command followed by no lines prints
 nothing. The commands of a page run one after another, in one folder laid out as
-``txtool demo --copy DIR`` lays it out (the shipped ``fixtures/``, and ``fixtures/examples/*``
+``txtool demo --copy DIR`` lays it out (the demo robots in ``fixtures/``, and ``fixtures/examples/*``
 at its top), so a page can change a file and look at it again; a ``$ cd DIR`` moves the
 commands that follow into ``DIR``.
 """

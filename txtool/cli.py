@@ -44,7 +44,8 @@ EXAMPLES: dict[str, tuple[str, ...]] = {
     "validate": (
         "txtool validate .                       # a repository or workspace",
         "txtool validate urdf/ --select TX1 --strict",
-        "txtool validate --format sarif -o txtool.sarif .",
+        "txtool validate --format github --format sarif:txtool.sarif .   # both, one run",
+        "txtool validate urdf/ --fix              # apply the fixes of the [*] findings",
         "txtool validate - --stdin-filename urdf/robot.urdf < generated.urdf",
     ),
     "show": (

@@ -149,7 +149,7 @@ def test_demo_copy_lays_out_the_documentation_examples(tmp_path):
     target = tmp_path / "try"
     result = CliRunner().invoke(cli, ["demo", "--copy", str(target)])
     assert result.exit_code == 0, result.output
-    assert result.output.startswith(f"wrote 18 files into {target}: ")
+    assert result.output.startswith(f"wrote 13 files into {target}: ")
     assert (target / "robot.urdf").read_bytes() == (examples / "robot.urdf").read_bytes()
     assert (target / "fixtures" / "demo_robot.urdf").is_file()
 

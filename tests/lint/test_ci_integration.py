@@ -15,7 +15,6 @@ import yaml
 from click.testing import CliRunner
 
 from tests.lint.conftest import BROKEN, CLEAN
-from txtool import __version__
 from txtool.cli import cli
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -56,9 +55,15 @@ def test_action_is_a_composite_action_calling_its_script():
     assert validate["env"]["TXTOOL_CONFIG"] == "${{ inputs.config }}"
     assert validate["env"]["TXTOOL_TRUST_XACRO"] == "${{ inputs.trust-xacro }}"
     assert action["inputs"]["trust-xacro"]["default"] == "false"
+    cache = next(step for step in action["runs"]["steps"] if "actions/cache" in step.get("uses", ""))
+    assert cache["with"] == {"path": "~/.cache/txtool-action",  # the script's default cache
+                             "key": "${{ steps.cache-key.outputs.key }}",
+                             "restore-keys": "${{ steps.cache-key.outputs.prefix }}"}
+    key = next(step for step in action["runs"]["steps"] if step.get("id") == "cache-key")
+    assert key["env"]["TXTOOL_VERSION"] == "${{ inputs.version }}"
     scripts = [step["run"] for step in action["runs"]["steps"] if "run" in step]
     assert scripts == [f'bash "$TXTOOL_ACTION_PATH/.github/txtool-action.sh" {step}'
-                       for step in ("install", "validate")]
+                       for step in ("cache-key", "install", "validate")]
     assert action["outputs"]["exit-code"]["value"] == "${{ steps.validate.outputs.exit-code }}"
 
 
@@ -79,6 +84,7 @@ def test_action_writes_sarif_and_still_annotates(repo, tmp_path):
                        TXTOOL_SARIF="out/txtool.sarif")
     assert done.returncode == 2  # the folder for the SARIF file does not exist
     assert "out/txtool.sarif" in done.stderr
+    assert done.stdout.startswith("::error file=urdf/broken.urdf,")  # annotated all the same
     (repo / "out").mkdir()
     done = action_step("validate", repo, TXTOOL_PATHS="urdf/clean.urdf urdf/broken.urdf",
                        TXTOOL_SARIF="out/txtool.sarif")
@@ -136,11 +142,9 @@ def test_action_config_and_trust_xacro_inputs(repo, tmp_path):
     _, calls, _ = recorded_argv(repo, tmp_path, TXTOOL_PATHS="urdf", TXTOOL_CONFIG="ci/txtool.toml",
                                 TXTOOL_TRUST_XACRO="true", TXTOOL_ARGS="--strict",
                                 TXTOOL_SARIF="out.sarif")
-    assert calls == [
-        ["validate", "--format", "sarif", "--exit-zero", "--output-file", "out.sarif",
-         "--config", "ci/txtool.toml", "--trust-xacro", "--strict", "--", "urdf"],
-        ["validate", "--format", "github", "--config", "ci/txtool.toml", "--trust-xacro",
-         "--strict", "--", "urdf"],
+    assert calls == [  # one run for the annotations and the SARIF report
+        ["validate", "--format", "github", "--format", "sarif:out.sarif", "--config",
+         "ci/txtool.toml", "--trust-xacro", "--strict", "--", "urdf"],
     ]
     _, calls, _ = recorded_argv(repo, tmp_path, TXTOOL_PATHS="urdf", TXTOOL_TRUST_XACRO="false")
     assert calls == [["validate", "--format", "github", "--", "urdf"]]
@@ -149,19 +153,135 @@ def test_action_config_and_trust_xacro_inputs(repo, tmp_path):
     assert err == "txtool action: trust-xacro: expected true or false, got 'yes'\n"
 
 
-def test_action_install_asks_pip_for_the_requirement(tmp_path):
-    fake = tmp_path / "bin"
+def fake_installers(tmp_path: Path, *, uv: bool) -> tuple[dict[str, str], Path]:
+    """A PATH whose ``python`` (and ``uv``) log their arguments and cache folder to the log
+    returned, one JSON line a call; ``pip wheel`` leaves a wheel in its --wheel-dir. Only the
+    digest script (``python -``) runs for real. No uv of the machine's is on this PATH."""
+    fake = tmp_path / "fake-bin"
     fake.mkdir()
-    log = tmp_path / "pip.log"
-    (fake / "python").write_text(f'#!/bin/sh\necho "$@" >> {log}\n')
+    log = tmp_path / "install.log"
+    (fake / "python").write_text(
+        f"#!{sys.executable}\nimport json, os, sys\n"
+        f"if sys.argv[1:2] == ['-']:\n    os.execv({sys.executable!r}, [{sys.executable!r}, *sys.argv[1:]])\n"
+        f"open({str(log)!r}, 'a').write(json.dumps([os.environ.get('PIP_CACHE_DIR'), *sys.argv[1:]]) + '\\n')\n"
+        "if sys.argv[2:4] == ['pip', 'wheel']:\n"
+        "    folder = sys.argv[sys.argv.index('--wheel-dir') + 1]\n"
+        "    open(os.path.join(folder, 'txtool-0.1.0-py3-none-any.whl'), 'w').close()\n")
+    if uv:
+        (fake / "uv").write_text(
+            f"#!{sys.executable}\nimport json, os, sys\n"
+            f"open({str(log)!r}, 'a').write(json.dumps(['uv', os.environ.get('UV_CACHE_DIR'), *sys.argv[1:]]) + '\\n')\n")
+        (fake / "uv").chmod(0o755)
     (fake / "python").chmod(0o755)
-    env = {"PATH": f"{fake}{os.pathsep}{os.environ['PATH']}"}
-    for version, expected in (("txtool==0.1.0", "txtool==0.1.0"), ("", str(ROOT))):
-        subprocess.run(["bash", str(SCRIPT), "install"], env={
-            **os.environ, **env, "TXTOOL_VERSION": version, "TXTOOL_ACTION_PATH": str(ROOT)},
-            check=True, timeout=60)
-        assert log.read_text().splitlines()[-1] == (
-            f"-m pip install --quiet --disable-pip-version-check {expected}")
+    system = [d for d in os.environ["PATH"].split(os.pathsep) if not (Path(d) / "uv").exists()]
+    return {**os.environ, "PATH": os.pathsep.join([str(fake), *system])}, log
+
+
+def install(env: dict[str, str], log: Path, **inputs: str) -> tuple[int, str, list[list[str]]]:
+    log.unlink(missing_ok=True)
+    done = subprocess.run(["bash", str(SCRIPT), "install"], env={**env, **inputs},
+                          capture_output=True, text=True, timeout=60)
+    calls = [json.loads(line) for line in log.read_text().splitlines()] if log.exists() else []
+    return done.returncode, done.stderr, calls
+
+
+@pytest.fixture
+def checkout(tmp_path) -> Path:
+    """The action's checkout, in a folder whose name holds a space."""
+    folder = tmp_path / "the action"
+    (folder / "txtool" / "__pycache__").mkdir(parents=True)
+    (folder / "pyproject.toml").write_text("[project]\nname = 'txtool'\n")
+    (folder / "txtool" / "__init__.py").write_text("__version__ = '0.1.0'\n")
+    return folder
+
+
+def test_action_install_builds_the_checkout_once_and_installs_its_wheel(tmp_path, checkout):
+    env, log = fake_installers(tmp_path, uv=False)
+    cache = tmp_path / "cache"
+    inputs = {"TXTOOL_VERSION": "", "TXTOOL_ACTION_PATH": str(checkout), "TXTOOL_CACHE": str(cache)}
+    code, err, calls = install(env, log, **inputs)
+    assert (code, err) == (0, "")
+    [wheel_call, install_call] = calls
+    assert wheel_call[:6] == [str(cache / "pip"), "-m", "pip", "wheel", "--quiet",
+                              "--disable-pip-version-check"]
+    assert wheel_call[-2:] == ["--", str(checkout)]
+    [folder] = (cache / "wheels").iterdir()
+    wheel = folder / "txtool-0.1.0-py3-none-any.whl"
+    assert install_call == [str(cache / "pip"), "-m", "pip", "install", "--quiet",
+                            "--disable-pip-version-check", "--", str(wheel)]
+    (checkout / "txtool" / "__pycache__" / "__init__.cpython-311.pyc").write_bytes(b"\0")
+    assert install(env, log, **inputs)[2] == [install_call]  # built once: the cached wheel
+    (checkout / "txtool" / "__init__.py").write_text("__version__ = '0.1.1'\n")
+    code, _, calls = install(env, log, **inputs)
+    assert code == 0 and [call[3] for call in calls] == ["wheel", "install"]  # a new checkout
+    assert len(list((cache / "wheels").iterdir())) == 2
+
+
+def cache_key(tmp_path: Path, **env: str) -> dict[str, str]:
+    output = tmp_path / "github_output"
+    output.unlink(missing_ok=True)
+    variables = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}",
+                 "GITHUB_OUTPUT": str(output), "RUNNER_OS": "Linux", **env}
+    subprocess.run(["bash", str(SCRIPT), "cache-key"], env=variables, check=True, timeout=60)
+    return dict(line.split("=", 1) for line in output.read_text().splitlines())
+
+
+def test_action_cache_key_holds_no_comma_and_changes_with_the_version(tmp_path):
+    version = "{}.{}.{}".format(*sys.version_info[:3])
+    pinned = cache_key(tmp_path, TXTOOL_VERSION="txtool>=0.1,<0.2", TXTOOL_ACTION_REF="v0.1.0")
+    assert pinned["prefix"] == f"txtool-action-Linux-py{version}-"
+    assert re.fullmatch(re.escape(pinned["prefix"]) + "[0-9a-f]{16}", pinned["key"])
+    other = cache_key(tmp_path, TXTOOL_VERSION="txtool==0.1.0", TXTOOL_ACTION_REF="v0.1.0")
+    moved = cache_key(tmp_path, TXTOOL_VERSION="txtool>=0.1,<0.2", TXTOOL_ACTION_REF="v0.2.0")
+    assert len({pinned["key"], other["key"], moved["key"]}) == 3
+    assert cache_key(tmp_path, TXTOOL_VERSION="txtool>=0.1,<0.2",
+                     TXTOOL_ACTION_REF="v0.1.0") == pinned
+
+
+def test_action_install_uses_uv_where_it_is(tmp_path, checkout):
+    env, log = fake_installers(tmp_path, uv=True)
+    cache = tmp_path / "cache"
+    code, _, calls = install(env, log, TXTOOL_VERSION="txtool==0.1.0; os_name == 'posix'",
+                             TXTOOL_CACHE=str(cache))
+    assert code == 0
+    assert calls == [["uv", str(cache / "uv"), "pip", "install", "--quiet", "--python",
+                      str(tmp_path / "fake-bin" / "python"), "--",
+                      "txtool==0.1.0; os_name == 'posix'"]]  # one argument, as written
+
+
+def test_action_install_refuses_a_version_that_is_an_option(tmp_path):
+    env, log = fake_installers(tmp_path, uv=False)
+    code, err, calls = install(env, log, TXTOOL_VERSION="--index-url=https://example.invalid/")
+    assert (code, calls) == (2, [])
+    assert err == ("txtool action: version: expected a requirement such as txtool==0.1.0, got "
+                   "'--index-url=https://example.invalid/'\n")
+
+
+def test_action_install_without_version_or_checkout_fails(tmp_path):
+    env, log = fake_installers(tmp_path, uv=False)
+    env.pop("TXTOOL_ACTION_PATH", None)
+    code, err, calls = install(env, log, TXTOOL_VERSION="")
+    assert code != 0 and calls == []
+    assert "TXTOOL_ACTION_PATH is not set" in err
+
+
+def test_action_one_run_gives_annotations_and_sarif_for_hostile_names(repo, tmp_path):
+    """One validate run writes both reports; a SARIF file named like an option, holding a
+    space or a colon is a file; one naming an input is refused, the input left as it was."""
+    calls = recorded_argv(repo, tmp_path, TXTOOL_PATHS="urdf", TXTOOL_SARIF="--exit-zero")[1]
+    assert calls == [["validate", "--format", "github", "--format", "sarif:--exit-zero", "--",
+                      "urdf"]]
+    for name in ("--exit-zero", "my report.sarif", "a:b.sarif"):
+        done = action_step("validate", repo, TXTOOL_PATHS="urdf", TXTOOL_SARIF=name)
+        assert done.returncode == 1, done.stderr
+        results = json.loads((repo / name).read_text())["runs"][0]["results"]
+        annotated = [line for line in done.stdout.splitlines() if line.startswith("::")]
+        assert len(results) == len(annotated) > 0
+    broken = (repo / "urdf" / "broken.urdf").read_text()
+    done = action_step("validate", repo, TXTOOL_PATHS="urdf", TXTOOL_SARIF="urdf/broken.urdf")
+    assert done.returncode == 2 and "urdf/broken.urdf" in done.stderr
+    assert done.stdout.startswith("::")  # the annotations are written all the same
+    assert (repo / "urdf" / "broken.urdf").read_text() == broken
 
 
 def hooks() -> dict[str, dict]:
@@ -211,10 +331,16 @@ def test_hooks_leave_xml_that_is_no_robot_alone(tmp_path):
     assert code == 0 and "TX006" in out
 
 
-def test_readme_rev_is_the_tag_of_this_version():
-    readme = (ROOT / "README.md").read_text()
-    revs = set(re.findall(r"rev: (v\S+)", readme)) | set(re.findall(r"txtool/txtool@(v\S+)", readme))
-    assert revs == {f"v{__version__}"}
+def test_no_page_sends_users_to_a_release_that_does_not_exist():
+    """txtool has no release tag and no release on a package index yet: the action, the
+    pre-commit hooks and pip are pointed at the repository's main branch."""
+    pages = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+    for page in pages:
+        text = page.read_text()
+        assert re.findall(r"rev: (\S+)", text) in ([], ["main"]), page
+        assert set(re.findall(r"txtool/txtool@(\S+)", text)) <= {"main"}, page
+        # "pip install txtool", "pip install 'txtool[sim]'": from an index that has no txtool
+        assert not re.search(r"pip install (['\"]?)txtool(\[[a-z,]+\])?\1(\s|`|$)", text), page
 
 
 def test_action_on_a_hostile_pull_request(tmp_path):

@@ -27,7 +27,8 @@ def invoke(*args: str) -> tuple[int, str, str]:
 def test_without_the_extra_it_names_the_extra_to_install(monkeypatch) -> None:
     monkeypatch.setitem(sys.modules, "pygls", None)  # as if not installed
     assert invoke("lsp") == (
-        2, "", "txtool: txtool lsp needs the 'lsp' extra: pip install 'txtool[lsp]'\n")
+        2, "", "txtool: txtool lsp needs the 'lsp' extra: pip install 'txtool[lsp] @ "
+        "git+https://github.com/txtool/txtool' (in a clone: pip install -e '.[lsp]')\n")
 
 
 @pytest.mark.parametrize("address", ["2087", "localhost:", "localhost:http", "[::1]:70000"])

@@ -173,7 +173,9 @@ def require_extra(module: str, extra: str, what: str) -> None:
     import importlib.util
 
     if importlib.util.find_spec(module) is None:
-        raise InputError(f"{what} needs the '{extra}' extra: pip install 'txtool[{extra}]'")
+        from txtool.io.resources import install_extra
+
+        raise InputError(f"{what} needs the '{extra}' extra: {install_extra(extra)}")
 
 
 COLOR_MODES = ("auto", "always", "never")

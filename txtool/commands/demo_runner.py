@@ -25,8 +25,10 @@ def run_demo(console: Console) -> int:
     _roundtrip(console, robot)
     _validate(console, robot)
     if importlib.util.find_spec("pinocchio") is None:
-        raise InputError("the demo's simulation step needs the 'sim' extra: "
-                         "pip install 'txtool[sim]'")
+        from txtool.io.resources import install_extra
+
+        raise InputError(f"the demo's simulation step needs the 'sim' extra: "
+                         f"{install_extra('sim')}")
     _simulate(console)
     console.print(Rule("done"))
     return 0

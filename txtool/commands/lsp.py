@@ -45,7 +45,7 @@ def command(tcp, ros_distro, no_xacro, config_path, xacro) -> int:
     The editor's unsaved text is checked as validate checks the saved file: the same rules,
     configuration (decided from the repository of the editor's workspace) and suppressions;
     xacro runs in its sandbox unless --trust-xacro. Needs the 'lsp' extra
-    (pip install 'txtool[lsp]'); see docs/editors.md.
+    (see docs/editors.md).
     """
     address = _address(tcp)
     for module in ("pygls", "lsprotocol"):

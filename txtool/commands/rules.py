@@ -41,7 +41,8 @@ def command(code: str | None, output_format: str) -> int:
             click.echo(f"{r.code}  {r.name:<{width}}  {r.severity:<7}  {fix}  {r.summary}")
     else:
         rule = rules[0]
-        fixable = ", fixable by 'txtool migrate'" if rule.fixable else ""
+        fixable = (", fixable by 'txtool validate --fix' and 'txtool migrate'" if rule.fixable
+                   else "")
         click.echo(f"{rule.code} {rule.name} (default severity: {rule.severity}{fixable})\n")
         click.echo(plain(rule.doc))
     return 0

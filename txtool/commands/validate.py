@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import sys
+from typing import NamedTuple
 
 import click
 
@@ -20,6 +21,18 @@ from txtool.model.distro import CHOICES
 FORMATS = ("text", "json", "github", "sarif", "junit")
 
 
+class OutputFormat(Choice):
+    """``NAME`` (the report on stdout, or in ``--output-file``) or ``NAME:FILE`` (that report
+    written to FILE too), as pylint's ``--output-format=json:report.json``."""
+
+    name = "format"
+
+    def convert(self, value, param, ctx) -> tuple[str, str | None]:
+        name, colon, path = str(value).partition(":")
+        if colon and not path:
+            self.fail(f"{value!r}: no file name after ':'", param, ctx)
+        return super().convert(name, param, ctx), path or None
+
 
 def _codes(values: tuple[str, ...]) -> tuple[str, ...]:
     return tuple(code.strip() for value in values for code in value.split(",") if code.strip())
@@ -35,8 +48,11 @@ def use_color(mode: str, output_file: str | None = None) -> bool:
 
 @click.command("validate")
 @click.argument("paths", nargs=-1, type=click.Path())
-@click.option("--format", "output_format", type=Choice(FORMATS), default=None,
-              help="Output format [default: text; github when GITHUB_ACTIONS=true].")
+@click.option("--format", "output_formats", type=OutputFormat(FORMATS), multiple=True,
+              metavar="[" + "|".join(FORMATS) + "][:FILE]",
+              help="Output format [default: text; github when GITHUB_ACTIONS=true]; "
+                   "NAME:FILE writes that report to FILE as well (repeatable, e.g. "
+                   "--format github --format sarif:txtool.sarif).")
 @click.option("--select", multiple=True, metavar="CODES",
               help="Only these rule codes or prefixes (comma-separated, repeatable).")
 @click.option("--ignore", multiple=True, metavar="CODES",
@@ -56,6 +72,12 @@ def use_color(mode: str, output_file: str | None = None) -> bool:
                    "(FORCE_COLOR colours a pipe too).")
 @click.option("-o", "--output-file", type=click.Path(dir_okay=False), metavar="FILE",
               help="Write the report to FILE (replaced whole, atomically) instead of stdout.")
+@click.option("--fix", is_flag=True,
+              help="Apply the fixable rules' fixes (as txtool migrate does) to the files "
+                   "holding fixable findings [*], then report what remains.")
+@click.option("--diff", is_flag=True,
+              help="Write nothing; print the unified diff --fix would make and exit 1 if it "
+                   "would change a file.")
 @click.option("-q", "--quiet", is_flag=True,
               help="Text format: print the findings only, no summary line.")
 @click.option("--statistics", is_flag=True,
@@ -72,17 +94,26 @@ def use_color(mode: str, output_file: str | None = None) -> bool:
                    "configuration's ros-distro and what package.xml and <gazebo> plugins say).")
 @xacro_options
 @exit_on_input_error
-def command(paths, output_format, select, ignore, strict, exit_zero, config_path, no_xacro,
-            stdin_filename, jobs, color, output_file, quiet, statistics, exclude,
+def command(paths, output_formats, select, ignore, strict, exit_zero, config_path, no_xacro,
+            stdin_filename, jobs, color, output_file, fix, diff, quiet, statistics, exclude,
             extend_exclude, respect_gitignore, ros_distro, xacro) -> int:
     """Check transmissions in files and folders (*.urdf, *.xacro, robot *.xml; '-' is stdin).
 
     Exit codes: 0 nothing at the failing level, 1 findings at it (errors; warnings too with
     --strict; infos never), 2 usage, configuration or input error.
     """
+    from txtool.commands.validate_fix import FixSelection, apply_fixes, print_diff
     from txtool.lint.api import LintOptions, exit_code, lint_paths
-    from txtool.reporters import Summary
 
+    main, files = _outputs(output_formats, output_file)
+    if (quiet or statistics) and main != "text":
+        raise click.UsageError(f"--quiet and --statistics go with --format text, not {main}")
+    if diff and (output_formats or output_file or quiet or statistics):
+        raise click.UsageError("--diff prints a diff: it takes no --format, --output-file, "
+                               "--quiet or --statistics")
+    if (fix or diff) and "-" in paths:
+        raise click.UsageError(f"--{'diff' if diff else 'fix'} rewrites files in place; "
+                               "standard input ('-') cannot be fixed")
     options = LintOptions(
         select=_codes(select) or None,
         ignore=_codes(ignore),
@@ -100,26 +131,83 @@ def command(paths, output_format, select, ignore, strict, exit_zero, config_path
     )
     if xacro.args:
         _warn_unused_args(list(paths), no_xacro)
-    result = lint_paths(list(paths) or ["."], options)
+    targets = list(paths) or ["."]
+    selection = FixSelection(options.select, options.ignore, config_path)
+    result = lint_paths(targets, options)
+    fix_failed = False
+    if diff:
+        tell(result)
+        return print_diff(result, selection)
+    if fix:
+        fixed, fix_failed = apply_fixes(result, selection)
+        if fixed:
+            result = lint_paths(targets, options)
+    tell(result)
+    stdin_name = (stdin_filename or "<stdin>") if "-" in paths else None
+    code = _report_all(result, main, files, output_file, stdin_name, selection,
+                       _Look(use_color(color, output_file), quiet, statistics,
+                             ("error", "warning") if strict else ("error",)), paths)
+    return 2 if fix_failed else max(code, exit_code(result, options))
+
+
+class _Look(NamedTuple):
+    color: bool
+    quiet: bool
+    statistics: bool
+    failing: tuple[str, ...]  # the severities that fail the run (JUnit failures)
+
+
+def _outputs(formats: tuple[tuple[str, str | None], ...],
+             output_file: str | None) -> tuple[str, list[tuple[str, str]]]:
+    """The report on stdout (or in --output-file) and the reports written to files."""
+    shown = [name for name, path in formats if path is None]
+    if len(shown) > 1:
+        raise click.UsageError("--format without a FILE names the report on stdout (or in "
+                               f"--output-file): give one, not {len(shown)}")
+    files = [(name, path) for name, path in formats if path is not None]
+    paths = [os.path.abspath(path) for _, path in files] + (
+        [os.path.abspath(output_file)] if output_file else [])
+    if len(set(paths)) < len(paths):
+        raise click.UsageError("two reports named the same file")
+    return (shown[0] if shown else default_format()), files
+
+
+def tell(result) -> None:
+    """The notes and input errors of a lint run, on stderr."""
     for note in result.notes:
         click.echo(f"txtool: note: {printable(note)}", err=True)
     for error in result.errors:
         click.echo(f"txtool: {printable(error.message)}", err=True)
-    fmt = output_format or default_format()
-    if (quiet or statistics) and fmt != "text":
-        raise click.UsageError(f"--quiet and --statistics go with --format text, not {fmt}")
-    summary = Summary.of(result.problems, result.files, failures=result.errors,
-                         readers=result.readers,
-                         failing=("error", "warning") if strict else ("error",))
-    colored = fmt == "text" and use_color(color, output_file)
-    report = _report(fmt, result.problems, summary, colored, quiet, statistics)
-    if output_file is None:
-        click.echo(report, nl=False, color=True)
-    else:
-        from txtool.io.xmlio import write_atomic
 
-        write_atomic(output_file, report.encode("utf-8"), inputs=tuple(paths), report=True)
-    return exit_code(result, options)
+
+def _report_all(result, main: str, files: list[tuple[str, str]], output_file: str | None,
+                stdin_name: str | None, selection, look: _Look, inputs: tuple[str, ...]) -> int:
+    """Print (or write to ``output_file``) the ``main`` report, then write the ``files``
+    reports; 2 if one could not be written (the others still are), else 0."""
+    from txtool.commands.validate_fix import confirmed
+    from txtool.io.xmlio import InputError, write_atomic
+    from txtool.reporters import Summary
+
+    wants_edits = any(name == "sarif" for name in [main, *(name for name, _ in files)])
+    problems, edits = confirmed(result.problems, stdin_name, selection, with_edits=wants_edits)
+    summary = Summary.of(problems, result.files, failures=result.errors, readers=result.readers,
+                         edits=edits, failing=look.failing)
+    colored = main == "text" and look.color
+    outputs = [(output_file, _report(main, problems, summary, colored, look.quiet,
+                                     look.statistics))]
+    outputs += [(path, _report(name, problems, summary, False, False, False))
+                for name, path in files]
+    code = 0
+    for path, report in outputs:
+        if path is None:
+            click.echo(report, nl=False, color=True)
+            continue
+        try:
+            write_atomic(path, report.encode("utf-8"), inputs=tuple(inputs), report=True)
+        except InputError as exc:
+            click.echo(f"txtool: {printable(str(exc))}", err=True)
+            code = 2
+    return code
 
 
 def _warn_unused_args(paths: list[str], no_xacro: bool) -> None:

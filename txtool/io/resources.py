@@ -12,6 +12,7 @@ from pathlib import Path
 
 from txtool.io.xmlio import InputError
 
+REPOSITORY = "https://github.com/txtool/txtool"
 _PACKAGE = Path(__file__).resolve().parents[1]
 _PLACES = (_PACKAGE / "_data", _PACKAGE.parent)  # installed wheel, then source checkout
 
@@ -38,10 +39,19 @@ def shipped_files(folder: str) -> dict[str, Path]:
 
 def example_layout() -> dict[str, Path]:
     """The files the documentation's examples run on, by where they go in a fresh folder: the
-    demo robots as ``fixtures/NAME`` and the examples of ``fixtures/examples`` at the top."""
+    demo robots as ``fixtures/NAME`` and the examples of ``fixtures/examples`` at the top
+    (once: a walk of the folder finds each file once)."""
     layout: dict[str, Path] = {}
     for relative, path in shipped_files("fixtures").items():
         if relative.startswith("examples/"):
             layout[relative.removeprefix("examples/")] = path
-        layout[f"fixtures/{relative}"] = path
+        else:
+            layout[f"fixtures/{relative}"] = path
     return layout
+
+
+def install_extra(extra: str) -> str:
+    """How to add an extra, as txtool is installed today: from its repository (there is no
+    release on a package index yet) or, in a clone, in place."""
+    return (f"pip install 'txtool[{extra}] @ git+{REPOSITORY}' "
+            f"(in a clone: pip install -e '.[{extra}]')")

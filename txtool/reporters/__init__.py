@@ -7,11 +7,14 @@ imported only when chosen (the text format loads rich only when colouring).
 from __future__ import annotations
 
 import importlib
-from collections.abc import Sequence
-from typing import NamedTuple
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, NamedTuple
 
 from txtool.lint.problem import InputFailure, Problem
 from txtool.lint.readers import FileReaders
+
+if TYPE_CHECKING:
+    from txtool.reporters.fixes import Edit
 
 FORMATS: dict[str, str] = {
     "text": "text",
@@ -31,6 +34,9 @@ class Summary(NamedTuple):
     readers: tuple[FileReaders, ...] = ()  # the readers each file was judged for
     not_expanded: int = 0  # xacro files whose expansion failed (TX002): checked as written only
     failing: tuple[str, ...] = ("error",)  # the severities that fail the run (--strict: warnings)
+    fixable: int = 0  # findings that ``validate --fix`` fixes
+    # What ``--fix`` would change in each file holding fixable findings (SARIF ``fixes``).
+    edits: Mapping[str, tuple[Edit, ...]] | None = None
 
     @property
     def unreadable(self) -> int:
@@ -39,14 +45,16 @@ class Summary(NamedTuple):
     @classmethod
     def of(
         cls, problems: Sequence[Problem], files: int, *, failures: Sequence[InputFailure] = (),
-        readers: Sequence[FileReaders] = (), failing: Sequence[str] = ("error",),
+        readers: Sequence[FileReaders] = (), edits: Mapping[str, tuple[Edit, ...]] | None = None,
+        failing: Sequence[str] = ("error",),
     ) -> Summary:
         def count(level: str) -> int:
             return sum(1 for p in problems if p.severity == level)
 
         not_expanded = len({p.path for p in problems if p.code == "TX002"})
+        fixable = sum(1 for p in problems if p.fixable)
         return cls(files, count("error"), count("warning"), count("info"), tuple(failures),
-                   tuple(readers), not_expanded, tuple(failing))
+                   tuple(readers), not_expanded, tuple(failing), fixable, edits)
 
 
 def render(

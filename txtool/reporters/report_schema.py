@@ -27,7 +27,8 @@ class ReportProblem(BaseModel):
     code: str = Field(pattern=r"^TX\d{3}$", description="Stable rule code, e.g. TX105.")
     name: str = Field(description="The rule's kebab-case name, e.g. invalid-number.")
     message: str
-    fixable: bool = Field(description="Whether `txtool migrate` can fix it.")
+    fixable: bool = Field(description="Whether `txtool validate --fix` fixes it (with the fixes "
+                          "of `txtool migrate`).")
 
 
 class ReportError(BaseModel):

@@ -4,14 +4,16 @@ Paths become URIs relative to ``%SRCROOT%`` (the working folder, given in
 ``originalUriBaseIds``) with forward slashes, so code scanning maps them onto the repository
 and results stay stable across checkouts; a file outside the working folder keeps an absolute
 ``file://`` URI. Files that could not be read are ``toolExecutionNotifications`` of the
-invocation, which is then not ``executionSuccessful``.
+invocation, which is then not ``executionSuccessful``. A finding ``txtool validate --fix``
+fixes carries ``fixes``: the replacements that command makes in the lines of the finding (in
+the whole file when the fix changes other lines), from the summary's ``edits``.
 """
 
 from __future__ import annotations
 
 import json
 import os
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path, PurePath
 from typing import Any
 from urllib.parse import quote
@@ -21,6 +23,7 @@ from txtool.lint.problem import InputFailure, Problem
 from txtool.lint.readers import FileReaders
 from txtool.lint.ruledoc import markdown, plain
 from txtool.reporters import Summary, end_of
+from txtool.reporters.fixes import Edit, edits_for
 
 SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
 HOME = "https://github.com/txtool/txtool"
@@ -30,12 +33,13 @@ LEVELS = {"error": "error", "warning": "warning", "info": "note"}
 
 
 def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False) -> str:
-    return json.dumps(sarif_log(problems, summary.failures, summary.readers), indent=2) + "\n"
+    log = sarif_log(problems, summary.failures, summary.readers, summary.edits or {})
+    return json.dumps(log, indent=2) + "\n"
 
 
 def sarif_log(
     problems: Sequence[Problem], failures: Sequence[InputFailure] = (),
-    readers: Sequence[FileReaders] = (),
+    readers: Sequence[FileReaders] = (), edits: Mapping[str, Sequence[Edit]] | None = None,
 ) -> dict[str, Any]:
     """The SARIF log; the run's ``properties.readers`` lists, for each file holding
     transmissions, the readers it was judged for and why (as the JSON report's ``readers``)."""
@@ -60,7 +64,8 @@ def sarif_log(
                 "invocations": [_invocation(failures, uris)],
                 "originalUriBaseIds": {SRCROOT: {"uri": Path(os.getcwd()).as_uri() + "/"}},
                 "columnKind": "unicodeCodePoints",
-                "results": [_result(p, index, uris) for p in problems],
+                "results": [_result(p, index, uris, (edits or {}).get(p.path, ()))
+                            for p in problems],
                 "properties": {"readers": [file.as_json() for file in readers]},
             }
         ],
@@ -113,7 +118,8 @@ def _artifact(path: str, uris: dict[str, str]) -> dict[str, str]:
     return {"uri": uri, "uriBaseId": SRCROOT}
 
 
-def _result(problem: Problem, index: dict[str, int], uris: dict[str, str]) -> dict[str, Any]:
+def _result(problem: Problem, index: dict[str, int], uris: dict[str, str],
+            edits: Sequence[Edit] = ()) -> dict[str, Any]:
     end_line, end_column = end_of(problem)
     result: dict[str, Any] = {
         "ruleId": problem.code,
@@ -135,7 +141,32 @@ def _result(problem: Problem, index: dict[str, int], uris: dict[str, str]) -> di
     }
     if problem.code in index:
         result["ruleIndex"] = index[problem.code]
+    if problem.fixable and edits:
+        result["fixes"] = [_fix(problem, edits_for(edits, problem.line, end_line), uris)]
     return result
+
+
+def _fix(problem: Problem, edits: Sequence[Edit], uris: dict[str, str]) -> dict[str, Any]:
+    return {
+        "description": {"text": f"Apply txtool's fixes to these lines ({problem.code} among "
+                                "them): txtool validate --fix"},
+        "artifactChanges": [{
+            "artifactLocation": _artifact(problem.path, uris),
+            "replacements": [_replacement(edit) for edit in edits],
+        }],
+    }
+
+
+def _replacement(edit: Edit) -> dict[str, Any]:
+    (start_line, start_column), (end_line, end_column) = edit.start, edit.end
+    return {
+        "deletedRegion": {
+            "startLine": start_line, "startColumn": start_column,
+            "endLine": end_line, "endColumn": end_column,
+            "charOffset": edit.offset, "charLength": edit.length,
+        },
+        "insertedContent": {"text": edit.text},
+    }
 
 
 def artifact_uri(path: str) -> str:

@@ -12,14 +12,20 @@ from txtool.lint.problem import Problem
 from txtool.reporters import Summary
 
 STYLES = {"error": "bold red", "warning": "yellow", "info": "cyan"}
+FIXABLE = "[*]"  # after the code of a finding ``validate --fix`` fixes, as ruff marks them
+FIX_HINT = "`txtool validate --fix`"
 
 
 def line_of(problem: Problem) -> str:
     """One finding on one line: control characters in its path or message are escaped."""
     return (
         f"{printable(problem.path)}:{problem.line}:{problem.column}: {problem.severity} "
-        f"{problem.code} {problem.name}: {printable(problem.message)}"
+        f"{problem.code}{_mark(problem)} {problem.name}: {printable(problem.message)}"
     )
+
+
+def _mark(problem: Problem) -> str:
+    return f" {FIXABLE}" if problem.fixable else ""
 
 
 def summary_line(summary: Summary) -> str:
@@ -36,6 +42,8 @@ def summary_line(summary: Summary) -> str:
         line += f"; {_plural(summary.not_expanded, 'file')} not expanded (TX002)"
     if summary.unreadable:
         line += f"; {_plural(summary.unreadable, 'file')} could not be read"
+    if summary.fixable:
+        line += f"; {summary.fixable} fixable with {FIX_HINT}"
     return line + "."
 
 
@@ -60,14 +68,18 @@ def render_quiet(problems: Sequence[Problem], *, color: bool = False) -> str:
 
 
 def statistics(problems: Sequence[Problem], summary: Summary) -> str:
-    """``validate --statistics``: one row per rule, most frequent first, then the summary."""
+    """``validate --statistics``: one row per rule, most frequent first, ``[*]`` where some of
+    its findings are fixable, then the summary."""
     counts: dict[tuple[str, str, str], int] = {}
+    fixable = {p.code for p in problems if p.fixable}
     for p in problems:
         key = (p.code, p.name, p.severity)
         counts[key] = counts.get(key, 0) + 1
     rows = sorted(counts.items(), key=lambda item: (-item[1], item[0][0]))
     width = max((len(str(n)) for _, n in rows), default=1)
-    lines = [f"{n:>{width}}  {code}  {severity:<7}  {name}" for (code, name, severity), n in rows]
+    blank = " " * len(FIXABLE)
+    lines = [f"{n:>{width}}  {code}  {severity:<7}  {FIXABLE if code in fixable else blank} "
+             f"{name}" for (code, name, severity), n in rows]
     return "\n".join([*lines, summary_line(summary)]) + "\n"
 
 
@@ -90,6 +102,7 @@ def _render_rich(problems: Sequence[Problem], summary: Summary | None) -> str:
                 (p.severity, STYLES.get(p.severity, "")),
                 " ",
                 (p.code, "bold"),
+                (_mark(p), "bold"),
                 " ",
                 (p.name, "dim"),
                 ": ",

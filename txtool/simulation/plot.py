@@ -34,8 +34,10 @@ def require(path: str) -> None:
     if Path(path).suffix.lower() not in SUFFIXES:
         raise InputError(f"{path}: --plot writes .png, .svg or .pdf files (by the suffix)")
     if importlib.util.find_spec("matplotlib") is None:
-        raise InputError(f"{path}: --plot needs matplotlib; install it with "
-                         "pip install 'txtool[plot]'")
+        from txtool.io.resources import install_extra
+
+        raise InputError(f"{path}: --plot needs matplotlib (the 'plot' extra): "
+                         f"{install_extra('plot')}")
 
 
 def plot(runs: list[RunResult], path: str) -> None:
