@@ -7,7 +7,7 @@ for any line that starts with what comes before it. A command followed by no lin
 nothing. The commands of a page run one after another, in one folder laid out as
 ``txtool demo --copy DIR`` lays it out (the demo robots in ``fixtures/``, and ``fixtures/examples/*``
 at its top), so a page can change a file and look at it again; a ``$ cd DIR`` moves the
-commands that follow into ``DIR``.
+commands that follow into ``DIR``. A contributor's page runs in a copy of the repository.
 """
 
 from __future__ import annotations
@@ -68,6 +68,19 @@ def matches(expected: list[str], actual: list[str]) -> bool:
     return line == head.rstrip() and matches(rest, actual[1:])
 
 
+# Pages for contributors: their examples run in a copy of the repository (its package, docs
+# and fixtures), as a contributor runs them from a clone.
+REPOSITORY_PAGES = {"contributing.md"}
+
+
+def repository_copy(tmp_path: Path) -> Path:
+    for folder in ("txtool", "docs", "fixtures", "schemas"):
+        shutil.copytree(ROOT / folder, tmp_path / folder,
+                        ignore=shutil.ignore_patterns("__pycache__"))
+    shutil.copy(ROOT / "pyproject.toml", tmp_path)
+    return tmp_path
+
+
 def workspace(tmp_path: Path) -> Path:
     """A folder laid out as ``txtool demo --copy`` lays it out."""
     from txtool.io.resources import example_layout
@@ -104,7 +117,7 @@ def test_console_examples_print_what_they_show(page, tmp_path):
     blocks = sessions(page.read_text(encoding="utf-8"))
     if not blocks:
         pytest.skip("no console example")
-    cwd = workspace(tmp_path)
+    cwd = (repository_copy if page.name in REPOSITORY_PAGES else workspace)(tmp_path)
     for steps in blocks:
         for step in steps:
             if step.command.startswith("cd ") and not step.expected:
