@@ -62,6 +62,16 @@ def assumption_of(source: Source, stated: Stated) -> Assumption:
     return assume(source.root, package, stated, types, elsewhere)
 
 
+def readers_of(source: Source, ros_distro: str | None = None) -> Assumption:
+    """The readers of ``source`` as ``validate`` decides them: the ``readers`` and ``ros-distro``
+    of the configuration that applies to it, ``ros_distro`` (``--ros-distro``) over them."""
+    from txtool.lint.config import Overrides, SettingsCache
+
+    where = source.path if source.path not in ("", "-") else "-"
+    stated = SettingsCache(Overrides(ros_distro=ros_distro)).for_file(where).stated
+    return assumption_of(source, stated)
+
+
 def plugins_of_package(folder: str, path: str) -> Seen | None:
     """The ``<gazebo>`` plugins of the first other description file of the package in
     ``folder`` that names one (the reason names that file, relative to the package)."""
