@@ -133,3 +133,32 @@ def test_an_unknown_ros_distro_is_a_usage_error():
     code, _, err = txtool("robot.urdf", "--ros-distro", "groovy")
     assert code == 2
     assert "'groovy' is not one of" in err
+
+
+def test_undecided_readers_are_said_to_be_so(tmp_path):
+    ros2 = write(tmp_path, "arm.urdf", arm_ros2())
+    code, out, err = txtool(ros2, "--duration", "1")
+    assert (code, err) == (0, "")
+    assert ("read by: ros2_control (<ros2_control> blocks); nothing rules ROS 1 out: "
+            "ros_control may read the top-level transmissions\n") in out
+    ros1 = write(tmp_path, "arm1.urdf", arm_ros1())
+    code, out, err = txtool(ros1, "--duration", "1")
+    assert (code, err) == (0, "")
+    assert "read by: not known (each transmission as the loader of its dialect reads it)\n" in out
+
+
+def test_a_loader_refusal_names_the_loader_that_refuses(tmp_path):
+    no_reduction = arm_ros1().replace("<mechanicalReduction>50</mechanicalReduction>", "")
+    ros2_two_joints = arm_ros2().replace(
+        '<joint name="shoulder" role="joint1">',
+        '<joint name="elbow" role="joint1"/><joint name="shoulder" role="joint1">')
+    for name, text, why in (
+            ("ros1.urdf", no_reduction,
+             "ros_control's transmission loader refuses it: 'm_shoulder' reduction is missing"),
+            ("ros2.urdf", ros2_two_joints,
+             "ros2_control's transmission loader refuses it: a simple transmission takes one "
+             "joint, found 'elbow', 'shoulder' (configure: joint names should be identical)")):
+        robot = write(tmp_path, name, text)
+        code, out, err = txtool(robot, "--duration", "1", "--format", "json")
+        assert (code, err) == (0, "")
+        assert json.loads(out)["runs"][0]["checked"]["skipped"] == {"t_shoulder": why}

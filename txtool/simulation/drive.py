@@ -79,8 +79,8 @@ class Drive:
 
 
 def read_drive(source: Source, robot: RobotModel, *, loader: str = "auto",
-               convention: str | None = None, skip: tuple[str, ...] = (),
-               readers: Assumption | None = None) -> Drive:
+               readers: Assumption, convention: str | None = None,
+               skip: tuple[str, ...] = ()) -> Drive:
     """The drive of ``source``'s transmissions on ``robot``'s joints.
 
     Effort maps follow ``convention`` (``ros1``, ``ros2``), else each transmission's own
@@ -140,14 +140,13 @@ def read_drive(source: Source, robot: RobotModel, *, loader: str = "auto",
     return drive
 
 
-def _reads(readers: Assumption | None, item: Found) -> bool:
+def _reads(readers: Assumption, item: Found) -> bool:
     """Whether some reader of the file reads this transmission (every one when the readers
     are not decided: each is then read by the loader of its dialect)."""
-    return readers is None or readers.reads(placement_of(item.element))
+    return readers.reads(placement_of(item.element))
 
 
-def _unread_why(item: Found, readers: Assumption | None) -> str:
-    assert readers is not None
+def _unread_why(item: Found, readers: Assumption) -> str:
     if placement_of(item.element) is Placement.TOP_LEVEL:
         where = ("it stands outside every <ros2_control> block, and the file's readers read "
                  "only the transmissions inside one")
@@ -157,10 +156,8 @@ def _unread_why(item: Found, readers: Assumption | None) -> str:
     return f"read by no reader of the file: {where} ({readers.explain()})"
 
 
-def _one_ros2_distro(readers: Assumption | None) -> Distro | None:
+def _one_ros2_distro(readers: Assumption) -> Distro | None:
     """The ROS 2 distribution whose parser reads the file's numbers, when one alone does."""
-    if readers is None:
-        return None
     ros2 = [d for d in readers.distros if d.ros2]
     return ros2[0] if len(ros2) == 1 else None
 
@@ -207,7 +204,10 @@ def _why_not(item: Found, robot: RobotModel, owner: dict[str, str], taken: set[s
     try:
         tmap = from_effective(effective(t, distro), conv)
     except NotLoadable as exc:
-        return f"{exc}"
+        if t.kind == "other":
+            return f"{exc}"
+        loader = "ros_control" if loader_of(t) == "ros1" else "ros2_control"
+        return f"{loader}'s transmission loader refuses it: {exc}"
     for joint in tmap.joints:
         if joint in robot.joints:
             if joint in owner:

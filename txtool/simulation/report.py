@@ -109,9 +109,7 @@ def render_run(run: RunResult, console: Console) -> None:
 def readers_lines(run: RunResult) -> list[str]:
     """``read by: ros2_control (jazzy) (--ros-distro jazzy)``: whose reading was simulated, for
     the robot and, when it is another file, the config."""
-    robot, config = run.readers.get("robot"), run.readers.get("config")
-    if robot is None:
-        return []
+    robot, config = run.readers["robot"], run.readers.get("config")
     if config is None:
         return [f"read by: {readers_text(robot)}"]
     return [f"robot read by: {readers_text(robot)}", f"config read by: {readers_text(config)}"]

@@ -160,10 +160,10 @@ def prepare(options: Options, config: str | None, label: str | None = None
         readers["config"] = record(candidate.path, config_readers)
     # The plant is physics: power-conserving effort maps (ros2_control's). The controller
     # runs the maps of the loader that reads its file, unless --effort-convention says.
-    plant = read_drive(source, robot, loader=options.loader, convention="ros2",
-                       skip=options.skip, readers=robot_readers)
-    ctrl = read_drive(candidate, robot, loader=options.loader, convention=options.convention,
-                      skip=options.skip, readers=config_readers)
+    plant = read_drive(source, robot, loader=options.loader, readers=robot_readers,
+                       convention="ros2", skip=options.skip)
+    ctrl = read_drive(candidate, robot, loader=options.loader, readers=config_readers,
+                      convention=options.convention, skip=options.skip)
     unknown = sorted(set(options.skip) - set(plant.names) - set(ctrl.names))
     if unknown:
         raise InputError(f"--skip: no transmission named {', '.join(map(repr, unknown))} in "
