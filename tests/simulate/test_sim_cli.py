@@ -44,7 +44,7 @@ def test_json_report(tmp_path, arm):
     small = write(tmp_path, "p.toml", "[actuators.m_left]\neffort_limit = 0.01\n")
     code, out, err = txtool(arm, "--format", "json", "--duration", "1", "--params", small)
     assert (code, err) == (1, "")
-    doc = json.loads(out)
+    doc = json.loads(out)["runs"][0]
     assert doc["verdict"] == "fail" and doc["steps"] == 1000 and doc["dt"] == 0.001
     assert doc["duration"] == 1.0
     assert set(doc["joints"]) == {"shoulder", "elbow", "wrist"}

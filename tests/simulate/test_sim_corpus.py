@@ -41,10 +41,15 @@ CANNOT_HOLD = {
                                         "'suspension_left_joint' against gravity needs 116",
 }
 # Robots none of whose transmissions the simulator can drive: custom types with no standard
-# maths (pr2_mechanism_model, sr_mechanism_model), or ros_control refusing every transmission
-# (the Panda's have no reduction: franka_gazebo reads none, ros_control needs one). Their
-# self-check checks nothing, so it is inconclusive, never a pass.
+# maths (pr2_mechanism_model, sr_mechanism_model), ros_control refusing every transmission
+# (the Panda's have no reduction: franka_gazebo reads none, ros_control needs one), or none
+# read at all (OMY's are top-level ROS 1 transmissions, its only readers gz_ros2_control and
+# ros2_control, which read those inside <ros2_control>: validate's TX305). Their self-check
+# checks nothing, so it is inconclusive, never a pass.
 INCONCLUSIVE = {
+    "open_manipulator__omy_f3m.urdf": "no reader of the config reads any of its 10 "
+                                      "transmissions (read by no reader of the file: it stands "
+                                      "outside every <ros2_control> block",
     "franka_ros__panda-gazebo.urdf": "none of the config's 9 transmissions can be simulated",
     "moveit_resources__pr2_robot.urdf": "none of the config's 30 transmissions can be simulated "
                                         "(custom type 'pr2_mechanism_model/",

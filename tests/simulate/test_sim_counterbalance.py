@@ -64,10 +64,12 @@ def test_without_the_assumption_the_robot_cannot_hold_itself(tmp_path):
 def test_the_cli_reports_the_counterbalance_in_text_and_json(tmp_path):
     robot, params = weak_pendulum(tmp_path)
     code, out, err = txtool(robot, "--params", params, "--duration", "2", "--format", "json")
-    doc = json.loads(out)
+    doc = json.loads(out)["runs"][0]
     assert (code, err) == (0, "") and doc["verdict"] == "pass"
     assert set(doc["counterbalance"]) == {"swing"}
     assert set(doc["counterbalance"]["swing"]) == {"static_load", "limit", "carried", "units"}
+    assert doc["counterbalance"]["swing"]["units"] == {"static_load": "N·m", "limit": "N·m",
+                                                       "carried": "N·m"}
     assert any(n.startswith("joint 'swing': gravity needs up to") for n in doc["notes"])
     code, out, err = txtool(robot, "--params", params, "--duration", "2", "--no-counterbalance")
     assert (code, err) == (1, "")

@@ -9,6 +9,10 @@ from tests.simulate.robots import arm_ros1, pendulum, write
 from txtool.simulation.feasible import MARGIN
 from txtool.simulation.run import Options, simulate_one
 
+# every joint 25% -> 75% -> 25% of its range, about a centre of its own (reference.py)
+MOTION = ("minimum-jerk 25% -> 75% -> 25% of each range, shifted by a share of its own per "
+          "joint (within ±5%)")
+
 
 def fast_arm(tmp_path, velocity: float = 0.5) -> str:
     """The test arm with slow joints (velocity limit 0.5 rad/s on the shoulder)."""
@@ -21,7 +25,7 @@ def test_default_motion_is_slowed_for_the_binding_velocity_limit(tmp_path):
     assert run.passed, run.reasons
     # shoulder range 3 rad: a 1.5 rad move peaks at 1.875 * 1.5 / T <= 0.8 * 0.5 rad/s
     move = 1.875 * 1.5 / (MARGIN * 0.5)
-    assert run.reference == ("minimum-jerk 25% -> 75% -> 25% of each range, "
+    assert run.reference == (f"{MOTION}, "
                              f"{move:.3g} s per move (slowed for joint 'shoulder' velocity "
                              "limit)")
     assert run.duration == pytest.approx(2 * move, rel=1e-3)
@@ -39,7 +43,7 @@ def test_a_given_duration_shrinks_the_motion_instead(tmp_path):
             f"amplitude: 'shoulder' {100 * share:.0f}%") in run.notes
     assert np.ptp(run.series.q_ref[:, 0]) == pytest.approx(1.5 * share, rel=1e-3)
     # the header says plainly how much and why
-    assert run.reference == ("minimum-jerk 25% -> 75% -> 25% of each range, 2 s per move; "
+    assert run.reference == (f"{MOTION}, 2 s per move; "
                              f"amplitude cut to {100 * share:.0f}% of the default for 1 of 3 "
                              "joints to fit the given duration of 4 s (joint velocity limits; "
                              "see the notes)")
@@ -53,7 +57,7 @@ def test_without_a_given_duration_time_stretches_instead_of_the_amplitude(tmp_pa
     assert run.passed, run.reasons
     move = 1.875 * 1.5 / (MARGIN * 0.04)
     assert move > 2 * 30
-    assert run.reference == ("minimum-jerk 25% -> 75% -> 25% of each range, "
+    assert run.reference == (f"{MOTION}, "
                              f"{move:.3g} s per move (slowed for joint 'shoulder' velocity "
                              "limit)")
     assert not any("share of the default amplitude" in n for n in run.notes)
@@ -61,7 +65,7 @@ def test_without_a_given_duration_time_stretches_instead_of_the_amplitude(tmp_pa
                           None)
     share = 120 / (1.875 * 1.5 / (MARGIN * 0.02))
     assert slower.passed, slower.reasons
-    assert slower.reference == ("minimum-jerk 25% -> 75% -> 25% of each range, 120 s per move; "
+    assert slower.reference == (f"{MOTION}, 120 s per move; "
                                 f"amplitude cut to {100 * share:.0f}% of the default for 1 of 3 "
                                 "joints to keep the run within 240 s (joint velocity limits; "
                                 "see the notes)")

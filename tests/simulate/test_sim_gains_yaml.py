@@ -42,7 +42,7 @@ def gains_of(tmp_path, robot: str, *params: str, duration: str = "0.2") -> dict:
         args += ["--params", path]
     code, out, err = simulate(*args)
     assert err == "" and code in (0, 1), err
-    return json.loads(out)
+    return json.loads(out)["runs"][0]
 
 
 COMPUTED_TORQUE = """\
@@ -66,7 +66,9 @@ def test_computed_torque_gains_are_accelerations_used_as_given(tmp_path, swing):
     assert g["units"] == {"kp": "1/s²", "kd": "1/s", "ki": "1/s³", "i_clamp": "rad/s²"}
     assert g["source"] == {
         "file": yaml_path, "line": 4, "key": "computed_torque_controller.joints.swing",
-        "format": "computed_torque_controllers", "given": {"p": 900.0, "d": 60.0, "i": 2.0}}
+        "format": "computed_torque_controllers", "units": {"line": "1"},
+        "given": {"p": 900.0, "d": 60.0, "i": 2.0,
+                  "units": {"p": "1/s²", "d": "1/s", "i": "1/s³"}}}
     assert any("ct.yaml:4: computed_torque_controller.joints.swing: i_clamp is 0" in note
                for note in doc["notes"])
 
@@ -103,9 +105,11 @@ def test_ros2_effort_gains_are_divided_by_the_joint_inertia(tmp_path, swing):
     assert source["line"] == 13 and source["file"] == yaml_path
     assert source["format"] == "joint_trajectory_controller (effort gains)"
     assert source["divided_by_inertia"] == pytest.approx(M_II, rel=1e-9)
-    assert source["inertia_units"] == "kg·m²"
+    assert source["units"] == {"line": "1", "divided_by_inertia": "kg·m²"}
     assert source["given"] == {"p": 200.0, "d": 20.0, "i": 5.0, "i_clamp_max": 3.0,
-                               "i_clamp_min": 3.0}
+                               "i_clamp_min": 3.0, "units": {
+                                   "p": "N·m/rad", "d": "N·m·s/rad", "i": "N·m/(rad·s)",
+                                   "i_clamp_max": "N·m", "i_clamp_min": "N·m"}}
 
 
 def test_pid_controller_and_the_text_report(tmp_path, swing):
@@ -179,9 +183,11 @@ def test_toml_gains_report_their_source_and_defaults(tmp_path, swing):
     g = gains_of(tmp_path, robot, toml_path)["gains"]["swing"]
     assert (g["kp"], g["kd"]) == (100.0, 40.0)  # kd from --bandwidth 20
     assert g["source"] == {"file": toml_path, "line": 1, "key": "joints.swing",
-                           "format": "toml", "given": {"kp": 100.0}, "bandwidth": 20.0}
+                           "format": "toml", "given": {"kp": 100.0, "units": {"kp": "1/s²"}},
+                           "bandwidth": 20.0, "units": {"line": "1", "bandwidth": "rad/s"}}
     g = gains_of(tmp_path, robot)["gains"]["swing"]
-    assert g["source"] == {"default": "bandwidth", "bandwidth": 20.0}
+    assert g["source"] == {"default": "bandwidth", "bandwidth": 20.0,
+                           "units": {"bandwidth": "rad/s"}}
     assert (g["kp"], g["kd"], g["ki"], g["i_clamp"]) == (400.0, 40.0, 0.0, None)
 
 
@@ -261,7 +267,8 @@ def test_a_file_of_alternative_controllers_and_picking_one(tmp_path):
     gains, notes = doc["gains"], doc["notes"]
     assert gains["iiwa_joint_1"]["source"]["key"] == "EffortJointInterface_J1_controller.pid"
     assert gains["iiwa_joint_7"]["source"]["line"] == 13
-    assert gains["iiwa_joint_4"]["source"] == {"default": "bandwidth", "bandwidth": 20.0}
+    assert gains["iiwa_joint_4"]["source"] == {"default": "bandwidth", "bandwidth": 20.0,
+                                               "units": {"bandwidth": "rad/s"}}
     assert f"{yaml_path}:8: gains of 'EffortJointInterface_trajectory_controller' for " \
            "iiwa_joint_1 not used: an earlier controller in the file gives them (pick one " \
            "with iiwa_control.yaml#EffortJointInterface_trajectory_controller)" in notes
@@ -286,7 +293,7 @@ def test_gains_beyond_the_undamped_bound_that_damping_steadies_are_named(tmp_pat
     robot = str(corpus_file("iiwa_stack__iiwa14.urdf"))
     yaml_path = write(tmp_path, "iiwa_control.yaml", IIWA_CONTROL)
     code, out, err = simulate(robot, "--params", yaml_path, "--format", "json")
-    doc = json.loads(out)
+    doc = json.loads(out)["runs"][0]
     assert (code, err) == (0, "") and doc["verdict"] == "pass"
     assert doc["joints"]["iiwa_joint_7"]["max_error"] < 1e-4
     stiff = [n for n in doc["notes"] if n.startswith("gains")]
@@ -300,13 +307,13 @@ def test_gains_beyond_the_undamped_bound_that_damping_steadies_are_named(tmp_pat
     undamped = write(tmp_path, "iiwa.urdf", corpus_file("iiwa_stack__iiwa14.urdf").read_text(
         encoding="utf-8").replace('damping="0.5"', 'damping="0"'))
     code, out, err = simulate(undamped, "--params", yaml_path, "--format", "json")
-    doc = json.loads(out)
+    doc = json.loads(out)["runs"][0]
     assert (code, doc["verdict"]) == (1, "fail")
     assert "gains too stiff for --dt 0.001 s, the loop cannot be stable" in " ".join(doc["notes"])
     assert any(r.startswith("joint 'iiwa_joint_7': gains too stiff for --dt 0.001 s: the "
                             "sampled loop is unstable, its error grows x1.4") for r in doc["reasons"])
     code, out, err = simulate(robot, "--params", yaml_path, "--dt", "0.0002", "--format", "json")
-    doc = json.loads(out)
+    doc = json.loads(out)["runs"][0]
     assert (code, err) == (0, "") and doc["verdict"] == "pass"
     assert not any(n.startswith("gains") for n in doc["notes"])
 
@@ -317,7 +324,7 @@ def test_an_unstable_loop_fails_even_when_the_run_is_too_short_to_show_it(tmp_pa
     robot = write(tmp_path, "p.urdf", pendulum(1.0, 0.5, 40.0))
     params = write(tmp_path, "g.toml", "[joints.swing]\nkp = 252000.0\nkd = 500.0\n")
     code, out, err = simulate(robot, "--params", params, "--duration", "0.5", "--format", "json")
-    doc = json.loads(out)
+    doc = json.loads(out)["runs"][0]
     assert (code, err) == (1, "")
     assert doc["joints"]["swing"]["max_error"] < 0.01  # tracking alone would pass
     assert doc["reasons"][0] == (

@@ -29,7 +29,7 @@ def test_custom_type_is_left_out_and_its_joint_driven_directly_with_a_json_note(
     robot = write(tmp_path, "custom.urdf", arm_ros1(shoulder=False, extra=CUSTOM))
     code, out, err = txtool(robot, "--format", "json", "--duration", "1")
     assert (code, err) == (0, "")
-    doc = json.loads(out)
+    doc = json.loads(out)["runs"][0]
     assert doc["verdict"] == "pass"  # the other transmission was checked
     line = (tmp_path / "custom.urdf").read_text().splitlines().index(
         "  <transmission name=\"t_custom\">") + 1
@@ -143,7 +143,7 @@ def test_both_dialects_run_the_ros2_transmissions(tmp_path, loader):
 
     robot = write(tmp_path, "both.urdf", arm_both())
     code, out, err = txtool(robot, "--loader", loader, "--format", "json", "--duration", "1")
-    doc = json.loads(out)
+    doc = json.loads(out)["runs"][0]
     assert (code, err) == (0, "")
     said = any("the ROS 2 ones are simulated" in n for n in doc["notes"])
     assert said == (loader == "auto")

@@ -10,6 +10,7 @@ from txtool.io.xmlio import InputError
 from txtool.simulation.feasible import Motion, sample
 from txtool.simulation.reference import (
     Reference,
+    default_shifts,
     from_table,
     minimum_jerk,
     read_csv,
@@ -38,13 +39,14 @@ def test_minimum_jerk_rest_to_rest():
     assert_consistent(t, q, qd, qdd, 1e-3)
 
 
-def test_default_motion_spans_25_to_75_percent_and_back():
+def test_default_motion_spans_25_to_75_percent_and_back_about_each_joints_centre():
     ref = sample([(-2.0, 2.0), (0.0, 1.0)], Motion(2.0, np.ones(2), "", ()), 0.001)
     assert len(ref.time) == 4001
-    assert np.allclose(ref.q[0], [-1.0, 0.25]) and np.allclose(ref.q[-1], [-1.0, 0.25])
-    assert np.allclose(ref.q[2000], [1.0, 0.75])
-    assert np.allclose(ref.q.min(axis=0), [-1.0, 0.25]) and np.allclose(ref.q.max(axis=0),
-                                                                         [1.0, 0.75])
+    shift = default_shifts(2)[1]  # of the second joint's range; the first keeps its middle
+    low, high = [-1.0, 0.25 + shift], [1.0, 0.75 + shift]
+    assert np.allclose(ref.q[0], low) and np.allclose(ref.q[-1], low)
+    assert np.allclose(ref.q[2000], high)
+    assert np.allclose(ref.q.min(axis=0), low) and np.allclose(ref.q.max(axis=0), high)
     assert_consistent(ref.time, ref.q, ref.qd, ref.qdd, 1e-3)
 
 
@@ -114,8 +116,10 @@ def test_the_default_motion_is_each_joints_profile_to_the_bit(move, dt):
     ref = sample(ranges, motion, dt)
     # One joint at a time over the whole run, each move picked where it applies.
     second = ref.time >= move
+    shifts = default_shifts(len(ranges))
     for i, (lo, hi) in enumerate(ranges):
-        middle, half = (lo + hi) / 2, 0.25 * (hi - lo) * motion.amplitude[i]
+        middle = (lo + hi) / 2 + (hi - lo) * shifts[i]
+        half = 0.25 * (hi - lo) * motion.amplitude[i]
         up = minimum_jerk(ref.time, 0.0, move, middle - half, middle + half)
         down = minimum_jerk(ref.time, move, 2 * move, middle + half, middle - half)
         for got, a, b in zip((ref.q, ref.qd, ref.qdd), up, down, strict=True):

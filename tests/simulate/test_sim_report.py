@@ -84,13 +84,16 @@ def test_limit_reasons_carry_units(tmp_path, slider):
 
 def test_json_units(slider):
     code, out, _ = simulate(slider, "--duration", "2", "--format", "json")
-    doc = json.loads(out)
-    assert code == 0 and doc["time_units"] == "s" and doc["tolerance"] == 0.01
-    assert doc["joints"]["rail"]["units"] == "m"
-    assert doc["joints"][f"{LONG}_joint"]["units"] == "rad"
-    rail, arm = doc["actuators"]["rail_motor"], doc["actuators"][LONG]
-    assert (rail["effort_units"], rail["speed_units"]) == ("N", "m/s")
-    assert (arm["effort_units"], arm["speed_units"]) == ("N·m", "rad/s")
+    doc = json.loads(out)["runs"][0]
+    assert code == 0 and doc["tolerance"] == 0.01
+    assert doc["units"] == {"tolerance": "rad|m", "steps": "1", "dt": "s", "duration": "s"}
+    assert doc["joints"]["rail"]["units"] == {"max_error": "m", "rms_error": "m",
+                                              "max_error_time": "s", "limit_margin": "m"}
+    assert doc["joints"][f"{LONG}_joint"]["units"]["max_error"] == "rad"
+    rail, arm = doc["actuators"]["rail_motor"]["units"], doc["actuators"][LONG]["units"]
+    assert (rail["peak_effort"], rail["effort_limit"], rail["peak_velocity"]) == ("N", "N", "m/s")
+    assert (arm["rms_effort"], arm["velocity_limit"]) == ("N·m", "rad/s")
+    assert (arm["saturated_fraction"], arm["first_violation"]) == ("1", "s")
     assert doc["gains"]["rail"]["units"]["i_clamp"] == "m/s²"
 
 
@@ -110,7 +113,7 @@ def _shape(value, key=""):
         return [_shape(v) for v in value]
     if isinstance(value, float):
         return "<number>"
-    if isinstance(value, str) and key in ("file", "robot", "config"):
+    if isinstance(value, str) and key in ("file", "robot", "config", "path"):
         return Path(value).name
     if isinstance(value, str):
         return re.sub(r"\S*/(\w+\.yaml)", r"\1", value)

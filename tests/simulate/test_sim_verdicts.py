@@ -46,10 +46,11 @@ def test_only_custom_transmissions_is_inconclusive_exit_3_without_simulating(tmp
         "INCONCLUSIVE: nothing checked: none of the config's 3 transmissions can be simulated "
         "(custom type 'acme_mechanism_model/MagicTransmission' has no standard maths)")
     code, out, err = txtool(robot, "--format", "json")
-    doc = json.loads(out)
+    doc = json.loads(out)["runs"][0]
     assert (code, doc["verdict"]) == (3, "inconclusive")
     assert doc["checked"] == {
-        "transmissions": 3, "simulated": [], "joints": 3, "joints_checked": 0,
+        "transmissions": 3, "simulated": [], "joints": 3, "joints_checked": 0, "unread": {},
+        "units": {"transmissions": "1", "joints": "1", "joints_checked": "1"},
         "skipped": {f"t_{j}": "custom type 'acme_mechanism_model/MagicTransmission' has no "
                               "standard maths" for j in ("shoulder", "elbow", "wrist")}}
 
@@ -69,7 +70,7 @@ def test_a_partial_run_says_how_much_it_checked(tmp_path):
     verdict = out.splitlines()[-1]
     assert verdict.startswith("PASS: largest tracking error")
     assert verdict.endswith("; checked 1 of 2 transmissions and 2 of 3 joints")
-    doc = json.loads(txtool(robot, "--duration", "1", "--format", "json")[1])
+    doc = json.loads(txtool(robot, "--duration", "1", "--format", "json")[1])["runs"][0]
     assert doc["checked"]["simulated"] == ["t_wrist"]
     assert (doc["checked"]["joints_checked"], doc["checked"]["joints"]) == (2, 3)
 

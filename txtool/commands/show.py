@@ -93,13 +93,10 @@ def command(path, output_format, effective, actuator_limits, stdin_filename, ros
 def _readers(source, found, ros_distro):
     """The file's readers (the configuration's readers and ros-distro, --ros-distro over it)
     and the names of the transmissions none of them reads."""
-    from txtool.lint.config import Overrides, SettingsCache
-    from txtool.lint.readers import assumption_of
+    from txtool.lint.config import readers_of
     from txtool.views.readers_view import unread_names
 
-    where = source.path if source.path != "-" else "-"
-    stated = SettingsCache(Overrides(ros_distro=ros_distro)).for_file(where).stated
-    assumption = assumption_of(source, stated)
+    assumption = readers_of(source, ros_distro)
     return assumption, unread_names(assumption, [f.element for f in found])
 
 

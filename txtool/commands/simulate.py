@@ -15,6 +15,7 @@ from txtool.commands.common import (
     xacro_options,
 )
 from txtool.io.xmlio import XacroOptions
+from txtool.model.distro import CHOICES
 
 
 @click.command("simulate")
@@ -45,6 +46,10 @@ from txtool.io.xmlio import XacroOptions
               help="Do not fail on actuator effort or speed limits (still reported).")
 @click.option("--loader", type=Choice(["auto", "ros1", "ros2"]), default="auto",
               show_default=True, help="Which transmissions to use when a file has both kinds.")
+@click.option("--ros-distro", type=click.Choice(CHOICES), default=None,
+              help="The ROS distribution reading the files: its programs' readers and how they "
+                   "read numbers, as validate takes it (over the configuration's ros-distro "
+                   "and what package.xml and <gazebo> plugins say).")
 @click.option("--effort-convention", "convention", type=Choice(["ros1", "ros2"]),
               default=None,
               help="Controller effort maps: ros_control's (ros1) or ros2_control's (ros2) for "
@@ -77,7 +82,7 @@ def command(robot: str, configs: tuple[str, ...], params: tuple[str, ...],
             bandwidth: float | None,
             duration: float | None, dt: float | None, tolerance: float | None,
             trajectory: str | None, interpolation: str, allow_saturation: bool, loader: str,
-            convention: str | None, delay: bool, encoder_counts: int | None,
+            ros_distro: str | None, convention: str | None, delay: bool, encoder_counts: int | None,
             counterbalance: bool, output_format: str, csv_path: str | None,
             plot_path: str | None, skip: tuple[str, ...], jobs: int, no_xacro: bool,
             xacro: XacroOptions) -> int:
@@ -100,7 +105,7 @@ def command(robot: str, configs: tuple[str, ...], params: tuple[str, ...],
         dt=dt, tolerance=tolerance, trajectory=trajectory, interpolation=interpolation,
         allow_saturation=allow_saturation, loader=loader, convention=convention, xacro=xacro,
         jobs=jobs, skip=skip, delay=delay, encoder_counts=encoder_counts,
-        counterbalance=counterbalance,
+        counterbalance=counterbalance, ros_distro=ros_distro,
     )
     _, code = main(options, output=output_format, csv_path=csv_path, plot_path=plot_path)
     return code

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NamedTuple
 
-from txtool.io.xmlio import XacroOptions
+from txtool.io.xmlio import Source, XacroOptions
 from txtool.lint.config_files import (  # noqa: F401 - this module's names before the split
     CONFIG_FILE,
     NO_XACRO_ENV,
@@ -34,7 +34,7 @@ from txtool.lint.config_files import (  # noqa: F401 - this module's names befor
 from txtool.lint.patterns import Excludes, absolute_folder
 from txtool.lint.problem import Severity
 from txtool.model.distro import parse_distro
-from txtool.model.readers import Stated, parse_readers
+from txtool.model.readers import Assumption, Stated, parse_readers
 
 if TYPE_CHECKING:
     from txtool.lint.config_model import Config
@@ -431,3 +431,13 @@ class SettingsCache:
             env=extra.env + settings.xacro.env,
         )
         return dataclasses.replace(settings, xacro=xacro)
+
+
+def readers_of(source: Source, ros_distro: str | None = None) -> Assumption:
+    """The readers of ``source`` as ``validate`` decides them: the ``readers`` and ``ros-distro``
+    of the configuration that applies to it, ``ros_distro`` (``--ros-distro``) over them."""
+    from txtool.lint.readers import assumption_of
+
+    where = source.path if source.path not in ("", "-") else "-"
+    stated = SettingsCache(Overrides(ros_distro=ros_distro)).for_file(where).stated
+    return assumption_of(source, stated)

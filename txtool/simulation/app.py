@@ -10,7 +10,7 @@ from dataclasses import replace
 from rich.console import Console
 from rich.progress import BarColumn, Progress, TaskProgressColumn, TextColumn, TimeRemainingColumn
 
-from txtool.simulation import plot, report
+from txtool.simulation import json_report, plot, report
 from txtool.simulation.jobs import execute
 from txtool.simulation.result import RunResult
 from txtool.simulation.run import Options, exit_code
@@ -71,7 +71,7 @@ def main(options: Options, *, output: str = "text", csv_path: str | None = None,
     if plot_path is not None and any(run.series is not None for run in runs):
         plot.plot(runs, plot_path)
     if output == "json":
-        console.file.write(json.dumps(report.document(runs), indent=2,
+        console.file.write(json.dumps(json_report.document(runs), indent=2,
                                       ensure_ascii=False) + "\n")
     else:
         report.render_text(runs, console)

@@ -18,10 +18,12 @@ from txtool.dialects.translate import interface_kind
 from txtool.io.xmlio import InputError, Source, local
 from txtool.mechanics.convention import effort_convention
 from txtool.mechanics.inertia import reflected_inertia
-from txtool.mechanics.maps import TransmissionMap, from_transmission
+from txtool.mechanics.maps import TransmissionMap, from_effective
+from txtool.model.distro import Distro
 from txtool.model.numbers import parse_strict
+from txtool.model.readers import Assumption, Placement, placement_of
 from txtool.model.robot import children
-from txtool.model.semantics import NotLoadable, loader_of
+from txtool.model.semantics import NotLoadable, effective, loader_of, ros2_values_differ
 from txtool.simulation.model import RobotModel
 
 DRAKE_TAGS = ("rotor_inertia", "gear_ratio")
@@ -55,6 +57,7 @@ class Drive:
     notes: list[str] = field(default_factory=list)  # transmissions left out, and why
     skipped: dict[str, str] = field(default_factory=dict)  # transmission name -> why
     names: tuple[str, ...] = ()  # every transmission read (simulated or not)
+    unread: dict[str, str] = field(default_factory=dict)  # read by no reader of the file: why
     # Per joint of a simulated transmission: how it is commanded (position, velocity, effort).
     commands: dict[str, frozenset[str]] = field(default_factory=dict)
 
@@ -76,27 +79,47 @@ class Drive:
 
 
 def read_drive(source: Source, robot: RobotModel, *, loader: str = "auto",
-               convention: str | None = None, skip: tuple[str, ...] = ()) -> Drive:
+               readers: Assumption, convention: str | None = None,
+               skip: tuple[str, ...] = ()) -> Drive:
     """The drive of ``source``'s transmissions on ``robot``'s joints.
 
     Effort maps follow ``convention`` (``ros1``, ``ros2``), else each transmission's own
     loader (:func:`txtool.mechanics.convention.effort_convention`).
 
+    ``readers``: the programs that read the file (:func:`txtool.lint.config.readers_of`, as
+    ``validate`` decides them). A transmission none of them reads is left out and named in
+    ``unread`` (its joints are driven directly); numbers are read as the one ROS 2 distribution
+    among them reads them.
+
     A transmission that cannot be simulated (``--skip``, a custom type or a loader refusal, a
     joint that is mimic, fixed, locked, absent or already driven, an actuator already taken)
     is left out with a note; its joints are driven directly.
     """
-    found, notes = _select(source.path, read_source(source), loader)
+    every = read_source(source)
+    read = [f for f in every if _reads(readers, f)]
+    kept_ids = {id(f) for f in read}
+    unread = {f.transmission.name: _unread_why(f, readers) for f in every
+              if id(f) not in kept_ids}
+    found, notes = _select(source.path, read, loader)
+    distro = _one_ros2_distro(readers)
     skipped: dict[str, str] = {}
-    where: dict[str, str] = {}
+    where: dict[str, str] = {f.transmission.name: _where(source.path, f) for f in every}
     maps, kept = [], []
     owner: dict[str, str] = {}
     taken: set[str] = set()
     for item in found:
         t = item.transmission
-        why = _why_not(item, robot, owner, taken, convention, skip)
+        reading = distro
+        if distro is None and ros2_values_differ(t):
+            reading = Distro.JAZZY
+            notes.append(f"{where[t.name]}: transmission '{t.name}': ROS 2 distributions read "
+                         "its numbers differently (Humble with istringstream, Jazzy and later "
+                         "with from_chars) and nothing says which one reads the file: it is "
+                         "simulated as Jazzy and later read it (--ros-distro humble: as Humble "
+                         "reads it)")
+        why = _why_not(item, robot, owner, taken, convention, skip, reading)
         if isinstance(why, str):
-            skipped[t.name], where[t.name] = why, _where(source.path, item)
+            skipped[t.name] = why
             continue
         for joint in why.joints:
             owner[joint] = t.name
@@ -108,13 +131,35 @@ def read_drive(source: Source, robot: RobotModel, *, loader: str = "auto",
     drive.xml_order = {f.transmission.name: (tuple(j.name for j in f.transmission.joints),
                                              tuple(a.name for a in f.transmission.actuators))
                        for f in kept if loader_of(f.transmission) == "ros2"}
-    notes += _skip_notes(source.path, skipped, where)
+    notes += _skip_notes(source.path, unread, where) + _skip_notes(source.path, skipped, where)
     if found and not maps:
         notes.append("no transmission can be simulated: every joint is driven directly")
-    drive.notes, drive.skipped = notes, skipped
+    drive.notes, drive.skipped, drive.unread = notes, skipped, unread
     drive.names = tuple(item.transmission.name for item in found)
     drive.commands = command_kinds(kept)
     return drive
+
+
+def _reads(readers: Assumption, item: Found) -> bool:
+    """Whether some reader of the file reads this transmission (every one when the readers
+    are not decided: each is then read by the loader of its dialect)."""
+    return readers.reads(placement_of(item.element))
+
+
+def _unread_why(item: Found, readers: Assumption) -> str:
+    if placement_of(item.element) is Placement.TOP_LEVEL:
+        where = ("it stands outside every <ros2_control> block, and the file's readers read "
+                 "only the transmissions inside one")
+    else:
+        where = ("it stands inside a <ros2_control> block, and the file's readers read only "
+                 "top-level transmissions")
+    return f"read by no reader of the file: {where} ({readers.explain()})"
+
+
+def _one_ros2_distro(readers: Assumption) -> Distro | None:
+    """The ROS 2 distribution whose parser reads the file's numbers, when one alone does."""
+    ros2 = [d for d in readers.distros if d.ros2]
+    return ros2[0] if len(ros2) == 1 else None
 
 
 COMMANDS = ("position", "velocity", "effort")
@@ -149,16 +194,20 @@ def _skip_notes(path: str, skipped: dict[str, str], where: dict[str, str]) -> li
 
 
 def _why_not(item: Found, robot: RobotModel, owner: dict[str, str], taken: set[str],
-             convention: str | None, skip: tuple[str, ...]) -> TransmissionMap | str:
+             convention: str | None, skip: tuple[str, ...], distro: Distro | None = None
+             ) -> TransmissionMap | str:
     """The transmission's map, or why it cannot be simulated."""
     t = item.transmission
     if t.name in skip:
         return "skipped with --skip"
     conv = effort_convention(t, convention)
     try:
-        tmap = from_transmission(t, conv)
+        tmap = from_effective(effective(t, distro), conv)
     except NotLoadable as exc:
-        return f"{exc}"
+        if t.kind == "other":
+            return f"{exc}"
+        loader = "ros_control" if loader_of(t) == "ros1" else "ros2_control"
+        return f"{loader}'s transmission loader refuses it: {exc}"
     for joint in tmap.joints:
         if joint in robot.joints:
             if joint in owner:

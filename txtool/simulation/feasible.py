@@ -31,7 +31,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from txtool.simulation.counterbalance import Counterbalance
-from txtool.simulation.reference import Reference, minimum_jerk, step_times
+from txtool.simulation.reference import (
+    SHIFT,
+    Reference,
+    default_shifts,
+    minimum_jerk,
+    step_times,
+)
 
 MARGIN = 0.8  # a reference peak may use this share of a speed or effort limit
 LAG_SHARE = 0.15  # share of the tolerance the predicted lag of a damped light link may use
@@ -89,7 +95,8 @@ def _ends(ranges: list[tuple[float, float]], amplitude: np.ndarray
           ) -> tuple[np.ndarray, np.ndarray]:
     lo = np.array([r[0] for r in ranges])
     hi = np.array([r[1] for r in ranges])
-    middle, half = (lo + hi) / 2, 0.25 * (hi - lo) * amplitude
+    middle = (lo + hi) / 2 + (hi - lo) * default_shifts(len(ranges))
+    half = 0.25 * (hi - lo) * amplitude
     return middle - half, middle + half
 
 
@@ -102,21 +109,17 @@ def plan_motion(ranges: list[tuple[float, float]], limits: Limits, dynamics: Dyn
     off the actuators (:mod:`txtool.simulation.counterbalance`).
     """
     amplitude = np.ones(len(ranges))
-    notes = []
     q, qd, qdd = unit_profile(ranges, amplitude)
-    carry = None
-    if counterbalance is not None:
-        carry = counterbalance(dynamics(q, 0 * qd, 0 * qdd)[2])
-        notes += carry.refused
-        if carry.active:
-            dynamics = carry.relieve(dynamics)
-        else:
-            carry = None
-    still = _held_still(limits, dynamics(q, qd, qdd)[2])
-    for v, why in still.items():
+    carry, relieved, refused = _counterbalanced(counterbalance, dynamics, q)
+    still = _held_still(limits, relieved(q, qd, qdd)[2])
+    for v in still:
         amplitude[v] = 0.0
-        notes.append(f"joint '{limits.joints[v]}' is held still: {why}")
     q, qd, qdd = unit_profile(ranges, amplitude)
+    if still:  # the counterbalance of the motion that runs: the held joints held
+        carry, relieved, refused = _counterbalanced(counterbalance, dynamics, q)
+    dynamics = relieved
+    notes = refused + [f"joint '{limits.joints[v]}' is held still: {why}"
+                       for v, why in still.items()]
     parts = dynamics(q, qd, qdd)
     weak = _cannot_hold(limits, parts[2])
     lag = Lag.along(limits, q, qdd, parts, dynamics(q, 0 * qd, 0 * qdd)[2],
@@ -142,6 +145,19 @@ def plan_motion(ranges: list[tuple[float, float]], limits: Limits, dynamics: Dyn
         header = (f"amplitude cut to {share} of the default for {len(cut)} of {len(scale)} "
                   f"joints {fit} ({', '.join(why)}; see the notes)")
     return Motion(longest, amplitude * scale, "", tuple(notes), weak, carry, header)
+
+
+def _counterbalanced(counterbalance: Callable[[np.ndarray], Counterbalance] | None,
+                     dynamics: Dynamics, q: np.ndarray
+                     ) -> tuple[Counterbalance | None, Dynamics, list[str]]:
+    """(the counterbalance of the static loads along the poses ``q``, or None; ``dynamics``
+    relieved of it; the notes on the loads too large to be one)."""
+    if counterbalance is None:
+        return None, dynamics, []
+    carry = counterbalance(dynamics(q, np.zeros_like(q), np.zeros_like(q))[2])
+    if not carry.active:
+        return None, dynamics, carry.refused
+    return carry, carry.relieve(dynamics), carry.refused
 
 
 @dataclass(frozen=True)
@@ -372,6 +388,9 @@ def sample(ranges: list[tuple[float, float]], motion: Motion, dt: float) -> Refe
 
 def describe(motion: Motion) -> str:
     text = f"minimum-jerk 25% -> 75% -> 25% of each range, {motion.move:.3g} s per move"
+    if len(motion.amplitude) > 1:
+        text = (f"minimum-jerk 25% -> 75% -> 25% of each range, shifted by a share of its own "
+                f"per joint (within ±{100 * SHIFT:.0f}%), {motion.move:.3g} s per move")
     if motion.binding:
         text += f" (slowed for {motion.binding})"
     if motion.shrunk:

@@ -19,6 +19,19 @@ from txtool.io.xmlio import InputError
 from txtool.model.numbers import parse_strict
 
 CONTINUOUS_RANGE = (-1.0, 1.0)
+# The default motion moves each joint about a centre of its own, shifted from the middle of its
+# range by up to SHIFT of the range: alike joints (twin fingers, mirrored arms) then follow
+# different references however their amplitudes are cut, so a config that swaps two of them is
+# wrong about where each one is, and tracks the other's reference.
+SHIFT = 0.05
+GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
+
+
+def default_shifts(joints: int) -> np.ndarray:
+    """Per joint, the shift of its motion's centre as a share of its range: 0 for the first
+    joint, then the golden-ratio sequence over [-SHIFT, SHIFT) (no two joints alike, spread
+    evenly)."""
+    return SHIFT * (2.0 * ((0.5 + GOLDEN * np.arange(joints)) % 1.0) - 1.0)
 
 
 @dataclass(frozen=True)

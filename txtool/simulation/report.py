@@ -16,7 +16,8 @@ from rich.table import Table
 
 from txtool.io.printable import printable
 from txtool.io.xmlio import write_atomic
-from txtool.simulation.result import Coverage, GainsUsed, RunResult
+from txtool.lint.readers import FileReaders
+from txtool.simulation.result import GainsUsed, RunResult
 
 
 def escape(text: str) -> str:
@@ -80,6 +81,8 @@ def render_run(run: RunResult, console: Console) -> None:
     if run.verdict == "inconclusive":
         console.print(f"[bold]simulate[/] {escape(run.robot)} with {escape(run.config)}: "
                       "not simulated", soft_wrap=True)
+        for line in readers_lines(run):
+            console.print(escape(line), soft_wrap=True)
         for note in run.notes:
             console.print(f"note: {escape(note)}", soft_wrap=True)
         console.print(verdict_line(run), soft_wrap=True)
@@ -87,6 +90,8 @@ def render_run(run: RunResult, console: Console) -> None:
     console.print(f"[bold]simulate[/] {escape(run.robot)} with {escape(run.config)}: "
                   f"{run.steps} steps of {run.dt:g} s ({run.duration:g} s)", soft_wrap=True)
     console.print(f"reference: {escape(run.reference)}", soft_wrap=True)
+    for line in readers_lines(run):
+        console.print(escape(line), soft_wrap=True)
     for table in [*joint_tables(run), *actuator_tables(run)]:
         _print_table(console, table)
     gains = gains_table(run)
@@ -99,6 +104,24 @@ def render_run(run: RunResult, console: Console) -> None:
     console.print(verdict_line(run), soft_wrap=True)
     for reason in run.reasons[1:]:
         console.print(f"  - {escape(reason)}", soft_wrap=True)
+
+
+def readers_lines(run: RunResult) -> list[str]:
+    """``read by: ros2_control (jazzy) (--ros-distro jazzy)``: whose reading was simulated, for
+    the robot and, when it is another file, the config."""
+    robot, config = run.readers["robot"], run.readers.get("config")
+    if config is None:
+        return [f"read by: {readers_text(robot)}"]
+    return [f"robot read by: {readers_text(robot)}", f"config read by: {readers_text(config)}"]
+
+
+def readers_text(readers: FileReaders) -> str:
+    if not readers.readers:
+        return "not known (each transmission as the loader of its dialect reads it)"
+    text = f"{', '.join(readers.readers)} ({'; '.join(dict.fromkeys(readers.because))})"
+    if not readers.decided:
+        text += "; nothing rules ROS 1 out: ros_control may read the top-level transmissions"
+    return text
 
 
 def verdict_line(run: RunResult) -> str:
@@ -250,92 +273,10 @@ def comparison_table(runs: list[RunResult]) -> Table:
     return table
 
 
-def _finite(value: float | None) -> float | None:
-    return None if value is None or not math.isfinite(value) else value
-
-
-def run_json(run: RunResult) -> dict[str, Any]:
-    """The documented JSON of one run (infinite limits are null); units beside every quantity."""
-    return {
-        "verdict": run.verdict,
-        "reasons": list(run.reasons),
-        "robot": run.robot,
-        "config": run.config,
-        "reference": run.reference,
-        "notes": list(run.notes),
-        "joints": {
-            name: {"max_error": j.max_error, "rms_error": j.rms_error,
-                   "max_error_time": j.max_error_time, "limit_margin": j.limit_margin,
-                   "units": j.units, "transmission": j.transmission or None}
-            for name, j in run.joints.items()
-        },
-        "actuators": {
-            name: {"peak_effort": a.peak_effort, "effort_limit": _finite(a.effort_limit),
-                   "rms_effort": a.rms_effort, "peak_velocity": a.peak_velocity,
-                   "velocity_limit": _finite(a.velocity_limit),
-                   "saturated_fraction": a.saturated_fraction,
-                   "first_violation": a.first_violation, "transmission": a.transmission or None,
-                   "effort_units": a.effort_units, "speed_units": a.speed_units}
-            for name, a in run.actuators.items()
-        },
-        "gains": {name: gains_json(g) for name, g in run.gains.items()},
-        "counterbalance": {name: dict(entry) for name, entry in run.counterbalance.items()},
-        "checked": coverage_json(run.coverage),
-        "tolerance": run.tolerance,
-        "steps": run.steps,
-        "dt": run.dt,
-        "duration": run.duration,
-        "time_units": "s",
-    }
-
-
-def coverage_json(covered: Coverage) -> dict[str, Any]:
-    """What the run checked: the config's transmissions and the joints driven through them."""
-    return {"transmissions": covered.transmissions,
-            "simulated": list(covered.simulated),
-            "skipped": {name: why for name, why in covered.skipped},
-            "joints": covered.joints, "joints_checked": covered.joints_checked}
-
-
-def gains_json(g: GainsUsed) -> dict[str, Any]:
-    """Gains as used (acceleration per error), their units and where they came from."""
-    if g.source is None:
-        source: dict[str, Any] = {"default": "bandwidth"}
-    else:
-        source = {"file": g.source.file, "line": g.source.line or None, "key": g.source.key,
-                  "format": g.source.format, "given": dict(g.source.given)}
-        if g.inertia is not None:
-            source["divided_by_inertia"] = g.inertia
-            source["inertia_units"] = "kg" if g.units == "m" else "kg·m²"
-    if g.bandwidth is not None:
-        source["bandwidth"] = g.bandwidth
-    return {"kp": g.kp, "kd": g.kd, "ki": g.ki, "i_clamp": g.i_clamp,
-            "units": {"kp": "1/s²", "kd": "1/s", "ki": "1/s³", "i_clamp": f"{g.units}/s²"},
-            "source": source}
-
-
-def document(runs: list[RunResult]) -> dict[str, Any]:
-    """One run: its JSON; several: ``{"verdict", "runs": [...]}``. Non-finite numbers: null."""
-    if len(runs) == 1:
-        return _clean(run_json(runs[0]))
-    return _clean({"verdict": overall_verdict(runs),
-                   "runs": [run_json(r) for r in runs]})
-
-
 def overall_verdict(runs: list[RunResult]) -> str:
     """``fail`` if any run fails, else ``inconclusive`` if any checked nothing, else ``pass``."""
     verdicts = {run.verdict for run in runs}
     return next(v for v in ("fail", "inconclusive", "pass") if v in verdicts)
-
-
-def _clean(value: Any) -> Any:
-    if isinstance(value, float):
-        return _finite(value)
-    if isinstance(value, dict):
-        return {k: _clean(v) for k, v in value.items()}
-    if isinstance(value, list):
-        return [_clean(v) for v in value]
-    return value
 
 
 def numbered(path: str, index: int, count: int) -> str:

@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from txtool.lint.readers import FileReaders
 from txtool.simulation.params import GainSource
 
 LIMIT_SLACK = 1e-9  # position limits: ignore round-off at a limit
@@ -114,6 +115,7 @@ class Coverage:
     skipped: tuple[tuple[str, str], ...] = ()  # (transmission, why) left out
     joints: int = 0  # moving joints of the model
     joints_checked: int = 0  # joints driven through a simulated transmission
+    unread: tuple[tuple[str, str], ...] = ()  # (transmission, why) no reader of the file reads
 
     @property
     def nothing(self) -> bool:
@@ -129,6 +131,9 @@ class Coverage:
                 f"{self.joints_checked} of {self.joints} joints")
 
     def why_nothing(self) -> str:
+        if not self.transmissions and self.unread:
+            return (f"no reader of the config reads any of its {len(self.unread)} "
+                    f"transmissions ({self.unread[0][1]})")
         if not self.transmissions:
             return "the config has no transmission: every joint is driven directly"
         reasons = list(dict.fromkeys(why for _, why in self.skipped))
@@ -157,6 +162,8 @@ class RunResult:
     # per joint: static_load, limit, carried (peaks) and units of an assumed counterbalance
     counterbalance: dict[str, dict[str, float | str]] = field(default_factory=dict)
     coverage: Coverage = field(default_factory=Coverage)
+    # "robot" and, with --config, "config": the programs that read each file, and why
+    readers: dict[str, FileReaders] = field(default_factory=dict)
 
     @property
     def failed(self) -> bool:

@@ -11,6 +11,8 @@ import numpy as np
 
 from txtool.io.load import load
 from txtool.io.xmlio import InputError, XacroOptions
+from txtool.lint.config import readers_of
+from txtool.lint.readers import FileReaders, record
 from txtool.simulation import (
     checks,
     counterbalance,
@@ -58,6 +60,7 @@ class Options:
     delay: bool = True  # one control period between read and write (sensing.py)
     encoder_counts: int | None = None
     counterbalance: bool = True  # static loads beyond the effort limits: counterbalance.py
+    ros_distro: str | None = None  # --ros-distro: the distribution reading the files
 
 
 @dataclass(frozen=True)
@@ -105,6 +108,7 @@ class Prepared:
     reference_notes: list[str] = field(default_factory=list)
     cannot_hold: list[str] = field(default_factory=list)  # the robot, not the config, is short
     controller: Controller | None = None
+    readers: dict[str, FileReaders] = field(default_factory=dict)
     gains: dict[str, result.GainsUsed] = field(default_factory=dict)
     notes: tuple[str, ...] = ()
     carried: dict[str, dict[str, float | str]] = field(default_factory=dict)
@@ -123,12 +127,13 @@ class Unchecked:
     label: str
     notes: list[str]
     coverage: result.Coverage
+    readers: dict[str, FileReaders] = field(default_factory=dict)
 
     def judged(self) -> result.RunResult:
         return result.RunResult(
             robot=self.options.robot, config=self.label, dt=0.0, steps=0, duration=0.0,
             reference="not simulated", joints={}, actuators={}, reasons=[],
-            notes=self.notes, coverage=self.coverage)
+            notes=self.notes, coverage=self.coverage, readers=self.readers)
 
 
 def coverage_of(robot: RobotModel, ctrl: Drive) -> result.Coverage:
@@ -136,7 +141,7 @@ def coverage_of(robot: RobotModel, ctrl: Drive) -> result.Coverage:
     return result.Coverage(
         transmissions=len(ctrl.names), simulated=tuple(m.name for m in ctrl.maps),
         skipped=tuple(ctrl.skipped.items()), joints=len(robot.joints),
-        joints_checked=len(robot.joints) - len(ctrl.direct))
+        joints_checked=len(robot.joints) - len(ctrl.direct), unread=tuple(ctrl.unread.items()))
 
 
 def prepare(options: Options, config: str | None, label: str | None = None
@@ -145,13 +150,21 @@ def prepare(options: Options, config: str | None, label: str | None = None
     started = time.perf_counter()
     source = load(options.robot, xacro=options.xacro)
     robot = build(source)
+    # Each file's transmissions as its readers read them (validate's decision).
+    robot_readers = readers_of(source, options.ros_distro)
+    candidate, config_readers = source, robot_readers
+    if config is not None:
+        candidate = load(config, xacro=options.xacro)
+        config_readers = readers_of(candidate, options.ros_distro)
+    readers = {"robot": record(source.path, robot_readers)}
+    if config is not None:
+        readers["config"] = record(candidate.path, config_readers)
     # The plant is physics: power-conserving effort maps (ros2_control's). The controller
     # runs the maps of the loader that reads its file, unless --effort-convention says.
-    plant = read_drive(source, robot, loader=options.loader, convention="ros2",
-                       skip=options.skip)
-    ctrl = read_drive(load(config, xacro=options.xacro) if config is not None else source,
-                      robot, loader=options.loader, convention=options.convention,
-                      skip=options.skip)
+    plant = read_drive(source, robot, loader=options.loader, readers=robot_readers,
+                       convention="ros2", skip=options.skip)
+    ctrl = read_drive(candidate, robot, loader=options.loader, readers=config_readers,
+                      convention=options.convention, skip=options.skip)
     unknown = sorted(set(options.skip) - set(plant.names) - set(ctrl.names))
     if unknown:
         raise InputError(f"--skip: no transmission named {', '.join(map(repr, unknown))} in "
@@ -159,7 +172,8 @@ def prepare(options: Options, config: str | None, label: str | None = None
     label = label or (config if config is not None else options.robot)
     covered = coverage_of(robot, ctrl)
     if covered.nothing:
-        return Unchecked(options, label, _notes(robot, plant, ctrl, config is not None), covered)
+        return Unchecked(options, label, _notes(robot, plant, ctrl, config is not None), covered,
+                         readers)
     params = load_params(options.params, options.robot)
     params.check_names(set(plant.actuators) | set(ctrl.actuators), set(robot.joints),
                        options.robot)
@@ -200,7 +214,7 @@ def prepare(options: Options, config: str | None, label: str | None = None
     return Prepared(options, config, label, robot, plant, ctrl, binding, plan, ref,
                     run_settings, duration, effort_limit, speed_limit,
                     time.perf_counter() - started, carry_notes + ref_notes, weak, controller,
-                    used, params.notes + tuple(stiff), carry_table, unstable)
+                    readers, used, params.notes + tuple(stiff), carry_table, unstable)
 
 
 def _stability(robot: RobotModel, inertia: np.ndarray, ref: reference.Reference,
@@ -252,6 +266,7 @@ def finish(p: Prepared, state: RunState, loop_s: float) -> result.RunResult:
     run.gains, run.tolerance = p.gains, p.settings.tolerance
     run.counterbalance = p.carried
     run.coverage = coverage_of(p.robot, p.ctrl)
+    run.readers = p.readers
     checks.judge(run, series, p.plant, p.ctrl, p.binding.S, p.config is not None,
                  p.plan.encoder, p.plan.delay)
     run.timings = {"setup_s": p.setup_s, "loop_s": loop_s,
