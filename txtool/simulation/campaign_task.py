@@ -110,7 +110,8 @@ def perturbed_plan(p: Prepared, task: Task) -> Plan:
         generator = np.random.default_rng([task.seed, task.sample])
         plan.encoder = NoisyEncoder(
             counts or 0, step, plan.encoder.pos_j2a, plan.encoder.pos_j2a_c.copy(),
-            plan.encoder.vel_j2a, generator.normal(0.0, noise, (plan.steps + 1, len(step))))
+            plan.encoder.vel_j2a, generator.normal(0.0, noise, (plan.steps + 1, len(step))),
+            exact_speeds=not counts)
     return plan
 
 
@@ -138,21 +139,26 @@ def _add_payload(model: pin.Model, payload: Payload, mass: float, where: str) ->
 
 @dataclass(frozen=True)
 class NoisyEncoder(Encoder):
-    """Readings with noise: ``noise[k]`` (per actuator, its own units) is added to the true
+    """Readings with noise: ``noise[k]`` (per actuator, in its own units) is added to the true
     actuator position before it is quantised (``step`` 0: not quantised). Speeds are finite
-    differences of the readings, as with encoders."""
+    differences of the readings with encoders (``--encoder-counts``), else exact, as the
+    unperturbed run reads them."""
 
     noise: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
+    exact_speeds: bool = False
 
     def reader(self, rows: np.ndarray, position: slice, speed: slice, dt: float) -> Reader:
         # The plain reader adds ``pos_j2a_c`` (this encoder's own copy) to every reading when
         # it is called: step k's noise is folded into it just before.
         offset = self.pos_j2a_c
-        base, noise = offset.copy(), self.noise
+        base, noise, velocity = offset.copy(), self.noise, self.vel_j2a
         read = super().reader(rows, position, speed, dt)
+        exact = self.exact_speeds
 
         def noisy(row: np.ndarray, x: np.ndarray, v: np.ndarray, k: int) -> None:
             np.add(base, noise[k], out=offset)
             read(row, x, v, k)
+            if exact:
+                np.dot(velocity, v, out=row[speed])
 
         return noisy
