@@ -62,7 +62,7 @@ def execute(tasks: Sequence[Task], where: Where) -> list[Record]:
     """The records of ``tasks``, in their order."""
     if where.serial:
         return [run_sample(task) for task in tasks]
-    with _client(where) as client:  # pragma: no cover - runs the tasks in other processes
+    with _client(where) as client:
         futures = client.map(run_sample, list(tasks), pure=False)
         return list(client.gather(futures))
 
@@ -81,7 +81,7 @@ def _client(where: Where) -> Iterator[Any]:
         return
     workers = where.workers or usable_cpus()
     with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                      dashboard_address=None, silence_logs=logging.ERROR) as cluster, \
+                      dashboard_address=None, silence_logs=logging.CRITICAL) as cluster, \
             Client(cluster) as client:
         yield client
 

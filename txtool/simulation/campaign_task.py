@@ -63,21 +63,14 @@ def _run(task: Task) -> Record:
     loop.run(plan)
     run = finish(replace(prepared, plan=plan, controller=_scaled(prepared, task)),
                  time.perf_counter() - started)
-    margin, joint = math.inf, None
-    for name, stats in run.joints.items():
-        left = (run.tolerance - stats.max_error) / run.tolerance if run.tolerance else math.nan
-        left = left if math.isfinite(left) else -math.inf  # a diverged run: no margin at all
-        if joint is None or left < margin:
-            margin, joint = left, name
-    worst = run.joints[joint] if joint is not None else None
-    return {**record, "verdict": run.verdict, "margin": _finite(margin), "joint": joint,
-            "max_error": _finite(worst.max_error) if worst else None,
-            "units": worst.units if worst else None,
+    tolerance = run.tolerance
+    assert tolerance is not None  # a simulated run is judged against its tolerance
+    joint, worst = max(run.joints.items(), key=lambda item: item[1].max_error / tolerance)
+    diverged = plan.diverged_at is not None  # its errors say how far it ran away, no more
+    return {**record, "verdict": run.verdict, "joint": joint, "units": worst.units,
+            "margin": None if diverged else 1.0 - worst.max_error / tolerance,
+            "max_error": None if diverged else worst.max_error,
             "reason": run.reasons[0] if run.reasons else None}
-
-
-def _finite(value: float) -> float | None:
-    return value if math.isfinite(value) else None
 
 
 def _scaled(p: Prepared, task: Task) -> Controller:
