@@ -103,7 +103,7 @@ def test_every_sample_passing_exits_0_and_a_candidate_checking_nothing_exits_3(t
     path = campaign(tmp_path, "samples = 2\n[bounds]\ngains = [0.95, 1.05]\n")
     code, out, _ = simulate(robot, "--campaign", path, "--serial", "--duration", "0.3")
     assert code == 0 and out.rstrip().endswith("PASS: all 2 samples pass")
-    bare = write(tmp_path, "bare.urdf", PENDULUM.split("<transmission")[0] + "</robot>")
+    write(tmp_path, "bare.urdf", PENDULUM.split("<transmission")[0] + "</robot>")
     path = campaign(tmp_path, 'samples = 2\ncandidates = ["bare.urdf"]\n')
     code, out, _ = simulate(robot, "--campaign", path, "--serial", "--duration", "0.3")
     assert code == 3 and "INCONCLUSIVE" in out

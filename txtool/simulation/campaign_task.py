@@ -10,7 +10,6 @@ reference planned for it, and runs its gains scaled by ``gains``.
 
 from __future__ import annotations
 
-import math
 import time
 from dataclasses import dataclass, field, replace
 from typing import Any
