@@ -13,6 +13,7 @@ from __future__ import annotations
 import contextlib
 import json
 import logging
+import multiprocessing
 import os
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, replace
@@ -30,6 +31,7 @@ from txtool.simulation.report import VERDICT_CELL, escape
 from txtool.simulation.run import EXIT_INCONCLUSIVE, Options, candidates
 
 CONNECT_TIMEOUT = "10s"
+PRELOAD = ("distributed", "txtool.simulation.campaign_task")  # what a forked worker runs
 WIDE = 132  # columns for reports written to files and pipes, as simulate's
 
 
@@ -69,7 +71,7 @@ def execute(tasks: Sequence[Task], where: Where) -> list[Record]:
 
 @contextlib.contextmanager
 def _client(where: Where) -> Iterator[Any]:
-    from distributed import Client, LocalCluster
+    from distributed import Client
 
     if where.address is not None:
         try:
@@ -79,11 +81,28 @@ def _client(where: Where) -> Iterator[Any]:
         with client:
             yield client
         return
-    workers = where.workers or usable_cpus()
-    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                      dashboard_address=None, silence_logs=logging.CRITICAL) as cluster, \
-            Client(cluster) as client:
+    with local_cluster(where.workers or usable_cpus()) as cluster, Client(cluster) as client:
         yield client
+
+
+def local_cluster(workers: int) -> Any:
+    """A ``distributed.LocalCluster`` of ``workers`` processes of one thread each.
+
+    Where the platform has it, workers are forked from a server process that has imported
+    Dask and the simulation once (a fresh interpreter spends seconds importing them); the
+    server lives as long as this process, so a second cluster starts at once.
+    """
+    import dask
+    from distributed import LocalCluster
+    from distributed.utils import get_mp_context
+
+    method = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() \
+        else "spawn"
+    with dask.config.set({"distributed.worker.multiprocessing-method": method}):
+        if method == "forkserver":
+            get_mp_context().set_forkserver_preload(list(PRELOAD))  # after Dask's own list
+        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                            dashboard_address=None, silence_logs=logging.CRITICAL)
 
 
 def run_campaign(path: str, options: Options, where: Where) -> dict[str, Any]:
