@@ -282,10 +282,11 @@ def test_a_diverging_sample_has_no_margin(tmp_path):
     assert record["reason"].startswith("the simulation diverged at t=")
 
 
-def test_simulate_without_a_campaign_never_imports_dask(tmp_path, robots):
-    result = subprocess.run(
-        [sys.executable, "-c", PROBE, "simulate", robots[0], "--duration", "0.2"],
-        capture_output=True, text=True, timeout=120, cwd=tmp_path)
+@pytest.mark.parametrize("command", [["simulate", "--duration", "0.2"], ["show"],
+                                     ["convert", "--to", "ros2-p2"]])
+def test_only_a_campaign_on_a_cluster_imports_dask(tmp_path, robots, command):
+    result = subprocess.run([sys.executable, "-c", PROBE, command[0], robots[0], *command[1:]],
+                            capture_output=True, text=True, timeout=120, cwd=tmp_path)
     probe = json.loads(result.stderr.strip().splitlines()[-1])
     assert probe["code"] == 0
     assert "dask" not in probe["loaded"] and "distributed" not in probe["loaded"]
