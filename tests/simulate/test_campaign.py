@@ -9,7 +9,9 @@ import json
 import math
 import subprocess
 import sys
+from pathlib import Path
 
+import jsonschema
 import numpy as np
 import pinocchio as pin
 import pytest
@@ -18,9 +20,11 @@ from click.testing import CliRunner
 from tests.lint.test_imports import PROBE
 from tests.simulate.robots import arm_ros1, pendulum, write
 from txtool.cli import cli
+from txtool.io.xmlio import InputError
 from txtool.simulation import loop
 from txtool.simulation.campaign_file import Payload, draw, read_campaign
 from txtool.simulation.campaign_task import Task, perturbed_plan, plant_robot, run_sample
+from txtool.simulation.params import parse_toml
 from txtool.simulation.run import Options, prepare
 
 PENDULUM = pendulum(2.0, 0.5, 40.0)
@@ -290,3 +294,36 @@ def test_only_a_campaign_on_a_cluster_imports_dask(tmp_path, robots, command):
     probe = json.loads(result.stderr.strip().splitlines()[-1])
     assert probe["code"] == 0
     assert "dask" not in probe["loaded"] and "distributed" not in probe["loaded"]
+
+
+ROOT = Path(__file__).resolve().parents[2]
+SCHEMA = json.loads((ROOT / "schemas" / "campaign.schema.json").read_text(encoding="utf-8"))
+
+
+def docs_example() -> str:
+    section = (ROOT / "docs" / "simulate.md").read_text(encoding="utf-8").split("## Campaigns")[1]
+    return section.split("```toml\n")[1].split("```")[0]
+
+
+@pytest.mark.parametrize("text", [
+    docs_example(),
+    "samples = 3\n",
+    "corners = true\n[bounds]\ngains = [0.5, 2]\n[bounds.payload]\nlink = \"a\"\nmass = 1\n",
+])
+def test_the_schema_and_the_reader_accept_the_same_files(tmp_path, text):
+    jsonschema.validate(parse_toml(text, "c.toml"), SCHEMA)
+    assert draw(read_campaign(write(tmp_path, "c.toml", text)))
+
+
+@pytest.mark.parametrize("text", [
+    "samples = 1\nseeds = 1\n", "samples = -1\n", "samples = 1\ncorners = 1\n",
+    "samples = 1\ncandidates = [1]\n", "samples = 1\n[bounds]\ngains = 0\n",
+    "samples = 1\n[bounds]\nfriction = -1\n", "samples = 1\n[bounds]\ndamping = [0, 1, 2]\n",
+    "samples = 1\n[bounds]\nstiffness = 1\n", "samples = 1\n[bounds.payload]\nmass = 1\n",
+    "samples = 1\n[bounds.payload]\nlink = \"a\"\nmass = 1\nxyz = [0, 0]\n",
+])
+def test_the_schema_and_the_reader_refuse_the_same_files(tmp_path, text):
+    with pytest.raises(jsonschema.ValidationError):
+        jsonschema.validate(parse_toml(text, "c.toml"), SCHEMA)
+    with pytest.raises(InputError):
+        read_campaign(write(tmp_path, "c.toml", text))
