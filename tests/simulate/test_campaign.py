@@ -185,6 +185,15 @@ def test_a_bad_campaign_is_one_line_and_exit_2(tmp_path, robots, text, message):
     assert err.startswith(f"txtool: {path}") or message == "missing.urdf"
 
 
+def test_a_xacro_candidate_is_refused_under_no_xacro(tmp_path, robots):
+    robot, _ = robots
+    write(tmp_path, "c.urdf.xacro", PENDULUM)
+    path = campaign(tmp_path, 'samples = 1\ncandidates = ["c.urdf.xacro"]\n')
+    code, out, err = simulate(robot, "--campaign", path, "--serial", "--no-xacro")
+    assert (code, out) == (2, "")
+    assert err.startswith("txtool: c.urdf.xacro: simulate needs the xacro expansion")
+
+
 @pytest.mark.parametrize(("args", "message"), [
     (["--csv", "out.csv"], "--csv: not with --campaign"),
     (["--plot", "out.png"], "--plot: not with --campaign"),

@@ -47,7 +47,7 @@ def campaign_options(function: Callable[..., Any]) -> Callable[..., Any]:
 
 def run_campaign(options: Options, *, campaign_path: str, scheduler: str | None,
                  workers: int | None, serial: bool, csv_path: str | None,
-                 plot_path: str | None, output_format: str) -> int:
+                 plot_path: str | None, output_format: str, no_xacro: bool) -> int:
     """``--campaign``: the checks of its options, then :func:`txtool.simulation.campaign.main`."""
     for given, name in ((csv_path, "--csv"), (plot_path, "--plot")):
         if given is not None:
@@ -59,6 +59,11 @@ def run_campaign(options: Options, *, campaign_path: str, scheduler: str | None,
     if not serial:
         require_extra("distributed", "campaign", "txtool simulate --campaign")
     from txtool.simulation.campaign import Where, main
+    from txtool.simulation.campaign_file import read_campaign
+
+    listed = read_campaign(campaign_path).candidates
+    if xacro_disabled(no_xacro, options.robot, *listed):
+        refuse_unexpanded("simulate", *listed)
 
     return main(campaign_path, options, Where(serial, scheduler, workers), output_format)
 
@@ -159,7 +164,7 @@ def command(robot: str, configs: tuple[str, ...], params: tuple[str, ...],
     )
     if campaign["campaign_path"] is not None:
         return run_campaign(options, csv_path=csv_path, plot_path=plot_path,
-                            output_format=output_format, **campaign)
+                            output_format=output_format, no_xacro=no_xacro, **campaign)
     refuse_campaign_options(campaign)
     _, code = main(options, output=output_format, csv_path=csv_path, plot_path=plot_path)
     return code
