@@ -74,6 +74,15 @@ xyz = [0.5, 0.0, 0.0]
     assert out.rstrip().endswith("FAIL: 3 of 6 samples fail")
 
 
+def test_the_table_fits_the_columns_given(tmp_path, robots, monkeypatch):
+    path = campaign(tmp_path, "samples = 1\n")
+    _, wide, _ = simulate(robots[0], "--campaign", path, "--serial", "--duration", "0.3")
+    monkeypatch.setenv("COLUMNS", "72")
+    _, narrow, _ = simulate(robots[0], "--campaign", path, "--serial", "--duration", "0.3")
+    assert max(map(len, wide.splitlines())) > 72 >= max(map(len, narrow.splitlines()))
+    assert "77.8% (swing, sample 0)" in wide and "PASS: the 1 sample passes" in wide
+
+
 def test_the_json_has_the_same_numbers_with_units(tmp_path, robots):
     robot, _ = robots
     path = campaign(tmp_path, """seed = 5

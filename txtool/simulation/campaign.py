@@ -96,10 +96,10 @@ def local_cluster(workers: int) -> Any:
     from distributed import LocalCluster
     from distributed.utils import get_mp_context
 
-    method = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() \
-        else "spawn"
+    forkserver = "forkserver" in multiprocessing.get_all_start_methods()  # not on Windows
+    method = "forkserver" if forkserver else "spawn"
     with dask.config.set({"distributed.worker.multiprocessing-method": method}):
-        if method == "forkserver":
+        if forkserver:  # pragma: no branch - POSIX platforms have it
             get_mp_context().set_forkserver_preload(list(PRELOAD))  # after Dask's own list
         return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                             dashboard_address=None, silence_logs=logging.CRITICAL)
@@ -167,8 +167,8 @@ def render_json(document: dict[str, Any], console: Console) -> None:
 
 def render_text(document: dict[str, Any], console: Console) -> None:
     """A table of the candidates, then the first failure of each that failed."""
-    table = Table(title=f"campaign: {document['samples']} samples per candidate, seed "
-                        f"{document['seed']}", title_justify="left")
+    table = Table(title=f"campaign: {_count(document['samples'], 'sample')} per candidate, "
+                        f"seed {document['seed']}", title_justify="left")
     table.add_column("config", overflow="fold")
     table.add_column("verdict")
     for name in ("samples", "pass", "fail", "inconcl."):
@@ -190,10 +190,16 @@ def render_text(document: dict[str, Any], console: Console) -> None:
                       soft_wrap=True)
     counts = [(s["failed"], s["samples"]) for s in document["candidates"]]
     failed, total = sum(f for f, _ in counts), sum(n for _, n in counts)
-    line = {"fail": f"[bold red]FAIL[/]: {failed} of {total} samples fail",
+    line = {"fail": f"[bold red]FAIL[/]: {failed} of {_count(total, 'sample')} "
+                    + ("fails" if failed == 1 else "fail"),
             "inconclusive": "[bold yellow]INCONCLUSIVE[/]: a candidate could not be checked",
-            "pass": f"[bold green]PASS[/]: all {total} samples pass"}
+            "pass": "[bold green]PASS[/]: " + ("the 1 sample passes" if total == 1
+                                               else f"all {total} samples pass")}
     console.print(line[document["verdict"]])
+
+
+def _count(number: int, noun: str) -> str:
+    return f"{number} {noun}" + ("" if number == 1 else "s")
 
 
 def _worst(s: dict[str, Any]) -> str:
@@ -204,14 +210,12 @@ def _worst(s: dict[str, Any]) -> str:
     return f"{margin} ({escape(worst['joint'])}, sample {worst['sample']})"
 
 
-def main(path: str, options: Options, where: Where, output: str = "text",
-         console: Console | None = None) -> int:
-    """Run the campaign, print it, return the exit code."""
+def main(path: str, options: Options, where: Where, output: str = "text") -> int:
+    """Run the campaign, print it on stdout, return the exit code."""
     document = run_campaign(path, options, where)
-    if console is None:
-        console = Console()
-        if not console.is_terminal and "COLUMNS" not in os.environ:
-            console.width = WIDE
+    console = Console()
+    if not console.is_terminal and "COLUMNS" not in os.environ:
+        console.width = WIDE
     if output == "json":
         render_json(document, console)
     else:
