@@ -123,6 +123,14 @@ def test_every_sample_passing_exits_0_and_a_candidate_checking_nothing_exits_3(t
     assert "│       2 │    0 │    0 │        2 │" in out
 
 
+def test_a_candidate_named_twice_is_summarised_twice(tmp_path, robots):
+    path = campaign(tmp_path, 'samples = 2\ncandidates = ["p.urdf", "p.urdf"]\n')
+    code, out, _ = simulate(robots[0], "--campaign", path, "--serial", "--duration", "0.3",
+                            "--format", "json")
+    first, second = json.loads(out)["candidates"]
+    assert code == 0 and first == second and first["samples"] == 2
+
+
 def test_the_command_s_configs_are_the_candidates_when_the_file_names_none(tmp_path, robots):
     robot, flipped = robots
     path = campaign(tmp_path, "samples = 1\n")

@@ -113,17 +113,16 @@ def run_campaign(path: str, options: Options, where: Where) -> dict[str, Any]:
     failed = next((r["error"] for r in records if "error" in r), None)
     if failed is not None:
         raise InputError(failed)
-    per_candidate: dict[str, list[Record]] = {}
-    for task, record in zip(tasks, records, strict=True):
-        per_candidate.setdefault(task.label, []).append(record)
-    summaries = [summary(label, runs) for label, runs in per_candidate.items()]
+    count = len(draw(campaign))  # the tasks go candidate by candidate, sample by sample
+    summaries = [summary(tasks[start].label, records[start : start + count])
+                 for start in range(0, len(tasks), count)]
     bounds = {name: list(campaign.bounds[name]) for name in PARAMETERS if name in campaign.bounds}
     return {
         "verdict": _overall(s["verdict"] for s in summaries),
         "campaign": campaign.path,
         "robot": options.robot,
         "seed": campaign.seed,
-        "samples": len(records) // max(len(summaries), 1),
+        "samples": count,
         "bounds": bounds,
         "payload": ({"link": campaign.payload.link, "xyz": list(campaign.payload.xyz),
                      "xyz_units": "m"} if campaign.payload else None),
