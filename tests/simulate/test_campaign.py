@@ -191,6 +191,8 @@ sensor_noise = [0.0, 1e-4]
      "campaign.toml:3: bounds.payload.link: no link 'nowhere' in the robot"),
     ("samples = 1\n[bounds.payload]\nlink = \"base\"\nmass = 1\n",
      "campaign.toml:3: bounds.payload.link: link 'base' is fixed to the base"),
+    ("samples = 1\n[bounds.payload]\nlink = \"nowhere\"\nmass = 0\n",
+     "campaign.toml:3: bounds.payload.link: no link 'nowhere' in the robot"),
     ("samples = 1\ncandidates = [\"missing.urdf\"]\n", "missing.urdf"),
 ])
 def test_a_bad_campaign_is_one_line_and_exit_2(tmp_path, robots, text, message):

@@ -110,8 +110,8 @@ def perturbed_plan(p: Prepared, task: Task) -> Plan:
 def plant_robot(robot: RobotModel, sample: dict[str, float], task: Task) -> RobotModel:
     """The robot as the plant sees it: payload on its link, more damping and friction."""
     model = pin.Model(robot.model)
-    if task.payload is not None and sample.get("payload_mass", 0.0) > 0:
-        _add_payload(model, task.payload, sample["payload_mass"], task.payload_where)
+    if task.payload is not None:  # its link is checked even where the mass is 0
+        _add_payload(model, task.payload, sample.get("payload_mass", 0.0), task.payload_where)
     return replace(robot, model=model,
                    damping=robot.damping + sample.get("damping", 0.0),
                    friction=robot.friction + sample.get("friction", 0.0))
@@ -124,6 +124,8 @@ def _add_payload(model: pin.Model, payload: Payload, mass: float, where: str) ->
     if frame.parentJoint == 0:
         raise InputError(f"{where}: link '{payload.link}' is fixed to the base; a payload "
                          "on it moves no joint")
+    if mass == 0:
+        return
     point = pin.Inertia(mass, np.array(payload.xyz), np.zeros((3, 3)))
     model.inertias[frame.parentJoint] = model.inertias[frame.parentJoint] \
         + frame.placement.act(point)
