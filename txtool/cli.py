@@ -75,6 +75,7 @@ EXAMPLES: dict[str, tuple[str, ...]] = {
         "txtool simulate robot.urdf                       # the robot's own config",
         "txtool simulate robot.urdf --config candidate.urdf --plot run.png",
         "txtool simulate robot.urdf --params controllers.yaml --format json",
+        "txtool simulate robot.urdf --campaign campaign.toml   # perturbed robots, on Dask",
     ),
     "rules": ("txtool rules", "txtool rules TX106", "txtool rules zero-reduction --format json"),
     "schema": ("txtool schema -o transmission.schema.json",),

@@ -10,7 +10,8 @@ import pytest
 
 from tests.lint.conftest import BROKEN
 
-HEAVY = ("pinocchio", "pin", "yourdfpy", "trimesh", "numpy", "scipy", "matplotlib")
+HEAVY = ("pinocchio", "pin", "yourdfpy", "trimesh", "numpy", "scipy", "matplotlib", "dask",
+         "distributed")
 # Only what txtool loads counts, not what ran before it (coverage, when measuring subprocesses).
 PROBE = """
 import json, sys

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -12,6 +13,8 @@ from tests.simulate.robots import arm_ros1, pendulum, planar_two_link, with_tran
 from txtool.cli import cli
 from txtool.simulation import loop
 from txtool.simulation.run import Options, prepare, simulate_one
+
+DEMO_ROBOT = Path(__file__).resolve().parents[2] / "fixtures" / "demo_robot.urdf"  # damped
 
 
 @pytest.fixture
@@ -56,6 +59,17 @@ def test_encoder_readings_are_whole_counts_and_velocity_their_difference(tmp_pat
     assert np.abs(reading - true).max() <= math.pi / 1000 + 1e-12
     assert np.allclose(speed[1:], np.diff(reading, axis=0) / p.plan.dt, rtol=0, atol=1e-9)
     assert len(np.unique(reading[:, 0])) > 10  # the shoulder moves through many counts
+
+
+def test_fine_encoders_on_a_damped_robot_track_as_exact_readings_do(tmp_path):
+    """Encoders take the general loop, whose plant applies the joint damping itself: the
+    fast loop's explicit damping term must not be added to it a second time."""
+    robot = write(tmp_path, "demo.urdf", DEMO_ROBOT.read_text())
+    exact = simulate_one(Options(robot=robot, duration=1.0), None)
+    fine = simulate_one(Options(robot=robot, duration=1.0, encoder_counts=10**8), None)
+    assert exact.passed and fine.passed
+    for joint, stats in exact.joints.items():
+        assert fine.joints[joint].max_error == pytest.approx(stats.max_error, rel=1e-3)
 
 
 def test_encoder_resolution_is_divided_by_the_reduction(tmp_path, hold):

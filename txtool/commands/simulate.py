@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
 import click
 
 from txtool.commands.common import (
@@ -14,8 +17,64 @@ from txtool.commands.common import (
     xacro_disabled,
     xacro_options,
 )
-from txtool.io.xmlio import XacroOptions
+from txtool.io.xmlio import InputError, XacroOptions
 from txtool.model.distro import CHOICES
+
+if TYPE_CHECKING:
+    from txtool.simulation.run import Options
+
+
+def campaign_options(function: Callable[..., Any]) -> Callable[..., Any]:
+    """``--campaign`` and where it runs (docs/simulate.md, "Campaigns")."""
+    options = [
+        click.option("--campaign", "campaign_path", type=click.Path(dir_okay=False),
+                     metavar="FILE.toml",
+                     help="Run every candidate on perturbed robots drawn from FILE (payload, "
+                          "friction, rotor inertia, gains, sensor noise) on Dask."),
+        click.option("--scheduler", metavar="ADDRESS",
+                     help="With --campaign: the Dask scheduler of a cluster, e.g. "
+                          "tcp://host:8786 (default: a local cluster on this machine)."),
+        click.option("--workers", type=click.IntRange(min=1), metavar="N",
+                     help="With --campaign: processes of the local cluster  "
+                          "[default: one per core]"),
+        click.option("--serial", is_flag=True,
+                     help="With --campaign: run the samples one after the other in this "
+                          "process, without Dask."),
+    ]
+    for option in reversed(options):
+        function = option(function)
+    return function
+
+
+def run_campaign(options: Options, *, campaign_path: str, scheduler: str | None,
+                 workers: int | None, serial: bool, csv_path: str | None,
+                 plot_path: str | None, output_format: str, no_xacro: bool) -> int:
+    """``--campaign``: the checks of its options, then :func:`txtool.simulation.campaign.main`."""
+    for given, name in ((csv_path, "--csv"), (plot_path, "--plot")):
+        if given is not None:
+            raise InputError(f"{name}: not with --campaign (a campaign writes its summary only)")
+    if serial and (scheduler is not None or workers is not None):
+        raise InputError("--serial: not with --scheduler or --workers (no cluster runs)")
+    if scheduler is not None and workers is not None:
+        raise InputError("--workers: sizes the local cluster, not the one of --scheduler")
+    if not serial:
+        require_extra("distributed", "campaign", "txtool simulate --campaign")
+    from txtool.simulation.campaign import Where, main
+    from txtool.simulation.campaign_file import read_campaign
+
+    listed = read_campaign(campaign_path).candidates
+    if xacro_disabled(no_xacro, options.robot, *listed):
+        refuse_unexpanded("simulate", *listed)
+
+    return main(campaign_path, options, Where(serial, scheduler, workers), output_format)
+
+
+def refuse_campaign_options(campaign: dict[str, Any]) -> None:
+    """--scheduler, --workers and --serial only mean something with --campaign."""
+    for key, name in (("scheduler", "--scheduler"), ("workers", "--workers"),
+                      ("serial", "--serial")):
+        if campaign[key]:
+            raise InputError(f"{name}: only with --campaign FILE")
 
 
 @click.command("simulate")
@@ -77,6 +136,7 @@ from txtool.model.distro import CHOICES
                    "short runs stay in one).")
 @NO_XACRO_OPTION
 @xacro_options
+@campaign_options
 @exit_on_input_error
 def command(robot: str, configs: tuple[str, ...], params: tuple[str, ...],
             bandwidth: float | None,
@@ -85,7 +145,7 @@ def command(robot: str, configs: tuple[str, ...], params: tuple[str, ...],
             ros_distro: str | None, convention: str | None, delay: bool, encoder_counts: int | None,
             counterbalance: bool, output_format: str, csv_path: str | None,
             plot_path: str | None, skip: tuple[str, ...], jobs: int, no_xacro: bool,
-            xacro: XacroOptions) -> int:
+            xacro: XacroOptions, **campaign: Any) -> int:
     """Check a transmission config in closed loop against the robot's own.
 
     The plant uses ROBOT's transmissions; a computed-torque controller encodes its commands and
@@ -107,5 +167,9 @@ def command(robot: str, configs: tuple[str, ...], params: tuple[str, ...],
         jobs=jobs, skip=skip, delay=delay, encoder_counts=encoder_counts,
         counterbalance=counterbalance, ros_distro=ros_distro,
     )
+    if campaign["campaign_path"] is not None:
+        return run_campaign(options, csv_path=csv_path, plot_path=plot_path,
+                            output_format=output_format, no_xacro=no_xacro, **campaign)
+    refuse_campaign_options(campaign)
     _, code = main(options, output=output_format, csv_path=csv_path, plot_path=plot_path)
     return code

@@ -142,7 +142,8 @@ def build_plan(robot: RobotModel, plant: Drive, ctrl: Drive, binding: Binding,
     bias = bool(np.any(bias_rows))
     H = np.vstack([E, F, C @ bias_rows] if bias else [E, F])
     use_ki = bool(np.any(gains.ki))
-    general = use_ki or robot.has_continuous or not dynamics.simple
+    general = use_ki or robot.has_continuous or sensing.counts is not None \
+        or not dynamics.simple  # the loops of loop.py: only the fast one has PD damping
     PD = np.zeros((nv, width))
     PD[:, s["sat"]] = plant.eff_a2j
     if carried is not None:

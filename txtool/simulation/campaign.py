@@ -1,0 +1,222 @@
+"""``txtool simulate --campaign FILE``: every candidate against every sample, and the summary.
+
+The samples (:mod:`txtool.simulation.campaign_file`) times the candidates make the tasks; each
+is :func:`txtool.simulation.campaign_task.run_sample`, a pure function. They run on Dask: an
+embedded ``distributed.LocalCluster`` (one process per core, one thread each) by default, the
+cluster of ``--scheduler ADDRESS``, or one after the other in this process (``--serial``). The
+records come back in task order whatever ran them, so the report is the same to the bit.
+Dask is imported here only, when a campaign runs on a cluster.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import logging
+import multiprocessing
+import os
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass, replace
+from typing import Any
+
+from rich.console import Console
+from rich.table import Table
+
+from txtool.io.xmlio import InputError
+from txtool.simulation.campaign_file import PARAMETERS, Campaign, draw, read_campaign
+from txtool.simulation.campaign_task import Record, Task, run_sample
+from txtool.simulation.jobs import usable_cpus
+from txtool.simulation.params import _line_of
+from txtool.simulation.report import VERDICT_CELL, escape
+from txtool.simulation.run import EXIT_INCONCLUSIVE, Options, candidates
+
+CONNECT_TIMEOUT = "10s"
+PRELOAD = ("distributed", "txtool.simulation.campaign_task")  # what a forked worker runs
+WIDE = 132  # columns for reports written to files and pipes, as simulate's
+
+
+@dataclass(frozen=True)
+class Where:
+    """Where the tasks run: ``serial`` here, else a scheduler's ``address`` or a local cluster
+    of ``workers`` processes (None: one per usable core)."""
+
+    serial: bool = False
+    address: str | None = None
+    workers: int | None = None
+
+
+def tasks_of(campaign: Campaign, options: Options) -> list[Task]:
+    """Candidate by candidate, sample by sample. The file's candidates replace the command's
+    configs; without either, the robot's own config is the candidate."""
+    if campaign.candidates:
+        options = replace(options, configs=campaign.candidates, labels=())
+    options = replace(options, keep_series=False, jobs=1)
+    line = _line_of(campaign.text, "bounds.payload.link")
+    where = f"{campaign.path}:{line}: bounds.payload.link" if line else campaign.path
+    samples = draw(campaign)
+    return [Task(options, config, label or config or options.robot, index, sample,
+                 campaign.seed, campaign.payload, where)
+            for config, label in candidates(options)
+            for index, sample in enumerate(samples)]
+
+
+def execute(tasks: Sequence[Task], where: Where) -> list[Record]:
+    """The records of ``tasks``, in their order."""
+    if where.serial:
+        return [run_sample(task) for task in tasks]
+    with _client(where) as client:
+        futures = client.map(run_sample, list(tasks), pure=False)
+        return list(client.gather(futures))
+
+
+@contextlib.contextmanager
+def _client(where: Where) -> Iterator[Any]:
+    from distributed import Client
+
+    if where.address is not None:
+        try:
+            client = Client(where.address, timeout=CONNECT_TIMEOUT)
+        except (OSError, TimeoutError, ValueError) as exc:
+            raise InputError(f"--scheduler {where.address}: cannot connect: {exc}") from None
+        with client:
+            yield client
+        return
+    with local_cluster(where.workers or usable_cpus()) as cluster, Client(cluster) as client:
+        yield client
+
+
+def local_cluster(workers: int) -> Any:
+    """A ``distributed.LocalCluster`` of ``workers`` processes of one thread each.
+
+    Where the platform has it, workers are forked from a server process that has imported
+    Dask and the simulation once (a fresh interpreter spends seconds importing them); the
+    server lives as long as this process, so a second cluster starts at once.
+    """
+    import dask
+    from distributed import LocalCluster
+    from distributed.utils import get_mp_context
+
+    forkserver = "forkserver" in multiprocessing.get_all_start_methods()  # not on Windows
+    method = "forkserver" if forkserver else "spawn"
+    with dask.config.set({"distributed.worker.multiprocessing-method": method}):
+        if forkserver:  # pragma: no branch - POSIX platforms have it
+            get_mp_context().set_forkserver_preload(list(PRELOAD))  # after Dask's own list
+        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                            dashboard_address=None, silence_logs=logging.CRITICAL)
+
+
+def run_campaign(path: str, options: Options, where: Where) -> dict[str, Any]:
+    """The campaign's JSON document (see docs/simulate.md, "Campaigns")."""
+    campaign = read_campaign(path)
+    tasks = tasks_of(campaign, options)
+    records = execute(tasks, where)
+    failed = next((r["error"] for r in records if "error" in r), None)
+    if failed is not None:
+        raise InputError(failed)
+    count = len(draw(campaign))  # the tasks go candidate by candidate, sample by sample
+    summaries = [summary(tasks[start].label, records[start : start + count])
+                 for start in range(0, len(tasks), count)]
+    bounds = {name: list(campaign.bounds[name]) for name in PARAMETERS if name in campaign.bounds}
+    return {
+        "verdict": _overall(s["verdict"] for s in summaries),
+        "campaign": campaign.path,
+        "robot": options.robot,
+        "seed": campaign.seed,
+        "samples": count,
+        "bounds": bounds,
+        "payload": ({"link": campaign.payload.link, "xyz": list(campaign.payload.xyz),
+                     "xyz_units": "m"} if campaign.payload else None),
+        "units": {name: PARAMETERS[name][0] for name in bounds},
+        "candidates": summaries,
+    }
+
+
+def summary(label: str, runs: list[Record]) -> dict[str, Any]:
+    """Counts, the smallest tracking margin and the first failing sample of one candidate."""
+    counts = {v: sum(r["verdict"] == v for r in runs) for v in ("pass", "fail", "inconclusive")}
+    scored = [r for r in runs if r["verdict"] != "inconclusive"]
+    worst = min(scored, key=lambda r: -1e308 if r["margin"] is None else r["margin"],
+                default=None)
+    first = next((r for r in runs if r["verdict"] == "fail"), None)
+    return {
+        "config": label,
+        "verdict": _overall(r["verdict"] for r in runs),
+        "samples": len(runs), "passed": counts["pass"], "failed": counts["fail"],
+        "inconclusive": counts["inconclusive"],
+        "worst": None if worst is None else {
+            key: worst[key] for key in ("sample", "margin", "joint", "max_error", "units")},
+        "first_failure": None if first is None else {
+            key: first[key] for key in ("sample", "perturbation", "reason")},
+        "runs": runs,
+    }
+
+
+def _overall(verdicts: Any) -> str:
+    found = set(verdicts)
+    return next(v for v in ("fail", "inconclusive", "pass") if v in found)
+
+
+def exit_code(document: dict[str, Any]) -> int:
+    return {"pass": 0, "fail": 1, "inconclusive": EXIT_INCONCLUSIVE}[document["verdict"]]
+
+
+def render_json(document: dict[str, Any], console: Console) -> None:
+    console.file.write(json.dumps(document, indent=2, ensure_ascii=False) + "\n")
+
+
+def render_text(document: dict[str, Any], console: Console) -> None:
+    """A table of the candidates, then the first failure of each that failed."""
+    table = Table(title=f"campaign: {_count(document['samples'], 'sample')} per candidate, "
+                        f"seed {document['seed']}", title_justify="left")
+    table.add_column("config", overflow="fold")
+    table.add_column("verdict")
+    for name in ("samples", "pass", "fail", "inconcl."):
+        table.add_column(name, justify="right")
+    table.add_column("worst tracking margin\n(% of tolerance left)", justify="right")
+    for s in document["candidates"]:
+        table.add_row(escape(s["config"]), VERDICT_CELL[s["verdict"]], str(s["samples"]),
+                      str(s["passed"]), str(s["failed"]), str(s["inconclusive"]), _worst(s))
+    console.print(table)
+    units = document["units"]
+    for s in document["candidates"]:
+        first = s["first_failure"]
+        if first is None:
+            continue
+        values = ", ".join(f"{name} {value:.4g} {units[name]}"
+                           for name, value in first["perturbation"].items())
+        console.print(f"{escape(s['config'])}: first failure at sample {first['sample']} "
+                      f"({escape(values) or 'unperturbed'}): {escape(first['reason'])}",
+                      soft_wrap=True)
+    counts = [(s["failed"], s["samples"]) for s in document["candidates"]]
+    failed, total = sum(f for f, _ in counts), sum(n for _, n in counts)
+    line = {"fail": f"[bold red]FAIL[/]: {failed} of {_count(total, 'sample')} "
+                    + ("fails" if failed == 1 else "fail"),
+            "inconclusive": "[bold yellow]INCONCLUSIVE[/]: a candidate could not be checked",
+            "pass": "[bold green]PASS[/]: " + ("the 1 sample passes" if total == 1
+                                               else f"all {total} samples pass")}
+    console.print(line[document["verdict"]])
+
+
+def _count(number: int, noun: str) -> str:
+    return f"{number} {noun}" + ("" if number == 1 else "s")
+
+
+def _worst(s: dict[str, Any]) -> str:
+    worst = s["worst"]
+    if worst is None:
+        return "-"
+    margin = "diverged" if worst["margin"] is None else f"{100 * worst['margin']:.1f}%"
+    return f"{margin} ({escape(worst['joint'])}, sample {worst['sample']})"
+
+
+def main(path: str, options: Options, where: Where, output: str = "text") -> int:
+    """Run the campaign, print it on stdout, return the exit code."""
+    document = run_campaign(path, options, where)
+    console = Console()
+    if not console.is_terminal and "COLUMNS" not in os.environ:
+        console.width = WIDE
+    if output == "json":
+        render_json(document, console)
+    else:
+        render_text(document, console)
+    return exit_code(document)
