@@ -76,7 +76,7 @@ def lint_buffer(path: str, data: bytes, settings: Settings) -> list[Problem]:
     """Problems of ``data``, the unsaved text of the file at ``path`` (an editor's buffer),
     checked as :func:`lint_file` checks that file found in a folder walk (no TX006): ``path``
     names it, and a xacro expansion finds its includes and packages from where it is."""
-    return _lint_file(path, settings, None, data=data)
+    return _lint_file(path, settings, None, buffer=data)
 
 
 def _no_transmission(path: str, stdin_name: str | None, settings: Settings) -> list[Problem]:
@@ -99,9 +99,9 @@ def _no_transmission(path: str, stdin_name: str | None, settings: Settings) -> l
 
 def _lint_file(
     path: str, settings: Settings, stdin_name: str | None, fragment: bool = False,
-    data: bytes | None = None,
+    buffer: bytes | None = None,
 ) -> Findings:
-    buffer = data
+    """:func:`lint_file`'s work; ``buffer``: the text to check for the file at ``path``."""
     display, data = read_bytes(path, stdin_name=stdin_name) if buffer is None else (path, buffer)
     try:
         tree = parse_bytes(data, display)
