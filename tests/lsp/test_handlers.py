@@ -11,11 +11,28 @@ from pygls.workspace import TextDocument
 
 from tests.lsp.robots import ARM, ARM_XACRO, REDUCTION, REDUCTION_LINE
 from tests.lsp.test_client import applied
-from txtool.commands.lsp_document import Options
+from txtool.commands.lsp_document import Options, problems_of
 from txtool.commands.lsp_server import code_actions, diagnostics_of, hover_of
 from txtool.io.xmlio import XacroOptions
 
 OPTIONS = Options()
+
+
+STALE_ROS1 = """<robot name="arm">
+  <link name="base"/><link name="arm"/>
+  <joint name="elbow" type="revolute"><parent link="base"/><child link="arm"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <ros2_control name="arm" type="system">
+    <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+    <joint name="elbow"><command_interface name="effort"/><state_interface name="position"/></joint>
+  </ros2_control>
+  <transmission name="elbow_trans">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="elbow"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="elbow_motor"><mechanicalReduction>50</mechanicalReduction></actuator>
+  </transmission>
+</robot>
+"""
 
 
 def document(path: Path, text: str, version: int = 1) -> TextDocument:
@@ -411,3 +428,19 @@ def test_a_configuration_that_cannot_be_read_is_said_once_and_offers_nothing(
     found = diagnostics_of(buffer, [str(repo)], OPTIONS)
     assert [d.message for d in found] == [f"{repo / '.txtool.toml'}: permission denied"]
     assert code_actions(buffer, context, [str(repo)], OPTIONS) == []
+
+
+def test_fix_all_fixes_only_what_the_buffer_shows(repo: Path) -> None:
+    """ROS 1 blocks in a file only ros2_control reads get a TX305 note, no TX300 finding: the
+    fix-all action leaves them as they are (``migrate`` would still prefix them)."""
+    (repo / "package.xml").write_text(
+        '<package format="3"><name>arm</name><buildtool_depend>ament_cmake</buildtool_depend>'
+        "<export><build_type>ament_cmake</build_type></export></package>")
+    text = STALE_ROS1
+    path = repo / "robot.urdf"
+    path.write_text(text)
+    buffer = TextDocument(path.as_uri(), text)
+    found = problems_of(str(path), text, str(repo), OPTIONS)
+    assert "TX305" in {p.code for p in found} and "TX300" not in {p.code for p in found}
+    everything = lsp.CodeActionContext(diagnostics=[])
+    assert code_actions(buffer, everything, [str(repo)], OPTIONS) == []

@@ -161,7 +161,12 @@ def code_actions(document: TextDocument, context: lsp.CodeActionContext,
                                    lsp.CodeActionKind.QuickFix, fixed,
                                    [d for d in ours if d.code == code]))
     if only is None or any(FIX_ALL.startswith(kind) for kind in only):
-        fixed, counts = fixed_text(path, document.source, fixable_rules(path, root, options))
+        # Only the rules of the findings the buffer shows: migrate would also fix
+        # transmissions no reader of the file reads, which lint only notes (TX305).
+        found = problems_of(path, document.source, root, options)
+        codes = sorted({p.code for p in found if p.fixable}) if isinstance(found, list) else []
+        rules = fixable_rules(path, root, options, codes) if codes else []
+        fixed, counts = fixed_text(path, document.source, rules) if rules else ("", {})
         if counts:
             what = ", ".join(f"{code} x{n}" for code, n in sorted(counts.items()))
             actions.append(_action(document, f"Fix all txtool fixable problems ({what})",
