@@ -44,7 +44,7 @@ def judge(run: RunResult, series: Series, plant: Drive, ctrl: Drive, S: np.ndarr
     if run.failed:
         if found:
             run.reasons += [f"likely cause: {cause.text}" for cause in found]
-        elif candidate:
+        elif candidate and not interfaces:  # an interface mismatch is its own cause
             nothing = Cause("not_transmissions", "not the transmissions: the config's maps "
                             "equal the robot's (look at the gains, the limits or the reference)")
             run.causes.append(nothing)
