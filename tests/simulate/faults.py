@@ -42,10 +42,13 @@ NAMED = {
 COUPLED = {"sign reversed": {"direction", "joints_swapped"}}
 COUPLED_ROS2 = {"actuator roles swapped": {"xml_order"}}
 # What else the same edit may honestly show: swapped joints carry their offsets and their
-# interfaces along; ros2_control's XML order shows as the reductions it moves.
+# interfaces along; ros2_control's XML order shows as the reductions (and signs) it moves; a
+# transmission the robot leaves out because another took its actuator comes in when that one
+# is removed (open_manipulator's omy_f3m names actuator1 twice).
 ALSO = {
     "joints swapped": {"offset", "interface"},
-    "actuator roles swapped": {"reduction"},
+    "actuator roles swapped": {"reduction", "direction"},
+    "joint removed": {"transmission_kind"},
 }
 
 
@@ -244,3 +247,24 @@ def inject(text: bytes, simulated: Sequence[str], fault: str, joint: str | None 
         named = frozenset((COUPLED_ROS2 if config.ros2 else {}).get(fault)
                           or COUPLED.get(fault) or named)
     return Fault(fault, config.bytes(), named, named | ALSO.get(fault, set()), edited)
+
+
+def with_reduction_factor(text: bytes, simulated: Sequence[str], factor: float,
+                          joint: str | None = None) -> tuple[bytes, str] | None:
+    """``text`` with one transmission's reduction times ``factor`` (the one "reduction xK"
+    edits), and that transmission's name."""
+    return _edited(text, simulated, _reduction(factor), joint)
+
+
+def with_offset(text: bytes, simulated: Sequence[str], delta: float,
+                joint: str | None = None) -> tuple[bytes, str] | None:
+    """``text`` with one transmission's joint offset moved by ``delta``."""
+    return _edited(text, simulated, _offset(delta), joint)
+
+
+def _edited(text: bytes, simulated: Sequence[str],
+            edit: Callable[[Config, str | None], str | None], joint: str | None
+            ) -> tuple[bytes, str] | None:
+    config = Config(text, simulated)
+    name = edit(config, joint)
+    return None if name is None else (config.bytes(), name)

@@ -31,7 +31,7 @@ from tests.simulate.generated_robots import (
     FOUR_BAR,
     Generated,
 )
-from txtool.simulation.result import RunResult
+from txtool.simulation.result import KINDS, Cause, RunResult
 from txtool.simulation.run import Options, exit_code, simulate_one
 
 FULL = os.environ.get("TXTOOL_FAULT_MATRIX") == "full"
@@ -79,21 +79,19 @@ DEFAULT = [
     Case("ur5e", corpus("universal_robot__ur5e.urdf"), SIMPLE_ONLY),
     Case("husky", corpus("husky__husky.urdf"), SIMPLE_ONLY),
 ]
-NO_INTERFACE = SIMPLE_ONLY - {"interface changed"}  # they declare none: nothing to compare
 MORE = [
     Case("chain (ROS 2)", generated(CHAIN, "ros2"), SIMPLE_ONLY),
     Case("counterbalanced shoulder (ROS 1)", generated(COUNTERBALANCED, "ros1"), SIMPLE_ONLY,
          joint="shoulder"),
     Case("counterbalanced robot, its elbow (ROS 1)", generated(COUNTERBALANCED, "ros1"),
          SIMPLE_ONLY, joint="elbow"),
-    Case("differential's shoulder (ROS 1)", generated(DIFFERENTIAL, "ros1"),
-         SIMPLE_ONLY - {"joints swapped"}),
-    Case("four-bar's shoulder (ROS 2)", generated(FOUR_BAR, "ros2"),
-         SIMPLE_ONLY - {"joints swapped"}),
-    Case("baxter", corpus("baxter__baxter.urdf"), NO_INTERFACE),
+    # the simple shoulder comes first; the roles are swapped in the coupled transmission
+    Case("differential's shoulder (ROS 1)", generated(DIFFERENTIAL, "ros1"), COUPLED),
+    Case("four-bar's shoulder (ROS 2)", generated(FOUR_BAR, "ros2"), COUPLED),
+    Case("baxter", corpus("baxter__baxter.urdf"), SIMPLE_ONLY),
     Case("iiwa14", corpus("iiwa_stack__iiwa14.urdf"), SIMPLE_ONLY),
     Case("j2s7s300", corpus("kinova_ros__j2s7s300.urdf"), SIMPLE_ONLY),
-    Case("nao", corpus("nao_robot__naoV50.urdf"), NO_INTERFACE),
+    Case("nao", corpus("nao_robot__naoV50.urdf"), SIMPLE_ONLY),
     Case("omy_f3m", corpus("open_manipulator__omy_f3m.urdf"), SIMPLE_ONLY),
     Case("gen3", corpus("ros_kortex__gen3_robotiq_2f_85.urdf"), SIMPLE_ONLY),
     Case("sawyer", corpus("sawyer_robot__sawyer.urdf"), SIMPLE_ONLY),
@@ -184,3 +182,71 @@ def test_roles_swapped_in_a_ros2_block_change_nothing(tmp_path):
     run = simulate_one(Options(robot=str(robot), duration=BASELINE_S, keep_series=False),
                        str(candidate))
     assert run.passed and run.causes == [], run.reasons
+
+
+def _roles_swapped(text: str, first: str, second: str) -> str:
+    """``<role>first</role>`` and ``<role>second</role>`` exchanged, each member in place."""
+    assert f"<role>{first}</role>" in text and f"<role>{second}</role>" in text
+    return (text.replace(f"<role>{first}</role>", "<role>@</role>")
+            .replace(f"<role>{second}</role>", f"<role>{first}</role>")
+            .replace("<role>@</role>", f"<role>{second}</role>"))
+
+
+def _pair(tmp_path: Path, robot: str, candidate: str) -> RunResult:
+    paths = []
+    for name, text in (("robot.urdf", robot), ("candidate.urdf", candidate)):
+        paths.append(tmp_path / name)
+        paths[-1].write_text(text, encoding="utf-8")
+    return simulate_one(Options(robot=str(paths[0]), duration=BASELINE_S, keep_series=False),
+                        str(paths[1]))
+
+
+def test_a_ros1_differential_with_its_actuator_roles_swapped_is_named_so(tmp_path):
+    """ros_control takes the reductions by role and binds the actuators in XML order: the
+    swapped roles give 'm_left' the reduction 20, which reads as two reduction factors. The
+    cause is the roles."""
+    robot = DIFFERENTIAL.ros1()
+    run = _pair(tmp_path, robot, _roles_swapped(robot, "actuator1", "actuator2"))
+    assert run.verdict == "fail"
+    assert [c.kind for c in run.causes] == ["roles_swapped"]
+    assert run.reasons[-1] == (
+        "likely cause: transmission 't_wrist': actuator roles swapped in the config ('m_left' "
+        "has actuator2, the robot's actuator1; 'm_right' has actuator1, the robot's "
+        "actuator2); the loader then reads: actuator 'm_left': reduction off by a factor "
+        "0.6667 in the config's transmission 't_wrist' (reduction 20, the robot's 30); "
+        "actuator 'm_right': reduction off by a factor 1.5 in the config's transmission "
+        "'t_wrist' (reduction 30, the robot's 20)")
+
+
+def test_joint_and_actuator_roles_swapped_together_are_both_named(tmp_path):
+    robot = DIFFERENTIAL.ros1()
+    both = _roles_swapped(_roles_swapped(robot, "joint1", "joint2"), "actuator1", "actuator2")
+    run = _pair(tmp_path, robot, both)
+    texts = [c.text for c in run.causes if c.kind == "roles_swapped"]
+    assert [t.split(" in the config")[0] for t in texts] == [
+        "transmission 't_wrist': joint roles swapped",
+        "transmission 't_wrist': actuator roles swapped"]
+    assert "the loader then reads: " in texts[0]
+
+
+def test_roles_swapped_between_equal_members_change_nothing(tmp_path):
+    """Equal reductions and no offsets: whichever role each actuator has, ros_control binds the
+    same numbers, so the config is the robot's and passes."""
+    robot = DIFFERENTIAL.ros1().replace("<mechanicalReduction>20<", "<mechanicalReduction>30<")
+    run = _pair(tmp_path, robot, _roles_swapped(robot, "actuator1", "actuator2"))
+    assert run.passed and run.causes == [], run.reasons
+
+
+def test_an_interface_change_alone_is_its_own_cause(tmp_path):
+    robot = CHAIN.ros1()
+    changed = robot.replace("EffortJointInterface", "PositionJointInterface", 1)
+    run = _pair(tmp_path, robot, changed)
+    assert run.reasons == ["joint 'base_yaw': the config commands it through position, the "
+                           "robot through effort"]
+    assert [c.kind for c in run.causes] == ["interface"]
+
+
+def test_a_cause_has_a_known_kind():
+    with pytest.raises(ValueError, match="unknown cause kind 'typo'"):
+        Cause("typo", "text")
+    assert Cause("offset", "joint 'a': offset off by +0.1 rad").kind in KINDS

@@ -168,11 +168,12 @@ def _roles(plant: Drive, ctrl: Drive, names: list[str]) -> list[Cause]:
     """ROS 1 roles of these joints' transmissions given to other members than the robot's
     (``Drive.roles`` lists the members in XML order).
 
-    ros_control takes each parameter by ``<role>`` but binds the joints' and actuators' data in
-    XML order (ros-controls/ros_control transmission_interface/src/
-    differential_transmission_loader.cpp getActuatorConfig/getJointConfig index by role;
-    transmission_interface_loader.cpp binds the handles in the order of ``actuators_``), so
-    swapped roles move the reductions and offsets to other members.
+    ros_control indexes a coupled transmission's parameters by ``<role>`` but fills the joint
+    and actuator data in XML order (ros-controls/ros_control transmission_interface/src/
+    four_bar_linkage_transmission_loader.cpp:49 @17b626a, likewise the differential loader;
+    joint_state_interface_provider.cpp:132 @133d768; see :mod:`txtool.views.effective`), so
+    roles exchanged between members that keep their places move the reductions and offsets
+    to the other member.
     """
     out = []
     for tmap in ctrl.maps:
@@ -185,12 +186,12 @@ def _roles(plant: Drive, ctrl: Drive, names: list[str]) -> list[Cause]:
         moved = [(member, role, theirs[member]) for member, role in mine.items()
                  if member in theirs and theirs[member] != role
                  and place.index(member) == robot_place.index(member)]
-        if not moved:
-            continue
-        which = "actuator" if all(m in tmap.actuators for m, _, _ in moved) else "joint"
-        pairs = "; ".join(f"'{m}' has {role}, the robot's {robot}" for m, role, robot in moved)
-        out.append(Cause("roles_swapped", f"transmission '{tmap.name}': {which} roles swapped "
-                         f"in the config ({pairs})"))
+        for side, members in (("joint", tmap.joints), ("actuator", tmap.actuators)):
+            pairs = [f"'{m}' has {role}, the robot's {robot}" for m, role, robot in moved
+                     if m in members]
+            if pairs:
+                out.append(Cause("roles_swapped", f"transmission '{tmap.name}': {side} roles "
+                                 f"swapped in the config ({'; '.join(pairs)})"))
     return out
 
 
