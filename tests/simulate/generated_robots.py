@@ -14,7 +14,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from lxml import etree
+
 from tests.simulate.robots import link
+from txtool.io.xmlio import parse_bytes
 
 EFFORT_ROS1 = "<hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>"
 
@@ -153,3 +156,40 @@ COUNTERBALANCED = Generated(
 
 DIFFERENTIAL = _arm("differential", "DifferentialTransmission")
 FOUR_BAR = _arm("four_bar", "FourBarLinkageTransmission")
+
+
+def derived(text: bytes, reductions: tuple[float, ...] = (), pair: tuple[str, str] | None = None,
+            kind: str = "DifferentialTransmission", effort: dict[str, float] | None = None
+            ) -> bytes:
+    """A robot made from another's URDF with ROS 1 simple transmissions: its reductions set in
+    turn to ``reductions``, the transmissions of the two joints of ``pair`` replaced by one
+    coupled transmission of ``kind`` (their actuators and reductions, joint reductions 1), and
+    the ``<limit effort>`` of the joints of ``effort`` set."""
+    tree = parse_bytes(text, "robot")
+    root = tree.getroot()
+    simple = [t for t in root.findall("transmission") if "Simple" in (t.findtext("type") or "")]
+    for k, t in enumerate(simple if reductions else []):
+        value = t.find("actuator/mechanicalReduction")
+        assert value is not None
+        value.text = f"{reductions[k % len(reductions)]:g}"
+    if pair is not None:
+        owners = [next(t for t in simple if t.find("joint").get("name") == j) for j in pair]
+        coupled = etree.Element("transmission", name=f"{pair[0]}_{pair[1]}_trans")
+        etree.SubElement(coupled, "type").text = f"transmission_interface/{kind}"
+        for k, t in enumerate(owners):
+            joint = t.find("joint")
+            role = etree.SubElement(joint, "role")
+            role.text = f"joint{k + 1}"
+            coupled.append(joint)
+        for k, t in enumerate(owners):
+            actuator = t.find("actuator")
+            role = etree.SubElement(actuator, "role")
+            role.text = f"actuator{k + 1}"
+            coupled.append(actuator)
+        owners[0].addprevious(coupled)
+        for t in owners:
+            root.remove(t)
+    for joint in root.findall("joint"):
+        if effort and joint.get("name") in effort:
+            joint.find("limit").set("effort", f"{effort[joint.get('name')]:g}")
+    return etree.tostring(tree, xml_declaration=True, encoding="utf-8")

@@ -30,6 +30,7 @@ from tests.simulate.generated_robots import (
     DIFFERENTIAL,
     FOUR_BAR,
     Generated,
+    derived,
 )
 from txtool.simulation.result import KINDS, Cause, RunResult
 from txtool.simulation.run import Options, exit_code, simulate_one
@@ -67,6 +68,18 @@ def corpus(name: str) -> Callable[[Path], Path]:
     return lambda folder: corpus_file(name)
 
 
+def from_corpus(name: str, **changes) -> Callable[[Path], Path]:
+    """A corpus robot with its transmissions or limits changed (:func:`derived`)."""
+    def write(folder: Path) -> Path:
+        path = folder / f"derived.{name}"
+        path.write_bytes(derived(corpus_file(name).read_bytes(), **changes))
+        return path
+    return write
+
+
+UR5E = "universal_robot__ur5e.urdf"
+
+
 COUPLED = EVERY - {"joints swapped", "effort convention"}
 DEFAULT = [
     Case("chain (ROS 1)", generated(CHAIN, "ros1"), SIMPLE_ONLY),
@@ -76,8 +89,15 @@ DEFAULT = [
     Case("differential (ROS 2)", generated(DIFFERENTIAL, "ros2"), COUPLED, joint="elbow"),
     Case("four-bar (ROS 2)", generated(FOUR_BAR, "ros2"), COUPLED | {"effort convention"},
          joint="elbow", ros1_twin=FOUR_BAR.ros1),
-    Case("ur5e", corpus("universal_robot__ur5e.urdf"), SIMPLE_ONLY),
+    Case("ur5e", corpus(UR5E), SIMPLE_ONLY),
     Case("husky", corpus("husky__husky.urdf"), SIMPLE_ONLY),
+    # the UR5e with reductions from -160 to 120 and its last two joints on a differential
+    Case("ur5e, reductions and a differential wrist", from_corpus(
+        UR5E, reductions=(50, 100, -160, 80, 120, 30), pair=("wrist_2_joint", "wrist_3_joint")),
+         COUPLED, joint="wrist_2_joint"),
+    # gravity needs up to 52 N·m at its shoulder_lift_joint: 1.5 times a limit of 35 N·m
+    Case("ur5e, counterbalanced shoulder", from_corpus(
+        UR5E, effort={"shoulder_lift_joint": 35.0}), SIMPLE_ONLY, joint="shoulder_lift_joint"),
 ]
 MORE = [
     Case("chain (ROS 2)", generated(CHAIN, "ros2"), SIMPLE_ONLY),
@@ -93,6 +113,10 @@ MORE = [
     Case("j2s7s300", corpus("kinova_ros__j2s7s300.urdf"), SIMPLE_ONLY),
     Case("nao", corpus("nao_robot__naoV50.urdf"), SIMPLE_ONLY),
     Case("omy_f3m", corpus("open_manipulator__omy_f3m.urdf"), SIMPLE_ONLY),
+    Case("ur5e, a four-bar wrist", from_corpus(UR5E, reductions=(100,),
+                                               pair=("wrist_1_joint", "wrist_2_joint"),
+                                               kind="FourBarLinkageTransmission"),
+         COUPLED, joint="wrist_1_joint"),
     Case("gen3", corpus("ros_kortex__gen3_robotiq_2f_85.urdf"), SIMPLE_ONLY),
     Case("sawyer", corpus("sawyer_robot__sawyer.urdf"), SIMPLE_ONLY),
     # its wrist is a ROS 2 differential with reductions -1 and 1
