@@ -159,12 +159,12 @@ FOUR_BAR = _arm("four_bar", "FourBarLinkageTransmission")
 
 
 def derived(text: bytes, reductions: tuple[float, ...] = (), pair: tuple[str, str] | None = None,
-            kind: str = "DifferentialTransmission", effort: dict[str, float] | None = None
-            ) -> bytes:
+            effort: dict[str, float] | None = None) -> bytes:
     """A robot made from another's URDF with ROS 1 simple transmissions: its reductions set in
     turn to ``reductions``, the transmissions of the two joints of ``pair`` replaced by one
-    coupled transmission of ``kind`` (their actuators and reductions, joint reductions 1), and
-    the ``<limit effort>`` of the joints of ``effort`` set."""
+    differential (their actuators and reductions, joint reductions 1; a ROS 1 four-bar would
+    fail its own check, see docs/simulate.md), and the ``<limit effort>`` of the joints of
+    ``effort`` set."""
     tree = parse_bytes(text, "robot")
     root = tree.getroot()
     simple = [t for t in root.findall("transmission") if "Simple" in (t.findtext("type") or "")]
@@ -175,7 +175,7 @@ def derived(text: bytes, reductions: tuple[float, ...] = (), pair: tuple[str, st
     if pair is not None:
         owners = [next(t for t in simple if t.find("joint").get("name") == j) for j in pair]
         coupled = etree.Element("transmission", name=f"{pair[0]}_{pair[1]}_trans")
-        etree.SubElement(coupled, "type").text = f"transmission_interface/{kind}"
+        etree.SubElement(coupled, "type").text = "transmission_interface/DifferentialTransmission"
         for k, t in enumerate(owners):
             joint = t.find("joint")
             role = etree.SubElement(joint, "role")

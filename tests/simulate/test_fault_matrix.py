@@ -113,10 +113,6 @@ MORE = [
     Case("j2s7s300", corpus("kinova_ros__j2s7s300.urdf"), SIMPLE_ONLY),
     Case("nao", corpus("nao_robot__naoV50.urdf"), SIMPLE_ONLY),
     Case("omy_f3m", corpus("open_manipulator__omy_f3m.urdf"), SIMPLE_ONLY),
-    Case("ur5e, a four-bar wrist", from_corpus(UR5E, reductions=(100,),
-                                               pair=("wrist_1_joint", "wrist_2_joint"),
-                                               kind="FourBarLinkageTransmission"),
-         COUPLED, joint="wrist_1_joint"),
     Case("gen3", corpus("ros_kortex__gen3_robotiq_2f_85.urdf"), SIMPLE_ONLY),
     Case("sawyer", corpus("sawyer_robot__sawyer.urdf"), SIMPLE_ONLY),
     # its wrist is a ROS 2 differential with reductions -1 and 1
