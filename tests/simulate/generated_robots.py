@@ -8,6 +8,9 @@ as a ``<ros2_control>`` block with the same maths.
 * ``four_bar``: the same arm with a four-bar linkage instead of the differential;
 * ``counterbalanced``: a heavy shoulder whose gravity load is about 1.6 times its effort limit,
   so simulate assumes a counterbalance for it, and a light elbow.
+
+:func:`derived` makes robots from a corpus robot: other reductions, two joints on a
+differential, lower effort limits.
 """
 
 from __future__ import annotations

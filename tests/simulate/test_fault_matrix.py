@@ -271,3 +271,21 @@ def test_a_cause_has_a_known_kind():
     with pytest.raises(ValueError, match="unknown cause kind 'typo'"):
         Cause("typo", "text")
     assert Cause("offset", "joint 'a': offset off by +0.1 rad").kind in KINDS
+
+
+def test_the_command_line_fails_a_role_swap_naming_the_roles(tmp_path):
+    from click.testing import CliRunner
+
+    from txtool.cli import cli
+
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(DIFFERENTIAL.ros1(), encoding="utf-8")
+    candidate = tmp_path / "candidate.urdf"
+    candidate.write_text(_roles_swapped(DIFFERENTIAL.ros1(), "actuator1", "actuator2"),
+                         encoding="utf-8")
+    result = CliRunner().invoke(cli, ["simulate", str(robot), "--config", str(candidate),
+                                      "--duration", "1"], catch_exceptions=False)
+    assert (result.exit_code, result.stderr) == (1, "")
+    assert "FAIL: joint 'wrist': tracking error" in result.stdout
+    assert "\n  - likely cause: transmission 't_wrist': actuator roles swapped in the config " \
+           "('m_left' has actuator2, the robot's actuator1;" in result.stdout
