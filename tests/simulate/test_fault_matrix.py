@@ -3,9 +3,10 @@ each robot's own config fails (exit code 1) with the right kind of cause named, 
 own config passes.
 
 Robots: the generated ones of :mod:`tests.simulate.generated_robots` (several reductions, a
-differential and a four-bar in both dialects, a counterbalanced heavy joint) and complete robots
-of the corpus. The default run keeps to the small ones; ``TXTOOL_FAULT_MATRIX=full`` adds every
-form of the generated robots and every complete corpus robot that simulates (about 3 minutes).
+differential and a four-bar in both dialects, a counterbalanced heavy joint), complete robots of
+the corpus and robots derived from the corpus UR5e. The default run keeps to the small ones
+(about 10 s of CPU); ``TXTOOL_FAULT_MATRIX=full`` adds every form of the generated robots and
+every complete corpus robot that simulates (several minutes: TIAGo and NAO take most).
 
 One baseline per robot: its own config on the default motion of 1 s (which must pass); every
 candidate then follows that same motion, given as a trajectory, so the motion is planned once.
