@@ -16,7 +16,9 @@ Both drives are bound to the robot's joints, and the candidate's actuators to th
 
 Per group of coupled joints: a diagonal ``G`` names reversed joints and joint-side reduction
 factors, a diagonal ``T`` the same for actuators, a permutation in ``G`` or ``T`` swapped joints
-or actuators; offsets are compared after that.
+or actuators; offsets are compared after that. Where a ROS 1 config gives a coupled
+transmission's roles to other members than the robot's, the roles are the cause and the shape
+is what they do. Each finding is a :class:`~txtool.simulation.result.Cause` with its kind.
 """
 
 from __future__ import annotations
