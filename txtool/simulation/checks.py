@@ -19,7 +19,7 @@ import numpy as np
 
 from txtool.simulation import diagnose
 from txtool.simulation.drive import Drive
-from txtool.simulation.result import RunResult, Series
+from txtool.simulation.result import Cause, RunResult, Series
 from txtool.simulation.sensing import Encoder
 
 EFFORT_TOLERANCE = 0.01  # of the joint's peak torque
@@ -37,19 +37,23 @@ def judge(run: RunResult, series: Series, plant: Drive, ctrl: Drive, S: np.ndarr
     with np.errstate(all="ignore"):
         run.reasons += effort_path(series, plant, ctrl, S)
         run.reasons += chatter(series)
-    run.reasons += interface_mismatch(plant, ctrl)
-    found = diagnose.causes(plant, ctrl, S, series.units)
+    interfaces = interface_mismatch(plant, ctrl)
+    run.reasons += interfaces
+    found = diagnose.find(plant, ctrl, S, series.units)
+    run.causes = [Cause("interface", reason) for reason in interfaces] + found
     if run.failed:
         if found:
-            run.reasons += [f"likely cause: {cause}" for cause in found]
-        elif candidate:
-            run.reasons.append("likely cause: not the transmissions: the config's maps equal "
-                               "the robot's (look at the gains, the limits or the reference)")
+            run.reasons += [f"likely cause: {cause.text}" for cause in found]
+        elif candidate and not interfaces:  # an interface mismatch is its own cause
+            nothing = Cause("not_transmissions", "not the transmissions: the config's maps "
+                            "equal the robot's (look at the gains, the limits or the reference)")
+            run.causes.append(nothing)
+            run.reasons.append(f"likely cause: {nothing.text}")
     elif found:
         # The maps are compared exactly: a config that differs is not the robot's, even where
         # this motion and these gains happen to keep the tracking error within the tolerance.
         run.reasons += [f"the config's maps differ from the robot's (it tracks within the "
-                        f"tolerance on this motion): {cause}" for cause in found]
+                        f"tolerance on this motion): {cause.text}" for cause in found]
     run.notes += sensing_notes(encoder, delay, plant)
 
 

@@ -16,7 +16,9 @@ Both drives are bound to the robot's joints, and the candidate's actuators to th
 
 Per group of coupled joints: a diagonal ``G`` names reversed joints and joint-side reduction
 factors, a diagonal ``T`` the same for actuators, a permutation in ``G`` or ``T`` swapped joints
-or actuators; offsets are compared after that.
+or actuators; offsets are compared after that. Where a ROS 1 config gives a coupled
+transmission's roles to other members than the robot's, the roles are the cause and the shape
+is what they do. Each finding is a :class:`~txtool.simulation.result.Cause` with its kind.
 """
 
 from __future__ import annotations
@@ -27,6 +29,7 @@ import numpy as np
 
 from txtool.mechanics.maps import TransmissionMap
 from txtool.simulation.drive import Drive
+from txtool.simulation.result import Cause
 
 TOLERANCE = 1e-9  # relative: entries this small compared with the largest are zero
 OFFSET_TOLERANCE = 1e-12  # rad or m
@@ -59,8 +62,13 @@ def causes(plant: Drive, ctrl: Drive, S: np.ndarray, units: tuple[str, ...]) -> 
 
     Empty when the maps agree. ``units`` are the joints' position units (rad or m).
     """
+    return [cause.text for cause in find(plant, ctrl, S, units)]
+
+
+def find(plant: Drive, ctrl: Drive, S: np.ndarray, units: tuple[str, ...]) -> list[Cause]:
+    """:func:`causes` with the kind of each."""
     c = compare(plant, ctrl, S)
-    found: list[str] = []
+    found: list[Cause] = []
     for joints in _groups(c, plant, ctrl):
         actuators = sorted({int(i) for i in np.nonzero(plant.vel_j2a[:, joints])[0]})
         found += _group_causes(c, plant, ctrl, joints, actuators, units)
@@ -92,7 +100,7 @@ def _groups(c: Comparison, plant: Drive, ctrl: Drive) -> list[list[int]]:
 
 
 def _group_causes(c: Comparison, plant: Drive, ctrl: Drive, joints: list[int],
-                  actuators: list[int], units: tuple[str, ...]) -> list[str]:
+                  actuators: list[int], units: tuple[str, ...]) -> list[Cause]:
     names = [plant.joints[v] for v in joints]
     kinds = _kinds(plant, ctrl, names)
     G = c.G[np.ix_(joints, joints)]
@@ -112,13 +120,19 @@ def _group_causes(c: Comparison, plant: Drive, ctrl: Drive, joints: list[int],
             swapped = False
     out = _position(plant, ctrl, joints, G, T, [plant.actuators[i] for i in actuators],
                     prefer_swap=swapped or not _diagonal(T))
+    roles = _roles(plant, ctrl, names)
+    if roles and out:
+        # The position reading is what the swapped roles do, not a change of its own.
+        reading = "; ".join(cause.text for cause in out)
+        out = [Cause("roles_swapped", f"{roles[0].text}; the loader then reads: {reading}")]
+        out += roles[1:]
     carried = _pattern(G).astype(float) if swapped else np.eye(len(joints))
     offset = c.offset[joints] - carried @ c.robot_offset[joints]
     for k, v in enumerate(joints):
         if abs(offset[k]) > OFFSET_TOLERANCE:
-            out.append(f"joint '{plant.joints[v]}': offset off by {offset[k]:+.4g} "
-                       f"{units[v]} in {_in(ctrl, plant.joints[v])} "
-                       f"({c.offset[v]:.6g}, the robot's {c.robot_offset[v]:.6g})")
+            out.append(Cause("offset", f"joint '{plant.joints[v]}': offset off by "
+                             f"{offset[k]:+.4g} {units[v]} in {_in(ctrl, plant.joints[v])} "
+                             f"({c.offset[v]:.6g}, the robot's {c.robot_offset[v]:.6g})"))
     if not np.allclose(K, G.T, rtol=0.0, atol=TOLERANCE * np.abs(G).max()):
         out.append(_effort(ctrl, names, K))
     if out:
@@ -127,7 +141,7 @@ def _group_causes(c: Comparison, plant: Drive, ctrl: Drive, joints: list[int],
 
 
 def _position(plant: Drive, ctrl: Drive, joints: list[int], G: np.ndarray, T: np.ndarray,
-              motors: list[str], prefer_swap: bool = True) -> list[str]:
+              motors: list[str], prefer_swap: bool = True) -> list[Cause]:
     """The simplest reading that fits: joint factors, a plain joint swap (unless
     ``prefer_swap`` is off), actuator factors, a scaled joint swap, an actuator swap; else the
     matrix."""
@@ -137,16 +151,50 @@ def _position(plant: Drive, ctrl: Drive, joints: list[int], G: np.ndarray, T: np
                 if not _close(G[k, k], 1.0)]
     by_joint = _permutation(G)
     if prefer_swap and by_joint is not None and _unit(G, by_joint):
-        return [_swapped("joints", names, G, by_joint, ctrl, names[0]) + _same_as(T, motors)]
+        return [Cause("joints_swapped", _swapped("joints", names, G, by_joint, ctrl, names[0])
+                      + _same_as(T, motors))]
     if _diagonal(T):
         return [_actuator_factor(plant, ctrl, motors[k], T[k, k]) for k in range(len(motors))
                 if not _close(T[k, k], 1.0)]
     if by_joint is not None:
-        return [_swapped("joints", names, G, by_joint, ctrl, names[0])]
+        return [Cause("joints_swapped", _swapped("joints", names, G, by_joint, ctrl, names[0]))]
     if (by_actuator := _permutation(T)) is not None:
-        return [_swapped("actuators", motors, T, by_actuator, ctrl, names[0])]
-    return [f"{_in(ctrl, names[0])}: joints {_list(names)} are coupled differently from the "
-            f"robot's (its position estimates are {_matrix(G)} times the true positions)"]
+        return [Cause("actuators_swapped",
+                      _swapped("actuators", motors, T, by_actuator, ctrl, names[0]))]
+    return [Cause("coupling", f"{_in(ctrl, names[0])}: joints {_list(names)} are coupled "
+                  f"differently from the robot's (its position estimates are {_matrix(G)} "
+                  "times the true positions)")]
+
+
+def _roles(plant: Drive, ctrl: Drive, names: list[str]) -> list[Cause]:
+    """ROS 1 roles of these joints' transmissions given to other members than the robot's
+    (``Drive.roles`` lists the members in XML order).
+
+    ros_control indexes a coupled transmission's parameters by ``<role>`` but fills the joint
+    and actuator data in XML order (ros-controls/ros_control transmission_interface/src/
+    four_bar_linkage_transmission_loader.cpp:49 @17b626a, likewise the differential loader;
+    joint_state_interface_provider.cpp:132 @133d768; see :mod:`txtool.views.effective`), so
+    roles exchanged between members that keep their places move the reductions and offsets
+    to the other member.
+    """
+    out = []
+    for tmap in ctrl.maps:
+        mine, theirs = ctrl.roles.get(tmap.name), plant.roles.get(tmap.name)
+        if mine is None or theirs is None or not set(tmap.joints) & set(names):
+            continue
+        # Members that kept their place in the XML but not their role (a member moved with
+        # its role, such as two joints' names exchanged, reads as a swap of those members).
+        place, robot_place = list(mine), list(theirs)
+        moved = [(member, role, theirs[member]) for member, role in mine.items()
+                 if member in theirs and theirs[member] != role
+                 and place.index(member) == robot_place.index(member)]
+        for side, members in (("joint", tmap.joints), ("actuator", tmap.actuators)):
+            pairs = [f"'{m}' has {role}, the robot's {robot}" for m, role, robot in moved
+                     if m in members]
+            if pairs:
+                out.append(Cause("roles_swapped", f"transmission '{tmap.name}': {side} roles "
+                                 f"swapped in the config ({'; '.join(pairs)})"))
+    return out
 
 
 def _unit(M: np.ndarray, p: np.ndarray) -> bool:
@@ -154,14 +202,15 @@ def _unit(M: np.ndarray, p: np.ndarray) -> bool:
     return all(_close(M[k, p[k]], 1.0) for k in range(len(p)))
 
 
-def _kinds(plant: Drive, ctrl: Drive, names: list[str]) -> list[str]:
+def _kinds(plant: Drive, ctrl: Drive, names: list[str]) -> list[Cause]:
     """Joints whose transmission in the config is of another kind than the robot's."""
     out = []
     for joint in names:
         mine, theirs = _transmission(ctrl, joint), _transmission(plant, joint)
         if (mine and mine.kind) != (theirs and theirs.kind):
-            out.append(f"joint '{joint}': the config has {_kind(mine)} where the robot has "
-                       f"{_kind(theirs)}")
+            kind = "missing_transmission" if mine is None else "transmission_kind"
+            out.append(Cause(kind, f"joint '{joint}': the config has {_kind(mine)} where the "
+                             f"robot has {_kind(theirs)}"))
     return out
 
 
@@ -193,19 +242,24 @@ def _permutation(M: np.ndarray) -> np.ndarray | None:
     return np.argmax(big, axis=1)
 
 
-def _joint_factor(plant: Drive, ctrl: Drive, v: int, gain: float) -> str:
+def _joint_factor(plant: Drive, ctrl: Drive, v: int, gain: float) -> Cause:
     """Joint ``v`` is read as ``gain * x``: the candidate's reduction is ``1/gain`` times."""
     joint = plant.joints[v]
     values = _values(plant, ctrl, joint, "joint", 1.0 / gain)
-    return f"joint '{joint}': {_factor(1.0 / gain)} in {_in(ctrl, joint)}{values}"
+    return Cause(_factor_kind(gain),
+                 f"joint '{joint}': {_factor(1.0 / gain)} in {_in(ctrl, joint)}{values}")
 
 
-def _actuator_factor(plant: Drive, ctrl: Drive, actuator: str, gain: float) -> str:
+def _actuator_factor(plant: Drive, ctrl: Drive, actuator: str, gain: float) -> Cause:
     """The candidate expects actuator readings ``gain`` times the robot's: so is its reduction."""
     values = _values(plant, ctrl, actuator, "actuator", gain)
     owner = _owner(ctrl, actuator)
     where = f"the config's transmission '{owner}'" if owner else "the config"
-    return f"actuator '{actuator}': {_factor(gain)} in {where}{values}"
+    return Cause(_factor_kind(gain), f"actuator '{actuator}': {_factor(gain)} in {where}{values}")
+
+
+def _factor_kind(k: float) -> str:
+    return "direction" if _close(k, -1.0) else "reduction"
 
 
 def _factor(k: float) -> str:
@@ -238,7 +292,7 @@ def _same_as(T: np.ndarray, motors: list[str]) -> str:
     return ""
 
 
-def _effort(ctrl: Drive, names: list[str], K: np.ndarray) -> str:
+def _effort(ctrl: Drive, names: list[str], K: np.ndarray) -> Cause:
     """An effort map that is not the transpose of the velocity map, e.g. ROS 1's four-bar.
 
     ros_control computes ``tau_j1 = nj1 na1 tau_a1``, ``tau_j2 = nj2 (na2 tau_a2 - nj1 na1
@@ -254,14 +308,16 @@ def _effort(ctrl: Drive, names: list[str], K: np.ndarray) -> str:
             and set(m.joints) & set(names)]
     applied = f"the applied torques of {_list(names)} are {_matrix(K)} times the commanded ones"
     if ros1:
-        return (f"transmission '{ros1[0]}': the config's effort map is ros_control's (ROS 1) "
-                "four-bar map, which does not conserve power (ros_control#523), while the "
-                f"robot's is the power-conserving one of ros2_control (PR #1837): {applied}")
-    return (f"{_in(ctrl, names[0])}: a different effort convention, the effort map is not "
-            f"the transpose of the velocity map as the robot's is ({applied})")
+        return Cause("effort_convention", f"transmission '{ros1[0]}': the config's effort map "
+                     "is ros_control's (ROS 1) four-bar map, which does not conserve power "
+                     "(ros_control#523), while the robot's is the power-conserving one of "
+                     f"ros2_control (PR #1837): {applied}")
+    return Cause("effort_convention", f"{_in(ctrl, names[0])}: a different effort convention, "
+                 "the effort map is not the transpose of the velocity map as the robot's is "
+                 f"({applied})")
 
 
-def _xml_order(plant: Drive, ctrl: Drive, names: list[str]) -> list[str]:
+def _xml_order(plant: Drive, ctrl: Drive, names: list[str]) -> list[Cause]:
     """ros2_control binds coupled parameters in XML order to the joints sorted by name."""
     hints = []
     for tmap in ctrl.maps:
@@ -278,10 +334,10 @@ def _xml_order(plant: Drive, ctrl: Drive, names: list[str]) -> list[str]:
                 continue
             if robot_order is not None and robot_order == order:
                 continue
-            hints.append(f"transmission '{tmap.name}' lists its {kind} as {', '.join(listed)}: "
-                         "ros2_control takes their parameters in XML order but binds them to "
-                         f"the {kind} sorted by name ({', '.join(bound)}); roles are not used "
-                         "(ros2_control#3382)")
+            hints.append(Cause("xml_order", f"transmission '{tmap.name}' lists its {kind} as "
+                               f"{', '.join(listed)}: ros2_control takes their parameters in "
+                               f"XML order but binds them to the {kind} sorted by name "
+                               f"({', '.join(bound)}); roles are not used (ros2_control#3382)"))
     return hints
 
 

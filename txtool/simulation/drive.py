@@ -51,6 +51,8 @@ class Drive:
     drake: dict[str, dict[str, tuple[float, int]]] = field(default_factory=dict)
     # ROS 2 transmissions: (joints, actuators) in XML order, the order of their parameters.
     xml_order: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = field(default_factory=dict)
+    # ROS 1 transmissions: the <role> of each joint and actuator that has one, in XML order.
+    roles: dict[str, dict[str, str]] = field(default_factory=dict)
     # Per block: DoF indices, actuator indices, the map (None for a direct actuator).
     blocks: list[tuple[list[int], list[int], TransmissionMap | None]] = field(
         default_factory=list)
@@ -131,6 +133,10 @@ def read_drive(source: Source, robot: RobotModel, *, loader: str = "auto",
     drive.xml_order = {f.transmission.name: (tuple(j.name for j in f.transmission.joints),
                                              tuple(a.name for a in f.transmission.actuators))
                        for f in kept if loader_of(f.transmission) == "ros2"}
+    drive.roles = {f.transmission.name: {m.name: m.role for m in (*f.transmission.joints,
+                                                                  *f.transmission.actuators)
+                                         if m.role}
+                   for f in kept if loader_of(f.transmission) == "ros1"}
     notes += _skip_notes(source.path, unread, where) + _skip_notes(source.path, skipped, where)
     if found and not maps:
         notes.append("no transmission can be simulated: every joint is driven directly")

@@ -13,6 +13,35 @@ from txtool.simulation.params import GainSource
 LIMIT_SLACK = 1e-9  # position limits: ignore round-off at a limit
 SHOWN_REASONS = 2  # why a run checked nothing: the first reasons, in the verdict line
 
+# What a cause is about (``Cause.kind``), for programs that read the result.
+KINDS = (
+    "direction",  # a joint or actuator reversed
+    "reduction",  # a reduction off by a factor (perhaps reversed too)
+    "offset",  # a joint offset differs
+    "joints_swapped",  # joints read each other's positions
+    "actuators_swapped",  # actuators read each other's positions
+    "roles_swapped",  # ROS 1 roles given to other joints or actuators than the robot's
+    "coupling",  # joints coupled otherwise, no simpler reading
+    "effort_convention",  # an effort map that is not the robot's
+    "transmission_kind",  # another kind of transmission, or one the robot lacks
+    "missing_transmission",  # a joint the config gives no transmission
+    "xml_order",  # ROS 2: parameters in XML order, bound to the names sorted
+    "interface",  # commanded through other interfaces than the robot's
+    "not_transmissions",  # the maps agree: the failure comes from elsewhere
+)
+
+
+@dataclass(frozen=True)
+class Cause:
+    """One difference between the candidate and the robot: its kind and its sentence."""
+
+    kind: str
+    text: str
+
+    def __post_init__(self) -> None:
+        if self.kind not in KINDS:
+            raise ValueError(f"unknown cause kind {self.kind!r}")
+
 
 @dataclass
 class Series:
@@ -164,6 +193,8 @@ class RunResult:
     coverage: Coverage = field(default_factory=Coverage)
     # "robot" and, with --config, "config": the programs that read each file, and why
     readers: dict[str, FileReaders] = field(default_factory=dict)
+    # what differs from the robot's config, each with its kind (diagnose.Cause)
+    causes: list[Cause] = field(default_factory=list)
 
     @property
     def failed(self) -> bool:
