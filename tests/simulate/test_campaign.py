@@ -333,10 +333,6 @@ def docs_example() -> str:
     return section.split("```toml\n")[1].split("```")[0]
 
 
-def test_the_docs_example_is_the_fixture():
-    assert docs_example() == (ROOT / "fixtures" / "campaign.toml").read_text(encoding="utf-8")
-
-
 @pytest.mark.parametrize("text", [
     docs_example(),
     "samples = 3\n",
