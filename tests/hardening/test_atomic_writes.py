@@ -287,7 +287,8 @@ def _migrate_twice(run: Run, paths: list[Path], *options: str) -> None:
                                      ("--to", "ros1", "--allow-lossy")])
 def test_migrating_the_fixtures_twice_changes_nothing_the_second_time(run, tmp_path, options):
     shutil.copytree(FIXTURES, tmp_path / "fixtures")
-    _migrate_twice(run, sorted((tmp_path / "fixtures").iterdir()), *options)
+    _migrate_twice(run, sorted(p for p in (tmp_path / "fixtures").rglob("*") if p.is_file()),
+                   *options)
 
 
 def test_migrating_the_corpus_twice_changes_nothing_the_second_time(run, tmp_path):
