@@ -69,6 +69,19 @@ def test_the_layout_check_names_what_is_missing():
     assert layout_problems("TX106", doc) == ["'Expected finding' is a TX104, not a TX106"]
 
 
+def test_the_layout_check_names_a_missing_summary_an_empty_section_and_a_bare_finding():
+    doc = all_rules()["TX104"].doc
+    body = doc[doc.index("What it does:"):]
+    assert layout_problems("TX104", body)[0] == "no summary line first"
+    empty_fix = doc[: doc.index("\nFix:")] + "\nFix:\n"
+    assert layout_problems("TX104", empty_fix) == ["'Fix' is empty"]
+    start = doc.index("Expected finding:")
+    bare = doc[:start] + "Expected finding: TX104, somewhere.\n\n" + doc[
+        doc.index("Passing example::"):]
+    assert layout_problems("TX104", bare) == [
+        "'Expected finding' gives no ``LINE:COLUMN severity CODE message``"]
+
+
 def test_a_failing_example_that_does_not_fail_is_caught():
     doc = all_rules()["TX104"].doc
     section = next(s for s in sections(doc.replace('<actuator name="m"/>', '<actuator name="m">'
