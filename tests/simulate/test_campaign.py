@@ -251,6 +251,8 @@ def test_the_payload_loads_the_plant_only(tmp_path, robots):
     before = pin.computeGeneralizedGravity(p.robot.model, p.robot.model.createData(), zero)
     after = pin.computeGeneralizedGravity(heavier.model, heavier.model.createData(), zero)
     assert after[0] - before[0] == pytest.approx(1.5 * 9.81 * 0.5, rel=1e-12)
+    empty = plant_robot(p.robot, {"payload_mass": 0.0}, task(robot, rod, payload_mass=0.0))
+    assert empty.model.inertias[1] == p.robot.model.inertias[1]
     plan = perturbed_plan(p, task(robot, rod, payload_mass=1.5))
     assert plan.ctrl is p.plan.ctrl  # the controller keeps the URDF's model
     assert plan.plant.inertias[1].mass == pytest.approx(p.robot.model.inertias[1].mass + 1.5)
