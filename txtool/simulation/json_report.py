@@ -107,8 +107,7 @@ def _gain_source(g: GainsUsed) -> dict[str, Any]:
     if g.bandwidth is not None:
         source["bandwidth"] = g.bandwidth
         units["bandwidth"] = "rad/s"
-    if units:
-        source["units"] = units
+    source["units"] = units
     return source
 
 
