@@ -40,10 +40,14 @@ from txtool.model.core import Dialect
 from txtool.rules import Rule, all_rules
 from txtool.transform.collector import paused
 from txtool.transform.convert import DEFAULT_HARDWARE_PLUGIN, convert_source
+from txtool.transform.declaration import late_declaration
+from txtool.transform.edits import EditedText
 from txtool.transform.fixable import might_fix, might_fix_converted
 from txtool.transform.linediff import unified_ascii, unified_text
 from txtool.transform.reversible import MARK
+from txtool.transform.spans import SpanError, SpanIndex
 from txtool.transform.splice import splice
+from txtool.transform.tree_edits import NotEditable, TreeChange, reads_as
 
 Mode = Literal["check", "diff", "write"]
 MAX_FIX_ROUNDS = 4
@@ -243,8 +247,13 @@ def _steps(result: FileResult, tree: etree._ElementTree, rules: Sequence[Rule],
            options: MigrateOptions, comments: list[tuple[str | None, int | None]],
            clean: bool) -> FileResult:
     """Fix ``tree`` (the parse of ``result.original``), serialize, convert, parse, fix again,
-    serialize, and splice into the original."""
+    serialize, and splice into the original. Fixes alone are written as edits
+    (:func:`_fixes_as_edits`)."""
     original, display = result.original, result.path
+    if options.target is None and not clean:
+        if _fixes_as_edits(result, tree, rules, comments):
+            return result
+        tree = parse_bytes(original, display)  # fixed in place: the steps start again
     baseline = serialize(tree, original)
     if not clean:
         _count(result.fixes, fix_tree(tree, rules, original))
@@ -268,6 +277,33 @@ def _steps(result: FileResult, tree: etree._ElementTree, rules: Sequence[Rule],
         return result
     result.data = data
     return result
+
+
+def _fixes_as_edits(result: FileResult, tree: etree._ElementTree, rules: Sequence[Rule],
+                    comments: list[tuple[str | None, int | None]]) -> bool:
+    """Fix ``tree`` (the parse of ``result.original``) and write what the fixes changed as
+    edits of the original (:mod:`.tree_edits`), checked by reading the result back; False,
+    with nothing settled, where the edits cannot say the change (the steps then do)."""
+    original = result.original
+    text = EditedText(original)
+    try:
+        index = SpanIndex(text.data, tree.getroot())
+    except SpanError:
+        return False
+    change = TreeChange(transmission_elements(tree.getroot()))
+    fixes = fix_tree(tree, rules, original)
+    try:
+        edits = change.edits(text, index)
+    except NotEditable:
+        return False
+    late = late_declaration(text.data) if edits else None
+    data = text.applied([*edits, late] if late is not None else edits)
+    if data != original and not reads_as(data, tree, result.path):
+        return False
+    _count(result.fixes, fixes)
+    result.losses.extend(_dropped(comments, _comments(tree)))
+    result.data = data
+    return True
 
 
 def _direct(original: bytes, result: FileResult, options: MigrateOptions,
