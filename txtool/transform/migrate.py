@@ -41,7 +41,7 @@ from txtool.rules import Rule, all_rules
 from txtool.transform.collector import paused
 from txtool.transform.convert import DEFAULT_HARDWARE_PLUGIN, convert_source
 from txtool.transform.declaration import late_declaration
-from txtool.transform.edits import EditedText
+from txtool.transform.edits import Edit, EditedText
 from txtool.transform.fixable import might_fix, might_fix_converted
 from txtool.transform.linediff import unified_ascii, unified_text
 from txtool.transform.reversible import MARK
@@ -82,6 +82,9 @@ class FileResult:
     warnings: list[str] = field(default_factory=list)
     refused: bool = False
     unwritten: bool = False  # the write failed
+    # The edits of the original (its UTF-8 form if UTF-16/32) that made ``data``, where
+    # fixes changed it and were written as edits.
+    edits: list[Edit] | None = None
 
     @property
     def changed(self) -> bool:
@@ -297,12 +300,14 @@ def _fixes_as_edits(result: FileResult, tree: etree._ElementTree, rules: Sequenc
     except NotEditable:
         return False
     late = late_declaration(text.data) if edits else None
-    data = text.applied([*edits, late] if late is not None else edits)
+    if late is not None:
+        edits.append(late)
+    data = text.applied(edits)
     if data != original and not reads_as(data, tree, result.path):
         return False
     _count(result.fixes, fixes)
     result.losses.extend(_dropped(comments, _comments(tree)))
-    result.data = data
+    result.data, result.edits = data, edits or None
     return True
 
 

@@ -139,7 +139,7 @@ def _span(token: re.Match[bytes], node: etree._Element, line: int) -> Span:
         written = token.group(0).startswith(b"<?")
     else:
         written = name is not None and name.rpartition(b":")[2].decode(
-            "utf-8", "replace") == etree.QName(node).localname
+            "utf-8", "replace") == tag.rpartition("}")[2]
     if not written or node.sourceline not in (None, line):
         raise SpanError(f"line {line}: the bytes do not hold the tree's {tag!r} here")
     if name is None:

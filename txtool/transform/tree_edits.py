@@ -11,6 +11,7 @@ did not touch is never written: it keeps its bytes because no edit covers them.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable
 from dataclasses import dataclass
 
@@ -18,7 +19,7 @@ from lxml import etree
 
 from txtool.io.xmlio import InputError, parse_bytes
 from txtool.transform.edits import Edit, EditedText
-from txtool.transform.spans import Span, SpanIndex
+from txtool.transform.spans import Attribute, Span, SpanIndex
 
 
 class NotEditable(ValueError):
@@ -118,7 +119,7 @@ def _attribute_edits(element: etree._Element, span: Span, before: dict[str, str]
     written = span.attributes or {}
     edits = []
     for key, value in before.items():
-        place = written[_written_name(element, key)]
+        place = written[_written_name(element, key, written)]
         if key not in after:
             edits.append(Edit.deletion(place.lead, place.end))
         elif after[key] != value:
@@ -126,19 +127,20 @@ def _attribute_edits(element: etree._Element, span: Span, before: dict[str, str]
                 _attribute_value(after[key], place.quote.decode()))))
     for key, value in after.items():
         if key not in before:
+            if key.startswith("{"):  # its prefix may be declared nowhere in the document
+                raise NotEditable(f"a new attribute {key} in a namespace")
             edits.append(Edit.insertion(span.attributes_end, text.encode(
-                f' {_written_name(element, key)}="{_attribute_value(value, chr(34))}"')))
+                f' {key}="{_attribute_value(value, chr(34))}"')))
     return edits
 
 
-def _written_name(element: etree._Element, key: str) -> bytes:
+def _written_name(element: etree._Element, key: str, written: dict[bytes, Attribute]) -> bytes:
+    """The name of attribute ``key`` of ``element`` as the document writes it."""
     if not key.startswith("{"):
         return key.encode("utf-8")
     namespace, _, name = key[1:].partition("}")
-    for prefix, uri in element.nsmap.items():
-        if uri == namespace and prefix:
-            return f"{prefix}:{name}".encode()
-    raise NotEditable(f"attribute {key} in an undeclared namespace")
+    return next(spelled for prefix, uri in element.nsmap.items() if uri == namespace and (
+        spelled := f"{prefix}:{name}".encode()) in written)
 
 
 def _name_length(data: bytes, span: Span) -> int:
@@ -158,7 +160,27 @@ def _trimmed(data: bytes, start: int, end: int, written: bytes) -> Edit:
     tail = 0
     while tail < most - head and old[-1 - tail] == written[-1 - tail]:
         tail += 1
-    return Edit(start + head, end - tail, written[head:len(written) - tail])
+    return _at_line_start(data, start, Edit(start + head, end - tail,
+                                            written[head:len(written) - tail]))
+
+
+def _at_line_start(data: bytes, bound: int, edit: Edit) -> Edit:
+    """An insertion or a deletion moved back to the start of its line where the bytes it
+    passes over repeat its own (the same result, said as whole lines: ``  <x/>\n`` rather
+    than ``<x/>\n  ``), not before ``bound``."""
+    moved = edit.content or data[edit.start:edit.end]
+    if not moved or edit.content and edit.start != edit.end:
+        return edit
+    at, size = edit.start, len(moved)
+    while at > bound and data[at - 1:at] not in (b"\n", b"\r"):
+        if data[at - 1] != moved[size - 1 - (edit.start - at) % size]:
+            return edit
+        at -= 1
+    shift = edit.start - at
+    if not shift or data[at - 1:at] not in (b"\n", b"\r"):
+        return edit
+    rotated = moved[size - shift % size:] + moved[:size - shift % size]
+    return Edit(at, at + (edit.end - edit.start), rotated if edit.content else b"")
 
 
 def _escaped(value: str | None) -> str:
@@ -174,11 +196,24 @@ def _attribute_value(value: str, quote: str) -> str:
     return value.replace(quote, "&quot;" if quote == '"' else "&apos;")
 
 
+_DECLARATION = re.compile(r"""\sxmlns(?::([^\s=]+))?\s*=\s*(?:"([^"]*)"|'([^']*)')""")
+
+
 def _written(node: etree._Element) -> str:
-    """A node the change put here, and its tail, as lxml writes it."""
+    """A node the change put here, and its tail, as lxml writes it: without the namespace
+    declarations lxml repeats from its new parent's scope (a copied node takes them along),
+    as the document declares them there already."""
     markup = etree.tostring(node, encoding=str, with_tail=False)
     if "xmlns" in markup:
-        raise NotEditable(f"<{etree.QName(node).localname}> would declare a namespace")
+        parent = node.getparent()
+        scope = parent.nsmap if parent is not None else {}
+        head_end = markup.index(">")
+        kept = [found for found in _DECLARATION.finditer(markup, 0, head_end)
+                if scope.get(found.group(1)) != (found.group(2) if found.group(2) is not None
+                                                 else found.group(3))]
+        if kept or "xmlns" in markup[head_end:]:
+            raise NotEditable(f"<{etree.QName(node).localname}> would declare a namespace")
+        markup = _DECLARATION.sub("", markup[:head_end]) + markup[head_end:]
     return markup + _escaped(node.tail)
 
 
