@@ -55,7 +55,11 @@ KNOWN_CHILDREN = {
 
 
 @dataclass
-class Conversion:
+class ConvertedDocument:
+    """What :func:`convert_source` made of a document: its bytes, what was lost, noted and
+    warned about, and how many transmissions it found, converted or found converted already
+    (the library's :class:`txtool.transform.api.Conversion` is made from it)."""
+
     data: bytes
     target: Dialect
     losses: list[str] = field(default_factory=list)
@@ -74,7 +78,7 @@ class Conversion:
 def convert_source(
     source: Source, target: Dialect, *, hardware_plugin: str = DEFAULT_HARDWARE_PLUGIN,
     consume: bool = False, reversible: bool = False, check: bool = True,
-) -> Conversion:
+) -> ConvertedDocument:
     """Convert ``source``; the bytes are spliced into ``source.data`` (see
     :mod:`txtool.transform.splice`) unless ``source`` is a xacro expansion.
 
@@ -96,7 +100,7 @@ def convert_source(
     tree = source.tree if consume else copy.deepcopy(source.tree)
     elements = transmission_elements(tree.getroot())
     deep = _near_depth_limit(elements, tree.getroot())
-    result = Conversion(data=b"", target=target, found=len(elements))
+    result = ConvertedDocument(data=b"", target=target, found=len(elements))
     placer = Placer(tree.getroot(), hardware_plugin, components=source.expanded or (
         detect_encoding(source.data).codec not in SCANNABLE or b"ros2_control" in source.data))
     placer.after = carry.after_block
@@ -249,7 +253,7 @@ def _serialize(tree: etree._ElementTree, original: bytes, placer: Placer
     return data, rebuilt
 
 
-def _convert_one(found: Found, tree: etree._ElementTree, target: Dialect, result: Conversion,
+def _convert_one(found: Found, tree: etree._ElementTree, target: Dialect, result: ConvertedDocument,
                  placer: Placer, carry: Carrier, memo: Memo | None, renaming: Renaming | None,
                  said: int) -> bool:
     """Convert one transmission in full (whether it is converted: those already in the
@@ -284,8 +288,9 @@ def _convert_one(found: Found, tree: etree._ElementTree, target: Dialect, result
     return True
 
 
-def _other_children(element: etree._Element, t: Transmission, target: Dialect,
-                    result: Conversion) -> dict[tuple[str, str | None], list[etree._Element]]:
+def _other_children(
+    element: etree._Element, t: Transmission, target: Dialect, result: ConvertedDocument,
+) -> dict[tuple[str, str | None], list[etree._Element]]:
     """Children that neither dialect reads are carried as written (both loaders skip elements
     they do not know); one that the target loader would read (its own spelling, written in the
     other dialect) is dropped: carrying it would change what the target loads."""
@@ -311,7 +316,7 @@ def _other_children(element: etree._Element, t: Transmission, target: Dialect,
     return carried
 
 
-def _behaviour(before: Transmission, after: Transmission, result: Conversion) -> None:
+def _behaviour(before: Transmission, after: Transmission, result: ConvertedDocument) -> None:
     """A loss when the target loader would bind the values differently (never silent)."""
     numbers = [n for m in before.joints + before.actuators
                for n in (m.mechanical_reduction, m.offset)]
@@ -378,7 +383,7 @@ def _same_binding(old, new) -> bool:
     return all(getattr(old, f) == getattr(new, f) for f in fields)
 
 
-def _check(output: Source, result: Conversion, originals: list[Transmission | Follower],
+def _check(output: Source, result: ConvertedDocument, originals: list[Transmission | Follower],
            alone: set[etree._Element | Written], names: Counter[str],
            virtual: dict[int, Written], in_tree: bool) -> None:
     """Read the output back, convert it back, and compare with the original: on what the
@@ -520,7 +525,7 @@ def _without_state(kinds: dict) -> dict:
     return {joint: names - {"state"} for joint, names in kinds.items()}
 
 
-def _interfaces(t: Transmission, a: dict, b: dict, result: Conversion) -> None:
+def _interfaces(t: Transmission, a: dict, b: dict, result: ConvertedDocument) -> None:
     for joint, kinds in a.items():
         back = b.get(joint, frozenset()) - {"state"}
         kinds = kinds - {"state"}
@@ -536,7 +541,7 @@ def _interfaces(t: Transmission, a: dict, b: dict, result: Conversion) -> None:
                 f"{_show(back - kinds)}, which transmission '{t.name}' does not name; kept")
 
 
-def _kept_declaration(t: Transmission, a: dict, b: dict, result: Conversion) -> None:
+def _kept_declaration(t: Transmission, a: dict, b: dict, result: ConvertedDocument) -> None:
     """Back to ROS 1 out of a ``<ros2_control>`` that stays in the document: what the block
     declares besides what the ROS 1 transmission names stays declared there (a file that
     had both before ``--reversible`` took it to ROS 2 gets both back), not a loss."""

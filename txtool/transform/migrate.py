@@ -451,16 +451,10 @@ def _carried(comment: str | None) -> bool:
     return (comment or "").strip().startswith(MARK)
 
 
-def dropped_comments(before: etree._ElementTree, after: etree._ElementTree) -> list[str]:
-    """A loss for each comment of ``before`` that ``after`` no longer has (conversions rebuild
-    the transmissions they convert, without the comments inside them)."""
-    return _dropped([(node.text, node.sourceline) for node in _comment_nodes(before)],
-                    _comments(after))
-
-
 def _dropped(before: list[tuple[str | None, int | None]], after: list[str | None]) -> list[str]:
-    """:func:`dropped_comments` on the texts and lines of the comments of ``before`` and the
-    texts of those of ``after``."""
+    """A loss for each comment of ``before`` (its text and line) that ``after`` (the texts of
+    the comments) no longer has: conversions rebuild the transmissions they convert, without
+    the comments inside them."""
     left = Counter(after)
     lost = []
     for comment, line in before:

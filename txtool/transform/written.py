@@ -1,4 +1,4 @@
-"""The block generated for a whole document, written as text and never parsed.
+"""The block generated for a whole document, written as text instead of built as elements.
 
 Thousands of keyed transmissions (:mod:`.memo`) converted into the ``<ros2_control>`` that
 txtool generates for the document are already text (:mod:`.templates`): the block goes into
@@ -13,6 +13,8 @@ joints as the block declares them. Reading it back (the conversion's check) read
 ``<ros2_control>`` of the block's name holding those declarations and it alone, which gives
 what reading it in the whole block gives: the reader reads of the block its name and the
 first declaration of each joint, nothing else (:class:`txtool.dialects.read.Declarations`).
+So the block is parsed only for that check (:func:`read_back`), or into the tree after all
+where its text cannot be filled in (:meth:`txtool.transform.placement.Placer.unwrite`).
 """
 
 from __future__ import annotations
