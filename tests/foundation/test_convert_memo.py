@@ -88,13 +88,8 @@ def documents(draw) -> bytes:
 def converted(data: bytes, target: str, *, memo: bool = True) -> tuple:
     """What converting ``data`` gives; without ``memo`` every transmission is converted in
     full, as if none had a key."""
-    original = convert_module.Memo.keyed
-    try:
-        if not memo:
-            convert_module.Memo.keyed = lambda self, element, data=None: None  # type: ignore
-        result = convert_source(Source("<doc>", data, parse_bytes(data, "<doc>")), target)
-    finally:
-        convert_module.Memo.keyed = original  # type: ignore[method-assign]
+    result = convert_source(Source("<doc>", data, parse_bytes(data, "<doc>")), target,
+                            repeats=memo)
     return (result.data, result.losses, result.notes, result.warnings, result.converted,
             result.found, result.already)
 

@@ -37,9 +37,10 @@ def test_each_node_its_tags_and_attributes_as_written() -> None:
     span = index[transmission]
     assert DOCUMENT[span.start:span.head_end].startswith(b"<transmission\n")
     assert DOCUMENT[span.tail_start:span.end] == b"</transmission>"
-    name = span.attributes[b"name"]
+    attributes = index.attributes(transmission)
+    name = attributes[b"name"]
     assert DOCUMENT[name.lead:name.end] == b'\n      name = "t"'
-    condition = span.attributes[b"xacro:if"]
+    condition = attributes[b"xacro:if"]
     assert (DOCUMENT[condition.value_start:condition.value_end], condition.quote) == (
         b"${a > b}", b"'")
     assert DOCUMENT[span.attributes_end:span.head_end] == b">"

@@ -77,7 +77,7 @@ class ConvertedDocument:
 @paused
 def convert_source(
     source: Source, target: Dialect, *, hardware_plugin: str = DEFAULT_HARDWARE_PLUGIN,
-    consume: bool = False, reversible: bool = False, check: bool = True,
+    consume: bool = False, reversible: bool = False, check: bool = True, repeats: bool = True,
 ) -> ConvertedDocument:
     """Convert ``source``; the bytes are spliced into ``source.data`` (see
     :mod:`txtool.transform.splice`) unless ``source`` is a xacro expansion.
@@ -89,10 +89,16 @@ def convert_source(
     originals carried by a document are put back whenever it goes back to ROS 1.
     ``check=False`` leaves out the read-back check, for a caller that judges the result
     itself (``roundtrip``).
+
+    ``repeats`` is the one switch of the fast path for robots that repeat a transmission
+    under other names: each is converted once and copied (:mod:`.memo`, :mod:`.templates`),
+    the block generated for the document is written as text (:mod:`.written`) and the
+    baseline rebuilt after the change (:mod:`.baseline`). Off, every transmission is
+    converted in full; the bytes and messages are the same either way.
     """
     carry = Carrier(source, target, reversible)
     # Back to ROS 1 (each element may carry its original) and --reversible convert in full.
-    memo = None if carry.reversible or target == "ros1" else Memo()
+    memo = Memo() if repeats and not carry.reversible and target != "ros1" else None
     # The tree as parsed, serialized before it changes or rebuilt after (:mod:`.baseline`).
     lazy = memo is not None and not source.expanded and rebuildable(source.data,
                                                                     source.tree.getroot())

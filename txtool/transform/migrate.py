@@ -289,11 +289,13 @@ def _fixes_as_edits(result: FileResult, tree: etree._ElementTree, rules: Sequenc
     with nothing settled, where the edits cannot say the change (the steps then do)."""
     original = result.original
     text = EditedText(original)
+    elements = transmission_elements(tree.getroot())  # what the fixes may change
     try:
-        index = SpanIndex(text.data, tree.getroot())
+        index = SpanIndex(text.data, tree.getroot(), elements)
     except SpanError:
         return False
-    change = TreeChange(transmission_elements(tree.getroot()))
+    change = TreeChange(elements)
+    del elements
     fixes = fix_tree(tree, rules, original)
     try:
         edits = change.edits(text, index)

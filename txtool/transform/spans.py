@@ -6,7 +6,8 @@ was parsed from, one token after the other (comments, CDATA sections, instructio
 DOCTYPE, start and end tags; text is skipped), and pairs the nodes inside the root with the
 root's nodes in document order: each pair must be of the same kind and name and end on the
 parser's line, or the index is refused (:class:`SpanError`). Each token is matched once from
-where the last one ended, so the index costs time linear in the document.
+where the last one ended, so the index costs time linear in the document; only the nodes
+asked for are paired in full (their name and line checked, their attributes read).
 
 The bytes are those edits address (:class:`txtool.transform.edits.EditedText`): the original,
 or the UTF-8 form of a UTF-16 or UTF-32 document.
@@ -15,6 +16,7 @@ or the UTF-8 form of a UTF-16 or UTF-32 document.
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 from lxml import etree
@@ -51,68 +53,76 @@ class Attribute:
         return self.value_end + 1
 
 
-@dataclass
 class Span:
     """A node as written: ``[start, end)`` all of it; for an element, ``head_end`` is after its
     start tag and ``tail_start`` where its end tag starts (both ``end`` for ``<x/>``, which
-    ``empty`` says), ``close`` where the ``>`` or ``/>`` of the start tag starts (after the
-    last attribute and the spaces after it: ``attributes_end``)."""
+    ``empty`` says), ``close`` where the ``>`` or ``/>`` of the start tag starts, after the
+    attributes (``[name_end, attributes_end)``) and the spaces after them."""
 
-    start: int
-    end: int
-    head_end: int
-    tail_start: int
-    empty: bool = False
-    attributes_end: int = 0
-    close: int = 0
-    attributes: dict[bytes, Attribute] | None = None
+    __slots__ = ("start", "end", "head_end", "tail_start", "empty", "name_end", "attributes_end",
+                 "close")
+
+    def __init__(self, start: int, end: int, empty: bool = False, name_end: int = 0,
+                 attributes_end: int = 0, close: int = 0) -> None:
+        self.start, self.end, self.head_end, self.tail_start = start, end, end, end
+        self.empty, self.name_end, self.attributes_end, self.close = (
+            empty, name_end, attributes_end, close)
+
+
+_SLASH, _BANG, _QUESTION = b"/!?"
 
 
 class SpanIndex:
-    """The span of each node inside ``root`` (the root included) in ``data``, the bytes it was
-    parsed from; the index holds the nodes it was built for (lxml keeps a node's proxy, and so
-    its identity, while a reference to it lives)."""
+    """The span of each node of ``within`` (elements of the tree of ``root``; by default the
+    root) and of the nodes inside them, in ``data``, the bytes the tree was parsed from. The
+    markup before them is only paired with the tree's nodes; the index holds the nodes it
+    was built for (lxml keeps a node's proxy, and so its identity, while a reference to it
+    lives)."""
 
-    def __init__(self, data: bytes, root: etree._Element) -> None:
+    def __init__(self, data: bytes, root: etree._Element,
+                 within: Iterable[etree._Element] | None = None) -> None:
         self.data = data
         self._spans: dict[etree._Element, Span] = {}
+        wanted = {root} if within is None else set(within)
         nodes = root.iter()
-        open_spans: list[Span] = []
+        open_spans: list[Span] = []  # the elements of ``wanted`` open where the scan is
+        depth = 0
         line, counted = 1, 0
-        at = data.find(b"<")
         started = False
-        while at >= 0:
-            token = _MARKUP.match(data, at)
-            if token is None:
-                raise SpanError(f"byte {at}: no markup the scanner reads")
-            end = token.end()
-            kind = data[at + 1:at + 2]
-            at = data.find(b"<", end)
-            if kind == b"/":
-                if open_spans:
+        for token in _MARKUP.finditer(data):
+            at = token.start()
+            kind = data[at + 1]
+            if kind == _SLASH:
+                if open_spans:  # inside an indexed element, every element is indexed
                     closed = open_spans.pop()
-                    closed.tail_start, closed.end = token.start(), end
-                    if not open_spans:
-                        break
+                    closed.tail_start, closed.end = at, token.end()
+                depth -= 1
+                if not depth:
+                    break  # the root's end tag
                 continue
-            if data.startswith(b"<![CDATA[", token.start()) or kind == b"!" and not data.startswith(
-                    b"<!--", token.start()):
-                continue  # text, or the DOCTYPE
-            if not started and kind in (b"!", b"?"):
+            if kind == _BANG and not data.startswith(b"<!--", at):
+                continue  # text (a CDATA section), or the DOCTYPE
+            if not started and kind in (_BANG, _QUESTION):
                 continue  # before the root
             started = True
             node = next(nodes, None)
             if node is None:
-                raise SpanError(f"byte {token.start()}: a node the tree does not have")
-            line += _lines(data, counted, end)
-            counted = end
-            span = _span(token, node, line)
-            self._spans[node] = span
-            if kind not in (b"!", b"?") and not span.empty:
-                open_spans.append(span)
-            elif not open_spans:
+                raise SpanError(f"byte {at}: a node the tree does not have")
+            element = kind not in (_BANG, _QUESTION)
+            if element is not (node.tag.__class__ is str):
+                raise SpanError(f"byte {at}: the tree has a {node.tag!r} here")
+            empty = element and data[token.end() - 2] == _SLASH
+            if open_spans or node in wanted:
+                line += _lines(data, counted, token.end())
+                counted = token.end()
+                span = self._spans[node] = _span(token, node, line)
+                if element and not empty:
+                    open_spans.append(span)
+            if element and not empty:
+                depth += 1
+            elif not depth:
                 break  # the root, written <root/>
-        if open_spans or next(nodes, None) is not None:
+        if depth or next(nodes, None) is not None:
             raise SpanError("the tree has nodes the bytes do not")
 
     def __getitem__(self, node: etree._Element) -> Span:
@@ -120,6 +130,17 @@ class SpanIndex:
 
     def __contains__(self, node: etree._Element) -> bool:
         return node in self._spans
+
+    def attributes(self, node: etree._Element) -> dict[bytes, Attribute]:
+        """The attributes of element ``node`` as written, by their written names."""
+        span = self._spans[node]
+        attributes = {}
+        for found in _ATTRIBUTE.finditer(self.data, span.name_end, span.attributes_end):
+            quoted = 3 if found.group(3) is not None else 4
+            attributes[found.group(2)] = Attribute(
+                found.start(1), found.start(2), found.start(quoted), found.end(quoted),
+                b'"' if quoted == 3 else b"'")
+        return attributes
 
 
 def _lines(data: bytes, start: int, end: int) -> int:
@@ -130,27 +151,14 @@ def _lines(data: bytes, start: int, end: int) -> int:
 
 
 def _span(token: re.Match[bytes], node: etree._Element, line: int) -> Span:
-    tag = node.tag
     start, end = token.span()
     name = token.group("name")
-    if tag is etree.Comment:
-        written = token.group(0).startswith(b"<!--")
-    elif tag is etree.ProcessingInstruction:
-        written = token.group(0).startswith(b"<?")
-    else:
-        written = name is not None and name.rpartition(b":")[2].decode(
-            "utf-8", "replace") == tag.rpartition("}")[2]
-    if not written or node.sourceline not in (None, line):
-        raise SpanError(f"line {line}: the bytes do not hold the tree's {tag!r} here")
+    if name is not None and name.rpartition(b":")[2].decode(
+            "utf-8", "replace") != node.tag.rpartition("}")[2] or node.sourceline not in (
+            None, line):
+        raise SpanError(f"line {line}: the bytes do not hold the tree's {node.tag!r} here")
     if name is None:
-        return Span(start, end, end, end)
-    attributes = {}
-    tag_text = token.group(0)
-    for found in _ATTRIBUTE.finditer(tag_text, len(name) + 1, token.end("attributes") - start):
-        quoted = 3 if found.group(3) is not None else 4
-        attributes[found.group(2)] = Attribute(
-            start + found.start(1), start + found.start(2), start + found.start(quoted),
-            start + found.end(quoted), b'"' if quoted == 3 else b"'")
-    empty = bool(token.group("empty"))
-    close = token.start("empty") if empty else end - 1
-    return Span(start, end, end, end, empty, token.end("attributes"), close, attributes)
+        return Span(start, end)
+    empty = token.start("empty") != token.end("empty")
+    return Span(start, end, empty, token.end("name"), token.end("attributes"),
+                token.start("empty") if empty else end - 1)

@@ -59,7 +59,7 @@ class TreeChange:
     def _element(self, element: etree._Element, text: EditedText, index: SpanIndex,
                  edits: list[Edit]) -> None:
         before, span = self._before[element], index[element]
-        edits.extend(_attribute_edits(element, span, before.attributes, text))
+        edits.extend(_attribute_edits(element, index, before.attributes, text))
         children = list(element)
         tails = [child.tail for child in children]
         if (children, tails, element.text) == (before.children, before.tails, before.text):
@@ -111,12 +111,13 @@ class TreeChange:
                 edits.append(edit)
 
 
-def _attribute_edits(element: etree._Element, span: Span, before: dict[str, str],
+def _attribute_edits(element: etree._Element, index: SpanIndex, before: dict[str, str],
                      text: EditedText) -> list[Edit]:
     after = element.attrib
     if len(after) == len(before) and all(before.get(k) == v for k, v in after.items()):
         return []
-    written = span.attributes or {}
+    written = index.attributes(element)
+    span = index[element]
     edits = []
     for key, value in before.items():
         place = written[_written_name(element, key, written)]
