@@ -69,6 +69,7 @@ def test_a_root_written_empty_and_lines_ended_by_cr() -> None:
     (b"<robot><a x='1' <b/></robot>", b"<robot><a/></robot>"),  # no markup read there
     (b"<robot><a/></robot>", b"<robot><!--a--></robot>"),  # a comment, not an element
     (b"<robot><a/></robot>", b"<robot><?a?></robot>"),  # an instruction
+    (b"<robot><a/>", b"<robot><a/></robot>"),  # the root never ends
 ])
 def test_bytes_that_do_not_read_as_the_tree_are_refused(data: bytes, tree: bytes) -> None:
     with pytest.raises(SpanError):
@@ -84,3 +85,17 @@ def test_the_index_costs_time_linear_in_the_document() -> None:
     index = SpanIndex(data, root)
     assert time.process_time() - start < 2.0  # 0.2 s now
     assert index[root[-1]].end == len(data) - len(b"\n</robot>")  # the last comment
+
+
+def test_names_are_read_in_the_documents_encoding() -> None:
+    data = '<?xml version="1.0" encoding="ISO-8859-1"?><robot><é a="1"/></robot>'.encode("latin-1")
+    root = parse_bytes(data, "robot.urdf").getroot()
+    index = SpanIndex(data, root, codec="iso8859-1")
+    assert data[index[root[0]].start:index[root[0]].end] == '<é a="1"/>'.encode("latin-1")
+
+
+def test_only_the_elements_asked_for_are_indexed() -> None:
+    index, root = _index(DOCUMENT)
+    part = SpanIndex(DOCUMENT, root, [root[0][0]])  # the <joint>
+    assert root[0][0] in part and root[0] not in part and root[0][3] not in part
+    assert part[root[0][0]].start == index[root[0][0]].start

@@ -125,3 +125,63 @@ def test_a_namespaced_transmission_gets_its_type_in_its_namespace(tmp_path) -> N
     assert result.data.decode().splitlines()[1:3] == [
         "  <x:transmission name='t'>",
         "    <x:type>transmission_interface/SimpleTransmission</x:type>"]
+
+
+def test_a_text_that_writes_as_before_is_no_edit() -> None:
+    data = b"<robot><a/></robot>"
+    tree = parse_bytes(data, "robot.urdf")
+    text, root = EditedText(data), tree.getroot()
+    index, recorded = SpanIndex(data, root), TreeChange([root])
+    root.text = ""
+    assert recorded.edits(text, index) == []
+
+
+def test_a_removed_element_is_said_where_it_stands_when_no_line_repeats_it() -> None:
+    def change(root: etree._Element) -> None:
+        root[0].tail += root[1].tail
+        root.remove(root[1])
+
+    data = b"<robot>\n  <a/> x<b/>\n</robot>"
+    assert _changed(data, change) == b"<robot>\n  <a/> x\n</robot>"
+
+
+def test_bytes_that_do_not_parse_do_not_read_as_the_tree() -> None:
+    assert not reads_as(b"<robot>", parse_bytes(b"<robot/>", "robot.urdf"), "robot.urdf")
+
+
+@pytest.mark.parametrize("failing", ["SpanIndex", "TreeChange.edits", "reads_as"])
+def test_where_the_edits_cannot_say_the_fixes_the_steps_write_them(failing, tmp_path,
+                                                                   monkeypatch) -> None:
+    from txtool.transform import migrate
+    from txtool.transform.spans import SpanError
+
+    def refuse(*_args, **_kwargs):
+        if failing == "reads_as":
+            return False
+        raise (SpanError if failing == "SpanIndex" else NotEditable)("refused")
+
+    data = (b'<robot>\n  <transmission name="t" type="SimpleTransmission">\n    '
+            b'<joint name="j"><hardwareInterface>EffortJointInterface</hardwareInterface>'
+            b'</joint>\n    <actuator name="m"/>\n  </transmission>\n</robot>\n')
+    path = tmp_path / "robot.urdf"
+    path.write_bytes(data)
+    edited = migrate_file(str(path), FIXES, MigrateOptions())
+    target, _, attribute = failing.partition(".")
+    monkeypatch.setattr(getattr(migrate, target) if attribute else migrate, attribute or target,
+                        refuse)
+    stepped = migrate_file(str(path), FIXES, MigrateOptions())
+    assert stepped.edits is None and edited.edits is not None
+    assert (stepped.data, stepped.fixes) == (edited.data, edited.fixes) == (
+        stepped.data, {"TX300": 1, "TX302": 1})
+
+
+def test_a_fixed_document_loses_its_late_declaration(tmp_path) -> None:
+    path = tmp_path / "robot.urdf"
+    path.write_bytes(b'<!-- licence -->\n<?xml version="1.0"?>\n<robot>\n  <transmission name="t">\n'
+                     b"    <type>transmission_interface/SimpleTransmission</type>\n"
+                     b'    <joint name="j"><hardwareInterface>EffortJointInterface'
+                     b'</hardwareInterface></joint>\n    <actuator name="m"/>\n'
+                     b"  </transmission>\n</robot>\n")
+    result = migrate_file(str(path), FIXES, MigrateOptions())
+    assert result.data.startswith(b"<!-- licence -->\n<robot>\n")
+    assert b"hardware_interface/EffortJointInterface" in result.data

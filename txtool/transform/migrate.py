@@ -291,7 +291,7 @@ def _fixes_as_edits(result: FileResult, tree: etree._ElementTree, rules: Sequenc
     text = EditedText(original)
     elements = transmission_elements(tree.getroot())  # what the fixes may change
     try:
-        index = SpanIndex(text.data, tree.getroot(), elements)
+        index = SpanIndex(text.data, tree.getroot(), elements, text.codec)
     except SpanError:
         return False
     change = TreeChange(elements)

@@ -80,8 +80,9 @@ class SpanIndex:
     lives)."""
 
     def __init__(self, data: bytes, root: etree._Element,
-                 within: Iterable[etree._Element] | None = None) -> None:
+                 within: Iterable[etree._Element] | None = None, codec: str = "utf-8") -> None:
         self.data = data
+        self.codec = codec  # how names are stored (an ASCII-compatible encoding)
         self._spans: dict[etree._Element, Span] = {}
         wanted = {root} if within is None else set(within)
         nodes = root.iter()
@@ -115,7 +116,7 @@ class SpanIndex:
             if open_spans or node in wanted:
                 line += _lines(data, counted, token.end())
                 counted = token.end()
-                span = self._spans[node] = _span(token, node, line)
+                span = self._spans[node] = _span(token, node, line, codec)
                 if element and not empty:
                     open_spans.append(span)
             if element and not empty:
@@ -150,11 +151,11 @@ def _lines(data: bytes, start: int, end: int) -> int:
     return feeds + returns - data.count(b"\r\n", start, end) if returns else feeds
 
 
-def _span(token: re.Match[bytes], node: etree._Element, line: int) -> Span:
+def _span(token: re.Match[bytes], node: etree._Element, line: int, codec: str) -> Span:
     start, end = token.span()
     name = token.group("name")
     if name is not None and name.rpartition(b":")[2].decode(
-            "utf-8", "replace") != node.tag.rpartition("}")[2] or node.sourceline not in (
+            codec, "replace") != node.tag.rpartition("}")[2] or node.sourceline not in (
             None, line):
         raise SpanError(f"line {line}: the bytes do not hold the tree's {node.tag!r} here")
     if name is None:

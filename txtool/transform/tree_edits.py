@@ -52,8 +52,7 @@ class TreeChange:
         """The edits of ``text.data`` (which ``index`` reads) that write the change."""
         edits: list[Edit] = []
         for root in self.roots:
-            if root in index:
-                self._element(root, text, index, edits)
+            self._element(root, text, index, edits)
         return edits
 
     def _element(self, element: etree._Element, text: EditedText, index: SpanIndex,
