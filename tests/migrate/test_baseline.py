@@ -1,5 +1,5 @@
 """The baseline a conversion splices against, rebuilt from the converted document
-(txtool.transform.baseline) instead of serialized before the tree changes, is the very
+(txtool.transform.serialized_before) instead of serialized before the tree changes, is the very
 serialization of the document as parsed: on real robots, and on documents made to break the
 rebuild (formatting, encodings, references, comments, namespaces, runs, names)."""
 
@@ -11,7 +11,7 @@ import pytest
 
 from tests.corpus import corpus_files, workspace_dir
 from txtool.io.xmlio import InputError, Source, parse_bytes, serialize
-from txtool.transform import baseline as baseline_module
+from txtool.transform import serialized_before as baseline_module
 from txtool.transform.convert import convert_source
 
 TRANSMISSION = (

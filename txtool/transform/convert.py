@@ -30,14 +30,14 @@ from txtool.io.xmlio import MAX_DEPTH, InputError, Source, XMLSyntax, local, par
 from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
 from txtool.model.semantics import Effective, NotLoadable, effective, listed_against_roles
-from txtool.transform.baseline import rebuildable
-from txtool.transform.collector import paused
-from txtool.transform.memo import Follower, Memo, Record, Renaming
+from txtool.transform.block_text import Written, fill, read_back
+from txtool.transform.cycle_collector import paused
+from txtool.transform.nameless_shapes import shape
 from txtool.transform.placement import DEFAULT_HARDWARE_PLUGIN, Placer
+from txtool.transform.renamings import Follower, Memo, Record, Renaming
 from txtool.transform.reversible import Carrier
-from txtool.transform.shapes import shape
+from txtool.transform.serialized_before import rebuildable
 from txtool.transform.splice import splice
-from txtool.transform.written import Written, fill, read_back
 from txtool.views.tables import FIELDS, view
 
 KNOWN_CHILDREN = {
@@ -91,15 +91,15 @@ def convert_source(
     itself (``roundtrip``).
 
     ``repeats`` is the one switch of the fast path for robots that repeat a transmission
-    under other names: each is converted once and copied (:mod:`.memo`, :mod:`.templates`),
-    the block generated for the document is written as text (:mod:`.written`) and the
-    baseline rebuilt after the change (:mod:`.baseline`). Off, every transmission is
+    under other names: each is converted once and copied (:mod:`.renamings`, :mod:`.templates`),
+    the block generated for the document is written as text (:mod:`.block_text`) and the
+    baseline rebuilt after the change (:mod:`.serialized_before`). Off, every transmission is
     converted in full; the bytes and messages are the same either way.
     """
     carry = Carrier(source, target, reversible)
     # Back to ROS 1 (each element may carry its original) and --reversible convert in full.
     memo = Memo() if repeats and not carry.reversible and target != "ros1" else None
-    # The tree as parsed, serialized before it changes or rebuilt after (:mod:`.baseline`).
+    # The tree as parsed, serialized before it changes or rebuilt after (:mod:`.serialized_before`).
     lazy = memo is not None and not source.expanded and rebuildable(source.data,
                                                                     source.tree.getroot())
     baseline = None if source.expanded or lazy else serialize(source.tree, source.data)
@@ -399,13 +399,13 @@ def _check(output: Source, result: ConvertedDocument, originals: list[Transmissi
     ``output.tree`` is the converted tree itself when ``output.data`` is its serialization,
     or a splice of it that parses to the same canonical document (:func:`.splice` verifies
     that): reading it reads what a parse of the output would give, without a second tree.
-    The transmissions of a block written as text (:mod:`.written`) are not in that tree: each
+    The transmissions of a block written as text (:mod:`.block_text`) are not in that tree: each
     is read back on its own (a follower's only when it is judged), its name being its own
     (``names``: how many originals have each); ``virtual`` holds those of the originals that
     are not followers, by id.
-    A pair whose shape (:func:`.shapes.shape`: the same up to the names) already came back
+    A pair whose shape (:func:`.nameless_shapes.shape`: the same up to the names) already came back
     whole is not judged again: the judgement reads names only to tell members apart. So a
-    follower (:mod:`.memo`) is not even read back when its record's first came back whole
+    follower (:mod:`.renamings`) is not even read back when its record's first came back whole
     from the same place: both with a name of their own, in the block generated for the
     document (``alone``), declaring their joints there themselves.
     When every original is written as text, none is left in a converted tree (``in_tree``):
@@ -418,7 +418,7 @@ def _check(output: Source, result: ConvertedDocument, originals: list[Transmissi
         if item.built in alone and names[item.name] == 1}
     firsts = {id(record.original): record for record in _records(followers)}
     components: dict[etree._Element, Any] = {}
-    survived: set[Hashable] = set()  # shapes (:mod:`.shapes`) that came back whole
+    survived: set[Hashable] = set()  # shapes (:mod:`.nameless_shapes`) that came back whole
     whole: set[int] = set()  # records whose verdict is in ``survived``, by id
     written: dict[tuple[str, bool], list[Found]] = {}
     kept: set[str | None] | None = None  # the names of the output's <ros2_control> blocks

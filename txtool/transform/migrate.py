@@ -38,8 +38,8 @@ from txtool.lint.suppress import Suppressions
 from txtool.lint.suppress import parse as parse_suppressions
 from txtool.model.core import Dialect
 from txtool.rules import Rule, all_rules
-from txtool.transform.collector import paused
 from txtool.transform.convert import DEFAULT_HARDWARE_PLUGIN, convert_source
+from txtool.transform.cycle_collector import paused
 from txtool.transform.declaration import late_declaration
 from txtool.transform.edits import Edit, EditedText
 from txtool.transform.fixable import might_fix, might_fix_converted

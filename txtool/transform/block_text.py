@@ -1,6 +1,6 @@
 """The block generated for a whole document, written as text instead of built as elements.
 
-Thousands of keyed transmissions (:mod:`.memo`) converted into the ``<ros2_control>`` that
+Thousands of keyed transmissions (:mod:`.renamings`) converted into the ``<ros2_control>`` that
 txtool generates for the document are already text (:mod:`.templates`): the block goes into
 the tree as its start tag and hardware, with a marker comment where the rest goes; the
 serialized document gets the text in place of the marker (:func:`fill`). That is the very
@@ -31,7 +31,7 @@ from txtool.io.xmlio import safe_parser
 from txtool.model.core import Dialect, Transmission
 
 if TYPE_CHECKING:
-    from txtool.transform.memo import Follower, Record, Renaming
+    from txtool.transform.renamings import Follower, Record, Renaming
     from txtool.transform.templates import Templates
 
 _UNSAFE = re.compile(rb"[^\x20-\x7e\n\t]|&#")  # a reference, or what another encoding writes
@@ -66,7 +66,7 @@ class Block:
 
 class Written:
     """A transmission of a written block, not parsed (see the module): its text is ``form %
-    pick(names)``, a follower's (:mod:`.memo`) the form of its record's with its own names;
+    pick(names)``, a follower's (:mod:`.renamings`) the form of its record's with its own names;
     one converted in full has no ``pick`` and its form is its text."""
 
     __slots__ = ("block", "form", "pick", "record", "names")
