@@ -47,7 +47,9 @@ def test_formatting_outside_the_changed_lines_is_kept(tmp_path):
         """)
 
 
-def test_a_changed_line_that_was_also_reformatted_takes_the_serialized_form(tmp_path):
+def test_a_changed_start_tag_keeps_the_quotes_and_spaces_of_what_it_did_not_change(tmp_path):
+    """Only the dropped attribute (and the space before it) goes: the name keeps its quotes
+    and the tag its space before ``>`` (a line-based writer wrote the whole line anew)."""
     data = _migrate(tmp_path, """
         <robot name="r">
           <transmission name='t' type='SimpleTransmission' >
@@ -59,7 +61,7 @@ def test_a_changed_line_that_was_also_reformatted_takes_the_serialized_form(tmp_
         """)
     assert data.decode() == textwrap.dedent("""\
         <robot name="r">
-          <transmission name="t">
+          <transmission name='t' >
             <type>transmission_interface/SimpleTransmission</type>
             <joint name="j"/>
             <actuator name="m"/>
@@ -104,6 +106,7 @@ def test_cr_line_endings_and_a_byte_order_mark_are_kept(tmp_path):
             "</actuator>\r  </transmission>\r</robot>\r")
     path.write_bytes(b"\xef\xbb\xbf" + text.encode())
     data = migrate_file(str(path), FIXES, MigrateOptions()).data
+    # Only the prefix comes in: the rest of the changed line keeps its quotes.
     assert data == b"\xef\xbb\xbf" + text.replace(
-        "<joint name='j'><hardwareInterface>EffortJointInterface",
-        '<joint name="j"><hardwareInterface>hardware_interface/EffortJointInterface').encode()
+        "<hardwareInterface>EffortJointInterface",
+        "<hardwareInterface>hardware_interface/EffortJointInterface").encode()

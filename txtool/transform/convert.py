@@ -30,14 +30,14 @@ from txtool.io.xmlio import MAX_DEPTH, InputError, Source, XMLSyntax, local, par
 from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
 from txtool.model.semantics import Effective, NotLoadable, effective, listed_against_roles
-from txtool.transform.baseline import rebuildable
-from txtool.transform.collector import paused
-from txtool.transform.memo import Follower, Memo, Record, Renaming
+from txtool.transform.block_text import Written, fill, read_back
+from txtool.transform.cycle_collector import paused
+from txtool.transform.nameless_shapes import shape
 from txtool.transform.placement import DEFAULT_HARDWARE_PLUGIN, Placer
+from txtool.transform.renamings import Follower, Memo, Record, Renaming
 from txtool.transform.reversible import Carrier
-from txtool.transform.shapes import shape
+from txtool.transform.serialized_before import rebuildable
 from txtool.transform.splice import splice
-from txtool.transform.written import Written, fill, read_back
 from txtool.views.tables import FIELDS, view
 
 KNOWN_CHILDREN = {
@@ -55,7 +55,11 @@ KNOWN_CHILDREN = {
 
 
 @dataclass
-class Conversion:
+class ConvertedDocument:
+    """What :func:`convert_source` made of a document: its bytes, what was lost, noted and
+    warned about, and how many transmissions it found, converted or found converted already
+    (the library's :class:`txtool.transform.api.Conversion` is made from it)."""
+
     data: bytes
     target: Dialect
     losses: list[str] = field(default_factory=list)
@@ -73,8 +77,8 @@ class Conversion:
 @paused
 def convert_source(
     source: Source, target: Dialect, *, hardware_plugin: str = DEFAULT_HARDWARE_PLUGIN,
-    consume: bool = False, reversible: bool = False, check: bool = True,
-) -> Conversion:
+    consume: bool = False, reversible: bool = False, check: bool = True, repeats: bool = True,
+) -> ConvertedDocument:
     """Convert ``source``; the bytes are spliced into ``source.data`` (see
     :mod:`txtool.transform.splice`) unless ``source`` is a xacro expansion.
 
@@ -85,18 +89,24 @@ def convert_source(
     originals carried by a document are put back whenever it goes back to ROS 1.
     ``check=False`` leaves out the read-back check, for a caller that judges the result
     itself (``roundtrip``).
+
+    ``repeats`` is the one switch of the fast path for robots that repeat a transmission
+    under other names: each is converted once and copied (:mod:`.renamings`, :mod:`.templates`),
+    the block generated for the document is written as text (:mod:`.block_text`) and the
+    baseline rebuilt after the change (:mod:`.serialized_before`). Off, every transmission is
+    converted in full; the bytes and messages are the same either way.
     """
     carry = Carrier(source, target, reversible)
     # Back to ROS 1 (each element may carry its original) and --reversible convert in full.
-    memo = None if carry.reversible or target == "ros1" else Memo()
-    # The tree as parsed, serialized before it changes or rebuilt after (:mod:`.baseline`).
+    memo = Memo() if repeats and not carry.reversible and target != "ros1" else None
+    # The tree as parsed, serialized before it changes or rebuilt after (:mod:`.serialized_before`).
     lazy = memo is not None and not source.expanded and rebuildable(source.data,
                                                                     source.tree.getroot())
     baseline = None if source.expanded or lazy else serialize(source.tree, source.data)
     tree = source.tree if consume else copy.deepcopy(source.tree)
     elements = transmission_elements(tree.getroot())
     deep = _near_depth_limit(elements, tree.getroot())
-    result = Conversion(data=b"", target=target, found=len(elements))
+    result = ConvertedDocument(data=b"", target=target, found=len(elements))
     placer = Placer(tree.getroot(), hardware_plugin, components=source.expanded or (
         detect_encoding(source.data).codec not in SCANNABLE or b"ros2_control" in source.data))
     placer.after = carry.after_block
@@ -249,7 +259,7 @@ def _serialize(tree: etree._ElementTree, original: bytes, placer: Placer
     return data, rebuilt
 
 
-def _convert_one(found: Found, tree: etree._ElementTree, target: Dialect, result: Conversion,
+def _convert_one(found: Found, tree: etree._ElementTree, target: Dialect, result: ConvertedDocument,
                  placer: Placer, carry: Carrier, memo: Memo | None, renaming: Renaming | None,
                  said: int) -> bool:
     """Convert one transmission in full (whether it is converted: those already in the
@@ -284,8 +294,9 @@ def _convert_one(found: Found, tree: etree._ElementTree, target: Dialect, result
     return True
 
 
-def _other_children(element: etree._Element, t: Transmission, target: Dialect,
-                    result: Conversion) -> dict[tuple[str, str | None], list[etree._Element]]:
+def _other_children(
+    element: etree._Element, t: Transmission, target: Dialect, result: ConvertedDocument,
+) -> dict[tuple[str, str | None], list[etree._Element]]:
     """Children that neither dialect reads are carried as written (both loaders skip elements
     they do not know); one that the target loader would read (its own spelling, written in the
     other dialect) is dropped: carrying it would change what the target loads."""
@@ -311,7 +322,7 @@ def _other_children(element: etree._Element, t: Transmission, target: Dialect,
     return carried
 
 
-def _behaviour(before: Transmission, after: Transmission, result: Conversion) -> None:
+def _behaviour(before: Transmission, after: Transmission, result: ConvertedDocument) -> None:
     """A loss when the target loader would bind the values differently (never silent)."""
     numbers = [n for m in before.joints + before.actuators
                for n in (m.mechanical_reduction, m.offset)]
@@ -378,7 +389,7 @@ def _same_binding(old, new) -> bool:
     return all(getattr(old, f) == getattr(new, f) for f in fields)
 
 
-def _check(output: Source, result: Conversion, originals: list[Transmission | Follower],
+def _check(output: Source, result: ConvertedDocument, originals: list[Transmission | Follower],
            alone: set[etree._Element | Written], names: Counter[str],
            virtual: dict[int, Written], in_tree: bool) -> None:
     """Read the output back, convert it back, and compare with the original: on what the
@@ -388,13 +399,13 @@ def _check(output: Source, result: Conversion, originals: list[Transmission | Fo
     ``output.tree`` is the converted tree itself when ``output.data`` is its serialization,
     or a splice of it that parses to the same canonical document (:func:`.splice` verifies
     that): reading it reads what a parse of the output would give, without a second tree.
-    The transmissions of a block written as text (:mod:`.written`) are not in that tree: each
+    The transmissions of a block written as text (:mod:`.block_text`) are not in that tree: each
     is read back on its own (a follower's only when it is judged), its name being its own
     (``names``: how many originals have each); ``virtual`` holds those of the originals that
     are not followers, by id.
-    A pair whose shape (:func:`.shapes.shape`: the same up to the names) already came back
+    A pair whose shape (:func:`.nameless_shapes.shape`: the same up to the names) already came back
     whole is not judged again: the judgement reads names only to tell members apart. So a
-    follower (:mod:`.memo`) is not even read back when its record's first came back whole
+    follower (:mod:`.renamings`) is not even read back when its record's first came back whole
     from the same place: both with a name of their own, in the block generated for the
     document (``alone``), declaring their joints there themselves.
     When every original is written as text, none is left in a converted tree (``in_tree``):
@@ -407,7 +418,7 @@ def _check(output: Source, result: Conversion, originals: list[Transmission | Fo
         if item.built in alone and names[item.name] == 1}
     firsts = {id(record.original): record for record in _records(followers)}
     components: dict[etree._Element, Any] = {}
-    survived: set[Hashable] = set()  # shapes (:mod:`.shapes`) that came back whole
+    survived: set[Hashable] = set()  # shapes (:mod:`.nameless_shapes`) that came back whole
     whole: set[int] = set()  # records whose verdict is in ``survived``, by id
     written: dict[tuple[str, bool], list[Found]] = {}
     kept: set[str | None] | None = None  # the names of the output's <ros2_control> blocks
@@ -520,7 +531,7 @@ def _without_state(kinds: dict) -> dict:
     return {joint: names - {"state"} for joint, names in kinds.items()}
 
 
-def _interfaces(t: Transmission, a: dict, b: dict, result: Conversion) -> None:
+def _interfaces(t: Transmission, a: dict, b: dict, result: ConvertedDocument) -> None:
     for joint, kinds in a.items():
         back = b.get(joint, frozenset()) - {"state"}
         kinds = kinds - {"state"}
@@ -536,7 +547,7 @@ def _interfaces(t: Transmission, a: dict, b: dict, result: Conversion) -> None:
                 f"{_show(back - kinds)}, which transmission '{t.name}' does not name; kept")
 
 
-def _kept_declaration(t: Transmission, a: dict, b: dict, result: Conversion) -> None:
+def _kept_declaration(t: Transmission, a: dict, b: dict, result: ConvertedDocument) -> None:
     """Back to ROS 1 out of a ``<ros2_control>`` that stays in the document: what the block
     declares besides what the ROS 1 transmission names stays declared there (a file that
     had both before ``--reversible`` took it to ROS 2 gets both back), not a loss."""

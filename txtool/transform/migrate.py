@@ -38,12 +38,16 @@ from txtool.lint.suppress import Suppressions
 from txtool.lint.suppress import parse as parse_suppressions
 from txtool.model.core import Dialect
 from txtool.rules import Rule, all_rules
-from txtool.transform.collector import paused
 from txtool.transform.convert import DEFAULT_HARDWARE_PLUGIN, convert_source
+from txtool.transform.cycle_collector import paused
+from txtool.transform.declaration import late_declaration
+from txtool.transform.edits import Edit, EditedText
 from txtool.transform.fixable import might_fix, might_fix_converted
 from txtool.transform.linediff import unified_ascii, unified_text
 from txtool.transform.reversible import MARK
+from txtool.transform.spans import SpanError, SpanIndex
 from txtool.transform.splice import splice
+from txtool.transform.tree_edits import NotEditable, TreeChange, reads_as
 
 Mode = Literal["check", "diff", "write"]
 MAX_FIX_ROUNDS = 4
@@ -78,6 +82,9 @@ class FileResult:
     warnings: list[str] = field(default_factory=list)
     refused: bool = False
     unwritten: bool = False  # the write failed
+    # The edits of the original (its UTF-8 form if UTF-16/32) that made ``data``, where
+    # fixes changed it and were written as edits.
+    edits: list[Edit] | None = None
 
     @property
     def changed(self) -> bool:
@@ -243,8 +250,13 @@ def _steps(result: FileResult, tree: etree._ElementTree, rules: Sequence[Rule],
            options: MigrateOptions, comments: list[tuple[str | None, int | None]],
            clean: bool) -> FileResult:
     """Fix ``tree`` (the parse of ``result.original``), serialize, convert, parse, fix again,
-    serialize, and splice into the original."""
+    serialize, and splice into the original. Fixes alone are written as edits
+    (:func:`_fixes_as_edits`)."""
     original, display = result.original, result.path
+    if options.target is None and not clean:
+        if _fixes_as_edits(result, tree, rules, comments):
+            return result
+        tree = parse_bytes(original, display)  # fixed in place: the steps start again
     baseline = serialize(tree, original)
     if not clean:
         _count(result.fixes, fix_tree(tree, rules, original))
@@ -268,6 +280,37 @@ def _steps(result: FileResult, tree: etree._ElementTree, rules: Sequence[Rule],
         return result
     result.data = data
     return result
+
+
+def _fixes_as_edits(result: FileResult, tree: etree._ElementTree, rules: Sequence[Rule],
+                    comments: list[tuple[str | None, int | None]]) -> bool:
+    """Fix ``tree`` (the parse of ``result.original``) and write what the fixes changed as
+    edits of the original (:mod:`.tree_edits`), checked by reading the result back; False,
+    with nothing settled, where the edits cannot say the change (the steps then do)."""
+    original = result.original
+    text = EditedText(original)
+    elements = transmission_elements(tree.getroot())  # what the fixes may change
+    try:
+        index = SpanIndex(text.data, tree.getroot(), elements, text.codec)
+    except SpanError:
+        return False
+    change = TreeChange(elements)
+    del elements
+    fixes = fix_tree(tree, rules, original)
+    try:
+        edits = change.edits(text, index)
+    except NotEditable:
+        return False
+    late = late_declaration(text.data) if edits else None
+    if late is not None:
+        edits.append(late)
+    data = text.applied(edits)
+    if data != original and not reads_as(data, tree, result.path):
+        return False
+    _count(result.fixes, fixes)
+    result.losses.extend(_dropped(comments, _comments(tree)))
+    result.data, result.edits = data, edits or None
+    return True
 
 
 def _direct(original: bytes, result: FileResult, options: MigrateOptions,
@@ -410,16 +453,10 @@ def _carried(comment: str | None) -> bool:
     return (comment or "").strip().startswith(MARK)
 
 
-def dropped_comments(before: etree._ElementTree, after: etree._ElementTree) -> list[str]:
-    """A loss for each comment of ``before`` that ``after`` no longer has (conversions rebuild
-    the transmissions they convert, without the comments inside them)."""
-    return _dropped([(node.text, node.sourceline) for node in _comment_nodes(before)],
-                    _comments(after))
-
-
 def _dropped(before: list[tuple[str | None, int | None]], after: list[str | None]) -> list[str]:
-    """:func:`dropped_comments` on the texts and lines of the comments of ``before`` and the
-    texts of those of ``after``."""
+    """A loss for each comment of ``before`` (its text and line) that ``after`` (the texts of
+    the comments) no longer has: conversions rebuild the transmissions they convert, without
+    the comments inside them."""
     left = Counter(after)
     lost = []
     for comment, line in before:

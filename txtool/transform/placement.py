@@ -23,7 +23,7 @@ from txtool.dialects.translate import translate
 from txtool.io.xmlio import local
 from txtool.model.core import Dialect, Transmission, replace
 from txtool.model.robot import children
-from txtool.transform.baseline import Rebuild
+from txtool.transform.block_text import Written, blank, write
 from txtool.transform.layout import (
     append,
     become,
@@ -38,9 +38,9 @@ from txtool.transform.layout import (
     runs_of,
     with_comments,
 )
-from txtool.transform.memo import Follower, Renaming
+from txtool.transform.renamings import Follower, Renaming
+from txtool.transform.serialized_before import Rebuild
 from txtool.transform.templates import Templates, parse_children
-from txtool.transform.written import Written, blank, write
 
 # ros2_control's mock hardware (hardware_interface/src/mock_components/generic_system.cpp):
 # it sets each state to its command and drives nothing, a stand-in for the robot's own plugin.
@@ -66,7 +66,7 @@ class _Move:
 
     @property
     def renaming(self) -> Renaming | None:
-        """The old element's, when it was keyed (:mod:`.memo`)."""
+        """The old element's, when it was keyed (:mod:`.renamings`)."""
         if self._renaming is None and self.follower is not None:
             self._renaming = self.follower.renaming()
         return self._renaming
@@ -128,14 +128,14 @@ class Placer:
         self.alone: set[etree._Element | Written] = set()
         self._templates = Templates()
         # Set by the caller: the old elements whose built ones may not be written as text
-        # (:mod:`.written`) rather than parsed into the tree; None: none may.
+        # (:mod:`.block_text`) rather than parsed into the tree; None: none may.
         self.crowded: set[etree._Element] | None = None
         # The marker, and the pieces of its text.
         self.written: tuple[etree._Comment, list[bytes]] | None = None
         self.unwritten: dict[Written, etree._Element] = {}  # by :meth:`unwrite`
         self._written_block: list[Written] = []  # the transmissions of :attr:`written`
         # Set by the caller that serializes the tree as it was only before it changes
-        # (:mod:`.baseline`): called before the first change, unless the change is the
+        # (:mod:`.serialized_before`): called before the first change, unless the change is the
         # written block replacing transmissions whose serializations ``texts`` holds (then
         # :attr:`rebuild` tells how the baseline is made); None: the caller needs neither.
         self.before_change: Callable[[], None] | None = None
@@ -159,7 +159,7 @@ class Placer:
               renaming: Renaming | None = None, dialect: Dialect | None = None) -> None:
         """Place the conversion ``t`` of ``old``; ``carried``: children of ``old`` (by
         owner) that go along as written; ``renaming``: ``old``'s key and names (see
-        :mod:`.memo`), so that the elements built for one key are built once; ``dialect``:
+        :mod:`.renamings`), so that the elements built for one key are built once; ``dialect``:
         ``old``'s, when known."""
         move = _Move(old, t, carried, renaming)
         component = enclosing_component(old)
@@ -199,7 +199,7 @@ class Placer:
 
     def place_follower(self, old: etree._Element, follower: Follower, dialect: Dialect
                        ) -> None:
-        """:meth:`place` for a follower (:mod:`.memo`) outside any ``<ros2_control>``: one
+        """:meth:`place` for a follower (:mod:`.renamings`) outside any ``<ros2_control>``: one
         that goes into the block generated for the document is not built here."""
         into_new = (dialect == "ros1" and follower.record.dialect != "ros1"
                     and old.getparent() is self.root and self._robot)
@@ -378,7 +378,7 @@ class Placer:
     def _write_block(self, name: str, moves: list[_Move], runs: list[list[etree._Element]],
                      like: etree._Element, indent: str, step: str) -> etree._Element | None:
         """The block :meth:`_generate` makes, with its declarations and transmissions left as
-        text (:func:`.written.write`, kept in :attr:`written`), or None when it cannot be
+        text (:func:`.block_text.write`, kept in :attr:`written`), or None when it cannot be
         so."""
         crowded = self.crowded
         if crowded is None or namespace_of(like) is not None or not (blank(indent)
@@ -402,7 +402,7 @@ class Placer:
                step: str) -> list[str] | None:
         """What follows each transmission of a generated block: the blank lines that followed
         it in the first run, one line break, or the block's end; None when not blank. The
-        tails as they were, each once, are kept for :class:`.baseline.Rebuild`."""
+        tails as they were, each once, are kept for :class:`.serialized_before.Rebuild`."""
         tails = ["\n" + indent + step] * len(moves)
         reindented: dict[str | None, str] = {}
         self._first_tails = reindented
@@ -641,7 +641,7 @@ class Placer:
         one (:attr:`built`), not a trial build to compare with."""
         t = move.new
         if move.renaming is not None and not move.carried:
-            # A keyed element has no comment (see :mod:`.memo`): nothing to add.
+            # A keyed element has no comment (see :mod:`.renamings`): nothing to add.
             new = self._templates.element(move.renaming, t, indent, step, namespace_of(like))
         else:
             new = dialects.build(t, t.dialect, indent=indent, step=step,

@@ -1,14 +1,14 @@
-"""The one writer of every command that rewrites a document (``convert``, ``migrate``).
+"""The writer of conversions (``convert``, ``migrate --to``): a line splice.
 
-A command changes a parsed tree; :func:`rewrite` turns the change back into bytes by text
-splicing: only the lines that hold a changed node are written anew, every other line keeps its
+A conversion changes a parsed tree; :func:`splice` turns the serialized change back into
+bytes: only the lines that hold a changed node are written anew, every other line keeps its
 original bytes. So the encoding (UTF-16 and UTF-32 too), the byte-order mark, the XML
-declaration, line endings (LF, CRLF or CR),
-attribute order and quoting, ``<x></x>`` against ``<x/>``, character references, comments and
-blank lines stay as written wherever the command did not change them. Atomic writing of the
-result is :func:`txtool.io.xmlio.write_atomic`.
+declaration, line endings (LF, CRLF or CR), attribute order and quoting, ``<x></x>`` against
+``<x/>``, character references, comments and blank lines stay as written wherever the
+conversion did not change them. migrate's fixes are written as edits instead
+(:mod:`.edits`, :mod:`.tree_edits`). Atomic writing of the result is
+:func:`txtool.io.xmlio.write_atomic`.
 """
-
 from __future__ import annotations
 
 import codecs
@@ -18,7 +18,7 @@ import re
 from lxml import etree
 
 from txtool.io.encodings import detect_encoding, utf8_form
-from txtool.io.xmlio import InputError, parse_bytes, serialize
+from txtool.io.xmlio import InputError, parse_bytes
 from txtool.transform.linediff import matching_blocks
 
 # An XML declaration after what may stand before the root element (whitespace, comments,
@@ -26,11 +26,6 @@ from txtool.transform.linediff import matching_blocks
 _LATE_DECLARATION = re.compile(
     rb"(\xef\xbb\xbf)?((?:[ \t\r\n]|<!--.*?-->|<\?(?!xml[ \t\r\n?])[^>]*\?>)*)"
     rb"(<\?xml[ \t\r\n][^>]*\?>[ \t]*(?:\r\n|\r|\n)?)", re.S)
-
-
-def rewrite(original: bytes, before: etree._ElementTree, after: etree._ElementTree) -> bytes:
-    """``after`` as bytes, spliced into ``original`` (the text ``before`` was parsed from)."""
-    return splice(original, serialize(before, original), serialize(after, original))
 
 
 def splice(original: bytes, baseline: bytes, changed: bytes) -> bytes:

@@ -1,4 +1,4 @@
-"""Converted elements built once per key (:mod:`.memo`) and then copied with other names.
+"""Converted elements built once per key (:mod:`.renamings`) and then copied with other names.
 
 A transmission whose old element was keyed is built as :func:`txtool.dialects.build` builds
 it, once per key and layout; every other one of the key is a copy with its own names put in
@@ -20,8 +20,8 @@ from lxml import etree
 from txtool import dialects
 from txtool.io.xmlio import safe_parser
 from txtool.model.core import Dialect, Transmission
-from txtool.transform.memo import NAME, Renaming
-from txtool.transform.written import plain
+from txtool.transform.block_text import plain
+from txtool.transform.renamings import NAME, Renaming
 
 
 class Converted(Protocol):
@@ -58,7 +58,7 @@ class Templates:
              conversion: Converted, plain_only: bool = False) -> bytes | None:
         """The text of :meth:`element` (no namespace) for ``conversion.new``, whose dialect
         is ``dialect`` (read only for the first of a key and layout), or None when it cannot
-        be written so (``plain_only``: or is not :func:`.written.plain`)."""
+        be written so (``plain_only``: or is not :func:`.block_text.plain`)."""
         known = self.form(renaming, dialect, indent, step, conversion, plain_only)
         if known is None:
             return None

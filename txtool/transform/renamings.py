@@ -9,8 +9,8 @@ conversion with its own names put in, when the first said nothing about it (no l
 warning, and nothing carried as written): equal keys make equal conversions up to the names.
 
 That holds because every step reads names only to tell them apart and to order them (the
-same argument as :mod:`.shapes`): the key keeps which names are equal, the order of all of
-them among each other and among :data:`.shapes.LITERAL_NAMES` (kept as written), and
+same argument as :mod:`.nameless_shapes`): the key keeps which names are equal, the order of all of
+them among each other and among :data:`.nameless_shapes.LITERAL_NAMES` (kept as written), and
 everything else of the element as written. A step that reads outside the element would break
 it, so an element inside a ``<ros2_control>`` (whose declarations the reader reads), with a
 comment or processing instruction (a ``name="..."`` text there is not an attribute), or with
@@ -28,10 +28,10 @@ from typing import TYPE_CHECKING, NamedTuple
 from lxml import etree
 
 from txtool.model.core import Member, Transmission, replace
-from txtool.transform.shapes import LITERAL_NAMES
+from txtool.transform.nameless_shapes import LITERAL_NAMES
 
 if TYPE_CHECKING:
-    from txtool.transform.written import Written
+    from txtool.transform.block_text import Written
 
 # A name attribute (the serializer puts one space before each): inside a tag, as what follows
 # it up to the tag's end holds no "<" or ">" (escaped in values and text); a text that reads

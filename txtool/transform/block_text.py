@@ -1,6 +1,6 @@
-"""The block generated for a whole document, written as text and never parsed.
+"""The block generated for a whole document, written as text instead of built as elements.
 
-Thousands of keyed transmissions (:mod:`.memo`) converted into the ``<ros2_control>`` that
+Thousands of keyed transmissions (:mod:`.renamings`) converted into the ``<ros2_control>`` that
 txtool generates for the document are already text (:mod:`.templates`): the block goes into
 the tree as its start tag and hardware, with a marker comment where the rest goes; the
 serialized document gets the text in place of the marker (:func:`fill`). That is the very
@@ -13,6 +13,8 @@ joints as the block declares them. Reading it back (the conversion's check) read
 ``<ros2_control>`` of the block's name holding those declarations and it alone, which gives
 what reading it in the whole block gives: the reader reads of the block its name and the
 first declaration of each joint, nothing else (:class:`txtool.dialects.read.Declarations`).
+So the block is parsed only for that check (:func:`read_back`), or into the tree after all
+where its text cannot be filled in (:meth:`txtool.transform.placement.Placer.unwrite`).
 """
 
 from __future__ import annotations
@@ -29,7 +31,7 @@ from txtool.io.xmlio import safe_parser
 from txtool.model.core import Dialect, Transmission
 
 if TYPE_CHECKING:
-    from txtool.transform.memo import Follower, Record, Renaming
+    from txtool.transform.renamings import Follower, Record, Renaming
     from txtool.transform.templates import Templates
 
 _UNSAFE = re.compile(rb"[^\x20-\x7e\n\t]|&#")  # a reference, or what another encoding writes
@@ -64,7 +66,7 @@ class Block:
 
 class Written:
     """A transmission of a written block, not parsed (see the module): its text is ``form %
-    pick(names)``, a follower's (:mod:`.memo`) the form of its record's with its own names;
+    pick(names)``, a follower's (:mod:`.renamings`) the form of its record's with its own names;
     one converted in full has no ``pick`` and its form is its text."""
 
     __slots__ = ("block", "form", "pick", "record", "names")

@@ -4,10 +4,10 @@ Splicing (:func:`txtool.transform.splice.splice`) compares the serialization of 
 parsed (the baseline) with the serialization of the converted tree. A conversion changes the
 tree in place, so the baseline is serialized before the first change, unless the change is
 the common one for a large robot: its transmissions stand together and all go into the block
-generated for the document, written as text (:mod:`.written`). Then everything before and
+generated for the document, written as text (:mod:`.block_text`). Then everything before and
 after that block is serialized alike in both, and the baseline is the converted document with
 the block's text replaced by the serializations of the transmissions it replaced (their
-``tostring``, which keying them already made, see :mod:`.memo`) and the blank text between
+``tostring``, which keying them already made, see :mod:`.renamings`) and the blank text between
 them. :class:`Rebuild` keeps those; :meth:`Rebuild.baseline` puts them in.
 
 That holds where a transmission's ``tostring`` is the very text the whole document's
@@ -78,7 +78,7 @@ class Rebuild:
 
     def baseline(self, data: bytes, marker: etree._Comment, original: bytes) -> bytes:
         """The baseline, from ``data``: the converted document serialized with the block's
-        marker in it (before :func:`.written.fill`), which holds the block's text once;
+        marker in it (before :func:`.block_text.fill`), which holds the block's text once;
         ``original`` itself when they are the same (most generated documents: then no copy
         is made)."""
         whole = self._head + f"<!--{marker.text}-->".encode("ascii") + _END

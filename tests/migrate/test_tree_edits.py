@@ -1,0 +1,187 @@
+"""A change made to parsed elements, said as edits of the bytes they were parsed from: only
+what changed is written, everything else keeps its bytes."""
+
+from __future__ import annotations
+
+import textwrap
+from collections.abc import Callable
+
+import pytest
+from lxml import etree
+
+from txtool.io.xmlio import parse_bytes
+from txtool.rules import all_rules
+from txtool.transform.edits import EditedText
+from txtool.transform.migrate import MigrateOptions, migrate_file
+from txtool.transform.spans import SpanIndex
+from txtool.transform.tree_edits import NotEditable, TreeChange, reads_as
+
+FIXES = [rule for rule in all_rules().values() if rule.fixable]
+
+
+def _changed(data: bytes, change: Callable[[etree._Element], None]) -> bytes:
+    tree = parse_bytes(data, "robot.urdf")
+    text = EditedText(data)
+    index = SpanIndex(text.data, tree.getroot())
+    recorded = TreeChange([tree.getroot()])
+    change(tree.getroot())
+    written = text.applied(recorded.edits(text, index))
+    assert reads_as(written, tree, "robot.urdf")
+    return written
+
+
+def test_attribute_values_keep_their_quotes_and_new_ones_come_last() -> None:
+    data = b"<robot name = 'r' x:a='1' xmlns:x='urn:x'  />"
+
+    def change(root: etree._Element) -> None:
+        root.set("name", "it's <r>")
+        root.set("{urn:x}a", "2")
+        root.set("new", 'say "hi"\n')
+
+    assert _changed(data, change) == (
+        b"<robot name = 'it&apos;s &lt;r&gt;' x:a='2' xmlns:x='urn:x' new=\"say &quot;hi&quot;"
+        b'&#10;"  />')
+
+
+def test_a_dropped_attribute_takes_the_space_before_it() -> None:
+    data = b'<robot>\r\n  <t name="t"\r\n     type="x" >\r\n  </t>\r\n</robot>\r\n'
+    assert _changed(data, lambda root: root[0].attrib.pop("type")) == (
+        b'<robot>\r\n  <t name="t" >\r\n  </t>\r\n</robot>\r\n')
+
+
+def test_a_new_attribute_in_a_namespace_cannot_be_edited() -> None:
+    with pytest.raises(NotEditable, match="in a namespace"):
+        _changed(b"<robot/>", lambda root: root.set("{urn:x}a", "1"))
+
+
+def test_an_element_written_empty_gets_its_content_and_end_tag() -> None:
+    def change(root: etree._Element) -> None:
+        root[0].text = "\n    "
+        etree.SubElement(root[0], "hardwareInterface").text = "a & b"
+        root[0][0].tail = "\n  "
+
+    data = b'<robot>\r\n  <joint name="j" />\r\n</robot>\r\n'
+    assert _changed(data, change) == (
+        b'<robot>\r\n  <joint name="j">\r\n    <hardwareInterface>a &amp; b</hardwareInterface>'
+        b"\r\n  </joint>\r\n</robot>\r\n")
+
+
+def test_children_inserted_and_removed_between_kept_ones() -> None:
+    data = textwrap.dedent("""\
+        <robot>
+          <a   x='1'/>
+          <!-- kept -->
+          <b/>
+          <c>&#65;</c>
+        </robot>
+        """).encode()
+
+    def change(root: etree._Element) -> None:
+        gone = root[2]  # <b/>
+        root[1].tail = gone.tail
+        root.remove(gone)
+        new = etree.Element("d")
+        new.tail = "\n  "
+        root.insert(0, new)
+
+    assert _changed(data, change) == textwrap.dedent("""\
+        <robot>
+          <d/>
+          <a   x='1'/>
+          <!-- kept -->
+          <c>&#65;</c>
+        </robot>
+        """).encode()
+
+
+def test_reordered_children_are_written_anew() -> None:
+    data = b"<robot><a x='1'/><b/></robot>"
+
+    def change(root: etree._Element) -> None:
+        root.append(root[0])
+
+    assert _changed(data, change) == b'<robot><b/><a x="1"/></robot>'
+
+
+def test_a_new_element_that_would_declare_a_namespace_cannot_be_edited() -> None:
+    with pytest.raises(NotEditable, match="would declare a namespace"):
+        _changed(b"<robot>\n</robot>", lambda root: etree.SubElement(root, "{urn:x}a"))
+
+
+def test_a_namespaced_transmission_gets_its_type_in_its_namespace(tmp_path) -> None:
+    """TX302 adds a <type> in the transmission's namespace, which the document declares
+    already: it is not declared again."""
+    path = tmp_path / "robot.urdf"
+    path.write_bytes(textwrap.dedent("""\
+        <x:robot xmlns:x="urn:x">
+          <x:transmission name='t' type="SimpleTransmission">
+            <x:joint name="j"><x:hardwareInterface>hardware_interface/EffortJointInterface</x:hardwareInterface></x:joint>
+            <x:actuator name="m"/>
+          </x:transmission>
+        </x:robot>
+        """).encode())
+    result = migrate_file(str(path), FIXES, MigrateOptions())
+    assert result.fixes == {"TX302": 1} and result.edits is not None
+    assert result.data.decode().splitlines()[1:3] == [
+        "  <x:transmission name='t'>",
+        "    <x:type>transmission_interface/SimpleTransmission</x:type>"]
+
+
+def test_a_text_that_writes_as_before_is_no_edit() -> None:
+    data = b"<robot><a/></robot>"
+    tree = parse_bytes(data, "robot.urdf")
+    text, root = EditedText(data), tree.getroot()
+    index, recorded = SpanIndex(data, root), TreeChange([root])
+    root.text = ""
+    assert recorded.edits(text, index) == []
+
+
+def test_a_removed_element_is_said_where_it_stands_when_no_line_repeats_it() -> None:
+    def change(root: etree._Element) -> None:
+        root[0].tail += root[1].tail
+        root.remove(root[1])
+
+    data = b"<robot>\n  <a/> x<b/>\n</robot>"
+    assert _changed(data, change) == b"<robot>\n  <a/> x\n</robot>"
+
+
+def test_bytes_that_do_not_parse_do_not_read_as_the_tree() -> None:
+    assert not reads_as(b"<robot>", parse_bytes(b"<robot/>", "robot.urdf"), "robot.urdf")
+
+
+@pytest.mark.parametrize("failing", ["SpanIndex", "TreeChange.edits", "reads_as"])
+def test_where_the_edits_cannot_say_the_fixes_the_steps_write_them(failing, tmp_path,
+                                                                   monkeypatch) -> None:
+    from txtool.transform import migrate
+    from txtool.transform.spans import SpanError
+
+    def refuse(*_args, **_kwargs):
+        if failing == "reads_as":
+            return False
+        raise (SpanError if failing == "SpanIndex" else NotEditable)("refused")
+
+    data = (b'<robot>\n  <transmission name="t" type="SimpleTransmission">\n    '
+            b'<joint name="j"><hardwareInterface>EffortJointInterface</hardwareInterface>'
+            b'</joint>\n    <actuator name="m"/>\n  </transmission>\n</robot>\n')
+    path = tmp_path / "robot.urdf"
+    path.write_bytes(data)
+    edited = migrate_file(str(path), FIXES, MigrateOptions())
+    target, _, attribute = failing.partition(".")
+    monkeypatch.setattr(getattr(migrate, target) if attribute else migrate, attribute or target,
+                        refuse)
+    stepped = migrate_file(str(path), FIXES, MigrateOptions())
+    assert stepped.edits is None and edited.edits is not None
+    assert (stepped.data, stepped.fixes) == (edited.data, edited.fixes) == (
+        stepped.data, {"TX300": 1, "TX302": 1})
+
+
+def test_a_fixed_document_loses_its_late_declaration(tmp_path) -> None:
+    path = tmp_path / "robot.urdf"
+    path.write_bytes(b'<!-- licence -->\n<?xml version="1.0"?>\n<robot>\n  <transmission name="t">\n'
+                     b"    <type>transmission_interface/SimpleTransmission</type>\n"
+                     b'    <joint name="j"><hardwareInterface>EffortJointInterface'
+                     b'</hardwareInterface></joint>\n    <actuator name="m"/>\n'
+                     b"  </transmission>\n</robot>\n")
+    result = migrate_file(str(path), FIXES, MigrateOptions())
+    assert result.data.startswith(b"<!-- licence -->\n<robot>\n")
+    assert b"hardware_interface/EffortJointInterface" in result.data

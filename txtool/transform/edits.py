@@ -1,0 +1,100 @@
+"""A change to a document as edits: byte ranges of the original and what replaces them.
+
+The model is that of ruff's fixes (``crates/ruff_diagnostics/src/edit.rs``, ``Edit``; applied
+by ``crates/ruff_linter/src/fix/mod.rs``, ``apply_fixes``): whatever changes a document only
+says which bytes go and what comes in their place, and :func:`apply_edits` is the one place
+that makes the new bytes. Every byte outside an edit is copied from the original, so what a
+change does not touch keeps its text by construction.
+
+UTF-16 and UTF-32 documents are edited in their UTF-8 form (:class:`EditedText`), as the
+scanners read them, and stored back as they were.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+from txtool.io.encodings import Encoding, detect_encoding, utf8_form
+
+
+@dataclass(frozen=True, order=True)
+class Edit:
+    """Replace the bytes ``[start, end)`` of the original by ``content``: an insertion where
+    ``start == end``, a deletion where ``content`` is empty."""
+
+    start: int
+    end: int
+    content: bytes = b""
+
+    def __post_init__(self) -> None:
+        if not 0 <= self.start <= self.end:
+            raise ValueError(f"not a byte range: [{self.start}, {self.end})")
+
+    @classmethod
+    def insertion(cls, at: int, content: bytes) -> Edit:
+        return cls(at, at, content)
+
+    @classmethod
+    def deletion(cls, start: int, end: int) -> Edit:
+        return cls(start, end)
+
+    @classmethod
+    def replacement(cls, start: int, end: int, content: bytes) -> Edit:
+        return cls(start, end, content)
+
+
+def apply_edits(original: bytes, edits: Iterable[Edit]) -> bytes:
+    """``original`` with ``edits`` made, in one pass; every other byte is copied verbatim.
+
+    The edits are taken in order of their ranges (insertions at the same offset in the order
+    given); two that overlap, or one past the end of ``original``, are refused
+    (:class:`ValueError`): which one would win is not for the applier to guess.
+    """
+    parts: list[bytes] = []
+    copied = 0
+    for edit in sorted(edits, key=lambda edit: (edit.start, edit.end)):
+        if edit.start < copied:
+            raise ValueError(f"edits overlap at byte {edit.start}")
+        if edit.end > len(original):
+            raise ValueError(f"edit past the end of the document: byte {edit.end}")
+        parts.append(original[copied:edit.start])
+        parts.append(edit.content)
+        copied = edit.end
+    parts.append(original[copied:])
+    return b"".join(parts)
+
+
+class EditedText:
+    """The bytes a document's edits address, how new text is stored in them, and the document
+    they make (in the encoding it was read in)."""
+
+    def __init__(self, original: bytes) -> None:
+        self.original = original
+        self.stored: Encoding = detect_encoding(original)
+        self.data = utf8_form(original)  # the original itself unless UTF-16 or UTF-32
+        self.codec = "utf-8" if self.stored.wide else self.stored.codec
+        self.newline = _newline(self.data)
+
+    def encode(self, text: str) -> bytes:
+        """``text`` (already escaped as markup) as bytes of this document: its line breaks
+        those of the document, a character its encoding cannot store as a reference."""
+        if self.newline != "\n":
+            text = text.replace("\n", self.newline)
+        return text.encode(self.codec, "xmlcharrefreplace")
+
+    def applied(self, edits: Iterable[Edit]) -> bytes:
+        """The document with ``edits`` made, stored as the original was."""
+        edits = list(edits)
+        if not edits:
+            return self.original
+        written = apply_edits(self.data, edits)
+        return self.stored.from_utf8(written) if self.stored.wide else written
+
+
+def _newline(data: bytes) -> str:
+    """The line ending most lines end with (LF when there is no line break)."""
+    crlf = data.count(b"\r\n")
+    cr, lf = data.count(b"\r") - crlf, data.count(b"\n") - crlf
+    count, ending = max(((crlf, "\r\n"), (cr, "\r"), (lf, "\n")), key=lambda pair: pair[0])
+    return ending if count else "\n"
