@@ -172,20 +172,10 @@ def dependencies(modules: dict[str, tuple[set[str], set[str], set[str]]]) -> dic
             for module, (top, typing, inner) in modules.items()}
 
 
-# The writer's records and templates name each other's types under ``if TYPE_CHECKING`` only;
-# the writer (transform/ but bb*) is being rewritten. Recorded here so that it is seen, and
-# to be deleted with the rewrite: the test below fails once the circle is gone.
-KNOWN_TYPE_ONLY_CIRCLES = [
-    ["txtool.transform.memo", "txtool.transform.templates", "txtool.transform.written"],
-]
-
-
 def test_no_import_circle():
     """No circle, with every kind of import counted (see :func:`dependencies`), each circle
     reported with all its modules."""
-    found = circles(dependencies(graph()))
-    assert [c for c in found if c not in KNOWN_TYPE_ONLY_CIRCLES] == []
-    assert found == KNOWN_TYPE_ONLY_CIRCLES, "a recorded circle is gone: delete its entry"
+    assert circles(dependencies(graph())) == []
     runtime = {module: {t for t in top | inner if t != "txtool"}
                for module, (top, _, inner) in graph().items()}
     assert circles(runtime) == []

@@ -29,18 +29,12 @@ from lxml import etree
 from txtool import dialects
 from txtool.io.xmlio import safe_parser
 from txtool.model.core import Dialect, Transmission
+from txtool.transform.templates import Templates, plain
 
 if TYPE_CHECKING:
     from txtool.transform.renamings import Follower, Record, Renaming
-    from txtool.transform.templates import Templates
 
-_UNSAFE = re.compile(rb"[^\x20-\x7e\n\t]|&#")  # a reference, or what another encoding writes
 _UNSAFE_NAME = re.compile(r'[^\x20-\x7e]|[&<>"]')
-
-
-def plain(text: bytes) -> bool:
-    """Whether ``text`` (a serialization) reads the same written in any ASCII encoding."""
-    return _UNSAFE.search(text) is None
 
 
 def plain_names(names: str) -> bool:

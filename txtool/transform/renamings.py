@@ -23,15 +23,19 @@ import re
 from collections.abc import Hashable
 from dataclasses import dataclass, field
 from operator import itemgetter, lt
-from typing import TYPE_CHECKING, NamedTuple
+from typing import NamedTuple, Protocol
 
 from lxml import etree
 
 from txtool.model.core import Member, Transmission, replace
 from txtool.transform.nameless_shapes import LITERAL_NAMES
 
-if TYPE_CHECKING:
-    from txtool.transform.block_text import Written
+
+class WrittenText(Protocol):
+    """A transmission written as text, not built as an element
+    (:class:`txtool.transform.block_text.Written`, which imports this module)."""
+
+    def source(self) -> bytes: ...
 
 # A name attribute (the serializer puts one space before each): inside a tag, as what follows
 # it up to the tag's end holds no "<" or ">" (escaped in values and text); a text that reads
@@ -178,7 +182,7 @@ class Follower:
     names: tuple[str, ...]  # its own, by the index of the key's
     name: str = ""
     element: etree._Element | None = None  # the old element, until it is placed
-    built: etree._Element | Written | None = None  # then what the placer built (or wrote)
+    built: etree._Element | WrittenText | None = None  # then what the placer built (or wrote)
 
     def translated(self) -> Transmission:
         return self.record.translation_for(self.names)

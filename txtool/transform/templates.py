@@ -11,6 +11,7 @@ without one), and it holds no name it does not key.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Hashable
 from operator import itemgetter
 from typing import Protocol
@@ -20,8 +21,14 @@ from lxml import etree
 from txtool import dialects
 from txtool.io.xmlio import safe_parser
 from txtool.model.core import Dialect, Transmission
-from txtool.transform.block_text import plain
 from txtool.transform.renamings import NAME, Renaming
+
+_UNSAFE = re.compile(rb"[^\x20-\x7e\n\t]|&#")  # a reference, or what another encoding writes
+
+
+def plain(text: bytes) -> bool:
+    """Whether ``text`` (a serialization) reads the same written in any ASCII encoding."""
+    return _UNSAFE.search(text) is None
 
 
 class Converted(Protocol):
