@@ -63,7 +63,7 @@ validate() {
     if [ -n "${TXTOOL_SARIF:-}" ]; then
         # --exit-zero: only files that could not be read (recorded in the SARIF too) or a
         # report that could not be written end it non-zero; the annotations run either way.
-        txtool validate --format sarif --exit-zero --output-file "$TXTOOL_SARIF" \
+        txtool validate --format sarif --exit-zero --output "$TXTOOL_SARIF" \
             "${options[@]}" "${args[@]}" -- "${paths[@]}" || sarif=$?
     fi
     txtool validate --format github "${options[@]}" "${args[@]}" -- "${paths[@]}" || code=$?

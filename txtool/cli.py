@@ -71,7 +71,7 @@ EXAMPLES: dict[str, tuple[str, ...]] = {
     ),
     "simulate": (
         "txtool simulate robot.urdf                       # the robot's own config",
-        "txtool simulate robot.urdf --config candidate.urdf --plot run.png",
+        "txtool simulate robot.urdf --candidate candidate.urdf --plot run.png",
         "txtool simulate robot.urdf --params controllers.yaml --format json",
     ),
     "rules": ("txtool rules", "txtool rules TX106", "txtool rules zero-reduction --format json"),

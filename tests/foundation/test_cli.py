@@ -181,3 +181,34 @@ def test_a_choice_takes_any_case_and_a_near_miss_gets_a_hint(run, fixtures):
     assert (code, upper) == (0, run("convert", demo, "--to", "ros2-p2")[1])
     code, out, _ = run("validate", demo, "--format", "JSON")
     assert code == 0 and out.startswith("{")
+
+
+def test_output_files_are_named_o_output_and_the_former_spelling_still_works(run, fixtures,
+                                                                            tmp_path):
+    broken = str(fixtures / "broken_robot.urdf")
+    report = tmp_path / "report.txt"
+    code, out, err = run("validate", broken, "--output", str(report))
+    assert (code, out, err) == (1, "", "")
+    expected = report.read_text()
+    assert expected.startswith(f"{broken}:") and "Found " in expected
+    report.unlink()
+    code, out, err = run("validate", broken, "--output-file", str(report), "--output-file",
+                         str(report))
+    assert (code, out) == (1, "")
+    assert err == "txtool: warning: --output-file is deprecated; use -o/--output\n"  # once
+    assert report.read_text() == expected
+    for command in ("validate", "convert", "schema"):
+        code, help_text, _ = run(command, "--help")
+        assert "-o, --output" in help_text and "--output-file" not in help_text, command
+
+
+def test_simulate_names_a_candidate_config_candidate_not_config(run):
+    from txtool.commands.simulate import command
+
+    [option] = [p for p in command.params if p.name == "configs"]
+    assert option.opts == ["--candidate"] and option.multiple
+    code, help_text, _ = run("simulate", "--help")
+    assert "--candidate CANDIDATE" in help_text and "--config" not in help_text
+    context = command.make_context("simulate", ["robot.urdf", "--config", "a.urdf",
+                                                "--candidate", "b.urdf", "--config", "c.urdf"])
+    assert context.params["configs"] == ("b.urdf", "a.urdf", "c.urdf")

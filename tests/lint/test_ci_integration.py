@@ -137,7 +137,7 @@ def test_action_config_and_trust_xacro_inputs(repo, tmp_path):
                                 TXTOOL_TRUST_XACRO="true", TXTOOL_ARGS="--strict",
                                 TXTOOL_SARIF="out.sarif")
     assert calls == [
-        ["validate", "--format", "sarif", "--exit-zero", "--output-file", "out.sarif",
+        ["validate", "--format", "sarif", "--exit-zero", "--output", "out.sarif",
          "--config", "ci/txtool.toml", "--trust-xacro", "--strict", "--", "urdf"],
         ["validate", "--format", "github", "--config", "ci/txtool.toml", "--trust-xacro",
          "--strict", "--", "urdf"],

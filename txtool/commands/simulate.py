@@ -8,6 +8,7 @@ from txtool.commands.common import (
     FORMAT_OPTION,
     NO_XACRO_OPTION,
     Choice,
+    RenamedOption,
     exit_on_input_error,
     refuse_unexpanded,
     require_extra,
@@ -19,7 +20,8 @@ from txtool.io.xmlio import XacroOptions
 
 @click.command("simulate")
 @click.argument("robot", metavar="ROBOT")
-@click.option("--config", "configs", multiple=True, metavar="CANDIDATE",
+@click.option("--candidate", "configs", cls=RenamedOption, old_names=("--config",),
+              multiple=True, metavar="CANDIDATE",
               help="Config whose transmissions the controller uses (repeat to compare several; "
                    "default: ROBOT's own).")
 @click.option("--params", "params", multiple=True, type=click.Path(dir_okay=False),

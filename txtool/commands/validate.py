@@ -10,6 +10,7 @@ import click
 from txtool.commands.common import (
     COLOR_MODES,
     Choice,
+    RenamedOption,
     color_wanted,
     exit_on_input_error,
     xacro_options,
@@ -54,7 +55,8 @@ def use_color(mode: str, output_file: str | None = None) -> bool:
 @click.option("--color", type=Choice(COLOR_MODES), default="auto", show_default=True,
               help="Colour the text output: auto colours a terminal unless NO_COLOR is set "
                    "(FORCE_COLOR colours a pipe too).")
-@click.option("-o", "--output-file", type=click.Path(dir_okay=False), metavar="FILE",
+@click.option("-o", "--output", "output_file", cls=RenamedOption, old_names=("--output-file",),
+              type=click.Path(dir_okay=False), metavar="FILE",
               help="Write the report to FILE (replaced whole, atomically) instead of stdout.")
 @click.option("-q", "--quiet", is_flag=True,
               help="Text format: print the findings only, no summary line.")
