@@ -35,6 +35,7 @@ COMMAND_MODULES = (
     "simulate",
     "schema",
     "demo",
+    "completion",
 )
 
 
@@ -77,6 +78,11 @@ EXAMPLES: dict[str, tuple[str, ...]] = {
     "rules": ("txtool rules", "txtool rules TX106", "txtool rules zero-reduction --format json"),
     "schema": ("txtool schema -o transmission.schema.json",),
     "demo": ("txtool demo",),
+    "completion": (
+        "txtool completion bash > ~/.local/share/bash-completion/completions/txtool",
+        "txtool completion zsh > ~/.zfunc/_txtool   # fpath+=~/.zfunc before compinit",
+        "txtool completion fish > ~/.config/fish/completions/txtool.fish",
+    ),
 }
 
 

@@ -69,6 +69,11 @@ class RenamedOption(click.Option):
         return super().consume_value(ctx, opts)
 
 
+# A file argument: any text, checked when read (one line naming it, not click's message), and
+# completed as a file name by `txtool completion`.
+FILE = click.Path(readable=False)
+
+
 # A target dialect said the short way: both ROS 2 forms, the one ros2_control parses first.
 TARGET_HINTS = {"ros2": "'ros2-p2' (role attributes, the form ros2_control parses) or 'ros2-p1'",
                 "ros": "'ros1'", "ros2_control": "'ros2-p2'", "ros_control": "'ros1'"}

@@ -8,6 +8,7 @@ import click
 
 from txtool.commands.common import (
     CONFIG_OPTION,
+    FILE,
     FORMAT_OPTION,
     NO_XACRO_OPTION,
     Choice,
@@ -19,8 +20,8 @@ from txtool.io.printable import printable
 
 
 @click.command("roundtrip")
-@click.argument("path", metavar="FILE")
-@click.option("--against", metavar="OTHER",
+@click.argument("path", metavar="FILE", type=FILE)
+@click.option("--against", metavar="OTHER", type=FILE,
               help="Instead, compare FILE's transmissions with OTHER's behaviourally.")
 @click.option("--effort-convention", "convention", type=Choice(["ros2", "ros1"]),
               help="With --against: map four-bar efforts of both files with ros2_control's "

@@ -8,6 +8,7 @@ import click
 
 from txtool.commands.common import (
     CONFIG_OPTION,
+    FILE,
     FORMAT_OPTION,
     NO_XACRO_OPTION,
     exit_on_input_error,
@@ -18,7 +19,7 @@ from txtool.model.distro import CHOICES
 
 
 @click.command("show")
-@click.argument("path", metavar="FILE")
+@click.argument("path", metavar="FILE", type=FILE)
 @FORMAT_OPTION
 @click.option("--effective", is_flag=True,
               help="Show what each loader binds: parameters after its silent defaults, in its "

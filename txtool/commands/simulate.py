@@ -5,6 +5,7 @@ from __future__ import annotations
 import click
 
 from txtool.commands.common import (
+    FILE,
     FORMAT_OPTION,
     NO_XACRO_OPTION,
     Choice,
@@ -19,9 +20,9 @@ from txtool.io.xmlio import XacroOptions
 
 
 @click.command("simulate")
-@click.argument("robot", metavar="ROBOT")
+@click.argument("robot", metavar="ROBOT", type=FILE)
 @click.option("--candidate", "configs", cls=RenamedOption, old_names=("--config",),
-              multiple=True, metavar="CANDIDATE",
+              multiple=True, metavar="CANDIDATE", type=FILE,
               help="Config whose transmissions the controller uses (repeat to compare several; "
                    "default: ROBOT's own).")
 @click.option("--params", "params", multiple=True, type=click.Path(dir_okay=False),
