@@ -102,7 +102,10 @@ def command(paths, output_format, select, ignore, strict, exit_zero, config_path
     )
     if xacro.args:
         _warn_unused_args(list(paths), no_xacro)
-    result = lint_paths(list(paths) or ["."], options)
+    from txtool.commands.progress import file_progress
+
+    with file_progress() as progress:
+        result = lint_paths(list(paths) or ["."], options, progress)
     for note in result.notes:
         click.echo(f"txtool: note: {printable(note)}", err=True)
     for error in result.errors:

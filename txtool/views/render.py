@@ -79,11 +79,14 @@ def _maybe(value: float | None) -> str:
 
 
 def console(*, stderr: bool = False):
-    """A rich console; wide enough for tables when output goes to a file or a pipe."""
+    """A rich console as wide as the terminal, or wide enough for tables when output goes to
+    a file or a pipe (see :func:`txtool.views.plain.output_size`)."""
     import sys
 
     from rich.console import Console
 
+    from txtool.views.plain import output_size
+
     stream = sys.stderr if stderr else sys.stdout
-    width = None if stream.isatty() else 140
-    return Console(file=stream, width=width, highlight=False)
+    width, height = output_size(stream)
+    return Console(file=stream, width=width, height=height, highlight=False)
