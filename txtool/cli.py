@@ -67,7 +67,7 @@ EXAMPLES: dict[str, tuple[str, ...]] = {
         "txtool roundtrip robot.urdf --against robot.ros2.urdf",
     ),
     "map": (
-        "txtool map robot.urdf -t elbow_trans --to actuator --position 0.5",
+        "txtool map robot.urdf -t shoulder_trans --to actuator --position 0.5",
         "txtool map robot.urdf -t wrist_trans --to joint --effort 1,1 --format json",
     ),
     "simulate": (
