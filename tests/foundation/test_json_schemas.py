@@ -52,6 +52,18 @@ def test_checked_in_schemas_are_current(file_name):
         "run: python -m txtool.commands.json_schemas schemas")
 
 
+def test_the_schemas_are_regenerated_by_running_the_module(tmp_path):
+    import subprocess
+    import sys
+
+    done = subprocess.run([sys.executable, "-m", "txtool.commands.json_schemas", str(tmp_path)],
+                          cwd=ROOT, capture_output=True, text=True, timeout=120)
+    assert (done.returncode, done.stdout, done.stderr) == (0, "", "")
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(SCHEMAS)
+    for file_name in SCHEMAS:
+        assert (tmp_path / file_name).read_text() == (ROOT / "schemas" / file_name).read_text()
+
+
 def test_every_json_command_has_a_schema():
     """validate, show, map, roundtrip, rules (simulate's is its own, schemas/simulate...)."""
     from txtool.model.schema import schema_text as show_schema

@@ -15,6 +15,7 @@ import re
 import struct
 import subprocess
 import sys
+import tempfile
 import termios
 from pathlib import Path
 
@@ -62,16 +63,16 @@ def in_terminal(*args: str, columns: int, python: str | None = None,
     master, slave = _terminal(columns)
     command = [sys.executable, "-c", python] if python else [sys.executable, "-m", "txtool",
                                                              *args]
-    process = subprocess.Popen(command, stdin=subprocess.DEVNULL,
-                               stdout=slave if stdout_too else subprocess.PIPE, stderr=slave,
-                               env=_environment(**env), cwd=ROOT)
-    os.close(slave)
-    screen = _read_all(master)
-    out = ""
-    if not stdout_too:
-        with process.stdout:  # type: ignore[union-attr]
-            out = process.stdout.read().decode()  # type: ignore[union-attr]
-    return process.wait(timeout=120), out, screen
+    with tempfile.TemporaryFile() as piped:  # a file: a pipe left unread would fill up
+        process = subprocess.Popen(command, stdin=subprocess.DEVNULL,
+                                   stdout=slave if stdout_too else piped, stderr=slave,
+                                   env=_environment(**env), cwd=ROOT)
+        os.close(slave)
+        screen = _read_all(master)
+        code = process.wait(timeout=120)
+        piped.seek(0)
+        out = piped.read().decode()
+    return code, out, screen
 
 
 def in_pipe(*args: str, **env: str) -> tuple[int, str, str]:
@@ -126,6 +127,10 @@ def test_output_size_reads_the_terminal_and_columns(monkeypatch):
         assert output_size(terminal) == (123, 33)
     os.close(master)
     monkeypatch.delenv("COLUMNS")
+    master, slave = _terminal(0, 0)  # a terminal that gives no size (a serial line, say)
+    with open(slave, "w") as terminal:
+        assert output_size(terminal) == (PIPE_WIDTH, 25)
+    os.close(master)
     with open(os.devnull, "w") as file:
         assert output_size(file) == (PIPE_WIDTH, 25)
     closed = open(os.devnull, "w")  # noqa: SIM115
@@ -196,6 +201,13 @@ def test_file_progress_draws_only_on_a_terminal(monkeypatch):
         assert report is None
     with progress.file_progress(object()) as report:  # type: ignore[arg-type]
         assert report is None  # no isatty at all
+    master, slave = _terminal(80)
+    with open(slave, "w") as terminal:
+        monkeypatch.setenv("TERM", "dumb")
+        with progress.file_progress(terminal) as report:
+            assert report is None  # cannot redraw a line
+        monkeypatch.setenv("TERM", "xterm")
+    os.close(master)
     master, slave = _terminal(80)
     monkeypatch.setattr(progress, "DELAY", 0.0)
     with open(slave, "w") as terminal, progress.file_progress(terminal) as report:

@@ -41,7 +41,7 @@ class RenamedOption(click.Option):
     """An option whose former spellings (``old_names``) still work: hidden from help and
     completion, warning once on stderr that they are deprecated."""
 
-    def __init__(self, *args: Any, old_names: tuple[str, ...] = (), **kwargs: Any) -> None:
+    def __init__(self, *args: Any, old_names: tuple[str, ...], **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
         self.old_names = tuple(old_names)
 
@@ -51,21 +51,19 @@ class RenamedOption(click.Option):
 
     def add_to_parser(self, parser: Any, ctx: click.Context) -> None:
         super().add_to_parser(parser, ctx)
-        if self.old_names:
-            parser.add_option(obj=self, opts=self.old_names, dest=self._old_dest,
-                              action="append" if self.multiple else "store", nargs=self.nargs)
+        parser.add_option(obj=self, opts=self.old_names, dest=self._old_dest,
+                          action="append" if self.multiple else "store", nargs=self.nargs)
 
     def consume_value(self, ctx: click.Context, opts: Any) -> Any:
         if self._old_dest in opts:
             old = opts[self._old_dest]
             opts = dict(opts)
-            if self.multiple:  # in the order given would need the parser's order: new first
+            if self.multiple:  # the values of the new spelling first, then the old one's
                 opts[self.name] = [*opts.get(self.name, ()), *old]
-            else:
+            else:  # given both ways, the new spelling wins
                 opts.setdefault(self.name, old)
-            # once per run, however often it is repeated
             click.echo(f"txtool: warning: {'/'.join(self.old_names)} is deprecated; use "
-                       f"{'/'.join(self.opts)}", err=True)
+                       f"{'/'.join(self.opts)}", err=True)  # once, however often given
         return super().consume_value(ctx, opts)
 
 
