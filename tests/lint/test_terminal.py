@@ -107,11 +107,30 @@ def test_a_table_on_a_wide_terminal_is_not_wrapped_at_80(color):
 def test_in_a_pipe_tables_are_140_columns_or_columns_when_set():
     code, out, err = in_pipe("show", DEMO)
     assert (code, err) == (0, "")
-    assert len(out.splitlines()[0]) == 140 and widest(out) > 120  # the title fills the width
+    assert len(out.splitlines()[0]) == widest(out) == 143  # the table whole, the title as wide
     code, narrow, _ = in_pipe("show", DEMO, COLUMNS="72")
     assert code == 0 and widest(narrow) == 72
     code, out, _ = in_pipe("roundtrip", DEMO, COLUMNS="72")  # the plain layout too
     assert code == 0 and widest(out) <= 72 and "…" in out
+
+
+def test_in_a_pipe_a_wide_table_is_laid_out_whole(tmp_path):
+    """Nothing to fit in a pipe: a table wider than 140 columns keeps its cells whole (up to
+    400 columns, where a title padded to the width would grow absurd)."""
+    demo = (ROOT / DEMO).read_text()
+    wide = tmp_path / "wide.urdf"
+    wide.write_text(demo.replace("shoulder_trans", "shoulder_" + "x" * 100))
+    code, out, _ = in_pipe("show", str(wide))
+    assert code == 0 and "…" not in out and "shoulder_" + "x" * 100 in out
+    assert 200 < widest(out) < 400 and len({len(line) for line in out.splitlines()}) == 1
+    huge = tmp_path / "huge.urdf"
+    huge.write_text(demo.replace("shoulder_trans", "shoulder_" + "x" * 500))
+    code, out, _ = in_pipe("show", str(huge))
+    assert code == 0 and widest(out) == 400 and "…" in out
+    code, out, _ = in_pipe("roundtrip", str(wide))
+    assert code == 0 and "…" not in out and 140 < widest(out) < 400
+    code, out, _ = in_pipe("roundtrip", str(wide), "--against", DEMO)
+    assert code == 0 and "…" not in out and 140 < widest(out) < 400
 
 
 def test_output_size_reads_the_terminal_and_columns(monkeypatch):

@@ -77,7 +77,7 @@ def _print_table(report) -> None:
 def _print_rich_table(report) -> None:
     from rich.table import Table
 
-    from txtool.views.render import console, safe
+    from txtool.views.render import console, fit, safe
     from txtool.views.tables import FIELDS
 
     table = Table(title=safe(f"{report.path}: round trips"), title_justify="left")
@@ -90,6 +90,7 @@ def _print_rich_table(report) -> None:
             equivalent = "[red]no[/red]"
         table.add_row(safe(row.transmission), " → ".join(row.cycle), *marks, equivalent)
     out = console()
+    fit(out, table)
     out.print(table)
     for row in report.rows:
         reason = row.equivalent.split(": ", 1)[1:] if row.equivalent != "yes" else []
@@ -121,7 +122,7 @@ def _against(a, b, output_format, convention) -> int:
     else:
         from rich.table import Table
 
-        from txtool.views.render import console, safe
+        from txtool.views.render import console, fit, safe
 
         table = Table(title=safe(f"{a.path} against {b.path}"), title_justify="left")
         for column in ("joints", safe(a.path), safe(b.path), "status", "reason"):
@@ -131,6 +132,7 @@ def _against(a, b, output_format, convention) -> int:
             table.add_row(safe(", ".join(r.joints)), safe(r.a or "-"), safe(r.b or "-"), status,
                           safe(r.reason))
         out = console()
+        fit(out, table)
         out.print(table)
         out.print("efforts: " + (f"{convention} maps for both (--effort-convention)" if convention
                                  else "each file through its own loader's maps"), markup=False)

@@ -56,6 +56,16 @@ def plain_output(stream: TextIO) -> bool:
     return os.environ.get("FORCE_COLOR") in (None, "") or os.environ.get("TTY_COMPATIBLE") == "0"
 
 
+def stretchable(stream: TextIO) -> bool:
+    """Whether tables on ``stream`` may be as wide as they need: a pipe or a file (no terminal
+    to fit), ``COLUMNS`` unset."""
+    try:
+        terminal = stream.isatty()
+    except (AttributeError, ValueError):
+        terminal = False
+    return not terminal and not os.environ.get("COLUMNS", "").isdigit()
+
+
 def _pipe_width() -> int:
     given = os.environ.get("COLUMNS", "")
     return int(given) if given.isdigit() and int(given) > 0 else PIPE_WIDTH

@@ -90,3 +90,19 @@ def console(*, stderr: bool = False):
     stream = sys.stderr if stderr else sys.stdout
     width, height = output_size(stream)
     return Console(file=stream, width=width, height=height, highlight=False)
+
+
+MAX_STRETCH = 400  # columns a table in a pipe may take, at most (a title is padded to them)
+
+
+def fit(out, *tables: Table) -> None:
+    """In a pipe or a file (``COLUMNS`` unset), widen the console ``out`` so that ``tables``
+    are laid out whole rather than squeezed into 140 columns, up to :data:`MAX_STRETCH`."""
+    from txtool.views.plain import stretchable
+
+    if not stretchable(out.file):
+        return
+    options = out.options.update_width(MAX_STRETCH)
+    needed = max(out.measure(table, options=options).maximum for table in tables)
+    if needed > out.width:
+        out.width = needed
