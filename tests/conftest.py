@@ -54,3 +54,6 @@ def cleared_names(environ: dict[str, str] | os._Environ[str]) -> list[str]:
 def neutral_environment(monkeypatch: pytest.MonkeyPatch) -> None:
     for name in cleared_names(os.environ):
         monkeypatch.delenv(name, raising=False)
+        # A library that sets the process's environment below os.environ (ncurses exports
+        # COLUMNS and LINES, say) would still pass it to the programs the tests start.
+        os.unsetenv(name)

@@ -36,6 +36,7 @@ COMMAND_MODULES = (
     "schema",
     "demo",
     "lsp",
+    "completion",
 )
 
 
@@ -68,12 +69,12 @@ EXAMPLES: dict[str, tuple[str, ...]] = {
         "txtool roundtrip robot.urdf --against robot.ros2.urdf",
     ),
     "map": (
-        "txtool map robot.urdf -t elbow_trans --to actuator --position 0.5",
+        "txtool map robot.urdf -t shoulder_trans --to actuator --position 0.5",
         "txtool map robot.urdf -t wrist_trans --to joint --effort 1,1 --format json",
     ),
     "simulate": (
         "txtool simulate robot.urdf                       # the robot's own config",
-        "txtool simulate robot.urdf --config candidate.urdf --plot run.png",
+        "txtool simulate robot.urdf --candidate candidate.urdf --plot run.png",
         "txtool simulate robot.urdf --params controllers.yaml --format json",
         "txtool simulate robot.urdf --campaign campaign.toml   # perturbed robots, on Dask",
     ),
@@ -82,6 +83,11 @@ EXAMPLES: dict[str, tuple[str, ...]] = {
     "demo": ("txtool demo",),
     "lsp": ("txtool lsp                          # stdio, started by the editor",
             "txtool lsp --tcp 127.0.0.1:2087"),
+    "completion": (
+        "txtool completion bash > ~/.local/share/bash-completion/completions/txtool",
+        "txtool completion zsh > ~/.zfunc/_txtool   # fpath+=~/.zfunc before compinit",
+        "txtool completion fish > ~/.config/fish/completions/txtool.fish",
+    ),
 }
 
 

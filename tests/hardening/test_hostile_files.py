@@ -1,6 +1,6 @@
 """A pull request names the files in its tree: outputs keep off what it plants there.
 
-A workflow runs ``txtool validate . --output-file report.txt`` on a checkout of the pull
+A workflow runs ``txtool validate . --output report.txt`` on a checkout of the pull
 request; the request may hold ``report.txt`` as a symbolic link to a file of the runner, or make
 an output's name one of the robot descriptions read. A report, table or plot is written only to
 a regular file or a new name, never over an input; an input rewritten in place is replaced only
@@ -28,7 +28,7 @@ INPUT_REFUSED = "is an input of this command; its output is not written over it"
 
 
 WRITERS = {
-    "validate --output-file": ["validate", "robot.urdf", "--output-file"],
+    "validate --output": ["validate", "robot.urdf", "--output"],
     "convert -o": ["convert", "robot.urdf", "--to", "ros2-p2", "-o"],
     "convert --to bb -o": ["convert", "robot.urdf", "--to", "bb", "--allow-lossy", "-o"],
     "schema -o": ["schema", "-o"],
@@ -67,7 +67,7 @@ def test_a_report_never_replaces_the_robot_it_checks(run, tmp_path, spelling):
     (tmp_path / "robot.urdf").write_bytes(DEMO)
     (tmp_path / "sub").mkdir()
     output = SPELLINGS[spelling](tmp_path)
-    assert run("validate", "robot.urdf", "--output-file", output) == (
+    assert run("validate", "robot.urdf", "--output", output) == (
         2, "", f"txtool: {output}: {INPUT_REFUSED}\n")
     assert (tmp_path / "robot.urdf").read_bytes() == DEMO
 
@@ -77,11 +77,11 @@ def test_a_report_never_replaces_a_robot_found_in_a_folder(run, tmp_path):
     (tmp_path / "urdf" / "arm.urdf").write_bytes(ROBOT)
     (tmp_path / "urdf" / "old.urdf").write_bytes(DEMO)  # found too: any robot is kept
     for name, reason in (("urdf/arm.urdf", INPUT_REFUSED), ("urdf/old.urdf", INPUT_REFUSED)):
-        assert run("validate", ".", "--output-file", name) == (2, "", f"txtool: {name}: {reason}\n")
+        assert run("validate", ".", "--output", name) == (2, "", f"txtool: {name}: {reason}\n")
     assert (tmp_path / "urdf" / "arm.urdf").read_bytes() == ROBOT
     assert (tmp_path / "urdf" / "old.urdf").read_bytes() == DEMO
     findings = run("validate", ".")[0]
-    assert run("validate", ".", "--format", "sarif", "--output-file", "report.sarif") == (
+    assert run("validate", ".", "--format", "sarif", "--output", "report.sarif") == (
         findings, "", "")
     assert (tmp_path / "report.sarif").read_bytes().startswith(b"{")
 
@@ -187,7 +187,7 @@ def test_a_planted_folder_link_in_a_relative_output_path_is_not_followed(run, tm
     (home / "report.txt").write_bytes(SECRET)
     (home / ".config" / "report.txt").write_bytes(SECRET)
     (tmp_path / "reports").symlink_to(home / ".config")
-    code, out, err = run("validate", "robot.urdf", "--output-file", output)
+    code, out, err = run("validate", "robot.urdf", "--output", output)
     assert (code, out, err) == (2, "", (
         f"txtool: {output}: passes through the symbolic link {link}; txtool "
         "writes a new output named by a relative path only inside real folders (name a folder "

@@ -135,7 +135,7 @@ def test_an_ascii_output_escapes_what_it_cannot_hold(tmp_path, args):
 def test_standard_input_closed_is_one_line(tmp_path):
     for command in (["validate", "-"], ["show", "-"], ["convert", "-", "--to", "ros1"]):
         code, out, err = txtool(*command, cwd=tmp_path, stdin_closed=True)
-        summary = "No problems in 0 files; 1 file could not be read.\n"
+        summary = "1 file could not be read; nothing was checked.\n"
         assert (code, out) == (2, summary if command[0] == "validate" else ""), err
         assert err.endswith("txtool: -: standard input is closed; nothing to read\n"), err
         assert "internal error" not in err

@@ -171,7 +171,7 @@ def test_simulate_refuses_a_xacro_robot(run, robot, off):
 
 def test_simulate_refuses_a_xacro_candidate(run, robot, tmp_path):
     plain = Path(__file__).resolve().parents[2] / "fixtures" / "demo_robot.urdf"
-    assert run("simulate", "--no-xacro", str(plain), "--config", str(robot)) == (
+    assert run("simulate", "--no-xacro", str(plain), "--candidate", str(robot)) == (
         2, "", f"txtool: {robot}: simulate needs the xacro expansion, and xacro is off {OFF}\n")
 
 

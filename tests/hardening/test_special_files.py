@@ -74,7 +74,7 @@ def test_a_folder_walk_refuses_the_special_files_it_finds(specials):
     os.mkfifo(specials / "pipe.xml")  # an .xml is opened to read its root: never a FIFO
     code, out, err = txtool("validate", "urdf", cwd=specials.parent)
     assert code == 2
-    assert out == "No problems in 1 file; 4 files could not be read.\n"
+    assert out == "4 files could not be read; no findings in the 1 file read.\n"
     assert sorted(err.splitlines()) == sorted([
         f"txtool: urdf/noise.urdf.xacro: {CHARACTER}",
         f"txtool: urdf/pipe.urdf: {FIFO}",

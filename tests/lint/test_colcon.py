@@ -67,7 +67,7 @@ def test_validate_writes_the_junit_file_and_exits_as_always(tmp_path):
     out = tmp_path / "txtool.xunit.xml"
     broken = str(ROOT / "fixtures" / "broken_robot.urdf")
     result = CliRunner().invoke(cli, ["validate", broken, "--format", "junit",
-                                      "--output-file", str(out)])
+                                      "--output", str(out)])
     assert (result.exit_code, result.output) == (1, "")
     suite = etree.parse(str(out)).getroot()
     assert (suite.get("tests"), suite.get("failures")) == ("4", "4")
@@ -130,7 +130,7 @@ def test_colcon_test_result_reads_the_ament_cmake_result_file(tmp_path):
     results.mkdir(parents=True)
     broken = str(ROOT / "fixtures" / "broken_robot.urdf")
     CliRunner().invoke(cli, ["validate", broken, "--format", "junit",
-                             "--output-file", str(results / "txtool.xunit.xml")])
+                             "--output", str(results / "txtool.xunit.xml")])
     report = _colcon("test-result", "--verbose", "--test-result-base", "build", cwd=tmp_path)
     assert report.returncode == 1
     assert "txtool.xunit.xml: 4 tests, 0 errors, 4 failures, 0 skipped" in report.stdout

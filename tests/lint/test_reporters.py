@@ -196,9 +196,9 @@ def test_json_report_lists_the_files_that_could_not_be_read(with_unreadable):
     code, out, err = with_unreadable("json")
     report = json.loads(out)
     assert code == 2
-    assert [e["path"] for e in report["errors"]] == ["urdf/huge.urdf", "urdf/missing.urdf"]
-    assert all(e["message"].startswith(e["path"] + ":") for e in report["errors"])
-    assert err.splitlines() == [f"txtool: {e['message']}" for e in report["errors"]]
+    assert [e["path"] for e in report["unreadable"]] == ["urdf/huge.urdf", "urdf/missing.urdf"]
+    assert all(e["message"].startswith(e["path"] + ":") for e in report["unreadable"])
+    assert err.splitlines() == [f"txtool: {e['message']}" for e in report["unreadable"]]
     schema = json.loads((ROOT / "schemas" / "report.schema.json").read_text())
     jsonschema.Draft202012Validator(schema).validate(report)
 

@@ -35,7 +35,7 @@ def test_own_config_passes(arm):
 
 def test_flipped_candidate_fails_naming_the_joint(tmp_path, arm):
     flipped = write(tmp_path, "flipped.urdf", arm_ros1(n=-50))
-    code, out, err = txtool(arm, "--config", flipped, "--duration", "2")
+    code, out, err = txtool(arm, "--candidate", flipped, "--duration", "2")
     assert (code, err) == (1, "")
     assert "FAIL: joint 'shoulder': tracking error" in out
 
@@ -71,7 +71,7 @@ def test_csv_time_series(tmp_path, arm):
 def test_several_configs_give_one_comparison_table(tmp_path, arm):
     good = write(tmp_path, "ros2.urdf", arm_ros2())
     bad = write(tmp_path, "offset.urdf", arm_ros1(offset=0.4))
-    code, out, err = txtool(arm, "--config", good, "--config", bad, "--jobs", "2")
+    code, out, err = txtool(arm, "--candidate", good, "--candidate", bad, "--jobs", "2")
     assert (code, err) == (1, "")
     assert out.count("comparison") == 1
     assert "ros2.urdf: PASS" in out and "offset.urdf: FAIL: joint 'elbow'" in out
@@ -80,7 +80,7 @@ def test_several_configs_give_one_comparison_table(tmp_path, arm):
 
 def test_several_configs_json(tmp_path, arm):
     good = write(tmp_path, "ros2.urdf", arm_ros2())
-    code, out, _ = txtool(arm, "--config", good, "--config", arm, "--format", "json")
+    code, out, _ = txtool(arm, "--candidate", good, "--candidate", arm, "--format", "json")
     doc = json.loads(out)
     assert code == 0 and doc["verdict"] == "pass" and len(doc["runs"]) == 2
 
@@ -143,7 +143,7 @@ def test_demo_robot_against_its_conversions():
     args = [str(robot)]
     for name in ("demo_robot.ros2-p2.urdf", "demo_robot.ros2-p1.urdf"):
         if (FIXTURES / name).is_file():
-            args += ["--config", str(FIXTURES / name)]
+            args += ["--candidate", str(FIXTURES / name)]
     code, out, err = txtool(*args)
     assert (code, err) == (0, ""), out
 
@@ -155,9 +155,9 @@ def test_xacro_candidate_with_arguments(tmp_path, arm):
         'xmlns:xacro="http://www.ros.org/wiki/xacro">'
         '<xacro:arg name="n" default="50"/><xacro:property name="n" value="$(arg n)"/>')
     candidate = write(tmp_path, "arm.urdf.xacro", text)
-    code, out, _ = txtool(arm, "--config", candidate)
+    code, out, _ = txtool(arm, "--candidate", candidate)
     assert code == 0, out
-    code, out, _ = txtool(arm, "--config", candidate, "--xacro-arg", "n:=-50")
+    code, out, _ = txtool(arm, "--candidate", candidate, "--xacro-arg", "n:=-50")
     assert code == 1 and "FAIL: joint 'shoulder'" in out
 
 

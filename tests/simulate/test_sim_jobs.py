@@ -39,7 +39,7 @@ def test_two_jobs_give_the_json_of_one(tmp_path, forks):
                write(tmp_path, "flipped.urdf", arm_ros1(n=-50)), robot]
     args = [robot, "--format", "json"]
     for config in configs:
-        args += ["--config", config]
+        args += ["--candidate", config]
     one = simulate(*args, "-j", "1")
     assert forks == []
     two = simulate(*args, "-j", "2")
@@ -54,7 +54,7 @@ def test_two_jobs_give_the_json_of_one(tmp_path, forks):
 def test_a_bad_config_is_the_same_one_line_error_with_forks(tmp_path, forks):
     robot = write(tmp_path, "arm.urdf", arm_ros1())
     bad = write(tmp_path, "bad.urdf", "<robot><joint></robot>")
-    args = [robot, "--config", robot, "--config", bad]
+    args = [robot, "--candidate", robot, "--candidate", bad]
     one = simulate(*args, "-j", "1")
     assert simulate(*args, "-j", "2") == one
     code, out, err = one
@@ -63,7 +63,7 @@ def test_a_bad_config_is_the_same_one_line_error_with_forks(tmp_path, forks):
 
 def test_runs_shorter_than_a_fork_stay_in_one_process(tmp_path, forks):
     robot = write(tmp_path, "arm.urdf", arm_ros1())
-    args = [robot, "--config", robot, "--config", robot, "--format", "json", "-j", "2"]
+    args = [robot, "--candidate", robot, "--candidate", robot, "--format", "json", "-j", "2"]
     short = simulate(*args, "--duration", "0.1")
     assert forks == [] and len(json.loads(short[1])["runs"]) == 2
     simulate(*args, "--duration", "2")

@@ -147,7 +147,7 @@ def test_plot_formats_by_suffix(tmp_path, slider, suffix, magic):
 def test_plot_overlays_the_configs_in_one_file(tmp_path):
     robot = str(FIXTURES / "demo_robot.urdf")
     target = tmp_path / "compare.svg"
-    code, _, err = simulate(robot, "--config", robot, "--config", robot, "--plot", str(target))
+    code, _, err = simulate(robot, "--candidate", robot, "--candidate", robot, "--plot", str(target))
     assert (code, err) == (0, "")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["compare.svg"]
     svg = target.read_text(encoding="utf-8")

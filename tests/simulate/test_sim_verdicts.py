@@ -86,10 +86,10 @@ def test_several_configs_one_inconclusive_is_exit_3_and_named(tmp_path):
     robot = write(tmp_path, "arm.urdf", arm_ros1())
     blind = write(tmp_path, "blind.urdf",
                   f'<robot name="arm">{ARM_BODY}{customs("shoulder", "elbow", "wrist")}</robot>')
-    code, out, err = txtool(robot, "--config", robot, "--config", blind, "--duration", "1")
+    code, out, err = txtool(robot, "--candidate", robot, "--candidate", blind, "--duration", "1")
     assert (code, err) == (3, "")
     assert out.splitlines()[-1] == f"INCONCLUSIVE: 1 of 2 configs could not be checked: {blind}"
-    doc = json.loads(txtool(robot, "--config", robot, "--config", blind, "--duration", "1",
+    doc = json.loads(txtool(robot, "--candidate", robot, "--candidate", blind, "--duration", "1",
                             "--format", "json")[1])
     assert doc["verdict"] == "inconclusive"
     assert [r["verdict"] for r in doc["runs"]] == ["pass", "inconclusive"]

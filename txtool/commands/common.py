@@ -37,6 +37,41 @@ class Choice(click.Choice):
             self.fail(message + (f"; did you mean {hint}?" if hint else ""), param, ctx)
 
 
+class RenamedOption(click.Option):
+    """An option whose former spellings (``old_names``) still work: hidden from help and
+    completion, warning once on stderr that they are deprecated."""
+
+    def __init__(self, *args: Any, old_names: tuple[str, ...], **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self.old_names = tuple(old_names)
+
+    @property
+    def _old_dest(self) -> str:
+        return f"{self.name}.deprecated"
+
+    def add_to_parser(self, parser: Any, ctx: click.Context) -> None:
+        super().add_to_parser(parser, ctx)
+        parser.add_option(obj=self, opts=self.old_names, dest=self._old_dest,
+                          action="append" if self.multiple else "store", nargs=self.nargs)
+
+    def consume_value(self, ctx: click.Context, opts: Any) -> Any:
+        if self._old_dest in opts:
+            old = opts[self._old_dest]
+            opts = dict(opts)
+            if self.multiple:  # the values of the new spelling first, then the old one's
+                opts[self.name] = [*opts.get(self.name, ()), *old]
+            else:  # given both ways, the new spelling wins
+                opts.setdefault(self.name, old)
+            click.echo(f"txtool: warning: {'/'.join(self.old_names)} is deprecated; use "
+                       f"{'/'.join(self.opts)}", err=True)  # once, however often given
+        return super().consume_value(ctx, opts)
+
+
+# A file argument: any text, checked when read (one line naming it, not click's message), and
+# completed as a file name by `txtool completion`.
+FILE = click.Path(readable=False)
+
+
 # A target dialect said the short way: both ROS 2 forms, the one ros2_control parses first.
 TARGET_HINTS = {"ros2": "'ros2-p2' (role attributes, the form ros2_control parses) or 'ros2-p1'",
                 "ros": "'ros1'", "ros2_control": "'ros2-p2'", "ros_control": "'ros1'"}

@@ -9,6 +9,7 @@ import click
 
 from txtool.commands.common import (
     CONFIG_OPTION,
+    FILE,
     NO_XACRO_OPTION,
     TARGET_HINTS,
     Choice,
@@ -23,7 +24,7 @@ TARGETS = ("ros1", "ros2-p1", "ros2-p2", "bb")
 
 
 @click.command("convert")
-@click.argument("path", metavar="INPUT")
+@click.argument("path", metavar="INPUT", type=FILE)
 @click.option("--to", "target", type=Choice(TARGETS, hints=TARGET_HINTS), required=True,
               help="Target dialect (bb: Beam Bots DSL blocks for simple transmissions).")
 @click.option("-o", "--output", type=click.Path(dir_okay=False),

@@ -6,6 +6,7 @@ import click
 
 from txtool.commands.common import (
     CONFIG_OPTION,
+    FILE,
     NO_XACRO_OPTION,
     Choice,
     configured_packages,
@@ -18,7 +19,7 @@ from txtool.io.xmlio import InputError
 
 
 @click.command("map")
-@click.argument("file")
+@click.argument("file", type=FILE)
 @click.option("--transmission", "-t", "name", required=True, help="Name of the transmission.")
 @click.option("--to", "to", required=True, type=Choice(["actuator", "joint"]),
               help="actuator: map joint values to the actuators; joint: the reverse.")

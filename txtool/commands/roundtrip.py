@@ -8,6 +8,7 @@ import click
 
 from txtool.commands.common import (
     CONFIG_OPTION,
+    FILE,
     FORMAT_OPTION,
     NO_XACRO_OPTION,
     Choice,
@@ -20,8 +21,8 @@ from txtool.io.printable import printable
 
 
 @click.command("roundtrip")
-@click.argument("path", metavar="FILE")
-@click.option("--against", metavar="OTHER",
+@click.argument("path", metavar="FILE", type=FILE)
+@click.option("--against", metavar="OTHER", type=FILE,
               help="Instead, compare FILE's transmissions with OTHER's behaviourally.")
 @click.option("--effort-convention", "convention", type=Choice(["ros2", "ros1"]),
               help="With --against: map four-bar efforts of both files with ros2_control's "
@@ -79,7 +80,7 @@ def _print_table(report) -> None:
 def _print_rich_table(report) -> None:
     from rich.table import Table
 
-    from txtool.views.render import console, safe
+    from txtool.views.render import console, fit, safe
     from txtool.views.tables import FIELDS
 
     table = Table(title=safe(f"{report.path}: round trips"), title_justify="left")
@@ -92,6 +93,7 @@ def _print_rich_table(report) -> None:
             equivalent = "[red]no[/red]"
         table.add_row(safe(row.transmission), " → ".join(row.cycle), *marks, equivalent)
     out = console()
+    fit(out, table)
     out.print(table)
     for row in report.rows:
         reason = row.equivalent.split(": ", 1)[1:] if row.equivalent != "yes" else []
@@ -123,7 +125,7 @@ def _against(a, b, output_format, convention) -> int:
     else:
         from rich.table import Table
 
-        from txtool.views.render import console, safe
+        from txtool.views.render import console, fit, safe
 
         table = Table(title=safe(f"{a.path} against {b.path}"), title_justify="left")
         for column in ("joints", safe(a.path), safe(b.path), "status", "reason"):
@@ -133,6 +135,7 @@ def _against(a, b, output_format, convention) -> int:
             table.add_row(safe(", ".join(r.joints)), safe(r.a or "-"), safe(r.b or "-"), status,
                           safe(r.reason))
         out = console()
+        fit(out, table)
         out.print(table)
         out.print("efforts: " + (f"{convention} maps for both (--effort-convention)" if convention
                                  else "each file through its own loader's maps"), markup=False)

@@ -17,7 +17,7 @@ from txtool.commands.common import Choice, exit_on_input_error
 def command(code: str | None, output_format: str) -> int:
     """List every rule, or show the documentation of CODE (a code such as TX105, or a name)."""
     from txtool.io.xmlio import InputError
-    from txtool.lint.ruledoc import plain
+    from txtool.lint.ruledoc import markdown, plain
     from txtool.rules import UnknownRule, all_rules, get
 
     if code is None:
@@ -30,15 +30,16 @@ def command(code: str | None, output_format: str) -> int:
     if output_format == "json":
         rows = [
             {"code": r.code, "name": r.name, "severity": r.severity, "fixable": r.fixable,
-             "summary": r.summary, "doc": r.doc}
+             "summary": plain(r.summary), "doc": plain(r.doc),
+             "markdown": markdown(r, heading="#")}
             for r in rules
         ]
-        click.echo(json.dumps(rows if code is None else rows[0], indent=2))
+        click.echo(json.dumps(rows, indent=2))  # one shape: a list, of one rule for CODE
     elif code is None:
         width = max(len(r.name) for r in rules)
         for r in rules:
             fix = "fix" if r.fixable else "   "
-            click.echo(f"{r.code}  {r.name:<{width}}  {r.severity:<7}  {fix}  {r.summary}")
+            click.echo(f"{r.code}  {r.name:<{width}}  {r.severity:<7}  {fix}  {plain(r.summary)}")
     else:
         rule = rules[0]
         fixable = (", fixable by 'txtool validate --fix' and 'txtool migrate'" if rule.fixable

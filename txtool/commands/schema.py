@@ -12,7 +12,7 @@ from txtool.commands.common import exit_on_input_error
               help="Write to a file (atomically).")
 @exit_on_input_error
 def command(output) -> int:
-    """Print the JSON Schema of ``txtool show --format json`` (schemas/transmission.schema.json)."""
+    """Print the JSON Schema of 'txtool show --format json' (schemas/transmission.schema.json)."""
     from txtool.io.xmlio import write_atomic
     from txtool.model.schema import schema_text
 

@@ -8,6 +8,7 @@ import click
 
 from txtool.commands.common import (
     CONFIG_OPTION,
+    FILE,
     FORMAT_OPTION,
     NO_XACRO_OPTION,
     configured_packages,
@@ -19,7 +20,7 @@ from txtool.model.distro import CHOICES
 
 
 @click.command("show")
-@click.argument("path", metavar="FILE")
+@click.argument("path", metavar="FILE", type=FILE)
 @FORMAT_OPTION
 @click.option("--effective", is_flag=True,
               help="Show what each loader binds: parameters after its silent defaults, in its "
@@ -70,7 +71,7 @@ def command(path, output_format, effective, actuator_limits, stdin_filename, ros
         click.echo(json.dumps(data, indent=2))
         return 0
     from txtool.views.render import console as make_console
-    from txtool.views.render import limits_table, transmissions_table
+    from txtool.views.render import fit, limits_table, transmissions_table
 
     console = make_console()
     if readers is not None:
@@ -83,10 +84,14 @@ def command(path, output_format, effective, actuator_limits, stdin_filename, ros
                    nl=False)
         click.echo(readers_text(*readers), nl=False)
     else:
-        console.print(transmissions_table(transmissions, f"{source.path}: "
-                                          f"{len(transmissions)} transmission(s)"))
+        table = transmissions_table(transmissions, f"{source.path}: "
+                                    f"{len(transmissions)} transmission(s)")
+        fit(console, table)
+        console.print(table)
     if limits is not None:
-        console.print(limits_table(limits))
+        table = limits_table(limits)
+        fit(console, table)
+        console.print(table)
     return 0
 
 

@@ -8,9 +8,11 @@ from typing import TYPE_CHECKING, Any
 import click
 
 from txtool.commands.common import (
+    FILE,
     FORMAT_OPTION,
     NO_XACRO_OPTION,
     Choice,
+    RenamedOption,
     exit_on_input_error,
     refuse_unexpanded,
     require_extra,
@@ -78,8 +80,9 @@ def refuse_campaign_options(campaign: dict[str, Any]) -> None:
 
 
 @click.command("simulate")
-@click.argument("robot", metavar="ROBOT")
-@click.option("--config", "configs", multiple=True, metavar="CANDIDATE",
+@click.argument("robot", metavar="ROBOT", type=FILE)
+@click.option("--candidate", "configs", cls=RenamedOption, old_names=("--config",),
+              multiple=True, metavar="CANDIDATE", type=FILE,
               help="Config whose transmissions the controller uses (repeat to compare several; "
                    "default: ROBOT's own).")
 @click.option("--params", "params", multiple=True, type=click.Path(dir_okay=False),

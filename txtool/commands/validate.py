@@ -11,6 +11,7 @@ import click
 from txtool.commands.common import (
     COLOR_MODES,
     Choice,
+    RenamedOption,
     color_wanted,
     exit_on_input_error,
     xacro_options,
@@ -22,7 +23,7 @@ FORMATS = ("text", "json", "github", "sarif", "junit")
 
 
 class OutputFormat(Choice):
-    """``NAME`` (the report on stdout, or in ``--output-file``) or ``NAME:FILE`` (that report
+    """``NAME`` (the report on stdout, or in ``--output``) or ``NAME:FILE`` (that report
     written to FILE too), as pylint's ``--output-format=json:report.json``."""
 
     name = "format"
@@ -70,7 +71,8 @@ def use_color(mode: str, output_file: str | None = None) -> bool:
 @click.option("--color", type=Choice(COLOR_MODES), default="auto", show_default=True,
               help="Colour the text output: auto colours a terminal unless NO_COLOR is set "
                    "(FORCE_COLOR colours a pipe too).")
-@click.option("-o", "--output-file", type=click.Path(dir_okay=False), metavar="FILE",
+@click.option("-o", "--output", "output_file", cls=RenamedOption, old_names=("--output-file",),
+              type=click.Path(dir_okay=False), metavar="FILE",
               help="Write the report to FILE (replaced whole, atomically) instead of stdout.")
 @click.option("--fix", is_flag=True,
               help="Apply the fixable rules' fixes (as txtool migrate does) to the files "
@@ -109,7 +111,7 @@ def command(paths, output_formats, select, ignore, strict, exit_zero, config_pat
     if (quiet or statistics) and main != "text":
         raise click.UsageError(f"--quiet and --statistics go with --format text, not {main}")
     if diff and (output_formats or output_file or quiet or statistics):
-        raise click.UsageError("--diff prints a diff: it takes no --format, --output-file, "
+        raise click.UsageError("--diff prints a diff: it takes no --format, --output, "
                                "--quiet or --statistics")
     if (fix or diff) and "-" in paths:
         raise click.UsageError(f"--{'diff' if diff else 'fix'} rewrites files in place; "
@@ -133,7 +135,10 @@ def command(paths, output_formats, select, ignore, strict, exit_zero, config_pat
         _warn_unused_args(list(paths), no_xacro)
     targets = list(paths) or ["."]
     selection = FixSelection(options.select, options.ignore, config_path)
-    result = lint_paths(targets, options)
+    from txtool.commands.progress import file_progress
+
+    with file_progress() as progress:
+        result = lint_paths(targets, options, progress)
     fix_failed = False
     if diff:
         tell(result)
@@ -159,11 +164,11 @@ class _Look(NamedTuple):
 
 def _outputs(formats: tuple[tuple[str, str | None], ...],
              output_file: str | None) -> tuple[str, list[tuple[str, str]]]:
-    """The report on stdout (or in --output-file) and the reports written to files."""
+    """The report on stdout (or in --output) and the reports written to files."""
     shown = [name for name, path in formats if path is None]
     if len(shown) > 1:
         raise click.UsageError("--format without a FILE names the report on stdout (or in "
-                               f"--output-file): give one, not {len(shown)}")
+                               f"--output): give one, not {len(shown)}")
     files = [(name, path) for name, path in formats if path is not None]
     paths = [os.path.abspath(path) for _, path in files] + (
         [os.path.abspath(output_file)] if output_file else [])

@@ -5,7 +5,7 @@ from __future__ import annotations
 import os
 import sys
 import threading
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from typing import NamedTuple
 
 from txtool.io.xmlio import InputError, XacroOptions
@@ -54,8 +54,10 @@ class LintResult:
         return sum(1 for p in self.problems if p.severity == severity)
 
 
-def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions) -> LintResult:
-    """Lint files, folders (recursively) and ``-``.
+def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions,
+               progress: Callable[[int, int], None] | None = None) -> LintResult:
+    """Lint files, folders (recursively) and ``-``; ``progress`` is told (files done, files in
+    all) as each file's result arrives.
 
     A file that cannot be read is recorded in ``errors`` and the others are still checked; a
     bad configuration or rule selection raises :class:`~txtool.lint.config.ConfigError`. Many
@@ -81,7 +83,9 @@ def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions) -> Lint
     result = LintResult()
     result.errors.extend(unread)
     result.notes.extend(settings.notes)
-    for outcome in _outcomes(work, options, paths, _fragments(work, paths)):
+    for done, outcome in enumerate(_outcomes(work, options, paths, _fragments(work, paths)), 1):
+        if progress is not None:
+            progress(done, len(work))
         if isinstance(outcome, InputFailure):
             result.errors.append(outcome)
             continue

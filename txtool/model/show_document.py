@@ -92,6 +92,24 @@ class ActuatorLimitRow:
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
+class ShownReaders:
+    """The programs judged to read the file (``show --effective``; see "Readers" in
+    docs/loaders.md)."""
+
+    __pydantic_config__ = _PYDANTIC_CONFIG
+
+    readers: tuple[str, ...]
+    """Reader names, e.g. ros2_control (jazzy), gz_ros2_control, ros_control."""
+    because: tuple[str, ...]
+    """Why each reader was assumed, in the same order."""
+    decided: bool
+    """True when the readers are known; false when nothing said, and each transmission is
+    shown as the loader of its dialect binds it."""
+    unread: tuple[str, ...]
+    """The transmissions none of the readers reads."""
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
 class ShowDocument:
     """What ``txtool show --format json`` prints, transmissions in document order."""
 
@@ -100,3 +118,5 @@ class ShowDocument:
     transmissions: tuple[ShownTransmission, ...] = ()
     actuator_limits: tuple[ActuatorLimitRow, ...] | None = None
     """Present with --actuator-limits."""
+    readers: ShownReaders | None = None
+    """Present with --effective."""

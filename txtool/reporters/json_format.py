@@ -42,8 +42,8 @@ def report(problems: Sequence[Problem], summary: Summary) -> dict[str, Any]:
             "end_column": end_column, "severity": p.severity, "code": p.code, "name": p.name,
             "message": p.message, "fixable": bool(p.fixable),
         })
-    errors = [{"path": f.path, "message": f.message} for f in summary.failures]
-    return {"problems": rows, "errors": errors, "readers": _readers(summary),
+    unreadable = [{"path": f.path, "message": f.message} for f in summary.failures]
+    return {"problems": rows, "unreadable": unreadable, "readers": _readers(summary),
             "summary": _totals(summary)}
 
 
@@ -63,8 +63,9 @@ def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False
 
 def _render(problems: Sequence[Problem], summary: Summary) -> str:
     whole = report((), summary)
-    tail = {"errors": whole["errors"], "readers": whole["readers"], "summary": _totals(summary)}
-    totals = json.dumps(tail, indent=2, ensure_ascii=False)[2:]  # '"errors": ...\n}'
+    tail = {"unreadable": whole["unreadable"], "readers": whole["readers"],
+            "summary": _totals(summary)}
+    totals = json.dumps(tail, indent=2, ensure_ascii=False)[2:]  # '"unreadable": ...\n}'
     if not problems:
         return '{\n  "problems": [],\n' + totals + "\n"
     rows = []

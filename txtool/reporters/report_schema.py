@@ -31,8 +31,8 @@ class ReportProblem(BaseModel):
                           "of `txtool migrate`).")
 
 
-class ReportError(BaseModel):
-    """A file that could not be checked (the run exits 2)."""
+class ReportUnreadable(BaseModel):
+    """A file that could not be read or checked (the run exits 2)."""
 
     model_config = ConfigDict(extra="forbid")
 
@@ -78,7 +78,10 @@ class Report(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     problems: list[ReportProblem]
-    errors: list[ReportError] = Field(description="Files that could not be read or checked.")
+    unreadable: list[ReportUnreadable] = Field(
+        description="Files that could not be read or checked (summary.errors counts error "
+        "findings, not these)."
+    )
     readers: list[ReportReaders] = Field(
         description="For each file holding transmissions, the readers it was judged for."
     )

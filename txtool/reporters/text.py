@@ -37,11 +37,15 @@ def summary_line(summary: Summary) -> str:
         )
         if count
     ]
+    unreadable = _plural(summary.unreadable, "file")
+    if not counts and summary.unreadable:  # never "No problems" beside a failure (exit 2)
+        read = f"no findings in the {files} read" if summary.files else "nothing was checked"
+        return f"{unreadable} could not be read; {read}."
     line = f"Found {', '.join(counts)} in {files}" if counts else f"No problems in {files}"
     if summary.not_expanded:
         line += f"; {_plural(summary.not_expanded, 'file')} not expanded (TX002)"
     if summary.unreadable:
-        line += f"; {_plural(summary.unreadable, 'file')} could not be read"
+        line += f"; {unreadable} could not be read"
     if summary.fixable:
         line += f"; {summary.fixable} fixable with {FIX_HINT}"
     return line + "."
@@ -110,6 +114,6 @@ def _render_rich(problems: Sequence[Problem], summary: Summary | None) -> str:
             )
         )
     if summary is not None:
-        failed = summary.errors or summary.warnings or summary.infos
+        failed = summary.errors or summary.warnings or summary.infos or summary.unreadable
         console.print(Text(summary_line(summary), style="bold" if failed else "green"))
     return out.getvalue()

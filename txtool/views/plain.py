@@ -22,6 +22,25 @@ _PLAIN = re.compile(r"[ -Z^-~✓✗→]*")  # printable ASCII but [ \ ], and the
 _EMOJI_CODE = re.compile(r":\S*?:")
 
 
+def output_size(stream: TextIO) -> tuple[int, int]:
+    """Columns and lines for rich's tables on ``stream``: ``COLUMNS`` when set; else a
+    terminal's own size, or :data:`PIPE_WIDTH` for a pipe or a file (wide enough that the
+    tables do not wrap). Given to rich always, so that ``TERM=dumb`` (``--color never``) keeps
+    the terminal's width rather than rich's 80 columns."""
+    lines = 25
+    try:
+        size = os.get_terminal_size(stream.fileno()) if stream.isatty() else None
+    except (AttributeError, ValueError, OSError):
+        size = None
+    columns = size.columns if size is not None and size.columns > 0 else PIPE_WIDTH
+    if size is not None and size.lines > 0:
+        lines = size.lines
+    given = os.environ.get("COLUMNS", "")
+    if given.isdigit() and int(given) > 0:
+        columns = int(given)
+    return columns, lines
+
+
 def plain_output(stream: TextIO) -> bool:
     """Whether rich would write to ``stream`` at the pipe width without colour or styles: not
     a terminal (``isatty``), and no variable of rich's says it is one."""
@@ -37,6 +56,21 @@ def plain_output(stream: TextIO) -> bool:
     return os.environ.get("FORCE_COLOR") in (None, "") or os.environ.get("TTY_COMPATIBLE") == "0"
 
 
+def stretchable(stream: TextIO) -> bool:
+    """Whether tables on ``stream`` may be as wide as they need: a pipe or a file (no terminal
+    to fit), ``COLUMNS`` unset."""
+    try:
+        terminal = stream.isatty()
+    except (AttributeError, ValueError):
+        terminal = False
+    return not terminal and not os.environ.get("COLUMNS", "").isdigit()
+
+
+def _pipe_width() -> int:
+    given = os.environ.get("COLUMNS", "")
+    return int(given) if given.isdigit() and int(given) > 0 else PIPE_WIDTH
+
+
 def _plain(text: str) -> bool:
     return _PLAIN.fullmatch(text) is not None and not _EMOJI_CODE.search(text)
 
@@ -46,11 +80,14 @@ def plain_table(
     columns: Sequence[str],
     rows: Sequence[Sequence[str]],
     lines: Sequence[str] = (),
-    width: int = PIPE_WIDTH,
+    width: int | None = None,
 ) -> str | None:
     """rich's ``Table(title=title, title_justify="left")`` of these columns and rows, then
     ``lines``, as printed at ``width`` without colour; None unless every text is plain and the
-    table and each line fit the width. Texts are as printed (no markup)."""
+    table and each line fit the width (by default a pipe's, see :func:`output_size`). Texts
+    are as printed (no markup)."""
+    if width is None:
+        width = _pipe_width()
     texts = {title, *columns, *lines, *(cell for row in rows for cell in row)}
     if not all(_plain(text) for text in texts) or any(len(line) > width for line in lines):
         return None

@@ -79,11 +79,30 @@ def _maybe(value: float | None) -> str:
 
 
 def console(*, stderr: bool = False):
-    """A rich console; wide enough for tables when output goes to a file or a pipe."""
+    """A rich console as wide as the terminal, or wide enough for tables when output goes to
+    a file or a pipe (see :func:`txtool.views.plain.output_size`)."""
     import sys
 
     from rich.console import Console
 
+    from txtool.views.plain import output_size
+
     stream = sys.stderr if stderr else sys.stdout
-    width = None if stream.isatty() else 140
-    return Console(file=stream, width=width, highlight=False)
+    width, height = output_size(stream)
+    return Console(file=stream, width=width, height=height, highlight=False)
+
+
+MAX_STRETCH = 400  # columns a table in a pipe may take, at most (a title is padded to them)
+
+
+def fit(out, *tables: Table) -> None:
+    """In a pipe or a file (``COLUMNS`` unset), widen the console ``out`` so that ``tables``
+    are laid out whole rather than squeezed into 140 columns, up to :data:`MAX_STRETCH`."""
+    from txtool.views.plain import stretchable
+
+    if not stretchable(out.file):
+        return
+    options = out.options.update_width(MAX_STRETCH)
+    needed = max(out.measure(table, options=options).maximum for table in tables)
+    if needed > out.width:
+        out.width = needed
