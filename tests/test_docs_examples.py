@@ -4,7 +4,7 @@ A ```console block is a session: lines starting with ``$ `` are commands (a trai
 continues one), the lines after a command are what it prints (standard output and standard
 error together). A line ``...`` stands for any number of lines, and a line ending in ``...``
 for any line that starts with what comes before it. A command followed by no lines prints
-nothing. The commands of a page run one after another, in one folder laid out as
+nothing. A block marked ``<!-- not run: REASON -->`` is shown only (see :data:`NOT_RUN`). The commands of a page run one after another, in one folder laid out as
 ``txtool demo --copy DIR`` lays it out (the demo robots in ``fixtures/``, and ``fixtures/examples/*``
 at its top), so a page can change a file and look at it again; a ``$ cd DIR`` moves the
 commands that follow into ``DIR``. A contributor's page runs in a copy of the repository.
@@ -24,7 +24,13 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
-BLOCK = re.compile(r"^```console\n(.*?)^```$", re.M | re.S)
+BLOCK = re.compile(r"^(?:<!-- not run: (?P<why>[^\n]+) -->\n)?```console\n(?P<body>.*?)^```$",
+                   re.M | re.S)
+# The console examples that are shown, not run, each with its reason (a cluster's address, a
+# run of minutes): this list, not the pages, says which may be.
+NOT_RUN = {
+    "simulate.md": 3,
+}
 
 
 @dataclass
@@ -34,12 +40,14 @@ class Step:
 
 
 def sessions(text: str) -> list[list[Step]]:
-    """The console blocks of a page, each as its commands and their shown output."""
+    """The console blocks of a page that run, each as its commands and their shown output."""
     blocks = []
     for match in BLOCK.finditer(text):
+        if match.group("why"):
+            continue
         steps: list[Step] = []
         continued = False
-        for line in match.group(1).splitlines():
+        for line in match.group("body").splitlines():
             if continued:
                 steps[-1].command += "\n" + line
                 continued = line.endswith("\\")
@@ -94,7 +102,8 @@ def workspace(tmp_path: Path) -> Path:
 def run(step: Step, cwd: Path) -> list[str]:
     env = {key: value for key, value in os.environ.items()
            if not key.startswith(("TXTOOL_", "GITHUB_", "ROS_", "AMENT_", "CMAKE_", "FORCE_COLOR"))}
-    env.update(NO_COLOR="1", COLUMNS="100", PYTHONUNBUFFERED="1",
+    env.pop("COLUMNS", None)  # in a pipe, a table takes the width it needs
+    env.update(NO_COLOR="1", PYTHONUNBUFFERED="1",
                PATH=os.pathsep.join([str(Path(sys.executable).parent), env.get("PATH", "")]))
     done = subprocess.run(["bash", "-c", step.command], cwd=cwd, env=env, timeout=300,
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
@@ -110,6 +119,12 @@ def test_the_session_reader_and_the_wildcards():
     assert not matches(["one"], ["one", "two"])
     assert not matches([], ["unexpected"])
     assert not matches(["one", "...", "four"], ["one", "two"])
+
+
+def test_only_the_listed_examples_are_not_run():
+    shown = {page.name: len([m for m in BLOCK.finditer(page.read_text(encoding="utf-8"))
+                             if m.group("why")]) for page in PAGES}
+    assert {name: count for name, count in shown.items() if count} == NOT_RUN
 
 
 @pytest.mark.parametrize("page", PAGES, ids=lambda p: p.relative_to(ROOT).as_posix())
