@@ -54,7 +54,7 @@ def command(path, output_format, effective, actuator_limits, stdin_filename, ros
     found = read_source(source)
     transmissions = [f.transmission for f in found]
     limits = _limits(source, transmissions) if actuator_limits else None
-    readers = _readers(source, found, ros_distro) if effective else None
+    readers = _readers(source, found, ros_distro, config_path) if effective else None
     if output_format == "json":
         distro = _one_ros2_distro(readers[0]) if readers is not None else None
         data: dict = {"transmissions": shown_json(transmissions, bindings_of(found, distro))}
@@ -95,13 +95,13 @@ def command(path, output_format, effective, actuator_limits, stdin_filename, ros
     return 0
 
 
-def _readers(source, found, ros_distro):
-    """The file's readers (the configuration's readers and ros-distro, --ros-distro over it)
-    and the names of the transmissions none of them reads."""
+def _readers(source, found, ros_distro, config_path):
+    """The file's readers (the configuration's readers and ros-distro, --config's when given,
+    --ros-distro over it) and the names of the transmissions none of them reads."""
     from txtool.lint.config import readers_of
     from txtool.views.readers_view import unread_names
 
-    assumption = readers_of(source, ros_distro)
+    assumption = readers_of(source, ros_distro, config_path)
     return assumption, unread_names(assumption, [f.element for f in found])
 
 

@@ -433,11 +433,13 @@ class SettingsCache:
         return dataclasses.replace(settings, xacro=xacro)
 
 
-def readers_of(source: Source, ros_distro: str | None = None) -> Assumption:
+def readers_of(source: Source, ros_distro: str | None = None,
+               config: str | None = None) -> Assumption:
     """The readers of ``source`` as ``validate`` decides them: the ``readers`` and ``ros-distro``
-    of the configuration that applies to it, ``ros_distro`` (``--ros-distro``) over them."""
+    of the configuration that applies to it (``config``, ``--config``, when given),
+    ``ros_distro`` (``--ros-distro``) over them."""
     from txtool.lint.readers import assumption_of
 
     where = source.path if source.path not in ("", "-") else "-"
-    stated = SettingsCache(Overrides(ros_distro=ros_distro)).for_file(where).stated
+    stated = SettingsCache(Overrides(ros_distro=ros_distro), config).for_file(where).stated
     return assumption_of(source, stated)

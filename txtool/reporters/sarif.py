@@ -77,7 +77,7 @@ def _rule(rule: Any) -> dict[str, Any]:
     return {
         "id": rule.code,
         "name": rule.name,
-        "shortDescription": {"text": rule.summary},
+        "shortDescription": {"text": plain(rule.summary)},
         "fullDescription": {"text": _first_paragraphs(plain(doc))},
         "helpUri": RULE_DOCS.format(code=rule.code),
         "help": {"text": plain(doc), "markdown": markdown(rule)},

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-import os
 import time
 from dataclasses import replace
 
@@ -14,9 +13,9 @@ from txtool.simulation import json_report, plot, report
 from txtool.simulation.jobs import execute
 from txtool.simulation.result import RunResult
 from txtool.simulation.run import Options, exit_code
+from txtool.views import render
 
 SHOW_AFTER = 1.0  # seconds: shorter runs get no progress bar
-WIDE = 132  # columns for reports written to files and pipes
 
 
 class LazyProgress:
@@ -49,9 +48,8 @@ def main(options: Options, *, output: str = "text", csv_path: str | None = None,
          err_console: Console | None = None) -> tuple[list[RunResult], int]:
     """Run every config, print the report, write the optional files; (runs, exit code)."""
     if console is None:
-        console = Console()
-        if not console.is_terminal and "COLUMNS" not in os.environ:
-            console.width = WIDE
+        # The terminal's width (--color never too), or wide enough for the tables in a pipe.
+        console = render.console()
     err_console = err_console or Console(stderr=True)
     if plot_path is not None:
         plot.require(plot_path)

@@ -14,7 +14,6 @@ import contextlib
 import json
 import logging
 import multiprocessing
-import os
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, replace
 from typing import Any
@@ -29,10 +28,10 @@ from txtool.simulation.jobs import usable_cpus
 from txtool.simulation.params import _line_of
 from txtool.simulation.report import VERDICT_CELL, escape
 from txtool.simulation.run import EXIT_INCONCLUSIVE, Options, candidates
+from txtool.views import render
 
 CONNECT_TIMEOUT = "10s"
 PRELOAD = ("distributed", "txtool.simulation.campaign_task")  # what a forked worker runs
-WIDE = 132  # columns for reports written to files and pipes, as simulate's
 
 
 @dataclass(frozen=True)
@@ -212,9 +211,7 @@ def _worst(s: dict[str, Any]) -> str:
 def main(path: str, options: Options, where: Where, output: str = "text") -> int:
     """Run the campaign, print it on stdout, return the exit code."""
     document = run_campaign(path, options, where)
-    console = Console()
-    if not console.is_terminal and "COLUMNS" not in os.environ:
-        console.width = WIDE
+    console = render.console()  # the terminal's width, or wide enough in a pipe
     if output == "json":
         render_json(document, console)
     else:
