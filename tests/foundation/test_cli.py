@@ -237,6 +237,8 @@ def _example_folder(folder, fixtures) -> None:
     (folder / "candidate.urdf").write_text((fixtures / "demo_robot.ros2-p1.urdf").read_text())
     (folder / "generated.urdf").write_text(demo)
     (folder / "controllers.yaml").write_text(CONTROLLERS)
+    (folder / "campaign.toml").write_text(  # one sample: the help's example, kept short
+        'seed = 1\nsamples = 1\n[bounds]\ngains = [0.9, 1.1]\n')
     (folder / "urdf").mkdir()
     (folder / "urdf" / "robot.urdf").write_text(demo)
     (folder / "urdf" / "broken.urdf").write_text((fixtures / "broken_robot.urdf").read_text())
