@@ -25,7 +25,7 @@ STEPS = [
     "txtool validate demo_robot.urdf",
     "txtool validate broken_robot.urdf",
     "txtool simulate fixtures/demo_robot.urdf",
-    "txtool simulate fixtures/demo_robot.urdf --config <'shoulder_trans' reversed>",
+    "txtool simulate fixtures/demo_robot.urdf --candidate <'shoulder_trans' reversed>",
     "done",
 ]
 RULE = re.compile(r"^─+ (.+?) ─+$")

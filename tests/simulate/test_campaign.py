@@ -134,7 +134,7 @@ def test_a_candidate_named_twice_is_summarised_twice(tmp_path, robots):
 def test_the_command_s_configs_are_the_candidates_when_the_file_names_none(tmp_path, robots):
     robot, flipped = robots
     path = campaign(tmp_path, "samples = 1\n")
-    code, out, _ = simulate(robot, "--config", flipped, "--campaign", path, "--serial",
+    code, out, _ = simulate(robot, "--candidate", flipped, "--campaign", path, "--serial",
                             "--duration", "0.3", "--format", "json")
     assert code == 1
     assert [c["config"] for c in json.loads(out)["candidates"]] == [flipped]

@@ -284,7 +284,7 @@ def test_the_command_line_fails_a_role_swap_naming_the_roles(tmp_path):
     candidate = tmp_path / "candidate.urdf"
     candidate.write_text(_roles_swapped(DIFFERENTIAL.ros1(), "actuator1", "actuator2"),
                          encoding="utf-8")
-    result = CliRunner().invoke(cli, ["simulate", str(robot), "--config", str(candidate),
+    result = CliRunner().invoke(cli, ["simulate", str(robot), "--candidate", str(candidate),
                                       "--duration", "1"], catch_exceptions=False)
     assert (result.exit_code, result.stderr) == (1, "")
     assert "FAIL: joint 'wrist': tracking error" in result.stdout

@@ -57,9 +57,9 @@ def documents(tmp_path_factory):
                                                            "acme/"))
     ct = write(folder, "ct.yaml", CT_GAINS)
     effort = write(folder, "ros2.yaml", ROS2_GAINS)
-    one = txtool(robot, "--config", flipped, "--duration", "1", "--format", "json",
+    one = txtool(robot, "--candidate", flipped, "--duration", "1", "--format", "json",
                  "--params", ct, "--params", effort)
-    many = txtool(robot, "--config", robot, "--config", flipped, "--config", blind,
+    many = txtool(robot, "--candidate", robot, "--candidate", flipped, "--candidate", blind,
                   "--duration", "1", "--format", "json")
     return one, many
 

@@ -97,13 +97,13 @@ def _distro_pair(tmp_path) -> tuple[str, str]:
 
 def test_numbers_are_read_as_the_named_distribution_reads_them(tmp_path):
     robot, config = _distro_pair(tmp_path)
-    code, out, err = txtool(robot, "--config", config, "--duration", "1",
+    code, out, err = txtool(robot, "--candidate", config, "--duration", "1",
                             "--ros-distro", "jazzy")
     assert (code, err) == (0, "")
     assert "robot read by: ros2_control (jazzy) (--ros-distro jazzy)" in out
     assert "config read by: ros2_control (jazzy) (--ros-distro jazzy)" in out
     assert "PASS" in out
-    code, out, err = txtool(robot, "--config", config, "--duration", "1",
+    code, out, err = txtool(robot, "--candidate", config, "--duration", "1",
                             "--ros-distro", "humble")
     assert (code, err) == (1, "")
     assert "robot read by: ros2_control (humble) (--ros-distro humble)" in out
@@ -113,7 +113,7 @@ def test_numbers_are_read_as_the_named_distribution_reads_them(tmp_path):
 
 def test_a_number_distributions_read_differently_is_read_as_jazzy_with_a_note(tmp_path):
     robot, config = _distro_pair(tmp_path)
-    code, out, err = txtool(robot, "--config", config, "--duration", "1")
+    code, out, err = txtool(robot, "--candidate", config, "--duration", "1")
     assert (code, err) == (0, "")
     assert ("transmission 't_shoulder': ROS 2 distributions read its numbers differently "
             "(Humble with istringstream, Jazzy and later with from_chars) and nothing says "
@@ -124,7 +124,7 @@ def test_a_number_distributions_read_differently_is_read_as_jazzy_with_a_note(tm
 def test_ros_distro_in_the_configuration_is_taken_as_validate_takes_it(tmp_path):
     robot, config = _distro_pair(tmp_path)
     (tmp_path / ".txtool.toml").write_text('ros-distro = "humble"\n', encoding="utf-8")
-    code, out, err = txtool(robot, "--config", config, "--duration", "1")
+    code, out, err = txtool(robot, "--candidate", config, "--duration", "1")
     assert (code, err) == (1, "")
     assert f"robot read by: ros2_control (humble) (ros-distro humble in {tmp_path}" in out
 

@@ -36,7 +36,7 @@ def demo_runs(console: Console, robot: Path | None = None) -> None:
     with tempfile.TemporaryDirectory(prefix="txtool-demo-") as folder:
         flipped, what = flipped_copy(str(path), Path(folder))
         label = f"{shown} with {what}"
-        console.print(Rule(f"txtool simulate {shown} --config <{what}>"))
+        console.print(Rule(f"txtool simulate {shown} --candidate <{what}>"))
         run = simulate_one(Options(robot=str(path), keep_series=False), str(flipped),
                            label=label)
     console.print(f"{escape(label)}: {report.verdict_line(run)}", soft_wrap=True)

@@ -27,6 +27,7 @@ def run_json(run: RunResult) -> dict[str, Any]:
     return {
         "verdict": run.verdict,
         "reasons": list(run.reasons),
+        "causes": [{"kind": c.kind, "text": c.text} for c in run.causes],
         "robot": run.robot,
         "config": run.config,
         "readers": {role: r.as_json() for role, r in run.readers.items()},

@@ -191,7 +191,7 @@ class RunResult:
     # per joint: static_load, limit, carried (peaks) and units of an assumed counterbalance
     counterbalance: dict[str, dict[str, float | str]] = field(default_factory=dict)
     coverage: Coverage = field(default_factory=Coverage)
-    # "robot" and, with --config, "config": the programs that read each file, and why
+    # "robot" and, with --candidate, "config": the programs that read each file, and why
     readers: dict[str, FileReaders] = field(default_factory=dict)
     # what differs from the robot's config, each with its kind (diagnose.Cause)
     causes: list[Cause] = field(default_factory=list)
