@@ -87,6 +87,16 @@ def test_diff_prints_a_unified_diff_and_exits_1(run, write):
     assert path.read_text() == ROBOT.lstrip("\n")  # --diff writes nothing
 
 
+def test_a_walk_of_the_working_folder_names_files_without_dot_slash(run, write):
+    """``migrate --diff .`` heads the diff ``a/src/robot.urdf``, as git does, not
+    ``a/./src/robot.urdf``: a patch applies with ``-p1`` from the same folder."""
+    write("src/robot.urdf", ROBOT)
+    code, out, _ = run("migrate", "--diff", ".")
+    assert code == 1
+    assert out.startswith("--- a/src/robot.urdf\n+++ b/src/robot.urdf\n")
+    assert run("migrate", "--diff", "./src/robot.urdf")[1] == out
+
+
 def test_diff_applies_with_patch(run, write, tmp_path):
     import shutil
     import subprocess

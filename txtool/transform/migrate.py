@@ -544,7 +544,10 @@ def diff_of(path: str, before: bytes, after: bytes) -> str | bytes:
     """:func:`unified_diff`, ASCII-encoded where it is made from the bytes (a large document
     in ASCII changed in one run of lines, see :func:`.linediff.unified_ascii`) and its path
     is ASCII."""
-    name = printable(path.replace(os.sep, "/").lstrip("/"))  # a name's newline: not a new line
+    name = path.replace(os.sep, "/")
+    while name.startswith("./"):  # a walk of "." names src/robot.urdf, as git diff does
+        name = name[2:]
+    name = printable(name.lstrip("/"))  # a name's newline: not a new line
     if {detect_encoding(before).codec, detect_encoding(after).codec} <= SCANNABLE:
         fast = unified_ascii(before, after, f"a/{name}", f"b/{name}")
         if fast is not None:
