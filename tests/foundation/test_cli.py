@@ -244,6 +244,41 @@ def _example_folder(folder, fixtures) -> None:
     (folder / "urdf" / "broken.urdf").write_text((fixtures / "broken_robot.urdf").read_text())
 
 
+def _serves_as_written(example: str, tmp_path, fixtures) -> None:
+    """``txtool lsp`` serves until its editor is gone: on standard input, it ends cleanly at
+    its end; on TCP, it listens on the address until it is terminated."""
+    import shlex
+    import socket
+    import time
+
+    pytest.importorskip("pygls")
+    words = shlex.split(example.split("  #")[0])
+    env = {**os.environ, "PYTHONPATH": str(fixtures.parent)}
+    command = [sys.executable, "-m", "txtool", *words[1:]]
+    if "--tcp" not in words:
+        done = subprocess.run(command, cwd=tmp_path, env=env, input="", capture_output=True,
+                              text=True, timeout=120)
+        assert (done.returncode, done.stderr) == (0, ""), example
+        return
+    host, port = words[words.index("--tcp") + 1].rsplit(":", 1)
+    server = subprocess.Popen(command, cwd=tmp_path, env=env, stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 60
+        while True:
+            try:
+                socket.create_connection((host, int(port)), timeout=1).close()
+                break
+            except OSError:
+                assert server.poll() is None, server.communicate()
+                assert time.monotonic() < deadline, example
+                time.sleep(0.2)
+    finally:
+        server.terminate()
+        _, err = server.communicate(timeout=60)
+    assert (server.returncode, err) == (143, "txtool: terminated\n"), example
+
+
 def _examples() -> list[tuple[str, str]]:
     from txtool.cli import EXAMPLES
 
@@ -261,6 +296,9 @@ def test_every_help_example_runs_as_written(tmp_path, fixtures, name, example):
         pytest.importorskip("pinocchio")
         if "--plot" in example:
             pytest.importorskip("matplotlib")
+    if name == "lsp":
+        _serves_as_written(example, tmp_path, fixtures)
+        return
     _example_folder(tmp_path, fixtures)
     words = shlex.split(example.split("  #")[0])
     stdin = stdout = None
