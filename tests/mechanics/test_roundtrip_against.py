@@ -64,7 +64,7 @@ def test_one_convention_for_both_files_makes_them_equivalent(tmp_path):
         code, out, err = run(a, "--against", b, "--effort-convention", convention,
                              "--format", "json")
         assert (code, err) == (0, "")
-        assert json.loads(out)["equivalent"] is True
+        assert json.loads(out)["ok"] is True
 
 
 def test_effort_convention_needs_against(tmp_path):

@@ -48,16 +48,6 @@ class RoundtripCycle(_Strict):
     details: list[str] = Field(description="What was lost or changed, one line each.")
 
 
-class RoundtripOutput(_Strict):
-    """The output of 'txtool roundtrip FILE --format json'."""
-
-    path: str
-    ok: bool = Field(description="Every cycle keeps every field and behaviour (exit 0).")
-    cycles: list[RoundtripCycle]
-    skipped: list[str] = Field(description="Transmissions of custom types, passed through "
-                                           "untouched.")
-
-
 class AgainstRow(_Strict):
     """One pair of transmissions, matched by the joints they drive."""
 
@@ -71,20 +61,23 @@ class AgainstRow(_Strict):
     reason: str
 
 
-class RoundtripAgainstOutput(_Strict):
-    """The output of 'txtool roundtrip FILE --against OTHER --format json'."""
+class RoundtripJson(_Strict):
+    """'txtool roundtrip FILE --format json': one shape, with or without '--against OTHER'.
+    Without it, FILE's cycles through the dialects (``cycles``, ``skipped``); with it, the
+    comparison of FILE with OTHER (``transmissions``, ``bb_exporter_dropped``); the other
+    mode's lists are empty."""
 
-    a: str = Field(description="FILE as given.")
-    b: str = Field(description="OTHER as given.")
-    equivalent: bool
+    path: str = Field(description="FILE as given.")
+    against: str | None = Field(description="OTHER as given; null without --against.")
+    ok: bool = Field(description="Without --against: every cycle keeps every field and "
+                                 "behaviour; with it: every transmission pair drives the "
+                                 "actuators alike. The exit code is 0 exactly then.")
+    cycles: list[RoundtripCycle]
+    skipped: list[str] = Field(description="Transmissions of custom types, passed through "
+                                           "untouched.")
     transmissions: list[AgainstRow]
     bb_exporter_dropped: list[str] = Field(
         description="What Beam Bots' URDF exporter left out of OTHER, when it wrote it.")
-
-
-class RoundtripJson(RootModel[RoundtripOutput | RoundtripAgainstOutput]):
-    """'txtool roundtrip --format json': the cycles of FILE, or with '--against' the
-    comparison of FILE with OTHER (told apart by their keys)."""
 
 
 class RuleRow(_Strict):

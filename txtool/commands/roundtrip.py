@@ -119,9 +119,10 @@ def _against(a, b, output_format, convention) -> int:
     if output_format == "json":
         rows = [{"joints": list(r.joints), "a": r.a, "b": r.b, "status": r.status,
                  "differences": r.differences, "reason": r.reason} for r in report.rows]
-        click.echo(json.dumps({"a": a.path, "b": b.path, "equivalent": report.equivalent,
-                               "transmissions": rows, "bb_exporter_dropped": bb_dropped},
-                              indent=2))
+        # The shape of every roundtrip report (schemas/roundtrip.schema.json): no cycles here.
+        click.echo(json.dumps({"path": a.path, "against": b.path, "ok": report.equivalent,
+                               "cycles": [], "skipped": [], "transmissions": rows,
+                               "bb_exporter_dropped": bb_dropped}, indent=2))
     else:
         from rich.table import Table
 

@@ -29,9 +29,12 @@ def roundtrip_json(report: Any) -> str:
     cycles = "[\n" + ",\n".join(rows) + "\n  ]" if rows else "[]"
     return "".join([
         "{\n  \"path\": ", json.dumps(report.path),
+        ",\n  \"against\": null",
         ",\n  \"ok\": ", "true" if report.ok else "false",
         ",\n  \"cycles\": ", cycles,
         ",\n  \"skipped\": ", _indented(json.dumps(report.skipped, indent=2), "  "),
+        ",\n  \"transmissions\": []",
+        ",\n  \"bb_exporter_dropped\": []",
         "\n}",
     ])
 
