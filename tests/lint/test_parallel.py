@@ -53,3 +53,39 @@ def test_jobs_option_gives_the_same_report_and_exit_code(tmp_path):
     assert serial.exit_code == parallel.exit_code == 2  # the missing file
     assert parallel.stdout == serial.stdout
     assert '"files": 64' in serial.stdout
+
+
+def test_progress_counts_every_process_s_files_as_they_are_done(tmp_path):
+    """With worker processes, the progress moves before their results come back: it is told
+    chunk by chunk, in this process and the forks, and ends at every file."""
+    import os
+    import time
+
+    from txtool.lint.workers import forked_map
+
+    told: list[tuple[int, float]] = []
+    started = time.monotonic()
+
+    def slow(index: int) -> int:
+        time.sleep(0.01)
+        return os.getpid()
+
+    pids = list(forked_map(slow, 64, 2, size=4,
+                           progress=lambda done: told.append((done, time.monotonic()))))
+    assert len(set(pids)) == 2  # both processes did some
+    counts = [done for done, _ in told]
+    assert counts == sorted(counts) and counts[-1] == 64
+    assert len(set(counts)) > 8  # many steps, not one jump at the end
+    assert any(0 < done < 64 for done in counts)
+    # a fork's chunks are counted before its results arrive: the counts pass the parent's share
+    parent_share = pids.count(os.getpid())
+    assert any(done > parent_share for done, when in told if when - started < 0.6)
+
+
+def test_progress_with_workers_reports_what_one_process_reports(tmp_path):
+    missing = write_files(tmp_path, 4 * MIN_FILES_PER_WORKER)
+    files = sorted([str(missing), *(str(p) for p in tmp_path.iterdir())])
+    told: list[tuple[int, int]] = []
+    many = lint_paths(files, LintOptions(jobs=2), progress=lambda *pair: told.append(pair))
+    assert many.problems == lint_paths(files, LintOptions(jobs=1)).problems
+    assert told[-1] == (len(files), len(files)) and len(told) > len(files)

@@ -170,7 +170,7 @@ def slow(*args, **kwargs):
     time.sleep(0.03)
     return check(*args, **kwargs)
 api.lint_file = slow
-sys.argv = ["txtool", "validate", "-j", "1", {folder!r}]
+sys.argv = ["txtool", "validate", "-j", "{jobs}", {folder!r}]
 from txtool.cli import main
 main()
 """
@@ -187,7 +187,7 @@ def many(tmp_path) -> str:
 
 def test_a_long_validate_shows_progress_on_the_terminal_and_erases_it(many):
     code, out, screen = in_terminal(columns=100, stdout_too=False,
-                                    python=SLOW_VALIDATE.format(delay=0, folder=many))
+                                    python=SLOW_VALIDATE.format(delay=0, folder=many, jobs=1))
     assert (code, out) == (0, "No problems in 40 files.\n")
     plain = ANSI.sub("", screen)
     assert "checking" in plain and "1/40 files" in plain and "40/40 files" in plain
@@ -195,14 +195,29 @@ def test_a_long_validate_shows_progress_on_the_terminal_and_erases_it(many):
     assert screen.endswith("\x1b[2K")  # the bar's line erased: nothing is left on the screen
 
 
+def test_the_bar_is_drawn_when_worker_processes_share_the_files(tmp_path):
+    """End to end with ``-j 2`` (that the count moves before the workers' results arrive is
+    tests/lint/test_parallel.py's)."""
+    from tests.lint.conftest import CLEAN
+
+    for index in range(80):
+        (tmp_path / f"robot{index:02}.urdf").write_text(CLEAN)
+    code, out, screen = in_terminal(columns=100, stdout_too=False,
+                                    python=SLOW_VALIDATE.format(delay=0, folder=str(tmp_path),
+                                                                jobs=2))
+    assert (code, out) == (0, "No problems in 80 files.\n")
+    steps = {int(n) for n in re.findall(r"(\d+)/80 files", ANSI.sub("", screen))}
+    assert 80 in steps and len(steps - {80}) >= 5
+
+
 def test_a_short_validate_draws_no_bar(many):
     code, out, screen = in_terminal(columns=100, stdout_too=False,
-                                    python=SLOW_VALIDATE.format(delay=60, folder=many))
+                                    python=SLOW_VALIDATE.format(delay=60, folder=many, jobs=1))
     assert (code, out, screen) == (0, "No problems in 40 files.\n", "")
 
 
 def test_no_progress_in_a_pipe_or_on_a_dumb_terminal(many):
-    script = SLOW_VALIDATE.format(delay=0, folder=many)
+    script = SLOW_VALIDATE.format(delay=0, folder=many, jobs=1)
     done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
                           env=_environment(), cwd=ROOT, timeout=120)
     assert (done.returncode, done.stdout, done.stderr) == (0, "No problems in 40 files.\n", "")

@@ -2,9 +2,10 @@
 
 Shown only when stderr is a terminal (never in a pipe, a file or a CI log), and only once the
 run has lasted :data:`DELAY` seconds with files left; it is erased when the run ends, before
-the report is printed. It advances as each file's result arrives, which when several processes
-share the files (``--jobs``) is at the end: no bar is drawn then. No thread is started (worker
-processes are forked only where no thread runs), so the bar is redrawn as files are done.
+the report is printed. It advances as files are done, in this process and, when several
+processes share the files (``--jobs``), in the others too (they tell their counts chunk by
+chunk, see :mod:`txtool.lint.workers`). No thread is started (worker processes are forked only
+where no thread runs), so the bar is redrawn as files are done.
 """
 
 from __future__ import annotations

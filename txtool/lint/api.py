@@ -83,7 +83,9 @@ def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions,
     result = LintResult()
     result.errors.extend(unread)
     result.notes.extend(settings.notes)
-    for done, outcome in enumerate(_outcomes(work, options, paths, _fragments(work, paths)), 1):
+    shared = None if progress is None else (lambda done: progress(done, len(work)))
+    outcomes = _outcomes(work, options, paths, _fragments(work, paths), shared)
+    for done, outcome in enumerate(outcomes, 1):
         if progress is not None:
             progress(done, len(work))
         if isinstance(outcome, InputFailure):
@@ -130,9 +132,11 @@ def worker_count(files: int, jobs: int) -> int:
 
 def _outcomes(
     work: list[tuple[str, Settings]], options: LintOptions, given: tuple[str, ...] | list[str] = (),
-    fragments: frozenset[str] = frozenset(),
+    fragments: frozenset[str] = frozenset(), shared: Callable[[int], None] | None = None,
 ) -> Iterator[list[Problem] | InputFailure]:
-    """Each file's problems, or why it could not be read, in input order."""
+    """Each file's problems, or why it could not be read, in input order; ``shared`` is told
+    how many files are done while worker processes share them (their results come at the
+    end)."""
     workers = worker_count(len(work), options.jobs)
     stdin_name = options.stdin_filename
     named = frozenset(given)
@@ -143,7 +147,8 @@ def _outcomes(
     from txtool.lint.workers import forked_map
 
     yield from forked_map(
-        lambda index: _lint_one(index, work, stdin_name, named, fragments), len(work), workers
+        lambda index: _lint_one(index, work, stdin_name, named, fragments), len(work), workers,
+        progress=shared,
     )
 
 
