@@ -57,8 +57,10 @@ class RoundTripReport:
         return all(row.ok for row in shared.values())
 
     def to_json(self) -> dict:
+        """The JSON document (schemas/roundtrip.schema.json; its --against keys empty)."""
         return {
             "path": self.path,
+            "against": None,
             "ok": self.ok,
             "cycles": [
                 {"transmission": r.transmission, "cycle": list(r.cycle), **r.fields,
@@ -66,6 +68,8 @@ class RoundTripReport:
                 for r in self.rows
             ],
             "skipped": self.skipped,
+            "transmissions": [],
+            "bb_exporter_dropped": [],
         }
 
 
