@@ -12,7 +12,7 @@ scanners read them, and stored back as they were.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
 from txtool.io.encodings import Encoding, detect_encoding, utf8_form
@@ -63,6 +63,70 @@ def apply_edits(original: bytes, edits: Iterable[Edit]) -> bytes:
         copied = edit.end
     parts.append(original[copied:])
     return b"".join(parts)
+
+
+def compose(first: Sequence[Edit], second: Sequence[Edit], original: bytes) -> list[Edit]:
+    """One list of edits of ``original`` that makes what ``first`` and then ``second`` make.
+
+    ``first`` edits ``original`` into ``middle = apply_edits(original, first)`` and ``second``
+    edits ``middle``; applying the result to ``original`` gives ``apply_edits(middle, second)``.
+    Edits that overlap or touch, in ``middle`` (an edit of ``second`` inside, across or next to
+    what an edit of ``first`` put there, or two edits side by side), become one edit: its range
+    the union of their ranges in ``original``, its content the final bytes for that range. So
+    the result is in order, no two of its edits overlap or touch, and a byte that neither stage
+    touched lies outside every one of them. Insertions at one offset keep the order given.
+    Overlapping edits, or one past the end, are refused (:class:`ValueError`) as by
+    :func:`apply_edits`. The work is in the edits and the bytes they cover, not the document.
+    """
+    images: list[tuple[int, int, Edit]] = []  # where each edit of first is in middle
+    shift = 0  # len(middle) - len(original) so far
+    for edit in _in_order(first, len(original)):
+        images.append((edit.start + shift, edit.start + shift + len(edit.content), edit))
+        shift += len(edit.content) - (edit.end - edit.start)
+    later = _in_order(second, len(original) + shift)
+    composed: list[Edit] = []
+    i = j = shift = 0
+    while i < len(images) or j < len(later):
+        # A group opens at the first edit not taken yet and takes every edit that starts
+        # before or where it ends; [start, end) is its range in middle.
+        if j == len(later) or (i < len(images) and images[i][0] <= later[j].start):
+            start = end = images[i][0]
+        else:
+            start = end = later[j].start
+        origin = start - shift  # where it starts in original
+        earlier: list[Edit] = []
+        after: list[Edit] = []
+        while True:
+            if i < len(images) and images[i][0] <= end:
+                edit = images[i][2]
+                earlier.append(edit)
+                end = max(end, images[i][1])
+                shift += len(edit.content) - (edit.end - edit.start)
+                i += 1
+            elif j < len(later) and later[j].start <= end:
+                after.append(later[j])
+                end = max(end, later[j].end)
+                j += 1
+            else:
+                break
+        middle = apply_edits(original[origin:end - shift], [
+            Edit(edit.start - origin, edit.end - origin, edit.content) for edit in earlier])
+        content = apply_edits(middle, [
+            Edit(edit.start - start, edit.end - start, edit.content) for edit in after])
+        composed.append(Edit(origin, end - shift, content))
+    return composed
+
+
+def _in_order(edits: Iterable[Edit], length: int) -> list[Edit]:
+    """``edits`` in the order :func:`apply_edits` takes them, refused as it refuses them."""
+    ordered, end = sorted(edits, key=lambda edit: (edit.start, edit.end)), 0
+    for edit in ordered:
+        if edit.start < end:
+            raise ValueError(f"edits overlap at byte {edit.start}")
+        end = edit.end
+    if end > length:
+        raise ValueError(f"edit past the end of the document: byte {end}")
+    return ordered
 
 
 class EditedText:
