@@ -126,6 +126,8 @@ def test_lines_the_conversion_does_not_touch_keep_their_bytes(document, target):
 
 
 def test_proposal_1_and_2_differ_only_in_the_role_lines():
+    # Written as edits: the role attribute goes with the spaces before it, the start tags
+    # keep their quotes, a new attribute is written in double quotes where the tree has it.
     data = (b"<robot name='r'>\r\n  <ros2_control name='hw' type='system'>\r\n"
             b"    <hardware><plugin>x/Y</plugin></hardware>\r\n"
             b"    <joint name='j'><command_interface name='position'/></joint>\r\n"
@@ -139,14 +141,14 @@ def test_proposal_1_and_2_differ_only_in_the_role_lines():
     p1 = convert(data, "ros2-p1")
     assert p1 == data.replace(
         b"      <actuator name='m'  role='actuator1' read_only='true'/>\r\n",
-        b'      <actuator name="m" read_only="true">\r\n'
+        b"      <actuator name='m' read_only='true'>\r\n"
         b"        <role>actuator1</role>\r\n      </actuator>\r\n").replace(
         b"      <joint name='j' role='joint1'>\r\n",
-        b'      <joint name="j">\r\n        <role>joint1</role>\r\n')
+        b"      <joint name='j'>\r\n        <role>joint1</role>\r\n")
     assert convert(p1, "ros2-p2") == data.replace(
         b"<actuator name='m'  role='actuator1' read_only='true'/>",
-        b'<actuator name="m" role="actuator1" read_only="true"/>').replace(
-        b"<joint name='j' role='joint1'>", b'<joint name="j" role="joint1">')
+        b"<actuator name='m' role=\"actuator1\" read_only='true'/>").replace(
+        b"<joint name='j' role='joint1'>", b"<joint name='j' role=\"joint1\">")
 
 
 def test_a_declaration_after_a_comment_is_not_written_again():

@@ -161,10 +161,21 @@ def test_a_block_sharing_its_line_is_not_carried_and_says_so():
             "carried (--reversible)") in there.notes
 
 
-def test_a_block_that_cannot_be_put_back_keeps_its_own_name():
-    from txtool.transform.reversible import Restore, restore
-
-    written = b'<robot>\n  <transmission name="tok"><type>x</type></transmission><link/>\n</robot>\n'
-    assert restore(written, [Restore("tok", b"  <original/>\n", "a&b")], "r.urdf") == (
-        b'<robot>\n  <transmission name="a&amp;b"><type>x</type></transmission><link/>\n'
-        b"</robot>\n")
+def test_an_original_shares_no_line_with_what_the_block_kept():
+    """Written back as an edit: the carried original takes the place of the element alone,
+    an element after it on its line stays where it was (in the block, which is no longer
+    txtool's and so stays)."""
+    data = (b'<robot name="r">\n  <link name="a"/>\n  <transmission name="t">   <!-- kept -->\n'
+            b"    <type>transmission_interface/SimpleTransmission</type>\n"
+            b'    <joint name="j"><hardwareInterface>hardware_interface/EffortJointInterface'
+            b"</hardwareInterface></joint>\n"
+            b'    <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>\n'
+            b"  </transmission>\n</robot>\n")
+    there = convert(data, "ros2-p2", reversible=True).data
+    shared = there.replace(b"</transmission>\n", b'</transmission><link name="b"/>\n')
+    back = convert(shared, "ros1")
+    original = data[data.index(b"  <transmission"):data.index(b"</robot>")]
+    assert back.data.startswith(data[:data.index(b"  <transmission")] + original
+                                + b'  <ros2_control name="r" type="system">\n')
+    assert back.data.endswith(b'    </joint>\n    <link name="b"/>\n  </ros2_control>\n</robot>\n')
+    assert "1 transmission: the original bytes carried by --reversible are put back" in back.notes

@@ -32,7 +32,8 @@ BEFORE = """\
 </robot>
 """
 # The transmission becomes a <ros2_control> block; every other line keeps its text (the link
-# keeps its quotes and spaces: the lines were spliced, not the whole document serialized).
+# keeps its quotes and spaces: the change is written as edits, not the whole document
+# serialized).
 AFTER = """\
 <?xml version="1.0" encoding="{encoding}"?>
 <robot name="arm">

@@ -112,15 +112,16 @@ def test_no_fix_is_skipped_on_mutated_documents(document: FuzzDocument) -> None:
 @pytest.mark.parametrize("name", corpus_names())
 def test_a_migration_gives_what_the_steps_give(name: str, options: MigrateOptions,
                                                monkeypatch: pytest.MonkeyPatch) -> None:
-    """Fix, serialize, parse, convert, parse, fix again, serialize and splice: what migrate
-    did before it left out the fixes that find nothing and converted the tree it read."""
+    """Fix, convert, parse, fix again, each stage as edits: what migrate does where it does
+    not leave out the fixes that find nothing, nor read what the conversion wrote by its
+    bytes alone."""
     path = str(corpus_file(name))
     try:
         result = migrate_file(path, FIXABLE, options)
     except InputError as error:
         result = error
     monkeypatch.setattr(migrate, "might_fix", lambda root, rules, data=None: True)
-    monkeypatch.setattr(migrate, "_as_parsed", lambda result, options, comments: False)
+    monkeypatch.setattr(migrate, "might_fix_converted", lambda data, rules, target: True)
     try:
         steps = migrate_file(path, FIXABLE, options)
     except InputError as error:
@@ -209,11 +210,16 @@ def test_the_bytes_settle_only_what_they_can_tell(text: str, settled: set[str]) 
 
 
 def steps_and_direct(path: str, options: MigrateOptions) -> tuple[object, object]:
-    """migrate_file's result (or error) as it runs, and as the steps alone give it."""
+    """migrate_file's result (or error) as it runs, and with every stage run and what the
+    conversion wrote parsed (no shortcut taken)."""
     outcomes = []
     for forced in (False, True):
-        with mock.patch.object(migrate, "_direct", lambda *args: False) if forced else (
-                contextlib.nullcontext()):
+        with contextlib.ExitStack() as stack:
+            if forced:
+                stack.enter_context(mock.patch.object(
+                    migrate, "might_fix", lambda root, rules, data=None: True))
+                stack.enter_context(mock.patch.object(
+                    migrate, "might_fix_converted", lambda data, rules, target: True))
             try:
                 outcomes.append(vars(migrate_file(path, FIXABLE, options)))
             except InputError as error:
@@ -298,18 +304,6 @@ def test_comments_read_from_the_bytes_on_mutated_documents(document: FuzzDocumen
 def test_comments_from_the_bytes_or_none_where_they_cannot_tell(text: bytes,
                                                               texts: list[str] | None) -> None:
     assert migrate._comment_texts(text) == texts
-
-
-@pytest.mark.parametrize(("text", "empty"), [
-    (b"<r><role></role></r>", True),
-    (b'<r><role a="1"></role></r>', True),
-    (b"<r><a/></r>", False),
-    (b"<r><a>x</a></r>", False),
-    (b"<r><a><b/></a><!-- x --></r>", False),
-    (b"<r><?pi x?></r><!--a--><![CDATA[x]]></r>", False),
-])
-def test_an_element_written_empty_with_an_end_tag_is_found(text: bytes, empty: bool) -> None:
-    assert migrate._empty_with_end_tag(text) == empty
 
 
 def test_a_conversion_to_ros2_is_not_scanned_again_for_ros1_spellings() -> None:

@@ -1,13 +1,11 @@
-"""The three-way line merge that keeps every line the migration does not change."""
+"""What a migration does not change keeps its bytes: quotes, spaces, line endings, marks."""
 
 from __future__ import annotations
 
 import textwrap
 
-from txtool.io.xmlio import parse_bytes, serialize
 from txtool.rules import all_rules
 from txtool.transform.migrate import MigrateOptions, migrate_file, unified_diff
-from txtool.transform.splice import splice
 
 FIXES = [rule for rule in all_rules().values() if rule.fixable]
 
@@ -68,24 +66,6 @@ def test_a_changed_start_tag_keeps_the_quotes_and_spaces_of_what_it_did_not_chan
           </transmission>
         </robot>
         """)
-
-
-def test_identities():
-    original = b"<a x='1'>\n  <b />\n</a>\n"
-    baseline = serialize(parse_bytes(original, "x"), original)
-    assert baseline == b'<a x="1">\n  <b/>\n</a>\n'
-    assert splice(original, baseline, baseline) == original  # nothing migrated
-    migrated = b'<a x="1">\n  <c/>\n</a>\n'
-    assert splice(baseline, baseline, migrated) == migrated  # nothing to keep
-    assert splice(original, baseline, migrated) == b"<a x='1'>\n  <c/>\n</a>\n"
-
-
-def test_a_merge_that_would_change_the_document_falls_back_to_the_serialized_form():
-    # A baseline that does not come from the original: the merge cannot be trusted.
-    original = b"<a>\n<b/>\n<c/>\n</a>\n"
-    baseline = b"<a>\n<b/>\n<d/>\n</a>\n"
-    migrated = b"<a>\n<e/>\n<d/>\n</a>\n"
-    assert splice(original, baseline, migrated) == migrated
 
 
 def test_a_missing_final_newline_is_marked_in_the_diff():

@@ -1,4 +1,4 @@
-"""What the writer and migrate's quick byte scan must tell apart: a line whose bytes differ
+"""What the writer and migrate's quick byte scan must tell apart: a value whose bytes differ
 only in quotes or spacing is changed where the change made it so, and kept where it did not;
 the scan finds what a fix looks for however XML lets it be spelt."""
 
@@ -7,8 +7,10 @@ from __future__ import annotations
 import pytest
 from lxml import etree
 
-from txtool.io.xmlio import parse_bytes, serialize
-from txtool.transform.splice import splice
+from txtool.io.xmlio import parse_bytes
+from txtool.transform.edits import EditedText
+from txtool.transform.spans import SpanIndex
+from txtool.transform.tree_edits import TreeChange
 
 ORIGINAL = (b"<robot name='r'>\n"
             b"  <link  name = 'a b' />\n"
@@ -17,24 +19,29 @@ ORIGINAL = (b"<robot name='r'>\n"
             b"</robot>\n")
 
 
-@pytest.mark.parametrize("value", ["a  b", "a\tb", "a'b", 'a"b', " a b"])
-def test_a_line_the_change_made_differ_only_in_spacing_or_quotes_is_written(value):
+def _edited(change) -> bytes:
+    """ORIGINAL with ``change`` made to its parse, written as edits."""
     tree = parse_bytes(ORIGINAL, "r.urdf")
-    baseline = serialize(tree, ORIGINAL)
-    tree.getroot()[0].set("name", value)
-    changed = serialize(tree, ORIGINAL)
-    out = splice(ORIGINAL, baseline, changed)
+    text = EditedText(ORIGINAL)
+    root = tree.getroot()
+    index = SpanIndex(text.data, root, list(root))
+    recorded = TreeChange(list(root))
+    change(root)
+    return text.applied(recorded.edits(text, index))
+
+
+@pytest.mark.parametrize("value", ["a  b", "a\tb", "a'b", 'a"b', " a b"])
+def test_a_value_the_change_made_differ_only_in_spacing_or_quotes_is_written(value):
+    out = _edited(lambda root: root[0].set("name", value))
     assert [link.get("name") for link in etree.fromstring(out)] == [value, "c", "d"]
     # The lines the change left alone keep their bytes, quotes and spacing.
     assert out.splitlines()[2:] == ORIGINAL.splitlines()[2:]
+    assert out.splitlines()[1].startswith(b"  <link  name = '")
 
 
-def test_lines_that_read_alike_but_for_quotes_and_spacing_keep_their_bytes():
-    tree = parse_bytes(ORIGINAL, "r.urdf")
-    baseline = serialize(tree, ORIGINAL)
-    tree.getroot()[1].set("name", "e")
-    out = splice(ORIGINAL, baseline, serialize(tree, ORIGINAL))
-    assert out == ORIGINAL.replace(b"  <link name='c'/>\n", b'  <link name="e"/>\n')
+def test_what_reads_alike_but_for_quotes_and_spacing_keeps_its_bytes():
+    out = _edited(lambda root: root[1].set("name", "e"))
+    assert out == ORIGINAL.replace(b"  <link name='c'/>\n", b"  <link name='e'/>\n")
 
 
 LEGACY = """\

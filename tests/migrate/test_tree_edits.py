@@ -9,7 +9,7 @@ from collections.abc import Callable
 import pytest
 from lxml import etree
 
-from txtool.io.xmlio import parse_bytes
+from txtool.io.xmlio import InputError, parse_bytes
 from txtool.rules import all_rules
 from txtool.transform.edits import EditedText
 from txtool.transform.migrate import MigrateOptions, migrate_file
@@ -149,9 +149,14 @@ def test_bytes_that_do_not_parse_do_not_read_as_the_tree() -> None:
     assert not reads_as(b"<robot>", parse_bytes(b"<robot/>", "robot.urdf"), "robot.urdf")
 
 
-@pytest.mark.parametrize("failing", ["SpanIndex", "TreeChange.edits", "reads_as"])
-def test_where_the_edits_cannot_say_the_fixes_the_steps_write_them(failing, tmp_path,
-                                                                   monkeypatch) -> None:
+@pytest.mark.parametrize(("failing", "reason"), [
+    ("SpanIndex", "the bytes do not read as parsed (refused)"), ("TreeChange.edits", "refused"),
+    ("reads_as", "what the edits write does not read as the fixed document"),
+])
+def test_where_the_edits_cannot_say_the_fixes_the_file_is_refused(failing, reason, tmp_path,
+                                                                  monkeypatch) -> None:
+    """No other writer stands behind the edits: a change they cannot say is one line naming
+    the file, and nothing is written."""
     from txtool.transform import migrate
     from txtool.transform.spans import SpanError
 
@@ -166,13 +171,28 @@ def test_where_the_edits_cannot_say_the_fixes_the_steps_write_them(failing, tmp_
     path = tmp_path / "robot.urdf"
     path.write_bytes(data)
     edited = migrate_file(str(path), FIXES, MigrateOptions())
+    assert edited.edits is not None and edited.fixes == {"TX300": 1, "TX302": 1}
     target, _, attribute = failing.partition(".")
     monkeypatch.setattr(getattr(migrate, target) if attribute else migrate, attribute or target,
                         refuse)
-    stepped = migrate_file(str(path), FIXES, MigrateOptions())
-    assert stepped.edits is None and edited.edits is not None
-    assert (stepped.data, stepped.fixes) == (edited.data, edited.fixes) == (
-        stepped.data, {"TX300": 1, "TX302": 1})
+    with pytest.raises(InputError) as refused:
+        migrate_file(str(path), FIXES, MigrateOptions(mode="write"))
+    assert str(refused.value).startswith(f"{path}: cannot fix: {reason}")
+    assert path.read_bytes() == data
+
+
+def test_a_new_attribute_in_a_namespace_takes_a_prefix_in_scope() -> None:
+    data = b"<robot xmlns:x='urn:x'><t name='t'/></robot>"
+    tree = parse_bytes(data, "robot.urdf")
+    text = EditedText(data)
+    element = tree.getroot()[0]
+    index = SpanIndex(text.data, tree.getroot(), [element])
+    change = TreeChange([element])
+    element.set("{urn:x}a", "1")
+    with pytest.raises(NotEditable):
+        change.edits(text, index)
+    assert text.applied(change.edits(text, index, redeclare=True)) == (
+        b"<robot xmlns:x='urn:x'><t name='t' x:a=\"1\"/></robot>")
 
 
 def test_a_fixed_document_loses_its_late_declaration(tmp_path) -> None:

@@ -85,7 +85,7 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, revers
         data, losses, notes = _bb(source, bb_direction or "reversed", bb_topology)
     else:
         from txtool.transform.convert import convert_source
-        from txtool.transform.splice import without_late_declaration
+        from txtool.transform.declaration import without_late_declaration
 
         result = convert_source(source, target, hardware_plugin=hardware_plugin, consume=True,
                                 reversible=reversible)

@@ -2,8 +2,8 @@
 
 The encoding comes from the byte-order mark, else from the zero bytes UTF-16 and UTF-32 put
 around the first (ASCII) characters, else from the XML declaration; UTF-8 by default. Byte
-scanners and the text splicer read UTF-16/32 documents in :func:`utf8_form`, and the writers
-store what they produce back with :meth:`Encoding.from_utf8`.
+scanners, the span index and the edits read UTF-16/32 documents in :func:`utf8_form`, and the
+writers store what they produce back with :meth:`Encoding.from_utf8`.
 """
 
 from __future__ import annotations

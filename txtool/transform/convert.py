@@ -1,8 +1,8 @@
 """Convert the transmissions of a whole document, keeping everything else as written.
 
-Only transmissions whose dialect differs from the target are rewritten, and the bytes are
-spliced into the original text (:mod:`txtool.transform.splice`), so every line the conversion
-does not change stays as written. Where converted transmissions go is
+Only transmissions whose dialect differs from the target are rewritten, and the change is
+said as edits of the original bytes (:mod:`txtool.transform.conversion_edits`), so every byte
+the conversion does not change stays as written. Where converted transmissions go is
 :mod:`txtool.transform.placement`. Every conversion is checked by reading the result back and
 converting it back.
 """
@@ -31,13 +31,14 @@ from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
 from txtool.model.semantics import Effective, NotLoadable, effective, listed_against_roles
 from txtool.transform.block_text import Written, fill, read_back
+from txtool.transform.conversion_edits import ConversionEdits
 from txtool.transform.cycle_collector import paused
+from txtool.transform.edits import Edit
 from txtool.transform.nameless_shapes import shape
 from txtool.transform.placement import DEFAULT_HARDWARE_PLUGIN, Placer
 from txtool.transform.renamings import Follower, Memo, Record, Renaming
 from txtool.transform.reversible import Carrier
-from txtool.transform.serialized_before import rebuildable
-from txtool.transform.splice import splice
+from txtool.transform.spans import NotIndexed
 from txtool.views.tables import FIELDS, view
 
 KNOWN_CHILDREN = {
@@ -72,6 +73,9 @@ class ConvertedDocument:
     # said as a warning where losses are accepted (--allow-lossy): the result is then
     # written to be finished by hand, and that plugin must be replaced.
     placeholder: str | None = None
+    # The edits of the original (its UTF-8 form if UTF-16/32) that make ``data``; None for
+    # an unchanged document or a xacro expansion (written whole).
+    edits: list[Edit] | None = None
 
 
 @paused
@@ -79,8 +83,9 @@ def convert_source(
     source: Source, target: Dialect, *, hardware_plugin: str = DEFAULT_HARDWARE_PLUGIN,
     consume: bool = False, reversible: bool = False, check: bool = True, repeats: bool = True,
 ) -> ConvertedDocument:
-    """Convert ``source``; the bytes are spliced into ``source.data`` (see
-    :mod:`txtool.transform.splice`) unless ``source`` is a xacro expansion.
+    """Convert ``source``: the change is said as edits of ``source.data``
+    (:mod:`.conversion_edits`; the result's ``edits``), unless ``source`` is a xacro
+    expansion, which is written whole.
 
     With ``consume`` the caller gives up ``source.tree``: it is converted in place instead of
     in a copy, and released (an empty document is left in its place) before the result is
@@ -92,45 +97,48 @@ def convert_source(
 
     ``repeats`` is the one switch of the fast path for robots that repeat a transmission
     under other names: each is converted once and copied (:mod:`.renamings`, :mod:`.templates`),
-    the block generated for the document is written as text (:mod:`.block_text`) and the
-    baseline rebuilt after the change (:mod:`.serialized_before`). Off, every transmission is
-    converted in full; the bytes and messages are the same either way.
+    and the block generated for the document is written as text (:mod:`.block_text`). Off,
+    every transmission is converted in full; the bytes and messages are the same either
+    way.
     """
+    try:
+        return _convert_document(source, target, hardware_plugin, consume, reversible, check,
+                                 repeats, near=True)
+    except NotIndexed:
+        # The placer changed the root's children next to one the index passed over: again,
+        # with every child of the root indexed (a conversion in place consumed the tree).
+        if consume:
+            source.tree = parse_bytes(source.data, source.path, limit=None)
+        return _convert_document(source, target, hardware_plugin, consume, reversible, check,
+                                 repeats, near=False)
+
+
+def _convert_document(source: Source, target: Dialect, hardware_plugin: str, consume: bool,
+                      reversible: bool, check: bool, repeats: bool, *, near: bool
+                      ) -> ConvertedDocument:
+    """:func:`convert_source`; ``near``: as :class:`.ConversionEdits` takes it."""
     carry = Carrier(source, target, reversible)
     # Back to ROS 1 (each element may carry its original) and --reversible convert in full.
     memo = Memo() if repeats and not carry.reversible and target != "ros1" else None
-    # The tree as parsed, serialized before it changes or rebuilt after (:mod:`.serialized_before`).
-    lazy = memo is not None and not source.expanded and rebuildable(source.data,
-                                                                    source.tree.getroot())
-    baseline = None if source.expanded or lazy else serialize(source.tree, source.data)
     tree = source.tree if consume else copy.deepcopy(source.tree)
     elements = transmission_elements(tree.getroot())
     deep = _near_depth_limit(elements, tree.getroot())
+    writer = None if source.expanded else ConversionEdits(source.data, tree.getroot(), elements,
+                                                                 target, near=near)
     result = ConvertedDocument(data=b"", target=target, found=len(elements))
     placer = Placer(tree.getroot(), hardware_plugin, components=source.expanded or (
         detect_encoding(source.data).codec not in SCANNABLE or b"ros2_control" in source.data))
     placer.after = carry.after_block
-    texts: list[bytes | None] | None = None
-    if lazy:
-        def serialize_baseline() -> None:
-            nonlocal baseline
-            baseline = serialize(source.tree, source.data)
-
-        texts = []
-        placer.before_change, placer.texts = serialize_baseline, texts
     components: dict[etree._Element, Any] = {}
     items: list[Transmission | Follower] = []
     olds: dict[int, etree._Element] = {}  # the element of each item not a follower, by id
     root = tree.getroot()
     top = local(root) != "ros2_control"  # a child of the root is in no <ros2_control>
     for element in elements:
-        keyed = data = None
+        keyed = None
         if memo is not None and (element.getparent() is root and top
                                  or enclosing_component(element) is None):
-            data = etree.tostring(element, with_tail=False)
-            keyed = memo.keyed(element, data)
-        if texts is not None:
-            texts.append(data)
+            keyed = memo.keyed(element, etree.tostring(element, with_tail=False))
         if keyed.__class__ is Follower:
             assert isinstance(keyed, Follower)
             placer.place_follower(element, keyed, keyed.record.original.dialect)
@@ -148,7 +156,6 @@ def convert_source(
         if not _convert_one(found, tree, target, result, placer, carry, memo, renaming, said):
             continue
         result.converted += 1
-    del texts  # the placer lets go of them once it has what it needs
     # The loop's last element (and its found or follower) may be one the block replaces,
     # freed below with the others.
     element = found = keyed = None  # type: ignore[assignment]
@@ -162,7 +169,10 @@ def convert_source(
             item.element if isinstance(item, Follower) else olds[id(item)]
             for item in items if names[item.name] > 1}
     placer.finish()
-    carry.after(tree, placer.built)
+    restored = carry.after(tree, placer.built)
+    if writer is not None:
+        for node, block in restored:
+            writer.substitute(node, block)
     result.notes.extend(placer.notes)
     result.losses.extend(placer.losses)
     result.placeholder = placer.placeholder
@@ -175,9 +185,7 @@ def convert_source(
                if isinstance(built := placer.built.get(old), Written)}
     del elements, olds  # the replaced elements are freed before the document is written
     placer.release()
-    changed, rebuilt = _serialize(tree, source.data, placer)
-    if lazy and baseline is None:  # rebuilt, or the tree never changed
-        baseline = changed if rebuilt is None else rebuilt
+    marker = _write(source, tree, writer, placer, result)
     if placer.unwritten:  # parsed into the tree after all
         for item in items:
             if isinstance(item, Follower) and item.built in placer.unwritten:
@@ -185,29 +193,51 @@ def convert_source(
         virtual = {}
     alone, in_tree = placer.alone, True
     del placer
-    if source.expanded:
-        result.data = changed
-    else:
-        assert baseline is not None
-        result.data = splice(source.data, baseline, changed)
-    del baseline
-    spliced = result.data
-    result.data = carry.restore(result.data)
     result.notes.extend(carry.notes)
     if deep:
         _reads_back(result.data, source.path)
+    if writer is not None and not restored and result.edits:
+        writer.check(result.data, tree, source.path, marker)
     if consume:
         source.tree = etree.ElementTree(etree.Element("consumed"))
     if not check:
         return result
-    if result.data is not spliced and result.data != spliced:
-        # Originals put back as bytes: only a parse of the output shows what it holds.
+    if restored and result.data != source.data:
+        # Originals written as their bytes: only a parse of the output shows what it holds.
         del tree
         tree = parse_bytes(result.data, source.path, limit=None)
         alone, in_tree = set(), False
     _check(Source(source.path, result.data, tree), result, items, alone, names, virtual,
            in_tree)
     return result
+
+
+def _write(source: Source, tree: etree._ElementTree, writer: ConversionEdits | None,
+           placer: Placer, result: ConvertedDocument) -> etree._Comment | None:
+    """Write the converted document into ``result``: as edits of the original, or, for a
+    xacro expansion (which has no bytes of its own), serialized. The block the placer left
+    as text (:attr:`Placer.written`) is filled in, or parsed into the tree where it cannot
+    be; the marker that stands for it in the tree, if any, is returned."""
+    if writer is None:
+        data = serialize(tree, source.data)
+        if placer.written is not None:
+            filled = fill(data, *placer.written)
+            if filled is not None:
+                result.data = filled
+                return placer.written[0]
+            placer.unwrite()
+            data = serialize(tree, source.data)
+        result.data = data
+        return None
+    marker = placer.written
+    edits = writer.edits(*marker) if marker is not None else writer.edits()
+    if edits is None:
+        placer.unwrite()
+        marker, edits = None, writer.edits()
+        assert edits is not None
+    result.edits = edits or None
+    result.data = writer.applied(edits) if edits else source.data
+    return marker[0] if marker is not None else None
 
 
 # What replaces a transmission nests at most this many levels below where it stood
@@ -239,24 +269,6 @@ def _reads_back(data: bytes, path: str) -> None:
         raise InputError(
             f"{path}: cannot convert: the result could not be read back; its line {exc.line}: "
             f"{exc.reason}") from None
-
-
-def _serialize(tree: etree._ElementTree, original: bytes, placer: Placer
-               ) -> tuple[bytes, bytes | None]:
-    """The converted document, the block :attr:`Placer.written` as text filled in, and the
-    baseline rebuilt from it where :attr:`Placer.rebuild` says how (else None)."""
-    data = serialize(tree, original)
-    rebuilt = None
-    if placer.rebuild is not None:
-        assert placer.written is not None
-        rebuilt = placer.rebuild.baseline(data, placer.written[0], original)
-    if placer.written is not None:
-        filled = fill(data, *placer.written)
-        if filled is not None:
-            return filled, rebuilt
-        placer.unwrite()  # (never with a rebuild: the marker is then found once)
-        data = serialize(tree, original)
-    return data, rebuilt
 
 
 def _convert_one(found: Found, tree: etree._ElementTree, target: Dialect, result: ConvertedDocument,
@@ -396,9 +408,10 @@ def _check(output: Source, result: ConvertedDocument, originals: list[Transmissi
     transmission itself defines (a value it leaves out is not judged, and interfaces that an
     existing ``<ros2_control>`` declares besides its own are a note, not a loss).
 
-    ``output.tree`` is the converted tree itself when ``output.data`` is its serialization,
-    or a splice of it that parses to the same canonical document (:func:`.splice` verifies
-    that): reading it reads what a parse of the output would give, without a second tree.
+    ``output.tree`` is the converted tree itself when ``output.data`` was written from it as
+    edits, which parse to the same canonical document (:meth:`.ConversionEdits.check`
+    verifies that): reading it reads what a parse of the output would give, without a second
+    tree.
     The transmissions of a block written as text (:mod:`.block_text`) are not in that tree: each
     is read back on its own (a follower's only when it is judged), its name being its own
     (``names``: how many originals have each); ``virtual`` holds those of the originals that

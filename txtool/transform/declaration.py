@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import re
 
-from txtool.transform.edits import Edit
+from txtool.transform.edits import Edit, EditedText
 
 # An XML declaration after what may stand before the root element (whitespace, comments,
 # processing instructions), each matched one at a time so that a long run cannot backtrack.
@@ -31,3 +31,11 @@ def late_declaration(data: bytes) -> Edit | None:
     if not late.group(2).strip(b" \t\r\n"):
         return Edit.deletion(late.start(2), late.start(3))
     return Edit.deletion(late.start(3), late.end(3))
+
+
+def without_late_declaration(data: bytes) -> bytes:
+    """``data`` (a whole document, in any encoding) with its late declaration dealt with as
+    :func:`late_declaration` says, by that one edit."""
+    text = EditedText(data)
+    late = late_declaration(text.data)
+    return data if late is None else text.applied([late])

@@ -1,9 +1,11 @@
 """Migrate files in place: apply the fixable rules and, optionally, a dialect conversion.
 
 Files are read as written, never expanded: in a xacro file the literal transmission XML is
-rewritten and ``${...}`` expressions, macros and comments stay as they are. Only the lines that
-the migration changes are replaced; every other line keeps its original bytes (quoting, spacing,
-line endings), so a diff shows the migration and nothing else. A file that does not change is
+rewritten and ``${...}`` expressions, macros and comments stay as they are. The migration is
+said as edits of the original bytes (:mod:`.edits`: the fixes, the conversion and the fixes
+after it each say their change as edits, composed into one set), so every byte outside an
+edit keeps its value (quoting, spacing, line endings) and a diff shows the migration and
+nothing else. A file that does not change is
 never written. The result of a migration is a fixed point: migrating it again changes nothing.
 
 :func:`migrate_paths` returns a :class:`Report` (diff text, messages and exit code); it writes
@@ -30,7 +32,6 @@ from txtool.io.xmlio import (
     parse_bytes,
     read_bytes,
     replace_if_unchanged,
-    serialize,
 )
 from txtool.lint.config import Overrides, SettingsCache
 from txtool.lint.discover import expand_paths
@@ -38,15 +39,14 @@ from txtool.lint.suppress import Suppressions
 from txtool.lint.suppress import parse as parse_suppressions
 from txtool.model.core import Dialect
 from txtool.rules import Rule, all_rules
-from txtool.transform.convert import DEFAULT_HARDWARE_PLUGIN, convert_source
+from txtool.transform.convert import DEFAULT_HARDWARE_PLUGIN, ConvertedDocument, convert_source
 from txtool.transform.cycle_collector import paused
 from txtool.transform.declaration import late_declaration
-from txtool.transform.edits import Edit, EditedText
+from txtool.transform.edits import Edit, EditedText, compose
 from txtool.transform.fixable import might_fix, might_fix_converted
 from txtool.transform.linediff import unified_ascii, unified_text
 from txtool.transform.reversible import MARK
 from txtool.transform.spans import SpanError, SpanIndex
-from txtool.transform.splice import splice
 from txtool.transform.tree_edits import NotEditable, TreeChange, reads_as
 
 Mode = Literal["check", "diff", "write"]
@@ -234,158 +234,123 @@ def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions) -> F
     clean = not might_fix(tree.getroot(), rules, original)  # fix_tree() would find nothing
     if clean and options.target is None:
         return result
-    if clean and _direct(original, result, options, comments, declarations):
-        source = Source(display, original, tree)
-        del tree  # the conversion frees it once converted
-        if _convert_direct(result, source, rules, options, comments):
-            return result
-        # What the conversion wrote needs the steps below (rare): they start again.
-        tree = parse_bytes(original, display)
-        result = FileResult(path=display, original=original, data=original,
-                            target=options.target)
     return _steps(result, tree, rules, options, comments, clean)
 
 
 def _steps(result: FileResult, tree: etree._ElementTree, rules: Sequence[Rule],
            options: MigrateOptions, comments: list[tuple[str | None, int | None]],
            clean: bool) -> FileResult:
-    """Fix ``tree`` (the parse of ``result.original``), serialize, convert, parse, fix again,
-    serialize, and splice into the original. Fixes alone are written as edits
-    (:func:`_fixes_as_edits`)."""
+    """Fix ``tree`` (the parse of ``result.original``; ``clean``: no fix finds anything in
+    it), convert, and fix what the conversion wrote: each stage says its change as edits of
+    the bytes the stage before wrote (:func:`_fixed`, :func:`.convert.convert_source`), and
+    the stages' edits are composed into edits of the original, which the one applier makes
+    (:func:`.edits.compose`)."""
     original, display = result.original, result.path
-    if options.target is None and not clean:
-        if _fixes_as_edits(result, tree, rules, comments):
-            return result
-        tree = parse_bytes(original, display)  # fixed in place: the steps start again
-    baseline = serialize(tree, original)
+    stages: list[list[Edit]] = []  # each stage's edits, of the bytes the stage before wrote
+    data = original
     if not clean:
-        _count(result.fixes, fix_tree(tree, rules, original))
-    migrated = serialize(tree, original) if result.fixes else baseline
-    after = _comments(tree)  # the comments of ``migrated``, which is this tree written out
-    if options.target is not None:
-        if not _as_parsed(result, options, comments):
-            del tree
-            tree = parse_bytes(migrated, display, limit=None)
-        source = Source(display, migrated, tree)
-        del tree  # the conversion frees it once converted
-        migrated, after = _convert(result, source, rules, options)
-    else:
+        data = _fix_stage(result, data, tree, rules, stages)
+    if options.target is None:
+        after = _comments(tree)
         del tree
-    if result.refused:
-        return result
+    else:
+        if data is not original:
+            del tree
+            tree = parse_bytes(data, display, limit=None)
+        source = Source(display, data, tree)
+        del tree  # the conversion frees it once converted
+        try:
+            conversion = convert_source(source, options.target,
+                                        hardware_plugin=options.hardware_plugin, consume=True,
+                                        reversible=options.reversible)
+        except ValueError as exc:
+            result.losses.append(f"cannot convert: {exc}")
+            result.refused = True
+            return result
+        _take_messages(result, conversion, options)
+        stages.append(conversion.edits or [])
+        data = conversion.data
+        scanned = _comment_texts(data) if comments else []
+        if scanned is not None and detect_encoding(data).codec in SCANNABLE and not (
+                might_fix_converted(data, rules, options.target)):
+            after = scanned  # the bytes tell: no fix finds anything in what was written
+        else:
+            converted = parse_bytes(data, display, limit=None)
+            if might_fix(converted.getroot(), rules, data):
+                data = _fix_stage(result, data, converted, rules, stages)
+            after = _comments(converted)
+            del converted
     result.losses.extend(_dropped(comments, after))
-    data = splice(original, baseline, migrated)
     if result.losses and not options.allow_lossy and data != original:
         result.refused = True
         return result
-    result.data = data
+    _settle(result, stages, data)
     return result
 
 
-def _fixes_as_edits(result: FileResult, tree: etree._ElementTree, rules: Sequence[Rule],
-                    comments: list[tuple[str | None, int | None]]) -> bool:
-    """Fix ``tree`` (the parse of ``result.original``) and write what the fixes changed as
-    edits of the original (:mod:`.tree_edits`), checked by reading the result back; False,
-    with nothing settled, where the edits cannot say the change (the steps then do)."""
-    original = result.original
-    text = EditedText(original)
-    elements = transmission_elements(tree.getroot())  # what the fixes may change
-    try:
-        index = SpanIndex(text.data, tree.getroot(), elements, text.codec)
-    except SpanError:
-        return False
-    change = TreeChange(elements)
-    del elements
-    fixes = fix_tree(tree, rules, original)
-    try:
-        edits = change.edits(text, index)
-    except NotEditable:
-        return False
-    late = late_declaration(text.data) if edits else None
-    if late is not None:
-        edits.append(late)
-    data = text.applied(edits)
-    if data != original and not reads_as(data, tree, result.path):
-        return False
+def _fix_stage(result: FileResult, data: bytes, tree: etree._ElementTree,
+               rules: Sequence[Rule], stages: list[list[Edit]]) -> bytes:
+    """Fix ``tree`` (the parse of ``data``) as a stage of :func:`_steps`: the fixed bytes."""
+    fixed, edits, fixes = _fixed(data, tree, rules, result.path)
     _count(result.fixes, fixes)
-    result.losses.extend(_dropped(comments, _comments(tree)))
-    result.data, result.edits = data, edits or None
-    return True
+    stages.append(edits)
+    return fixed
 
 
-def _direct(original: bytes, result: FileResult, options: MigrateOptions,
-            comments: list[tuple[str | None, int | None]], declarations: bool) -> bool:
-    """Whether converting the original itself (see :func:`_convert_direct`) may stand for the
-    steps: a conversion, no carried originals to put back, bytes a scanner can read, no
-    DOCTYPE (``declarations``: the original may hold one)."""
-    return options.target is not None and _as_parsed(result, options, comments) and (
-        detect_encoding(original).codec in SCANNABLE) and not (
-        declarations and b"<!DOCTYPE" in original)
+def _settle(result: FileResult, stages: list[list[Edit]], final: bytes) -> None:
+    """Compose the edits of ``stages`` into edits of the original and make them: the written
+    bytes are the original's with those edits, which must be what the stages wrote."""
+    text = EditedText(result.original)
+    composed: list[Edit] = []
+    for edits in filter(None, stages):
+        composed = compose(composed, edits, text.data) if composed else list(edits)
+    written = text.applied(composed)
+    if written != final:
+        raise InputError(f"{result.path}: cannot migrate: the composed edits do not write "
+                         "what the stages wrote; please report this file")
+    result.data, result.edits = written, composed or None
 
 
-def _convert_direct(result: FileResult, source: Source, rules: Sequence[Rule],
-                    options: MigrateOptions,
-                    comments: list[tuple[str | None, int | None]]) -> bool:
-    """Convert ``source`` (the original and its unfixed parse; the tree is consumed) straight
-    into the original's bytes; False, with nothing settled, where the steps are needed.
-
-    The steps convert the serialized tree, then parse, fix and serialize the result again and
-    splice that into the original. When no fix can find anything in what the conversion wrote
-    and it holds no empty element written with an end tag (``<role></role>``, which a parse
-    and a serialization make ``<role/>``), that serialization is the conversion's own, and
-    the conversion spliced it into the original as the steps would.
-    """
-    assert options.target is not None
-    try:
-        conversion = convert_source(source, options.target,
-                                    hardware_plugin=options.hardware_plugin, consume=True)
-    except ValueError as exc:
-        result.losses.append(f"cannot convert: {exc}")
-        result.refused = True
-        return True
-    data = conversion.data
-    if _empty_with_end_tag(data):
-        return False
-    after = _comment_texts(data) if comments else []
-    if after is None or might_fix_converted(data, rules, options.target):
-        # The bytes cannot tell: the parse of what was written can (it reads as the steps'
-        # parse reads, see splice()).
-        try:
-            tree = parse_bytes(data, result.path, limit=None)
-        except InputError:
-            return False  # the steps say what cannot be read, as they read it
-        if might_fix(tree.getroot(), rules, data):
-            return False
-        after = _comments(tree)
-        del tree
+def _take_messages(result: FileResult, conversion: ConvertedDocument,
+                   options: MigrateOptions) -> None:
     result.notes.extend(conversion.notes)
     result.warnings.extend(conversion.warnings)
     if options.allow_lossy and conversion.placeholder is not None:
         result.warnings.append(conversion.placeholder)
     result.losses.extend(conversion.losses)
     result.converted = conversion.converted
-    result.losses.extend(_dropped(comments, after))
-    if result.losses and not options.allow_lossy and data != result.original:
-        result.refused = True
-    else:
-        result.data = data
-    return True
 
 
-# ``></`` after neither a self-closing tag nor the end of a comment, instruction or CDATA
-# section: after the end of a start or end tag (or a ``>`` in text).
-_AFTER_TAG_END = re.compile(rb"></(?<![/\-?\]]></)")
-
-
-def _empty_with_end_tag(data: bytes) -> bool:
-    """Whether an element may be written ``<x></x>`` (serialized with an empty text) in
-    ``data``, a serialization by lxml (which writes ``>`` in values as ``&gt;``) maybe spliced
-    into a document: an end tag right after a start tag."""
-    for match in _AFTER_TAG_END.finditer(data):
-        opening = data.rfind(b"<", 0, match.start())
-        if data[opening + 1:opening + 2] != b"/":
-            return True
-    return False
+def _fixed(data: bytes, tree: etree._ElementTree, rules: Sequence[Rule], path: str
+           ) -> tuple[bytes, list[Edit], dict[str, int]]:
+    """Fix ``tree`` (the parse of ``data``) and say what the fixes changed as edits of
+    ``data`` (:mod:`.tree_edits`): the fixed bytes, the edits and the fixes by code. The bytes
+    are read back: they must parse to the fixed tree."""
+    text = EditedText(data)
+    elements = transmission_elements(tree.getroot())  # what the fixes may change
+    try:
+        index = SpanIndex(text.data, tree.getroot(), elements, text.codec)
+    except SpanError as exc:
+        raise InputError(f"{path}: cannot fix: the bytes do not read as parsed ({exc})"
+                         ) from None
+    change = TreeChange(elements)
+    del elements
+    fixes = fix_tree(tree, rules, data)
+    try:
+        edits = change.edits(text, index)
+    except NotEditable:
+        try:
+            edits = change.edits(text, index, redeclare=True)
+        except NotEditable as exc:
+            raise InputError(f"{path}: cannot fix: {exc}") from None
+    late = late_declaration(text.data) if edits else None
+    if late is not None:
+        edits.append(late)
+    fixed = text.applied(edits)
+    if fixed != data and not reads_as(fixed, tree, path):
+        raise InputError(f"{path}: cannot fix: what the edits write does not read as the "
+                         "fixed document; please report this file")
+    return fixed, edits, fixes
 
 
 def _may_declare(data: bytes) -> bool:
@@ -412,40 +377,6 @@ def _comment_texts(data: bytes) -> list[str] | None:
             return None
     return [text.decode("utf-8").replace("\r\n", "\n").replace("\r", "\n")
             for text in _COMMENT.findall(data)]
-
-
-def _convert(result: FileResult, source: Source, rules: Sequence[Rule],
-             options: MigrateOptions) -> tuple[bytes, list[str | None]]:
-    """Convert ``source`` (its tree is consumed) to the target dialect, then fix what the
-    conversion wrote; the result and its comments."""
-    assert options.target is not None
-    try:
-        conversion = convert_source(source, options.target,
-                                    hardware_plugin=options.hardware_plugin, consume=True,
-                                    reversible=options.reversible)
-    except ValueError as exc:
-        result.losses.append(f"cannot convert: {exc}")
-        result.refused = True
-        return source.data, []
-    result.notes.extend(conversion.notes)
-    result.warnings.extend(conversion.warnings)
-    if options.allow_lossy and conversion.placeholder is not None:
-        result.warnings.append(conversion.placeholder)
-    result.losses.extend(conversion.losses)
-    result.converted = conversion.converted
-    tree = parse_bytes(conversion.data, result.path, limit=None)
-    if might_fix(tree.getroot(), rules):
-        _count(result.fixes, fix_tree(tree, rules, conversion.data))
-    return serialize(tree, conversion.data), _comments(tree)
-
-
-def _as_parsed(result: FileResult, options: MigrateOptions,
-               comments: list[tuple[str | None, int | None]]) -> bool:
-    """Whether the tree, unfixed, may stand for the parse of its serialization: the same
-    document, but for the lines of its elements, which only ``--reversible`` and putting
-    carried originals back read."""
-    return not result.fixes and not options.reversible and not any(
-        _carried(text) for text, _ in comments)
 
 
 def _carried(comment: str | None) -> bool:

@@ -39,7 +39,6 @@ from txtool.transform.layout import (
     with_comments,
 )
 from txtool.transform.renamings import Follower, Renaming
-from txtool.transform.serialized_before import Rebuild
 from txtool.transform.templates import Templates, parse_children
 
 # ros2_control's mock hardware (hardware_interface/src/mock_components/generic_system.cpp):
@@ -134,15 +133,7 @@ class Placer:
         self.written: tuple[etree._Comment, list[bytes]] | None = None
         self.unwritten: dict[Written, etree._Element] = {}  # by :meth:`unwrite`
         self._written_block: list[Written] = []  # the transmissions of :attr:`written`
-        # Set by the caller that serializes the tree as it was only before it changes
-        # (:mod:`.serialized_before`): called before the first change, unless the change is the
-        # written block replacing transmissions whose serializations ``texts`` holds (then
-        # :attr:`rebuild` tells how the baseline is made); None: the caller needs neither.
-        self.before_change: Callable[[], None] | None = None
-        self.texts: list[bytes | None] | None = None  # of every transmission, in order
-        self.rebuild: Rebuild | None = None
         self._replaced = etree.Element("replaced")  # what the generated block replaced
-        self._first_tails: dict[str | None, str] = {}  # see :meth:`_tails`
         # What the conversion cannot do as the document asks (it says why).
         self.losses: list[str] = []
         # Set when a block names the placeholder plugin: which blocks, and what to do.
@@ -176,20 +167,16 @@ class Placer:
                 self._not_in_scope(t)
                 self._into_new.append(move)
             else:
-                self._changing()
                 cut(old)
                 append(existing, self._build(move, *child_indentation(existing), existing))
         elif moving_in:
             # Inside a xacro macro or conditional (or a file whose root is not a <robot>): a
             # <ros2_control> of its own, in place, so that the transmission stays in the scope
             # of its ${...} parameters.
-            self._changing()
             self._wrap_in_place(move)
         elif t.dialect != "ros1" and (dialect or detect_dialect(old)) != "ros1":
-            self._changing()
             restyle_roles(old, t.dialect)  # Proposal 1 <-> 2: only the roles change
         else:
-            self._changing()
             new = self._build(move, *indentation(old), old)
             new.tail = old.tail
             if old.getparent() is None:
@@ -212,18 +199,9 @@ class Placer:
         else:
             self.place(old, follower.translated(), {}, follower.renaming(), dialect)
 
-    def _changing(self) -> None:
-        """Called before the tree changes (see :attr:`before_change`)."""
-        if self.before_change is not None:
-            self.before_change()
-            self.before_change = None
-
     def finish(self) -> None:
-        if self._out_of:
-            self._changing()
         if self._into_new:
             self._generate(self._into_new)
-        self.texts = None
         self._placeholder_warning()
         for component, moves in self._out_of.items():
             if self._is_generated(component, moves):
@@ -280,15 +258,6 @@ class Placer:
                                 alone=True)
             for old in runs[0][:-1]:
                 self.built[old].tail = reindent(old.tail, indent + step)
-        texts = self.texts
-        if self.before_change is not None and self.written is not None and len(runs) == 1 and (
-                texts is not None and len(texts) == len(moves) and None not in texts):
-            # Every transmission is a move, each in the order of the document: the texts
-            # are those of the run.
-            self.rebuild = Rebuild.make(block, self.written[0], runs[0], texts,  # type: ignore[arg-type]
-                                        set(self._first_tails))
-        if self.rebuild is None:
-            self._changing()
         for run in runs[1:]:
             for old in run:
                 cut(old)
@@ -401,11 +370,9 @@ class Placer:
     def _tails(self, moves: list[_Move], runs: list[list[etree._Element]], indent: str,
                step: str) -> list[str] | None:
         """What follows each transmission of a generated block: the blank lines that followed
-        it in the first run, one line break, or the block's end; None when not blank. The
-        tails as they were, each once, are kept for :class:`.serialized_before.Rebuild`."""
+        it in the first run, one line break, or the block's end; None when not blank."""
         tails = ["\n" + indent + step] * len(moves)
         reindented: dict[str | None, str] = {}
-        self._first_tails = reindented
         for position, old in enumerate(runs[0][:-1]):
             tail = reindented.get(old.tail)
             if tail is None:

@@ -17,16 +17,14 @@ from __future__ import annotations
 
 import base64
 import binascii
-import os
 import re
 import zlib
-from dataclasses import dataclass
 
 from lxml import etree
 
 from txtool.dialects.read import Found, read_source
 from txtool.dialects.translate import translate
-from txtool.io.encodings import detect_encoding, utf8_form
+from txtool.io.encodings import utf8_form
 from txtool.io.xmlio import InputError, Source, local, parse_bytes
 from txtool.model.core import Member, Transmission
 
@@ -39,13 +37,6 @@ _END = re.compile(rb"</([\w.-]+:)?transmission\s*>")
 _START = re.compile(rb"<([\w.-]+:)?transmission[\s/>]")
 _END_LINE = re.compile(rb"</([\w.-]+:)?transmission\s*>$")
 _EMPTY_LINE = re.compile(rb"\s*<([\w.-]+:)?transmission\b[^>]*/>\s*")
-
-
-@dataclass(frozen=True)
-class Restore:
-    token: str  # the name the written block is placed under until its original replaces it
-    original: bytes
-    name: str  # the transmission's own name, put back should the block not be replaced
 
 
 def block_of(data: bytes, element: etree._Element) -> bytes | None:
@@ -149,47 +140,6 @@ def _value(number) -> object:
     return None if number is None else (number.value, number.text)
 
 
-def restore(data: bytes, restores: list[Restore], path: str) -> bytes:
-    """Replace each block written under a restore token by its original bytes (a UTF-16 or
-    UTF-32 document is worked on in its UTF-8 form, as the carried blocks are)."""
-    if not restores:
-        return data
-    stored = detect_encoding(data)
-    if stored.wide:
-        return stored.from_utf8(restore(utf8_form(data), restores, path))
-    tree = parse_bytes(data, path, limit=None)
-    by_token = {e.get("name"): e for e in tree.getroot().iter("{*}transmission", "transmission")}
-    lines = data.splitlines(keepends=True)
-    replaced: dict[int, tuple[int, bytes]] = {}
-    for item in restores:
-        element = by_token[item.token]
-        block = block_of(data, element)
-        if block is None:  # not on lines of its own: keep it as written, under its own name
-            # Imported here: xml.sax.saxutils loads urllib.request, http.client and ssl,
-            # about 25 ms that every conversion would pay at start-up.
-            from xml.sax.saxutils import quoteattr
-
-            data = data.replace(item.token.encode(), quoteattr(item.name)[1:-1].encode())
-            continue
-        start = element.sourceline - 1
-        original = item.original
-        if not original.endswith((b"\n", b"\r")):
-            original += block[len(block.rstrip(b"\r\n")):]
-        replaced[start] = (start + len(block.splitlines()), original)
-    lines = data.splitlines(keepends=True)
-    out: list[bytes] = []
-    index = 0
-    while index < len(lines):
-        if index in replaced:
-            end, original = replaced[index]
-            out.append(original)
-            index = end
-        else:
-            out.append(lines[index])
-            index += 1
-    return b"".join(out)
-
-
 class Carrier:
     """What one conversion carries to ROS 2 (``reversible``) and puts back on the way to
     ROS 1 (whenever a carried original is found)."""
@@ -205,8 +155,7 @@ class Carrier:
         self._carried: list[tuple[str, bytes, etree._Element]] = []
         # Elements going back to ROS 1 after their <ros2_control> (the placer's ``after``).
         self.after_block: set[etree._Element] = set()
-        self._restores: list[Restore] = []
-        self._pending: list[tuple[etree._Element, Restore]] = []
+        self._pending: list[tuple[etree._Element, bytes]] = []
         self._text = utf8_form(source.data) if self.reversible else b""
 
     def before(self, found: Found) -> None:
@@ -222,29 +171,26 @@ class Carrier:
             else:
                 self._carried.append((t.name, block, found.element))
 
-    def after(self, tree: etree._ElementTree,
-              built: dict[etree._Element, etree._Element]) -> None:
-        """Put each carried original before its converted transmission; name each block
-        to be put back by its token (``built``: old element -> what the placer built)."""
-        for old, restore_ in self._pending:
-            if old in built:  # (not when it could not be moved: see Placer.losses)
-                built[old].set("name", restore_.token)
-        if not self._carried:
-            return
-        placed = [e for e in tree.getroot().iter() if isinstance(e.tag, str)
-                  and local(e) == "transmission" and _in_component(e)]
-        for name, block, old in self._carried:
-            element = next((e for e in placed if e.get("name") == name), None)
-            if element is not None:
-                placed.remove(element)
-                annotate(element, block, _stood_after(old, element.getparent()))
-
-    def restore(self, data: bytes) -> bytes:
-        if self._restores:
-            count = len(self._restores)
+    def after(self, tree: etree._ElementTree, built: dict[etree._Element, etree._Element]
+              ) -> list[tuple[etree._Element, bytes]]:
+        """Put each carried original before its converted transmission; the elements built
+        back in ROS 1 that are to be written as their carried originals, with those
+        (``built``: old element -> what the placer built)."""
+        restored = [(built[old], original) for old, original in self._pending
+                    if old in built]  # (not when it could not be moved: see Placer.losses)
+        if restored:
+            count = len(restored)
             self.notes.append(f"{count} transmission{'s' if count > 1 else ''}: the original "
                               "bytes carried by --reversible are put back")
-        return restore(data, self._restores, self.source.path)
+        if self._carried:
+            placed = [e for e in tree.getroot().iter() if isinstance(e.tag, str)
+                      and local(e) == "transmission" and _in_component(e)]
+            for name, block, old in self._carried:
+                element = next((e for e in placed if e.get("name") == name), None)
+                if element is not None:
+                    placed.remove(element)
+                    annotate(element, block, _stood_after(old, element.getparent()))
+        return restored
 
     def _take_back(self, found: Found) -> None:
         name = found.transmission.name
@@ -255,9 +201,7 @@ class Carrier:
             self.after_block.add(found.element)
         drop_marker(found.element)
         if original and restorable(found, original):
-            token = f"txtool-restore-{len(self._restores)}-{os.urandom(8).hex()}"
-            self._restores.append(Restore(token, original, name))
-            self._pending.append((found.element, self._restores[-1]))
+            self._pending.append((found.element, original))
         else:
             self.notes.append(f"transmission '{name}': changed since it was converted with "
                               "--reversible; written as txtool writes it")

@@ -16,7 +16,7 @@ or the UTF-8 form of a UTF-16 or UTF-32 document.
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 
 from lxml import etree
@@ -34,6 +34,10 @@ _ATTRIBUTE = re.compile(rb"""(\s+)([^\s=/>]+)\s*=\s*(?:"([^"]*)"|'([^']*)')""")
 
 class SpanError(ValueError):
     """The bytes do not read as the tree says (they are not what it was parsed from)."""
+
+
+class NotIndexed(KeyError):
+    """A node asked for that the index was not built for."""
 
 
 @dataclass(frozen=True)
@@ -70,6 +74,7 @@ class Span:
 
 
 _SLASH, _BANG, _QUESTION = b"/!?"
+_NONE, _CHILDREN, _DEEP = 0, 1, 2  # how far below an open element nodes are indexed
 
 
 class SpanIndex:
@@ -80,54 +85,88 @@ class SpanIndex:
     lives)."""
 
     def __init__(self, data: bytes, root: etree._Element,
-                 within: Iterable[etree._Element] | None = None, codec: str = "utf-8") -> None:
+                 within: Iterable[etree._Element] | None = None, codec: str = "utf-8",
+                 shallow: Iterable[etree._Element] = (),
+                 near: set[etree._Element] | None = None) -> None:
+        """``within``: the elements indexed with every node inside them; ``shallow``: elements
+        indexed with their children alone (the places a change may add or remove children);
+        ``near``: of the root's children, the only ones whose bounds a change may need (the
+        rest are passed over: a robot's links and joints); None: all."""
         self.data = data
         self.codec = codec  # how names are stored (an ASCII-compatible encoding)
         self._spans: dict[etree._Element, Span] = {}
         wanted = {root} if within is None else set(within)
-        nodes = root.iter()
-        open_spans: list[Span] = []  # the elements of ``wanted`` open where the scan is
-        depth = 0
+        outline = set(shallow)
+        way: set[etree._Element] = set()  # the ancestors of what is indexed
+        for node in wanted | outline:
+            for ancestor in node.iterancestors():
+                if ancestor in way:
+                    break
+                way.add(ancestor)
+        # For each element open where the scan is: its span where it is indexed (else None),
+        # how far down its descendants are (_DEEP: all; _CHILDREN: its children alone), and
+        # its children still to be read.
+        open_spans: list[tuple[Span | None, int]] = []
+        children: list[Iterator[etree._Element]] = []
         line, counted = 1, 0
-        started = False
-        for token in _MARKUP.finditer(data):
+        tokens = _MARKUP.finditer(data)
+        cdata = b"<![CDATA[" in data
+        while (token := next(tokens, None)) is not None:
             at = token.start()
             kind = data[at + 1]
             if kind == _SLASH:
-                if open_spans:  # inside an indexed element, every element is indexed
-                    closed = open_spans.pop()
+                closed, _ = open_spans.pop()
+                if next(children.pop(), None) is not None:
+                    raise SpanError(f"byte {at}: the tree has nodes the bytes do not")
+                if closed is not None:
                     closed.tail_start, closed.end = at, token.end()
-                depth -= 1
-                if not depth:
+                if not open_spans:
                     break  # the root's end tag
                 continue
             if kind == _BANG and not data.startswith(b"<!--", at):
                 continue  # text (a CDATA section), or the DOCTYPE
-            if not started and kind in (_BANG, _QUESTION):
-                continue  # before the root
-            started = True
-            node = next(nodes, None)
-            if node is None:
-                raise SpanError(f"byte {at}: a node the tree does not have")
+            if not open_spans:
+                if kind in (_BANG, _QUESTION):
+                    continue  # before the root
+                node = root
+            else:
+                node = next(children[-1], None)
+                if node is None:
+                    raise SpanError(f"byte {at}: a node the tree does not have")
             element = kind not in (_BANG, _QUESTION)
             if element is not (node.tag.__class__ is str):
                 raise SpanError(f"byte {at}: the tree has a {node.tag!r} here")
             empty = element and data[token.end() - 2] == _SLASH
-            if open_spans or node in wanted:
+            reach = open_spans[-1][1] if open_spans else _NONE
+            span = None
+            deep = reach == _DEEP or node in wanted
+            if deep or node in outline:
                 line += _lines(data, counted, token.end())
                 counted = token.end()
                 span = self._spans[node] = _span(token, node, line, codec)
-                if element and not empty:
-                    open_spans.append(span)
+            elif reach and (near is None or len(open_spans) > 1 or node in near):
+                # A child a change may keep, not look into: its bounds are all that is read.
+                span = self._spans[node] = _bounds(token, node, codec)
             if element and not empty:
-                depth += 1
-            elif not depth:
+                below = _DEEP if deep else _CHILDREN if node in outline else _NONE
+                if below == _NONE and open_spans and node not in way:
+                    # Nothing inside is indexed: passed over to its end tag.
+                    closing, tokens = _pass_over(token, tokens, data, cdata)
+                    if span is not None:
+                        span.tail_start, span.end = closing
+                    continue
+                open_spans.append((span, below))
+                children.append(iter(node))
+            elif not open_spans:
                 break  # the root, written <root/>
-        if depth or next(nodes, None) is not None:
-            raise SpanError("the tree has nodes the bytes do not")
+        if open_spans or not self._spans and root in wanted | outline:
+            raise SpanError("the bytes end before the tree does")
 
     def __getitem__(self, node: etree._Element) -> Span:
-        return self._spans[node]
+        try:
+            return self._spans[node]
+        except KeyError:
+            raise NotIndexed(f"<{etree.QName(node).localname}> was not indexed") from None
 
     def __contains__(self, node: etree._Element) -> bool:
         return node in self._spans
@@ -149,6 +188,62 @@ def _lines(data: bytes, start: int, end: int) -> int:
     feeds = data.count(b"\n", start, end)
     returns = data.count(b"\r", start, end)
     return feeds + returns - data.count(b"\r\n", start, end) if returns else feeds
+
+
+_END_TAGS: dict[bytes, re.Pattern[bytes]] = {}
+
+
+def _pass_over(token: re.Match[bytes], tokens: Iterator[re.Match[bytes]], data: bytes,
+               cdata: bool) -> tuple[tuple[int, int], Iterator[re.Match[bytes]]]:
+    """Read past the element whose start tag is ``token`` (just read) in ``tokens``: where
+    its end tag starts and ends, and the tokens after it. The first end tag of its name ends
+    it where nothing between can hide or nest one (no start tag of the same name, comment or
+    instruction between, and ``cdata`` false: no CDATA section in the document); else every
+    token is read. The nodes inside are not paired: one out of step with the tree shows at
+    the next node indexed, or at the end."""
+    if not cdata:
+        name = token.group("name")
+        end_tag = _END_TAGS.get(name)
+        if end_tag is None:
+            end_tag = _END_TAGS[name] = re.compile(b"</" + re.escape(name) + rb"\s*>")
+        end = end_tag.search(data, token.end())
+        if end is not None:
+            inside = token.end(), end.start()
+            if data.find(b"<!--", *inside) < 0 and data.find(b"<?", *inside) < 0 and (
+                    _nests(data, name, *inside) is False):
+                return end.span(), _MARKUP.finditer(data, end.end())
+    depth = 1
+    for token in tokens:
+        at = token.start()
+        kind = data[at + 1]
+        if kind == _SLASH:
+            depth -= 1
+            if not depth:
+                return (at, token.end()), tokens
+        elif kind not in (_BANG, _QUESTION) and data[token.end() - 2] != _SLASH:
+            depth += 1
+    raise SpanError("an element the bytes do not end")
+
+
+def _nests(data: bytes, name: bytes, start: int, end: int) -> bool:
+    """Whether a start tag of ``name`` may stand in ``data[start:end]``."""
+    at = data.find(b"<" + name, start, end)
+    while at >= 0:
+        if data[at + 1 + len(name):at + 2 + len(name)] in (b" ", b"\t", b"\r", b"\n", b"/",
+                                                           b">"):
+            return True
+        at = data.find(b"<" + name, at + 1, end)
+    return False
+
+
+def _bounds(token: re.Match[bytes], node: etree._Element, codec: str) -> Span:
+    """Where ``node`` starts, and where its start tag ends (its end, until its end tag is
+    read); its name checked, not its line."""
+    name = token.group("name")
+    if name is not None and name.rpartition(b":")[2].decode(
+            codec, "replace") != node.tag.rpartition("}")[2]:
+        raise SpanError(f"byte {token.start()}: the bytes do not hold the tree's {node.tag!r}")
+    return Span(token.start(), token.end())
 
 
 def _span(token: re.Match[bytes], node: etree._Element, line: int, codec: str) -> Span:

@@ -33,23 +33,51 @@ class _Before:
     text: str | None
     children: list[etree._Element]
     tails: list[str | None]
+    tag: str
 
 
 class TreeChange:
     """The state of ``elements`` and their descendants before a change, to tell the edits
     that write it (:meth:`edits`)."""
 
-    def __init__(self, elements: Iterable[etree._Element]) -> None:
-        self.roots = list(elements)
+    def __init__(self, elements: Iterable[etree._Element],
+                 containers: Iterable[etree._Element] = ()) -> None:
+        """``elements``: recorded with all their descendants; ``containers``: recorded
+        alone (their attributes, text and children), for a change that adds, removes or
+        replaces their children but changes nothing inside the children it keeps. The roots
+        of the change are the containers that are no descendant of another, and the elements
+        that are in none of them."""
         self._before: dict[etree._Element, _Before] = {}
-        for root in self.roots:
+        for element in containers:
+            self._record(element)
+        outer = set(self._before)
+        self.roots = [e for e in outer if not any(a in outer for a in e.iterancestors())]
+        for root in elements:
             for element in root.iter("*"):
-                children = list(element)
-                self._before[element] = _Before(dict(element.attrib), element.text, children,
-                                                [child.tail for child in children])
+                self._record(element)
+            if root not in outer and not any(a in outer for a in root.iterancestors()):
+                self.roots.append(root)
+        # Nodes written as given bytes rather than as lxml writes them (by :meth:`substitute`).
+        self._substitutes: dict[etree._Element, bytes] = {}
+        self._redeclare = False
 
-    def edits(self, text: EditedText, index: SpanIndex) -> list[Edit]:
-        """The edits of ``text.data`` (which ``index`` reads) that write the change."""
+    def _record(self, element: etree._Element) -> None:
+        children = list(element)
+        self._before[element] = _Before(dict(element.attrib), element.text, children,
+                                        [child.tail for child in children], element.tag)
+
+    def substitute(self, node: etree._Element, markup: bytes) -> None:
+        """Write ``node`` (a node the change puts in) as ``markup``, bytes of the document,
+        instead of as lxml writes it; its tail is written as usual."""
+        self._substitutes[node] = markup
+
+    def edits(self, text: EditedText, index: SpanIndex, *, redeclare: bool = False
+              ) -> list[Edit]:
+        """The edits of ``text.data`` (which ``index`` reads) that write the change.
+        ``redeclare``: a new node may declare a namespace its place declares already (a
+        redundant declaration, which no reader sees) rather than be refused
+        (:class:`NotEditable`)."""
+        self._redeclare = redeclare
         edits: list[Edit] = []
         for root in self.roots:
             self._element(root, text, index, edits)
@@ -58,7 +86,9 @@ class TreeChange:
     def _element(self, element: etree._Element, text: EditedText, index: SpanIndex,
                  edits: list[Edit]) -> None:
         before, span = self._before[element], index[element]
-        edits.extend(_attribute_edits(element, index, before.attributes, text))
+        if element.tag != before.tag:
+            raise NotEditable(f"<{etree.QName(element).localname}> changed its name")
+        edits.extend(_attribute_edits(element, index, before.attributes, text, self._redeclare))
         children = list(element)
         tails = [child.tail for child in children]
         if (children, tails, element.text) == (before.children, before.tails, before.text):
@@ -68,50 +98,76 @@ class TreeChange:
             return
         if span.empty:
             name = index.data[span.start + 1:span.start + 1 + _name_length(index.data, span)]
-            content = _escaped(element.text) + "".join(map(_written, children))
             edits.append(Edit(span.attributes_end, span.end, text.encode(
-                ">" + content) + b"</" + name + b">"))
+                ">" + _escaped(element.text)) + self._nodes(children, text) + b"</" + name
+                + b">"))
             return
-        kept = [child for child in children if child in before.children]
-        order = [before.children.index(child) for child in kept]
+        if not children and not element.text:
+            # Emptied by the change: written as lxml writes an empty element, <x/>.
+            edits.append(Edit(span.close, span.end, b"/>"))
+            return
+        was_at = {child: place for place, child in enumerate(before.children)}
+        kept = [child for child in children if child in was_at]
+        order = [was_at[child] for child in kept]
         if order != sorted(order):
             kept = []  # reordered: all of the content is written anew
-        self._regions(element, span, kept, text, index, edits)
+        self._regions(element, span, kept, was_at, text, index, edits)
         for child in kept:
-            if child.tag.__class__ is str:
+            if child in self._before:
                 self._element(child, text, index, edits)
 
     def _regions(self, element: etree._Element, span: Span, kept: list[etree._Element],
-                 text: EditedText, index: SpanIndex, edits: list[Edit]) -> None:
+                 was_at: dict[etree._Element, int], text: EditedText, index: SpanIndex,
+                 edits: list[Edit]) -> None:
         """An edit for each run of content between two kept children (or the start or end
-        of the element) that the change made differ."""
+        of the element) that the change made differ (``was_at``: where each child stood
+        before)."""
         before = self._before[element]
         children = list(element)
-        bounds = [span.head_end, *(x for child in kept for x in (index[child].start,
-                                                                   index[child].end)),
-                  span.tail_start]
-        leads = [(element.text, before.text), *((child.tail, before.tails[
-            before.children.index(child)]) for child in kept)]
-        places = [children.index(child) for child in kept]
-        old_places = [before.children.index(child) for child in kept]
+        old_places = [was_at[child] for child in kept]
+        leads = [(element.text, before.text), *(
+            (child.tail, before.tails[place]) for child, place in zip(kept, old_places,
+                                                                       strict=True))]
+        is_at = {child: place for place, child in enumerate(children)}
+        places = [is_at[child] for child in kept]
         firsts = [0, *(place + 1 for place in places)]
         lasts = [*places, len(children)]
         old_firsts = [0, *(place + 1 for place in old_places)]
         old_lasts = [*old_places, len(before.children)]
         for region, (lead, old_lead) in enumerate(leads):
-            new_nodes = children[firsts[region]:lasts[region]]
-            old_nodes = before.children[old_firsts[region]:old_lasts[region]]
-            if lead == old_lead and not new_nodes and not old_nodes:
+            if lead == old_lead and firsts[region] == lasts[region] and (
+                    old_firsts[region] == old_lasts[region]):
                 continue
-            start, end = bounds[2 * region], bounds[2 * region + 1]
-            written = text.encode(_escaped(lead) + "".join(map(_written, new_nodes)))
+            # Only the bounds of a region that changed are read (the index may hold no more).
+            start = index[kept[region - 1]].end if region else span.head_end
+            end = index[kept[region]].start if region < len(kept) else span.tail_start
+            new_nodes = children[firsts[region]:lasts[region]]
+            written = text.encode(_escaped(lead)) + self._nodes(new_nodes, text)
             edit = _trimmed(index.data, start, end, written)
             if edit.start < edit.end or edit.content:
                 edits.append(edit)
 
+    def _nodes(self, nodes: list[etree._Element], text: EditedText) -> bytes:
+        """``nodes`` and their tails as bytes of the document."""
+        written = []
+        for node in nodes:
+            markup = self._substitutes.get(node)
+            if markup is None:
+                written.append(text.encode(_written(node, self._redeclare)))
+            else:
+                written.append(markup + text.encode(_escaped(node.tail)))
+        return b"".join(written)
+
+
+def _prefixed_name(element: etree._Element, key: str) -> str | None:
+    """``{namespace}name`` as ``prefix:name`` with a prefix in scope at ``element``."""
+    namespace, _, name = key[1:].partition("}")
+    prefix = next((p for p, uri in element.nsmap.items() if uri == namespace and p), None)
+    return None if prefix is None else f"{prefix}:{name}"
+
 
 def _attribute_edits(element: etree._Element, index: SpanIndex, before: dict[str, str],
-                     text: EditedText) -> list[Edit]:
+                     text: EditedText, redeclare: bool = False) -> list[Edit]:
     after = element.attrib
     if len(after) == len(before) and all(before.get(k) == v for k, v in after.items()):
         return []
@@ -125,12 +181,25 @@ def _attribute_edits(element: etree._Element, index: SpanIndex, before: dict[str
         elif after[key] != value:
             edits.append(Edit.replacement(place.value_start, place.value_end, text.encode(
                 _attribute_value(after[key], place.quote.decode()))))
-    for key, value in after.items():
-        if key not in before:
-            if key.startswith("{"):  # its prefix may be declared nowhere in the document
+    # A new attribute goes after the one the tree puts before it, or last where none of the
+    # attributes written comes after it in the tree.
+    keys = list(after)
+    last_kept = max((i for i, key in enumerate(keys) if key in before), default=-1)
+    at = span.name_end
+    for position, key in enumerate(keys):
+        value = after[key]
+        if key in before:
+            at = written[_written_name(element, key, written)].end
+            continue
+        if position > last_kept:
+            at = span.attributes_end
+        name = key
+        if key.startswith("{"):  # its prefix may be declared nowhere in the document
+            name = _prefixed_name(element, key) if redeclare else None
+            if name is None:
                 raise NotEditable(f"a new attribute {key} in a namespace")
-            edits.append(Edit.insertion(span.attributes_end, text.encode(
-                f' {key}="{_attribute_value(value, chr(34))}"')))
+        edits.append(Edit.insertion(at, text.encode(
+            f' {name}="{_attribute_value(value, chr(34))}"')))
     return edits
 
 
@@ -199,21 +268,27 @@ def _attribute_value(value: str, quote: str) -> str:
 _DECLARATION = re.compile(r"""\sxmlns(?::([^\s=]+))?\s*=\s*(?:"([^"]*)"|'([^']*)')""")
 
 
-def _written(node: etree._Element) -> str:
+def _written(node: etree._Element, redeclare: bool = False) -> str:
     """A node the change put here, and its tail, as lxml writes it: without the namespace
     declarations lxml repeats from its new parent's scope (a copied node takes them along),
-    as the document declares them there already."""
+    as the document declares them there already; ``redeclare``: with them, where one cannot
+    go (a declaration no reader sees)."""
     markup = etree.tostring(node, encoding=str, with_tail=False)
     if "xmlns" in markup:
         parent = node.getparent()
         scope = parent.nsmap if parent is not None else {}
         head_end = markup.index(">")
+
+        def redundant(found: re.Match[str]) -> bool:
+            uri = found.group(2) if found.group(2) is not None else found.group(3)
+            return scope.get(found.group(1)) == uri
+
         kept = [found for found in _DECLARATION.finditer(markup, 0, head_end)
-                if scope.get(found.group(1)) != (found.group(2) if found.group(2) is not None
-                                                 else found.group(3))]
-        if kept or "xmlns" in markup[head_end:]:
+                if not redundant(found)]
+        if (kept or "xmlns" in markup[head_end:]) and not redeclare:
             raise NotEditable(f"<{etree.QName(node).localname}> would declare a namespace")
-        markup = _DECLARATION.sub("", markup[:head_end]) + markup[head_end:]
+        markup = _DECLARATION.sub(lambda found: "" if redundant(found) else found.group(0),
+                                  markup[:head_end]) + markup[head_end:]
     return markup + _escaped(node.tail)
 
 

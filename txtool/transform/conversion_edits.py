@@ -1,0 +1,176 @@
+"""A conversion said as edits of the bytes it read.
+
+A conversion changes the parsed tree: the placer (:mod:`.placement`) replaces transmissions,
+cuts them out, wraps them in a ``<ros2_control>`` of their own, moves them into or out of a
+block, and restyles a Proposal 1 transmission's roles in place. :class:`ConversionEdits`
+records, before any of that, the elements whose children a conversion may change (each
+transmission's ancestors, and each ``<ros2_control>`` of the document with its parent) and the
+transmissions themselves in full; afterwards :meth:`ConversionEdits.edits` says the change as
+edits of their spans (:mod:`.tree_edits`, :mod:`.spans`), the one applier
+(:func:`txtool.transform.edits.apply_edits`) makes the bytes, and :meth:`ConversionEdits.check`
+parses them and holds them to the converted tree.
+
+Two kinds of node are written as bytes rather than as lxml writes them: the block generated
+for a whole robot, whose transmissions are text already (:mod:`.block_text`: its marker is
+filled in inside the edit that writes the block), and a transmission going back to ROS 1 whose
+original ``--reversible`` carried (:mod:`.reversible`): written as its original bytes.
+"""
+
+from __future__ import annotations
+
+import hashlib
+
+from lxml import etree
+
+from txtool.dialects.read import detect_dialect
+from txtool.io.encodings import SCANNABLE
+from txtool.io.xmlio import InputError, parse_bytes
+from txtool.transform.block_text import fill
+from txtool.transform.declaration import late_declaration
+from txtool.transform.edits import Edit, EditedText
+from txtool.transform.spans import SpanError, SpanIndex
+from txtool.transform.tree_edits import NotEditable, TreeChange
+
+
+class ConversionEdits:
+    """The document ``data`` whose tree (root ``root``) a conversion is about to change."""
+
+    def __init__(self, data: bytes, root: etree._Element,
+                 transmissions: list[etree._Element], target: str, *, near: bool = True
+                 ) -> None:
+        """``near``: of the root's children, index the bounds of those next to a
+        transmission or a ``<ros2_control>`` alone (the places the placer changes the root's
+        children); false: all of them (:class:`.spans.NotIndexed` said one was missing)."""
+        self.text = EditedText(data)
+        containers: set[etree._Element] = {root}
+        for element in transmissions:
+            for ancestor in element.iterancestors():
+                if ancestor in containers:
+                    break
+                containers.add(ancestor)
+        if self.text.stored.codec not in SCANNABLE or b"ros2_control" in self.text.data:
+            for component in root.iter("{*}ros2_control"):
+                containers.add(component)
+                containers.update(component.iterancestors())
+        inside = _changed_inside(self.text, transmissions, target)
+        try:
+            self.index = SpanIndex(self.text.data, root, inside, self.text.codec,
+                                   shallow=containers,
+                                   near=_near(root, transmissions, containers) if near else None)
+        except SpanError as exc:
+            raise InputError(f"cannot convert: the bytes do not read as parsed ({exc})"
+                             ) from None
+        self.change = TreeChange(inside, containers)
+
+    def substitute(self, node: etree._Element, block: bytes) -> None:
+        """Write ``node`` as ``block``, the whole lines a transmission stood on (the
+        indentation of its first line and its last line ending left to the tree's layout)."""
+        markup = block.lstrip(b" \t")
+        self.change.substitute(node, markup[:len(markup.rstrip(b"\r\n"))])
+
+    def edits(self, marker: etree._Comment | None = None,
+              pieces: list[bytes] | None = None) -> list[Edit] | None:
+        """The edits that write the converted tree, with the text ``pieces`` in place of the
+        comment ``marker`` where one was placed; None where the marker cannot be filled in
+        (the caller parses the text into the tree and asks again)."""
+        try:
+            edits = self.change.edits(self.text, self.index)
+        except NotEditable:
+            try:
+                edits = self.change.edits(self.text, self.index, redeclare=True)
+            except NotEditable as exc:
+                raise InputError(f"cannot convert: {exc}") from None
+        if marker is not None:
+            assert pieces is not None
+            newline = self.text.newline.encode("ascii")
+            if newline != b"\n":  # the pieces are ASCII, laid out with line feeds
+                pieces = [piece.replace(b"\n", newline) for piece in pieces]
+            edits = _filled(edits, marker, pieces)
+            if edits is None:
+                return None
+        late = late_declaration(self.text.data) if edits else None
+        if late is not None:
+            edits.append(late)
+        return edits
+
+    def applied(self, edits: list[Edit]) -> bytes:
+        """The document with ``edits`` made, stored as the original was."""
+        return self.text.applied(edits)
+
+    def check(self, data: bytes, tree: etree._ElementTree, path: str,
+              marker: etree._Comment | None = None) -> None:
+        """Refuse (:class:`InputError`) written bytes that do not parse to ``tree``: canonical
+        forms compared; where ``marker`` stands for the text of a written block, what comes
+        before and after it (each transmission of the block is read back on its own, and
+        what it declares is the block's)."""
+        try:
+            written = parse_bytes(data, path, limit=None)
+        except InputError as exc:
+            raise InputError(f"{path}: cannot convert: what the edits write does not read "
+                             f"back ({exc})") from None
+        got = etree.tostring(written, method="c14n")
+        del written
+        want = etree.tostring(tree, method="c14n")
+        if marker is None:
+            same = got == want
+        else:
+            token = f"<!--{marker.text}-->".encode("ascii")
+            head, _, tail = want.partition(token)
+            same = (len(got) >= len(head) + len(tail) and got.startswith(head)
+                    and got.endswith(tail))
+        if not same:
+            digest = hashlib.sha256(got).hexdigest()[:12]
+            raise InputError(f"{path}: cannot convert: what the edits write does not read "
+                             f"as the converted document (read back {digest}); please "
+                             "report this file")
+
+
+_AROUND = 2  # siblings on either side of a changed child whose bounds are indexed
+
+
+def _near(root: etree._Element, transmissions: list[etree._Element],
+          containers: set[etree._Element]) -> set[etree._Element]:
+    """The root's children next to one a conversion may replace, cut or put something beside
+    (a transmission, a ``<ros2_control>``), two on either side: a cut changes the tail of the
+    node before, and taking a carried original's comment out changes the one before that."""
+    near: set[etree._Element] = set()
+    changing = [child for child in transmissions if child.getparent() is root]
+    changing += [child for child in containers if child.getparent() is root
+                 and child.tag.rpartition("}")[2] == "ros2_control"]
+    for child in changing:
+        near.add(child)
+        before = after = child
+        for _ in range(_AROUND):
+            before = before.getprevious() if before is not None else None
+            after = after.getnext() if after is not None else None
+            near.update(node for node in (before, after) if node is not None)
+    return near
+
+
+def _changed_inside(text: EditedText, transmissions: list[etree._Element], target: str
+                    ) -> list[etree._Element]:
+    """The transmissions a conversion to ``target`` may change inside rather than replace
+    whole: those of the other ROS 2 proposal, whose roles are restyled in place
+    (:func:`.layout.restyle_roles`). A ROS 1 transmission, or any going to ROS 1, is replaced;
+    a document whose bytes hold no ROS 2 spelling has none."""
+    if target == "ros1" or not transmissions:
+        return []
+    if text.stored.codec in SCANNABLE and not any(
+            word in text.data for word in (b"role", b"plugin", b"ros2_control")):
+        return []
+    return [element for element in transmissions if detect_dialect(element) != "ros1"]
+
+
+def _filled(edits: list[Edit], marker: etree._Comment, pieces: list[bytes]
+            ) -> list[Edit] | None:
+    """``edits`` with the marker filled in inside the one edit that holds it."""
+    token = f"<!--{marker.text}-->".encode("ascii")
+    holding = [i for i, edit in enumerate(edits) if token in edit.content]
+    if len(holding) != 1:
+        return None
+    edit = edits[holding[0]]
+    content = fill(edit.content, marker, pieces)
+    if content is None:
+        return None
+    edits[holding[0]] = Edit(edit.start, edit.end, content)
+    return edits
