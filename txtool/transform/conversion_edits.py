@@ -19,6 +19,7 @@ original ``--reversible`` carried (:mod:`.reversible`): written as its original 
 from __future__ import annotations
 
 import hashlib
+from dataclasses import dataclass
 
 from lxml import etree
 
@@ -97,12 +98,23 @@ class ConversionEdits:
         """The document with ``edits`` made, stored as the original was."""
         return self.text.applied(edits)
 
-    def check(self, data: bytes, tree: etree._ElementTree, path: str,
-              marker: etree._Comment | None = None) -> None:
-        """Refuse (:class:`InputError`) written bytes that do not parse to ``tree``: canonical
-        forms compared; where ``marker`` stands for the text of a written block, what comes
-        before and after it (each transmission of the block is read back on its own, and
-        what it declares is the block's)."""
+    @staticmethod
+    def expect(tree: etree._ElementTree, marker: etree._Comment | None = None) -> Expected:
+        """What :meth:`check` holds the written bytes to: the canonical form of ``tree``, the
+        converted document (digests, so that the tree can go before the bytes are parsed);
+        where ``marker`` stands for the text of a written block, what comes before and after
+        it (each transmission of the block is read back on its own by the conversion's
+        check, and what it declares is the block's)."""
+        want = etree.tostring(tree, method="c14n")
+        if marker is None:
+            return Expected(_digest(want))
+        head, _, tail = want.partition(f"<!--{marker.text}-->".encode("ascii"))
+        return Expected(_digest(head), _digest(tail), len(head), len(tail))
+
+    @staticmethod
+    def check(data: bytes, path: str, expected: Expected) -> None:
+        """Refuse (:class:`InputError`) written bytes that do not parse to the converted
+        document (:meth:`expect`)."""
         try:
             written = parse_bytes(data, path, limit=None)
         except InputError as exc:
@@ -110,19 +122,31 @@ class ConversionEdits:
                              f"back ({exc})") from None
         got = etree.tostring(written, method="c14n")
         del written
-        want = etree.tostring(tree, method="c14n")
-        if marker is None:
-            same = got == want
+        if expected.tail is None:
+            same = _digest(got) == expected.head
         else:
-            token = f"<!--{marker.text}-->".encode("ascii")
-            head, _, tail = want.partition(token)
-            same = (len(got) >= len(head) + len(tail) and got.startswith(head)
-                    and got.endswith(tail))
+            same = (len(got) >= expected.head_size + expected.tail_size
+                    and _digest(got[:expected.head_size]) == expected.head
+                    and _digest(got[len(got) - expected.tail_size:]) == expected.tail)
         if not same:
-            digest = hashlib.sha256(got).hexdigest()[:12]
             raise InputError(f"{path}: cannot convert: what the edits write does not read "
-                             f"as the converted document (read back {digest}); please "
-                             "report this file")
+                             f"as the converted document (read back {_digest(got)[:6].hex()});"
+                             " please report this file")
+
+
+@dataclass(frozen=True)
+class Expected:
+    """Digests of the canonical form of a converted document: all of it (``head``), or what
+    comes before (``head``) and after (``tail``) a written block, and their sizes."""
+
+    head: bytes
+    tail: bytes | None = None
+    head_size: int = 0
+    tail_size: int = 0
+
+
+def _digest(data: bytes) -> bytes:
+    return hashlib.sha256(data).digest()
 
 
 _AROUND = 2  # siblings on either side of a changed child whose bounds are indexed

@@ -196,19 +196,21 @@ def _convert_document(source: Source, target: Dialect, hardware_plugin: str, con
     result.notes.extend(carry.notes)
     if deep:
         _reads_back(result.data, source.path)
-    if writer is not None and not restored and result.edits:
-        writer.check(result.data, tree, source.path, marker)
+    expected = ConversionEdits.expect(tree, marker) if (
+        writer is not None and not restored and result.edits) else None
     if consume:
         source.tree = etree.ElementTree(etree.Element("consumed"))
-    if not check:
-        return result
-    if restored and result.data != source.data:
-        # Originals written as their bytes: only a parse of the output shows what it holds.
-        del tree
-        tree = parse_bytes(result.data, source.path, limit=None)
-        alone, in_tree = set(), False
-    _check(Source(source.path, result.data, tree), result, items, alone, names, virtual,
-           in_tree)
+    if check:
+        if restored and result.data != source.data:
+            # Originals written as their bytes: only a parse of the output shows what it holds.
+            del tree
+            tree = parse_bytes(result.data, source.path, limit=None)
+            alone, in_tree = set(), False
+        _check(Source(source.path, result.data, tree), result, items, alone, names, virtual,
+               in_tree)
+    del tree, items  # the written bytes are parsed next: one tree at a time
+    if expected is not None:
+        ConversionEdits.check(result.data, source.path, expected)
     return result
 
 

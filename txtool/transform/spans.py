@@ -16,8 +16,10 @@ or the UTF-8 form of a UTF-16 or UTF-32 document.
 from __future__ import annotations
 
 import re
+from bisect import bisect_right
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
+from itertools import accumulate, islice
 
 from lxml import etree
 
@@ -111,6 +113,7 @@ class SpanIndex:
         line, counted = 1, 0
         tokens = _MARKUP.finditer(data)
         cdata = b"<![CDATA[" in data
+        jumps = None if near is None else _Jumps(data, root, near | way | wanted | outline)
         while (token := next(tokens, None)) is not None:
             at = token.start()
             kind = data[at + 1]
@@ -133,6 +136,12 @@ class SpanIndex:
                 node = next(children[-1], None)
                 if node is None:
                     raise SpanError(f"byte {at}: a node the tree does not have")
+                if jumps is not None and len(open_spans) == 1:
+                    landing = jumps.past(node, children[0])
+                    if landing is not None:  # at the next child of the root asked about
+                        node, token, line, counted = landing
+                        tokens = _MARKUP.finditer(data, token.end())
+                        at, kind = token.start(), data[token.start() + 1]
             element = kind not in (_BANG, _QUESTION)
             if element is not (node.tag.__class__ is str):
                 raise SpanError(f"byte {at}: the tree has a {node.tag!r} here")
@@ -190,6 +199,81 @@ def _lines(data: bytes, start: int, end: int) -> int:
     return feeds + returns - data.count(b"\r\n", start, end) if returns else feeds
 
 
+class _Jumps:
+    """Where the scan can go straight from a child of the root that nothing asks about to
+    the next one something does (``wanted``), by the line the parser gives it: a robot's
+    thousands of links and joints are then not read at all. A landing is taken only where it
+    cannot be wrong: the node before it in the document ends on an earlier line, and on its
+    own line only spaces and end tags come before its start tag, which ends on that line."""
+
+    def __init__(self, data: bytes, root: etree._Element, wanted: set[etree._Element]
+                 ) -> None:
+        self.data = data
+        self.kids = list(root)
+        self.read = 0  # how many children of the root the scan has taken
+        self.marks = [place for place, kid in enumerate(self.kids) if kid in wanted]
+        self._starts: list[int] | None = None
+
+    def past(self, node: etree._Element, kids: Iterator[etree._Element]
+             ) -> tuple[etree._Element, re.Match[bytes], int, int] | None:
+        """For ``node``, the child of the root just taken from ``kids``: None to read it, or
+        the next child asked about, its start tag, its line and where that line starts
+        (``kids`` then continues after it)."""
+        place = self.read
+        self.read += 1
+        if place in self.marks_set:
+            return None
+        following = bisect_right(self.marks, place)
+        if following == len(self.marks):
+            return None
+        target = self.marks[following]
+        landing = self._landing(self.kids[target], self.kids[target - 1])
+        if landing is None:
+            return None
+        token, line, start = landing
+        skipped = target - place - 1
+        next(islice(kids, skipped, skipped), None)
+        if next(kids, None) is not self.kids[target]:
+            raise SpanError("the children of the root are not those the scan counted")
+        self.read = target + 1
+        return self.kids[target], token, line, start
+
+    @property
+    def marks_set(self) -> set[int]:
+        if not hasattr(self, "_marks_set"):
+            self._marks_set = set(self.marks)
+        return self._marks_set
+
+    def _landing(self, node: etree._Element, previous: etree._Element
+                 ) -> tuple[re.Match[bytes], int, int] | None:
+        line = node.sourceline
+        last = previous
+        while last.tag.__class__ is str and len(last):
+            last = last[-1]
+        if line is None or last.sourceline is None or last.sourceline >= line:
+            return None
+        if self._starts is None:
+            self._starts = [0, *accumulate(map(len, self.data.splitlines(keepends=True)))]
+        if line > len(self._starts):
+            return None
+        start = self._starts[line - 1]
+        gap = _GAP.match(self.data, start)
+        token = _MARKUP.match(self.data, gap.end()) if gap is not None else None
+        if token is None or self.data[token.start() + 1] == _SLASH:
+            return None
+        name = token.group("name")
+        if node.tag.__class__ is str:
+            if name is None or name.rpartition(b":")[2].decode("utf-8", "replace") != (
+                    node.tag.rpartition("}")[2]):
+                return None
+        elif name is not None:
+            return None
+        if _lines(self.data, start, token.end()):
+            return None  # it ends on a later line: not the node's start tag
+        return token, line, start
+
+
+_GAP = re.compile(rb"(?:[ \t\r\n]+|</[^>]*>)*")
 _END_TAGS: dict[bytes, re.Pattern[bytes]] = {}
 
 
