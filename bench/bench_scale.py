@@ -1,13 +1,15 @@
 """Work grows linearly with the document: time per transmission from 100 to 100,000.
 
 Run: ``python bench/bench_scale.py [--sizes 100,1000,10000,100000] [--commands ...]
-[--repeat R] [--pretty]``.
+[--repeat R] [--pretty] [--as-written]``.
 
 Each size N is one generated robot: a chain of N revolute joints, each driven by one ROS 1
-simple transmission (about 450 bytes per joint: 100,000 joints make a 45 MB file, under the 64 MB
-input limit); with ``--pretty`` every element is on a line of its own (about 700 bytes per
-joint), the repetitive lines a line diff has to align. Each command runs through the command
-line (click), in a fresh interpreter that times the run itself (start-up and imports not
+simple transmission (about 450 bytes per joint: 100,000 joints make a 45 MB file, under the 64
+MB input limit); with ``--pretty`` every element is on a line of its own (about 700 bytes per
+joint), the repetitive lines a line diff has to align; with ``--as-written`` the file has an XML
+declaration, a comment and single quotes, as people write robots (the default chain is byte for
+byte what lxml writes, which a writer may take a shortcut on). Each command runs through the
+command line (click), in a fresh interpreter that times the run itself (start-up and imports not
 counted) and measures its peak memory above what the interpreter held before the run. The floor
 is ``lxml.etree.parse`` of the same file, timed and measured the same way; runs are interleaved
 and each figure is the median of R runs (default 1). The tables show microseconds per
@@ -43,12 +45,15 @@ COMMANDS = {
 }
 
 
-def robot(joints: int, pretty: bool = False) -> str:
+def robot(joints: int, pretty: bool = False, as_written: bool = False) -> str:
     parts = ['<robot name="chain">', LINK.format(i=0)]
     parts += [LINK.format(i=i) + JOINT.format(i=i, p=i - 1) for i in range(1, joints + 1)]
     parts += [TRANSMISSION.format(i=i, n=10 + i % 90) for i in range(1, joints + 1)]
     text = "\n".join(parts) + "\n</robot>\n"
-    return text.replace("><", ">\n<") if pretty else text
+    text = text.replace("><", ">\n<") if pretty else text
+    if as_written:  # as people write robots, not as lxml writes them
+        text = '<?xml version="1.0"?>\n<!-- a robot -->\n' + text.replace('"', "'")
+    return text
 
 
 PRELUDE = """
@@ -105,6 +110,9 @@ def main() -> None:
     parser.add_argument("--commands", default=",".join(COMMANDS))
     parser.add_argument("--repeat", type=int, default=1)
     parser.add_argument("--pretty", action="store_true", help="one element per line")
+    parser.add_argument("--as-written", action="store_true",
+                        help="an XML declaration, a comment and single quotes: a file that "
+                             "lxml would not write byte for byte")
     args = parser.parse_args()
     sizes = [int(s) for s in args.sizes.split(",")]
     names = ["parse", *args.commands.split(",")]
@@ -113,7 +121,7 @@ def main() -> None:
     with tempfile.TemporaryDirectory(prefix="txtool-scale-") as folder:
         for size in sizes:
             path = Path(folder) / f"chain_{size}.urdf"
-            path.write_text(robot(size, args.pretty))
+            path.write_text(robot(size, args.pretty, args.as_written))
             megabytes = path.stat().st_size / 1e6
             runs: dict[str, list[tuple[float, float]]] = {name: [] for name in names}
             for _ in range(args.repeat):  # interleaved: load changes hit every command alike

@@ -99,3 +99,74 @@ def test_only_the_elements_asked_for_are_indexed() -> None:
     part = SpanIndex(DOCUMENT, root, [root[0][0]])  # the <joint>
     assert root[0][0] in part and root[0] not in part and root[0][3] not in part
     assert part[root[0][0]].start == index[root[0][0]].start
+
+
+def _same_spans(data: bytes, pick, options) -> None:
+    """The spans of the nodes ``pick(root)`` names, indexed with ``options(root)``, are those
+    of the full index."""
+    full, root = _index(data)
+    part = SpanIndex(data, root, **options(root))
+    for node in pick(root):
+        assert (part[node].start, part[node].end) == (full[node].start, full[node].end)
+
+
+def _chain(links: int, tail: str = "") -> bytes:
+    body = "".join(f'\n  <link name="l{i}"/><joint name="j{i}" type="fixed">'
+                   f'<parent link="l{i}"/><child link="l{i + 1}"/></joint>'
+                   for i in range(links))
+    return (f'<robot name="r">{body}\n  <transmission name="t">\n    <type>x</type>\n'
+            f"  </transmission>{tail}\n</robot>\n").encode()
+
+
+def test_the_scan_jumps_past_what_nothing_asks_about_to_the_same_spans() -> None:
+    _same_spans(_chain(300), lambda root: [root[-1], root[-2], root[-3]], lambda root: {
+        "within": [], "shallow": [root], "near": {root[-1], root[-2], root[-3]}})
+
+
+@pytest.mark.parametrize("tail", [
+    "",  # the transmission's start tag first on its line
+    '<link name="x"/>',
+])
+@pytest.mark.parametrize("head", [
+    '\n  <transmission name="t">',  # a line of its own: a jump lands there
+    '<transmission\n     name="t">',  # its start tag over two lines: no jump, read through
+    '\n  <!-- a --><transmission name="t">',  # a node before it on its line: read through
+    '\n  <x/><transmission name="t">',  # an element before it on its line: read through
+    '\n  <x>\n</x><transmission name="t">',  # an end tag before it: the jump lands
+])
+def test_a_landing_that_could_be_wrong_is_not_taken(head: str, tail: str) -> None:
+    data = _chain(20, tail).replace(b'\n  <transmission name="t">', head.encode())
+
+    def transmission(root):
+        return next(root.iter("transmission"))
+
+    _same_spans(data, lambda root: [transmission(root)], lambda root: {
+        "within": [transmission(root)], "shallow": [root], "near": {transmission(root)}})
+
+
+@pytest.mark.parametrize("inside", [
+    "<!-- </joint> -->", "<?pi </joint>?>", "<joint name='in'/>", "<![CDATA[</joint>]]>",
+    "<joint name='in'><x/></joint>",
+])
+def test_what_could_hide_an_end_tag_is_read_through(inside: str) -> None:
+    data = (f'<robot name="r">\n  <joint name="a">{inside}<parent link="p"/></joint>\n'
+            '  <link name="b"/>\n</robot>\n').encode()
+    _same_spans(data, lambda root: [root[1]], lambda root: {"within": [], "shallow": [root]})
+
+
+def test_a_robots_links_and_joints_are_jumped_over(monkeypatch) -> None:
+    from txtool.transform import spans
+
+    landed = []
+    past = spans._Jumps.past
+
+    def counted(self, node, kids):
+        landing = past(self, node, kids)
+        landed.append(landing is not None)
+        return landing
+
+    monkeypatch.setattr(spans._Jumps, "past", counted)
+    data = _chain(300).replace(b'<joint name="j299"', b'\n  <joint name="j299"')
+    _same_spans(data, lambda root: [root[-1], root[-2]], lambda root: {
+        "within": [], "shallow": [root], "near": {root[-1], root[-2]}})
+    assert landed == [True, False]  # from l0 straight to j299; then the transmission

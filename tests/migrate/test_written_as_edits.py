@@ -101,7 +101,17 @@ def _every_way(original: bytes, tmp_path: Path, suffix: str = ".urdf") -> None:
 
 
 @pytest.mark.parametrize("path", _documents(), ids=lambda p: p.name)
-def test_every_corpus_workspace_and_fixture_file(path: Path, tmp_path: Path) -> None:
+def test_every_corpus_workspace_and_fixture_file(path: Path, tmp_path: Path,
+                                                 monkeypatch: pytest.MonkeyPatch) -> None:
+    from txtool.transform import convert
+
+    document = convert._convert_document
+
+    def near_enough(*args, near):
+        assert near, "the index's siblings around a change were not enough"
+        return document(*args, near=near)
+
+    monkeypatch.setattr(convert, "_convert_document", near_enough)
     _every_way(path.read_bytes(), tmp_path, "".join(path.suffixes[-2:]))
 
 
@@ -167,3 +177,40 @@ def test_generated_documents_that_want_fixes(original: bytes, tmp_path: Path) ->
 @given(document=documents())
 def test_fuzzed_documents(document, tmp_path: Path) -> None:
     _every_way(document.data, tmp_path, document.suffix)
+
+
+def test_a_change_beside_a_child_the_index_passed_over_is_converted_again(monkeypatch) -> None:
+    """The one switch of the index's shortcut: with no sibling around a transmission
+    indexed, the placer's change needs one the index passed over, and the conversion runs
+    again with every child of the root indexed, to the same bytes."""
+    from txtool.transform import conversion_edits, convert
+
+    data = (b'<robot name="r">\n  <link name="a"/>\n  <transmission name="t">\n'
+            b"    <type>transmission_interface/SimpleTransmission</type>\n"
+            b'    <joint name="j"><hardwareInterface>hardware_interface/EffortJointInterface'
+            b"</hardwareInterface></joint>\n"
+            b'    <actuator name="m"><mechanicalReduction>5</mechanicalReduction></actuator>\n'
+            b'  </transmission>\n  <link name="b"/>\n  <transmission name="u">\n'
+            b"    <type>transmission_interface/SimpleTransmission</type>\n"
+            b'    <joint name="k"><hardwareInterface>hardware_interface/EffortJointInterface'
+            b"</hardwareInterface></joint>\n"
+            b'    <actuator name="n"><mechanicalReduction>5</mechanicalReduction></actuator>\n'
+            b"  </transmission>\n</robot>\n")
+
+    def converted():
+        return convert_source(Source("r.urdf", data, parse_bytes(data, "r.urdf")), "ros2-p2")
+
+    expected = converted()
+    runs = []
+    document = convert._convert_document
+
+    def counted(*args, near):
+        runs.append(near)
+        return document(*args, near=near)
+
+    monkeypatch.setattr(convert, "_convert_document", counted)
+    monkeypatch.setattr(conversion_edits, "_AROUND", 0)
+    again = converted()
+    assert runs == [True, False]
+    assert (again.data, again.edits) == (expected.data, expected.edits)
+    _written(data, again.data, again.edits)

@@ -31,7 +31,7 @@ from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
 from txtool.model.semantics import Effective, NotLoadable, effective, listed_against_roles
 from txtool.transform.block_text import Written, fill, read_back
-from txtool.transform.conversion_edits import ConversionEdits
+from txtool.transform.conversion_edits import ConversionEdits, Expected
 from txtool.transform.cycle_collector import paused
 from txtool.transform.edits import Edit
 from txtool.transform.nameless_shapes import shape
@@ -102,21 +102,25 @@ def convert_source(
     way.
     """
     try:
-        return _convert_document(source, target, hardware_plugin, consume, reversible, check,
-                                 repeats, near=True)
+        result, expected = _convert_document(source, target, hardware_plugin, consume,
+                                             reversible, check, repeats, near=True)
     except NotIndexed:
         # The placer changed the root's children next to one the index passed over: again,
         # with every child of the root indexed (a conversion in place consumed the tree).
         if consume:
             source.tree = parse_bytes(source.data, source.path, limit=None)
-        return _convert_document(source, target, hardware_plugin, consume, reversible, check,
-                                 repeats, near=False)
+        result, expected = _convert_document(source, target, hardware_plugin, consume,
+                                             reversible, check, repeats, near=False)
+    if expected is not None:  # here, where nothing holds the converted tree any more
+        ConversionEdits.check(result.data, source.path, expected)
+    return result
 
 
 def _convert_document(source: Source, target: Dialect, hardware_plugin: str, consume: bool,
                       reversible: bool, check: bool, repeats: bool, *, near: bool
-                      ) -> ConvertedDocument:
-    """:func:`convert_source`; ``near``: as :class:`.ConversionEdits` takes it."""
+                      ) -> tuple[ConvertedDocument, Expected | None]:
+    """:func:`convert_source`, and what the written bytes must read as (checked by the
+    caller); ``near``: as :class:`.ConversionEdits` takes it."""
     carry = Carrier(source, target, reversible)
     # Back to ROS 1 (each element may carry its original) and --reversible convert in full.
     memo = Memo() if repeats and not carry.reversible and target != "ros1" else None
@@ -208,10 +212,7 @@ def _convert_document(source: Source, target: Dialect, hardware_plugin: str, con
             alone, in_tree = set(), False
         _check(Source(source.path, result.data, tree), result, items, alone, names, virtual,
                in_tree)
-    del tree, items  # the written bytes are parsed next: one tree at a time
-    if expected is not None:
-        ConversionEdits.check(result.data, source.path, expected)
-    return result
+    return result, expected
 
 
 def _write(source: Source, tree: etree._ElementTree, writer: ConversionEdits | None,

@@ -212,6 +212,8 @@ class _Jumps:
         self.kids = list(root)
         self.read = 0  # how many children of the root the scan has taken
         self.marks = [place for place, kid in enumerate(self.kids) if kid in wanted]
+        self._marked = set(self.marks)
+        self._refused = -1  # the child a landing was refused at (not tried again)
         self._starts: list[int] | None = None
 
     def past(self, node: etree._Element, kids: Iterator[etree._Element]
@@ -221,14 +223,15 @@ class _Jumps:
         (``kids`` then continues after it)."""
         place = self.read
         self.read += 1
-        if place in self.marks_set:
+        if place in self._marked:
             return None
         following = bisect_right(self.marks, place)
-        if following == len(self.marks):
+        if following == len(self.marks) or self.marks[following] == self._refused:
             return None
         target = self.marks[following]
         landing = self._landing(self.kids[target], self.kids[target - 1])
         if landing is None:
+            self._refused = target
             return None
         token, line, start = landing
         skipped = target - place - 1
@@ -237,12 +240,6 @@ class _Jumps:
             raise SpanError("the children of the root are not those the scan counted")
         self.read = target + 1
         return self.kids[target], token, line, start
-
-    @property
-    def marks_set(self) -> set[int]:
-        if not hasattr(self, "_marks_set"):
-            self._marks_set = set(self.marks)
-        return self._marks_set
 
     def _landing(self, node: etree._Element, previous: etree._Element
                  ) -> tuple[re.Match[bytes], int, int] | None:
