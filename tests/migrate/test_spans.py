@@ -8,7 +8,7 @@ import pytest
 from lxml import etree
 
 from txtool.io.xmlio import parse_bytes
-from txtool.transform.spans import SpanError, SpanIndex
+from txtool.transform.edits.spans import SpanError, SpanIndex
 
 DOCUMENT = b"""<?xml version="1.0"?>
 <!DOCTYPE robot [ <!ELEMENT robot ANY> <!-- a ] in a comment --> ]>

@@ -25,7 +25,7 @@ from tests.hardening.fuzz_inputs import FIXTURES, documents
 from txtool.io.xmlio import InputError, Source, parse_bytes
 from txtool.rules import all_rules
 from txtool.transform.convert import convert_source
-from txtool.transform.edits import EditedText
+from txtool.transform.edits.core import EditedText
 from txtool.transform.migrate import MigrateOptions, migrate_file
 
 FIXES = [rule for rule in all_rules().values() if rule.fixable]
