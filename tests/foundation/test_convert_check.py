@@ -5,7 +5,7 @@ for every transmission it concerns."""
 from __future__ import annotations
 
 from txtool.model.core import Member, Number, Transmission
-from txtool.transform.nameless_shapes import ordered_shape, shape
+from txtool.transform.repeated.nameless_shapes import ordered_shape, shape
 
 BLOCK = """<robot name="r">
   <ros2_control name="hw" type="system">

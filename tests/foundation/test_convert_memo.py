@@ -1,4 +1,4 @@
-"""Transmissions converted once per shape (txtool.transform.renamings) convert as each one alone.
+"""Transmissions converted once per shape (txtool.transform.repeated.renamings) convert as each one alone.
 
 Each document repeats a few transmissions under names drawn from a small pool, so that names
 collide, members share joints, and the names the conversion writes itself (``actuator1``,
@@ -16,7 +16,7 @@ from lxml import etree
 from txtool.io.xmlio import Source, parse_bytes
 from txtool.transform import convert as convert_module
 from txtool.transform.convert import convert_source
-from txtool.transform.renamings import renaming_of
+from txtool.transform.repeated.renamings import renaming_of
 
 NAMES = ("a", "b", "j1", "actuator1", "*", "joint1", "z", "A")
 REDUCTIONS = ("50", "-2", "${ratio}", "1.0", "abc")
@@ -151,7 +151,7 @@ def test_a_template_whose_text_would_not_parse_back_is_copied_as_an_element():
     such a template is not written as text, and the block comes out as built one by one."""
     from txtool.dialects.read import read_transmission
     from txtool.dialects.translate import translate
-    from txtool.transform.placement import Placer
+    from txtool.transform.placement.placer import Placer
 
     data = ('<robot name="r">\n' + "\n".join(
         f'  <transmission name="t{i}"><type>transmission_interface/SimpleTransmission</type>'
@@ -176,7 +176,7 @@ def test_a_template_whose_text_would_not_parse_back_is_copied_as_an_element():
 def test_a_memo_keys_each_element_as_renaming_of_does(data):
     """Matching an element against the records of its skeleton gives its key itself."""
     from txtool.dialects.read import read_transmission
-    from txtool.transform.renamings import Follower, Memo
+    from txtool.transform.repeated.renamings import Follower, Memo
 
     memo = Memo()
     for element in parse_bytes(data, "<doc>").getroot().iter("{*}transmission"):
@@ -195,7 +195,7 @@ def test_a_memo_keys_each_element_as_renaming_of_does(data):
 @st.composite
 def repeated_documents(draw) -> bytes:
     """Many transmissions of a few shapes, mostly under names of their own (the block
-    generated for them is then written as text, :mod:`txtool.transform.block_text`), some under
+    generated for them is then written as text, :mod:`txtool.transform.repeated.block_text`), some under
     a name of the pool: colliding, shared or literal."""
     shapes = draw(st.lists(st.sampled_from([ros1_simple(), ros1_differential()]),
                            min_size=1, max_size=2))
@@ -237,10 +237,10 @@ def chain(count: int, reduction: str = "50") -> bytes:
 
 def test_a_chain_is_written_as_text(monkeypatch):
     """Repeats with names of their own: the generated block is never parsed."""
-    from txtool.transform import placement
+    from txtool.transform.placement import placer
 
     parsed = []
-    monkeypatch.setattr(placement, "parse_children",
+    monkeypatch.setattr(placer, "parse_children",
                         lambda pieces: parsed.append(1) or list(etree.fromstring(
                             b"<x>" + b"".join(pieces) + b"</x>")))
     data = chain(50)
@@ -253,7 +253,7 @@ def test_a_chain_is_written_as_text(monkeypatch):
 def test_a_written_block_whose_marker_the_document_holds_is_parsed(monkeypatch):
     """The marker found other than once (here: a comment of the document reads the same):
     the block is parsed into the tree and written as a whole, with the same result."""
-    from txtool.transform import block_text as written
+    from txtool.transform.repeated import block_text as written
 
     data = chain(5).replace(b"</robot>", b"<!--txtool-block-x-->\n</robot>")
     monkeypatch.setattr(written, "marker", lambda: etree.Comment("txtool-block-x"))

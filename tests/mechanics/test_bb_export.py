@@ -18,8 +18,8 @@ from hypothesis import strategies as st
 
 from txtool.cli import cli
 from txtool.io.xmlio import Source, parse_bytes
-from txtool.transform.bb import export_bb
-from txtool.transform.bb_actuators import DIRECTIONS, decimal_text, elixir_float
+from txtool.transform.bb.actuators import DIRECTIONS, decimal_text, elixir_float
+from txtool.transform.bb.export import export_bb
 
 LINKS = """<link name="base"/><link name="arm"/><link name="slider"/><link name="rim"/>"""
 JOINTS = """

@@ -9,7 +9,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 from lxml import etree
 
-from txtool.transform.bb_names import atom_name, elixir_atom, robot_names, unique_name
+from txtool.transform.bb.names import atom_name, elixir_atom, robot_names, unique_name
 
 
 def test_atom_name_replaces_every_other_byte_and_guards_a_leading_digit() -> None:

@@ -97,7 +97,7 @@ def test_unknown_convention_is_rejected() -> None:
 
 
 def test_linear_does_not_import_numpy() -> None:
-    code = ("import sys; import txtool.mechanics.linear; import txtool.transform.bb; "
+    code = ("import sys; import txtool.mechanics.linear; import txtool.transform.bb.export; "
             "print('numpy' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"

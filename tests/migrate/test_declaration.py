@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from txtool.transform.declaration import late_declaration
-from txtool.transform.edits import apply_edits
+from txtool.transform.edits.core import apply_edits
+from txtool.transform.edits.declaration import late_declaration
 
 
 @pytest.mark.parametrize("data, written", [

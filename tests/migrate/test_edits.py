@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from txtool.transform.edits import Edit, EditedText, apply_edits
+from txtool.transform.edits.core import Edit, EditedText, apply_edits
 
 
 def test_an_insertion_a_deletion_and_a_replacement_in_one_pass() -> None:

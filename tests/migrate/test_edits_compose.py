@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from txtool.transform.edits import Edit, apply_edits, compose
+from txtool.transform.edits.core import Edit, apply_edits, compose
 
 
 def test_disjoint_edits_stay_apart_at_their_places_in_the_original() -> None:

@@ -135,7 +135,7 @@ def test_a_generated_block_taken_apart_leaves_each_replaced_transmission_on_its_
 
     from txtool.dialects.read import read_transmission, transmission_elements
     from txtool.dialects.translate import translate
-    from txtool.transform.placement import Placer
+    from txtool.transform.placement.placer import Placer
 
     ros2 = CliRunner().invoke(cli, ["convert", "--to", "ros2-p2", "-"], input=chain(3))
     root = etree.fromstring(ros2.stdout_bytes)

@@ -8,7 +8,7 @@ import pytest
 from lxml import etree
 
 from txtool.io.xmlio import parse_bytes
-from txtool.transform.spans import SpanError, SpanIndex
+from txtool.transform.edits.spans import SpanError, SpanIndex
 
 DOCUMENT = b"""<?xml version="1.0"?>
 <!DOCTYPE robot [ <!ELEMENT robot ANY> <!-- a ] in a comment --> ]>
@@ -155,7 +155,7 @@ def test_what_could_hide_an_end_tag_is_read_through(inside: str) -> None:
 
 
 def test_a_robots_links_and_joints_are_jumped_over(monkeypatch) -> None:
-    from txtool.transform import spans
+    from txtool.transform.edits import spans
 
     landed = []
     past = spans._Jumps.past

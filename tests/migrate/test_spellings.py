@@ -8,9 +8,9 @@ import pytest
 from lxml import etree
 
 from txtool.io.xmlio import parse_bytes
-from txtool.transform.edits import EditedText
-from txtool.transform.spans import SpanIndex
-from txtool.transform.tree_edits import TreeChange
+from txtool.transform.edits.core import EditedText
+from txtool.transform.edits.spans import SpanIndex
+from txtool.transform.edits.tree_edits import TreeChange
 
 ORIGINAL = (b"<robot name='r'>\n"
             b"  <link  name = 'a b' />\n"

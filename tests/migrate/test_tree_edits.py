@@ -11,10 +11,10 @@ from lxml import etree
 
 from txtool.io.xmlio import InputError, parse_bytes
 from txtool.rules import all_rules
-from txtool.transform.edits import EditedText
+from txtool.transform.edits.core import EditedText
+from txtool.transform.edits.spans import SpanIndex
+from txtool.transform.edits.tree_edits import NotEditable, TreeChange, reads_as
 from txtool.transform.migrate import MigrateOptions, migrate_file
-from txtool.transform.spans import SpanIndex
-from txtool.transform.tree_edits import NotEditable, TreeChange, reads_as
 
 FIXES = [rule for rule in all_rules().values() if rule.fixable]
 
@@ -158,7 +158,7 @@ def test_where_the_edits_cannot_say_the_fixes_the_file_is_refused(failing, reaso
     """No other writer stands behind the edits: a change they cannot say is one line naming
     the file, and nothing is written."""
     from txtool.transform import migrate
-    from txtool.transform.spans import SpanError
+    from txtool.transform.edits.spans import SpanError
 
     def refuse(*_args, **_kwargs):
         if failing == "reads_as":

@@ -25,7 +25,7 @@ from tests.hardening.fuzz_inputs import FIXTURES, documents
 from txtool.io.xmlio import InputError, Source, parse_bytes
 from txtool.rules import all_rules
 from txtool.transform.convert import convert_source
-from txtool.transform.edits import EditedText
+from txtool.transform.edits.core import EditedText
 from txtool.transform.migrate import MigrateOptions, migrate_file
 
 FIXES = [rule for rule in all_rules().values() if rule.fixable]
@@ -183,7 +183,8 @@ def test_a_change_beside_a_child_the_index_passed_over_is_converted_again(monkey
     """The one switch of the index's shortcut: with no sibling around a transmission
     indexed, the placer's change needs one the index passed over, and the conversion runs
     again with every child of the root indexed, to the same bytes."""
-    from txtool.transform import conversion_edits, convert
+    from txtool.transform import convert
+    from txtool.transform.edits import conversion_edits
 
     data = (b'<robot name="r">\n  <link name="a"/>\n  <transmission name="t">\n'
             b"    <type>transmission_interface/SimpleTransmission</type>\n"

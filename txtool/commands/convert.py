@@ -85,7 +85,7 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, revers
         data, losses, notes = _bb(source, bb_direction or "reversed", bb_topology)
     else:
         from txtool.transform.convert import convert_source
-        from txtool.transform.declaration import without_late_declaration
+        from txtool.transform.edits.declaration import without_late_declaration
 
         result = convert_source(source, target, hardware_plugin=hardware_plugin, consume=True,
                                 reversible=reversible)
@@ -130,7 +130,7 @@ def _same_file(a: str, b: str) -> bool:
 
 
 def _bb(source, direction: str, topology: bool) -> tuple[bytes, list[str], list[str]]:
-    from txtool.transform.bb import export_bb
+    from txtool.transform.bb.export import export_bb
 
     exported = export_bb(source, direction=direction, topology=topology)  # type: ignore[arg-type]
     return exported.text.encode("utf-8"), exported.losses, exported.notes

@@ -109,7 +109,7 @@ def _against(a, b, output_format, convention) -> int:
     from txtool.dialects.read import read_source
     from txtool.mechanics.equivalence import compare
     from txtool.model.robot import robot_joints
-    from txtool.transform.bb_roundtrip import bb_drops
+    from txtool.transform.bb.roundtrip import bb_drops
 
     a_transmissions = [f.transmission for f in read_source(a)]
     b_found = read_source(b)

@@ -1,9 +1,9 @@
 """Convert the transmissions of a whole document, keeping everything else as written.
 
 Only transmissions whose dialect differs from the target are rewritten, and the change is
-said as edits of the original bytes (:mod:`txtool.transform.conversion_edits`), so every byte
+said as edits of the original bytes (:mod:`txtool.transform.edits.conversion_edits`), so every byte
 the conversion does not change stays as written. Where converted transmissions go is
-:mod:`txtool.transform.placement`. Every conversion is checked by reading the result back and
+:mod:`txtool.transform.placement.placer`. Every conversion is checked by reading the result back and
 converting it back.
 """
 
@@ -30,15 +30,15 @@ from txtool.io.xmlio import MAX_DEPTH, InputError, Source, XMLSyntax, local, par
 from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
 from txtool.model.semantics import Effective, NotLoadable, effective, listed_against_roles
-from txtool.transform.block_text import Written, fill, read_back
-from txtool.transform.conversion_edits import ConversionEdits, Expected
-from txtool.transform.cycle_collector import paused
-from txtool.transform.edits import Edit
-from txtool.transform.nameless_shapes import shape
-from txtool.transform.placement import DEFAULT_HARDWARE_PLUGIN, Placer
-from txtool.transform.renamings import Follower, Memo, Record, Renaming
+from txtool.transform.edits.conversion_edits import ConversionEdits, Expected
+from txtool.transform.edits.core import Edit
+from txtool.transform.edits.spans import NotIndexed
+from txtool.transform.placement.placer import DEFAULT_HARDWARE_PLUGIN, Placer
+from txtool.transform.repeated.block_text import Written, fill, read_back
+from txtool.transform.repeated.cycle_collector import paused
+from txtool.transform.repeated.nameless_shapes import shape
+from txtool.transform.repeated.renamings import Follower, Memo, Record, Renaming
 from txtool.transform.reversible import Carrier
-from txtool.transform.spans import NotIndexed
 from txtool.views.tables import FIELDS, view
 
 KNOWN_CHILDREN = {
@@ -84,7 +84,7 @@ def convert_source(
     consume: bool = False, reversible: bool = False, check: bool = True, repeats: bool = True,
 ) -> ConvertedDocument:
     """Convert ``source``: the change is said as edits of ``source.data``
-    (:mod:`.conversion_edits`; the result's ``edits``), unless ``source`` is a xacro
+    (:mod:`.edits.conversion_edits`; the result's ``edits``), unless ``source`` is a xacro
     expansion, which is written whole.
 
     With ``consume`` the caller gives up ``source.tree``: it is converted in place instead of
@@ -96,10 +96,10 @@ def convert_source(
     itself (``roundtrip``).
 
     ``repeats`` is the one switch of the fast path for robots that repeat a transmission
-    under other names: each is converted once and copied (:mod:`.renamings`, :mod:`.templates`),
-    and the block generated for the document is written as text (:mod:`.block_text`). Off,
-    every transmission is converted in full; the bytes and messages are the same either
-    way.
+    under other names: each is converted once and copied (:mod:`.repeated.renamings`,
+    :mod:`.repeated.templates`), and the block generated for the document is written as text
+    (:mod:`.repeated.block_text`). Off, every transmission is converted in full; the bytes and
+    messages are the same either way.
     """
     try:
         result, expected = _convert_document(source, target, hardware_plugin, consume,
@@ -415,14 +415,14 @@ def _check(output: Source, result: ConvertedDocument, originals: list[Transmissi
     edits, which parse to the same canonical document (:meth:`.ConversionEdits.check`
     verifies that): reading it reads what a parse of the output would give, without a second
     tree.
-    The transmissions of a block written as text (:mod:`.block_text`) are not in that tree: each
-    is read back on its own (a follower's only when it is judged), its name being its own
-    (``names``: how many originals have each); ``virtual`` holds those of the originals that
-    are not followers, by id.
-    A pair whose shape (:func:`.nameless_shapes.shape`: the same up to the names) already came back
-    whole is not judged again: the judgement reads names only to tell members apart. So a
-    follower (:mod:`.renamings`) is not even read back when its record's first came back whole
-    from the same place: both with a name of their own, in the block generated for the
+    The transmissions of a block written as text (:mod:`.repeated.block_text`) are not in that
+    tree: each is read back on its own (a follower's only when it is judged), its name being
+    its own (``names``: how many originals have each); ``virtual`` holds those of the originals
+    that are not followers, by id.
+    A pair whose shape (:func:`.repeated.nameless_shapes.shape`: the same up to the names) already
+    came back whole is not judged again: the judgement reads names only to tell members apart. So a
+    follower (:mod:`.repeated.renamings`) is not even read back when its record's first came back
+    whole from the same place: both with a name of their own, in the block generated for the
     document (``alone``), declaring their joints there themselves.
     When every original is written as text, none is left in a converted tree (``in_tree``):
     it is not searched.
@@ -434,7 +434,8 @@ def _check(output: Source, result: ConvertedDocument, originals: list[Transmissi
         if item.built in alone and names[item.name] == 1}
     firsts = {id(record.original): record for record in _records(followers)}
     components: dict[etree._Element, Any] = {}
-    survived: set[Hashable] = set()  # shapes (:mod:`.nameless_shapes`) that came back whole
+    # shapes (:mod:`.repeated.nameless_shapes`) that came back whole
+    survived: set[Hashable] = set()
     whole: set[int] = set()  # records whose verdict is in ``survived``, by id
     written: dict[tuple[str, bool], list[Found]] = {}
     kept: set[str | None] | None = None  # the names of the output's <ros2_control> blocks

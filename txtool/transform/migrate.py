@@ -2,7 +2,7 @@
 
 Files are read as written, never expanded: in a xacro file the literal transmission XML is
 rewritten and ``${...}`` expressions, macros and comments stay as they are. The migration is
-said as edits of the original bytes (:mod:`.edits`: the fixes, the conversion and the fixes
+said as edits of the original bytes (:mod:`.edits.core`: the fixes, the conversion and the fixes
 after it each say their change as edits, composed into one set), so every byte outside an
 edit keeps its value (quoting, spacing, line endings) and a diff shows the migration and
 nothing else. A file that does not change is
@@ -40,14 +40,14 @@ from txtool.lint.suppress import parse as parse_suppressions
 from txtool.model.core import Dialect
 from txtool.rules import Rule, all_rules
 from txtool.transform.convert import DEFAULT_HARDWARE_PLUGIN, ConvertedDocument, convert_source
-from txtool.transform.cycle_collector import paused
-from txtool.transform.declaration import late_declaration
-from txtool.transform.edits import Edit, EditedText, compose
+from txtool.transform.edits.core import Edit, EditedText, compose
+from txtool.transform.edits.declaration import late_declaration
+from txtool.transform.edits.spans import SpanError, SpanIndex
+from txtool.transform.edits.tree_edits import NotEditable, TreeChange, reads_as
 from txtool.transform.fixable import might_fix, might_fix_converted
 from txtool.transform.linediff import unified_ascii, unified_text
+from txtool.transform.repeated.cycle_collector import paused
 from txtool.transform.reversible import MARK
-from txtool.transform.spans import SpanError, SpanIndex
-from txtool.transform.tree_edits import NotEditable, TreeChange, reads_as
 
 Mode = Literal["check", "diff", "write"]
 MAX_FIX_ROUNDS = 4
@@ -244,7 +244,7 @@ def _steps(result: FileResult, tree: etree._ElementTree, rules: Sequence[Rule],
     it), convert, and fix what the conversion wrote: each stage says its change as edits of
     the bytes the stage before wrote (:func:`_fixed`, :func:`.convert.convert_source`), and
     the stages' edits are composed into edits of the original, which the one applier makes
-    (:func:`.edits.compose`)."""
+    (:func:`.edits.core.compose`)."""
     original, display = result.original, result.path
     stages: list[list[Edit]] = []  # each stage's edits, of the bytes the stage before wrote
     data = original
@@ -324,7 +324,7 @@ def _take_messages(result: FileResult, conversion: ConvertedDocument,
 def _fixed(data: bytes, tree: etree._ElementTree, rules: Sequence[Rule], path: str
            ) -> tuple[bytes, list[Edit], dict[str, int]]:
     """Fix ``tree`` (the parse of ``data``) and say what the fixes changed as edits of
-    ``data`` (:mod:`.tree_edits`): the fixed bytes, the edits and the fixes by code. The bytes
+    ``data`` (:mod:`.edits.tree_edits`): the fixed bytes, the edits and the fixes by code. The bytes
     are read back: they must parse to the fixed tree."""
     text = EditedText(data)
     elements = transmission_elements(tree.getroot())  # what the fixes may change

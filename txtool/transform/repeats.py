@@ -1,15 +1,15 @@
 """``roundtrip`` of a robot that repeats transmissions under other names, cycled once per shape.
 
-A large robot repeats a few transmissions thousands of times; converting the whole document
-through every cycle costs seconds per thousand. A transmission that repeats an earlier one (its
-*first*) up to the names (the same :class:`.renamings.Renaming` key) and whose joints are alike
-(the same type, limits and dynamics) comes back from every cycle as its first does, with its
-names put in: every conversion reads names only to tell them apart and to order them
-(:mod:`.renamings`), and the equivalence check reads the joints only through their limits. So each
-such *follower* is left out of the document that is cycled, and takes its first's rows. Where
-those rows say nothing (every field kept, the behaviour equivalent, no detail) the follower's
-are the same with its name; where they say something, the follower is cycled in full, as a
-detail may name what it lost.
+A large robot repeats a few transmissions thousands of times; converting the whole document through
+every cycle costs seconds per thousand. A transmission that repeats an earlier one (its *first*) up
+to the names (the same :class:`.repeated.renamings.Renaming` key) and whose joints are alike (the
+same type, limits and dynamics) comes back from every cycle as its first does, with its names put
+in: every conversion reads names only to tell them apart and to order them
+(:mod:`.repeated.renamings`), and the equivalence check reads the joints only through their limits.
+So each such *follower* is left out of the document that is cycled, and takes its first's rows.
+Where those rows say nothing (every field kept, the behaviour equivalent, no detail) the follower's
+are the same with its name; where they say something, the follower is cycled in full, as a detail
+may name what it lost.
 
 That needs each follower and its first to stand apart from everything else the conversions
 read: none of their names is used by another transmission (both would then read the other's
@@ -35,7 +35,7 @@ from lxml import etree
 from txtool.dialects.read import transmission_elements
 from txtool.io.xmlio import Source, parse_bytes
 from txtool.model.robot import JointsOnDemand, child_index, children, joint_info
-from txtool.transform.renamings import renaming_of
+from txtool.transform.repeated.renamings import renaming_of
 
 # What the cycled document leaves out besides the followers: URDF parts no conversion reads.
 _URDF_PARTS = frozenset({"link", "joint"})

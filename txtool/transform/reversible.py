@@ -101,7 +101,7 @@ def goes_after(element: etree._Element) -> bool:
 
 
 def drop_marker(element: etree._Element) -> None:
-    from txtool.transform.layout import cut
+    from txtool.transform.placement.layout import cut
 
     comment = _marker(element)
     if comment is not None:

@@ -24,8 +24,8 @@ from txtool.model.core import DIALECTS, Dialect, Transmission, builder
 from txtool.model.robot import JointInfo, JointsOnDemand, joint_elements
 from txtool.model.semantics import listed_against_roles
 from txtool.transform.convert import convert_source, judge
-from txtool.transform.cycle_collector import paused
-from txtool.transform.nameless_shapes import ordered_shape, shape
+from txtool.transform.repeated.cycle_collector import paused
+from txtool.transform.repeated.nameless_shapes import ordered_shape, shape
 from txtool.transform.repeats import Plan, cycled_document, plan_repeats
 from txtool.views.tables import FIELDS
 
@@ -275,7 +275,7 @@ def _digest(data: bytes) -> bytes:
 class _Verdicts:
     """Whether each transmission's first conversion drives the actuators like the original,
     computed when a cycle first asks (once per first leg). A pair whose ordered shape
-    (:func:`.nameless_shapes.ordered_shape`: the same up to names that compare alike) and
+    (:func:`.repeated.nameless_shapes.ordered_shape`: the same up to names that compare alike) and
     joint limits were already found equivalent is equivalent: the comparison reads names only
     to order and match them."""
 
@@ -316,7 +316,8 @@ def _limits(info: JointInfo | None) -> tuple[str, ...] | None:
 def _judge(group: list[Transmission], final: dict[_Key, list[Transmission]]) -> _Judged:
     """What each transmission of ``group`` lost in ``final`` (None: it is missing there)."""
     judged: _Judged = []
-    kept: set[Hashable] = set()  # shapes (:func:`.nameless_shapes.shape`) that came back whole
+    # shapes (:func:`.repeated.nameless_shapes.shape`) that came back whole
+    kept: set[Hashable] = set()
     for t in group:
         back = _take(final, t.name)
         if back is None:

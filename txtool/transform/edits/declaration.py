@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import re
 
-from txtool.transform.edits import Edit, EditedText
+from txtool.transform.edits.core import Edit, EditedText
 
 # An XML declaration after what may stand before the root element (whitespace, comments,
 # processing instructions), each matched one at a time so that a long run cannot backtrack.
@@ -23,7 +23,7 @@ _LATE_DECLARATION = re.compile(
 
 def late_declaration(data: bytes) -> Edit | None:
     """The edit that puts the declaration of ``data`` (bytes a scanner reads: see
-    :class:`~txtool.transform.edits.EditedText`) first or takes it out; None when it is
+    :class:`~txtool.transform.edits.core.EditedText`) first or takes it out; None when it is
     first or there is none."""
     late = _LATE_DECLARATION.match(data)
     if late is None or not late.group(2):

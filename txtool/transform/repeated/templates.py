@@ -21,7 +21,7 @@ from lxml import etree
 from txtool import dialects
 from txtool.io.xmlio import safe_parser
 from txtool.model.core import Dialect, Transmission
-from txtool.transform.renamings import NAME, Renaming
+from txtool.transform.repeated.renamings import NAME, Renaming
 
 _UNSAFE = re.compile(rb"[^\x20-\x7e\n\t]|&#")  # a reference, or what another encoding writes
 

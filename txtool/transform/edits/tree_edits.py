@@ -18,8 +18,8 @@ from dataclasses import dataclass
 from lxml import etree
 
 from txtool.io.xmlio import InputError, parse_bytes
-from txtool.transform.edits import Edit, EditedText
-from txtool.transform.spans import Attribute, Span, SpanIndex
+from txtool.transform.edits.core import Edit, EditedText
+from txtool.transform.edits.spans import Attribute, Span, SpanIndex
 
 
 class NotEditable(ValueError):

@@ -9,7 +9,7 @@ parser's line, or the index is refused (:class:`SpanError`). Each token is match
 where the last one ended, so the index costs time linear in the document; only the nodes
 asked for are paired in full (their name and line checked, their attributes read).
 
-The bytes are those edits address (:class:`txtool.transform.edits.EditedText`): the original,
+The bytes are those edits address (:class:`txtool.transform.edits.core.EditedText`): the original,
 or the UTF-8 form of a UTF-16 or UTF-32 document.
 """
 

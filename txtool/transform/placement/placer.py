@@ -23,8 +23,7 @@ from txtool.dialects.translate import translate
 from txtool.io.xmlio import local
 from txtool.model.core import Dialect, Transmission, replace
 from txtool.model.robot import children
-from txtool.transform.block_text import Written, blank, write
-from txtool.transform.layout import (
+from txtool.transform.placement.layout import (
     append,
     become,
     child_indentation,
@@ -38,8 +37,9 @@ from txtool.transform.layout import (
     runs_of,
     with_comments,
 )
-from txtool.transform.renamings import Follower, Renaming
-from txtool.transform.templates import Templates, parse_children
+from txtool.transform.repeated.block_text import Written, blank, write
+from txtool.transform.repeated.renamings import Follower, Renaming
+from txtool.transform.repeated.templates import Templates, parse_children
 
 # ros2_control's mock hardware (hardware_interface/src/mock_components/generic_system.cpp):
 # it sets each state to its command and drives nothing, a stand-in for the robot's own plugin.
@@ -65,7 +65,7 @@ class _Move:
 
     @property
     def renaming(self) -> Renaming | None:
-        """The old element's, when it was keyed (:mod:`.renamings`)."""
+        """The old element's, when it was keyed (:mod:`txtool.transform.repeated.renamings`)."""
         if self._renaming is None and self.follower is not None:
             self._renaming = self.follower.renaming()
         return self._renaming
@@ -127,7 +127,8 @@ class Placer:
         self.alone: set[etree._Element | Written] = set()
         self._templates = Templates()
         # Set by the caller: the old elements whose built ones may not be written as text
-        # (:mod:`.block_text`) rather than parsed into the tree; None: none may.
+        # (:mod:`txtool.transform.repeated.block_text`) rather than parsed into the tree;
+        # None: none may.
         self.crowded: set[etree._Element] | None = None
         # The marker, and the pieces of its text.
         self.written: tuple[etree._Comment, list[bytes]] | None = None
@@ -140,7 +141,8 @@ class Placer:
         self.placeholder: str | None = None
         self._placeholders: list[str] = []  # blocks generated with the default plugin
         # Old elements that go back to ROS 1 just after their <ros2_control>, where they
-        # stood before --reversible moved them in (:mod:`.reversible`); the rest go before.
+        # stood before --reversible moved them in (:mod:`txtool.transform.reversible`); the
+        # rest go before.
         self.after: set[etree._Element] = set()
         # The names of the <ros2_control> elements in the document (stripped, as ros2_control
         # reads them), once known: a block txtool adds takes a name none has.
@@ -150,8 +152,8 @@ class Placer:
               renaming: Renaming | None = None, dialect: Dialect | None = None) -> None:
         """Place the conversion ``t`` of ``old``; ``carried``: children of ``old`` (by
         owner) that go along as written; ``renaming``: ``old``'s key and names (see
-        :mod:`.renamings`), so that the elements built for one key are built once; ``dialect``:
-        ``old``'s, when known."""
+        :mod:`txtool.transform.repeated.renamings`), so that the elements built for one key
+        are built once; ``dialect``: ``old``'s, when known."""
         move = _Move(old, t, carried, renaming)
         component = enclosing_component(old)
         moving_out = t.dialect == "ros1" and component is not None
@@ -186,8 +188,9 @@ class Placer:
 
     def place_follower(self, old: etree._Element, follower: Follower, dialect: Dialect
                        ) -> None:
-        """:meth:`place` for a follower (:mod:`.renamings`) outside any ``<ros2_control>``: one
-        that goes into the block generated for the document is not built here."""
+        """:meth:`place` for a follower (:mod:`txtool.transform.repeated.renamings`) outside
+        any ``<ros2_control>``: one that goes into the block generated for the document is not
+        built here."""
         into_new = (dialect == "ros1" and follower.record.dialect != "ros1"
                     and old.getparent() is self.root and self._robot)
         if into_new and (self._components == [] or self._component_for(
@@ -347,8 +350,8 @@ class Placer:
     def _write_block(self, name: str, moves: list[_Move], runs: list[list[etree._Element]],
                      like: etree._Element, indent: str, step: str) -> etree._Element | None:
         """The block :meth:`_generate` makes, with its declarations and transmissions left as
-        text (:func:`.block_text.write`, kept in :attr:`written`), or None when it cannot be
-        so."""
+        text (:func:`txtool.transform.repeated.block_text.write`, kept in :attr:`written`), or
+        None when it cannot be so."""
         crowded = self.crowded
         if crowded is None or namespace_of(like) is not None or not (blank(indent)
                                                                    and blank(step)):
@@ -608,7 +611,8 @@ class Placer:
         one (:attr:`built`), not a trial build to compare with."""
         t = move.new
         if move.renaming is not None and not move.carried:
-            # A keyed element has no comment (see :mod:`.renamings`): nothing to add.
+            # A keyed element has no comment (see :mod:`txtool.transform.repeated.renamings`):
+            # nothing to add.
             new = self._templates.element(move.renaming, t, indent, step, namespace_of(like))
         else:
             new = dialects.build(t, t.dialect, indent=indent, step=step,

@@ -2,7 +2,7 @@
 
 An :class:`Attachment` is an ``actuator`` with its ``transmission`` inside the ``joint``
 (beam-bots/bb ``lib/bb/dsl.ex:209-247``); :func:`actuator_lines` writes one, as
-:func:`render_joints` (joint blocks to merge) and :mod:`txtool.transform.bb_topology` (a whole
+:func:`render_joints` (joint blocks to merge) and :mod:`txtool.transform.bb.topology` (a whole
 topology) place it. Numbers are written as BB reads them: ``reduction`` a float literal, an
 ``offset`` in plain decimal form inside ``~u(...)``.
 """
@@ -16,7 +16,7 @@ from decimal import Decimal
 from typing import Literal
 
 from txtool.model.numbers import format_float
-from txtool.transform.bb_names import elixir_atom
+from txtool.transform.bb.names import elixir_atom
 
 Direction = Literal["reversed", "negative-reduction"]
 DIRECTIONS: tuple[Direction, ...] = ("reversed", "negative-reduction")

@@ -14,7 +14,7 @@ joints as the block declares them. Reading it back (the conversion's check) read
 what reading it in the whole block gives: the reader reads of the block its name and the
 first declaration of each joint, nothing else (:class:`txtool.dialects.read.Declarations`).
 So the block is parsed only for that check (:func:`read_back`), or into the tree after all
-where its text cannot be filled in (:meth:`txtool.transform.placement.Placer.unwrite`).
+where its text cannot be filled in (:meth:`txtool.transform.placement.placer.Placer.unwrite`).
 """
 
 from __future__ import annotations
@@ -29,10 +29,10 @@ from lxml import etree
 from txtool import dialects
 from txtool.io.xmlio import safe_parser
 from txtool.model.core import Dialect, Transmission
-from txtool.transform.templates import Templates, plain
+from txtool.transform.repeated.templates import Templates, plain
 
 if TYPE_CHECKING:
-    from txtool.transform.renamings import Follower, Record, Renaming
+    from txtool.transform.repeated.renamings import Follower, Record, Renaming
 
 _UNSAFE_NAME = re.compile(r'[^\x20-\x7e]|[&<>"]')
 
@@ -104,7 +104,8 @@ def read_back(written: list[Written]) -> list[etree._Element]:
 
 
 class Move(Protocol):
-    """What :func:`write` reads of a placed conversion (see :mod:`.placement`)."""
+    """What :func:`write` reads of a placed conversion (see
+    :mod:`txtool.transform.placement.placer`)."""
 
     old: etree._Element
     follower: Follower | None

@@ -28,12 +28,12 @@ from typing import NamedTuple, Protocol
 from lxml import etree
 
 from txtool.model.core import Member, Transmission, replace
-from txtool.transform.nameless_shapes import LITERAL_NAMES
+from txtool.transform.repeated.nameless_shapes import LITERAL_NAMES
 
 
 class WrittenText(Protocol):
     """A transmission written as text, not built as an element
-    (:class:`txtool.transform.block_text.Written`, which imports this module)."""
+    (:class:`txtool.transform.repeated.block_text.Written`, which imports this module)."""
 
     def source(self) -> bytes: ...
 

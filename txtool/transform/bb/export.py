@@ -32,9 +32,9 @@ from txtool.dialects.read import Found, first_child_text, read_source
 from txtool.io.xmlio import Source
 from txtool.model.robot import JointInfo, children, robot_joints
 from txtool.model.semantics import NotLoadable, effective
-from txtool.transform.bb_actuators import DRIVER, Attachment, Direction, render_joints
-from txtool.transform.bb_names import RobotNames, atom_name, elixir_atom, robot_names, unique_name
-from txtool.transform.bb_topology import render_topology
+from txtool.transform.bb.actuators import DRIVER, Attachment, Direction, render_joints
+from txtool.transform.bb.names import RobotNames, atom_name, elixir_atom, robot_names, unique_name
+from txtool.transform.bb.topology import render_topology
 
 MOVING = ("revolute", "continuous", "prismatic")
 

@@ -1,19 +1,20 @@
 """A conversion said as edits of the bytes it read.
 
-A conversion changes the parsed tree: the placer (:mod:`.placement`) replaces transmissions,
-cuts them out, wraps them in a ``<ros2_control>`` of their own, moves them into or out of a
-block, and restyles a Proposal 1 transmission's roles in place. :class:`ConversionEdits`
+A conversion changes the parsed tree: the placer (:mod:`txtool.transform.placement.placer`) replaces
+transmissions, cuts them out, wraps them in a ``<ros2_control>`` of their own, moves them into or
+out of a block, and restyles a Proposal 1 transmission's roles in place. :class:`ConversionEdits`
 records, before any of that, the elements whose children a conversion may change (each
 transmission's ancestors, and each ``<ros2_control>`` of the document with its parent) and the
-transmissions themselves in full; afterwards :meth:`ConversionEdits.edits` says the change as
-edits of their spans (:mod:`.tree_edits`, :mod:`.spans`), the one applier
-(:func:`txtool.transform.edits.apply_edits`) makes the bytes, and :meth:`ConversionEdits.check`
+transmissions themselves in full; afterwards :meth:`ConversionEdits.edits` says the change as edits
+of their spans (:mod:`.tree_edits`, :mod:`.spans`), the one applier
+(:func:`txtool.transform.edits.core.apply_edits`) makes the bytes, and :meth:`ConversionEdits.check`
 parses them and holds them to the converted tree.
 
 Two kinds of node are written as bytes rather than as lxml writes them: the block generated
-for a whole robot, whose transmissions are text already (:mod:`.block_text`: its marker is
-filled in inside the edit that writes the block), and a transmission going back to ROS 1 whose
-original ``--reversible`` carried (:mod:`.reversible`): written as its original bytes.
+for a whole robot, whose transmissions are text already
+(:mod:`txtool.transform.repeated.block_text`: its marker is filled in inside the edit that
+writes the block), and a transmission going back to ROS 1 whose original ``--reversible``
+carried (:mod:`txtool.transform.reversible`): written as its original bytes.
 """
 
 from __future__ import annotations
@@ -26,11 +27,11 @@ from lxml import etree
 from txtool.dialects.read import detect_dialect
 from txtool.io.encodings import SCANNABLE
 from txtool.io.xmlio import InputError, parse_bytes
-from txtool.transform.block_text import fill
-from txtool.transform.declaration import late_declaration
-from txtool.transform.edits import Edit, EditedText
-from txtool.transform.spans import SpanError, SpanIndex
-from txtool.transform.tree_edits import NotEditable, TreeChange
+from txtool.transform.edits.core import Edit, EditedText
+from txtool.transform.edits.declaration import late_declaration
+from txtool.transform.edits.spans import SpanError, SpanIndex
+from txtool.transform.edits.tree_edits import NotEditable, TreeChange
+from txtool.transform.repeated.block_text import fill
 
 
 class ConversionEdits:
@@ -175,8 +176,8 @@ def _changed_inside(text: EditedText, transmissions: list[etree._Element], targe
                     ) -> list[etree._Element]:
     """The transmissions a conversion to ``target`` may change inside rather than replace
     whole: those of the other ROS 2 proposal, whose roles are restyled in place
-    (:func:`.layout.restyle_roles`). A ROS 1 transmission, or any going to ROS 1, is replaced;
-    a document whose bytes hold no ROS 2 spelling has none."""
+    (:func:`txtool.transform.placement.layout.restyle_roles`). A ROS 1 transmission, or any
+    going to ROS 1, is replaced; a document whose bytes hold no ROS 2 spelling has none."""
     if target == "ros1" or not transmissions:
         return []
     if text.stored.codec in SCANNABLE and not any(

@@ -17,8 +17,8 @@ from collections.abc import Sequence
 from lxml import etree
 
 from txtool.io.xmlio import Source
-from txtool.transform.bb_actuators import Attachment, Direction, actuator_lines, decimal_text
-from txtool.transform.bb_names import RobotNames, UrdfJoint, elixir_atom
+from txtool.transform.bb.actuators import Attachment, Direction, actuator_lines, decimal_text
+from txtool.transform.bb.names import RobotNames, UrdfJoint, elixir_atom
 
 # importer.ex @cardinal_axes (:25-32): unit axes as fixed rotations of +Z, in degrees
 CARDINAL_AXES: dict[tuple[float, float, float], tuple[tuple[str, float], ...]] = {

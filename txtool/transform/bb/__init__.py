@@ -1,0 +1,1 @@
+"""Beam Bots (BB) DSL: export of transmissions, their actuators, topology, names and round trip."""

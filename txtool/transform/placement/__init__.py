@@ -1,0 +1,1 @@
+"""Placement: where converted transmissions go, and how elements are laid out."""
