@@ -215,3 +215,68 @@ def test_a_change_beside_a_child_the_index_passed_over_is_converted_again(monkey
     assert runs == [True, False]
     assert (again.data, again.edits) == (expected.data, expected.edits)
     _written(data, again.data, again.edits)
+
+
+ROBOT = (b'<robot name="r">\n  <link name="a"/>\n  <transmission name="t">\n'
+         b"    <type>transmission_interface/SimpleTransmission</type>\n"
+         b'    <joint name="j"><hardwareInterface>hardware_interface/EffortJointInterface'
+         b"</hardwareInterface></joint>\n"
+         b'    <actuator name="m"><mechanicalReduction>5</mechanicalReduction></actuator>\n'
+         b"  </transmission>\n</robot>\n")
+
+
+def _convert(data: bytes = ROBOT, target: str = "ros2-p2"):
+    return convert_source(Source("r.urdf", data, parse_bytes(data, "r.urdf")), target)
+
+
+@pytest.mark.parametrize(("patch", "reason"), [
+    ("index", "r.urdf: cannot convert: the bytes do not read as parsed (refused)"),
+    ("edits", "r.urdf: cannot convert: refused"),
+    ("applied", "r.urdf: cannot convert: what the edits write does not read as the converted"
+                " document"),
+    ("unreadable", "r.urdf: cannot convert: what the edits write does not read back"),
+])
+def test_a_conversion_the_edits_cannot_write_is_refused_in_one_line(patch, reason,
+                                                                     monkeypatch) -> None:
+    """No other writer stands behind the edits: the conversion is refused, naming the
+    file, and the library raises what the command line prints with exit 2."""
+    from txtool.transform.edits import conversion_edits
+    from txtool.transform.edits.spans import SpanError
+    from txtool.transform.edits.tree_edits import NotEditable
+
+    def refuse(*_args, **_kwargs):
+        raise (SpanError if patch == "index" else NotEditable)("refused")
+
+    if patch == "index":
+        monkeypatch.setattr(conversion_edits, "SpanIndex", refuse)
+    elif patch == "edits":
+        monkeypatch.setattr(conversion_edits.TreeChange, "edits", refuse)
+    else:
+        applied = conversion_edits.ConversionEdits.applied
+        tail = b"<!-- x -->\n" if patch == "applied" else b"<"
+        monkeypatch.setattr(conversion_edits.ConversionEdits, "applied",
+                            lambda self, edits: applied(self, edits) + tail)
+    with pytest.raises(InputError) as refused:
+        _convert()
+    assert str(refused.value).startswith(reason) and "\n" not in str(refused.value)
+
+
+def test_a_block_whose_marker_cannot_be_filled_in_is_parsed_into_the_tree(monkeypatch):
+    from txtool.transform.edits import conversion_edits
+
+    expected = _convert(_chain_of(40))
+    monkeypatch.setattr(conversion_edits, "_filled", lambda edits, marker, pieces: None)
+    again = _convert(_chain_of(40))
+    assert (again.data, again.losses, again.notes) == (
+        expected.data, expected.losses, expected.notes)
+
+
+def _chain_of(count: int) -> bytes:
+    """A robot of ``count`` joints each driven alike: what the block written as text is for."""
+    joints = "".join(f'\n  <joint name="j{i}" type="continuous"/>' for i in range(count))
+    transmissions = "".join(
+        f'\n  <transmission name="t{i}"><type>transmission_interface/SimpleTransmission</type>'
+        f'<joint name="j{i}"><hardwareInterface>hardware_interface/EffortJointInterface'
+        f'</hardwareInterface></joint><actuator name="m{i}"><mechanicalReduction>5'
+        f"</mechanicalReduction></actuator></transmission>" for i in range(count))
+    return f'<robot name="r">{joints}{transmissions}\n</robot>\n'.encode()

@@ -127,8 +127,8 @@ def _convert_document(source: Source, target: Dialect, hardware_plugin: str, con
     tree = source.tree if consume else copy.deepcopy(source.tree)
     elements = transmission_elements(tree.getroot())
     deep = _near_depth_limit(elements, tree.getroot())
-    writer = None if source.expanded else ConversionEdits(source.data, tree.getroot(), elements,
-                                                                 target, near=near)
+    writer = None if source.expanded else ConversionEdits(
+        source.path, source.data, tree.getroot(), elements, target, near=near)
     result = ConvertedDocument(data=b"", target=target, found=len(elements))
     placer = Placer(tree.getroot(), hardware_plugin, components=source.expanded or (
         detect_encoding(source.data).codec not in SCANNABLE or b"ros2_control" in source.data))

@@ -37,12 +37,13 @@ from txtool.transform.repeated.block_text import fill
 class ConversionEdits:
     """The document ``data`` whose tree (root ``root``) a conversion is about to change."""
 
-    def __init__(self, data: bytes, root: etree._Element,
+    def __init__(self, path: str, data: bytes, root: etree._Element,
                  transmissions: list[etree._Element], target: str, *, near: bool = True
                  ) -> None:
         """``near``: of the root's children, index the bounds of those next to a
         transmission or a ``<ros2_control>`` alone (the places the placer changes the root's
         children); false: all of them (:class:`.spans.NotIndexed` said one was missing)."""
+        self.path = path
         self.text = EditedText(data)
         containers: set[etree._Element] = {root}
         for element in transmissions:
@@ -60,8 +61,8 @@ class ConversionEdits:
                                    shallow=containers,
                                    near=_near(root, transmissions, containers) if near else None)
         except SpanError as exc:
-            raise InputError(f"cannot convert: the bytes do not read as parsed ({exc})"
-                             ) from None
+            raise InputError(f"{path}: cannot convert: the bytes do not read as parsed "
+                             f"({exc})") from None
         self.change = TreeChange(inside, containers)
 
     def substitute(self, node: etree._Element, block: bytes) -> None:
@@ -81,7 +82,7 @@ class ConversionEdits:
             try:
                 edits = self.change.edits(self.text, self.index, redeclare=True)
             except NotEditable as exc:
-                raise InputError(f"cannot convert: {exc}") from None
+                raise InputError(f"{self.path}: cannot convert: {exc}") from None
         if marker is not None:
             assert pieces is not None
             newline = self.text.newline.encode("ascii")
