@@ -181,3 +181,19 @@ def test_renamed_actuator_differs(tmp_path: Path) -> None:
     (row,) = compare(a, b).rows
     assert row.status == "differs"
     assert row.reason == "loaded actuators differ: 'elbow_motor' vs 'motor'"
+
+
+def test_maps_that_overflow_to_nan_alike_are_equivalent(tmp_path: Path) -> None:
+    """A differential whose huge reductions make both maps inf - inf (nan) at the same
+    samples: the same value on both sides, a difference of 0 (a nan is never equal to
+    itself: a plain subtraction would report the worst difference as unknown)."""
+    members = (r2_member("actuator", "m1", "actuator1", "1e308")
+               + r2_member("actuator", "m2", "actuator2", "1e308")
+               + r2_member("joint", "j1", "joint1", "1e308")
+               + r2_member("joint", "j2", "joint2", "1e308"))
+    a = read(tmp_path, "a.urdf", ros2(members, "DifferentialTransmission"))
+    b = read(tmp_path, "b.urdf", ros2(members, "DifferentialTransmission"))
+    report = compare(a, b)
+    (row,) = report.rows
+    assert row.status == "equivalent" and report.equivalent, row.reason
+    assert row.differences == {"position": 0.0, "velocity": 0.0, "effort": 0.0}
