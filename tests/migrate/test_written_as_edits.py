@@ -22,6 +22,7 @@ from hypothesis import strategies as st
 
 from tests.corpus import CORPUS, WORKSPACE
 from tests.hardening.fuzz_inputs import FIXTURES, documents
+from tests.hardening.test_fuzz_regressions import arm_with_transmissions
 from txtool.io.xmlio import InputError, Source, parse_bytes
 from txtool.rules import all_rules
 from txtool.transform.convert import convert_source
@@ -264,19 +265,13 @@ def test_a_conversion_the_edits_cannot_write_is_refused_in_one_line(patch, reaso
 def test_a_block_whose_marker_cannot_be_filled_in_is_parsed_into_the_tree(monkeypatch):
     from txtool.transform.edits import conversion_edits
 
-    expected = _convert(_chain_of(40))
+    filled = []
+    fill = conversion_edits._filled
+    monkeypatch.setattr(conversion_edits, "_filled",
+                        lambda *args: filled.append(1) or fill(*args))
+    expected = _convert(arm_with_transmissions(40))
+    assert filled  # the block was written as text, and filled in
     monkeypatch.setattr(conversion_edits, "_filled", lambda edits, marker, pieces: None)
-    again = _convert(_chain_of(40))
+    again = _convert(arm_with_transmissions(40))
     assert (again.data, again.losses, again.notes) == (
         expected.data, expected.losses, expected.notes)
-
-
-def _chain_of(count: int) -> bytes:
-    """A robot of ``count`` joints each driven alike: what the block written as text is for."""
-    joints = "".join(f'\n  <joint name="j{i}" type="continuous"/>' for i in range(count))
-    transmissions = "".join(
-        f'\n  <transmission name="t{i}"><type>transmission_interface/SimpleTransmission</type>'
-        f'<joint name="j{i}"><hardwareInterface>hardware_interface/EffortJointInterface'
-        f'</hardwareInterface></joint><actuator name="m{i}"><mechanicalReduction>5'
-        f"</mechanicalReduction></actuator></transmission>" for i in range(count))
-    return f'<robot name="r">{joints}{transmissions}\n</robot>\n'.encode()

@@ -337,12 +337,9 @@ def _fixed(data: bytes, tree: etree._ElementTree, rules: Sequence[Rule], path: s
     del elements
     fixes = fix_tree(tree, rules, data)
     try:
-        edits = change.edits(text, index)
-    except NotEditable:
-        try:
-            edits = change.edits(text, index, redeclare=True)
-        except NotEditable as exc:
-            raise InputError(f"{path}: cannot fix: {exc}") from None
+        edits = change.written(text, index)
+    except NotEditable as exc:
+        raise InputError(f"{path}: cannot fix: {exc}") from None
     late = late_declaration(text.data) if edits else None
     if late is not None:
         edits.append(late)

@@ -77,12 +77,9 @@ class ConversionEdits:
         comment ``marker`` where one was placed; None where the marker cannot be filled in
         (the caller parses the text into the tree and asks again)."""
         try:
-            edits = self.change.edits(self.text, self.index)
-        except NotEditable:
-            try:
-                edits = self.change.edits(self.text, self.index, redeclare=True)
-            except NotEditable as exc:
-                raise InputError(f"{self.path}: cannot convert: {exc}") from None
+            edits = self.change.written(self.text, self.index)
+        except NotEditable as exc:
+            raise InputError(f"{self.path}: cannot convert: {exc}") from None
         if marker is not None:
             assert pieces is not None
             newline = self.text.newline.encode("ascii")

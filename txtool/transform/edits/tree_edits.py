@@ -83,6 +83,14 @@ class TreeChange:
             self._element(root, text, index, edits)
         return edits
 
+    def written(self, text: EditedText, index: SpanIndex) -> list[Edit]:
+        """:meth:`edits`, where a new node may declare a namespace only if it must
+        (:class:`NotEditable` where even that cannot say the change)."""
+        try:
+            return self.edits(text, index)
+        except NotEditable:
+            return self.edits(text, index, redeclare=True)
+
     def _element(self, element: etree._Element, text: EditedText, index: SpanIndex,
                  edits: list[Edit]) -> None:
         before, span = self._before[element], index[element]
