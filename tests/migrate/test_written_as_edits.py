@@ -230,6 +230,7 @@ def _convert(data: bytes = ROBOT, target: str = "ros2-p2"):
     return convert_source(Source("r.urdf", data, parse_bytes(data, "r.urdf")), target)
 
 
+@pytest.mark.parametrize("data", [ROBOT, arm_with_transmissions(40)], ids=["one", "block"])
 @pytest.mark.parametrize(("patch", "reason"), [
     ("index", "r.urdf: cannot convert: the bytes do not read as parsed (refused)"),
     ("edits", "r.urdf: cannot convert: refused"),
@@ -237,10 +238,11 @@ def _convert(data: bytes = ROBOT, target: str = "ros2-p2"):
                 " document"),
     ("unreadable", "r.urdf: cannot convert: what the edits write does not read back"),
 ])
-def test_a_conversion_the_edits_cannot_write_is_refused_in_one_line(patch, reason,
+def test_a_conversion_the_edits_cannot_write_is_refused_in_one_line(patch, reason, data,
                                                                      monkeypatch) -> None:
     """No other writer stands behind the edits: the conversion is refused, naming the
-    file, and the library raises what the command line prints with exit 2."""
+    file, and the library raises what the command line prints with exit 2; a document
+    whose block is written as text ("block") is checked on the bytes written as well."""
     from txtool.transform.edits import conversion_edits
     from txtool.transform.edits.spans import SpanError
     from txtool.transform.edits.tree_edits import NotEditable
@@ -258,8 +260,43 @@ def test_a_conversion_the_edits_cannot_write_is_refused_in_one_line(patch, reaso
         monkeypatch.setattr(conversion_edits.ConversionEdits, "applied",
                             lambda self, edits: applied(self, edits) + tail)
     with pytest.raises(InputError) as refused:
-        _convert()
+        _convert(data)
     assert str(refused.value).startswith(reason) and "\n" not in str(refused.value)
+
+
+@pytest.mark.parametrize("newline", [b"\n", b"\r\n"])
+@pytest.mark.parametrize("prolog", [False, True])
+def test_the_check_reads_the_written_bytes_with_the_block_marker_back(newline, prolog,
+                                                                       monkeypatch) -> None:
+    """Where a block is written as text, the check parses the bytes written with the
+    block's text taken out for its marker: exactly what the edits write with the marker
+    unfilled, wherever edits before it moved it (transmissions cut before the block, a
+    declaration and comment at the start)."""
+    from txtool.transform import convert
+    from txtool.transform.edits.core import EditedText
+
+    data = arm_with_transmissions(40).replace(b"\n", newline)
+    if prolog:
+        data = b'<?xml version="1.0"?>' + newline + b"<!-- arm -->" + newline + data.replace(
+            b'<transmission name="t3">', b'<link name="between"/><transmission name="t3">')
+    checked = []
+    check = convert.check_written
+
+    def recorded(written, edits, path, expected):
+        assert expected.marked is not None
+        place, unfilled, token = expected.marked
+        unfilled_edits = [*edits[:place], unfilled, *edits[place + 1:]]
+        checked.append((conversion_edits._marked(written, edits, *expected.marked),
+                        EditedText(data).applied(unfilled_edits), token))
+        check(written, edits, path, expected)
+
+    from txtool.transform.edits import conversion_edits
+
+    monkeypatch.setattr(convert, "check_written", recorded)
+    result = _convert(data)
+    [(parsed, unfilled, token)] = checked
+    assert parsed == unfilled and parsed.count(token) == 1 and token not in result.data
+    assert len(parsed) < len(result.data) / 2  # the block's text is most of the document
 
 
 def test_a_block_whose_marker_cannot_be_filled_in_is_parsed_into_the_tree(monkeypatch):

@@ -30,7 +30,7 @@ from txtool.io.xmlio import MAX_DEPTH, InputError, Source, XMLSyntax, local, par
 from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
 from txtool.model.semantics import Effective, NotLoadable, effective, listed_against_roles
-from txtool.transform.edits.conversion_edits import ConversionEdits, Expected
+from txtool.transform.edits.conversion_edits import ConversionEdits, Expected, check_written
 from txtool.transform.edits.core import Edit
 from txtool.transform.edits.spans import NotIndexed
 from txtool.transform.placement.placer import DEFAULT_HARDWARE_PLUGIN, Placer
@@ -112,7 +112,8 @@ def convert_source(
         result, expected = _convert_document(source, target, hardware_plugin, consume,
                                              reversible, check, repeats, near=False)
     if expected is not None:  # here, where nothing holds the converted tree any more
-        ConversionEdits.check(result.data, source.path, expected)
+        assert result.edits is not None
+        check_written(result.data, result.edits, source.path, expected)
     return result
 
 
@@ -189,7 +190,7 @@ def _convert_document(source: Source, target: Dialect, hardware_plugin: str, con
                if isinstance(built := placer.built.get(old), Written)}
     del elements, olds  # the replaced elements are freed before the document is written
     placer.release()
-    marker = _write(source, tree, writer, placer, result)
+    _write(source, tree, writer, placer, result)
     if placer.unwritten:  # parsed into the tree after all
         for item in items:
             if isinstance(item, Follower) and item.built in placer.unwritten:
@@ -200,7 +201,7 @@ def _convert_document(source: Source, target: Dialect, hardware_plugin: str, con
     result.notes.extend(carry.notes)
     if deep:
         _reads_back(result.data, source.path)
-    expected = ConversionEdits.expect(tree, marker) if (
+    expected = writer.expect(tree) if (
         writer is not None and not restored and result.edits) else None
     if consume:
         source.tree = etree.ElementTree(etree.Element("consumed"))
@@ -216,31 +217,30 @@ def _convert_document(source: Source, target: Dialect, hardware_plugin: str, con
 
 
 def _write(source: Source, tree: etree._ElementTree, writer: ConversionEdits | None,
-           placer: Placer, result: ConvertedDocument) -> etree._Comment | None:
+           placer: Placer, result: ConvertedDocument) -> None:
     """Write the converted document into ``result``: as edits of the original, or, for a
     xacro expansion (which has no bytes of its own), serialized. The block the placer left
     as text (:attr:`Placer.written`) is filled in, or parsed into the tree where it cannot
-    be; the marker that stands for it in the tree, if any, is returned."""
+    be."""
     if writer is None:
         data = serialize(tree, source.data)
         if placer.written is not None:
             filled = fill(data, *placer.written)
             if filled is not None:
                 result.data = filled
-                return placer.written[0]
+                return
             placer.unwrite()
             data = serialize(tree, source.data)
         result.data = data
-        return None
+        return
     marker = placer.written
     edits = writer.edits(*marker) if marker is not None else writer.edits()
     if edits is None:
         placer.unwrite()
-        marker, edits = None, writer.edits()
+        edits = writer.edits()
         assert edits is not None
     result.edits = edits or None
     result.data = writer.applied(edits) if edits else source.data
-    return marker[0] if marker is not None else None
 
 
 # What replaces a transmission nests at most this many levels below where it stood
@@ -412,7 +412,7 @@ def _check(output: Source, result: ConvertedDocument, originals: list[Transmissi
     existing ``<ros2_control>`` declares besides its own are a note, not a loss).
 
     ``output.tree`` is the converted tree itself when ``output.data`` was written from it as
-    edits, which parse to the same canonical document (:meth:`.ConversionEdits.check`
+    edits, which parse to the same canonical document (:func:`.check_written`
     verifies that): reading it reads what a parse of the output would give, without a second
     tree.
     The transmissions of a block written as text (:mod:`.repeated.block_text`) are not in that

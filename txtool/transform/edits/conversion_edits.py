@@ -7,7 +7,7 @@ records, before any of that, the elements whose children a conversion may change
 transmission's ancestors, and each ``<ros2_control>`` of the document with its parent) and the
 transmissions themselves in full; afterwards :meth:`ConversionEdits.edits` says the change as edits
 of their spans (:mod:`.tree_edits`, :mod:`.spans`), the one applier
-(:func:`txtool.transform.edits.core.apply_edits`) makes the bytes, and :meth:`ConversionEdits.check`
+(:func:`txtool.transform.edits.core.apply_edits`) makes the bytes, and :func:`check_written`
 parses them and holds them to the converted tree.
 
 Two kinds of node are written as bytes rather than as lxml writes them: the block generated
@@ -25,7 +25,7 @@ from dataclasses import dataclass
 from lxml import etree
 
 from txtool.dialects.read import detect_dialect
-from txtool.io.encodings import SCANNABLE
+from txtool.io.encodings import SCANNABLE, utf8_form
 from txtool.io.xmlio import InputError, parse_bytes
 from txtool.transform.edits.core import Edit, EditedText
 from txtool.transform.edits.declaration import late_declaration
@@ -64,6 +64,7 @@ class ConversionEdits:
             raise InputError(f"{path}: cannot convert: the bytes do not read as parsed "
                              f"({exc})") from None
         self.change = TreeChange(inside, containers)
+        self.marked: tuple[int, Edit, bytes] | None = None  # see :class:`Expected`
 
     def substitute(self, node: etree._Element, block: bytes) -> None:
         """Write ``node`` as ``block``, the whole lines a transmission stood on (the
@@ -80,14 +81,17 @@ class ConversionEdits:
             edits = self.change.written(self.text, self.index)
         except NotEditable as exc:
             raise InputError(f"{self.path}: cannot convert: {exc}") from None
+        self.marked = None
         if marker is not None:
             assert pieces is not None
             newline = self.text.newline.encode("ascii")
             if newline != b"\n":  # the pieces are ASCII, laid out with line feeds
                 pieces = [piece.replace(b"\n", newline) for piece in pieces]
-            edits = _filled(edits, marker, pieces)
-            if edits is None:
+            filled = _filled(edits, marker, pieces)
+            if filled is None:
                 return None
+            edits, (place, unfilled) = filled
+            self.marked = place, unfilled, f"<!--{marker.text}-->".encode("ascii")
         late = late_declaration(self.text.data) if edits else None
         if late is not None:
             edits.append(late)
@@ -97,51 +101,59 @@ class ConversionEdits:
         """The document with ``edits`` made, stored as the original was."""
         return self.text.applied(edits)
 
-    @staticmethod
-    def expect(tree: etree._ElementTree, marker: etree._Comment | None = None) -> Expected:
-        """What :meth:`check` holds the written bytes to: the canonical form of ``tree``, the
-        converted document (digests, so that the tree can go before the bytes are parsed);
-        where ``marker`` stands for the text of a written block, what comes before and after
-        it (each transmission of the block is read back on its own by the conversion's
-        check, and what it declares is the block's)."""
-        want = etree.tostring(tree, method="c14n")
-        if marker is None:
-            return Expected(_digest(want))
-        head, _, tail = want.partition(f"<!--{marker.text}-->".encode("ascii"))
-        return Expected(_digest(head), _digest(tail), len(head), len(tail))
-
-    @staticmethod
-    def check(data: bytes, path: str, expected: Expected) -> None:
-        """Refuse (:class:`InputError`) written bytes that do not parse to the converted
-        document (:meth:`expect`)."""
-        try:
-            written = parse_bytes(data, path, limit=None)
-        except InputError as exc:
-            raise InputError(f"{path}: cannot convert: what the edits write does not read "
-                             f"back ({exc})") from None
-        got = etree.tostring(written, method="c14n")
-        del written
-        if expected.tail is None:
-            same = _digest(got) == expected.head
-        else:
-            same = (len(got) >= expected.head_size + expected.tail_size
-                    and _digest(got[:expected.head_size]) == expected.head
-                    and _digest(got[len(got) - expected.tail_size:]) == expected.tail)
-        if not same:
-            raise InputError(f"{path}: cannot convert: what the edits write does not read "
-                             f"as the converted document (read back {_digest(got)[:6].hex()});"
-                             " please report this file")
+    def expect(self, tree: etree._ElementTree) -> Expected:
+        """What :func:`check_written` holds the bytes of the last :meth:`edits` to: the
+        canonical form of ``tree``, the converted document, as a digest (so that the tree can
+        go before the bytes are parsed). A block written as text stands in ``tree`` as its
+        marker comment, and in what is parsed too: each of its transmissions is read back on
+        its own by the conversion's check (:mod:`txtool.transform.repeated.block_text`)."""
+        return Expected(_digest(etree.tostring(tree, method="c14n")), self.marked)
 
 
 @dataclass(frozen=True)
 class Expected:
-    """Digests of the canonical form of a converted document: all of it (``head``), or what
-    comes before (``head``) and after (``tail``) a written block, and their sizes."""
+    """The digest of the canonical form of a converted document, and where a block was
+    written as text, the place of the edit that holds it among the edits, that edit with the
+    block's marker in place of its text, and the marker as written."""
 
-    head: bytes
-    tail: bytes | None = None
-    head_size: int = 0
-    tail_size: int = 0
+    digest: bytes
+    marked: tuple[int, Edit, bytes] | None = None
+
+
+def check_written(data: bytes, edits: list[Edit], path: str, expected: Expected) -> None:
+    """Refuse (:class:`InputError`) the bytes ``data`` that ``edits`` wrote where they do not
+    parse to the converted document (:meth:`ConversionEdits.expect`). Where a block was
+    written as text, what is parsed is ``data`` with the block's marker back in place of
+    the block's text (the tree holds the marker; the block's transmissions are read back on
+    their own)."""
+    data = utf8_form(data)  # what the edits addressed (UTF-16 and UTF-32 stored back)
+    if expected.marked is not None:
+        data = _marked(data, edits, *expected.marked)
+    try:
+        written = parse_bytes(data, path, limit=None)
+    except InputError as exc:
+        raise InputError(f"{path}: cannot convert: what the edits write does not read "
+                         f"back ({exc})") from None
+    got = _digest(etree.tostring(written, method="c14n"))
+    del written
+    if got != expected.digest:
+        raise InputError(f"{path}: cannot convert: what the edits write does not read as the "
+                         f"converted document (read back {got[:6].hex()}); please report "
+                         "this file")
+
+
+def _marked(data: bytes, edits: list[Edit], place: int, unfilled: Edit, token: bytes) -> bytes:
+    """``data``, written by ``edits``, with the text filled in for a block's marker (the
+    comment ``token``) replaced by the marker: edit ``place`` was ``unfilled`` before."""
+    filled = edits[place]
+    key = (filled.start, filled.end)
+    # Where the filled edit's content starts in ``data``: after what the edits applied
+    # before it (in the applier's order) added or took away.
+    shift = sum(len(edit.content) - (edit.end - edit.start) for i, edit in enumerate(edits)
+                if (edit.start, edit.end) < key or (edit.start, edit.end) == key and i < place)
+    at = filled.start + shift + unfilled.content.index(token)
+    size = len(filled.content) - len(unfilled.content) + len(token)
+    return b"".join((data[:at], token, data[at + size:]))
 
 
 def _digest(data: bytes) -> bytes:
@@ -185,8 +197,9 @@ def _changed_inside(text: EditedText, transmissions: list[etree._Element], targe
 
 
 def _filled(edits: list[Edit], marker: etree._Comment, pieces: list[bytes]
-            ) -> list[Edit] | None:
-    """``edits`` with the marker filled in inside the one edit that holds it."""
+            ) -> tuple[list[Edit], tuple[int, Edit]] | None:
+    """``edits`` with the marker filled in inside the one edit that holds it, and the place
+    of that edit with the edit as it was."""
     token = f"<!--{marker.text}-->".encode("ascii")
     holding = [i for i, edit in enumerate(edits) if token in edit.content]
     if len(holding) != 1:
@@ -196,4 +209,4 @@ def _filled(edits: list[Edit], marker: etree._Comment, pieces: list[bytes]
     if content is None:
         return None
     edits[holding[0]] = Edit(edit.start, edit.end, content)
-    return edits
+    return edits, (holding[0], edit)
