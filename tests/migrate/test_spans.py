@@ -170,3 +170,30 @@ def test_a_robots_links_and_joints_are_jumped_over(monkeypatch) -> None:
     _same_spans(data, lambda root: [root[-1], root[-2]], lambda root: {
         "within": [], "shallow": [root], "near": {root[-1], root[-2]}})
     assert landed == [True, False]  # from l0 straight to j299; then the transmission
+
+
+@pytest.mark.parametrize(("after", "jumped"), [
+    ("", True),
+    ("\n<!-- the end -->\n<?done?>\n", True),
+    ("<!-- </robot> -->", False),  # the last </ is in a comment: read through
+    ("<?pi </robot> <?y?>", False),  # in an instruction that a later one seems to close
+    ("<?pi </x>?>", False),
+])
+def test_past_the_last_child_asked_about_the_scan_goes_to_the_roots_end_tag(
+        after: str, jumped: bool, monkeypatch) -> None:
+    """Nothing after the first links is asked about: the scan goes from there straight to
+    the root's end tag where the document's last ``</`` is surely that tag, and reads
+    through where a comment or instruction after the root could hold it."""
+    from txtool.transform.edits import spans
+
+    ends = []
+    root_end = spans._Jumps._root_end
+    monkeypatch.setattr(spans._Jumps, "_root_end",
+                        lambda self: ends.append(root_end(self)) or ends[-1])
+    data = _chain(300) + after.encode()
+    full, root = _index(data)
+    part = SpanIndex(data, root, [], shallow=[root], near={root[0], root[1]})
+    assert (part[root].tail_start, part[root].end) == (full[root].tail_start, full[root].end)
+    assert (part[root[1]].start, part[root[1]].end) == (full[root[1]].start, full[root[1]].end)
+    assert root[-1] not in part and root[2] not in part
+    assert ends and {end is not None for end in ends} == {jumped}

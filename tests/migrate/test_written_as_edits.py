@@ -218,6 +218,38 @@ def test_a_change_beside_a_child_the_index_passed_over_is_converted_again(monkey
     _written(data, again.data, again.edits)
 
 
+@pytest.mark.parametrize("kept", [
+    "vendor_hw/StateInterface",  # a custom type: left as written
+    " transmission_interface/SimpleTransmission <x/>",  # not plain text: taken for kept
+])
+def test_a_transmission_left_as_written_between_converted_ones_is_indexed(kept: str,
+                                                                          monkeypatch) -> None:
+    """The index skips the transmissions a conversion replaces whole (it writes over them);
+    one it leaves as written (a custom type, franka_ros's state interface) is indexed as a
+    kept neighbour, with no second pass."""
+    from txtool.transform import convert
+
+    def transmission(name: str, kind: str) -> str:
+        return (f'  <transmission name="{name}"><type>{kind}</type><joint name="j{name}">'
+                "<hardwareInterface>hardware_interface/EffortJointInterface"
+                "</hardwareInterface></joint><actuator name=\"m{name}\">"
+                "<mechanicalReduction>2</mechanicalReduction></actuator></transmission>\n")
+
+    simple = "transmission_interface/SimpleTransmission"
+    data = ('<robot name="r">\n  <link name="a"/>\n' + "".join(
+        transmission(name, kind) for name, kind in (("t1", simple), ("t2", simple),
+                                                    ("t3", kept), ("t4", simple)))
+            + '  <link name="b"/>\n</robot>\n').encode()
+    runs = []
+    document = convert._convert_document
+    monkeypatch.setattr(convert, "_convert_document",
+                        lambda *args, near: runs.append(near) or document(*args, near=near))
+    result = convert_source(Source("r.urdf", data, parse_bytes(data, "r.urdf")), "ros2-p2")
+    assert runs == [True]
+    assert result.converted == (3 if "<x/>" not in kept else 4)
+    _written(data, result.data, result.edits)
+
+
 ROBOT = (b'<robot name="r">\n  <link name="a"/>\n  <transmission name="t">\n'
          b"    <type>transmission_interface/SimpleTransmission</type>\n"
          b'    <joint name="j"><hardwareInterface>hardware_interface/EffortJointInterface'

@@ -26,7 +26,8 @@ from lxml import etree
 
 from txtool.dialects.read import detect_dialect
 from txtool.io.encodings import SCANNABLE, utf8_form
-from txtool.io.xmlio import InputError, parse_bytes
+from txtool.io.xmlio import InputError, local, parse_bytes
+from txtool.model.core import kind_of
 from txtool.transform.edits.core import Edit, EditedText
 from txtool.transform.edits.declaration import late_declaration
 from txtool.transform.edits.spans import SpanError, SpanIndex
@@ -56,14 +57,15 @@ class ConversionEdits:
                 containers.add(component)
                 containers.update(component.iterancestors())
         inside = _changed_inside(self.text, transmissions, target)
+        bounded = _near(root, transmissions, containers, _replaced(
+            self.text, root, transmissions, target, inside)) if near else None
+        self.change = TreeChange(inside, containers)  # first: the index reuses its proxies
         try:
             self.index = SpanIndex(self.text.data, root, inside, self.text.codec,
-                                   shallow=containers,
-                                   near=_near(root, transmissions, containers) if near else None)
+                                   shallow=containers, near=bounded)
         except SpanError as exc:
             raise InputError(f"{path}: cannot convert: the bytes do not read as parsed "
                              f"({exc})") from None
-        self.change = TreeChange(inside, containers)
         self.marked: tuple[int, Edit, bytes] | None = None  # see :class:`Expected`
 
     def substitute(self, node: etree._Element, block: bytes) -> None:
@@ -164,22 +166,50 @@ _AROUND = 2  # siblings on either side of a changed child whose bounds are index
 
 
 def _near(root: etree._Element, transmissions: list[etree._Element],
-          containers: set[etree._Element]) -> set[etree._Element]:
+          containers: set[etree._Element], replaced: set[etree._Element]
+          ) -> set[etree._Element]:
     """The root's children next to one a conversion may replace, cut or put something beside
     (a transmission, a ``<ros2_control>``), two on either side: a cut changes the tail of the
-    node before, and taking a carried original's comment out changes the one before that."""
-    near: set[etree._Element] = set()
-    changing = [child for child in transmissions if child.getparent() is root]
-    changing += [child for child in containers if child.getparent() is root
-                 and child.tag.rpartition("}")[2] == "ros2_control"]
+    node before, and taking a carried original's comment out changes the one before that.
+    Not those ``replaced``: the edits write over them, from a kept node to the next."""
+    changing = {child for child in transmissions if child.getparent() is root}
+    changing.update(child for child in containers if child.getparent() is root
+                    and child.tag.rpartition("}")[2] == "ros2_control")
+    near = changing - replaced
     for child in changing:
-        near.add(child)
-        before = after = child
-        for _ in range(_AROUND):
-            before = before.getprevious() if before is not None else None
-            after = after.getnext() if after is not None else None
-            near.update(node for node in (before, after) if node is not None)
+        # A changing neighbour's own walk reaches on past it.
+        for step in (etree._Element.getprevious, etree._Element.getnext):
+            node = step(child)
+            for _ in range(_AROUND):
+                if node is None or node in changing:
+                    break
+                near.add(node)
+                node = step(node)
     return near
+
+
+def _replaced(text: EditedText, root: etree._Element, transmissions: list[etree._Element],
+              target: str, inside: list[etree._Element]) -> set[etree._Element]:
+    """Transmissions a conversion to ``target`` replaces whole, as far as a glance tells: of
+    another dialect, not changed inside (:func:`_changed_inside`), of a standard type by
+    their first ``<type>`` (ROS 1) or ``<plugin>`` (ROS 2) child (a custom type is left as
+    written: :func:`txtool.transform.convert._convert_one`). One the glance takes for replaced
+    that is not is asked for after the change, and the index is made again in full
+    (:class:`.spans.NotIndexed`)."""
+    if target == "ros1" and local(root) == "ros2_control":
+        return set()  # a bare fragment's transmissions are left as they are
+    if target != "ros1" and text.stored.codec in SCANNABLE and not any(
+            word in text.data for word in (b"role", b"plugin", b"ros2_control")):
+        other = transmissions  # ROS 1, every one
+    else:
+        other = [element for element in transmissions if detect_dialect(element) != target]
+    kept = set(inside)
+    return {element for element in other if element not in kept and _standard(element)}
+
+
+def _standard(element: etree._Element) -> bool:
+    named = element.find("plugin") if element.find("type") is None else element.find("type")
+    return named is not None and not len(named) and kind_of(named.text or "") != "other"
 
 
 def _changed_inside(text: EditedText, transmissions: list[etree._Element], target: str

@@ -113,7 +113,8 @@ class SpanIndex:
         line, counted = 1, 0
         tokens = _MARKUP.finditer(data)
         cdata = b"<![CDATA[" in data
-        jumps = None if near is None else _Jumps(data, root, near | way | wanted | outline)
+        jumps = None if near is None else _Jumps(
+            data, root, near | way | wanted | outline, codec)
         while (token := next(tokens, None)) is not None:
             at = token.start()
             kind = data[at + 1]
@@ -140,6 +141,11 @@ class SpanIndex:
                     landing = jumps.past(node, children[0])
                     if landing is not None:  # at the next child of the root asked about
                         node, token, line, counted = landing
+                        if node is None:  # none is: at the root's end tag
+                            closed, _ = open_spans.pop()
+                            if closed is not None:
+                                closed.tail_start, closed.end = token.span()
+                            break
                         tokens = _MARKUP.finditer(data, token.end())
                         at, kind = token.start(), data[token.start() + 1]
             element = kind not in (_BANG, _QUESTION)
@@ -199,6 +205,13 @@ def _lines(data: bytes, start: int, end: int) -> int:
     return feeds + returns - data.count(b"\r\n", start, end) if returns else feeds
 
 
+def _closed_before(data: bytes, opening: bytes, closing: bytes, at: int) -> bool:
+    """Whether the last ``opening`` before ``at`` (a comment's or instruction's) is closed
+    before it."""
+    start = data.rfind(opening, 0, at)
+    return start < 0 or data.find(closing, start + len(opening), at) >= 0
+
+
 class _Jumps:
     """Where the scan can go straight from a child of the root that nothing asks about to
     the next one something does (``wanted``), by the line the parser gives it: a robot's
@@ -206,27 +219,34 @@ class _Jumps:
     cannot be wrong: the node before it in the document ends on an earlier line, and on its
     own line only spaces and end tags come before its start tag, which ends on that line."""
 
-    def __init__(self, data: bytes, root: etree._Element, wanted: set[etree._Element]
-                 ) -> None:
+    def __init__(self, data: bytes, root: etree._Element, wanted: set[etree._Element],
+                 codec: str = "utf-8") -> None:
         self.data = data
+        self.codec = codec
+        self.root_name = root.tag.rpartition("}")[2]
         self.kids = list(root)
         self.read = 0  # how many children of the root the scan has taken
         self.marks = [place for place, kid in enumerate(self.kids) if kid in wanted]
         self._marked = set(self.marks)
         self._refused = -1  # the child a landing was refused at (not tried again)
         self._starts: list[int] | None = None
+        self._end: re.Match[bytes] | None | bool = False  # the root's end tag; False: not sought
 
     def past(self, node: etree._Element, kids: Iterator[etree._Element]
-             ) -> tuple[etree._Element, re.Match[bytes], int, int] | None:
+             ) -> tuple[etree._Element | None, re.Match[bytes], int, int] | None:
         """For ``node``, the child of the root just taken from ``kids``: None to read it, or
         the next child asked about, its start tag, its line and where that line starts
-        (``kids`` then continues after it)."""
+        (``kids`` then continues after it); where none is, None for the child, and the
+        root's end tag (the scan ends there; ``kids`` and the lines are left as they are)."""
         place = self.read
         self.read += 1
         if place in self._marked:
             return None
         following = bisect_right(self.marks, place)
-        if following == len(self.marks) or self.marks[following] == self._refused:
+        if following == len(self.marks):
+            end = self._root_end()
+            return None if end is None else (None, end, 0, 0)
+        if self.marks[following] == self._refused:
             return None
         target = self.marks[following]
         landing = self._landing(self.kids[target], self.kids[target - 1])
@@ -240,6 +260,23 @@ class _Jumps:
             raise SpanError("the children of the root are not those the scan counted")
         self.read = target + 1
         return self.kids[target], token, line, start
+
+    def _root_end(self) -> re.Match[bytes] | None:
+        """The root's end tag: the document's last ``</``, where it is an end tag of the
+        root's name that only comments, instructions and spaces follow, and no comment or
+        instruction before it could hold it (else None, and the scan reads on)."""
+        if self._end is False:
+            self._end = None
+            data = self.data
+            at = data.rfind(b"</")
+            token = _MARKUP.match(data, at) if at >= 0 else None
+            if token is not None and _MISC.fullmatch(data, token.end()) is not None and (
+                    _closed_before(data, b"<!--", b"-->", at)
+                    and _closed_before(data, b"<?", b"?>", at)
+                    and token.group(0)[2:-1].strip().rpartition(b":")[2].decode(
+                        self.codec, "replace") == self.root_name):
+                self._end = token
+        return self._end
 
     def _landing(self, node: etree._Element, previous: etree._Element
                  ) -> tuple[re.Match[bytes], int, int] | None:
@@ -271,6 +308,7 @@ class _Jumps:
 
 
 _GAP = re.compile(rb"(?:[ \t\r\n]+|</[^>]*>)*")
+_MISC = re.compile(rb"(?:[ \t\r\n]+|<!--.*?-->|<\?.*?\?>)*", re.S)  # what may follow the root
 _END_TAGS: dict[bytes, re.Pattern[bytes]] = {}
 
 
