@@ -198,9 +198,8 @@ def _replaced(text: EditedText, root: etree._Element, transmissions: list[etree.
     (:class:`.spans.NotIndexed`)."""
     if target == "ros1" and local(root) == "ros2_control":
         return set()  # a bare fragment's transmissions are left as they are
-    if target != "ros1" and text.stored.codec in SCANNABLE and not any(
-            word in text.data for word in (b"role", b"plugin", b"ros2_control")):
-        other = transmissions  # ROS 1, every one
+    if target != "ros1" and _ros1_alone(text):
+        other = transmissions
     else:
         other = [element for element in transmissions if detect_dialect(element) != target]
     kept = set(inside)
@@ -208,8 +207,28 @@ def _replaced(text: EditedText, root: etree._Element, transmissions: list[etree.
 
 
 def _standard(element: etree._Element) -> bool:
-    named = element.find("plugin") if element.find("type") is None else element.find("type")
-    return named is not None and not len(named) and kind_of(named.text or "") != "other"
+    """Whether the first ``<type>`` child, or else the first ``<plugin>``, is text alone
+    that names a standard type."""
+    plugin = None
+    child = element[0] if len(element) else None  # (faster than an iterator, for one child)
+    while child is not None:
+        tag = child.tag
+        if tag == "type":
+            return _names_standard(child)
+        if plugin is None and tag == "plugin":
+            plugin = child
+        child = child.getnext()
+    return plugin is not None and _names_standard(plugin)
+
+
+def _names_standard(element: etree._Element) -> bool:
+    return not len(element) and kind_of(element.text or "") != "other"
+
+
+def _ros1_alone(text: EditedText) -> bool:
+    """Whether the bytes hold no ROS 2 spelling: every transmission is ROS 1."""
+    return text.stored.codec in SCANNABLE and not any(
+        word in text.data for word in (b"role", b"plugin", b"ros2_control"))
 
 
 def _changed_inside(text: EditedText, transmissions: list[etree._Element], target: str
@@ -218,10 +237,7 @@ def _changed_inside(text: EditedText, transmissions: list[etree._Element], targe
     whole: those of the other ROS 2 proposal, whose roles are restyled in place
     (:func:`txtool.transform.placement.layout.restyle_roles`). A ROS 1 transmission, or any
     going to ROS 1, is replaced; a document whose bytes hold no ROS 2 spelling has none."""
-    if target == "ros1" or not transmissions:
-        return []
-    if text.stored.codec in SCANNABLE and not any(
-            word in text.data for word in (b"role", b"plugin", b"ros2_control")):
+    if target == "ros1" or not transmissions or _ros1_alone(text):
         return []
     return [element for element in transmissions if detect_dialect(element) != "ros1"]
 

@@ -158,6 +158,8 @@ class EditedText:
 
 def _newline(data: bytes) -> str:
     """The line ending most lines end with (LF when there is no line break)."""
+    if b"\r" not in data:
+        return "\n"
     crlf = data.count(b"\r\n")
     cr, lf = data.count(b"\r") - crlf, data.count(b"\n") - crlf
     count, ending = max(((crlf, "\r\n"), (cr, "\r"), (lf, "\n")), key=lambda pair: pair[0])

@@ -115,45 +115,44 @@ class TreeChange:
             edits.append(Edit(span.close, span.end, b"/>"))
             return
         was_at = {child: place for place, child in enumerate(before.children)}
-        kept = [child for child in children if child in was_at]
-        order = [was_at[child] for child in kept]
-        if order != sorted(order):
-            kept = []  # reordered: all of the content is written anew
-        self._regions(element, span, kept, was_at, text, index, edits)
-        for child in kept:
-            if child in self._before:
-                self._element(child, text, index, edits)
+        kept: list[tuple[int, int]] = []  # where each child kept stands now, and stood before
+        for place, child in enumerate(children):
+            old = was_at.get(child)
+            if old is not None:
+                if kept and old < kept[-1][1]:
+                    kept = []  # reordered: all of the content is written anew
+                    break
+                kept.append((place, old))
+        self._regions(element, span, children, tails, kept, text, index, edits)
+        for place, _ in kept:
+            if children[place] in self._before:
+                self._element(children[place], text, index, edits)
 
-    def _regions(self, element: etree._Element, span: Span, kept: list[etree._Element],
-                 was_at: dict[etree._Element, int], text: EditedText, index: SpanIndex,
-                 edits: list[Edit]) -> None:
+    def _regions(self, element: etree._Element, span: Span, children: list[etree._Element],
+                 tails: list[str | None], kept: list[tuple[int, int]], text: EditedText,
+                 index: SpanIndex, edits: list[Edit]) -> None:
         """An edit for each run of content between two kept children (or the start or end
-        of the element) that the change made differ (``was_at``: where each child stood
-        before)."""
+        of the element) that the change made differ: a node put in or taken out there, or
+        the text before the run's first node (``kept``: where each kept child stands among
+        ``children`` and stood before)."""
         before = self._before[element]
-        children = list(element)
-        old_places = [was_at[child] for child in kept]
-        leads = [(element.text, before.text), *(
-            (child.tail, before.tails[place]) for child, place in zip(kept, old_places,
-                                                                       strict=True))]
-        is_at = {child: place for place, child in enumerate(children)}
-        places = [is_at[child] for child in kept]
-        firsts = [0, *(place + 1 for place in places)]
-        lasts = [*places, len(children)]
-        old_firsts = [0, *(place + 1 for place in old_places)]
-        old_lasts = [*old_places, len(before.children)]
-        for region, (lead, old_lead) in enumerate(leads):
-            if lead == old_lead and firsts[region] == lasts[region] and (
-                    old_firsts[region] == old_lasts[region]):
+        place = old = -1  # those of the kept child before the run
+        for next_place, next_old in [*kept, (len(children), len(before.children))]:
+            lead, old_lead = (element.text, before.text) if place < 0 else (
+                tails[place], before.tails[old])
+            if next_place == place + 1 and next_old == old + 1 and lead == old_lead:
+                place, old = next_place, next_old
                 continue
-            # Only the bounds of a region that changed are read (the index may hold no more).
-            start = index[kept[region - 1]].end if region else span.head_end
-            end = index[kept[region]].start if region < len(kept) else span.tail_start
-            new_nodes = children[firsts[region]:lasts[region]]
-            written = text.encode(_escaped(lead)) + self._nodes(new_nodes, text)
+            # Only the bounds of a run that changed are read (the index may hold no more).
+            start = index[children[place]].end if place >= 0 else span.head_end
+            end = index[children[next_place]].start if next_place < len(children) else (
+                span.tail_start)
+            written = text.encode(_escaped(lead)) + self._nodes(
+                children[place + 1:next_place], text)
             edit = _trimmed(index.data, start, end, written)
             if edit.start < edit.end or edit.content:
                 edits.append(edit)
+            place, old = next_place, next_old
 
     def _nodes(self, nodes: list[etree._Element], text: EditedText) -> bytes:
         """``nodes`` and their tails as bytes of the document."""
