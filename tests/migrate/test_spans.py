@@ -5,6 +5,8 @@ from __future__ import annotations
 import time
 
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 from lxml import etree
 
 from txtool.io.xmlio import parse_bytes
@@ -197,3 +199,21 @@ def test_past_the_last_child_asked_about_the_scan_goes_to_the_roots_end_tag(
     assert (part[root[1]].start, part[root[1]].end) == (full[root[1]].start, full[root[1]].end)
     assert root[-1] not in part and root[2] not in part
     assert ends and {end is not None for end in ends} == {jumped}
+
+
+@given(st.binary(max_size=60).map(lambda raw: bytes(b"ab\n\r"[byte % 4] for byte in raw)),
+       st.lists(st.integers(1, 30), max_size=8))
+def test_a_landing_line_starts_where_the_lines_before_it_end(data: bytes, lines) -> None:
+    """Where the scan lands on a line, in any order of landings: after the line breaks
+    before it as the parser counts them (a bare CR ends a line too)."""
+    from txtool.transform.edits.spans import _Jumps
+
+    jumps = _Jumps(data, etree.Element("robot"), set())
+    starts = [0, *(at + 1 for at, byte in enumerate(data)
+                   if byte == ord("\n") or byte == ord("\r") and data[at + 1:at + 2] != b"\n")]
+    for line in lines:
+        found = jumps._line_start(line)
+        if line <= len(starts):
+            assert found == starts[line - 1]
+        else:
+            assert found is None or found == len(data)  # past the last line: nothing to land on

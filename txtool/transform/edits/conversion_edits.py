@@ -48,6 +48,8 @@ class ConversionEdits:
         self.text = EditedText(data)
         containers: set[etree._Element] = {root}
         for element in transmissions:
+            if element.getparent() in containers:
+                continue  # (the common case, without an iterator)
             for ancestor in element.iterancestors():
                 if ancestor in containers:
                     break
@@ -57,9 +59,9 @@ class ConversionEdits:
                 containers.add(component)
                 containers.update(component.iterancestors())
         inside = _changed_inside(self.text, transmissions, target)
+        self.change = TreeChange(inside, containers)  # first: the index reuses its proxies
         bounded = _near(root, transmissions, containers, _replaced(
             self.text, root, transmissions, target, inside)) if near else None
-        self.change = TreeChange(inside, containers)  # first: the index reuses its proxies
         try:
             self.index = SpanIndex(self.text.data, root, inside, self.text.codec,
                                    shallow=containers, near=bounded)
@@ -176,16 +178,21 @@ def _near(root: etree._Element, transmissions: list[etree._Element],
     changing.update(child for child in containers if child.getparent() is root
                     and child.tag.rpartition("}")[2] == "ros2_control")
     near = changing - replaced
-    for child in changing:
-        # A changing neighbour's own walk reaches on past it.
-        for step in (etree._Element.getprevious, etree._Element.getnext):
-            node = step(child)
-            for _ in range(_AROUND):
-                if node is None or node in changing:
-                    break
-                near.add(node)
-                node = step(node)
-    return near
+    kids = list(root)
+    flags = [kid in changing for kid in kids]
+    end = 0
+    while True:  # over each run of changing children: those around it
+        try:
+            start = flags.index(True, end)
+        except ValueError:
+            break
+        try:
+            end = flags.index(False, start)
+        except ValueError:
+            end = len(kids)
+        near.update(kids[max(0, start - _AROUND):start])
+        near.update(kids[end:end + _AROUND])
+    return near.difference(replaced)
 
 
 def _replaced(text: EditedText, root: etree._Element, transmissions: list[etree._Element],

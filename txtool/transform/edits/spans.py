@@ -76,6 +76,7 @@ class Span:
 
 
 _SLASH, _BANG, _QUESTION = b"/!?"
+_FEED = ord("\n")
 _NONE, _CHILDREN, _DEEP = 0, 1, 2  # how far below an open element nodes are indexed
 
 
@@ -230,6 +231,7 @@ class _Jumps:
         self._marked = set(self.marks)
         self._refused = -1  # the child a landing was refused at (not tried again)
         self._starts: list[int] | None = None
+        self._last_line = (0, 1)  # the start of the line last landed on, and its line
         self._end: re.Match[bytes] | None | bool = False  # the root's end tag; False: not sought
 
     def past(self, node: etree._Element, kids: Iterator[etree._Element]
@@ -278,6 +280,34 @@ class _Jumps:
                 self._end = token
         return self._end
 
+    def _line_start(self, line: int) -> int | None:
+        """Where line ``line`` starts (None: the document has fewer lines)."""
+        data = self.data
+        if b"\r" in data:  # a bare CR ends a line too: every line's start is listed
+            if self._starts is None:
+                self._starts = [0, *accumulate(map(len, data.splitlines(keepends=True)))]
+            return self._starts[line - 1] if line <= len(self._starts) else None
+        # Line feeds alone: halving the range after the line before's start, each byte is
+        # counted about once.
+        at, counted = self._last_line
+        if line < counted:
+            at, counted = 0, 1
+        need, low, high = line - counted, at, len(data)
+        while need and low < high:  # the line starts after the need-th line feed from low
+            middle = (low + high) // 2
+            feeds = data.count(b"\n", low, middle)
+            if feeds >= need:
+                high = middle
+            else:
+                need -= feeds
+                low = middle
+            if high - low == 1:
+                low, need = high, 0
+        if need or low and data[low - 1] != _FEED:
+            return None  # fewer lines than that
+        self._last_line = low, line
+        return low
+
     def _landing(self, node: etree._Element, previous: etree._Element
                  ) -> tuple[re.Match[bytes], int, int] | None:
         line = node.sourceline
@@ -286,11 +316,9 @@ class _Jumps:
             last = last[-1]
         if line is None or last.sourceline is None or last.sourceline >= line:
             return None
-        if self._starts is None:
-            self._starts = [0, *accumulate(map(len, self.data.splitlines(keepends=True)))]
-        if line > len(self._starts):
+        start = self._line_start(line)
+        if start is None:
             return None
-        start = self._starts[line - 1]
         gap = _GAP.match(self.data, start)
         token = _MARKUP.match(self.data, gap.end()) if gap is not None else None
         if token is None or self.data[token.start() + 1] == _SLASH:
