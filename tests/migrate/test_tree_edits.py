@@ -145,6 +145,23 @@ def test_a_removed_element_is_said_where_it_stands_when_no_line_repeats_it() -> 
     assert _changed(data, change) == b"<robot>\n  <a/> x\n</robot>"
 
 
+@pytest.mark.parametrize(("written", "same"), [
+    (b'<robot xmlns:x="urn:a"><x:t/></robot>', True),
+    (b'<robot xmlns:y="urn:a"><y:t/></robot>', False),  # another prefix (tinyxml2 reads it)
+    (b'<robot xmlns:x="urn:b"><x:t/></robot>', False),  # another namespace
+    (b'<robot><x:t xmlns:x="urn:a"/></robot>', True),  # declared where it is used
+    (b'<robot xmlns:x="urn:a" xmlns:u="urn:unused"><x:t/></robot>', True),  # used by no name
+    (b'<robot xmlns:x="urn:a"><x:t/><!-- c --></robot>', False),  # a comment more
+    (b"<robot xmlns:x='urn:a'>\n<x:t></x:t></robot>", False),  # a text more
+])
+def test_bytes_read_as_a_tree_by_names_texts_and_comments(written: bytes, same: bool) -> None:
+    """The canonical forms compared are the exclusive ones: a namespace declaration that no
+    name uses is not compared, nor where a used one stands (no loader reads either); names
+    with their prefixes and namespaces, texts and comments are."""
+    tree = etree.fromstring(b'<robot xmlns:x="urn:a"><x:t/></robot>').getroottree()
+    assert reads_as(written, tree, "robot.urdf") is same
+
+
 def test_bytes_that_do_not_parse_do_not_read_as_the_tree() -> None:
     assert not reads_as(b"<robot>", parse_bytes(b"<robot/>", "robot.urdf"), "robot.urdf")
 

@@ -31,7 +31,7 @@ from txtool.model.core import kind_of
 from txtool.transform.edits.core import Edit, EditedText
 from txtool.transform.edits.declaration import late_declaration
 from txtool.transform.edits.spans import SpanError, SpanIndex
-from txtool.transform.edits.tree_edits import NotEditable, TreeChange
+from txtool.transform.edits.tree_edits import NotEditable, TreeChange, canonical
 from txtool.transform.repeated.block_text import fill
 
 
@@ -107,11 +107,12 @@ class ConversionEdits:
 
     def expect(self, tree: etree._ElementTree) -> Expected:
         """What :func:`check_written` holds the bytes of the last :meth:`edits` to: the
-        canonical form of ``tree``, the converted document, as a digest (so that the tree can
-        go before the bytes are parsed). A block written as text stands in ``tree`` as its
-        marker comment, and in what is parsed too: each of its transmissions is read back on
-        its own by the conversion's check (:mod:`txtool.transform.repeated.block_text`)."""
-        return Expected(_digest(etree.tostring(tree, method="c14n")), self.marked)
+        canonical form (:func:`.tree_edits.canonical`) of ``tree``, the converted document,
+        as a digest (so that the tree can go before the bytes are parsed). A block written as
+        text stands in ``tree`` as its marker comment, and in what is parsed too: each of its
+        transmissions is read back on its own by the conversion's check
+        (:mod:`txtool.transform.repeated.block_text`)."""
+        return Expected(_digest(canonical(tree)), self.marked)
 
 
 @dataclass(frozen=True)
@@ -138,7 +139,7 @@ def check_written(data: bytes, edits: list[Edit], path: str, expected: Expected)
     except InputError as exc:
         raise InputError(f"{path}: cannot convert: what the edits write does not read "
                          f"back ({exc})") from None
-    got = _digest(etree.tostring(written, method="c14n"))
+    got = _digest(canonical(written))
     del written
     if got != expected.digest:
         raise InputError(f"{path}: cannot convert: what the edits write does not read as the "

@@ -299,11 +299,21 @@ def _written(node: etree._Element, redeclare: bool = False) -> str:
     return markup + _escaped(node.tail)
 
 
+def canonical(tree: etree._ElementTree) -> bytes:
+    """The form two documents are compared in to tell whether bytes read as a tree: its
+    exclusive canonical XML, comments kept (about twice as fast as the inclusive form on a
+    large robot). Element and attribute names are compared with their namespaces, texts,
+    comments and instructions as they are; a namespace declaration that no name uses is not
+    compared: no loader reads one (tinyxml2 and urdfdom read no namespaces, xacro reads
+    prefixes)."""
+    return etree.tostring(tree, method="c14n", exclusive=True)
+
+
 def reads_as(data: bytes, tree: etree._ElementTree, path: str) -> bool:
-    """Whether ``data`` parses to the document ``tree`` holds (canonical forms compared): the
-    check of bytes written by edits."""
+    """Whether ``data`` parses to the document ``tree`` holds (:func:`canonical` forms
+    compared): the check of bytes written by edits."""
     try:
         written = parse_bytes(data, path, limit=None)
     except InputError:
         return False
-    return etree.tostring(written, method="c14n") == etree.tostring(tree, method="c14n")
+    return canonical(written) == canonical(tree)
