@@ -162,8 +162,8 @@ def test_a_robots_links_and_joints_are_jumped_over(monkeypatch) -> None:
     landed = []
     past = spans._Jumps.past
 
-    def counted(self, node, kids):
-        landing = past(self, node, kids)
+    def counted(self):
+        landing = past(self)
         landed.append(landing is not None)
         return landing
 
@@ -217,3 +217,20 @@ def test_a_landing_line_starts_where_the_lines_before_it_end(data: bytes, lines)
             assert found == starts[line - 1]
         else:
             assert found is None or found == len(data)  # past the last line: nothing to land on
+
+
+@pytest.mark.parametrize("few", [0, 10_000])
+def test_the_children_asked_about_are_found_one_by_one_or_listed_to_the_same_spans(
+        few: int, monkeypatch) -> None:
+    """A few children asked about are found by the parser's own scan, many by listing the
+    root's children: the same landings either way."""
+    from txtool.transform.edits import spans
+
+    monkeypatch.setattr(spans, "_FEW", few)
+    data = _chain(300).replace(b"<joint", b"\n  <joint")
+
+    def asked(root):
+        return [kid for place, kid in enumerate(root) if place % 5 == 3]
+
+    _same_spans(data, asked, lambda root: {"within": [], "shallow": [root],
+                                           "near": set(asked(root))})

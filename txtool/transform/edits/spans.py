@@ -19,7 +19,7 @@ import re
 from bisect import bisect_right
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
-from itertools import accumulate, islice
+from itertools import accumulate
 
 from lxml import etree
 
@@ -77,6 +77,7 @@ class Span:
 
 _SLASH, _BANG, _QUESTION = b"/!?"
 _FEED = ord("\n")
+_FEW = 64  # children of the root asked about that are found one by one (else all are listed)
 _NONE, _CHILDREN, _DEEP = 0, 1, 2  # how far below an open element nodes are indexed
 
 
@@ -139,7 +140,7 @@ class SpanIndex:
                 if node is None:
                     raise SpanError(f"byte {at}: a node the tree does not have")
                 if jumps is not None and len(open_spans) == 1:
-                    landing = jumps.past(node, children[0])
+                    landing = jumps.past()
                     if landing is not None:  # at the next child of the root asked about
                         node, token, line, counted = landing
                         if node is None:  # none is: at the root's end tag
@@ -147,6 +148,7 @@ class SpanIndex:
                             if closed is not None:
                                 closed.tail_start, closed.end = token.span()
                             break
+                        children[0] = node.itersiblings()
                         tokens = _MARKUP.finditer(data, token.end())
                         at, kind = token.start(), data[token.start() + 1]
             element = kind not in (_BANG, _QUESTION)
@@ -207,8 +209,10 @@ def _lines(data: bytes, start: int, end: int) -> int:
 
 
 def _closed_before(data: bytes, opening: bytes, closing: bytes, at: int) -> bool:
-    """Whether the last ``opening`` before ``at`` (a comment's or instruction's) is closed
-    before it."""
+    """Whether ``at`` stands in no comment (``opening``, ``closing``: ``<!--``, ``-->``) or
+    no instruction: none closes after it, or the last to open before it closes before it."""
+    if data.find(closing, at) < 0:
+        return True  # none ends after it: it is in none
     start = data.rfind(opening, 0, at)
     return start < 0 or data.find(closing, start + len(opening), at) >= 0
 
@@ -225,21 +229,26 @@ class _Jumps:
         self.data = data
         self.codec = codec
         self.root_name = root.tag.rpartition("}")[2]
-        self.kids = list(root)
         self.read = 0  # how many children of the root the scan has taken
-        self.marks = [place for place, kid in enumerate(self.kids) if kid in wanted]
+        # The children asked about, and where each stands among the root's children.
+        asked = [node for node in wanted if node.getparent() is root]
+        if len(asked) <= _FEW:  # each found by the parser's own scan, no child made a proxy
+            marked = sorted((root.index(node), node) for node in asked)
+        else:
+            marked = [(place, kid) for place, kid in enumerate(root) if kid in wanted]
+        self.marks = [place for place, _ in marked]
+        self.nodes = [node for _, node in marked]
         self._marked = set(self.marks)
         self._refused = -1  # the child a landing was refused at (not tried again)
         self._starts: list[int] | None = None
         self._last_line = (0, 1)  # the start of the line last landed on, and its line
         self._end: re.Match[bytes] | None | bool = False  # the root's end tag; False: not sought
 
-    def past(self, node: etree._Element, kids: Iterator[etree._Element]
-             ) -> tuple[etree._Element | None, re.Match[bytes], int, int] | None:
-        """For ``node``, the child of the root just taken from ``kids``: None to read it, or
-        the next child asked about, its start tag, its line and where that line starts
-        (``kids`` then continues after it); where none is, None for the child, and the
-        root's end tag (the scan ends there; ``kids`` and the lines are left as they are)."""
+    def past(self) -> tuple[etree._Element | None, re.Match[bytes], int, int] | None:
+        """For the child of the root the scan has just taken: None to read it, or the next
+        child asked about, its start tag, its line and where that line starts (the scan goes
+        on with the children after it); where none is, None for the child, and the root's end
+        tag (the scan ends there; the lines are not counted)."""
         place = self.read
         self.read += 1
         if place in self._marked:
@@ -248,20 +257,17 @@ class _Jumps:
         if following == len(self.marks):
             end = self._root_end()
             return None if end is None else (None, end, 0, 0)
-        if self.marks[following] == self._refused:
-            return None
         target = self.marks[following]
-        landing = self._landing(self.kids[target], self.kids[target - 1])
+        if target == self._refused:
+            return None
+        node = self.nodes[following]
+        landing = self._landing(node, node.getprevious())
         if landing is None:
             self._refused = target
             return None
         token, line, start = landing
-        skipped = target - place - 1
-        next(islice(kids, skipped, skipped), None)
-        if next(kids, None) is not self.kids[target]:
-            raise SpanError("the children of the root are not those the scan counted")
         self.read = target + 1
-        return self.kids[target], token, line, start
+        return node, token, line, start
 
     def _root_end(self) -> re.Match[bytes] | None:
         """The root's end tag: the document's last ``</``, where it is an end tag of the
