@@ -54,14 +54,15 @@ class ConversionEdits:
                 if ancestor in containers:
                     break
                 containers.add(ancestor)
-        if self.text.stored.codec not in SCANNABLE or b"ros2_control" in self.text.data:
+        ros1_alone = _ros1_alone(self.text)
+        if not ros1_alone:
             for component in root.iter("{*}ros2_control"):
                 containers.add(component)
                 containers.update(component.iterancestors())
-        inside = _changed_inside(self.text, transmissions, target)
+        inside = _changed_inside(transmissions, target, ros1_alone)
         self.change = TreeChange(inside, containers)  # first: the index reuses its proxies
         bounded = _near(root, transmissions, containers, _replaced(
-            self.text, root, transmissions, target, inside)) if near else None
+            root, transmissions, target, inside, ros1_alone)) if near else None
         try:
             self.index = SpanIndex(self.text.data, root, inside, self.text.codec,
                                    shallow=containers, near=bounded)
@@ -196,8 +197,8 @@ def _near(root: etree._Element, transmissions: list[etree._Element],
     return near.difference(replaced)
 
 
-def _replaced(text: EditedText, root: etree._Element, transmissions: list[etree._Element],
-              target: str, inside: list[etree._Element]) -> set[etree._Element]:
+def _replaced(root: etree._Element, transmissions: list[etree._Element], target: str,
+              inside: list[etree._Element], ros1_alone: bool) -> set[etree._Element]:
     """Transmissions a conversion to ``target`` replaces whole, as far as a glance tells: of
     another dialect, not changed inside (:func:`_changed_inside`), of a standard type by
     their first ``<type>`` (ROS 1) or ``<plugin>`` (ROS 2) child (a custom type is left as
@@ -206,7 +207,7 @@ def _replaced(text: EditedText, root: etree._Element, transmissions: list[etree.
     (:class:`.spans.NotIndexed`)."""
     if target == "ros1" and local(root) == "ros2_control":
         return set()  # a bare fragment's transmissions are left as they are
-    if target != "ros1" and _ros1_alone(text):
+    if target != "ros1" and ros1_alone:
         other = transmissions
     else:
         other = [element for element in transmissions if detect_dialect(element) != target]
@@ -234,18 +235,19 @@ def _names_standard(element: etree._Element) -> bool:
 
 
 def _ros1_alone(text: EditedText) -> bool:
-    """Whether the bytes hold no ROS 2 spelling: every transmission is ROS 1."""
+    """Whether the bytes hold no ROS 2 spelling (``role``, ``plugin``, ``ros2_control``):
+    every transmission is ROS 1, and no ``<ros2_control>`` stands in the document."""
     return text.stored.codec in SCANNABLE and not any(
         word in text.data for word in (b"role", b"plugin", b"ros2_control"))
 
 
-def _changed_inside(text: EditedText, transmissions: list[etree._Element], target: str
+def _changed_inside(transmissions: list[etree._Element], target: str, ros1_alone: bool
                     ) -> list[etree._Element]:
     """The transmissions a conversion to ``target`` may change inside rather than replace
     whole: those of the other ROS 2 proposal, whose roles are restyled in place
     (:func:`txtool.transform.placement.layout.restyle_roles`). A ROS 1 transmission, or any
     going to ROS 1, is replaced; a document whose bytes hold no ROS 2 spelling has none."""
-    if target == "ros1" or not transmissions or _ros1_alone(text):
+    if target == "ros1" or not transmissions or ros1_alone:
         return []
     return [element for element in transmissions if detect_dialect(element) != "ros1"]
 
