@@ -318,3 +318,13 @@ def test_a_conversion_to_ros2_is_not_scanned_again_for_ros1_spellings() -> None:
     assert might_fix_converted(written, FIXABLE, "ros1")
     other = FIXABLE[0]._replace(code="TX399")
     assert might_fix_converted(written, [*FIXABLE, other], "ros2-p1")
+
+
+@given(st.lists(st.sampled_from([b"<!--", b"-->", b"<!-->", b"-", b">", b"a", b"\n"]),
+                max_size=12).map(b"".join))
+def test_comment_bodies_are_what_the_comment_pattern_finds(data: bytes) -> None:
+    import re
+
+    from txtool.transform.migrate import _comment_bodies
+
+    assert _comment_bodies(data) == re.findall(rb"<!--(.*?)-->", data, re.S)
