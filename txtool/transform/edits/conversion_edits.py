@@ -179,7 +179,7 @@ def _near(root: etree._Element, transmissions: list[etree._Element],
     changing = {child for child in transmissions if child.getparent() is root}
     changing.update(child for child in containers if child.getparent() is root
                     and child.tag.rpartition("}")[2] == "ros2_control")
-    near = changing - replaced
+    near = set(changing)
     kids = list(root)
     flags = [kid in changing for kid in kids]
     end = 0

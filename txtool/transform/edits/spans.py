@@ -208,13 +208,14 @@ def _lines(data: bytes, start: int, end: int) -> int:
     return feeds + returns - data.count(b"\r\n", start, end) if returns else feeds
 
 
-def _closed_before(data: bytes, opening: bytes, closing: bytes, at: int) -> bool:
-    """Whether ``at`` stands in no comment (``opening``, ``closing``: ``<!--``, ``-->``) or
-    no instruction: none closes after it, or the last to open before it closes before it."""
-    if data.find(closing, at) < 0:
+def _outside_instructions(data: bytes, at: int) -> bool:
+    """Whether ``at`` stands in no processing instruction: none closes after it, or the last
+    to open before it closes before it. (A comment cannot hold the root's last ``</``: what
+    follows it in the comment would end in a ``-->`` that nothing after the root can open.)"""
+    if data.find(b"?>", at) < 0:
         return True  # none ends after it: it is in none
-    start = data.rfind(opening, 0, at)
-    return start < 0 or data.find(closing, start + len(opening), at) >= 0
+    start = data.rfind(b"<?", 0, at)
+    return start < 0 or data.find(b"?>", start + 2, at) >= 0
 
 
 class _Jumps:
@@ -271,16 +272,15 @@ class _Jumps:
 
     def _root_end(self) -> re.Match[bytes] | None:
         """The root's end tag: the document's last ``</``, where it is an end tag of the
-        root's name that only comments, instructions and spaces follow, and no comment or
-        instruction before it could hold it (else None, and the scan reads on)."""
+        root's name that only comments, instructions and spaces follow, and no instruction
+        before it could hold it (else None, and the scan reads on)."""
         if self._end is False:
             self._end = None
             data = self.data
             at = data.rfind(b"</")
             token = _MARKUP.match(data, at) if at >= 0 else None
             if token is not None and _MISC.fullmatch(data, token.end()) is not None and (
-                    _closed_before(data, b"<!--", b"-->", at)
-                    and _closed_before(data, b"<?", b"?>", at)
+                    _outside_instructions(data, at)
                     and token.group(0)[2:-1].strip().rpartition(b":")[2].decode(
                         self.codec, "replace") == self.root_name):
                 self._end = token
