@@ -263,12 +263,12 @@ def _serves_as_written(example: str, tmp_path, fixtures) -> None:
     host, port = words[words.index("--tcp") + 1].rsplit(":", 1)
     server = subprocess.Popen(command, cwd=tmp_path, env=env, stdout=subprocess.PIPE,
                               stderr=subprocess.PIPE, text=True)
-    try:
+    editor = None  # connected until the server is terminated: it serves one editor, and
+    try:           # ends when that editor leaves
         deadline = time.monotonic() + 60
-        while True:
+        while editor is None:
             try:
-                socket.create_connection((host, int(port)), timeout=1).close()
-                break
+                editor = socket.create_connection((host, int(port)), timeout=1)
             except OSError:
                 assert server.poll() is None, server.communicate()
                 assert time.monotonic() < deadline, example
@@ -276,6 +276,8 @@ def _serves_as_written(example: str, tmp_path, fixtures) -> None:
     finally:
         server.terminate()
         _, err = server.communicate(timeout=60)
+        if editor is not None:
+            editor.close()
     assert (server.returncode, err) == (143, "txtool: terminated\n"), example
 
 

@@ -195,3 +195,75 @@ def test_a_library_that_turns_ctrl_c_into_an_error_still_exits_130(tmp_path):
     (tmp_path / "demo.urdf").write_bytes(DEMO)
     assert txtool_with(sabotage, "show", "demo.urdf", cwd=tmp_path) == (
         130, "", "txtool: interrupted\n")
+
+
+def test_a_signal_inside_an_event_loops_callback_ends_the_process_once_the_callback_is_done():
+    """asyncio catches what a callback raises and logs it, and the loop goes on: a signal
+    raised there would be lost (``txtool lsp`` went on serving, with a traceback on stderr). It
+    ends the process from the loop instead, after the callback's clean-up has run."""
+    program = textwrap.dedent("""
+        import asyncio, os, signal, time
+        from txtool.io import signals
+
+        def handler():
+            try:
+                os.kill(os.getpid(), signal.SIGTERM)
+                time.sleep(0.2)
+            finally:
+                print("cleaned up", flush=True)
+
+        async def serve():
+            asyncio.get_running_loop().call_soon(handler)
+            await asyncio.sleep(60)
+
+        signals.stop_on_signals()
+        asyncio.run(serve())
+    """)
+    result = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True,
+                            env=ENV, timeout=30)
+    assert (result.returncode, result.stdout, result.stderr) == (
+        143, "cleaned up\n", "txtool: terminated\n")
+
+
+@pytest.mark.parametrize(("number", "code", "line"), [
+    (signal.SIGTERM, 143, "txtool: terminated\n"),
+    (signal.SIGINT, 130, "txtool: interrupted\n"),
+])
+def test_the_language_server_on_standard_input_ends_on_a_signal_while_its_editor_is_there(
+        tmp_path, number, code, line):
+    """The server reads its standard input in a thread; a normal exit waits for that thread,
+    so a signal while the editor holds the pipe open must not end by the usual unwinding."""
+    pytest.importorskip("pygls")
+    process = subprocess.Popen([sys.executable, "-m", "txtool", "lsp"], cwd=tmp_path, env=ENV,
+                               stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+    with process:
+        request = '{"jsonrpc":"2.0","id":1,"method":"shutdown"}'
+        process.stdin.write(f"Content-Length: {len(request)}\r\n\r\n{request}")
+        process.stdin.flush()
+        process.stdout.readline()  # the answer's header: the server is serving
+        process.send_signal(number)
+        try:
+            returncode = process.wait(timeout=30)
+        finally:
+            process.kill()
+            process.stdin.close()
+        err = process.stderr.read()
+    assert (returncode, err) == (code, line)
+
+
+def test_outside_a_running_event_loop_the_signal_is_raised_where_the_program_is():
+    import asyncio  # imported, as in txtool lsp before its loop starts, but not running
+
+    from txtool.io import signals
+
+    with pytest.raises(RuntimeError):
+        asyncio.get_running_loop()
+    before = signals._State.received
+    try:
+        signals._State.received = None
+        with pytest.raises(signals.Stopped) as stop:
+            signals._on_signal(signal.SIGTERM, None)
+        assert stop.value.exit_code == 143
+    finally:
+        signals._State.received = before

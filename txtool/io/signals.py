@@ -12,6 +12,10 @@ every moment after its code starts, in three stages:
   "Aborted!" and exit 1. Further signals are ignored while the program unwinds, and
   :func:`held` delays one that arrives in a step that must not be cut in two (creating a
   temporary file and recording its name);
+- while an asyncio event loop runs (``txtool lsp``): a signal raised inside one of the loop's
+  callbacks would be caught and logged by asyncio and the loop would go on serving, so the
+  process ends from the loop instead, between two callbacks: no handler is midway then, and
+  its temporary files are gone (:func:`_leave_from_loop`);
 - once the command has finished: :func:`exit_on_signals` again.
 
 Library use installs nothing: Ctrl-C stays a KeyboardInterrupt. This module imports little, as
@@ -111,10 +115,28 @@ def _on_signal(number: int, frame: FrameType | None) -> None:
     if _State.received is not None:
         return  # already stopping: let the clean-up finish
     _State.received = number
+    if _leave_from_loop(number):
+        return
     if _State.holding:
         _State.pending = True
         return
     raise Stopped(number)
+
+
+def _leave_from_loop(number: int) -> bool:
+    """Whether an asyncio event loop runs here; if one does, it is asked to end the process
+    as its next callback. Ending it at once instead would not wait for a server's handler to
+    finish (a temporary folder would be left), and a loop that serves standard input keeps a
+    thread blocked reading it, which a normal exit would wait for until the editor closes it."""
+    asyncio = sys.modules.get("asyncio")  # not imported: no loop can be running
+    if asyncio is None:
+        return False
+    try:
+        loop = asyncio.get_running_loop()
+    except RuntimeError:
+        return False
+    loop.call_soon_threadsafe(_exit_now, number, None)
+    return True
 
 
 class held:  # a class, not a contextlib generator: contextlib would delay the first handler
