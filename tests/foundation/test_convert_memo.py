@@ -18,7 +18,7 @@ from txtool.transform import convert as convert_module
 from txtool.transform.convert import convert_source
 from txtool.transform.repeated.renamings import renaming_of
 
-NAMES = ("a", "b", "j1", "actuator1", "*", "joint1", "z", "A")
+NAMES = ("a", "b", "j1", "actuator1", "*", "joint1", "z", "A", "\u00fc")
 REDUCTIONS = ("50", "-2", "${ratio}", "1.0", "abc")
 TARGETS = ("ros1", "ros2-p1", "ros2-p2")
 
@@ -131,6 +131,27 @@ def test_what_a_name_cannot_key_is_converted_in_full():
     escaped = parse_bytes(b'<transmission name="a&amp;b"/>', "<d>")
     assert renaming_of(commented.getroot()) is None
     assert renaming_of(escaped.getroot()) is None
+
+
+def test_a_name_not_in_ascii_is_not_keyed_nor_matched():
+    """Its order is kept out of the key (as for an escaped one); a text that is not ASCII
+    elsewhere is part of the shape."""
+    from txtool.dialects.read import read_transmission
+    from txtool.transform.repeated.renamings import Follower, Memo
+
+    def element(name: str, joint: str) -> etree._Element:
+        return parse_bytes(f'<transmission name="{name}"><type>\u00e9</type><joint name="{joint}"/>'
+                           "</transmission>".encode(), "<d>").getroot()
+
+    assert renaming_of(element("\u00fc", "j")) is None
+    memo = Memo()
+    first = element("x", "y")
+    renaming = memo.keyed(first)
+    assert renaming is not None and renaming.names == ("x", "y")
+    t = read_transmission(first, None)
+    memo.learn(renaming, t, t, clean=True)
+    assert isinstance(memo.keyed(element("v", "w")), Follower)
+    assert memo.keyed(element("b", "\u00fc")) is None
 
 
 def test_the_order_of_names_is_part_of_the_key():

@@ -143,7 +143,7 @@ def _convert_document(source: Source, target: Dialect, hardware_plugin: str, con
         keyed = None
         if memo is not None and (element.getparent() is root and top
                                  or enclosing_component(element) is None):
-            keyed = memo.keyed(element, etree.tostring(element, with_tail=False))
+            keyed = memo.keyed(element)
         if keyed.__class__ is Follower:
             assert isinstance(keyed, Follower)
             placer.place_follower(element, keyed, keyed.record.original.dialect)

@@ -71,7 +71,7 @@ def plan_repeats(source: Source, joints: JointsOnDemand) -> Plan | None:
     for element in elements:
         renaming = renaming_of(element)
         names = _names(element) if renaming is None else set(renaming.names)
-        if renaming is not None and any(isinstance(n, bytes) for n in renaming.key[1]):
+        if renaming is not None and any(isinstance(n, str) for n in renaming.key[1]):
             renaming = None  # a literal name (actuator1, *) is not told apart by its key
         uses.update(names)
         names_of.append(names)

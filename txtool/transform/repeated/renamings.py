@@ -2,11 +2,12 @@
 
 A large robot repeats a few transmissions thousands of times under other names. Reading,
 translating and judging each one costs far more than the parse of its text, so a conversion
-keys each ``<transmission>`` element by its serialization with every ``name="..."`` attribute
-value replaced by the index of its first appearance (:class:`Renaming`), and converts the
-first element of a key in full. A later element of the same key (a follower) takes that
-conversion with its own names put in, when the first said nothing about it (no loss, note or
-warning, and nothing carried as written): equal keys make equal conversions up to the names.
+keys each ``<transmission>`` element by its serialization (:func:`serialization`) with every
+``name="..."`` attribute value replaced by the index of its first appearance
+(:class:`Renaming`), and converts the first element of a key in full. A later element of the
+same key (a follower) takes that conversion with its own names put in, when the first said
+nothing about it (no loss, note or warning, and nothing carried as written): equal keys make
+equal conversions up to the names.
 
 That holds because every step reads names only to tell them apart and to order them (the
 same argument as :mod:`.nameless_shapes`): the key keeps which names are equal, the order of all of
@@ -14,7 +15,8 @@ them among each other and among :data:`.nameless_shapes.LITERAL_NAMES` (kept as 
 everything else of the element as written. A step that reads outside the element would break
 it, so an element inside a ``<ros2_control>`` (whose declarations the reader reads), with a
 comment or processing instruction (a ``name="..."`` text there is not an attribute), or with
-a name that the serialization escapes is not keyed, and is converted in full.
+a name that the serialization escapes or that is not ASCII is not keyed, and is converted in
+full.
 """
 
 from __future__ import annotations
@@ -39,9 +41,11 @@ class WrittenText(Protocol):
 
 # A name attribute (the serializer puts one space before each): inside a tag, as what follows
 # it up to the tag's end holds no "<" or ">" (escaped in values and text); a text that reads
-# ' name="..."' is followed by "<" first. An attribute value holds no '"' (escaped).
+# ' name="..."' is followed by "<" first. An attribute value holds no '"' (escaped). NAME
+# reads bytes (templates); the keys are made from text, which lxml writes faster.
 NAME = re.compile(rb' name="([^"]*)"(?=[^<>]*>)')
-_LITERALS = frozenset(name.encode("ascii") for name in LITERAL_NAMES)
+_NAME = re.compile(NAME.pattern.decode("ascii"))
+_LITERALS = LITERAL_NAMES
 _KEPT = {name: name for name in _LITERALS}
 _LITERAL_LIST = sorted(_LITERALS)
 
@@ -59,27 +63,38 @@ def renaming_of(element: etree._Element) -> Renaming | None:
     return None if parts is None else _renaming(parts)
 
 
-def _parts(element: etree._Element) -> list[bytes] | None:
-    """The serialization of ``element`` cut at its names (:data:`NAME`: the names are at the
-    odd indices), or None when it holds a comment or processing instruction."""
-    data = etree.tostring(element, with_tail=False)  # ASCII: other characters as references
-    return None if _unkeyed(data) else NAME.split(data)
+def serialization(element: etree._Element) -> str:
+    """What an element is keyed by: lxml's serialization of it, without its tail."""
+    return etree.tostring(element, with_tail=False, encoding="unicode")
 
 
-def _unkeyed(data: bytes) -> bool:
+def _parts(element: etree._Element) -> list[str] | None:
+    """The serialization of ``element`` cut at its names (the names are at the odd
+    indices), or None when it holds a comment or processing instruction."""
+    data = serialization(element)
+    return None if _unkeyed(data) else _NAME.split(data)
+
+
+def _unkeyed(data: str) -> bool:
     """Whether a serialization holds a comment, CDATA section or processing instruction
-    (the one-byte searches are the faster)."""
-    return b"!" in data and b"<!" in data or b"?" in data and b"<?" in data
+    (the one-character searches are the faster)."""
+    return "!" in data and "<!" in data or "?" in data and "<?" in data
 
 
-def _renaming(parts: list[bytes]) -> Renaming | None:
+def _unordered(names: str) -> bool:
+    """Whether names (joined) may sort otherwise than as written: escaped (``&amp;``), or
+    not ASCII (left out as when the keys were ASCII bytes, with references for the rest)."""
+    return "&" in names or not names.isascii()
+
+
+def _renaming(parts: list[str]) -> Renaming | None:
     raws = parts[1::2]
     distinct = dict.fromkeys(raws)  # the names that are not literal, in order of appearance
     if not _LITERALS.isdisjoint(distinct):
         for literal in _LITERALS:
             distinct.pop(literal, None)
-    if b"&" in b"".join(distinct):
-        return None  # an escaped name: its order is not the order of its bytes
+    if _unordered("".join(distinct)):
+        return None
     # Equal names, and the order of all names among each other and the literal ones (kept).
     index = dict(zip(distinct, range(len(distinct)), strict=True))
     index.update(_KEPT)
@@ -87,7 +102,7 @@ def _renaming(parts: list[bytes]) -> Renaming | None:
     everything = [*distinct, *_LITERALS]
     everything.sort()
     order = tuple(map(index.__getitem__, everything))
-    return Renaming((tuple(parts[0::2]), names, order), tuple(map(bytes.decode, distinct)))
+    return Renaming((tuple(parts[0::2]), names, order), tuple(distinct))
 
 
 class Renamer:
@@ -138,10 +153,10 @@ class Record:
         self.distinct = pattern == tuple(range(len(pattern)))  # no name twice, none literal
         # The names and the literal ones in the order they sort: indices into the names
         # followed by the literal names.
-        every = [name.encode("ascii") for name in renaming.names] + _LITERAL_LIST
+        every = [*renaming.names, *_LITERAL_LIST]
         self._order = itemgetter(*sorted(range(len(every)), key=every.__getitem__))
 
-    def match(self, raws: list[bytes], data: bytes) -> tuple[str, ...] | None:
+    def match(self, raws: list[str], data: str) -> tuple[str, ...] | None:
         """The names of an element whose :func:`renaming_of` has this record's key, from its
         names as written (``raws``), its key's skeleton being this record's; or None when its
         key differs (or it has none). Only for a :attr:`distinct` record: then the key says
@@ -150,9 +165,10 @@ class Record:
         # In the record's order, the names and the literal ones strictly increase: so they
         # are distinct, none is literal, and they sort as the record's.
         ordered = self._order(raws + _LITERAL_LIST)
-        if not all(map(lt, ordered, ordered[1:])) or b"&" in data and b"&" in b"".join(raws):
+        if not all(map(lt, ordered, ordered[1:])) or (
+                "&" in data or not data.isascii()) and _unordered("".join(raws)):
             return None
-        return tuple(map(bytes.decode, raws))
+        return tuple(raws)
 
     def name_for(self, names: tuple[str, ...]) -> str:
         """The name of ``translation_for(names)``."""
@@ -200,17 +216,14 @@ class Memo:
     """Records by key; a key whose first conversion said something is marked spoken."""
 
     records: dict[Hashable, Record | None] = field(default_factory=dict)
-    _distinct: dict[tuple[bytes, ...], list[Record]] = field(default_factory=dict)
+    _distinct: dict[tuple[str, ...], list[Record]] = field(default_factory=dict)
 
-    def keyed(self, element: etree._Element, data: bytes | None = None
-              ) -> Follower | Renaming | None:
+    def keyed(self, element: etree._Element) -> Follower | Renaming | None:
         """``element`` as a follower of the record of its key (:func:`renaming_of`) when
         there is one (its first said nothing), else its renaming (None: it has no key). A
-        record whose names are distinct is matched without the key being made. ``data``:
-        ``etree.tostring(element, with_tail=False)``, when the caller made it."""
-        if data is None:
-            data = etree.tostring(element, with_tail=False)
-        parts = NAME.split(data)
+        record whose names are distinct is matched without the key being made."""
+        data = serialization(element)
+        parts = _NAME.split(data)
         # A record's skeleton holds no "<!" or "<?", nor then does an element of the same
         # skeleton: its names, attribute values, hold no "<" (escaped).
         for record in self._distinct.get(tuple(parts[0::2]), ()):
