@@ -162,6 +162,26 @@ def test_bytes_read_as_a_tree_by_names_texts_and_comments(written: bytes, same: 
     assert reads_as(written, tree, "robot.urdf") is same
 
 
+def test_bytes_lxml_would_write_for_the_tree_are_told_without_canonical_forms(monkeypatch
+                                                                            ) -> None:
+    """The serializations are compared first (a third of the time): the canonical forms
+    are made only where they differ."""
+    from txtool.transform.edits import tree_edits
+
+    made = []
+
+    def canonical(tree):
+        made.append(tree)
+        return etree.tostring(tree, method="c14n", exclusive=True)
+
+    monkeypatch.setattr(tree_edits, "canonical", canonical)
+    tree = parse_bytes(b"<robot name='r'>\n  <link name=\"l\" ></link>\n</robot>", "r.urdf")
+    assert reads_as(b'<robot name="r">\n  <link name="l"/>\n</robot>', tree, "r.urdf")
+    assert made == []
+    assert not reads_as(b'<robot name="r">\n  <link name="m"/>\n</robot>', tree, "r.urdf")
+    assert len(made) == 2
+
+
 def test_bytes_that_do_not_parse_do_not_read_as_the_tree() -> None:
     assert not reads_as(b"<robot>", parse_bytes(b"<robot/>", "robot.urdf"), "robot.urdf")
 

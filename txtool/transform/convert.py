@@ -111,7 +111,7 @@ def convert_source(
             source.tree = parse_bytes(source.data, source.path, limit=None)
         result, expected = _convert_document(source, target, hardware_plugin, consume,
                                              reversible, check, repeats, near=False)
-    if expected is not None:  # here, where nothing holds the converted tree any more
+    if expected is not None:  # the converted tree, and nothing else of the conversion
         assert result.edits is not None
         check_written(result.data, result.edits, source.path, expected)
     return result

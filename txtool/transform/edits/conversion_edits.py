@@ -31,7 +31,7 @@ from txtool.model.core import kind_of
 from txtool.transform.edits.core import Edit, EditedText
 from txtool.transform.edits.declaration import late_declaration
 from txtool.transform.edits.spans import SpanError, SpanIndex
-from txtool.transform.edits.tree_edits import NotEditable, TreeChange, canonical
+from txtool.transform.edits.tree_edits import NotEditable, TreeChange, canonical, same_document
 from txtool.transform.repeated.block_text import fill
 
 
@@ -107,22 +107,20 @@ class ConversionEdits:
         return self.text.applied(edits)
 
     def expect(self, tree: etree._ElementTree) -> Expected:
-        """What :func:`check_written` holds the bytes of the last :meth:`edits` to: the
-        canonical form (:func:`.tree_edits.canonical`) of ``tree``, the converted document,
-        as a digest (so that the tree can go before the bytes are parsed). A block written as
-        text stands in ``tree`` as its marker comment, and in what is parsed too: each of its
-        transmissions is read back on its own by the conversion's check
-        (:mod:`txtool.transform.repeated.block_text`)."""
-        return Expected(_digest(canonical(tree)), self.marked)
+        """What :func:`check_written` holds the bytes of the last :meth:`edits` to: ``tree``,
+        the converted document. A block written as text stands in ``tree`` as its marker
+        comment, and in what is parsed too: each of its transmissions is read back on its own
+        by the conversion's check (:mod:`txtool.transform.repeated.block_text`)."""
+        return Expected(tree, self.marked)
 
 
 @dataclass(frozen=True)
 class Expected:
-    """The digest of the canonical form of a converted document, and where a block was
-    written as text, the place of the edit that holds it among the edits, that edit with the
-    block's marker in place of its text, and the marker as written."""
+    """A converted document, and where a block was written as text, the place of the edit
+    that holds it among the edits, that edit with the block's marker in place of its text,
+    and the marker as written."""
 
-    digest: bytes
+    tree: etree._ElementTree
     marked: tuple[int, Edit, bytes] | None = None
 
 
@@ -140,9 +138,8 @@ def check_written(data: bytes, edits: list[Edit], path: str, expected: Expected)
     except InputError as exc:
         raise InputError(f"{path}: cannot convert: what the edits write does not read "
                          f"back ({exc})") from None
-    got = _digest(canonical(written))
-    del written
-    if got != expected.digest:
+    if not same_document(written, expected.tree):
+        got = _digest(canonical(written))
         raise InputError(f"{path}: cannot convert: what the edits write does not read as the "
                          f"converted document (read back {got[:6].hex()}); please report "
                          "this file")
@@ -181,7 +178,7 @@ def _near(root: etree._Element, transmissions: list[etree._Element],
                     and child.tag.rpartition("}")[2] == "ros2_control")
     near = set(changing)
     kids = list(root)
-    flags = [kid in changing for kid in kids]
+    flags = list(map(changing.__contains__, kids))
     end = 0
     while True:  # over each run of changing children: those around it
         try:
