@@ -46,14 +46,16 @@ class ConversionEdits:
         children); false: all of them (:class:`.spans.NotIndexed` said one was missing)."""
         self.path = path
         self.text = EditedText(data)
+        at_root = _at_root(root, transmissions)
         containers: set[etree._Element] = {root}
-        for element in transmissions:
-            if element.getparent() in containers:
-                continue  # (the common case, without an iterator)
-            for ancestor in element.iterancestors():
-                if ancestor in containers:
-                    break
-                containers.add(ancestor)
+        if len(at_root) < len(transmissions):
+            for element in transmissions:
+                if element.getparent() in containers:
+                    continue  # (the common case, without an iterator)
+                for ancestor in element.iterancestors():
+                    if ancestor in containers:
+                        break
+                    containers.add(ancestor)
         ros1_alone = _ros1_alone(self.text)
         if not ros1_alone:
             for component in root.iter("{*}ros2_control"):
@@ -61,8 +63,9 @@ class ConversionEdits:
                 containers.update(component.iterancestors())
         inside = _changed_inside(transmissions, target, ros1_alone)
         self.change = TreeChange(inside, containers)  # first: the index reuses its proxies
-        bounded = _near(root, transmissions, containers, _replaced(
-            root, transmissions, target, inside, ros1_alone)) if near else None
+        bounded = _near(root, self.change.children_before(root), at_root, containers,
+                        _replaced(root, transmissions, target, inside, ros1_alone)
+                        ) if near else None
         try:
             self.index = SpanIndex(self.text.data, root, inside, self.text.codec,
                                    shallow=containers, near=bounded)
@@ -166,18 +169,27 @@ def _digest(data: bytes) -> bytes:
 _AROUND = 2  # siblings on either side of a changed child whose bounds are indexed
 
 
-def _near(root: etree._Element, transmissions: list[etree._Element],
+def _at_root(root: etree._Element, transmissions: list[etree._Element]
+             ) -> list[etree._Element]:
+    """Those of ``transmissions`` that are children of ``root``."""
+    children = root.findall("{*}transmission")
+    if children == transmissions:  # (the common case, told by identity in one comparison)
+        return children
+    return [element for element in transmissions if element.getparent() is root]
+
+
+def _near(root: etree._Element, kids: list[etree._Element], at_root: list[etree._Element],
           containers: set[etree._Element], replaced: set[etree._Element]
           ) -> set[etree._Element]:
-    """The root's children next to one a conversion may replace, cut or put something beside
-    (a transmission, a ``<ros2_control>``), two on either side: a cut changes the tail of the
-    node before, and taking a carried original's comment out changes the one before that.
-    Not those ``replaced``: the edits write over them, from a kept node to the next."""
-    changing = {child for child in transmissions if child.getparent() is root}
+    """Of the root's children ``kids``, those next to one a conversion may replace, cut or
+    put something beside (a transmission, ``at_root``, or a ``<ros2_control>``), two on
+    either side: a cut changes the tail of the node before, and taking a carried original's
+    comment out changes the one before that. Not those ``replaced``: the edits write over
+    them, from a kept node to the next."""
+    changing = set(at_root)
     changing.update(child for child in containers if child.getparent() is root
                     and child.tag.rpartition("}")[2] == "ros2_control")
     near = set(changing)
-    kids = list(root)
     flags = list(map(changing.__contains__, kids))
     end = 0
     while True:  # over each run of changing children: those around it

@@ -70,6 +70,10 @@ class TreeChange:
         self._before[element] = _Before(dict(element.attrib), element.text, children,
                                         list(map(_TAIL, children)), element.tag)
 
+    def children_before(self, container: etree._Element) -> list[etree._Element]:
+        """The children a container held before the change (a list not to be changed)."""
+        return self._before[container].children
+
     def substitute(self, node: etree._Element, markup: bytes) -> None:
         """Write ``node`` (a node the change puts in) as ``markup``, bytes of the document,
         instead of as lxml writes it; its tail is written as usual."""
