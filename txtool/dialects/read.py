@@ -123,6 +123,10 @@ def transmission_elements(
     top = root if root.getparent() is None else None
     tag = root.tag
     in_root = tag == "transmission" or tag.endswith("}transmission")
+    if candidates is None and top is not None and not in_root:
+        candidates = list(root.iter("{*}transmission"))
+        if candidates == root.findall("{*}transmission"):
+            return candidates  # all children of the root (told in one comparison)
     for element in root.iter("{*}transmission") if candidates is None else candidates:
         if element.getparent() is top:
             if not in_root:
