@@ -139,9 +139,10 @@ def _convert_document(source: Source, target: Dialect, hardware_plugin: str, con
     olds: dict[int, etree._Element] = {}  # the element of each item not a follower, by id
     root = tree.getroot()
     top = local(root) != "ros2_control"  # a child of the root is in no <ros2_control>
+    all_top = top and elements == root.findall("{*}transmission")  # (one comparison)
     for element in elements:
         keyed = None
-        if memo is not None and (element.getparent() is root and top
+        if memo is not None and (all_top or element.getparent() is root and top
                                  or enclosing_component(element) is None):
             keyed = memo.keyed(element)
         if keyed.__class__ is Follower:
