@@ -319,9 +319,9 @@ def same_document(read: etree._ElementTree, tree: etree._ElementTree) -> bool:
     """Whether ``read``, parsed from bytes written for ``tree``, holds the document ``tree``
     holds. lxml writes a tree, parsed or changed, as the document it holds, so the same
     serialization is the same document: that is compared first, made in a third of the time
-    of a canonical form. Where the two differ (a namespace declared on another element, an
-    attribute in other quotes is not: both are written by lxml), the canonical forms
-    (:func:`canonical`) decide."""
+    of a canonical form. Where the two differ (a namespace declared on another element than
+    where it is used; quotes and spaces in tags never differ, lxml writes both), the
+    canonical forms (:func:`canonical`) decide."""
     return _serialized(read) == _serialized(tree) or canonical(read) == canonical(tree)
 
 
