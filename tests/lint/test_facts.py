@@ -147,3 +147,25 @@ def test_a_checked_document_is_freed_without_the_garbage_collector(name: str) ->
         assert gc.collect() == 0
     finally:
         gc.enable()
+
+
+@pytest.mark.parametrize(("xml", "found", "at_root"), [
+    # all at the root: the root's own transmission children, in order
+    ('<robot><transmission name="a"/><link name="l"/><transmission name="b"/></robot>',
+     ["a", "b"], ["a", "b"]),
+    # one in a macro: found, but not a child of the root
+    ('<robot xmlns:xacro="x"><transmission name="a"/><xacro:macro name="m">'
+     '<transmission name="b"/></xacro:macro></robot>', ["a", "b"], ["a"]),
+    # one inside another: not a transmission of its own
+    ('<robot><transmission name="a"><transmission name="n"/></transmission></robot>',
+     ["a"], ["a"]),
+    # a bare fragment: the root itself, which is no child of itself
+    ('<transmission name="a"><transmission name="n"/></transmission>', ["a"], []),
+])
+def test_transmissions_found_and_those_at_the_root(xml, found, at_root):
+    from txtool.dialects.read import transmission_elements, transmissions_at_root
+
+    root = parse_bytes(xml.encode(), "r.urdf").getroot()
+    elements = transmission_elements(root)
+    assert [e.get("name") for e in elements] == found
+    assert [e.get("name") for e in transmissions_at_root(root, elements)] == at_root

@@ -125,8 +125,8 @@ def transmission_elements(
     in_root = tag == "transmission" or tag.endswith("}transmission")
     if candidates is None and top is not None and not in_root:
         candidates = list(root.iter("{*}transmission"))
-        if candidates == root.findall("{*}transmission"):
-            return candidates  # all children of the root (told in one comparison)
+        if _all_at_root(root, candidates):
+            return candidates
     for element in root.iter("{*}transmission") if candidates is None else candidates:
         if element.getparent() is top:
             if not in_root:
@@ -134,6 +134,20 @@ def transmission_elements(
         elif not _inside_transmission(element):
             found.append(element)
     return found
+
+
+def transmissions_at_root(root: etree._Element, transmissions: list[etree._Element]
+                          ) -> list[etree._Element]:
+    """Those of ``transmissions`` (in document order) that are children of ``root``."""
+    if _all_at_root(root, transmissions):
+        return transmissions
+    return [element for element in transmissions if element.getparent() is root]
+
+
+def _all_at_root(root: etree._Element, transmissions: list[etree._Element]) -> bool:
+    """Whether ``transmissions`` are the root's own ``<transmission>`` children: told by
+    identity in one comparison, with no parent looked up for each (the common case)."""
+    return transmissions == root.findall("{*}transmission")
 
 
 def _inside_transmission(element: etree._Element) -> bool:

@@ -23,6 +23,7 @@ from txtool.dialects.read import (
     enclosing_component,
     read_transmission,
     transmission_elements,
+    transmissions_at_root,
 )
 from txtool.dialects.translate import family, is_expression, translate
 from txtool.io.encodings import SCANNABLE, detect_encoding
@@ -128,8 +129,9 @@ def _convert_document(source: Source, target: Dialect, hardware_plugin: str, con
     tree = source.tree if consume else copy.deepcopy(source.tree)
     elements = transmission_elements(tree.getroot())
     deep = _near_depth_limit(elements, tree.getroot())
+    at_root = transmissions_at_root(tree.getroot(), elements)
     writer = None if source.expanded else ConversionEdits(
-        source.path, source.data, tree.getroot(), elements, target, near=near)
+        source.path, source.data, tree.getroot(), elements, at_root, target, near=near)
     result = ConvertedDocument(data=b"", target=target, found=len(elements))
     placer = Placer(tree.getroot(), hardware_plugin, components=source.expanded or (
         detect_encoding(source.data).codec not in SCANNABLE or b"ros2_control" in source.data))
@@ -139,7 +141,7 @@ def _convert_document(source: Source, target: Dialect, hardware_plugin: str, con
     olds: dict[int, etree._Element] = {}  # the element of each item not a follower, by id
     root = tree.getroot()
     top = local(root) != "ros2_control"  # a child of the root is in no <ros2_control>
-    all_top = top and elements == root.findall("{*}transmission")  # (one comparison)
+    all_top = top and len(at_root) == len(elements)
     for element in elements:
         keyed = None
         if memo is not None and (all_top or element.getparent() is root and top

@@ -360,8 +360,6 @@ def _may_declare(data: bytes) -> bool:
     return detect_encoding(data).codec not in SCANNABLE or b"!" in data
 
 
-
-
 def _comment_texts(data: bytes) -> list[str] | None:
     """The texts of the comments of ``data`` as a parse reads them, or None where the bytes
     alone may not tell (a CDATA section, a DOCTYPE or a processing instruction could hold

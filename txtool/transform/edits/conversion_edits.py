@@ -39,14 +39,15 @@ class ConversionEdits:
     """The document ``data`` whose tree (root ``root``) a conversion is about to change."""
 
     def __init__(self, path: str, data: bytes, root: etree._Element,
-                 transmissions: list[etree._Element], target: str, *, near: bool = True
-                 ) -> None:
-        """``near``: of the root's children, index the bounds of those next to a
-        transmission or a ``<ros2_control>`` alone (the places the placer changes the root's
-        children); false: all of them (:class:`.spans.NotIndexed` said one was missing)."""
+                 transmissions: list[etree._Element], at_root: list[etree._Element],
+                 target: str, *, near: bool = True) -> None:
+        """``at_root``: those of ``transmissions`` that are children of ``root``
+        (:func:`txtool.dialects.read.transmissions_at_root`). ``near``: of the root's
+        children, index the bounds of those next to a transmission or a ``<ros2_control>``
+        alone (the places the placer changes the root's children); false: all of them
+        (:class:`.spans.NotIndexed` said one was missing)."""
         self.path = path
         self.text = EditedText(data)
-        at_root = _at_root(root, transmissions)
         containers: set[etree._Element] = {root}
         if len(at_root) < len(transmissions):
             for element in transmissions:
@@ -167,15 +168,6 @@ def _digest(data: bytes) -> bytes:
 
 
 _AROUND = 2  # siblings on either side of a changed child whose bounds are indexed
-
-
-def _at_root(root: etree._Element, transmissions: list[etree._Element]
-             ) -> list[etree._Element]:
-    """Those of ``transmissions`` that are children of ``root``."""
-    children = root.findall("{*}transmission")
-    if children == transmissions:  # (the common case, told by identity in one comparison)
-        return children
-    return [element for element in transmissions if element.getparent() is root]
 
 
 def _near(root: etree._Element, kids: list[etree._Element], at_root: list[etree._Element],

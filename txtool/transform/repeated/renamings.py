@@ -45,9 +45,8 @@ class WrittenText(Protocol):
 # reads bytes (templates); the keys are made from text, which lxml writes faster.
 NAME = re.compile(rb' name="([^"]*)"(?=[^<>]*>)')
 _NAME = re.compile(NAME.pattern.decode("ascii"))
-_LITERALS = LITERAL_NAMES
-_KEPT = {name: name for name in _LITERALS}
-_LITERAL_LIST = sorted(_LITERALS)
+_KEPT = {name: name for name in LITERAL_NAMES}
+_LITERAL_LIST = sorted(LITERAL_NAMES)
 
 
 class Renaming(NamedTuple):
@@ -90,8 +89,8 @@ def _unordered(names: str) -> bool:
 def _renaming(parts: list[str]) -> Renaming | None:
     raws = parts[1::2]
     distinct = dict.fromkeys(raws)  # the names that are not literal, in order of appearance
-    if not _LITERALS.isdisjoint(distinct):
-        for literal in _LITERALS:
+    if not LITERAL_NAMES.isdisjoint(distinct):
+        for literal in LITERAL_NAMES:
             distinct.pop(literal, None)
     if _unordered("".join(distinct)):
         return None
@@ -99,7 +98,7 @@ def _renaming(parts: list[str]) -> Renaming | None:
     index = dict(zip(distinct, range(len(distinct)), strict=True))
     index.update(_KEPT)
     names = tuple(map(index.__getitem__, raws))
-    everything = [*distinct, *_LITERALS]
+    everything = [*distinct, *LITERAL_NAMES]
     everything.sort()
     order = tuple(map(index.__getitem__, everything))
     return Renaming((tuple(parts[0::2]), names, order), tuple(distinct))
