@@ -13,7 +13,13 @@ from txtool.io.xmlio import InputError, parse_bytes
 from txtool.rules import all_rules
 from txtool.transform.edits.core import EditedText
 from txtool.transform.edits.spans import SpanIndex
-from txtool.transform.edits.tree_edits import NotEditable, TreeChange, reads_as
+from txtool.transform.edits.tree_edits import (
+    NotEditable,
+    TreeChange,
+    reads_as,
+    reads_as_serialized,
+    serialization,
+)
 from txtool.transform.migrate import MigrateOptions, migrate_file
 
 FIXES = [rule for rule in all_rules().values() if rule.fixable]
@@ -180,6 +186,40 @@ def test_bytes_lxml_would_write_for_the_tree_are_told_without_canonical_forms(mo
     assert made == []
     assert not reads_as(b'<robot name="r">\n  <link name="m"/>\n</robot>', tree, "r.urdf")
     assert len(made) == 2
+
+
+@pytest.mark.parametrize(("written", "same", "canonical_forms"), [
+    (b'<robot name="r"><role>a</role></robot>', True, 0),  # as lxml writes the tree
+    (b'<robot name="r"><role/></robot>', True, 2),  # an empty text: read back as none
+    (b"<robot name='r'><role></role></robot>", True, 2),  # the same, as a person writes it
+    (b'<robot name="r"><role>b</role></robot>', False, 2),
+    (b'<robot name="r"><role>a</role><!-- c --></robot>', False, 2),
+])
+def test_a_converted_tree_kept_as_its_serialization_is_told_as_the_tree_is(
+        written, same, canonical_forms, monkeypatch) -> None:
+    """The conversion's check keeps the converted document as lxml writes it, so that the
+    tree can go before the written bytes are parsed (the parse reuses its memory): where the
+    serializations differ, the canonical form of the serialization parsed decides, as the
+    tree's own would (an element whose text a conversion set empty is written <a></a> and
+    read back as <a/>)."""
+    from txtool.transform.edits import tree_edits
+
+    made = []
+    canonical = tree_edits.canonical
+    monkeypatch.setattr(tree_edits, "canonical", lambda tree: made.append(1) or canonical(tree))
+    root = etree.Element("robot", name="r")
+    etree.SubElement(root, "role").text = "" if canonical_forms and same else "a"
+    tree = root.getroottree()
+    text = serialization(tree)
+    read = parse_bytes(written, "r.urdf")
+    assert reads_as_serialized(read, text, "r.urdf") is same
+    assert len(made) == canonical_forms
+    assert reads_as(written, tree, "r.urdf") is same  # the verdict of the tree itself
+
+
+def test_a_serialization_that_does_not_parse_reads_as_no_tree() -> None:
+    read = parse_bytes(b"<robot/>", "r.urdf")
+    assert not reads_as_serialized(read, "<robot>", "r.urdf")
 
 
 def test_bytes_that_do_not_parse_do_not_read_as_the_tree() -> None:

@@ -31,7 +31,13 @@ from txtool.model.core import kind_of
 from txtool.transform.edits.core import Edit, EditedText
 from txtool.transform.edits.declaration import late_declaration
 from txtool.transform.edits.spans import SpanError, SpanIndex
-from txtool.transform.edits.tree_edits import NotEditable, TreeChange, canonical, same_document
+from txtool.transform.edits.tree_edits import (
+    NotEditable,
+    TreeChange,
+    canonical,
+    reads_as_serialized,
+    serialization,
+)
 from txtool.transform.repeated.block_text import fill
 
 
@@ -112,19 +118,21 @@ class ConversionEdits:
 
     def expect(self, tree: etree._ElementTree) -> Expected:
         """What :func:`check_written` holds the bytes of the last :meth:`edits` to: ``tree``,
-        the converted document. A block written as text stands in ``tree`` as its marker
-        comment, and in what is parsed too: each of its transmissions is read back on its own
-        by the conversion's check (:mod:`txtool.transform.repeated.block_text`)."""
-        return Expected(tree, self.marked)
+        the converted document, as its serialization (the tree can go before the bytes are
+        parsed, and the parse reuse its memory). A block written as text stands in ``tree``
+        as its marker comment, and in what is parsed too: each of its transmissions is read
+        back on its own by the conversion's check
+        (:mod:`txtool.transform.repeated.block_text`)."""
+        return Expected(serialization(tree), self.marked)
 
 
 @dataclass(frozen=True)
 class Expected:
-    """A converted document, and where a block was written as text, the place of the edit
-    that holds it among the edits, that edit with the block's marker in place of its text,
-    and the marker as written."""
+    """A converted document as lxml writes it (:func:`.tree_edits.serialization`), and where
+    a block was written as text, the place of the edit that holds it among the edits, that
+    edit with the block's marker in place of its text, and the marker as written."""
 
-    tree: etree._ElementTree
+    text: str
     marked: tuple[int, Edit, bytes] | None = None
 
 
@@ -142,7 +150,7 @@ def check_written(data: bytes, edits: list[Edit], path: str, expected: Expected)
     except InputError as exc:
         raise InputError(f"{path}: cannot convert: what the edits write does not read "
                          f"back ({exc})") from None
-    if not same_document(written, expected.tree):
+    if not reads_as_serialized(written, expected.text, path):
         got = _digest(canonical(written))
         raise InputError(f"{path}: cannot convert: what the edits write does not read as the "
                          f"converted document (read back {got[:6].hex()}); please report "

@@ -320,12 +320,29 @@ def same_document(read: etree._ElementTree, tree: etree._ElementTree) -> bool:
     holds. lxml writes a tree, parsed or changed, as the document it holds, so the same
     serialization is the same document: that is compared first, made in a third of the time
     of a canonical form. Where the two differ (a namespace declared on another element than
-    where it is used; quotes and spaces in tags never differ, lxml writes both), the
-    canonical forms (:func:`canonical`) decide."""
-    return _serialized(read) == _serialized(tree) or canonical(read) == canonical(tree)
+    where it is used, an empty text written as ``<a></a>`` where a parse reads ``<a/>``;
+    quotes and spaces in tags never differ, lxml writes both), the canonical forms
+    (:func:`canonical`) decide."""
+    return serialization(read) == serialization(tree) or canonical(read) == canonical(tree)
 
 
-def _serialized(tree: etree._ElementTree) -> str:
+def reads_as_serialized(read: etree._ElementTree, text: str, path: str) -> bool:
+    """:func:`same_document` for a tree kept only as its :func:`serialization` ``text``
+    (whose memory the parse of ``read`` could then reuse): where the serializations differ,
+    the canonical form of ``text`` parsed decides (lxml writes a tree as the document it
+    holds: parsed again, it has the tree's canonical form)."""
+    if serialization(read) == text:
+        return True
+    try:
+        tree = parse_bytes(text.encode(), path, limit=None)
+    except InputError:
+        return False
+    return canonical(read) == canonical(tree)
+
+
+def serialization(tree: etree._ElementTree) -> str:
+    """A document as lxml writes it (no XML declaration): what :func:`same_document`
+    compares first."""
     return etree.tostring(tree, encoding="unicode")
 
 
