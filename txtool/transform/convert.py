@@ -242,6 +242,8 @@ def _write(source: Source, tree: etree._ElementTree, writer: ConversionEdits | N
         placer.unwrite()
         edits = writer.edits()
         assert edits is not None
+    else:  # the block's pieces are in its edit: freed before the document is joined
+        placer.written = marker = None
     result.edits = edits or None
     result.data = writer.applied(edits) if edits else source.data
 

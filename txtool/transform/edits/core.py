@@ -51,17 +51,18 @@ def apply_edits(original: bytes, edits: Iterable[Edit]) -> bytes:
     given); two that overlap, or one past the end of ``original``, are refused
     (:class:`ValueError`): which one would win is not for the applier to guess.
     """
-    parts: list[bytes] = []
+    kept = memoryview(original)  # what is copied is copied once, into the result
+    parts: list[bytes | memoryview] = []
     copied = 0
     for edit in sorted(edits, key=lambda edit: (edit.start, edit.end)):
         if edit.start < copied:
             raise ValueError(f"edits overlap at byte {edit.start}")
         if edit.end > len(original):
             raise ValueError(f"edit past the end of the document: byte {edit.end}")
-        parts.append(original[copied:edit.start])
+        parts.append(kept[copied:edit.start])
         parts.append(edit.content)
         copied = edit.end
-    parts.append(original[copied:])
+    parts.append(kept[copied:])
     return b"".join(parts)
 
 
