@@ -27,7 +27,7 @@ def asked(monkeypatch) -> list[int]:
     calls: list[int] = []
     monkeypatch.setattr(allocator._State, "enabled", False)
     monkeypatch.setattr(allocator._State, "asked", False)
-    monkeypatch.setattr(allocator, "fast_bins_off", lambda: calls.append(1) or True)
+    monkeypatch.setattr(allocator, "for_large_trees", lambda: calls.append(1) or True)
     return calls
 
 
@@ -84,3 +84,30 @@ def test_with_fast_bins_off_a_freed_tree_leaves_nothing_to_merge_later(enabled,
                           env=env, timeout=120)
     assert done.returncode == 0, done.stderr
     assert (int(done.stdout) > 1 << 20) is held_in_fast_bins
+
+
+@pytest.mark.skipif(not GLIBC, reason="glibc's mallopt")
+@pytest.mark.parametrize(("enabled", "fresh_pages"), [(False, True), (True, False)])
+def test_set_for_large_trees_what_is_freed_is_reused(enabled, fresh_pages):
+    """A document's bytes written a second time (16 MB, as a block or a diff of a large robot
+    is): by default glibc gives each allocation that large pages of its own, returned when
+    freed, and the second takes a fault for each of its 4,096 pages again; set for large trees
+    it reuses the first one's."""
+    program = textwrap.dedent(f"""
+        import resource
+        from txtool.io import allocator
+
+        if {enabled}:
+            assert allocator.for_large_trees()
+        faults = lambda: resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+        first = b"a" * (16 << 20)
+        del first
+        before = faults()
+        second = b"b" * (16 << 20)
+        print(faults() - before)
+    """)
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    done = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True,
+                          env=env, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert (int(done.stdout) > 2000) is fresh_pages
