@@ -6,22 +6,23 @@ them. Transmissions that stood together keep the blank lines between them inside
 ROS 2 -> ROS 1: a block that is exactly what txtool generates for its transmissions is replaced
 by them, at its place; from any other block they move out to stand just before it.
 Removing an element removes its lines and keeps the blank lines around it.
+
+What the placer moves is a :class:`.moves.Move`; whether a block is one txtool generates is
+told by :mod:`.recognition`, which builds it again through the placer (:meth:`Placer.block`,
+:meth:`Placer.build`); the xacro conditionals a transmission stands in, by :mod:`.scope`.
 """
 
 from __future__ import annotations
 
 import copy
-import re
 from collections.abc import Callable
-from dataclasses import dataclass
 
 from lxml import etree
 
 from txtool import dialects
 from txtool.dialects.read import detect_dialect, enclosing_component
-from txtool.dialects.translate import translate
 from txtool.io.xmlio import local
-from txtool.model.core import Dialect, Transmission, replace
+from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
 from txtool.transform.placement.layout import (
     append,
@@ -37,6 +38,9 @@ from txtool.transform.placement.layout import (
     runs_of,
     with_comments,
 )
+from txtool.transform.placement.moves import Carried, Move
+from txtool.transform.placement.recognition import generated_from
+from txtool.transform.placement.scope import between, is_condition, prefixed
 from txtool.transform.repeated.block_text import Written, blank, write
 from txtool.transform.repeated.renamings import Follower, Renaming
 from txtool.transform.repeated.templates import Templates, parse_children
@@ -44,66 +48,6 @@ from txtool.transform.repeated.templates import Templates, parse_children
 # ros2_control's mock hardware (hardware_interface/src/mock_components/generic_system.cpp):
 # it sets each state to its command and drives nothing, a stand-in for the robot's own plugin.
 DEFAULT_HARDWARE_PLUGIN = "mock_components/GenericSystem"
-
-Carried = dict[tuple[str, str | None], list[etree._Element]]
-Joints = list[tuple[str, tuple[str, ...], tuple[str, ...]]]  # names and interfaces
-
-
-class _Move:
-    """``old`` and its conversion ``new`` (a follower's is built only when it is read)."""
-
-    __slots__ = ("old", "_new", "carried", "_renaming", "follower")
-
-    def __init__(self, old: etree._Element, new: Transmission | None,
-                 carried: Carried | None = None, renaming: Renaming | None = None,
-                 follower: Follower | None = None) -> None:
-        self.old = old
-        self._new = new
-        self.carried = carried
-        self._renaming = renaming
-        self.follower = follower
-
-    @property
-    def renaming(self) -> Renaming | None:
-        """The old element's, when it was keyed (:mod:`txtool.transform.repeated.renamings`)."""
-        if self._renaming is None and self.follower is not None:
-            self._renaming = self.follower.renaming()
-        return self._renaming
-
-    @property
-    def new(self) -> Transmission:
-        if self._new is None:
-            assert self.follower is not None
-            self._new = self.follower.translated()
-        return self._new
-
-    @new.setter
-    def new(self, value: Transmission) -> None:
-        self._new = value
-
-    @property
-    def dialect(self) -> Dialect:
-        if self._new is None:
-            assert self.follower is not None
-            return self.follower.record.dialect
-        return self._new.dialect
-
-    def joints(self) -> Joints:
-        if self._new is None:
-            assert self.follower is not None
-            return self.follower.record.joints_for(self.follower.names)
-        return [(j.name, j.interfaces, j.state_interfaces) for j in self._new.joints]
-
-
-@dataclass
-class _Generating:
-    """A ROS 1 transmission (``source``) from which txtool generates exactly a ROS 2 element
-    of ``shape`` (:func:`_shape`), through ``forward``."""
-
-    source: Transmission
-    forward: Transmission
-    shape: tuple
-
 
 class Placer:
     """Puts converted elements where their target dialect expects them; call :meth:`finish`
@@ -117,8 +61,8 @@ class Placer:
         self._robot = local(root) == "robot"
         self.hardware_plugin = hardware_plugin
         self.notes: list[str] = []
-        self._into_new: list[_Move] = []
-        self._out_of: dict[etree._Element, list[_Move]] = {}
+        self._into_new: list[Move] = []
+        self._out_of: dict[etree._Element, list[Move]] = {}
         self._components: list[etree._Element] | None = None if components else []
         self._declared: dict[etree._Element, set[str]] = {}
         self.built: dict[etree._Element, etree._Element] = {}  # old element -> the last built
@@ -154,7 +98,7 @@ class Placer:
         owner) that go along as written; ``renaming``: ``old``'s key and names (see
         :mod:`txtool.transform.repeated.renamings`), so that the elements built for one key
         are built once; ``dialect``: ``old``'s, when known."""
-        move = _Move(old, t, carried, renaming)
+        move = Move(old, t, carried, renaming)
         component = enclosing_component(old)
         moving_out = t.dialect == "ros1" and component is not None
         moving_in = (t.dialect != "ros1" and component is None and old.getparent() is not None
@@ -170,7 +114,7 @@ class Placer:
                 self._into_new.append(move)
             else:
                 cut(old)
-                append(existing, self._build(move, *child_indentation(existing), existing))
+                append(existing, self.build(move, *child_indentation(existing), existing))
         elif moving_in:
             # Inside a xacro macro or conditional (or a file whose root is not a <robot>): a
             # <ros2_control> of its own, in place, so that the transmission stays in the scope
@@ -179,7 +123,7 @@ class Placer:
         elif t.dialect != "ros1" and (dialect or detect_dialect(old)) != "ros1":
             restyle_roles(old, t.dialect)  # Proposal 1 <-> 2: only the roles change
         else:
-            new = self._build(move, *indentation(old), old)
+            new = self.build(move, *indentation(old), old)
             new.tail = old.tail
             if old.getparent() is None:
                 become(old, new)  # a bare <transmission> fragment
@@ -198,7 +142,7 @@ class Placer:
         ) is None):
             if self._components:  # (the check reads the follower's joints)
                 self._not_in_scope(follower.translated())
-            self._into_new.append(_Move(old, None, None, None, follower))
+            self._into_new.append(Move(old, None, None, None, follower))
         else:
             self.place(old, follower.translated(), {}, follower.renaming(), dialect)
 
@@ -207,7 +151,10 @@ class Placer:
             self._generate(self._into_new)
         self._placeholder_warning()
         for component, moves in self._out_of.items():
-            if self._is_generated(component, moves):
+            sources = generated_from(component, moves, self.root.get("name", "robot"), self)
+            if sources is not None:
+                for move, source in zip(moves, sources, strict=True):
+                    move.new = source
                 self._ungenerate(component, moves)
                 self.notes.append(
                     f"<ros2_control name=\"{component.get('name')}\"> is what txtool generates "
@@ -216,7 +163,7 @@ class Placer:
                 continue
             self._move_out(component, moves)
 
-    def _move_out(self, component: etree._Element, moves: list[_Move]) -> None:
+    def _move_out(self, component: etree._Element, moves: list[Move]) -> None:
         """Put the ROS 1 conversions of ``moves`` beside ``component``: just before it, or
         just after it for those in :attr:`after`; each inside copies of the ``xacro:if`` /
         ``xacro:unless`` it stood in within the block, so that the robot has it for the same
@@ -224,12 +171,12 @@ class Placer:
         indent, step = indentation(component)
         anchor = component
         for move in moves:
-            chain = _conditions(move.old, component)
+            chain = between(move.old, component)
             cut(move.old)
             for condition in chain:
                 if len(condition) == 0 and not (condition.text or "").strip():
                     cut(condition)  # left empty: it held the transmission alone
-            new = self._build(move, indent + step * len(chain), step, component)
+            new = self.build(move, indent + step * len(chain), step, component)
             for depth, condition in enumerate(chain, start=1):
                 # Made in the document, where its namespace is declared already.
                 wrapper = etree.SubElement(component.getparent(), condition.tag,
@@ -249,7 +196,7 @@ class Placer:
 
     # ROS 1 -> ROS 2 ----------------------------------------------------------------------
 
-    def _generate(self, moves: list[_Move]) -> None:
+    def _generate(self, moves: list[Move]) -> None:
         first = moves[0].old
         indent, step = indentation(first)
         runs = runs_of([m.old for m in moves])
@@ -257,7 +204,7 @@ class Placer:
                                 "the <ros2_control> generated for the document")
         block = self._write_block(name, moves, runs, first, indent, step)
         if block is None:
-            block = self._block(name, self.hardware_plugin, moves, first, indent, step,
+            block = self.block(name, self.hardware_plugin, moves, first, indent, step,
                                 alone=True)
             for old in runs[0][:-1]:
                 self.built[old].tail = reindent(old.tail, indent + step)
@@ -271,12 +218,12 @@ class Placer:
         first.getparent().replace(first, block)
         self._components = None
 
-    def _block(self, name: str, plugin: str, moves: list[_Move], like: etree._Element,
+    def block(self, name: str, plugin: str, moves: list[Move], like: etree._Element,
                indent: str, step: str, *, record: bool = True,
                transmissions: bool = True, alone: bool = False) -> etree._Element:
         """A ``<ros2_control type="system">`` block declaring the joints of the converted
         transmissions and holding them (unless ``transmissions`` is false), as txtool
-        generates it (``record``: as :meth:`_build`; ``alone``: keep in :attr:`alone` the
+        generates it (``record``: as :meth:`build`; ``alone``: keep in :attr:`alone` the
         transmissions whose joints none before declared)."""
         q = qualifier(like)
         block = etree.Element(q("ros2_control"), name=name, type="system")
@@ -297,7 +244,7 @@ class Placer:
         return block
 
     def _fill(self, block: etree._Element, declared: list[tuple[str, tuple]],
-              moves: list[_Move], like: etree._Element, indent: str, step: str, record: bool
+              moves: list[Move], like: etree._Element, indent: str, step: str, record: bool
               ) -> list[etree._Element]:
         """Declare the joints in ``block`` and put in the transmissions built for ``moves``,
         laid out as :func:`dialects.pretty` lays out the block."""
@@ -318,13 +265,13 @@ class Placer:
         block[-1].tail = "\n" + indent
         built = []
         for move in moves:
-            built.append(self._build(move, indent + step, step, like, record=record))
+            built.append(self.build(move, indent + step, step, like, record=record))
             append(block, built[-1])
         return built
 
-    def _texts(self, moves: list[_Move], like: etree._Element, indent: str, step: str
+    def _texts(self, moves: list[Move], like: etree._Element, indent: str, step: str
                ) -> list[bytes] | None:
-        """The text of each transmission :meth:`_build` would build, when all have one."""
+        """The text of each transmission :meth:`build` would build, when all have one."""
         if namespace_of(like) is not None:
             return None
         texts = []
@@ -347,7 +294,7 @@ class Placer:
             texts.append(text)
         return texts
 
-    def _write_block(self, name: str, moves: list[_Move], runs: list[list[etree._Element]],
+    def _write_block(self, name: str, moves: list[Move], runs: list[list[etree._Element]],
                      like: etree._Element, indent: str, step: str) -> etree._Element | None:
         """The block :meth:`_generate` makes, with its declarations and transmissions left as
         text (:func:`txtool.transform.repeated.block_text.write`, kept in :attr:`written`), or
@@ -370,7 +317,7 @@ class Placer:
         self.alone.update(alone)
         return block
 
-    def _tails(self, moves: list[_Move], runs: list[list[etree._Element]], indent: str,
+    def _tails(self, moves: list[Move], runs: list[list[etree._Element]], indent: str,
                step: str) -> list[str] | None:
         """What follows each transmission of a generated block: the blank lines that followed
         it in the first run, one line break, or the block's end; None when not blank."""
@@ -455,7 +402,7 @@ class Placer:
                 scope = element.getparent()
                 self.losses.append(
                     f"transmission '{t.name}': <ros2_control name=\"{element.get('name')}\"> "
-                    f"declares its joints but stands inside <{_prefixed(scope)}>: the "
+                    f"declares its joints but stands inside <{prefixed(scope)}>: the "
                     "transmission is not moved in there (the robot would lose it for other "
                     "arguments), and the block generated for it declares them again; place "
                     "it by hand")
@@ -504,9 +451,9 @@ class Placer:
         ``xacro:if`` / ``xacro:unless`` at most (copied around it), not a macro."""
         parent = old.getparent()
         while parent is not None and parent is not component:
-            if not _is_condition(parent):
+            if not is_condition(parent):
                 self.losses.append(
-                    f"transmission '{name}': stands inside <{_prefixed(parent)}> within "
+                    f"transmission '{name}': stands inside <{prefixed(parent)}> within "
                     f"<ros2_control name=\"{component.get('name')}\">: a ROS 1 transmission "
                     "must stand outside the block, and it cannot leave that element; left as "
                     "written")
@@ -519,76 +466,22 @@ class Placer:
             self._declared[component] = {j.get("name") for j in children(component, "joint")}
         return self._declared[component]
 
-    def _wrap_in_place(self, move: _Move) -> None:
+    def _wrap_in_place(self, move: Move) -> None:
         old = move.old
         indent, step = indentation(old)
         name = self._fresh_name(move.new.name, f"the <ros2_control> around transmission "
                                 f"'{move.new.name}'")
-        block = self._block(name, self.hardware_plugin, [move], old, indent, step)
+        block = self.block(name, self.hardware_plugin, [move], old, indent, step)
         block.tail = old.tail
         old.getparent().replace(old, block)
         self._components = None
 
     # ROS 2 -> ROS 1 ----------------------------------------------------------------------
 
-    def _is_generated(self, component: etree._Element, moves: list[_Move]) -> bool:
-        inside = [e for e in component.iter("{*}transmission") if e is not component]
-        bases = [self.root.get("name", "robot")]  # a block for the document
-        if len(moves) == 1:
-            bases.append(moves[0].new.name)  # a block wrapped around one, in a xacro macro
-        if [m.old for m in moves] != inside or not _named_after(component.get("name"), bases):
-            return False
-        plugins = [p for h in children(component, "hardware") for p in children(h, "plugin")]
-        if len(plugins) != 1 or not plugins[0].text:
-            return False
-        dialect = detect_dialect(moves[0].old)
-        generating = [self._generating(move, dialect) for move in moves]
-        found = [g for g in generating if g is not None]
-        if len(found) < len(moves):
-            return False
-        forward = [_Move(m.old, f.forward, m.carried) for m, f in zip(moves, found, strict=True)]
-        namespace = namespace_of(component)
-        if all(namespace_of(m.old) == namespace for m in moves):
-            # Each transmission as generated is already known to have the shape of the one
-            # written: compare the rest of the block, and those shapes, without building them
-            # again (shape() of the block as written takes them from ``known``).
-            tag, attrib, text, kids = _shape(
-                self._block(component.get("name"), plugins[0].text, forward, component, "", "",
-                            record=False, transmissions=False), comments=False)
-            expected = (tag, attrib, text, (*kids, *(f.shape for f in found)))
-            known = {m.old: f.shape for m, f in zip(moves, found, strict=True)}
-        else:
-            expected = _shape(self._block(component.get("name"), plugins[0].text, forward,
-                                          component, "", "", record=False), comments=False)
-            known = {}
-        if expected != _shape(component, comments=False, known=known):
-            return False
-        for move, f in zip(moves, found, strict=True):
-            move.new = f.source
-        return True
-
-    def _generating(self, move: _Move, dialect: Dialect) -> _Generating | None:
-        """The ROS 1 transmission from which txtool generates exactly ``move.old``: the
-        conversion itself, or the same without the reduction it had to write (ROS 1 requires
-        one; ros2_control reads a missing one as 1.0)."""
-        t = move.new
-        candidates = [t]
-        if t.kind == "simple" and t.actuators and t.actuators[0].mechanical_reduction:
-            bare = replace(t.actuators[0], mechanical_reduction=None)
-            candidates.append(replace(t, actuators=(bare, *t.actuators[1:])))
-        want = _shape(move.old, comments=False)
-        for candidate in candidates:
-            forward = translate(candidate, dialect).transmission
-            built = self._build(_Move(move.old, forward, move.carried), "", "", move.old,
-                                record=False)
-            if _shape(built, comments=False) == want:
-                return _Generating(candidate, forward, want)
-        return None
-
-    def _ungenerate(self, component: etree._Element, moves: list[_Move]) -> None:
+    def _ungenerate(self, component: etree._Element, moves: list[Move]) -> None:
         indent, step = indentation(component)
         parent = component.getparent()
-        news = [self._build(m, indent, step, component) for m in moves]
+        news = [self.build(m, indent, step, component) for m in moves]
         for move, new in zip(moves, news, strict=True):
             new.tail = reindent(move.old.tail, indent)
         news[-1].tail = component.tail
@@ -604,7 +497,7 @@ class Placer:
 
     # Building ----------------------------------------------------------------------------
 
-    def _build(self, move: _Move, indent: str, step: str, like: etree._Element, *,
+    def build(self, move: Move, indent: str, step: str, like: etree._Element, *,
                record: bool = True) -> etree._Element:
         """The converted element at ``indent``, in the namespace of ``like``, with the
         comments and carried children of the old one; ``record``: as what replaces the old
@@ -629,44 +522,7 @@ class Placer:
         return new
 
 
-_XACRO = ("http://www.ros.org/wiki/xacro", "http://ros.org/wiki/xacro")
-_CONDITIONS = {"if", "unless"}
-
-
-def _is_condition(element: etree._Element) -> bool:
-    return namespace_of(element) in _XACRO and local(element) in _CONDITIONS
-
-
-def _conditions(old: etree._Element, component: etree._Element) -> list[etree._Element]:
-    """The ``xacro:if`` / ``xacro:unless`` elements between ``old`` and ``component``,
-    innermost first."""
-    chain = []
-    parent = old.getparent()
-    while parent is not None and parent is not component:
-        chain.append(parent)
-        parent = parent.getparent()
-    return chain
-
-
-def _prefixed(element: etree._Element) -> str:
-    tag = local(element)
-    if namespace_of(element) in _XACRO:
-        return f"xacro:{tag}" + (f" value=\"{element.get('value')}\""
-                                  if element.get("value") is not None else
-                                  f" name=\"{element.get('name')}\""
-                                  if element.get("name") is not None else "")
-    return tag
-
-
-def _named_after(name: str | None, bases: list[str]) -> bool:
-    """Whether ``name`` is one txtool gives a block generated under one of ``bases``
-    (:meth:`Placer._fresh_name`)."""
-    return name is not None and any(
-        name == base or re.fullmatch(re.escape(base) + r"_([2-9]|[1-9][0-9]+)", name)
-        for base in bases)
-
-
-def _declared(moves: list[_Move]) -> tuple[list[tuple[str, tuple]], set[etree._Element]]:
+def _declared(moves: list[Move]) -> tuple[list[tuple[str, tuple]], set[etree._Element]]:
     """The joints a generated block declares (names and interfaces, in order: the first of
     each name) and the old elements of the moves with a joint declared before."""
     seen: set[str] = set()
@@ -691,25 +547,3 @@ def _declaration(q: Callable[[str], str], commands: tuple[str, ...],
     for name in states:
         etree.SubElement(element, q("state_interface"), name=name)
     return element
-
-
-def _shape(element: etree._Element, *, comments: bool = True,
-           known: dict[etree._Element, tuple] | None = None) -> tuple:
-    """Tags, attributes, stripped texts and children: the element without its layout.
-    ``comments=False`` leaves out the comments inside transmissions (carried, not generated);
-    ``known``: shapes already computed, by element."""
-    if known and element in known:
-        return known[element]
-    kids = []
-    for child in element:
-        if isinstance(child, etree._Comment):
-            if comments or local(element) != "transmission" and not _in_transmission(element):
-                kids.append(("#comment", child.text))
-            continue
-        if isinstance(child.tag, str):
-            kids.append(_shape(child, comments=comments, known=known))
-    return (element.tag, dict(element.attrib), (element.text or "").strip(), tuple(kids))
-
-
-def _in_transmission(element: etree._Element) -> bool:
-    return any(local(a) == "transmission" for a in element.iterancestors())

@@ -1,0 +1,134 @@
+"""ROS 2 -> ROS 1: whether a ``<ros2_control>`` block is exactly what txtool generates for its
+transmissions, so that converting back replaces it by them at its place (any other block is
+kept, and they move out to stand beside it).
+
+A block is recognized by building it again, without recording anything, through the placer's
+own builder (:class:`Builder`) and comparing shapes (:func:`shape`: tags, attributes, stripped
+texts and children, without the layout).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from typing import Protocol
+
+from lxml import etree
+
+from txtool.dialects.read import detect_dialect
+from txtool.dialects.translate import translate
+from txtool.io.xmlio import local
+from txtool.model.core import Dialect, Transmission, replace
+from txtool.model.robot import children
+from txtool.transform.placement.layout import namespace_of
+from txtool.transform.placement.moves import Move
+
+
+class Builder(Protocol):
+    """What recognition builds with (:class:`txtool.transform.placement.placer.Placer`)."""
+
+    def block(self, name: str, plugin: str, moves: list[Move], like: etree._Element,
+              indent: str, step: str, *, record: bool = True,
+              transmissions: bool = True, alone: bool = False) -> etree._Element: ...
+
+    def build(self, move: Move, indent: str, step: str, like: etree._Element, *,
+              record: bool = True) -> etree._Element: ...
+
+
+@dataclass
+class Generating:
+    """A ROS 1 transmission (``source``) from which txtool generates exactly a ROS 2 element
+    of ``shape`` (:func:`shape`), through ``forward``."""
+
+    source: Transmission
+    forward: Transmission
+    shape: tuple
+
+
+def generated_from(component: etree._Element, moves: list[Move], document: str,
+                   builder: Builder) -> list[Transmission] | None:
+    """The ROS 1 transmissions from which txtool generates exactly ``component`` (holding
+    the transmissions of ``moves``, converted to ROS 1), or None when it generates no such
+    block. ``document``: the name of the document's ``<robot>``, which a block generated
+    for the document is named after."""
+    inside = [e for e in component.iter("{*}transmission") if e is not component]
+    bases = [document]  # a block for the document
+    if len(moves) == 1:
+        bases.append(moves[0].new.name)  # a block wrapped around one, in a xacro macro
+    if [m.old for m in moves] != inside or not named_after(component.get("name"), bases):
+        return None
+    plugins = [p for h in children(component, "hardware") for p in children(h, "plugin")]
+    if len(plugins) != 1 or not plugins[0].text:
+        return None
+    dialect = detect_dialect(moves[0].old)
+    generating = [_generating(move, dialect, builder) for move in moves]
+    found = [g for g in generating if g is not None]
+    if len(found) < len(moves):
+        return None
+    forward = [Move(m.old, f.forward, m.carried) for m, f in zip(moves, found, strict=True)]
+    namespace = namespace_of(component)
+    if all(namespace_of(m.old) == namespace for m in moves):
+        # Each transmission as generated is already known to have the shape of the one
+        # written: compare the rest of the block, and those shapes, without building them
+        # again (shape() of the block as written takes them from ``known``).
+        tag, attrib, text, kids = shape(
+            builder.block(component.get("name"), plugins[0].text, forward, component, "", "",
+                          record=False, transmissions=False), comments=False)
+        expected = (tag, attrib, text, (*kids, *(f.shape for f in found)))
+        known = {m.old: f.shape for m, f in zip(moves, found, strict=True)}
+    else:
+        expected = shape(builder.block(component.get("name"), plugins[0].text, forward,
+                                       component, "", "", record=False), comments=False)
+        known = {}
+    if expected != shape(component, comments=False, known=known):
+        return None
+    return [f.source for f in found]
+
+
+def _generating(move: Move, dialect: Dialect, builder: Builder) -> Generating | None:
+    """The ROS 1 transmission from which txtool generates exactly ``move.old``: the
+    conversion itself, or the same without the reduction it had to write (ROS 1 requires
+    one; ros2_control reads a missing one as 1.0)."""
+    t = move.new
+    candidates = [t]
+    if t.kind == "simple" and t.actuators and t.actuators[0].mechanical_reduction:
+        bare = replace(t.actuators[0], mechanical_reduction=None)
+        candidates.append(replace(t, actuators=(bare, *t.actuators[1:])))
+    want = shape(move.old, comments=False)
+    for candidate in candidates:
+        forward = translate(candidate, dialect).transmission
+        built = builder.build(Move(move.old, forward, move.carried), "", "", move.old,
+                              record=False)
+        if shape(built, comments=False) == want:
+            return Generating(candidate, forward, want)
+    return None
+
+
+def named_after(name: str | None, bases: list[str]) -> bool:
+    """Whether ``name`` is one txtool gives a block generated under one of ``bases``
+    (``Placer._fresh_name``: the base, or the base with ``_2``, ``_3``...)."""
+    return name is not None and any(
+        name == base or re.fullmatch(re.escape(base) + r"_([2-9]|[1-9][0-9]+)", name)
+        for base in bases)
+
+
+def shape(element: etree._Element, *, comments: bool = True,
+          known: dict[etree._Element, tuple] | None = None) -> tuple:
+    """Tags, attributes, stripped texts and children: the element without its layout.
+    ``comments=False`` leaves out the comments inside transmissions (carried, not generated);
+    ``known``: shapes already computed, by element."""
+    if known and element in known:
+        return known[element]
+    kids = []
+    for child in element:
+        if isinstance(child, etree._Comment):
+            if comments or local(element) != "transmission" and not _in_transmission(element):
+                kids.append(("#comment", child.text))
+            continue
+        if isinstance(child.tag, str):
+            kids.append(shape(child, comments=comments, known=known))
+    return (element.tag, dict(element.attrib), (element.text or "").strip(), tuple(kids))
+
+
+def _in_transmission(element: etree._Element) -> bool:
+    return any(local(a) == "transmission" for a in element.iterancestors())
