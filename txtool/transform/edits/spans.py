@@ -100,84 +100,9 @@ class SpanIndex:
         self.codec = codec  # how names are stored (an ASCII-compatible encoding)
         self._spans: dict[etree._Element, Span] = {}
         wanted = {root} if within is None else set(within)
-        outline = set(shallow)
-        way: set[etree._Element] = set()  # the ancestors of what is indexed
-        for node in wanted | outline:
-            for ancestor in node.iterancestors():
-                if ancestor in way:
-                    break
-                way.add(ancestor)
-        # For each element open where the scan is: its span where it is indexed (else None),
-        # how far down its descendants are (_DEEP: all; _CHILDREN: its children alone), and
-        # its children still to be read.
-        open_spans: list[tuple[Span | None, int]] = []
-        children: list[Iterator[etree._Element]] = []
-        line, counted = 1, 0
-        tokens = _MARKUP.finditer(data)
-        cdata = b"<![CDATA[" in data
-        jumps = None if near is None else _Jumps(
-            data, root, near | way | wanted | outline, codec)
-        while (token := next(tokens, None)) is not None:
-            at = token.start()
-            kind = data[at + 1]
-            if kind == _SLASH:
-                closed, _ = open_spans.pop()
-                if next(children.pop(), None) is not None:
-                    raise SpanError(f"byte {at}: the tree has nodes the bytes do not")
-                if closed is not None:
-                    closed.tail_start, closed.end = at, token.end()
-                if not open_spans:
-                    break  # the root's end tag
-                continue
-            if kind == _BANG and not data.startswith(b"<!--", at):
-                continue  # text (a CDATA section), or the DOCTYPE
-            if not open_spans:
-                if kind in (_BANG, _QUESTION):
-                    continue  # before the root
-                node = root
-            else:
-                node = next(children[-1], None)
-                if node is None:
-                    raise SpanError(f"byte {at}: a node the tree does not have")
-                if jumps is not None and len(open_spans) == 1:
-                    landing = jumps.past()
-                    if landing is not None:  # at the next child of the root asked about
-                        node, token, line, counted = landing
-                        if node is None:  # none is: at the root's end tag
-                            closed, _ = open_spans.pop()
-                            if closed is not None:
-                                closed.tail_start, closed.end = token.span()
-                            break
-                        children[0] = node.itersiblings()
-                        tokens = _MARKUP.finditer(data, token.end())
-                        at, kind = token.start(), data[token.start() + 1]
-            element = kind not in (_BANG, _QUESTION)
-            if element is not (node.tag.__class__ is str):
-                raise SpanError(f"byte {at}: the tree has a {node.tag!r} here")
-            empty = element and data[token.end() - 2] == _SLASH
-            reach = open_spans[-1][1] if open_spans else _NONE
-            span = None
-            deep = reach == _DEEP or node in wanted
-            if deep or node in outline:
-                line += _lines(data, counted, token.end())
-                counted = token.end()
-                span = self._spans[node] = _span(token, node, line, codec)
-            elif reach and (near is None or len(open_spans) > 1 or node in near):
-                # A child a change may keep, not look into: its bounds are all that is read.
-                span = self._spans[node] = _bounds(token, node, codec)
-            if element and not empty:
-                below = _DEEP if deep else _CHILDREN if node in outline else _NONE
-                if below == _NONE and open_spans and node not in way:
-                    # Nothing inside is indexed: passed over to its end tag.
-                    closing, tokens = _pass_over(token, tokens, data, cdata)
-                    if span is not None:
-                        span.tail_start, span.end = closing
-                    continue
-                open_spans.append((span, below))
-                children.append(iter(node))
-            elif not open_spans:
-                break  # the root, written <root/>
-        if open_spans or not self._spans and root in wanted | outline:
+        scan = _Scan(self._spans, data, root, wanted, set(shallow), near, codec)
+        scan.run()
+        if scan.open or not self._spans and root in wanted | scan.outline:
             raise SpanError("the bytes end before the tree does")
 
     def __getitem__(self, node: etree._Element) -> Span:
@@ -199,6 +124,122 @@ class SpanIndex:
                 found.start(1), found.start(2), found.start(quoted), found.end(quoted),
                 b'"' if quoted == 3 else b"'")
         return attributes
+
+
+class _Scan:
+    """The scan that builds a :class:`SpanIndex` into ``spans``: each token of the markup, in
+    turn, paired with the next node of the tree (see :class:`SpanIndex` for ``wanted``,
+    ``outline`` and ``near``)."""
+
+    def __init__(self, spans: dict[etree._Element, Span], data: bytes, root: etree._Element,
+                 wanted: set[etree._Element], outline: set[etree._Element],
+                 near: set[etree._Element] | None, codec: str) -> None:
+        self.spans, self.data, self.root, self.codec = spans, data, root, codec
+        self.wanted, self.outline, self.near = wanted, outline, near
+        self.way: set[etree._Element] = set()  # the ancestors of what is indexed
+        for node in wanted | outline:
+            for ancestor in node.iterancestors():
+                if ancestor in self.way:
+                    break
+                self.way.add(ancestor)
+        # For each element open where the scan is: its span where it is indexed (else None),
+        # how far down its descendants are (_DEEP: all; _CHILDREN: its children alone), and
+        # its children still to be read.
+        self.open: list[tuple[Span | None, int]] = []
+        self.children: list[Iterator[etree._Element]] = []
+        self.line, self.counted = 1, 0  # the line at byte ``counted``
+        self.tokens = _MARKUP.finditer(data)
+        self.cdata = b"<![CDATA[" in data
+        self.jumps = None if near is None else _Jumps(
+            data, root, near | self.way | wanted | outline, codec)
+
+    def run(self) -> None:
+        """Read the tokens up to the root's end tag (or the end of the bytes)."""
+        data = self.data
+        while (token := next(self.tokens, None)) is not None:
+            at = token.start()
+            kind = data[at + 1]
+            if kind == _SLASH:
+                if self._close(token):
+                    return  # the root's end tag
+                continue
+            if kind == _BANG and not data.startswith(b"<!--", at):
+                continue  # text (a CDATA section), or the DOCTYPE
+            if not self.open:
+                if kind in (_BANG, _QUESTION):
+                    continue  # before the root
+                node = self.root
+            else:
+                node = next(self.children[-1], None)
+                if node is None:
+                    raise SpanError(f"byte {at}: a node the tree does not have")
+                if self.jumps is not None and len(self.open) == 1:
+                    landed = self._jump(node, token)
+                    if landed is None:
+                        return  # at the root's end tag
+                    node, token = landed
+            if self._enter(node, token):
+                return  # the root, written <root/>
+
+    def _close(self, token: re.Match[bytes]) -> bool:
+        """The end tag ``token`` closes the element open last; whether it is the root's."""
+        closed, _ = self.open.pop()
+        if next(self.children.pop(), None) is not None:
+            raise SpanError(f"byte {token.start()}: the tree has nodes the bytes do not")
+        if closed is not None:
+            closed.tail_start, closed.end = token.start(), token.end()
+        return not self.open
+
+    def _jump(self, node: etree._Element, token: re.Match[bytes]
+              ) -> tuple[etree._Element, re.Match[bytes]] | None:
+        """At ``node``, a child of the root whose start tag is ``token``: the child to read
+        and its start tag, past those nothing asks about (:class:`_Jumps`); None where the
+        scan went on to the root's end tag and closed the root."""
+        landing = self.jumps.past()  # type: ignore[union-attr]
+        if landing is None:
+            return node, token
+        landed, token, self.line, self.counted = landing
+        if landed is None:  # no child after it is asked about: at the root's end tag
+            closed, _ = self.open.pop()
+            if closed is not None:
+                closed.tail_start, closed.end = token.span()
+            return None
+        self.children[0] = landed.itersiblings()
+        self.tokens = _MARKUP.finditer(self.data, token.end())
+        return landed, token
+
+    def _enter(self, node: etree._Element, token: re.Match[bytes]) -> bool:
+        """Pair ``node`` with ``token``, its start tag (or comment, or instruction): index it
+        as far as asked, then go into it or past it; whether it was the root, written
+        ``<root/>``."""
+        data, at = self.data, token.start()
+        kind = data[at + 1]
+        element = kind not in (_BANG, _QUESTION)
+        if element is not (node.tag.__class__ is str):
+            raise SpanError(f"byte {at}: the tree has a {node.tag!r} here")
+        empty = element and data[token.end() - 2] == _SLASH
+        reach = self.open[-1][1] if self.open else _NONE
+        span = None
+        deep = reach == _DEEP or node in self.wanted
+        if deep or node in self.outline:
+            self.line += _lines(data, self.counted, token.end())
+            self.counted = token.end()
+            span = self.spans[node] = _span(token, node, self.line, self.codec)
+        elif reach and (self.near is None or len(self.open) > 1 or node in self.near):
+            # A child a change may keep, not look into: its bounds are all that is read.
+            span = self.spans[node] = _bounds(token, node, self.codec)
+        if not element or empty:
+            return not self.open
+        below = _DEEP if deep else _CHILDREN if node in self.outline else _NONE
+        if below == _NONE and self.open and node not in self.way:
+            # Nothing inside is indexed: passed over to its end tag.
+            closing, self.tokens = _pass_over(token, self.tokens, data, self.cdata)
+            if span is not None:
+                span.tail_start, span.end = closing
+            return False
+        self.open.append((span, below))
+        self.children.append(iter(node))
+        return False
 
 
 def _lines(data: bytes, start: int, end: int) -> int:
