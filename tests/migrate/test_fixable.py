@@ -320,11 +320,12 @@ def test_a_conversion_to_ros2_is_not_scanned_again_for_ros1_spellings() -> None:
     assert might_fix_converted(written, [*FIXABLE, other], "ros2-p1")
 
 
-@given(st.lists(st.sampled_from([b"<!--", b"-->", b"<!-->", b"-", b">", b"a", b"\n"]),
-                max_size=12).map(b"".join))
-def test_comment_bodies_are_what_the_comment_pattern_finds(data: bytes) -> None:
-    import re
+@given(st.lists(st.sampled_from([b"<!--", b"-->", b"<!-->", b"<?", b"-", b">", b"a", b"\n"]),
+                max_size=12).map(b"".join),
+       st.sampled_from([b"<!--", b"-->", b"<!", b"<?", b"--"]), st.integers(0, 40))
+def test_a_search_by_one_byte_finds_what_find_finds(data: bytes, needle: bytes, start: int
+                                                    ) -> None:
+    from txtool.io.byte_search import find_by
 
-    from txtool.transform.migrate import _comment_bodies
-
-    assert _comment_bodies(data) == re.findall(rb"<!--(.*?)-->", data, re.S)
+    for rare in range(len(needle)):
+        assert find_by(data, needle, rare, start) == data.find(needle, start)

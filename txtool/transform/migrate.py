@@ -23,6 +23,7 @@ from typing import Literal
 from lxml import etree
 
 from txtool.dialects.read import transmission_elements
+from txtool.io.byte_search import find_by
 from txtool.io.encodings import SCANNABLE, detect_encoding, document_text
 from txtool.io.printable import printable
 from txtool.io.xmlio import (
@@ -364,32 +365,25 @@ def _comment_texts(data: bytes) -> list[str] | None:
     """The texts of the comments of ``data`` as a parse reads them, or None where the bytes
     alone may not tell (a CDATA section, a DOCTYPE or a processing instruction could hold
     ``<!--``; a text not in UTF-8)."""
-    if b"<![CDATA[" in data or b"<!DOCTYPE" in data or detect_encoding(data).codec not in (
-            "utf-8", "ascii"):
+    if detect_encoding(data).codec not in ("utf-8", "ascii"):
         return None
-    instruction = data.find(b"<?")
+    instruction = find_by(data, b"<?", 1)
     if instruction >= 0:
         end = data.find(b"?>", instruction)
-        if end < 0 or data.find(b"<?", instruction + 2) >= 0 or (
+        if end < 0 or find_by(data, b"<?", 1, instruction + 2) >= 0 or (
                 b"<!--" in data[instruction:end]):
             return None
-    return [text.decode("utf-8").replace("\r\n", "\n").replace("\r", "\n")
-            for text in _comment_bodies(data)]
-
-
-def _comment_bodies(data: bytes) -> list[bytes]:
-    """What stands between each ``<!--`` and the first ``-->`` after it, from the start on
-    (what ``re.findall(rb"<!--(.*?)-->", data, re.S)`` gives, found by byte searches: four
-    times faster on a large robot with few comments)."""
     bodies = []
-    at = data.find(b"<!--")
-    while at >= 0:
-        end = data.find(b"-->", at + 4)
+    at = find_by(data, b"<!", 1)
+    while at >= 0:  # outside comments, "<!" begins a comment, a CDATA section or the DOCTYPE
+        if not data.startswith(b"<!--", at):
+            return None
+        end = find_by(data, b"-->", 0, at + 4)
         if end < 0:
             break
         bodies.append(data[at + 4:end])
-        at = data.find(b"<!--", end + 3)
-    return bodies
+        at = find_by(data, b"<!", 1, end + 3)
+    return [text.decode("utf-8").replace("\r\n", "\n").replace("\r", "\n") for text in bodies]
 
 
 def _carried(comment: str | None) -> bool:
