@@ -136,40 +136,8 @@ def _convert_document(source: Source, target: Dialect, hardware_plugin: str, con
     placer = Placer(tree.getroot(), hardware_plugin, components=source.expanded or (
         detect_encoding(source.data).codec not in SCANNABLE or b"ros2_control" in source.data))
     placer.after = carry.after_block
-    components: dict[etree._Element, Any] = {}
-    items: list[Transmission | Follower] = []
-    olds: dict[int, etree._Element] = {}  # the element of each item not a follower, by id
-    root = tree.getroot()
-    top = local(root) != "ros2_control"  # a child of the root is in no <ros2_control>
-    all_top = top and len(at_root) == len(elements)
-    for element in elements:
-        keyed = None
-        if memo is not None and (all_top or element.getparent() is root and top
-                                 or enclosing_component(element) is None):
-            keyed = memo.keyed(element)
-        if keyed.__class__ is Follower:
-            assert isinstance(keyed, Follower)
-            placer.place_follower(element, keyed, keyed.record.original.dialect)
-            items.append(keyed)
-            result.converted += 1
-            continue
-        renaming = keyed if isinstance(keyed, Renaming) else None
-        t = read_transmission(element, None, components)
-        items.append(t)
-        olds[id(t)] = element
-        if t.dialect == target:
-            result.already += 1
-        found = Found(t, element)
-        said = len(result.losses) + len(result.notes) + len(result.warnings)
-        if not _convert_one(found, tree, target, result, placer, carry, memo, renaming, said):
-            continue
-        result.converted += 1
-    # The loop's last element (and its found or follower) may be one the block replaces,
-    # freed below with the others.
-    element = found = keyed = None  # type: ignore[assignment]
-    # The declarations read go while their elements are in the tree: lxml frees an element
-    # of a removed subtree (a generated block, replaced) by scanning all of that subtree.
-    del components
+    items, olds = _place_each(elements, tree, target, result, placer, carry, memo,
+                              all_top=len(at_root) == len(elements))
     names = Counter(map(attrgetter("name"), items))
     if check and memo is not None and not detect_encoding(source.data).wide:
         # What the check reads back of a written transmission is paired with it by its name.
@@ -217,6 +185,47 @@ def _convert_document(source: Source, target: Dialect, hardware_plugin: str, con
         _check(Source(source.path, result.data, tree), result, items, alone, names, virtual,
                in_tree)
     return result, expected
+
+
+def _place_each(elements: list[etree._Element], tree: etree._ElementTree, target: Dialect,
+                result: ConvertedDocument, placer: Placer, carry: Carrier, memo: Memo | None,
+                *, all_top: bool) -> tuple[list[Transmission | Follower],
+                                           dict[int, etree._Element]]:
+    """Read, key, convert and place each transmission: what each is (a follower of a
+    transmission converted before, else as read) in order, and the element of each not a
+    follower, by the id of what it is. ``all_top``: every transmission is a child of the
+    root."""
+    root = tree.getroot()
+    top = local(root) != "ros2_control"  # a child of the root is in no <ros2_control>
+    all_top = all_top and top
+    # The declarations read (freed at the return, while their elements are in the tree: lxml
+    # frees an element of a removed subtree, a generated block replaced, by scanning all of
+    # that subtree).
+    components: dict[etree._Element, Any] = {}
+    items: list[Transmission | Follower] = []
+    olds: dict[int, etree._Element] = {}
+    for element in elements:
+        keyed = None
+        if memo is not None and (all_top or element.getparent() is root and top
+                                 or enclosing_component(element) is None):
+            keyed = memo.keyed(element)
+        if keyed.__class__ is Follower:
+            assert isinstance(keyed, Follower)
+            placer.place_follower(element, keyed, keyed.record.original.dialect)
+            items.append(keyed)
+            result.converted += 1
+            continue
+        renaming = keyed if isinstance(keyed, Renaming) else None
+        t = read_transmission(element, None, components)
+        items.append(t)
+        olds[id(t)] = element
+        if t.dialect == target:
+            result.already += 1
+        said = len(result.losses) + len(result.notes) + len(result.warnings)
+        if _convert_one(Found(t, element), tree, target, result, placer, carry, memo, renaming,
+                        said):
+            result.converted += 1
+    return items, olds
 
 
 def _write(source: Source, tree: etree._ElementTree, writer: ConversionEdits | None,
