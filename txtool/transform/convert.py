@@ -11,8 +11,9 @@ from __future__ import annotations
 
 import copy
 from collections import Counter
-from collections.abc import Hashable
+from collections.abc import Callable, Hashable
 from dataclasses import dataclass, field
+from functools import cache
 from operator import attrgetter
 from typing import Any
 
@@ -451,15 +452,10 @@ def _check(output: Source, result: ConvertedDocument, originals: list[Transmissi
     # shapes (:mod:`.repeated.nameless_shapes`) that came back whole
     survived: set[Hashable] = set()
     whole: set[int] = set()  # records whose verdict is in ``survived``, by id
-    written: dict[tuple[str, bool], list[Found]] = {}
-    kept: set[str | None] | None = None  # the names of the output's <ros2_control> blocks
+    blocks = cache(lambda: {e.get("name") for e in output.root.iter("{*}ros2_control")})
     all_text = in_tree and len(virtual) == len(originals) - len(followers) and all(
         item.__class__ is Written for item in built)
-    for element in () if all_text else transmission_elements(output.root, (
-            e for e in output.root.iter("{*}transmission") if e not in apart)):
-        found = Found(read_transmission(element, None, components), element)
-        key = (found.transmission.name, found.transmission.kind == "other")
-        written.setdefault(key, []).append(found)
+    written = {} if all_text else _written_transmissions(output.root, apart, components)
     read = dict(zip(virtual, read_back(list(virtual.values())), strict=True))
     for item in originals:
         if item.__class__ is Follower and id(item.record) in whole and (  # type: ignore[union-attr]
@@ -497,27 +493,44 @@ def _check(output: Source, result: ConvertedDocument, originals: list[Transmissi
         if record is not None and record.verdict is None and (
                 out.element if text is None else text) in alone and names[t.name] == 1:
             record.verdict = key
-        if key in survived:
-            continue
-        said = len(result.losses) + len(result.notes)
-        back = translate(out.transmission, t.dialect).transmission
-        a_view, b_view = view(t), view(back)
-        lost = _lost(a_view, b_view)
-        if in_component:
-            lost.pop("interfaces", None)
-            _interfaces(t, *_defined(a_view["interfaces"], b_view["interfaces"]), result)
-        elif "interfaces" in lost and t.ros2_control is not None:
-            if kept is None:
-                kept = {e.get("name") for e in output.root.iter("{*}ros2_control")}
-            if t.ros2_control in kept:
-                lost.pop("interfaces")
-                _kept_declaration(t, *_defined(a_view["interfaces"], b_view["interfaces"]),
-                                  result)
-        for key_, change in lost.items():
-            result.losses.append(f"transmission '{t.name}' did not survive the round trip: "
-                                 f"{key_}: {change}")
-        if len(result.losses) + len(result.notes) == said:
+        if key not in survived and _judge(t, out, in_component, result, blocks):
             survived.add(key)
+
+
+def _written_transmissions(root: etree._Element, apart: set[etree._Element | Written],
+                           components: dict[etree._Element, Any]
+                           ) -> dict[tuple[str, bool], list[Found]]:
+    """The transmissions of the output's tree (but those ``apart``, judged on their own), read,
+    by their name and whether their type is custom, in document order."""
+    written: dict[tuple[str, bool], list[Found]] = {}
+    for element in transmission_elements(root, (
+            e for e in root.iter("{*}transmission") if e not in apart)):
+        found = Found(read_transmission(element, None, components), element)
+        key = (found.transmission.name, found.transmission.kind == "other")
+        written.setdefault(key, []).append(found)
+    return written
+
+
+def _judge(t: Transmission, out: Found, in_component: bool, result: ConvertedDocument,
+           blocks: Callable[[], set[str | None]]) -> bool:
+    """Convert ``out``, what the output holds of the original ``t``, back to ``t``'s dialect,
+    and say in ``result`` what did not survive; whether it came back whole (nothing said).
+    ``in_component``: ``out`` stands in a ``<ros2_control>``; ``blocks``: the names of the
+    output's ``<ros2_control>`` blocks (asked only where needed)."""
+    said = len(result.losses) + len(result.notes)
+    back = translate(out.transmission, t.dialect).transmission
+    a_view, b_view = view(t), view(back)
+    lost = _lost(a_view, b_view)
+    if in_component:
+        lost.pop("interfaces", None)
+        _interfaces(t, *_defined(a_view["interfaces"], b_view["interfaces"]), result)
+    elif "interfaces" in lost and t.ros2_control is not None and t.ros2_control in blocks():
+        lost.pop("interfaces")
+        _kept_declaration(t, *_defined(a_view["interfaces"], b_view["interfaces"]), result)
+    for key, change in lost.items():
+        result.losses.append(f"transmission '{t.name}' did not survive the round trip: "
+                             f"{key}: {change}")
+    return len(result.losses) + len(result.notes) == said
 
 
 def _records(items: list[Transmission | Follower]) -> list[Record]:
