@@ -163,9 +163,10 @@ def test_a_checked_document_is_freed_without_the_garbage_collector(name: str) ->
     ('<transmission name="a"><transmission name="n"/></transmission>', ["a"], []),
 ])
 def test_transmissions_found_and_those_at_the_root(xml, found, at_root):
-    from txtool.dialects.read import transmission_elements, transmissions_at_root
+    from txtool.dialects.read import transmission_elements, transmissions_with_those_at_root
 
     root = parse_bytes(xml.encode(), "r.urdf").getroot()
-    elements = transmission_elements(root)
+    elements, at_the_root = transmissions_with_those_at_root(root)
     assert [e.get("name") for e in elements] == found
-    assert [e.get("name") for e in transmissions_at_root(root, elements)] == at_root
+    assert transmission_elements(root) == elements
+    assert [e.get("name") for e in at_the_root] == at_root

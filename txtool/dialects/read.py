@@ -118,6 +118,24 @@ def transmission_elements(
 ) -> list[etree._Element]:
     """``<transmission>`` elements that are transmissions (not nested in another one), of
     ``root`` or among its already collected ``candidates``."""
+    return _found(root, candidates)[0]
+
+
+def transmissions_with_those_at_root(root: etree._Element
+                                     ) -> tuple[list[etree._Element], list[etree._Element]]:
+    """:func:`transmission_elements` of ``root``, and those of them (in document order)
+    that are children of ``root``, in one walk of the tree."""
+    found, all_at_root = _found(root, None)
+    if all_at_root:
+        return found, found
+    return found, [element for element in found if element.getparent() is root]
+
+
+def _found(root: etree._Element, candidates: Iterable[etree._Element] | None
+           ) -> tuple[list[etree._Element], bool]:
+    """:func:`transmission_elements`, and whether they are all the root's own
+    ``<transmission>`` children: told by identity in one comparison, with no parent looked
+    up for each (the common case)."""
     found = []
     # A child of the document's root element (the most common place) has only it above.
     top = root if root.getparent() is None else None
@@ -125,29 +143,15 @@ def transmission_elements(
     in_root = tag == "transmission" or tag.endswith("}transmission")
     if candidates is None and top is not None and not in_root:
         candidates = list(root.iter("{*}transmission"))
-        if _all_at_root(root, candidates):
-            return candidates
+        if candidates == root.findall("{*}transmission"):
+            return candidates, True
     for element in root.iter("{*}transmission") if candidates is None else candidates:
         if element.getparent() is top:
             if not in_root:
                 found.append(element)
         elif not _inside_transmission(element):
             found.append(element)
-    return found
-
-
-def transmissions_at_root(root: etree._Element, transmissions: list[etree._Element]
-                          ) -> list[etree._Element]:
-    """Those of ``transmissions`` (in document order) that are children of ``root``."""
-    if _all_at_root(root, transmissions):
-        return transmissions
-    return [element for element in transmissions if element.getparent() is root]
-
-
-def _all_at_root(root: etree._Element, transmissions: list[etree._Element]) -> bool:
-    """Whether ``transmissions`` are the root's own ``<transmission>`` children: told by
-    identity in one comparison, with no parent looked up for each (the common case)."""
-    return transmissions == root.findall("{*}transmission")
+    return found, False
 
 
 def _inside_transmission(element: etree._Element) -> bool:

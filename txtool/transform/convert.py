@@ -24,7 +24,7 @@ from txtool.dialects.read import (
     enclosing_component,
     read_transmission,
     transmission_elements,
-    transmissions_at_root,
+    transmissions_with_those_at_root,
 )
 from txtool.dialects.translate import family, is_expression, translate
 from txtool.io.encodings import SCANNABLE, detect_encoding
@@ -128,9 +128,8 @@ def _convert_document(source: Source, target: Dialect, hardware_plugin: str, con
     # Back to ROS 1 (each element may carry its original) and --reversible convert in full.
     memo = Memo() if repeats and not carry.reversible and target != "ros1" else None
     tree = source.tree if consume else copy.deepcopy(source.tree)
-    elements = transmission_elements(tree.getroot())
+    elements, at_root = transmissions_with_those_at_root(tree.getroot())
     deep = _near_depth_limit(elements, tree.getroot())
-    at_root = transmissions_at_root(tree.getroot(), elements)
     writer = None if source.expanded else ConversionEdits(
         source.path, source.data, tree.getroot(), elements, at_root, target, near=near)
     result = ConvertedDocument(data=b"", target=target, found=len(elements))

@@ -48,7 +48,7 @@ class ConversionEdits:
                  transmissions: list[etree._Element], at_root: list[etree._Element],
                  target: str, *, near: bool = True) -> None:
         """``at_root``: those of ``transmissions`` that are children of ``root``
-        (:func:`txtool.dialects.read.transmissions_at_root`). ``near``: of the root's
+        (:func:`txtool.dialects.read.transmissions_with_those_at_root`). ``near``: of the root's
         children, index the bounds of those next to a transmission or a ``<ros2_control>``
         alone (the places the placer changes the root's children); false: all of them
         (:class:`.spans.NotIndexed` said one was missing)."""
