@@ -7,6 +7,8 @@ import textwrap
 from collections.abc import Callable
 
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 from lxml import etree
 
 from txtool.io.xmlio import InputError, parse_bytes
@@ -282,3 +284,48 @@ def test_a_fixed_document_loses_its_late_declaration(tmp_path) -> None:
     result = migrate_file(str(path), FIXES, MigrateOptions())
     assert result.data.startswith(b"<!-- licence -->\n<robot>\n")
     assert b"hardware_interface/EffortJointInterface" in result.data
+
+
+_TAILS = st.sampled_from([None, "", " ", "\n", "\n  ", "\n\n    ", "x"])
+_CHILD = st.sampled_from(["<a/>", "<b n='1'/>", "<c>t</c>", "<d><e/></d>", "<!-- c -->"])
+
+
+@given(st.lists(st.tuples(_CHILD, _TAILS), max_size=10), _TAILS,
+       st.lists(st.tuples(st.sampled_from(["remove", "insert", "tail", "text", "move"]),
+                          st.integers(0, 20), _TAILS), max_size=5))
+def test_children_changed_at_random_are_written_and_kept_ones_keep_their_bytes(
+        children: list[tuple[str, str | None]], text: str | None,
+        changes: list[tuple[str, int, str | None]]) -> None:
+    data = ("<robot>" + (text or "") + "".join(markup + (tail or "")
+                                              for markup, tail in children) + "</robot>").encode()
+    tree = parse_bytes(data, "robot.urdf")
+    root = tree.getroot()
+    edited = EditedText(data)
+    index = SpanIndex(edited.data, root)
+    spans = {child: (index[child].start, index[child].end) for child in root}
+    recorded = TreeChange([], [root])
+    for kind, at, tail in changes:
+        kids = list(root)
+        if kind == "insert":
+            new = etree.Element("n")
+            new.tail = tail
+            root.insert(at % (len(kids) + 1), new)
+        elif kind == "text":
+            root.text = tail
+        elif kids and kind == "remove":
+            root.remove(kids[at % len(kids)])
+        elif kids and kind == "tail":
+            kids[at % len(kids)].tail = tail
+        elif kids and kind == "move":
+            root.append(kids[at % len(kids)])
+    edits = recorded.edits(edited, index)
+    written = edited.applied(edits)
+    assert reads_as(written, tree, "robot.urdf")
+    if not changes:
+        assert edits == []
+    kept_in_order = [child for child in root if child in spans]
+    if kept_in_order == sorted(kept_in_order, key=lambda child: spans[child][0]):
+        # Unless the change reordered them, no edit writes over a kept child.
+        for child in kept_in_order:
+            start, end = spans[child]
+            assert not any(edit.start < end and start < edit.end for edit in edits), child

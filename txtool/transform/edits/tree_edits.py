@@ -14,7 +14,8 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable
 from dataclasses import dataclass
-from operator import attrgetter, itemgetter, lt
+from itertools import compress, count, repeat
+from operator import attrgetter, is_not, lt, ne, or_, sub
 
 from lxml import etree
 
@@ -23,7 +24,6 @@ from txtool.transform.edits.core import Edit, EditedText
 from txtool.transform.edits.spans import Attribute, Span, SpanIndex
 
 _TAIL = attrgetter("tail")
-_OLD = itemgetter(1)
 
 
 class NotEditable(ValueError):
@@ -66,7 +66,7 @@ class TreeChange:
         self._redeclare = False
 
     def _record(self, element: etree._Element) -> None:
-        children = list(element)
+        children = element[:]  # (a slice makes its list faster than an iterator)
         self._before[element] = _Before(dict(element.attrib), element.text, children,
                                         list(map(_TAIL, children)), element.tag)
 
@@ -105,12 +105,11 @@ class TreeChange:
         if element.tag != before.tag:
             raise NotEditable(f"<{etree.QName(element).localname}> changed its name")
         edits.extend(_attribute_edits(element, index, before.attributes, text, self._redeclare))
-        children = list(element)
+        children = element[:]
         tails = list(map(_TAIL, children))
         if (children, tails, element.text) == (before.children, before.tails, before.text):
-            for child in children:
-                if child in self._before:
-                    self._element(child, text, index, edits)
+            for child in filter(self._before.__contains__, children):
+                self._element(child, text, index, edits)
             return
         if span.empty:
             name = index.data[span.start + 1:span.start + 1 + _name_length(index.data, span)]
@@ -123,32 +122,28 @@ class TreeChange:
             edits.append(Edit(span.close, span.end, b"/>"))
             return
         was_at = dict(zip(before.children, range(len(before.children)), strict=True))
-        # Where each child kept stands now, and stood before; none where the change reordered
-        # them (all of the content is then written anew).
-        kept = [(place, old) for place, old in enumerate(map(was_at.get, children))
-                if old is not None]
-        if not all(map(lt, map(_OLD, kept), map(_OLD, kept[1:]))):
-            kept = []
-        self._regions(element, span, children, tails, kept, text, index, edits)
-        for place, _ in kept:
-            if children[place] in self._before:
-                self._element(children[place], text, index, edits)
+        olds = list(map(was_at.get, children))  # where each child stood before (None: new)
+        is_kept = list(map(is_not, olds, repeat(None)))
+        places = list(compress(range(len(children)), is_kept))
+        kept_olds = list(compress(olds, is_kept))
+        if not all(map(lt, kept_olds, kept_olds[1:])):
+            places = kept_olds = []  # reordered: all of the content is written anew
+        self._regions(element, span, children, tails, places, kept_olds, text, index, edits)
+        for child in filter(self._before.__contains__, map(children.__getitem__, places)):
+            self._element(child, text, index, edits)
 
     def _regions(self, element: etree._Element, span: Span, children: list[etree._Element],
-                 tails: list[str | None], kept: list[tuple[int, int]], text: EditedText,
-                 index: SpanIndex, edits: list[Edit]) -> None:
+                 tails: list[str | None], places: list[int], olds: list[int],
+                 text: EditedText, index: SpanIndex, edits: list[Edit]) -> None:
         """An edit for each run of content between two kept children (or the start or end
         of the element) that the change made differ: a node put in or taken out there, or
-        the text before the run's first node (``kept``: where each kept child stands among
-        ``children`` and stood before)."""
+        the text before the run's first node (``places``, ``olds``: where each kept child
+        stands among ``children`` and stood before)."""
         before = self._before[element]
-        place = old = -1  # those of the kept child before the run
-        for next_place, next_old in [*kept, (len(children), len(before.children))]:
-            lead, old_lead = (element.text, before.text) if place < 0 else (
-                tails[place], before.tails[old])
-            if next_place == place + 1 and next_old == old + 1 and lead == old_lead:
-                place, old = next_place, next_old
-                continue
+        for place, next_place in _changed_runs(
+                places, olds, tails, before.tails, element.text != before.text,
+                len(children), len(before.children)):
+            lead = element.text if place < 0 else tails[place]
             # Only the bounds of a run that changed are read (the index may hold no more).
             start = index[children[place]].end if place >= 0 else span.head_end
             end = index[children[next_place]].start if next_place < len(children) else (
@@ -158,7 +153,6 @@ class TreeChange:
             edit = _trimmed(index.data, start, end, written)
             if edit.start < edit.end or edit.content:
                 edits.append(edit)
-            place, old = next_place, next_old
 
     def _nodes(self, nodes: list[etree._Element], text: EditedText) -> bytes:
         """``nodes`` and their tails as bytes of the document."""
@@ -170,6 +164,23 @@ class TreeChange:
             else:
                 written.append(markup + text.encode(_escaped(node.tail)))
         return b"".join(written)
+
+
+def _changed_runs(places: list[int], olds: list[int], tails: list[str | None],
+                  tails_before: list[str | None], text_changed: bool, size: int,
+                  size_before: int) -> list[tuple[int, int]]:
+    """The runs of content between two kept children that differ, as the places of their
+    bounds among the children (-1: the element's start; ``size``, ``size_before``: its end,
+    now and before): a node put in or taken out between them, or the text before the run
+    (the tail of the kept child it starts at, or the element's text) changed. Compared a
+    list at a time: an element may hold thousands of children, most of them kept."""
+    starts, start_olds = [-1, *places], [-1, *olds]
+    ends, end_olds = [*places, size], [*olds, size_before]
+    moved = map(or_, map(ne, map(sub, ends, starts), repeat(1)),
+                map(ne, map(sub, end_olds, start_olds), repeat(1)))
+    retold = [text_changed, *map(ne, map(tails.__getitem__, places),
+                                 map(tails_before.__getitem__, olds))]
+    return [(starts[i], ends[i]) for i in compress(count(), map(or_, moved, retold))]
 
 
 def _prefixed_name(element: etree._Element, key: str) -> str | None:
