@@ -245,7 +245,7 @@ def _name_length(data: bytes, span: Span) -> int:
 
 def _trimmed(data: bytes, start: int, end: int, written: bytes) -> Edit:
     """The edit of ``[start, end)`` to ``written`` without the bytes both begin or end with."""
-    old = data[start:end]
+    old = memoryview(data)[start:end]  # (no copy: a run may hold thousands of elements)
     head = 0
     most = min(len(old), len(written))
     while head < most and old[head] == written[head]:
@@ -261,9 +261,9 @@ def _at_line_start(data: bytes, bound: int, edit: Edit) -> Edit:
     """An insertion or a deletion moved back to the start of its line where the bytes it
     passes over repeat its own (the same result, said as whole lines: ``  <x/>\n`` rather
     than ``<x/>\n  ``), not before ``bound``."""
-    moved = edit.content or data[edit.start:edit.end]
-    if not moved or edit.content and edit.start != edit.end:
+    if edit.content and edit.start != edit.end or edit.start == edit.end and not edit.content:
         return edit
+    moved = edit.content or memoryview(data)[edit.start:edit.end]
     at, size = edit.start, len(moved)
     while at > bound and data[at - 1:at] not in (b"\n", b"\r"):
         if data[at - 1] != moved[size - 1 - (edit.start - at) % size]:
@@ -272,8 +272,10 @@ def _at_line_start(data: bytes, bound: int, edit: Edit) -> Edit:
     shift = edit.start - at
     if not shift or data[at - 1:at] not in (b"\n", b"\r"):
         return edit
+    if not edit.content:
+        return Edit(at, at + (edit.end - edit.start), b"")
     rotated = moved[size - shift % size:] + moved[:size - shift % size]
-    return Edit(at, at + (edit.end - edit.start), rotated if edit.content else b"")
+    return Edit(at, at + (edit.end - edit.start), rotated)
 
 
 def _escaped(value: str | None) -> str:
