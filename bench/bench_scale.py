@@ -1,7 +1,7 @@
 """Work grows linearly with the document: time per transmission from 100 to 100,000.
 
 Run: ``python bench/bench_scale.py [--sizes 100,1000,10000,100000] [--commands ...]
-[--repeat R] [--pretty] [--as-written]``.
+[--repeat R] [--pretty] [--as-written] [--instructions]``.
 
 Each size N is one generated robot: a chain of N revolute joints, each driven by one ROS 1
 simple transmission (about 450 bytes per joint: 100,000 joints make a 45 MB file, under the 64
@@ -15,12 +15,21 @@ is ``lxml.etree.parse`` of the same file, timed and measured the same way; runs 
 and each figure is the median of R runs (default 1). The tables show microseconds per
 transmission, each size's ratio to the smallest (flat means linear; a step quadratic in N shows
 as ratios near 10, 100 and 1,000), and each command's time and peak memory against the floor.
+
+Wall time on a shared machine moves by a fifth from run to run. ``--instructions`` counts
+instead (valgrind's callgrind, one run each; about a minute per command at 20,000): each
+command's instructions and the floor's, each less those of the same process given the one-joint
+robot (start-up, imports and the warm-up are then counted out), and their ratio. The same code
+and input give the same count to a few parts in ten thousand; it leaves out what an instruction
+count cannot see (page faults, caches), which the wall time holds.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import re
+import shutil
 import statistics
 import subprocess
 import sys
@@ -104,6 +113,43 @@ def measure(command: list[str] | None, path: Path) -> tuple[float, float]:
     return float(seconds), float(peak)
 
 
+def instructions(command: list[str] | None, path: Path) -> int:
+    """Instructions the command (None: the floor) executes on ``path``, less those of the same
+    process on the one-joint robot (valgrind's callgrind)."""
+    warm_up = path.with_name("warm_up.urdf")
+    warm_up.write_text(robot(1))
+    counts = []
+    for target in (path, warm_up):
+        if command is None:
+            argv = [sys.executable, "-c", PARSE, str(target)]
+        else:
+            argv = [sys.executable, "-c", MEASURE, str(warm_up), *command, str(target)]
+        out = subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null",
+                              *argv], capture_output=True, text=True, check=False)
+        found = re.search(r"Collected : (\d+)", out.stderr)
+        if out.returncode != 0 or found is None:
+            raise SystemExit(out.stderr.strip()[-500:] or f"valgrind: exit {out.returncode}")
+        counts.append(int(found.group(1)))
+    return counts[0] - counts[1]
+
+
+def count_instructions(sizes: list[int], names: list[str], pretty: bool,
+                       as_written: bool) -> None:
+    """``--instructions``: each command's instructions against the floor's, per size."""
+    if shutil.which("valgrind") is None:
+        raise SystemExit("--instructions needs valgrind on PATH")
+    with tempfile.TemporaryDirectory(prefix="txtool-scale-") as folder:
+        for size in sizes:
+            path = Path(folder) / f"chain_{size}.urdf"
+            path.write_text(robot(size, pretty, as_written))
+            floor = instructions(None, path)
+            print(f"N={size:>7}: parse {floor / 1e6:,.0f}M instructions", flush=True)
+            for name in names[1:]:
+                count = instructions(COMMANDS[name], path)
+                print(f"  {name:10s} {count / 1e6:,.0f}M: {count / floor:.2f}x the parse",
+                      flush=True)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", default="100,1000,10000,100000")
@@ -113,9 +159,14 @@ def main() -> None:
     parser.add_argument("--as-written", action="store_true",
                         help="an XML declaration, a comment and single quotes: a file that "
                              "lxml would not write byte for byte")
+    parser.add_argument("--instructions", action="store_true",
+                        help="count instructions under valgrind instead of timing")
     args = parser.parse_args()
     sizes = [int(s) for s in args.sizes.split(",")]
     names = ["parse", *args.commands.split(",")]
+    if args.instructions:
+        count_instructions(sizes, names, args.pretty, args.as_written)
+        return
     seconds: dict[str, dict[int, float]] = {name: {} for name in names}
     memory: dict[str, dict[int, float]] = {name: {} for name in names}
     with tempfile.TemporaryDirectory(prefix="txtool-scale-") as folder:
