@@ -159,8 +159,10 @@ def _convert_document(source: Source, target: Dialect, hardware_plugin: str, con
     del built_for  # it holds the replaced elements too
     virtual = {key: built for key, old in olds.items()
                if isinstance(built := placer.built.get(old), Written)}
-    del elements, olds  # the replaced elements are freed before the document is written
+    del elements, at_root, olds  # the replaced elements are freed before the document is written
     placer.release()
+    if writer is not None:
+        writer.change.let_go()
     _write(source, tree, writer, placer, result)
     if placer.unwritten:  # parsed into the tree after all
         for item in items:

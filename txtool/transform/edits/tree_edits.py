@@ -24,6 +24,7 @@ from txtool.transform.edits.core import Edit, EditedText
 from txtool.transform.edits.spans import Attribute, Span, SpanIndex
 
 _TAIL = attrgetter("tail")
+_GONE = etree.Comment("taken out")  # in place of a child let go (:meth:`TreeChange.let_go`)
 
 
 class NotEditable(ValueError):
@@ -69,6 +70,16 @@ class TreeChange:
         children = element[:]  # (a slice makes its list faster than an iterator)
         self._before[element] = _Before(dict(element.attrib), element.text, children,
                                         list(map(_TAIL, children)), element.tag)
+
+    def let_go(self) -> None:
+        """Hold no more the nodes the change took out of a container (their places are kept,
+        not them), so that lxml frees them now: on a large robot, the megabytes of the
+        transmissions a conversion replaced, which writing the document then reuses."""
+        for container, before in self._before.items():
+            children = before.children
+            for place, child in enumerate(children):
+                if child.getparent() is not container:
+                    children[place] = _GONE
 
     def children_before(self, container: etree._Element) -> list[etree._Element]:
         """The children a container held before the change (a list not to be changed)."""
