@@ -198,3 +198,55 @@ def test_a_conversion_leaves_no_reference_cycles():
     finally:
         if enabled:
             gc.enable()
+
+
+def _robots_alive(before: frozenset[int] = frozenset()) -> list[int]:
+    """How many children each ``<robot>`` element alive in this process has, and -1 for each
+    ROS 1 ``<transmission>`` alive (one read; the conversion's own templates are ROS 2), of
+    those not among ``before`` (ids of elements alive before)."""
+    import gc
+
+    from lxml import etree
+
+    return [len(node) if node.tag == "robot" else -1 for node in gc.get_objects()
+            if isinstance(node, etree._Element) and id(node) not in before and (
+                node.tag == "robot" or node.tag == "transmission"
+                and node.find("type") is not None)]
+
+
+@pytest.mark.parametrize("args", [["migrate", "--diff", "--to", "ros2-p2"],
+                                  ["convert", "--to", "ros2-p2"]])
+def test_the_document_read_is_freed_before_the_written_bytes_are_parsed(tmp_path, monkeypatch,
+                                                                          args):
+    """A large robot needs one tree at a time: the check parses what the edits wrote once
+    the converted tree is gone (its memory then takes the new tree), and the transmissions a
+    conversion replaced are gone before the document is written."""
+    import gc
+
+    from lxml import etree
+
+    import txtool.transform.convert as convert
+    import txtool.transform.edits.conversion_edits as conversion_edits
+
+    gc.collect()
+    before = frozenset(id(node) for node in gc.get_objects() if isinstance(node, etree._Element))
+    path = tmp_path / "chain.urdf"
+    path.write_text(chain(200))
+    alive: dict[str, list[int]] = {}
+    real_parse, real_edits = conversion_edits.parse_bytes, convert.ConversionEdits.edits
+
+    def parse_for_the_check(data: bytes, *args, **kwargs):  # type: ignore[no-untyped-def]
+        alive["check"] = _robots_alive(before)
+        return real_parse(data, *args, **kwargs)
+
+    def edits(self, *args, **kwargs):  # type: ignore[no-untyped-def]
+        alive["write"] = _robots_alive(before)
+        return real_edits(self, *args, **kwargs)
+
+    monkeypatch.setattr(conversion_edits, "parse_bytes", parse_for_the_check)
+    monkeypatch.setattr(convert.ConversionEdits, "edits", edits)
+    result = CliRunner().invoke(cli, [*args, str(path)])
+    assert result.exit_code in (0, 1), result.output
+    assert alive["check"] == []
+    # The converted robot: its 400 links and joints and the generated block, no transmission.
+    assert alive["write"] == [401 + 1]

@@ -234,32 +234,31 @@ def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions) -> F
     clean = not might_fix(tree.getroot(), rules, original)  # fix_tree() would find nothing
     if clean and options.target is None:
         return result
-    return _steps(result, tree, rules, options, comments, clean)
+    source = Source(display, original, tree)
+    del tree  # given up to the stages, which free it once converted
+    return _steps(result, source, rules, options, comments, clean)
 
 
-def _steps(result: FileResult, tree: etree._ElementTree, rules: Sequence[Rule],
+def _steps(result: FileResult, source: Source, rules: Sequence[Rule],
            options: MigrateOptions, comments: list[tuple[str | None, int | None]],
            clean: bool) -> FileResult:
-    """Fix ``tree`` (the parse of ``result.original``; ``clean``: no fix finds anything in
-    it), convert, and fix what the conversion wrote: each stage says its change as edits of
-    the bytes the stage before wrote (:func:`_fixed`, :func:`.convert.convert_source`), and
-    the stages' edits are composed into edits of the original, which the one applier makes
-    (:func:`.edits.core.compose`)."""
+    """Fix ``source.tree`` (the parse of ``result.original``, which the caller gives up;
+    ``clean``: no fix finds anything in it), convert, and fix what the conversion wrote: each
+    stage says its change as edits of the bytes the stage before wrote (:func:`_fixed`,
+    :func:`.convert.convert_source`), and the stages' edits are composed into edits of the
+    original, which the one applier makes (:func:`.edits.core.compose`)."""
     original, display = result.original, result.path
     stages: list[list[Edit]] = []  # each stage's edits, of the bytes the stage before wrote
     data = original
     if not clean:
-        data = _fix_stage(result, data, tree, rules, stages)
+        data = _fix_stage(result, data, source.tree, rules, stages)
     if options.target is None:
-        after = _comments(tree)
-        del tree
+        after = _comments(source.tree)
     else:
         if data is not original:
-            del tree
-            tree = parse_bytes(data, display, limit=None)
-        source = Source(display, data, tree)
-        del tree  # the conversion frees it once converted
-        try:
+            source.tree = parse_bytes(data, display, limit=None)
+            source.data = data
+        try:  # the conversion frees the tree once converted
             conversion = convert_source(source, options.target,
                                         hardware_plugin=options.hardware_plugin, consume=True,
                                         reversible=options.reversible)
