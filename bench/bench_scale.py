@@ -17,11 +17,11 @@ transmission, each size's ratio to the smallest (flat means linear; a step quadr
 as ratios near 10, 100 and 1,000), and each command's time and peak memory against the floor.
 
 Wall time on a shared machine moves by a fifth from run to run. ``--instructions`` counts
-instead (valgrind's callgrind, one run each; about a minute per command at 20,000): each
+instead (valgrind's callgrind, one run each; one to two minutes a command at 20,000): each
 command's instructions and the floor's, each less those of the same process given the one-joint
 robot (start-up, imports and the warm-up are then counted out), and their ratio. The same code
-and input give the same count to a few parts in ten thousand; it leaves out what an instruction
-count cannot see (page faults, caches), which the wall time holds.
+and input give the same count to about half a per cent (Python's hash randomization); it leaves
+out what an instruction count cannot see (page faults, caches), which the wall time holds.
 """
 
 from __future__ import annotations
