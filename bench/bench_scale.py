@@ -100,12 +100,7 @@ def measure(command: list[str] | None, path: Path) -> tuple[float, float]:
     """Seconds and peak bytes of one run, in a fresh interpreter that first ran the command on
     a one-joint robot (imports and start-up not counted), so that one run's leftovers do not
     slow the next; ``None`` is the floor, a bare parse of the file."""
-    if command is None:
-        argv = [sys.executable, "-c", PARSE, str(path)]
-    else:
-        warm_up = path.with_name("warm_up.urdf")
-        warm_up.write_text(robot(1))
-        argv = [sys.executable, "-c", MEASURE, str(warm_up), *command, str(path)]
+    argv = _argv(command, path, _warm_up(path))
     out = subprocess.run(argv, capture_output=True, text=True, check=False)
     if out.returncode != 0:
         raise SystemExit(out.stderr.strip() or f"{' '.join(argv[3:])}: exit {out.returncode}")
@@ -113,19 +108,30 @@ def measure(command: list[str] | None, path: Path) -> tuple[float, float]:
     return float(seconds), float(peak)
 
 
+def _warm_up(path: Path) -> Path:
+    """The one-joint robot beside ``path``, which a command runs on first."""
+    warm_up = path.with_name("warm_up.urdf")
+    warm_up.write_text(robot(1))
+    return warm_up
+
+
+def _argv(command: list[str] | None, target: Path, warm_up: Path) -> list[str]:
+    """The fresh interpreter that runs ``command`` on ``target`` after ``warm_up`` (None: the
+    floor, a bare parse of ``target``)."""
+    if command is None:
+        return [sys.executable, "-c", PARSE, str(target)]
+    return [sys.executable, "-c", MEASURE, str(warm_up), *command, str(target)]
+
+
 def instructions(command: list[str] | None, path: Path) -> int:
     """Instructions the command (None: the floor) executes on ``path``, less those of the same
     process on the one-joint robot (valgrind's callgrind)."""
-    warm_up = path.with_name("warm_up.urdf")
-    warm_up.write_text(robot(1))
+    warm_up = _warm_up(path)
     counts = []
     for target in (path, warm_up):
-        if command is None:
-            argv = [sys.executable, "-c", PARSE, str(target)]
-        else:
-            argv = [sys.executable, "-c", MEASURE, str(warm_up), *command, str(target)]
         out = subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null",
-                              *argv], capture_output=True, text=True, check=False)
+                              *_argv(command, target, warm_up)],
+                             capture_output=True, text=True, check=False)
         found = re.search(r"Collected : (\d+)", out.stderr)
         if out.returncode != 0 or found is None:
             raise SystemExit(out.stderr.strip()[-500:] or f"valgrind: exit {out.returncode}")

@@ -82,7 +82,8 @@ class TreeChange:
                     children[place] = _GONE
 
     def children_before(self, container: etree._Element) -> list[etree._Element]:
-        """The children a container held before the change (a list not to be changed)."""
+        """The children a container held before the change (a list not to be changed; after
+        :meth:`let_go`, a placeholder stands where a child was taken out)."""
         return self._before[container].children
 
     def substitute(self, node: etree._Element, markup: bytes) -> None:
@@ -272,7 +273,7 @@ def _at_line_start(data: bytes, bound: int, edit: Edit) -> Edit:
     """An insertion or a deletion moved back to the start of its line where the bytes it
     passes over repeat its own (the same result, said as whole lines: ``  <x/>\n`` rather
     than ``<x/>\n  ``), not before ``bound``."""
-    if edit.content and edit.start != edit.end or edit.start == edit.end and not edit.content:
+    if bool(edit.content) == (edit.start != edit.end):  # a replacement, or no change
         return edit
     moved = edit.content or memoryview(data)[edit.start:edit.end]
     at, size = edit.start, len(moved)
