@@ -14,7 +14,9 @@ counted) and measures its peak memory above what the interpreter held before the
 is ``lxml.etree.parse`` of the same file, timed and measured the same way; runs are interleaved
 and each figure is the median of R runs (default 1). The tables show microseconds per
 transmission, each size's ratio to the smallest (flat means linear; a step quadratic in N shows
-as ratios near 10, 100 and 1,000), and each command's time and peak memory against the floor.
+as ratios near 10, 100 and 1,000), and each command's time and peak memory against the floor;
+with R > 1, also the fastest and the slowest of the command's runs against the floor's median,
+which shows how far one run strays on a shared machine.
 
 Wall time on a shared machine moves by a fifth from run to run. ``--instructions`` counts
 instead (valgrind's callgrind, one run each; one to two minutes a command at 20,000): each
@@ -156,6 +158,11 @@ def count_instructions(sizes: list[int], names: list[str], pretty: bool,
                       flush=True)
 
 
+def _runs(spread: tuple[float, float], floor: float) -> str:
+    """The fastest and the slowest run of a command against the floor's median."""
+    return f" (runs {spread[0] / floor:.1f}-{spread[1] / floor:.1f}x)"
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", default="100,1000,10000,100000")
@@ -174,6 +181,7 @@ def main() -> None:
         count_instructions(sizes, names, args.pretty, args.as_written)
         return
     seconds: dict[str, dict[int, float]] = {name: {} for name in names}
+    spread: dict[str, dict[int, tuple[float, float]]] = {name: {} for name in names}
     memory: dict[str, dict[int, float]] = {name: {} for name in names}
     with tempfile.TemporaryDirectory(prefix="txtool-scale-") as folder:
         for size in sizes:
@@ -186,6 +194,8 @@ def main() -> None:
                     runs[name].append(measure(COMMANDS.get(name), path))
             for name in names:
                 seconds[name][size] = statistics.median(t for t, _ in runs[name])
+                spread[name][size] = (min(t for t, _ in runs[name]),
+                                      max(t for t, _ in runs[name]))
                 memory[name][size] = statistics.median(m for _, m in runs[name])
             print(f"N={size:>7} ({megabytes:5.1f} MB): " + "  ".join(
                 f"{name} {seconds[name][size] / size * 1e6:7.1f} us" for name in names),
@@ -200,7 +210,8 @@ def main() -> None:
           "(MB)")
     for name in names[1:]:
         print(f"  {name:10s} " + "  ".join(
-            f"N={s}: {seconds[name][s] / seconds['parse'][s]:5.1f}x "
+            f"N={s}: {seconds[name][s] / seconds['parse'][s]:5.1f}x"
+            f"{_runs(spread[name][s], seconds['parse'][s]) if args.repeat > 1 else ''} "
             f"{memory[name][s] / max(memory['parse'][s], 1):4.1f}x "
             f"({memory[name][s] / 1e6:.0f})" for s in sizes))
     print(json.dumps({"seconds": {n: {str(s): t for s, t in row.items()}
