@@ -128,7 +128,8 @@ def _convert_document(source: Source, target: Dialect, hardware_plugin: str, con
     # Back to ROS 1 (each element may carry its original) and --reversible convert in full.
     memo = Memo() if repeats and not carry.reversible and target != "ros1" else None
     tree = source.tree if consume else copy.deepcopy(source.tree)
-    elements, at_root = transmissions_with_those_at_root(tree.getroot())
+    elements, at_root = transmissions_with_those_at_root(
+        tree.getroot(), None if source.expanded else source.data)
     deep = _near_depth_limit(elements, tree.getroot())
     writer = None if source.expanded else ConversionEdits(
         source.path, source.data, tree.getroot(), elements, at_root, target, near=near)
