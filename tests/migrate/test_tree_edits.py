@@ -7,14 +7,14 @@ import textwrap
 from collections.abc import Callable
 
 import pytest
-from hypothesis import given
+from hypothesis import example, given
 from hypothesis import strategies as st
 from lxml import etree
 
 from txtool.io.xmlio import InputError, parse_bytes
 from txtool.rules import all_rules
 from txtool.transform.edits.core import EditedText
-from txtool.transform.edits.spans import SpanIndex
+from txtool.transform.edits.spans import NotIndexed, SpanIndex
 from txtool.transform.edits.tree_edits import (
     NotEditable,
     TreeChange,
@@ -329,3 +329,60 @@ def test_children_changed_at_random_are_written_and_kept_ones_keep_their_bytes(
         for child in kept_in_order:
             start, end = spans[child]
             assert not any(edit.start < end and start < edit.end for edit in edits), child
+
+
+_FOUR = [("<a/>", None), ("<b n='1'/>", "\n"), ("<c>t</c>", None), ("<d><e/></d>", "\n")]
+
+
+@given(st.lists(st.tuples(_CHILD, _TAILS), min_size=1, max_size=10), _TAILS,
+       st.lists(st.tuples(st.sampled_from(["remove", "insert", "tail", "text", "move"]),
+                          st.integers(0, 20), _TAILS), max_size=5), st.integers(1, 10))
+# At the window's edge (two passed over): the last one passed over taken out, one put in
+# before the first recorded, the tail before it, the text, the first recorded moved last.
+@example(_FOUR, None, [("remove", 1, None)], 2)
+@example(_FOUR, None, [("insert", 2, None)], 2)
+@example(_FOUR, None, [("tail", 1, " ")], 2)
+@example(_FOUR, None, [("text", 0, " ")], 2)
+@example(_FOUR, None, [("move", 2, None)], 2)
+def test_a_window_over_the_first_children_gives_the_same_edits_or_asks_for_the_whole(
+        children: list[tuple[str, str | None]], text: str | None,
+        changes: list[tuple[str, int, str | None]], skip: int) -> None:
+    """A container recorded past its first children (a robot's links and joints before its
+    transmissions) gives the edits of one recorded whole, or, where the change reached the
+    children it passed over, asks for the whole (:class:`NotIndexed`): never other edits."""
+    data = ("<robot>" + (text or "") + "".join(markup + (tail or "")
+                                              for markup, tail in children) + "</robot>").encode()
+    tree = parse_bytes(data, "robot.urdf")
+    root = tree.getroot()
+    edited = EditedText(data)
+    index = SpanIndex(edited.data, root)
+    window = min(skip, len(root))
+    before, text_before = [(child, child.tail) for child in root], root.text
+    whole, windowed = TreeChange([], [root]), TreeChange([], [root], {root: window})
+    taken = window if window < len(before) else 0  # (a window must leave a child)
+    assert windowed.children_before(root) == [child for child, _ in before[taken:]]
+    for kind, at, tail in changes:
+        kids = list(root)
+        if kind == "insert":
+            new = etree.Element("n")
+            new.tail = tail
+            root.insert(at % (len(kids) + 1), new)
+        elif kind == "text":
+            root.text = tail
+        elif kids and kind == "remove":
+            root.remove(kids[at % len(kids)])
+        elif kids and kind == "tail":
+            kids[at % len(kids)].tail = tail
+        elif kids and kind == "move":
+            root.append(kids[at % len(kids)])
+    edits = whole.edits(edited, index)
+    after = [(child, child.tail) for child in root]
+    kept = [child for child, _ in after if any(child is old for old, _ in before)]
+    untouched = (root.text == text_before and after[:taken + 1] == before[:taken + 1]
+                 and kept == [old for old, _ in before if old in kept])
+    if after[:max(taken - 1, 0)] != before[:max(taken - 1, 0)]:
+        return  # changed further among those passed over: not seen (the read-back tells)
+    try:
+        assert windowed.edits(edited, index) == edits
+    except NotIndexed:
+        assert not untouched

@@ -69,7 +69,9 @@ class ConversionEdits:
                 containers.add(component)
                 containers.update(component.iterancestors())
         inside = _changed_inside(transmissions, target, ros1_alone)
-        self.change = TreeChange(inside, containers)  # first: the index reuses its proxies
+        window = _unchanged_before(root, at_root, containers) if near else 0
+        # First: the index reuses its proxies.
+        self.change = TreeChange(inside, containers, {root: window} if window else None)
         bounded = _near(root, self.change.children_before(root), at_root, containers,
                         _replaced(root, transmissions, target, inside, ros1_alone)
                         ) if near else None
@@ -176,6 +178,17 @@ def _digest(data: bytes) -> bytes:
 
 
 _AROUND = 2  # siblings on either side of a changed child whose bounds are indexed
+
+
+def _unchanged_before(root: etree._Element, at_root: list[etree._Element],
+                      containers: set[etree._Element]) -> int:
+    """How many of the root's first children a conversion leaves as they are, with room to
+    spare: those before the first it may replace, cut or put something beside or into (a
+    transmission, ``at_root``, or a recorded container), and the :data:`_AROUND` before it
+    whose tails it may change, and as many again (0 where there is none)."""
+    firsts = [root.index(at_root[0])] if at_root else []
+    firsts += [root.index(child) for child in containers if child.getparent() is root]
+    return max(0, min(firsts) - 2 * _AROUND - 1) if firsts else 0
 
 
 def _near(root: etree._Element, kids: list[etree._Element], at_root: list[etree._Element],

@@ -21,7 +21,7 @@ from lxml import etree
 
 from txtool.io.xmlio import InputError, parse_bytes
 from txtool.transform.edits.core import Edit, EditedText
-from txtool.transform.edits.spans import Attribute, Span, SpanIndex
+from txtool.transform.edits.spans import Attribute, NotIndexed, Span, SpanIndex
 
 _TAIL = attrgetter("tail")
 _GONE = etree.Comment("taken out")  # in place of a child let go (:meth:`TreeChange.let_go`)
@@ -46,13 +46,25 @@ class TreeChange:
     that write it (:meth:`edits`)."""
 
     def __init__(self, elements: Iterable[etree._Element],
-                 containers: Iterable[etree._Element] = ()) -> None:
+                 containers: Iterable[etree._Element] = (),
+                 windows: dict[etree._Element, int] | None = None) -> None:
         """``elements``: recorded with all their descendants; ``containers``: recorded
         alone (their attributes, text and children), for a change that adds, removes or
         replaces their children but changes nothing inside the children it keeps. The roots
         of the change are the containers that are no descendant of another, and the elements
-        that are in none of them."""
+        that are in none of them.
+
+        ``windows``: for a container, how many of its first children (and their tails, and
+        its text) the change leaves as they are, passed over: neither recorded nor compared
+        (a robot's links and joints before its transmissions); one that leaves no child is
+        not taken. Where the first child after them does not stay where it was, or the text
+        before it (the last one's tail) or the container's text changed, :meth:`edits`
+        raises :class:`.spans.NotIndexed` (the caller records the container whole); a change
+        further among them is not seen (a conversion's read-back check tells it)."""
         self._before: dict[etree._Element, _Before] = {}
+        self._windows = {element: skip for element, skip in (windows or {}).items()
+                         if 0 < skip < len(element)}
+        self._leads: dict[etree._Element, str | None] = {}  # the tail before a window
         for element in containers:
             self._record(element)
         outer = set(self._before)
@@ -67,7 +79,10 @@ class TreeChange:
         self._redeclare = False
 
     def _record(self, element: etree._Element) -> None:
-        children = element[:]  # (a slice makes its list faster than an iterator)
+        # (a slice makes its list faster than an iterator)
+        children = element[self._windows.get(element, 0):]
+        if element in self._windows:
+            self._leads[element] = children[0].getprevious().tail
         self._before[element] = _Before(dict(element.attrib), element.text, children,
                                         list(map(_TAIL, children)), element.tag)
 
@@ -82,8 +97,9 @@ class TreeChange:
                     children[place] = _GONE
 
     def children_before(self, container: etree._Element) -> list[etree._Element]:
-        """The children a container held before the change (a list not to be changed; after
-        :meth:`let_go`, a placeholder stands where a child was taken out)."""
+        """The children a container held before the change, past its window, if it has
+        one (a list not to be changed; after :meth:`let_go`, a placeholder stands where a
+        child was taken out)."""
         return self._before[container].children
 
     def substitute(self, node: etree._Element, markup: bytes) -> None:
@@ -117,7 +133,13 @@ class TreeChange:
         if element.tag != before.tag:
             raise NotEditable(f"<{etree.QName(element).localname}> changed its name")
         edits.extend(_attribute_edits(element, index, before.attributes, text, self._redeclare))
-        children = element[:]
+        window = self._windows.get(element, 0)
+        children = element[window:]
+        if window and (not children or children[0] is not before.children[0]
+                       or children[0].getprevious().tail != self._leads[element]
+                       or element.text != before.text):
+            raise NotIndexed(f"<{etree.QName(element).localname}> changed before the "
+                             f"first of its children recorded")
         tails = list(map(_TAIL, children))
         if (children, tails, element.text) == (before.children, before.tails, before.text):
             for child in filter(self._before.__contains__, children):
@@ -139,6 +161,8 @@ class TreeChange:
         places = list(compress(range(len(children)), is_kept))
         kept_olds = list(compress(olds, is_kept))
         if not all(map(lt, kept_olds, kept_olds[1:])):
+            if window:  # (the content before the window would be written over)
+                raise NotIndexed(f"<{etree.QName(element).localname}> reordered children")
             places = kept_olds = []  # reordered: all of the content is written anew
         self._regions(element, span, children, tails, places, kept_olds, text, index, edits)
         for child in filter(self._before.__contains__, map(children.__getitem__, places)):
