@@ -358,8 +358,10 @@ def test_a_window_over_the_first_children_gives_the_same_edits_or_asks_for_the_w
     index = SpanIndex(edited.data, root)
     window = min(skip, len(root))
     before, text_before = [(child, child.tail) for child in root], root.text
-    whole, windowed = TreeChange([], [root]), TreeChange([], [root], {root: window})
-    taken = window if window < len(before) else 0  # (a window must leave a child)
+    first = root[window] if window < len(root) else None  # the first child recorded
+    whole = TreeChange([], [root])
+    windowed = TreeChange([], [root], None if first is None else {root: first})
+    taken = window if first is not None else 0
     assert windowed.children_before(root) == [child for child, _ in before[taken:]]
     for kind, at, tail in changes:
         kids = list(root)

@@ -69,9 +69,9 @@ class ConversionEdits:
                 containers.add(component)
                 containers.update(component.iterancestors())
         inside = _changed_inside(transmissions, target, ros1_alone)
-        window = _unchanged_before(root, at_root, containers) if near else 0
+        first = _first_recorded(root, at_root, containers) if near else None
         # First: the index reuses its proxies.
-        self.change = TreeChange(inside, containers, {root: window} if window else None)
+        self.change = TreeChange(inside, containers, None if first is None else {root: first})
         bounded = _near(root, self.change.children_before(root), at_root, containers,
                         _replaced(root, transmissions, target, inside, ros1_alone)
                         ) if near else None
@@ -180,15 +180,18 @@ def _digest(data: bytes) -> bytes:
 _AROUND = 2  # siblings on either side of a changed child whose bounds are indexed
 
 
-def _unchanged_before(root: etree._Element, at_root: list[etree._Element],
-                      containers: set[etree._Element]) -> int:
-    """How many of the root's first children a conversion leaves as they are, with room to
-    spare: those before the first it may replace, cut or put something beside or into (a
-    transmission, ``at_root``, or a recorded container), and the :data:`_AROUND` before it
-    whose tails it may change, and as many again (0 where there is none)."""
-    firsts = [root.index(at_root[0])] if at_root else []
-    firsts += [root.index(child) for child in containers if child.getparent() is root]
-    return max(0, min(firsts) - 2 * _AROUND - 1) if firsts else 0
+def _first_recorded(root: etree._Element, at_root: list[etree._Element],
+                    containers: set[etree._Element]) -> etree._Element | None:
+    """Of the root's children, the first a conversion needs recorded (the rest before it
+    it leaves as they are): that many before the first it may replace, cut or put something
+    beside, a transmission at the root, as are indexed around it (:data:`_AROUND`), and as
+    many again; None where all are, or where a container is a child of the root."""
+    if not at_root or any(child.getparent() is root for child in containers):
+        return None
+    first: etree._Element | None = at_root[0]
+    for _ in range(2 * _AROUND + 1):
+        first = first.getprevious() if first is not None else None
+    return first
 
 
 def _near(root: etree._Element, kids: list[etree._Element], at_root: list[etree._Element],

@@ -47,24 +47,27 @@ class TreeChange:
 
     def __init__(self, elements: Iterable[etree._Element],
                  containers: Iterable[etree._Element] = (),
-                 windows: dict[etree._Element, int] | None = None) -> None:
+                 windows: dict[etree._Element, etree._Element] | None = None) -> None:
         """``elements``: recorded with all their descendants; ``containers``: recorded
         alone (their attributes, text and children), for a change that adds, removes or
         replaces their children but changes nothing inside the children it keeps. The roots
         of the change are the containers that are no descendant of another, and the elements
         that are in none of them.
 
-        ``windows``: for a container, how many of its first children (and their tails, and
-        its text) the change leaves as they are, passed over: neither recorded nor compared
-        (a robot's links and joints before its transmissions); one that leaves no child is
-        not taken. Where the first child after them does not stay where it was, or the text
-        before it (the last one's tail) or the container's text changed, :meth:`edits`
-        raises :class:`.spans.NotIndexed` (the caller records the container whole); a change
-        further among them is not seen (a conversion's read-back check tells it)."""
+        ``windows``: for a container, the first of its children recorded: those before it
+        (and their tails, and its text) the change leaves as they are, passed over (a
+        robot's links and joints before its transmissions; neither a list of them is made
+        nor a step per child). Where that child is no longer where it was, after the same
+        one, or the text before it (that one's tail) or the container's text changed,
+        :meth:`edits` raises :class:`.spans.NotIndexed` (the caller records the container
+        whole); a change further among those passed over is not seen (a conversion's
+        read-back check tells it)."""
         self._before: dict[etree._Element, _Before] = {}
-        self._windows = {element: skip for element, skip in (windows or {}).items()
-                         if 0 < skip < len(element)}
-        self._leads: dict[etree._Element, str | None] = {}  # the tail before a window
+        # For a container with a window: the child before its first recorded, and that
+        # one's tail.
+        self._windows = {container: first for container, first in (windows or {}).items()
+                         if first.getparent() is container}
+        self._leads: dict[etree._Element, tuple[etree._Element | None, str | None]] = {}
         for element in containers:
             self._record(element)
         outer = set(self._before)
@@ -79,10 +82,10 @@ class TreeChange:
         self._redeclare = False
 
     def _record(self, element: etree._Element) -> None:
-        # (a slice makes its list faster than an iterator)
-        children = element[self._windows.get(element, 0):]
+        children = self._children(element)
         if element in self._windows:
-            self._leads[element] = children[0].getprevious().tail
+            previous = children[0].getprevious()
+            self._leads[element] = previous, None if previous is None else previous.tail
         self._before[element] = _Before(dict(element.attrib), element.text, children,
                                         list(map(_TAIL, children)), element.tag)
 
@@ -95,6 +98,13 @@ class TreeChange:
             for place, child in enumerate(children):
                 if child.getparent() is not container:
                     children[place] = _GONE
+
+    def _children(self, element: etree._Element) -> list[etree._Element]:
+        """The children of ``element``, from the first recorded where it has a window."""
+        first = self._windows.get(element)
+        if first is None:
+            return element[:]  # (a slice makes its list faster than an iterator)
+        return [first, *first.itersiblings()] if first.getparent() is element else []
 
     def children_before(self, container: etree._Element) -> list[etree._Element]:
         """The children a container held before the change, past its window, if it has
@@ -133,11 +143,10 @@ class TreeChange:
         if element.tag != before.tag:
             raise NotEditable(f"<{etree.QName(element).localname}> changed its name")
         edits.extend(_attribute_edits(element, index, before.attributes, text, self._redeclare))
-        window = self._windows.get(element, 0)
-        children = element[window:]
-        if window and (not children or children[0] is not before.children[0]
-                       or children[0].getprevious().tail != self._leads[element]
-                       or element.text != before.text):
+        children = self._children(element)
+        window = element in self._windows
+        if window and (not children or element.text != before.text
+                       or self._lead(children[0]) != self._leads[element]):
             raise NotIndexed(f"<{etree.QName(element).localname}> changed before the "
                              f"first of its children recorded")
         tails = list(map(_TAIL, children))
@@ -167,6 +176,11 @@ class TreeChange:
         self._regions(element, span, children, tails, places, kept_olds, text, index, edits)
         for child in filter(self._before.__contains__, map(children.__getitem__, places)):
             self._element(child, text, index, edits)
+
+    @staticmethod
+    def _lead(first: etree._Element) -> tuple[etree._Element | None, str | None]:
+        previous = first.getprevious()
+        return previous, None if previous is None else previous.tail
 
     def _regions(self, element: etree._Element, span: Span, children: list[etree._Element],
                  tails: list[str | None], places: list[int], olds: list[int],
