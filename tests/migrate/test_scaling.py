@@ -214,13 +214,26 @@ def _robots_alive(before: frozenset[int] = frozenset()) -> list[int]:
                 and node.find("type") is not None)]
 
 
+def _transmissions_first(text: str) -> str:
+    """``text`` (a :func:`chain`) with its transmissions before its links and joints."""
+    head, _, rest = text.partition("\n")
+    body, _, end = rest.rpartition("\n</robot>")
+    lines = body.split("\n")
+    first = next(i for i, line in enumerate(lines) if line.startswith("<transmission"))
+    return "\n".join([head, *lines[first:], *lines[:first]]) + "\n</robot>" + end
+
+
+@pytest.mark.parametrize("order", ["links first", "transmissions first"])
 @pytest.mark.parametrize("args", [["migrate", "--diff", "--to", "ros2-p2"],
                                   ["convert", "--to", "ros2-p2"]])
 def test_the_document_read_is_freed_before_the_written_bytes_are_parsed(tmp_path, monkeypatch,
-                                                                          args):
-    """A large robot needs one tree at a time: the check parses what the edits wrote once
-    the converted tree is gone (its memory then takes the new tree), and the transmissions a
-    conversion replaced are gone before the document is written."""
+                                                                          args, order):
+    """A large robot needs one tree at a time. The check reads what the edits wrote from
+    the root's first child recorded on (:class:`.conversion_edits.Window`: its links and
+    joints before it are compared as bytes), beside the converted tree: a parse of a few
+    children and the block's marker. Where it reads the whole document (the transmissions
+    first), it does so once the converted tree is gone (its memory then takes the new tree).
+    The transmissions a conversion replaced are gone before the document is written."""
     import gc
 
     from lxml import etree
@@ -231,12 +244,15 @@ def test_the_document_read_is_freed_before_the_written_bytes_are_parsed(tmp_path
     gc.collect()
     before = frozenset(id(node) for node in gc.get_objects() if isinstance(node, etree._Element))
     path = tmp_path / "chain.urdf"
-    path.write_text(chain(200))
+    text = chain(200) if order == "links first" else _transmissions_first(chain(200))
+    path.write_text(text)
     alive: dict[str, list[int]] = {}
+    parsed: list[int] = []
     real_parse, real_edits = conversion_edits.parse_bytes, convert.ConversionEdits.edits
 
     def parse_for_the_check(data: bytes, *args, **kwargs):  # type: ignore[no-untyped-def]
         alive["check"] = _robots_alive(before)
+        parsed.append(len(data))
         return real_parse(data, *args, **kwargs)
 
     def edits(self, *args, **kwargs):  # type: ignore[no-untyped-def]
@@ -247,6 +263,9 @@ def test_the_document_read_is_freed_before_the_written_bytes_are_parsed(tmp_path
     monkeypatch.setattr(convert.ConversionEdits, "edits", edits)
     result = CliRunner().invoke(cli, [*args, str(path)])
     assert result.exit_code in (0, 1), result.output
-    assert alive["check"] == []
+    if order == "links first":  # the converted robot alive, and a parse of a few children
+        assert alive["check"] == [401 + 1] and parsed[0] < 2_000 < len(text) // 20
+    else:
+        assert alive["check"] == [] and parsed[0] > len(text) // 4
     # The converted robot: its 400 links and joints and the generated block, no transmission.
     assert alive["write"] == [401 + 1]

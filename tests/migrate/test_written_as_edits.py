@@ -344,3 +344,34 @@ def test_a_block_whose_marker_cannot_be_filled_in_is_parsed_into_the_tree(monkey
     again = _convert(arm_with_transmissions(40))
     assert (again.data, again.losses, again.notes) == (
         expected.data, expected.losses, expected.notes)
+
+
+@pytest.mark.parametrize(("where", "spoil"), [
+    ("before the window", lambda data: data.replace(b'<joint name="j0"', b'<joint name="k0"')),
+    ("in the window", lambda data: data.replace(b'<joint name="j39"', b'<joint name="k39"')),
+    ("after the root", lambda data: data + b"<!-- x -->\n"),
+])
+def test_the_check_reads_from_the_window_and_holds_the_bytes_before_it_to_the_input(
+        where, spoil, monkeypatch) -> None:
+    """A robot whose joints come before its transmissions is read back from a few children
+    before the first transmission on (the root's first child recorded), the bytes before it
+    held to the input's as bytes; a byte of the written document changed before that child,
+    after it, or after the root is refused as when the whole document is read."""
+    from txtool.transform.edits import conversion_edits
+
+    data = arm_with_transmissions(40)
+    verdicts: list[bool] = []
+    reads = conversion_edits._reads_as_window
+    monkeypatch.setattr(conversion_edits, "_reads_as_window",
+                        lambda *args: verdicts.append(verdict := reads(*args)) or verdict)
+    result = _convert(data)
+    assert verdicts == [True] and result.data.count(b"<transmission ") == 40
+    applied = conversion_edits.ConversionEdits.applied
+    monkeypatch.setattr(conversion_edits.ConversionEdits, "applied",
+                        lambda self, edits: spoil(applied(self, edits)))
+    verdicts.clear()
+    with pytest.raises(InputError) as refused:
+        _convert(data)
+    assert verdicts == [False]
+    assert str(refused.value).startswith("r.urdf: cannot convert: what the edits write does "
+                                         "not read as the converted document")

@@ -175,7 +175,7 @@ def _convert_document(source: Source, target: Dialect, hardware_plugin: str, con
     result.notes.extend(carry.notes)
     if deep:
         _reads_back(result.data, source.path)
-    expected = writer.expect(tree) if (
+    expected = writer.expect(tree, result.edits) if (
         writer is not None and not restored and result.edits) else None
     if consume:
         source.tree = etree.ElementTree(etree.Element("consumed"))
