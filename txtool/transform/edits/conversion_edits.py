@@ -8,7 +8,9 @@ transmission's ancestors, and each ``<ros2_control>`` of the document with its p
 transmissions themselves in full; afterwards :meth:`ConversionEdits.edits` says the change as edits
 of their spans (:mod:`.tree_edits`, :mod:`.spans`), the one applier
 (:func:`txtool.transform.edits.core.apply_edits`) makes the bytes, and :func:`check_written`
-parses them and holds them to the converted tree.
+parses them and holds them to the converted tree: the whole document, or, for a robot whose
+transmissions come after its links and joints, what follows the first child of the root the
+change recorded, the bytes before it held to the input's (:class:`Window`).
 
 Two kinds of node are written as bytes rather than as lxml writes them: the block generated
 for a whole robot, whose transmissions are text already
