@@ -375,3 +375,35 @@ def test_the_check_reads_from_the_window_and_holds_the_bytes_before_it_to_the_in
     assert verdicts == [False]
     assert str(refused.value).startswith("r.urdf: cannot convert: what the edits write does "
                                          "not read as the converted document")
+
+
+def test_a_robot_all_ros1_of_standard_types_is_glanced_at_once_and_a_glance_wrong_is_run_again(
+        monkeypatch) -> None:
+    """Which transmissions a conversion replaces whole (the index skips them) is glanced
+    at from the bytes for a robot all ROS 1 whose every ``<type>`` names a standard type,
+    with no step for each; a custom type the glance cannot see (``<type >``) makes the
+    conversion run again with every child of the root indexed, to the bytes a
+    transmission-by-transmission glance gives in one run."""
+    from txtool.transform import convert
+    from txtool.transform.edits import conversion_edits
+
+    data = arm_with_transmissions(12)
+    standard = conversion_edits._standard
+    monkeypatch.setattr(conversion_edits, "_standard", lambda element: pytest.fail("stepped"))
+    assert _convert(data).converted == 12
+    monkeypatch.setattr(conversion_edits, "_standard", standard)
+
+    custom = data.replace(b"<type>transmission_interface/SimpleTransmission</type>"
+                          b'<joint name="j5">', b'<type >vendor_hw/Custom</type><joint name="j5">')
+    runs: list[bool] = []
+    document = convert._convert_document
+    monkeypatch.setattr(convert, "_convert_document",
+                        lambda *args, near: runs.append(near) or document(*args, near=near))
+    again = _convert(custom)
+    assert runs == [True, False] and again.converted == 11
+    monkeypatch.setattr(conversion_edits, "_types_standard", lambda data: False)
+    runs.clear()
+    stepped = _convert(custom)
+    assert runs == [True]
+    assert (again.data, again.edits, again.notes) == (stepped.data, stepped.edits, stepped.notes)
+    _written(custom, again.data, again.edits)

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import hashlib
 import itertools
+import re
 from dataclasses import dataclass
 
 from lxml import etree
@@ -76,7 +77,8 @@ class ConversionEdits:
         # First: the index reuses its proxies.
         self.change = TreeChange(inside, containers, None if first is None else {root: first})
         bounded = _near(root, self.change.children_before(root), at_root, containers,
-                        _replaced(root, transmissions, target, inside, ros1_alone)
+                        _replaced(root, transmissions, target, inside, ros1_alone,
+                                  self.text.data)
                         ) if near else None
         self.first = first  # where the check may start reading (see :meth:`expect`)
         try:
@@ -300,7 +302,8 @@ def _near(root: etree._Element, kids: list[etree._Element], at_root: list[etree.
 
 
 def _replaced(root: etree._Element, transmissions: list[etree._Element], target: str,
-              inside: list[etree._Element], ros1_alone: bool) -> set[etree._Element]:
+              inside: list[etree._Element], ros1_alone: bool, data: bytes
+              ) -> set[etree._Element]:
     """Transmissions a conversion to ``target`` replaces whole, as far as a glance tells: of
     another dialect, not changed inside (:func:`_changed_inside`), of a standard type by
     their first ``<type>`` (ROS 1) or ``<plugin>`` (ROS 2) child (a custom type is left as
@@ -310,11 +313,24 @@ def _replaced(root: etree._Element, transmissions: list[etree._Element], target:
     if target == "ros1" and local(root) == "ros2_control":
         return set()  # a bare fragment's transmissions are left as they are
     if target != "ros1" and ros1_alone:
+        if _types_standard(data):  # (the glance of every one, without a step for each)
+            return set(transmissions)
         other = transmissions
     else:
         other = [element for element in transmissions if detect_dialect(element) != target]
     kept = set(inside)
     return {element for element in other if element not in kept and _standard(element)}
+
+
+_TYPE_TEXT = re.compile(rb"<type>([^<]*)</type>")
+
+
+def _types_standard(data: bytes) -> bool:
+    """Whether the bytes hold a ``<type>`` written as text alone, and each such names a
+    standard type (a glance for a document all ROS 1: each transmission then takes it as
+    replaced; one without such a ``<type>`` that is not is asked for after the change)."""
+    texts = set(_TYPE_TEXT.findall(data))
+    return bool(texts) and all(kind_of(text.decode("latin-1")) != "other" for text in texts)
 
 
 def _standard(element: etree._Element) -> bool:
