@@ -162,8 +162,8 @@ def test_a_robots_links_and_joints_are_jumped_over(monkeypatch) -> None:
     landed = []
     past = spans._Jumps.past
 
-    def counted(self):
-        landing = past(self)
+    def counted(self, node):
+        landing = past(self, node)
         landed.append(landing is not None)
         return landing
 
@@ -172,6 +172,11 @@ def test_a_robots_links_and_joints_are_jumped_over(monkeypatch) -> None:
     _same_spans(data, lambda root: [root[-1], root[-2]], lambda root: {
         "within": [], "shallow": [root], "near": {root[-1], root[-2]}})
     assert landed == [True, False]  # from l0 straight to j299; then the transmission
+    landed.clear()
+    data = _chain(300)  # l299 and j299 on one line, both asked about: landed on the first
+    _same_spans(data, lambda root: [root[-2], root[-3]], lambda root: {
+        "within": [], "shallow": [root], "near": {root[-2], root[-3]}})
+    assert landed == [True, False, True]  # to l299; j299 read; then to the root's end tag
 
 
 @pytest.mark.parametrize(("after", "jumped"), [
@@ -219,18 +224,16 @@ def test_a_landing_line_starts_where_the_lines_before_it_end(data: bytes, lines)
             assert found is None or found == len(data)  # past the last line: nothing to land on
 
 
-@pytest.mark.parametrize("few", [0, 10_000])
-def test_the_children_asked_about_are_found_one_by_one_or_listed_to_the_same_spans(
-        few: int, monkeypatch) -> None:
-    """A few children asked about are found by the parser's own scan, many by listing the
-    root's children: the same landings either way."""
-    from txtool.transform.edits import spans
-
-    monkeypatch.setattr(spans, "_FEW", few)
-    data = _chain(300).replace(b"<joint", b"\n  <joint")
+@pytest.mark.parametrize("step", [1, 5, 97])
+def test_the_children_asked_about_are_landed_on_by_their_lines_to_the_same_spans(
+        step: int) -> None:
+    """Children asked about are ordered by their lines, the root's children not listed:
+    the same spans for many of them as for few, two on one line among them."""
+    data = _chain(300).replace(b"<joint", b"\n  <joint").replace(
+        b'\n  <joint name="j7"', b'<joint name="j7"')
 
     def asked(root):
-        return [kid for place, kid in enumerate(root) if place % 5 == 3]
+        return [kid for place, kid in enumerate(root) if place % step == 3 or place in (15, 16)]
 
     _same_spans(data, asked, lambda root: {"within": [], "shallow": [root],
                                            "near": set(asked(root))})

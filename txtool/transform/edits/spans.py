@@ -77,7 +77,6 @@ class Span:
 
 _SLASH, _BANG, _QUESTION = b"/!?"
 _FEED = ord("\n")
-_FEW = 64  # children of the root asked about that are found one by one (else all are listed)
 _NONE, _CHILDREN, _DEEP = 0, 1, 2  # how far below an open element nodes are indexed
 
 
@@ -195,7 +194,7 @@ class _Scan:
         """At ``node``, a child of the root whose start tag is ``token``: the child to read
         and its start tag, past those nothing asks about (:class:`_Jumps`); None where the
         scan went on to the root's end tag and closed the root."""
-        landing = self.jumps.past()  # type: ignore[union-attr]
+        landing = self.jumps.past(node)  # type: ignore[union-attr]
         if landing is None:
             return node, token
         landed, token, self.line, self.counted = landing
@@ -271,45 +270,44 @@ class _Jumps:
         self.data = data
         self.codec = codec
         self.root_name = root.tag.rpartition("}")[2]
-        self.read = 0  # how many children of the root the scan has taken
-        # The children asked about, and where each stands among the root's children.
-        asked = [node for node in wanted if node.getparent() is root]
-        if len(asked) <= _FEW:  # each found by the parser's own scan, no child made a proxy
-            marked = sorted((root.index(node), node) for node in asked)
-        else:
-            marked = [(place, kid) for place, kid in enumerate(root) if kid in wanted]
-        self.marks = [place for place, _ in marked]
-        self.nodes = [node for _, node in marked]
-        self._marked = set(self.marks)
-        self._refused = -1  # the child a landing was refused at (not tried again)
+        # The children asked about, and their lines in order: a child after another starts
+        # on the same line or a later one (no step over the root's children to tell where
+        # each stands among them: lxml walks them one by one).
+        self.asked = {node for node in wanted if node.getparent() is root}
+        self.on_line: dict[int, list[etree._Element]] = {}
+        for node in self.asked:
+            self.on_line.setdefault(node.sourceline or 0, []).append(node)
+        self.lines = sorted(self.on_line)
+        self._refused = -1  # the line a landing was refused at (not tried again)
         self._starts: list[int] | None = None
         self._last_line = (0, 1)  # the start of the line last landed on, and its line
         self._end: re.Match[bytes] | None | bool = False  # the root's end tag; False: not sought
 
-    def past(self) -> tuple[etree._Element | None, re.Match[bytes], int, int] | None:
-        """For the child of the root the scan has just taken: None to read it, or the next
-        child asked about, its start tag, its line and where that line starts (the scan goes
-        on with the children after it); where none is, None for the child, and the root's end
-        tag (the scan ends there; the lines are not counted)."""
-        place = self.read
-        self.read += 1
-        if place in self._marked:
+    def past(self, node: etree._Element
+             ) -> tuple[etree._Element | None, re.Match[bytes], int, int] | None:
+        """For ``node``, the child of the root the scan has just taken: None to read it, or
+        the next child asked about, its start tag, its line and where that line starts (the
+        scan goes on with the children after it); where none is, None for the child, and the
+        root's end tag (the scan ends there; the lines are not counted). A child asked about
+        on the line of ``node`` (or one whose line is not known) is read to."""
+        line = node.sourceline
+        if node in self.asked or not line or self.lines[:1] == [0]:
             return None
-        following = bisect_right(self.marks, place)
-        if following == len(self.marks):
+        following = bisect_right(self.lines, line)
+        if following and self.lines[following - 1] == line:
+            return None
+        if following == len(self.lines):
             end = self._root_end()
             return None if end is None else (None, end, 0, 0)
-        target = self.marks[following]
+        target = self.lines[following]
         if target == self._refused:
             return None
-        node = self.nodes[following]
-        landing = self._landing(node, node.getprevious())
-        if landing is None:
-            self._refused = target
-            return None
-        token, line, start = landing
-        self.read = target + 1
-        return node, token, line, start
+        for candidate in self.on_line[target]:  # the first on its line lands, if one does
+            landing = self._landing(candidate, candidate.getprevious())
+            if landing is not None:
+                return candidate, *landing
+        self._refused = target
+        return None
 
     def _root_end(self) -> re.Match[bytes] | None:
         """The root's end tag: the document's last ``</``, where it is an end tag of the
