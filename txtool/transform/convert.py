@@ -130,7 +130,8 @@ def _convert_document(source: Source, target: Dialect, hardware_plugin: str, con
     tree = source.tree if consume else copy.deepcopy(source.tree)
     elements, at_root = transmissions_with_those_at_root(
         tree.getroot(), None if source.expanded else source.data)
-    deep = _near_depth_limit(elements, tree.getroot())
+    # (a transmission at the root stands far from the limit: none is asked for its depth)
+    deep = len(at_root) < len(elements) and _near_depth_limit(elements, tree.getroot())
     writer = None if source.expanded else ConversionEdits(
         source.path, source.data, tree.getroot(), elements, at_root, target, near=near)
     result = ConvertedDocument(data=b"", target=target, found=len(elements))
