@@ -261,10 +261,11 @@ _AROUND = 2  # siblings on either side of a changed child whose bounds are index
 
 def _first_recorded(root: etree._Element, at_root: list[etree._Element],
                     containers: set[etree._Element]) -> etree._Element | None:
-    """Of the root's children, the first a conversion needs recorded (the rest before it
-    it leaves as they are): that many before the first it may replace, cut or put something
-    beside, a transmission at the root, as are indexed around it (:data:`_AROUND`), and as
-    many again; None where all are, or where a container is a child of the root."""
+    """Of the root's children, the first a conversion needs recorded (it leaves those
+    before it as they are): before the first child it may replace, cut or put something
+    beside (the first transmission at the root), as many as are indexed around such a child
+    (:data:`_AROUND`), and as many again; None where a container of the change is a child of
+    the root, or fewer children come first."""
     if not at_root or any(child.getparent() is root for child in containers):
         return None
     first: etree._Element | None = at_root[0]

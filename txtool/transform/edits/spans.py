@@ -289,7 +289,8 @@ class _Jumps:
         the next child asked about, its start tag, its line and where that line starts (the
         scan goes on with the children after it); where none is, None for the child, and the
         root's end tag (the scan ends there; the lines are not counted). A child asked about
-        on the line of ``node`` (or one whose line is not known) is read to."""
+        on the line of ``node`` is read to; where the line of one is not known, every child
+        is."""
         line = node.sourceline
         if node in self.asked or not line or self.lines[:1] == [0]:
             return None
