@@ -84,8 +84,7 @@ class TreeChange:
     def _record(self, element: etree._Element) -> None:
         children = self._children(element)
         if element in self._windows:
-            previous = children[0].getprevious()
-            self._leads[element] = previous, None if previous is None else previous.tail
+            self._leads[element] = self._lead(children[0])
         self._before[element] = _Before(dict(element.attrib), element.text, children,
                                         list(map(_TAIL, children)), element.tag)
 
@@ -179,6 +178,7 @@ class TreeChange:
 
     @staticmethod
     def _lead(first: etree._Element) -> tuple[etree._Element | None, str | None]:
+        """The child before ``first``, and its tail: what a window holds before it."""
         previous = first.getprevious()
         return previous, None if previous is None else previous.tail
 
