@@ -287,23 +287,21 @@ def test_a_fixed_document_loses_its_late_declaration(tmp_path) -> None:
 
 
 _TAILS = st.sampled_from([None, "", " ", "\n", "\n  ", "\n\n    ", "x"])
-_CHILD = st.sampled_from(["<a/>", "<b n='1'/>", "<c>t</c>", "<d><e/></d>", "<!-- c -->"])
 
 
-@given(st.lists(st.tuples(_CHILD, _TAILS), max_size=10), _TAILS,
-       st.lists(st.tuples(st.sampled_from(["remove", "insert", "tail", "text", "move"]),
-                          st.integers(0, 20), _TAILS), max_size=5))
-def test_children_changed_at_random_are_written_and_kept_ones_keep_their_bytes(
-        children: list[tuple[str, str | None]], text: str | None,
-        changes: list[tuple[str, int, str | None]]) -> None:
+def _robot_of(children: list[tuple[str, str | None]], text: str | None
+              ) -> tuple[etree._ElementTree, EditedText, SpanIndex]:
+    """A robot of ``children`` (markup and tail) after ``text``: its tree, bytes and index."""
     data = ("<robot>" + (text or "") + "".join(markup + (tail or "")
                                               for markup, tail in children) + "</robot>").encode()
     tree = parse_bytes(data, "robot.urdf")
-    root = tree.getroot()
     edited = EditedText(data)
-    index = SpanIndex(edited.data, root)
-    spans = {child: (index[child].start, index[child].end) for child in root}
-    recorded = TreeChange([], [root])
+    return tree, edited, SpanIndex(edited.data, tree.getroot())
+
+
+def _change(root: etree._Element, changes: list[tuple[str, int, str | None]]) -> None:
+    """Change the children of ``root`` as ``changes`` say: a kind of change, where (taken
+    modulo the children), and a tail or text."""
     for kind, at, tail in changes:
         kids = list(root)
         if kind == "insert":
@@ -318,6 +316,21 @@ def test_children_changed_at_random_are_written_and_kept_ones_keep_their_bytes(
             kids[at % len(kids)].tail = tail
         elif kids and kind == "move":
             root.append(kids[at % len(kids)])
+
+_CHILD = st.sampled_from(["<a/>", "<b n='1'/>", "<c>t</c>", "<d><e/></d>", "<!-- c -->"])
+
+
+@given(st.lists(st.tuples(_CHILD, _TAILS), max_size=10), _TAILS,
+       st.lists(st.tuples(st.sampled_from(["remove", "insert", "tail", "text", "move"]),
+                          st.integers(0, 20), _TAILS), max_size=5))
+def test_children_changed_at_random_are_written_and_kept_ones_keep_their_bytes(
+        children: list[tuple[str, str | None]], text: str | None,
+        changes: list[tuple[str, int, str | None]]) -> None:
+    tree, edited, index = _robot_of(children, text)
+    root = tree.getroot()
+    spans = {child: (index[child].start, index[child].end) for child in root}
+    recorded = TreeChange([], [root])
+    _change(root, changes)
     edits = recorded.edits(edited, index)
     written = edited.applied(edits)
     assert reads_as(written, tree, "robot.urdf")
@@ -350,12 +363,8 @@ def test_a_window_over_the_first_children_gives_the_same_edits_or_asks_for_the_w
     """A container recorded past its first children (a robot's links and joints before its
     transmissions) gives the edits of one recorded whole, or, where the change reached the
     children it passed over, asks for the whole (:class:`NotIndexed`): never other edits."""
-    data = ("<robot>" + (text or "") + "".join(markup + (tail or "")
-                                              for markup, tail in children) + "</robot>").encode()
-    tree = parse_bytes(data, "robot.urdf")
+    tree, edited, index = _robot_of(children, text)
     root = tree.getroot()
-    edited = EditedText(data)
-    index = SpanIndex(edited.data, root)
     window = min(skip, len(root))
     before, text_before = [(child, child.tail) for child in root], root.text
     first = root[window] if window < len(root) else None  # the first child recorded
@@ -363,20 +372,7 @@ def test_a_window_over_the_first_children_gives_the_same_edits_or_asks_for_the_w
     windowed = TreeChange([], [root], None if first is None else {root: first})
     taken = window if first is not None else 0
     assert windowed.children_before(root) == [child for child, _ in before[taken:]]
-    for kind, at, tail in changes:
-        kids = list(root)
-        if kind == "insert":
-            new = etree.Element("n")
-            new.tail = tail
-            root.insert(at % (len(kids) + 1), new)
-        elif kind == "text":
-            root.text = tail
-        elif kids and kind == "remove":
-            root.remove(kids[at % len(kids)])
-        elif kids and kind == "tail":
-            kids[at % len(kids)].tail = tail
-        elif kids and kind == "move":
-            root.append(kids[at % len(kids)])
+    _change(root, changes)
     edits = whole.edits(edited, index)
     after = [(child, child.tail) for child in root]
     kept = [child for child, _ in after if any(child is old for old, _ in before)]
