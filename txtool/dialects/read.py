@@ -128,7 +128,7 @@ def transmissions_with_those_at_root(root: etree._Element, data: bytes | None = 
     that are children of ``root``, in one walk of the tree. ``data``: the bytes ``root``'s
     document was parsed from, when the caller has them: where they show that every
     transmission is a child of ``root`` (:func:`_all_at_root`), the tree is not walked."""
-    if data is not None and root.getparent() is None:
+    if data is not None:
         children = _all_at_root(root, data)
         if children is not None:
             return children, children
@@ -139,19 +139,16 @@ def transmissions_with_those_at_root(root: etree._Element, data: bytes | None = 
 
 
 def _all_at_root(root: etree._Element, data: bytes) -> list[etree._Element] | None:
-    """The ``<transmission>`` children of the document element ``root`` when they are all
-    the document's ``<transmission>`` elements, as its bytes ``data`` show; else None.
+    """The ``<transmission>`` children of ``root`` when they are all the document's
+    ``<transmission>`` elements, as its bytes ``data`` show; else None.
 
     In bytes of an ASCII-compatible encoding with no ``:transmission`` (no prefixed tag),
     each ``<transmission>`` element has a start tag that begins ``<transmission``, so there
     are at most as many such elements as occurrences (an end tag begins ``</``; a comment or a
     longer name adds occurrences, never elements; a document has no entity that could add
     an element, :func:`txtool.io.xmlio.parse_bytes` refuses them). So as many children as
-    occurrences are all of them."""
+    occurrences are all of them (a ``root`` that is a transmission itself is one more)."""
     if detect_encoding(data).codec not in SCANNABLE or b":transmission" in data:
-        return None
-    tag = root.tag
-    if tag == "transmission" or tag.endswith("}transmission"):
         return None
     children = list(root.iterchildren("{*}transmission"))
     return children if len(children) == data.count(b"<transmission") else None

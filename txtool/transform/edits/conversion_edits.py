@@ -150,11 +150,9 @@ class ConversionEdits:
         first = self.first
         if first is None or first.getparent() is not root:
             return None
-        for node in itertools.islice(itertools.chain([first], first.itersiblings()),
-                                     2 * _AROUND + 2):
-            if node in self.index:
-                return node if node.getparent() is root else None
-        return None
+        siblings = itertools.chain([first], first.itersiblings())
+        return next((node for node in itertools.islice(siblings, 2 * _AROUND + 2)
+                     if node in self.index), None)
 
 
 @dataclass(frozen=True)

@@ -278,6 +278,7 @@ class _Jumps:
         for node in self.asked:
             self.on_line.setdefault(node.sourceline or 0, []).append(node)
         self.lines = sorted(self.on_line)
+        self.lines_known = 0 not in self.on_line  # else no child is jumped to
         self._refused = -1  # the line a landing was refused at (not tried again)
         self._starts: list[int] | None = None
         self._last_line = (0, 1)  # the start of the line last landed on, and its line
@@ -292,7 +293,7 @@ class _Jumps:
         on the line of ``node`` is read to; where the line of one is not known, every child
         is."""
         line = node.sourceline
-        if node in self.asked or not line or self.lines[:1] == [0]:
+        if node in self.asked or not line or not self.lines_known:
             return None
         following = bisect_right(self.lines, line)
         if following and self.lines[following - 1] == line:
