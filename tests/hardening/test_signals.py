@@ -267,3 +267,32 @@ def test_outside_a_running_event_loop_the_signal_is_raised_where_the_program_is(
         assert stop.value.exit_code == 143
     finally:
         signals._State.received = before
+
+
+@pytest.mark.skipif(not Path("/proc/self/task").is_dir(), reason="reads /proc (Linux)")
+def test_the_language_servers_reading_thread_leaves_the_signals_to_the_main_thread(tmp_path):
+    """The system may deliver a signal to any thread that does not block it; one delivered to
+    the thread reading standard input would wait for the main thread, asleep in its event
+    loop: the server would not end. Every thread but the main one blocks SIGINT and SIGTERM."""
+    pytest.importorskip("pygls")
+    process = subprocess.Popen([sys.executable, "-m", "txtool", "lsp"], cwd=tmp_path, env=ENV,
+                               stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+    with process:
+        request = '{"jsonrpc":"2.0","id":1,"method":"shutdown"}'
+        process.stdin.write(f"Content-Length: {len(request)}\r\n\r\n{request}")
+        process.stdin.flush()
+        process.stdout.readline()  # serving, its reading thread waiting for the next message
+        time.sleep(0.2)
+        blocked = {}
+        for task in Path(f"/proc/{process.pid}/task").iterdir():
+            status = (task / "status").read_text()
+            mask = int(next(line.split()[1] for line in status.splitlines()
+                            if line.startswith("SigBlk:")), 16)
+            blocked[int(task.name)] = {number for number in (signal.SIGINT, signal.SIGTERM)
+                                       if mask >> (number - 1) & 1}
+        process.kill()
+        process.stdin.close()
+    others = [tid for tid in blocked if tid != process.pid]
+    assert others and all(blocked[tid] == {signal.SIGINT, signal.SIGTERM} for tid in others)
+    assert blocked[process.pid] == set()

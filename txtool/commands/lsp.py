@@ -14,6 +14,7 @@ from txtool.commands.common import (
     require_extra,
     xacro_options,
 )
+from txtool.io import signals
 from txtool.io.xmlio import InputError
 from txtool.model.distro import CHOICES
 
@@ -67,6 +68,8 @@ def command(tcp, ros_distro, no_xacro, config_path, xacro) -> int:
     # The protocol owns standard output: anything else printed goes to standard error.
     stdin, stdout = sys.stdin.buffer, sys.__stdout__.buffer
     sys.stdout = sys.stderr
+    with signals.left_to_the_main_thread():
+        server.thread_pool.submit(int).result()  # the one thread that reads, made now
     server.start_io(stdin, stdout)
     return 0
 

@@ -42,7 +42,8 @@ class TxtoolServer(LanguageServer):
     """The server and the options ``txtool lsp`` was started with."""
 
     def __init__(self, options: Options) -> None:
-        super().__init__("txtool", __version__,
+        # One thread reads standard input (no handler runs in a thread of its own).
+        super().__init__("txtool", __version__, max_workers=1,
                          text_document_sync_kind=lsp.TextDocumentSyncKind.Incremental)
         self.options = options
 

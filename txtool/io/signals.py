@@ -91,6 +91,23 @@ def _install(handler: Callable[[int, FrameType | None], None]) -> None:
             return
 
 
+class left_to_the_main_thread:  # a class, not a contextlib generator (see held)
+    """Make threads that leave SIGINT and SIGTERM to the main thread: a thread started
+    meanwhile blocks them from its first instruction, so the system delivers them to the main
+    thread, which runs Python's handlers. One delivered to a thread blocked in a read would
+    wait for the main thread to run Python again, which an event loop asleep in its selector
+    never does (``txtool lsp`` would not end). A signal meanwhile waits until the end."""
+
+    def __enter__(self) -> None:
+        if hasattr(signal, "pthread_sigmask"):  # (POSIX)
+            signal.pthread_sigmask(signal.SIG_BLOCK, SIGNALS)
+
+    def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
+                 trace: TracebackType | None) -> None:
+        if hasattr(signal, "pthread_sigmask"):
+            signal.pthread_sigmask(signal.SIG_UNBLOCK, SIGNALS)
+
+
 def received() -> int | None:
     """The signal that stopped the run, if one did."""
     return _State.received
