@@ -171,6 +171,12 @@ def component_variants() -> Iterator[tuple[str, str]]:
                                                  coupled(kind, [two[0], two[0]], acts)))
         yield (f"{kind} three joints", robot('name="s" type="system"', coupled(
             kind, [*two, member("joint", "j3", "joint2")], acts), ("j1", "j2", "j3")))
+        yield (f"{kind} an actuator listed again as a third", robot('name="s" type="system"',
+               coupled(kind, two, [*acts, member("actuator", "a1", "actuator1")])))
+        yield (f"{kind} a joint listed again as a third", robot('name="s" type="system"',
+               coupled(kind, [*two, member("joint", "j1", "joint1")], acts)))
+        yield (f"{kind} a repeated actuator", robot('name="s" type="system"',
+                                                    coupled(kind, two, [acts[0], acts[0]])))
         yield (f"{kind} reduction zero", robot('name="s" type="system"', coupled(
             kind, two, [member("actuator", "a1", "actuator1",
                                inner="<mechanical_reduction>0</mechanical_reduction>"),

@@ -228,6 +228,14 @@ def _ros2(t: Transmission, reading: NumberReading | None, added: tuple[str, ...]
     actuator_names = sorted({a.name for a in t.actuators})
     if len(joint_names) != 2 or len(actuator_names) != 2:
         raise NotLoadable("there should be exactly two unique joint and actuator names")
+    # configure() takes the handles of each of the two names for every interface and wants two:
+    # a hardware plugin passes one handle per listed member, so a name listed twice makes
+    # three ("Not enough valid or required ... handles were present";
+    # differential_transmission.hpp and four_bar_linkage_transmission.hpp, configure).
+    for noun, members in (("joint", t.joints), ("actuator", t.actuators)):
+        if len(members) != 2:
+            raise NotLoadable(f"{len(members)} {noun}s listed for two {noun} names: configure() "
+                              f"takes one handle per listed {noun} and wants exactly two")
     return Effective(
         name=t.name,
         kind=t.kind,  # type: ignore[arg-type]
