@@ -114,6 +114,8 @@ TABLE: dict[str, tuple[str, str, str]] = {
     "TX206": ("error", robot('<ros2_control name="s" type="system"><joint name="k">'
                              '<command_interface name="position"/></joint></ros2_control>')
               .replace('<child link="c"/>', '<child link="c"/><mimic joint="j"/>'), "r.urdf"),
+    "TX207": ("error", robot(ros2(DIFF_ROS2).replace('type="system"', 'type="actuator"')),
+              "r.urdf"),
     "TX300": ("warning", robot(ros1(joint="<hardwareInterface>PositionJointInterface"
                                     "</hardwareInterface>")), "r.urdf"),
     "TX301": ("warning", robot(ros1(joint="", actuator=EFFORT + "<mechanicalReduction>1"

@@ -51,10 +51,10 @@ def test_ros2_simple_without_actuator_passes():
     assert check(ROS2.format(component="actuator", more=""), select=["TX103"]) == []
 
 
-def test_ros2_simple_with_two_joints_in_an_actuator_component_throws():
+def test_ros2_simple_with_two_joints_in_an_actuator_component_is_left_to_tx207():
     xml = ROS2.format(component="actuator", more='<joint name="b" role="joint2"/>')
-    found = problems(xml, select=["TX103"])
-    assert [(p.line, p.column) for p in found] == [(4, 5)]
+    found = problems(xml, select=["TX103", "TX207"])
+    assert [(p.line, p.column, p.code) for p in found] == [(4, 5, "TX207")]
     assert "There should be exactly one joint" in found[0].message
 
 
@@ -103,3 +103,50 @@ def test_ros2_simple_without_joint_fails_to_load():
     assert [(p.line, p.column, p.code) for p in found] == [(4, 5, "TX103")]
     assert found[0].message.endswith("has 0 joints and 1 actuator: ros2_control's loader reads "
                                      "the first joint and fails")
+
+
+COUPLED = """
+<robot name="r">
+  <ros2_control name="hw" type="system">
+    <joint name="a"/><joint name="b"/>
+    <transmission name="t">
+      <plugin>transmission_interface/DifferentialTransmission</plugin>
+      <joint name="a" role="joint1"/>
+      <joint name="{second_joint}" role="joint2"/>
+      <actuator name="m1" role="actuator1"/>
+      <actuator name="{second_actuator}" role="actuator2"/>
+      {more}
+    </transmission>
+  </ros2_control>
+</robot>
+"""
+
+
+def coupled(second_joint: str = "b", second_actuator: str = "m2", more: str = "") -> str:
+    return COUPLED.format(second_joint=second_joint, second_actuator=second_actuator, more=more)
+
+
+def test_ros2_coupled_with_two_distinct_names_each_passes():
+    assert check(coupled(), select=["TX103"]) == []
+
+
+def test_ros2_coupled_listing_one_actuator_twice_is_refused_by_configure():
+    # differential_transmission.hpp configure: get_names (a std::set) must give two names
+    found = problems(coupled(second_actuator=" m1 "), select=["TX103"])
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(4, 5, "TX103", "error")]
+    assert found[0].message == (
+        "transmission 't' (DifferentialTransmission) lists actuator 'm1' twice: ros2_control's "
+        "configure() throws \"There should be exactly two unique actuator names\" and the "
+        "transmission is not configured")
+
+
+def test_ros2_coupled_listing_one_joint_twice_is_refused_by_configure():
+    found = problems(coupled(second_joint="a"), select=["TX103"])
+    assert [(p.line, p.code) for p in found] == [(4, "TX103")]
+    assert "lists joint 'a' twice" in found[0].message
+
+
+def test_ros2_coupled_with_an_actuator_listed_again_as_a_third_fails_to_load():
+    found = problems(coupled(more='<actuator name="m1" role="actuator1"/>'), select=["TX103"])
+    assert [(p.line, p.code) for p in found] == [(4, "TX103")]
+    assert "2 joints and 3 actuators" in found[0].message

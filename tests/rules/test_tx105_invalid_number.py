@@ -163,16 +163,26 @@ def test_ros2_skips_an_element_whose_text_is_only_a_comment():
     assert check(xml, select=["TX105"]) == []
 
 
-@pytest.mark.parametrize(("text", "humble", "jazzy"), [
-    ("+-1", "silently uses 1.0", "reads -1"),
-    ("1e-400", "reads 0", "silently uses 1.0"),
+@pytest.mark.parametrize(("field", "text", "humble", "jazzy"), [
+    ("reduction", "+-1", "silently uses 1.0", "reads -1"),
+    ("offset", "1e-400", "reads 0", "silently uses 0.0"),
 ])
-def test_ros2_a_number_distributions_read_differently_is_a_warning(text, humble, jazzy):
-    found = problems(ROS2.format(reduction=text, offset="0"), select=["TX105"])
-    assert [(p.line, p.severity) for p in found] == [(7, "warning")]
+def test_ros2_a_number_distributions_read_differently_is_a_warning(field, text, humble, jazzy):
+    xml = ROS2.format(**{"reduction": "2", "offset": "0", field: text})
+    found = problems(xml, select=["TX105"])
+    assert [(p.line, p.severity) for p in found] == [(7 if field == "reduction" else 8,
+                                                      "warning")]
     assert found[0].message.endswith(
         f"is '{text}', read differently by ROS 2 distributions: Humble's ros2_control "
         f"{humble}, Jazzy's and later {jazzy}")
+
+
+def test_ros2_a_reduction_humble_reads_as_zero_is_left_to_tx106():
+    xml = ROS2.format(reduction="1e-400", offset="0")
+    assert check(xml, select=["TX105", "TX106"]) == [(7, 9, "TX106", "warning")]
+    # from Jazzy on the text is no number: the silent default is TX105's
+    assert check(xml, select=["TX105", "TX106"], **{"ros-distro": "jazzy"}) == [
+        (7, 9, "TX105", "error")]
 
 
 def test_ros2_whitespace_only_element_has_no_text_so_the_next_one_is_read():

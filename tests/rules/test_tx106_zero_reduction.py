@@ -1,5 +1,7 @@
 from __future__ import annotations
 
+import pytest
+
 from tests.rules.helpers import check, problems
 
 ROS1 = """
@@ -58,3 +60,45 @@ def test_zero_joint_reduction_of_ros1_simple_is_not_read():
         "</joint>", "<mechanicalReduction>0</mechanicalReduction></joint>"
     )
     assert check(xml, select=["TX106"]) == []
+
+
+SIMPLE = """
+<robot name="r">
+  <ros2_control name="hw" type="system">
+    <joint name="j"/>
+    <transmission name="t">
+      <plugin>transmission_interface/SimpleTransmission</plugin>
+      <joint name="j" role="joint1"><mechanical_reduction>{value}</mechanical_reduction></joint>
+    </transmission>
+  </ros2_control>
+</robot>
+"""
+
+
+@pytest.mark.parametrize("value", ["1e-400", "-1e-400", "2e-324", "1e-99999999999999999999"])
+def test_humble_reads_a_number_too_small_for_a_double_as_zero_and_refuses_it(value):
+    # lexical_casts.cpp impl::stod below C++20: istringstream gives 0 for an underflow; the
+    # simple loader then throws "Transmission reduction ratio cannot be zero." (parser17)
+    found = problems(SIMPLE.format(value=value), select=["TX106"], **{"ros-distro": "humble"})
+    assert [(p.line, p.column, p.severity) for p in found] == [(6, 37, "error")]
+    assert found[0].message == (
+        f"reduction of joint 'j' of transmission 't' is '{value}', which Humble's ros2_control "
+        "reads as 0 (too small for a double): its loader fails (\"Failed to construct "
+        "transmission\")")
+
+
+def test_where_any_ros2_distribution_may_read_it_the_underflow_is_a_warning_naming_both():
+    found = problems(SIMPLE.format(value="1e-400"), select=["TX106"])
+    assert [(p.line, p.severity) for p in found] == [(6, "warning")]
+    assert found[0].message.endswith("; Jazzy's and later silently use 1.0")
+
+
+@pytest.mark.parametrize("distro", ["jazzy", "rolling", "noetic"])
+def test_distributions_that_do_not_read_it_as_zero_say_nothing_here(distro):
+    assert check(SIMPLE.format(value="1e-400"), select=["TX106"],
+                 **{"ros-distro": distro}) == []
+
+
+def test_a_tiny_number_that_is_not_zero_is_no_finding():
+    assert check(SIMPLE.format(value="1e-310"), select=["TX106"],
+                 **{"ros-distro": "humble"}) == []

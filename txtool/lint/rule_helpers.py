@@ -14,6 +14,8 @@ from txtool.lint.context import LintContext
 from txtool.lint.facts import OWN_LOADER_FAMILIES, Facts, MemberRef, facts_of
 from txtool.lint.problem import Problem
 from txtool.model.core import TYPE_PREFIX, Member
+from txtool.model.distro import NumberReading
+from txtool.model.distro import numbers_of as numbers_of_distro
 from txtool.model.numbers import C_SPACE, parse_ros2
 from txtool.model.robot import children
 
@@ -193,6 +195,13 @@ def _read_numbers(facts: Facts) -> list[NumberRef]:
     return found
 
 
+def ros2_readings_of(ctx: LintContext) -> tuple[NumberReading, ...]:
+    """How the ROS 2 distributions that read this file read numbers (every ROS 2 build's when
+    nothing says which: ``--ros-distro``, ``ros-distro`` in the configuration)."""
+    readings = tuple(dict.fromkeys(numbers_of_distro(d) for d in ctx.readers.distros if d.ros2))
+    return readings or (NumberReading.ISTRINGSTREAM, NumberReading.FROM_CHARS)
+
+
 def _number_element(found: list[etree._Element], plain: bool) -> etree._Element:
     """The element ros2_control reads: the first whose GetText() is not null
     (ros2_control hardware_interface/src/component_parser.cpp:134-161 @157446a); ros_control
@@ -226,6 +235,16 @@ def member_names(ctx: LintContext) -> tuple[list[str], list[str]]:
                 actuators.append(ref.name)
         known = ctx.memo["member names"] = (joints, actuators)
     return known  # type: ignore[no-any-return]
+
+
+def in_actuator_component(tx: Facts) -> bool:
+    """Whether ros2_control's parser reads ``tx`` as a transmission of an actuator component: a
+    ROS 2 transmission right inside a ``<ros2_control type="actuator">`` (the type stripped, as
+    the parser strips it from Jazzy on; get_attribute_value, component_parser.cpp:133)."""
+    component = tx.component
+    if tx.ros1 or component is None or tx.element.getparent() is not component:
+        return False
+    return (component.get("type") or "").strip(C_SPACE) == "actuator"
 
 
 def label(found: Found) -> str:

@@ -53,6 +53,7 @@ RULE_MODULES: tuple[str, ...] = (
     "tx204_unknown_interface",
     "tx205_no_valid_interface",
     "tx206_mimic_command_interface",
+    "tx207_actuator_component_joints",
     "tx300_unprefixed_interface",
     "tx301_interface_on_actuator",
     "tx302_legacy_type_attribute",

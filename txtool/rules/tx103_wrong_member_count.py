@@ -1,25 +1,29 @@
 """A standard transmission with the wrong number of joints or actuators.
 
 What it does: reports a SimpleTransmission without 1 joint and 1 actuator, and a
-DifferentialTransmission or FourBarLinkageTransmission without 2 of each. In ros2_control a
+DifferentialTransmission or FourBarLinkageTransmission without 2 of each; in ros2_control also
+a coupled one whose 2 joints (or actuators) are one name listed twice. In ros2_control a
 simple transmission needs no ``<actuator>``, since the parser or the hardware plugin supplies
 it; a SimpleTransmission listing one joint (or actuator) several times, by the same name, is a
-**warning** there: the loader reads the first listing and the later ones are read by nothing
-(in a component of ``type="actuator"`` the parser still throws). Custom types are not counted,
-nor literal xacro transmissions whose members are produced by ``xacro:if`` or macro calls.
+**warning** there: the loader reads the first listing and the later ones are read by nothing.
+A transmission of a component of ``type="actuator"`` that does not name exactly one joint is
+TX207's (the parser throws before any loader runs). Custom types are not counted, nor literal
+xacro transmissions whose members are produced by ``xacro:if`` or macro calls.
 
 Why it matters: ros_control (ROS 1) refuses any other count ("Expected 1 actuators, got 2.").
-ros2_control's simple loader reads only the first joint (it fails with none, and a component
-of ``type="actuator"`` throws for more than one); the coupled loaders fail with fewer than 2
-joints or actuators and ``configure`` throws for more.
+ros2_control's simple loader reads only the first joint (it fails with none); the coupled
+loaders fail with fewer than 2 joints or actuators, and ``configure`` throws unless it gets
+two names with one handle each ("There should be exactly two unique joint names"; a name
+listed again as a third member gives it three handles: "Not enough valid or required ...
+handles were present").
 
 Loader: ros_control (ros-controls/ros_control
 transmission_interface/src/simple_transmission_loader.cpp ``SimpleTransmissionLoader::load``,
 ``checkJointDimension``/``checkActuatorDimension``); ros2_control (ros-controls/ros2_control
 transmission_interface/src/simple_transmission_loader.cpp ``SimpleTransmissionLoader::load``:
 ``joints.at(0)``; transmission_interface/include/transmission_interface/simple_transmission.hpp
-``configure``: ``are_names_identical``; hardware_interface/src/component_parser.cpp
-``auto_fill_transmission_interfaces``).
+``configure``: ``are_names_identical``; differential_transmission.hpp and
+four_bar_linkage_transmission.hpp ``configure``: ``get_names``, ``get_ordered_handles``).
 
 Failing example::
 
@@ -59,11 +63,12 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from txtool.dialects.read import Found, enclosing_component
+from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
 from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
-from txtool.lint.rule_helpers import label, opaque, per_transmission
+from txtool.lint.rule_helpers import in_actuator_component, label, opaque, per_transmission
+from txtool.model.numbers import C_SPACE
 
 CODE = "TX103"
 NAME = "wrong-member-count"
@@ -78,6 +83,8 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             continue
         if (tx.ros1 and not tx.typed_ros1) or _counts_fine(tx):
             continue
+        if len(tx.joints) != 1 and in_actuator_component(tx):
+            continue  # the parser throws first (TX207)
         message = _ros1(tx.found) if tx.ros1 else _ros2(tx.found)
         if message and not opaque(ctx, tx.element):
             lower = None if tx.ros1 else _repeated(tx.found)
@@ -90,9 +97,6 @@ def _repeated(found: Found) -> str | None:
     times by the same name, outside an actuator component: what the loader does, else None."""
     t = found.transmission
     if t.kind != "simple" or len(t.joints) < 1:
-        return None
-    component = enclosing_component(found.element)
-    if component is not None and component.get("type") == "actuator" and len(t.joints) > 1:
         return None
     for members in (t.joints, t.actuators):
         if len({m.name for m in members}) > 1:
@@ -111,8 +115,15 @@ def _counts_fine(tx: Facts) -> bool:
     """The counts the loader wants (the common case, decided without reading the model)."""
     joints, actuators = len(tx.joints), len(tx.actuators)
     if tx.kind != "simple":
-        return joints == 2 and actuators == 2
+        return joints == 2 and actuators == 2 and (tx.ros1 or (
+            _distinct(tx.joints[0].name, tx.joints[1].name)
+            and _distinct(tx.actuators[0].name, tx.actuators[1].name)))
     return joints == 1 and (actuators == 1 if tx.ros1 else actuators <= 1)
+
+
+def _distinct(first: str, second: str) -> bool:
+    """Two member names ros2_control's parser reads as two (it strips them)."""
+    return first.strip(C_SPACE) != second.strip(C_SPACE)
 
 
 def _counts(joints: int, actuators: int) -> str:
@@ -143,18 +154,23 @@ def _ros2(found: Found) -> str | None:
     has = f"{label(found)} ({_short_type(found)}) has {_counts(len(t.joints), len(t.actuators))}"
     if t.kind != "simple":
         if len(t.joints) == 2 and len(t.actuators) == 2:
-            return None
+            return _one_name_twice(found)
         return f"{has}: ros2_control needs exactly 2 joints and 2 actuators and fails to load it"
     if not t.joints:
         return f"{has}: ros2_control's loader reads the first joint and fails"
     if len(t.joints) > 1:
-        component = enclosing_component(found.element)
-        if component is not None and component.get("type") == "actuator":
-            return (
-                f"{has}: ros2_control throws \"There should be exactly one joint defined in this "
-                "component\""
-            )
         return f"{has}: ros2_control uses only joint '{t.joints[0].name}' and ignores the others"
     if len(t.actuators) > 1:
         return f"{has}: ros2_control uses one actuator and ignores the others"
+    return None
+
+
+def _one_name_twice(found: Found) -> str | None:
+    """A coupled ROS 2 transmission whose two joints (or actuators) have one name."""
+    t = found.transmission
+    for noun, members in (("joint", t.joints), ("actuator", t.actuators)):
+        if members[0].name == members[1].name:
+            return (f"{label(found)} ({_short_type(found)}) lists {noun} '{members[0].name}' "
+                    f"twice: ros2_control's configure() throws \"There should be exactly two "
+                    f"unique {noun} names\" and the transmission is not configured")
     return None

@@ -15,7 +15,8 @@ accepted and poison every value the transmission maps. ros2_control, on any fail
 ``inf``, ``nan``, out of range), **silently** uses the default: 1.0 for
 ``<mechanical_reduction>``, 0.0 for ``<offset>``. Humble reads with ``istringstream`` and Jazzy
 and later with ``from_chars``, which read a few texts differently (``+-1`` is -1 from Jazzy on
-and the default on Humble; ``1e-400`` is 0 on Humble and the default from Jazzy on): where
+and the default on Humble; ``1e-400`` is the default from Jazzy on and 0 on Humble, whose
+loader then refuses the transmission: a reduction some build reads as 0 is TX106's): where
 nothing says which distribution reads the file, such a value is a **warning** that gives each
 distribution's reading; with ``--ros-distro`` (or ``ros-distro`` in the configuration) only that
 distribution's reading counts. An empty element has no text for ``GetText()``, so
@@ -66,9 +67,8 @@ from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
-from txtool.lint.rule_helpers import numbers_of, per_transmission
+from txtool.lint.rule_helpers import numbers_of, per_transmission, ros2_readings_of
 from txtool.model.distro import NumberReading
-from txtool.model.distro import numbers_of as numbers_of_distro
 from txtool.model.numbers import C_SPACE, format_float, parse_ros2, ros2_readings, stod
 
 CODE = "TX105"
@@ -98,10 +98,14 @@ def check(ctx: LintContext) -> Iterator[Problem]:
                                "is lost")
                     yield ctx.problem(CODE, number.element, message, loader_severity="warning")
                     continue
-                problem = _ros2(number.text, default, _readings_of(ctx))
+                readings = ros2_readings_of(ctx)
+                if number.field == "reduction" and any(
+                        parse_ros2(number.text, r) == 0.0 for r in readings):
+                    continue  # a build reading zero refuses the transmission: TX106's
+                problem = _ros2(number.text, default, readings)
             if problem:
                 message = f"{number.describe()} of {tx.label} {problem}"
-                readings = _readings_of(ctx)
+                readings = ros2_readings_of(ctx)
                 differs = not tx.ros1 and any(
                     parse_ros2(number.text, r) is not None for r in readings)
                 yield ctx.problem(CODE, number.element, message,
@@ -130,13 +134,6 @@ def _ros1(text: str | None) -> str | None:
             "becomes inf or nan"
         )
     return None
-
-
-def _readings_of(ctx: LintContext) -> tuple[NumberReading, ...]:
-    """How the ROS 2 distributions that read this file read numbers (every ROS 2 build's when
-    nothing says which: ``--ros-distro``, ``ros-distro`` in the configuration)."""
-    readings = tuple(dict.fromkeys(numbers_of_distro(d) for d in ctx.readers.distros if d.ros2))
-    return readings or (NumberReading.ISTRINGSTREAM, NumberReading.FROM_CHARS)
 
 
 def _ros2(text: str | None, default: str, readings: tuple[NumberReading, ...]) -> str | None:
