@@ -33,11 +33,32 @@ def test_the_documentation_has_the_layout(code):
     assert layout_problems(code, all_rules()[code].doc) == []
 
 
+PACKAGE = """<?xml version="1.0"?>
+<package format="3">
+  <name>example_description</name>
+  <version>1.0.0</version>
+  <description>example</description>
+  <maintainer email="m@example.com">m</maintainer>
+  <license>BSD</license>
+  <buildtool_depend>{build}</buildtool_depend>
+  <export><build_type>{build}</build_type></export>
+</package>
+"""
+
+
 def findings(section) -> list[Finding]:
     """The findings of ``txtool validate FILE`` for an example (a file named on the command
-    line), with the default configuration."""
+    line), with the default configuration. A heading ``(BUILD package, PATH)`` writes the
+    example to PATH in a package whose package.xml builds with BUILD (``ament_cmake``,
+    ``catkin``)."""
     with tempfile.TemporaryDirectory(prefix="txtool-rule-doc-") as folder:
-        path = Path(folder) / (section.filename or "robot.urdf")
+        name = section.filename or "robot.urdf"
+        if ", " in name:
+            build, name = name.split(", ", 1)
+            (Path(folder) / "package.xml").write_text(
+                PACKAGE.format(build=build.removesuffix(" package")), encoding="utf-8")
+        path = Path(folder) / name
+        path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(section.text, encoding="utf-8")
         settings = resolve(Config.model_validate({}), origin="defaults", base=Path(folder))
         found = lint_file(str(path), settings, named=True)

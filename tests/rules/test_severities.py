@@ -66,6 +66,7 @@ DIFF_ROS2 = ('<transmission name="d"><plugin>transmission_interface/Differential
              "</transmission>")
 
 GAZEBO2 = '<gazebo><plugin filename="libgazebo_ros2_control.so" name="gazebo_ros2_control"/></gazebo>'
+GAZEBO1 = '<gazebo><plugin filename="libgazebo_ros_control.so" name="gazebo_ros_control"/></gazebo>'
 GZ = '<gazebo><plugin filename="gz_ros2_control-system" name="gz_ros2_control"/></gazebo>'
 
 # code: (severity, document, file name)
@@ -116,6 +117,9 @@ TABLE: dict[str, tuple[str, str, str]] = {
               .replace('<child link="c"/>', '<child link="c"/><mimic joint="j"/>'), "r.urdf"),
     "TX207": ("error", robot(ros2(DIFF_ROS2).replace('type="system"', 'type="actuator"')),
               "r.urdf"),
+    "TX208": ("error", robot(ros2("") + ros2("").replace('name="j"', 'name="x"')
+                             .replace('name="k"', 'name="y"')), "r.urdf"),
+    "TX209": ("error", robot(ros2("") + ros2("").replace('name="hw"', 'name="hw2"')), "r.urdf"),
     "TX300": ("warning", robot(ros1(joint="<hardwareInterface>PositionJointInterface"
                                     "</hardwareInterface>")), "r.urdf"),
     "TX301": ("warning", robot(ros1(joint="", actuator=EFFORT + "<mechanicalReduction>1"
@@ -128,6 +132,8 @@ TABLE: dict[str, tuple[str, str, str]] = {
     "TX304": ("warning", robot(ros1() + ros2("")), "r.urdf"),
     # a ROS 1 leftover beside the <ros2_control> block of a robot gz_ros2_control loads
     "TX305": ("info", robot(ros1() + ros2("") + GZ), "r.urdf"),
+    # a robot only ROS 2 reads (see OPTIONS) that still names the ROS 1 Gazebo plugin
+    "TX306": ("warning", robot(ros2("") + GAZEBO1), "r.urdf"),
     "TX400": ("warning", robot(ros1(joint=EFFORT + "<mechanicalReduction>2"
                                     "</mechanicalReduction>")), "r.urdf"),
     "TX401": ("error", robot(ros2(DIFF_ROS2)), "r.urdf"),
@@ -141,7 +147,8 @@ TABLE: dict[str, tuple[str, str, str]] = {
 
 
 # Settings a row needs to fire at its registered severity.
-OPTIONS: dict[str, dict[str, str]] = {"TX206": {"ros-distro": "jazzy"}}
+OPTIONS: dict[str, dict[str, str]] = {"TX206": {"ros-distro": "jazzy"},
+                                      "TX306": {"ros-distro": "jazzy"}}
 
 
 def test_the_table_covers_every_registered_rule_with_its_registered_severity():

@@ -45,6 +45,9 @@ class PackageInfo:
     manifest: str
     format: int
     build_type: str | None  # "catkin", "ament_cmake", "ament_python" or None when unsaid
+    # The manifest names build types of both generations (REP 149 conditions on
+    # $ROS_VERSION): one source tree built under ROS 1 and ROS 2.
+    both: bool = False
 
     @property
     def ros1(self) -> bool:
@@ -98,6 +101,7 @@ def read_package(manifest: str) -> PackageInfo | None:
         manifest=manifest,
         format=version,
         build_type=_build_type(root),
+        both=_both_generations(root),
     )
 
 
@@ -112,6 +116,13 @@ def _build_type(root: etree._Element) -> str | None:
         if tool in ROS1_BUILD or tool in ROS2_BUILD:
             return tool
     return None
+
+
+def _both_generations(root: etree._Element) -> bool:
+    named = {_text(e) for e in _children(root, "buildtool_depend")}
+    for export in _children(root, "export"):
+        named.update(_text(e) for e in _children(export, "build_type"))
+    return bool(named & ROS1_BUILD) and bool(named & ROS2_BUILD)
 
 
 def package_of(path: str) -> PackageInfo | None:

@@ -43,7 +43,7 @@ def assumption_of(source: Source, stated: Stated) -> Assumption:
     path = source.path
     on_disk = path not in ("-", "") and os.path.isfile(path)
     info = package_of(path) if on_disk else None
-    package = Package(info.name, info.build_type) if info is not None else None
+    package = Package(info.name, info.build_type, info.both) if info is not None else None
     known: dict[str, Mapping[str, str]] = {}
 
     def types() -> Mapping[str, str]:

@@ -14,7 +14,7 @@ from txtool.lint.context import LintContext
 from txtool.lint.facts import OWN_LOADER_FAMILIES, Facts, MemberRef, facts_of
 from txtool.lint.problem import Problem
 from txtool.model.core import TYPE_PREFIX, Member
-from txtool.model.distro import NumberReading
+from txtool.model.distro import Distro, NumberReading
 from txtool.model.distro import numbers_of as numbers_of_distro
 from txtool.model.numbers import C_SPACE, parse_ros2
 from txtool.model.robot import children
@@ -245,6 +245,29 @@ def in_actuator_component(tx: Facts) -> bool:
     if tx.ros1 or component is None or tx.element.getparent() is not component:
         return False
     return (component.get("type") or "").strip(C_SPACE) == "actuator"
+
+
+def read_blocks(ctx: LintContext) -> tuple[list[etree._Element], Callable[[str], str]]:
+    """The ``<ros2_control>`` blocks ros2_control's parser reads (children of ``<robot>``,
+    parse_control_resources_from_urdf) in document order, when two or more stand there and a
+    ROS 2 program reads the document (xacro expanded); else none. With them, how the parser
+    reads a name: stripped from Jazzy on, as written on Humble (component_parser.cpp
+    get_attribute_value:133 @53b9999; the humble branch returns the attribute as it is)."""
+    if not ctx.hints.components or ctx.literal or local(ctx.source.root) != "robot":
+        return [], str
+    blocks = list(ctx.source.root.iterchildren("{*}ros2_control"))
+    if len(blocks) < 2:
+        return [], str
+    distros = [d for d in ctx.readers.distros if d.ros2]
+    if not distros:
+        return [], str  # only ROS 1 programs read the document: nothing reads the blocks
+    if all(d is Distro.HUMBLE for d in distros):
+        return blocks, str
+    return blocks, _stripped
+
+
+def _stripped(text: str) -> str:
+    return text.strip(C_SPACE)
 
 
 def label(found: Found) -> str:

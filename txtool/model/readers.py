@@ -12,7 +12,9 @@ distribution), which types it loads, and what it does with what it cannot read.
 2. ``--ros-distro`` (or ``ros-distro`` in the configuration): that ROS generation's readers;
 3. the document's ``<gazebo>`` plugins (``libgazebo_ros_control.so``, ``libgazebo_ros2_control.so``,
    ``gz_ros2_control-system`` / ``ign_ros2_control-system``), else those another description
-   file of its package names (a fragment is read by what loads its robot);
+   file of its package names (a fragment is read by what loads its robot); in a package only
+   ROS 2 builds (ament, no catkin), ``libgazebo_ros_control.so`` decides nothing: no ROS 2
+   build has it (``unloaded_plugin``, TX306);
 4. the enclosing package's ``package.xml`` (catkin: ROS 1; ament_cmake / ament_python: ROS 2);
 5. ``<ros2_control>`` blocks (ros2_control reads them; its ``<hardware><plugin>`` may name a
    simulator such as mujoco_ros2_control): this alone does not rule ROS 1 out;
@@ -296,6 +298,7 @@ class Package:
 
     name: str
     build_type: str | None
+    both: bool = False  # the manifest builds under ROS 1 and ROS 2 ($ROS_VERSION conditions)
 
     @property
     def ros1(self) -> bool:
@@ -304,6 +307,10 @@ class Package:
     @property
     def ros2(self) -> bool:
         return self.build_type in ("ament_cmake", "ament_python")
+
+    @property
+    def ros2_only(self) -> bool:
+        return self.ros2 and not self.both
 
 
 @dataclass(frozen=True)
@@ -314,6 +321,8 @@ class Assumption:
     judged by the loader of its dialect, as when nothing is known. ``sim`` is the ROS 1
     RobotHWSim loading the robot (its findings name it). ``missing_components``: a ROS 2
     simulator plugin that refuses this robot, which has no ``<ros2_control>``.
+    ``unloaded_plugin``: the document's ROS 1 gazebo_ros_control plugin when only ROS 2
+    programs read it (no ROS 2 build has that plugin).
     """
 
     readers: tuple[Reader, ...] = ()
@@ -321,6 +330,7 @@ class Assumption:
     decided: bool = False
     sim: Sim | None = None
     missing_components: etree._Element | None = None
+    unloaded_plugin: etree._Element | None = None
     types: Callable[[], Mapping[str, str]] | None = field(default=None, compare=False)
 
     def reads(self, placement: Placement) -> bool:
@@ -396,6 +406,11 @@ def assume(root: etree._Element, package: Package | None = None, stated: Stated 
     # A ROS 2 package decides without them (and its plugins make no verdict milder): the
     # package's other files are read only for a ROS 1 package or a file outside any package.
     ros2_package = package is not None and package.ros2
+    if (package is not None and package.ros2_only and seen.ros1_plugin is not None
+            and not stated.readers and stated.distro is None):
+        # A package only ROS 2 builds: no ROS 2 build has gazebo_ros_control, so its plugin
+        # decides nothing (TX306 says so) and the package does.
+        seen = replace(seen, sim=None, ros1_plugin=None)
     if not seen.plugins and elsewhere is not None and not ros2_package and not stated.readers:
         other = elsewhere()
         if other is not None and other.plugins:
@@ -428,8 +443,11 @@ def assume(root: etree._Element, package: Package | None = None, stated: Stated 
     if not own.components:  # only the document's own plugins refuse it
         keys = {r.key for r in choice.readers}
         missing = next((p for p, r in own.ros2_plugins if r.key in keys), None)
+    unloaded = None
+    if decided and choice.readers and all(r.ros2 for r in choice.readers):
+        unloaded = own.ros1_plugin
     return Assumption(tuple(choice.readers), tuple(choice.because), decided, sim, missing,
-                      types)
+                      unloaded, types)
 
 
 def _by_generation(choice: _Choice, seen: Seen, ros2: bool, why: str) -> None:
