@@ -153,6 +153,7 @@ def _convert_document(source: Source, target: Dialect, hardware_plugin: str, con
             writer.substitute(node, block)
     result.notes.extend(placer.notes)
     result.losses.extend(placer.losses)
+    result.warnings.extend(placer.warnings)
     result.placeholder = placer.placeholder
     built_for = placer.built.get
     for item in items:
@@ -215,9 +216,9 @@ def _place_each(elements: list[etree._Element], tree: etree._ElementTree, target
             keyed = memo.keyed(element)
         if keyed.__class__ is Follower:
             assert isinstance(keyed, Follower)
-            placer.place_follower(element, keyed, keyed.record.original.dialect)
             items.append(keyed)
-            result.converted += 1
+            if placer.place_follower(element, keyed, keyed.record.original.dialect):
+                result.converted += 1
             continue
         renaming = keyed if isinstance(keyed, Renaming) else None
         t = read_transmission(element, None, components)
@@ -323,8 +324,7 @@ def _convert_one(found: Found, tree: etree._ElementTree, target: Dialect, result
         result.warnings)
     if memo is not None and memo.learn(renaming, t, translation.transmission, clean) is None:
         renaming = None
-    placer.place(found.element, translation.transmission, carried, renaming, t.dialect)
-    return True
+    return placer.place(found.element, translation.transmission, carried, renaming, t.dialect)
 
 
 def _other_children(

@@ -24,6 +24,11 @@ from txtool.dialects.read import detect_dialect, enclosing_component
 from txtool.io.xmlio import local
 from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
+from txtool.transform.placement.bindable import (
+    RobotJoints,
+    left_as_written,
+    not_mimicking,
+)
 from txtool.transform.placement.layout import (
     append,
     become,
@@ -81,6 +86,10 @@ class Placer:
         self._replaced = etree.Element("replaced")  # what the generated block replaced
         # What the conversion cannot do as the document asks (it says why).
         self.losses: list[str] = []
+        # What to look at, though nothing is lost (a transmission left as written).
+        self.warnings: list[str] = []
+        # The document's URDF joints: which a <ros2_control> may declare, and how.
+        self.joints = RobotJoints(root)
         # Set when a block names the placeholder plugin: which blocks, and what to do.
         self.placeholder: str | None = None
         self._placeholders: list[str] = []  # blocks generated with the default plugin
@@ -93,16 +102,19 @@ class Placer:
         self._taken: set[str] | None = None if components else set()
 
     def place(self, old: etree._Element, t: Transmission, carried: Carried | None = None,
-              renaming: Renaming | None = None, dialect: Dialect | None = None) -> None:
+              renaming: Renaming | None = None, dialect: Dialect | None = None) -> bool:
         """Place the conversion ``t`` of ``old``; ``carried``: children of ``old`` (by
         owner) that go along as written; ``renaming``: ``old``'s key and names (see
         :mod:`txtool.transform.repeated.renamings`), so that the elements built for one key
-        are built once; ``dialect``: ``old``'s, when known."""
+        are built once; ``dialect``: ``old``'s, when known. Whether it is placed: one on a
+        joint no ``<ros2_control>`` may declare is left as written (:mod:`.bindable`)."""
         move = Move(old, t, carried, renaming)
         component = enclosing_component(old)
         moving_out = t.dialect == "ros1" and component is not None
         moving_in = (t.dialect != "ros1" and component is None and old.getparent() is not None
                      and (dialect or detect_dialect(old)) == "ros1")
+        if moving_in and not self._bindable(t.name, [j.name for j in t.joints]):
+            return False
         if moving_out and component.getparent() is not None:
             if not self._conditions_between(old, component, t.name):
                 return
@@ -129,12 +141,24 @@ class Placer:
                 become(old, new)  # a bare <transmission> fragment
             else:
                 old.getparent().replace(old, new)
+        return True
+
+    def _bindable(self, name: str, joints: list[str]) -> bool:
+        """Whether a ``<ros2_control>`` may declare ``joints`` (a warning where not)."""
+        refusal = self.joints.refusal(joints)
+        if refusal is not None:
+            self.warnings.append(left_as_written(name, refusal))
+        return refusal is None
 
     def place_follower(self, old: etree._Element, follower: Follower, dialect: Dialect
-                       ) -> None:
+                       ) -> bool:
         """:meth:`place` for a follower (:mod:`txtool.transform.repeated.renamings`) outside
         any ``<ros2_control>``: one that goes into the block generated for the document is not
         built here."""
+        if dialect == "ros1" and follower.record.dialect != "ros1" and not self._bindable(
+                follower.name, [name for name, _, _ in follower.record.joints_for(
+                    follower.names)]):
+            return False
         into_new = (dialect == "ros1" and follower.record.dialect != "ros1"
                     and old.getparent() is self.root and self._robot)
         if into_new and (self._components == [] or self._component_for(
@@ -143,8 +167,8 @@ class Placer:
             if self._components:  # (the check reads the follower's joints)
                 self._not_in_scope(follower.translated())
             self._into_new.append(Move(old, None, None, None, follower))
-        else:
-            self.place(old, follower.translated(), {}, follower.renaming(), dialect)
+            return True
+        return self.place(old, follower.translated(), {}, follower.renaming(), dialect)
 
     def finish(self) -> None:
         if self._into_new:
@@ -202,7 +226,8 @@ class Placer:
         runs = runs_of([m.old for m in moves])
         name = self._fresh_name(self.root.get("name", "robot"),
                                 "the <ros2_control> generated for the document")
-        block = self._write_block(name, moves, runs, first, indent, step)
+        block = None if self._mimics(moves) else self._write_block(name, moves, runs, first,
+                                                                   indent, step)
         if block is None:
             block = self.block(name, self.hardware_plugin, moves, first, indent, step,
                                 alone=True)
@@ -241,7 +266,16 @@ class Placer:
         for move, new in zip(moves, built, strict=False):
             if alone and move.old not in shared:
                 self.alone.add(new)
+        notes = not_mimicking(block, self.joints)
+        if record:
+            self.notes.extend(notes)
         return block
+
+    def _mimics(self, moves: list[Move]) -> bool:
+        """Whether a joint of ``moves`` mimics another (its declaration is then made in the
+        tree, where :func:`.bindable.not_mimicking` finds it)."""
+        return any(self.joints.mimicked(name) is not None
+                   for move in moves for name, _, _ in move.joints())
 
     def _fill(self, block: etree._Element, declared: list[tuple[str, tuple]],
               moves: list[Move], like: etree._Element, indent: str, step: str, record: bool
