@@ -35,6 +35,7 @@ from txtool.model.semantics import Effective, NotLoadable, effective, listed_aga
 from txtool.transform.edits.conversion_edits import ConversionEdits, Expected, check_written
 from txtool.transform.edits.core import Edit
 from txtool.transform.edits.spans import NotIndexed
+from txtool.transform.next_steps import gazebo_plugin
 from txtool.transform.placement.placer import DEFAULT_HARDWARE_PLUGIN, Placer
 from txtool.transform.repeated.block_text import Written, fill, read_back
 from txtool.transform.repeated.cycle_collector import paused
@@ -72,8 +73,7 @@ class ConvertedDocument:
     found: int = 0  # transmissions in the document
     already: int = 0  # of them, already in the target dialect
     # Which generated blocks name the placeholder plugin (the default --hardware-plugin),
-    # said as a warning where losses are accepted (--allow-lossy): the result is then
-    # written to be finished by hand, and that plugin must be replaced.
+    # said as a warning wherever the result is written: that plugin must be replaced.
     placeholder: str | None = None
     # The edits of the original (its UTF-8 form if UTF-16/32) that make ``data``; None for
     # an unchanged document or a xacro expansion (written whole).
@@ -154,6 +154,8 @@ def _convert_document(source: Source, target: Dialect, hardware_plugin: str, con
     result.notes.extend(placer.notes)
     result.losses.extend(placer.losses)
     result.warnings.extend(placer.warnings)
+    if target != "ros1" and result.converted:
+        result.warnings.extend(gazebo_plugin(tree.getroot()))
     result.placeholder = placer.placeholder
     built_for = placer.built.get
     for item in items:

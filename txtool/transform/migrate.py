@@ -46,6 +46,7 @@ from txtool.transform.edits.spans import SpanError, SpanIndex
 from txtool.transform.edits.tree_edits import NotEditable, TreeChange, reads_as
 from txtool.transform.fixable import might_fix, might_fix_converted
 from txtool.transform.linediff import unified_ascii, unified_text
+from txtool.transform.next_steps import package_build_types, package_gazebo_plugins
 from txtool.transform.repeated.cycle_collector import paused
 from txtool.transform.reversible import MARK
 
@@ -64,6 +65,7 @@ class MigrateOptions:
     config: str | None = None
     allow_lossy: bool = False
     hardware_plugin: str = DEFAULT_HARDWARE_PLUGIN
+    plugin_chosen: bool = False  # named by the user: not a placeholder to point out
     reversible: bool = False
 
 
@@ -155,6 +157,10 @@ def migrate_paths(paths: Iterable[str], options: MigrateOptions) -> Report:
             continue
         report.files.append(result)
         _record(report, result, options)
+    if options.target is not None and options.target != "ros1":
+        converted = [f.path for f in report.files if f.converted and f.changed]
+        steps = package_gazebo_plugins(converted) + package_build_types(converted)
+        report.messages.extend(f"warning: {step}" for step in steps)
     report.messages.append(report.summary())
     return report
 
@@ -319,7 +325,8 @@ def _take_messages(result: FileResult, conversion: ConvertedDocument,
                    options: MigrateOptions) -> None:
     result.notes.extend(conversion.notes)
     result.warnings.extend(conversion.warnings)
-    if options.allow_lossy and conversion.placeholder is not None:
+    if conversion.placeholder is not None and not options.plugin_chosen and (
+            options.allow_lossy or not conversion.losses):
         result.warnings.append(conversion.placeholder)
     result.losses.extend(conversion.losses)
     result.converted = conversion.converted
