@@ -43,6 +43,13 @@ from txtool.transform.placement.layout import (
     runs_of,
     with_comments,
 )
+from txtool.transform.placement.macros import (
+    MacroCalls,
+    calls,
+    enclosing_macro,
+    per_call,
+    refusal,
+)
 from txtool.transform.placement.moves import Carried, Move
 from txtool.transform.placement.recognition import generated_from
 from txtool.transform.placement.scope import between, is_condition, prefixed
@@ -59,14 +66,17 @@ class Placer:
     once every transmission has been placed."""
 
     def __init__(self, root: etree._Element, hardware_plugin: str, *,
-                 components: bool = True) -> None:
+                 components: bool = True, macro_calls: MacroCalls | None = None) -> None:
         """``components=False``: the document is known to hold no ``<ros2_control>`` (its
-        tree is then not searched for one until a block is added)."""
+        tree is then not searched for one until a block is added); ``macro_calls``: where
+        the files converted with this one call each macro (:mod:`.macros`)."""
         self.root = root
+        self.macro_calls = macro_calls or {}
         self._robot = local(root) == "robot"
         self.hardware_plugin = hardware_plugin
         self.notes: list[str] = []
         self._into_new: list[Move] = []
+        self._in_place: dict[etree._Element, list[Move]] = {}  # by the parent they stand in
         self._out_of: dict[etree._Element, list[Move]] = {}
         self._components: list[etree._Element] | None = None if components else []
         self._declared: dict[etree._Element, set[str]] = {}
@@ -129,9 +139,9 @@ class Placer:
                 append(existing, self.build(move, *child_indentation(existing), existing))
         elif moving_in:
             # Inside a xacro macro or conditional (or a file whose root is not a <robot>): a
-            # <ros2_control> of its own, in place, so that the transmission stays in the scope
-            # of its ${...} parameters.
-            self._wrap_in_place(move)
+            # <ros2_control> in place, one for those that stand together (:mod:`.macros`), so
+            # that the transmission stays in the scope of its ${...} parameters.
+            self._in_place.setdefault(old.getparent(), []).append(move)
         elif t.dialect != "ros1" and (dialect or detect_dialect(old)) != "ros1":
             restyle_roles(old, t.dialect)  # Proposal 1 <-> 2: only the roles change
         else:
@@ -173,6 +183,8 @@ class Placer:
     def finish(self) -> None:
         if self._into_new:
             self._generate(self._into_new)
+        for moves in self._in_place.values():
+            self._wrap_in_place(moves)
         self._placeholder_warning()
         for component, moves in self._out_of.items():
             sources = generated_from(component, moves, self.root.get("name", "robot"), self)
@@ -500,15 +512,36 @@ class Placer:
             self._declared[component] = {j.get("name") for j in children(component, "joint")}
         return self._declared[component]
 
-    def _wrap_in_place(self, move: Move) -> None:
-        old = move.old
+    def _wrap_in_place(self, moves: list[Move]) -> None:
+        """One ``<ros2_control>`` around ``moves`` (which stand in one parent), at the place
+        of the first: refused (a loss) in a macro that the document calls several times."""
+        old = moves[0].old
+        macro = enclosing_macro(old)
+        lines = calls(self.root, macro) if macro is not None else []
+        where = ([f"line {line}" for line in lines] if lines or macro is None else
+                 list(self.macro_calls.get((macro.get("name") or "").strip(), ())))
+        if len(where) > 1:
+            self.losses.append(refusal([m.new.name for m in moves], macro, where))
         indent, step = indentation(old)
-        name = self._fresh_name(move.new.name, f"the <ros2_control> around transmission "
-                                f"'{move.new.name}'")
-        block = self.block(name, self.hardware_plugin, [move], old, indent, step)
-        block.tail = old.tail
-        old.getparent().replace(old, block)
+        name = self._fresh_name(moves[0].new.name, f"the <ros2_control> around transmission "
+                                f"'{moves[0].new.name}'")
+        block = self.block(name, self.hardware_plugin, moves, old, indent, step)
+        # Laid out as _generate lays out the document's block: the first run stays together
+        # in it, the others are cut from where they stood.
+        runs = runs_of([move.old for move in moves])
+        for first in runs[0][:-1]:
+            self.built[first].tail = reindent(first.tail, indent + step)
+        block.tail = runs[0][-1].tail
+        for run in runs[1:]:
+            for later in run:
+                cut(later)
+        parent = old.getparent()
+        for later in runs[0][1:]:
+            parent.remove(later)  # with its tail: the block's is the run's last
+        parent.replace(old, block)
         self._components = None
+        if macro is not None and not where:
+            self.notes.append(per_call(name, macro))
 
     # ROS 2 -> ROS 1 ----------------------------------------------------------------------
 
