@@ -21,7 +21,8 @@ both parsers accept that commands the joint as ROS 1 did.
 
 Only what the document shows is judged: a joint found in it (its name and type written
 literally, outside any xacro conditional), and a joint missing only from a whole robot (a
-``<robot>`` with URDF joints and no xacro element, whose joints may come from elsewhere).
+``<robot>`` with URDF joints that neither declares the xacro namespace nor holds a xacro
+element: a xacro file's joints may come from the files it includes or from its includer).
 """
 
 from __future__ import annotations
@@ -59,6 +60,7 @@ class RobotJoints:
         element (a joint it lacks is lacking from the robot)."""
         if self._whole is None:
             self._whole = bool(self.elements) and not any(
+                uri in XACRO for uri in self.root.nsmap.values()) and not any(
                 namespace_of(e) in XACRO for e in self.root.iter(etree.Element))
         return self._whole
 

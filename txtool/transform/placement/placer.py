@@ -444,7 +444,18 @@ class Placer:
             return
         names = {j.name for j in t.joints}
         for element in self._components:
-            if element.getparent() is not self.root and names & self._joints_of(element):
+            shared = names & self._joints_of(element)
+            if shared and element.getparent() is self.root:
+                # It declares some of them (the transmission would go in had it declared
+                # them all): a block of its own would declare those a second time.
+                self.losses.append(
+                    f"transmission '{t.name}': <ros2_control name=\"{element.get('name')}\"> "
+                    f"declares its joint(s) {', '.join(sorted(shared))} but not "
+                    f"{', '.join(sorted(names - shared))}: a <ros2_control> of its own would "
+                    "declare them a second time (two hardware components claiming one joint); "
+                    "declare all its joints in one <ros2_control>, then convert again")
+                return
+            if element.getparent() is not self.root and shared:
                 scope = element.getparent()
                 self.losses.append(
                     f"transmission '{t.name}': <ros2_control name=\"{element.get('name')}\"> "
