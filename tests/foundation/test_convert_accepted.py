@@ -190,7 +190,8 @@ def test_a_macro_called_twice_is_refused_with_one_line_naming_it(run, tmp_path):
     assert (code, out) == (1, "")
     assert err.splitlines() == [
         "error: transmission '${side}_trans': inside <xacro:macro name=\"wheel\"> (line 2), "
-        "which is called 2 times (line 11, line 12): converted there, each call would be a "
+        "which is expanded 2 times (called at line 11, line 12): converted there, each call "
+        "would be a "
         "<ros2_control> hardware component of its own; write the transmissions where the "
         "robot's one <ros2_control> is (outside the macro), or convert the expanded robot",
         "txtool: 1 item(s) would be lost; nothing written (use --allow-lossy to accept)"]
@@ -245,7 +246,7 @@ def test_migrate_counts_the_calls_in_the_other_files_and_names_the_next_steps(
         """)
     code, _, err = run("migrate", "--write", "--to", "ros2-p2", "cart_description")
     assert code == 1
-    assert ("which is called 2 times (cart_description/urdf/cart.urdf.xacro:3, "
+    assert ("which is expanded 2 times (called at cart_description/urdf/cart.urdf.xacro:3, "
             "cart_description/urdf/cart.urdf.xacro:4)") in err
     # Written from the robot instead: one block, and what else the package must change.
     write("cart_description/urdf/wheel.urdf.xacro", MACRO.split("  <xacro:macro")[0]
@@ -281,3 +282,16 @@ def test_migrate_counts_the_calls_in_the_other_files_and_names_the_next_steps(
         "warning: cart_description/package.xml: package 'cart_description' builds with "
         "catkin: ROS 2 (colcon, and txtool's readers) takes it for a ROS 1 package")
     assert lines[4:] == ["1 file(s) changed"]
+
+
+def test_a_macro_called_once_inside_a_macro_called_twice_is_expanded_twice(run, tmp_path):
+    nested = MACRO.replace(
+        '  <xacro:wheel side="left"/>\n  <xacro:wheel side="right"/>\n',
+        '  <xacro:macro name="axle" params="side">\n    <xacro:wheel side="${side}"/>\n'
+        '  </xacro:macro>\n  <xacro:axle side="left"/>\n  <xacro:axle side="right"/>\n')
+    path = tmp_path / "cart.urdf.xacro"
+    path.write_text(nested)
+    code, out, err = run("convert", "--no-xacro", str(path), "--to", "ros2-p2")
+    assert (code, out) == (1, "")
+    assert ("inside <xacro:macro name=\"wheel\"> (line 2), which is expanded 2 times (called at "
+            "line 12 in <xacro:macro name=\"axle\">)") in err

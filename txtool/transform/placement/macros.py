@@ -5,8 +5,9 @@ robot (hardware_interface/src/component_parser.cpp, ``parse_control_resources_fr
 ``HardwareInfo`` per element; resource_manager.cpp loads one plugin instance for each). A
 ``<ros2_control>`` written inside a macro is there once per call of the macro. So the
 transmissions that stand together in one macro go into one block, in place (nothing crosses
-the macro's boundary); and where the document calls that macro more than once, the
-conversion is refused with the macro's name and its calls: each call would be a hardware
+the macro's boundary); and where the robot holds that macro more than once (called more than
+once, or inside a macro called more than once), the conversion is refused with the macro's
+name and its calls: each call would be a hardware
 component of its own, one per joint for a macro called once per joint, each running the
 hardware plugin alone (where the robot has one driver, one component must declare every
 joint). Calls the document does not show (a macro library included elsewhere) are counted
@@ -16,12 +17,12 @@ block is written, and a note says that each call makes one component.
 
 from __future__ import annotations
 
-import re
 from collections.abc import Iterable, Mapping
+from typing import NamedTuple
 
 from lxml import etree
 
-from txtool.io.xmlio import local
+from txtool.io.xmlio import InputError, local, parse_bytes
 from txtool.transform.placement.layout import namespace_of
 from txtool.transform.placement.scope import XACRO
 
@@ -36,47 +37,78 @@ def enclosing_macro(element: etree._Element) -> etree._Element | None:
     return None
 
 
-def calls(root: etree._Element, macro: etree._Element) -> list[int]:
-    """The lines of the document's calls of ``macro`` (``<xacro:NAME .../>``)."""
-    name = (macro.get("name") or "").strip()
-    if not name:
-        return []
-    return [element.sourceline or 0 for namespace in XACRO
-            for element in root.iter(f"{{{namespace}}}{name}")]
+class Call(NamedTuple):
+    """One call of a macro: where (a line of the document, or ``FILE:LINE``), and the name of
+    the macro it stands in (None at the top of a file)."""
 
+    where: str
+    within: str | None
+
+
+MacroCalls = Mapping[str, tuple[Call, ...]]  # by the called macro's name
 
 # xacro's own elements, which are not calls of a macro (xacro/__init__.py, eval_all).
-_BUILTIN = frozenset({b"macro", b"property", b"include", b"if", b"unless", b"arg",
-                      b"insert_block", b"element", b"attribute", b"call", b"eval-comments"})
-_CALL = re.compile(rb"<xacro:([A-Za-z_][\w.\-]*)")
-
-MacroCalls = Mapping[str, tuple[str, ...]]  # a macro's name -> where it is called (FILE:LINE)
+_BUILTIN = frozenset({"macro", "property", "include", "if", "unless", "arg", "insert_block",
+                      "element", "attribute", "call", "eval-comments"})
 
 
-def calls_in_files(files: Iterable[tuple[str, bytes]]) -> dict[str, tuple[str, ...]]:
-    """Where each macro is called in ``files`` (path and bytes), as ``FILE:LINE``, found in the
-    bytes (``<xacro:NAME``, the prefix xacro files use)."""
-    found: dict[str, list[str]] = {}
+def calls_in(root: etree._Element, file: str | None = None) -> dict[str, list[Call]]:
+    """The macro calls (``<xacro:NAME .../>``) of one tree, by name: ``file`` names the file
+    in their places (else the line alone)."""
+    found: dict[str, list[Call]] = {}
+    for element in root.iter(etree.Element):
+        if namespace_of(element) not in XACRO or local(element) in _BUILTIN:
+            continue
+        line = element.sourceline or 0
+        where = f"{file}:{line}" if file is not None else f"line {line}"
+        macro = enclosing_macro(element)
+        within = (macro.get("name") or "").strip() if macro is not None else None
+        found.setdefault(local(element), []).append(Call(where, within))
+    return found
+
+
+def calls_in_files(files: Iterable[tuple[str, bytes]]) -> dict[str, tuple[Call, ...]]:
+    """:func:`calls_in` for each of ``files`` (path and bytes; one that does not parse has
+    none), together."""
+    found: dict[str, list[Call]] = {}
     for path, data in files:
-        line, at = 1, 0
-        for match in _CALL.finditer(data):
-            if match.group(1) in _BUILTIN:
-                continue
-            line += data.count(b"\n", at, match.start())
-            at = match.start()
-            found.setdefault(match.group(1).decode(), []).append(f"{path}:{line}")
-    return {name: tuple(where) for name, where in found.items()}
+        if b"xacro" not in data:
+            continue
+        try:
+            root = parse_bytes(data, path).getroot()
+        except InputError:
+            continue
+        for name, calls in calls_in(root, path).items():
+            found.setdefault(name, []).extend(calls)
+    return {name: tuple(calls) for name, calls in found.items()}
 
 
-def refusal(transmissions: list[str], macro: etree._Element, where: list[str]) -> str:
-    """The one line that says why transmissions inside ``macro`` are not converted
-    (``where``: its calls, as lines of the document or ``FILE:LINE``)."""
+def times(name: str, calls: MacroCalls, seen: frozenset[str] = frozenset()) -> int:
+    """How many times the expanded robot holds the body of macro ``name``: each call inside
+    another macro counts once for each time that one is expanded (a macro no call is seen of
+    counts once)."""
+    total = 0
+    for call in calls.get(name, ()):
+        inner = call.within
+        if inner is None or inner in seen or inner == name or not calls.get(inner):
+            total += 1
+        else:
+            total += times(inner, calls, seen | {name})
+    return total
+
+
+def refusal(transmissions: list[str], macro: etree._Element, count: int,
+            where: list[Call]) -> str:
+    """The one line that says why transmissions inside ``macro`` are not converted (``count``:
+    how many times the robot expands it; ``where``: its calls)."""
     name = (macro.get("name") or "").strip()
-    shown = ", ".join(where[:4]) + (", ..." if len(where) > 4 else "")
+    shown = ", ".join(call.where + (f" in <xacro:macro name=\"{call.within}\">"
+                                    if call.within else "") for call in where[:4]) + (
+        ", ..." if len(where) > 4 else "")
     which = (f"transmission '{transmissions[0]}'" if len(transmissions) == 1 else
              f"{len(transmissions)} transmissions ('{transmissions[0]}', ...)")
     return (f"{which}: inside <xacro:macro name=\"{name}\"> (line {macro.sourceline}), which "
-            f"is called {len(where)} times ({shown}): converted there, each "
+            f"is expanded {count} times (called at {shown}): converted there, each "
             "call would be a <ros2_control> hardware component of its own; write the "
             "transmissions where the robot's one <ros2_control> is (outside the macro), or "
             "convert the expanded robot")

@@ -45,10 +45,11 @@ from txtool.transform.placement.layout import (
 )
 from txtool.transform.placement.macros import (
     MacroCalls,
-    calls,
+    calls_in,
     enclosing_macro,
     per_call,
     refusal,
+    times,
 )
 from txtool.transform.placement.moves import Carried, Move
 from txtool.transform.placement.recognition import generated_from
@@ -72,6 +73,7 @@ class Placer:
         the files converted with this one call each macro (:mod:`.macros`)."""
         self.root = root
         self.macro_calls = macro_calls or {}
+        self._calls: MacroCalls | None = None  # the document's, when asked
         self._robot = local(root) == "robot"
         self.hardware_plugin = hardware_plugin
         self.notes: list[str] = []
@@ -282,6 +284,12 @@ class Placer:
         if record:
             self.notes.extend(notes)
         return block
+
+    def _document_calls(self) -> MacroCalls:
+        """The macro calls of the document (:func:`.macros.calls_in`), read once."""
+        if self._calls is None:
+            self._calls = {name: tuple(calls) for name, calls in calls_in(self.root).items()}
+        return self._calls
 
     def _mimics(self, moves: list[Move]) -> bool:
         """Whether a joint of ``moves`` mimics another (its declaration is then made in the
@@ -528,15 +536,16 @@ class Placer:
         of the first: refused (a loss) in a macro that the document calls several times."""
         old = moves[0].old
         macro = enclosing_macro(old)
-        lines = calls(self.root, macro) if macro is not None else []
-        where = ([f"line {line}" for line in lines] if lines or macro is None else
-                 list(self.macro_calls.get((macro.get("name") or "").strip(), ())))
-        if len(where) > 1:
-            self.losses.append(refusal([m.new.name for m in moves], macro, where))
+        name = (macro.get("name") or "").strip() if macro is not None else ""
+        known = self.macro_calls or self._document_calls()
+        count = times(name, known) if macro is not None else 0
+        if count > 1:
+            self.losses.append(refusal([m.new.name for m in moves], macro, count,
+                                       list(known[name])))
         indent, step = indentation(old)
-        name = self._fresh_name(moves[0].new.name, f"the <ros2_control> around transmission "
-                                f"'{moves[0].new.name}'")
-        block = self.block(name, self.hardware_plugin, moves, old, indent, step)
+        fresh = self._fresh_name(moves[0].new.name, f"the <ros2_control> around transmission "
+                                 f"'{moves[0].new.name}'")
+        block = self.block(fresh, self.hardware_plugin, moves, old, indent, step)
         # Laid out as _generate lays out the document's block: the first run stays together
         # in it, the others are cut from where they stood.
         runs = runs_of([move.old for move in moves])
@@ -551,8 +560,8 @@ class Placer:
             parent.remove(later)  # with its tail: the block's is the run's last
         parent.replace(old, block)
         self._components = None
-        if macro is not None and not where:
-            self.notes.append(per_call(name, macro))
+        if macro is not None and not count:
+            self.notes.append(per_call(block.get("name"), macro))
 
     # ROS 2 -> ROS 1 ----------------------------------------------------------------------
 
