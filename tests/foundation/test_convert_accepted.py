@@ -190,7 +190,7 @@ def test_a_macro_called_twice_is_refused_with_one_line_naming_it(run, tmp_path):
     assert (code, out) == (1, "")
     assert err.splitlines() == [
         "error: transmission '${side}_trans': inside <xacro:macro name=\"wheel\"> (line 2), "
-        "which is expanded 2 times (called at line 11, line 12): converted there, each call "
+        "which this file expands 2 times (called at line 11, line 12): converted there, each call "
         "would be a "
         "<ros2_control> hardware component of its own; write the transmissions where the "
         "robot's one <ros2_control> is (outside the macro), or convert the expanded robot",
@@ -246,7 +246,7 @@ def test_migrate_counts_the_calls_in_the_other_files_and_names_the_next_steps(
         """)
     code, _, err = run("migrate", "--write", "--to", "ros2-p2", "cart_description")
     assert code == 1
-    assert ("which is expanded 2 times (called at cart_description/urdf/cart.urdf.xacro:3, "
+    assert ("which the files migrated with it expand 2 times (called at cart_description/urdf/cart.urdf.xacro:3, "
             "cart_description/urdf/cart.urdf.xacro:4)") in err
     # Written from the robot instead: one block, and what else the package must change.
     write("cart_description/urdf/wheel.urdf.xacro", MACRO.split("  <xacro:macro")[0]
@@ -293,5 +293,14 @@ def test_a_macro_called_once_inside_a_macro_called_twice_is_expanded_twice(run, 
     path.write_text(nested)
     code, out, err = run("convert", "--no-xacro", str(path), "--to", "ros2-p2")
     assert (code, out) == (1, "")
-    assert ("inside <xacro:macro name=\"wheel\"> (line 2), which is expanded 2 times (called at "
+    assert ("inside <xacro:macro name=\"wheel\"> (line 2), which this file expands 2 times (called at "
             "line 12 in <xacro:macro name=\"axle\">)") in err
+
+
+def test_xacro_is_known_by_its_prefix_whatever_namespace_it_is_bound_to(run, tmp_path):
+    # Robotnik's files bind xacro: to http://wiki.ros.org/xacro; xacro reads the prefix.
+    path = tmp_path / "cart.urdf.xacro"
+    path.write_text(MACRO.replace("http://ros.org/wiki/xacro", "http://wiki.ros.org/xacro"))
+    code, out, err = run("convert", "--no-xacro", str(path), "--to", "ros2-p2")
+    assert (code, out) == (1, "")
+    assert "which this file expands 2 times (called at line 11, line 12)" in err

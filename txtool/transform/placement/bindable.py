@@ -59,9 +59,10 @@ class RobotJoints:
         """Whether the document is a whole robot: a ``<robot>`` with joints and no xacro
         element (a joint it lacks is lacking from the robot)."""
         if self._whole is None:
-            self._whole = bool(self.elements) and not any(
+            self._whole = bool(self.elements) and "xacro" not in self.root.nsmap and not any(
                 uri in XACRO for uri in self.root.nsmap.values()) and not any(
-                namespace_of(e) in XACRO for e in self.root.iter(etree.Element))
+                namespace_of(e) in XACRO or e.prefix == "xacro"
+                for e in self.root.iter(etree.Element))
         return self._whole
 
     def _known(self, name: str) -> etree._Element | None:

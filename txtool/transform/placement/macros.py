@@ -27,11 +27,17 @@ from txtool.transform.placement.layout import namespace_of
 from txtool.transform.placement.scope import XACRO
 
 
+def is_xacro(element: etree._Element) -> bool:
+    """Whether ``element`` is one of xacro's: in its namespace, or with its prefix (xacro
+    reads the prefix: files also bind it to ``http://wiki.ros.org/xacro``)."""
+    return namespace_of(element) in XACRO or element.prefix == "xacro"
+
+
 def enclosing_macro(element: etree._Element) -> etree._Element | None:
     """The nearest ``xacro:macro`` around ``element``, or None."""
     parent = element.getparent()
     while parent is not None:
-        if namespace_of(parent) in XACRO and local(parent) == "macro":
+        if local(parent) == "macro" and is_xacro(parent):
             return parent
         parent = parent.getparent()
     return None
@@ -57,7 +63,7 @@ def calls_in(root: etree._Element, file: str | None = None) -> dict[str, list[Ca
     in their places (else the line alone)."""
     found: dict[str, list[Call]] = {}
     for element in root.iter(etree.Element):
-        if namespace_of(element) not in XACRO or local(element) in _BUILTIN:
+        if not is_xacro(element) or local(element) in _BUILTIN:
             continue
         line = element.sourceline or 0
         where = f"{file}:{line}" if file is not None else f"line {line}"
@@ -98,9 +104,9 @@ def times(name: str, calls: MacroCalls, seen: frozenset[str] = frozenset()) -> i
 
 
 def refusal(transmissions: list[str], macro: etree._Element, count: int,
-            where: list[Call]) -> str:
+            where: list[Call], scope: str = "this file expands") -> str:
     """The one line that says why transmissions inside ``macro`` are not converted (``count``:
-    how many times the robot expands it; ``where``: its calls)."""
+    how many times ``scope`` expands it; ``where``: its calls)."""
     name = (macro.get("name") or "").strip()
     shown = ", ".join(call.where + (f" in <xacro:macro name=\"{call.within}\">"
                                     if call.within else "") for call in where[:4]) + (
@@ -108,7 +114,7 @@ def refusal(transmissions: list[str], macro: etree._Element, count: int,
     which = (f"transmission '{transmissions[0]}'" if len(transmissions) == 1 else
              f"{len(transmissions)} transmissions ('{transmissions[0]}', ...)")
     return (f"{which}: inside <xacro:macro name=\"{name}\"> (line {macro.sourceline}), which "
-            f"is expanded {count} times (called at {shown}): converted there, each "
+            f"{scope} {count} times (called at {shown}): converted there, each "
             "call would be a <ros2_control> hardware component of its own; write the "
             "transmissions where the robot's one <ros2_control> is (outside the macro), or "
             "convert the expanded robot")

@@ -541,7 +541,8 @@ class Placer:
         count = times(name, known) if macro is not None else 0
         if count > 1:
             self.losses.append(refusal([m.new.name for m in moves], macro, count,
-                                       list(known[name])))
+                                       list(known[name]), "the files migrated with it expand"
+                                       if self.macro_calls else "this file expands"))
         indent, step = indentation(old)
         fresh = self._fresh_name(moves[0].new.name, f"the <ros2_control> around transmission "
                                  f"'{moves[0].new.name}'")
