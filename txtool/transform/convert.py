@@ -110,16 +110,16 @@ def convert_source(
     """
     try:
         result, expected = _convert_document(source, target, hardware_plugin, consume,
-                                             reversible, check, repeats, near=True,
-                                             macro_calls=macro_calls)
+                                             reversible, check, repeats, macro_calls,
+                                             near=True)
     except NotIndexed:
         # The placer changed the root's children next to one the index passed over: again,
         # with every child of the root indexed (a conversion in place consumed the tree).
         if consume:
             source.tree = parse_bytes(source.data, source.path, limit=None)
         result, expected = _convert_document(source, target, hardware_plugin, consume,
-                                             reversible, check, repeats, near=False,
-                                             macro_calls=macro_calls)
+                                             reversible, check, repeats, macro_calls,
+                                             near=False)
     if expected is not None:  # the converted tree, and nothing else of the conversion
         assert result.edits is not None
         check_written(result.data, result.edits, source.path, expected)
@@ -127,8 +127,8 @@ def convert_source(
 
 
 def _convert_document(source: Source, target: Dialect, hardware_plugin: str, consume: bool,
-                      reversible: bool, check: bool, repeats: bool, *, near: bool,
-                      macro_calls: MacroCalls | None = None
+                      reversible: bool, check: bool, repeats: bool,
+                      macro_calls: MacroCalls | None, *, near: bool
                       ) -> tuple[ConvertedDocument, Expected | None]:
     """:func:`convert_source`, and what the written bytes must read as (checked by the
     caller); ``near``: as :class:`.ConversionEdits` takes it."""
