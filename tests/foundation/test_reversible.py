@@ -62,7 +62,9 @@ def test_a_to_ros2_and_back_gives_back_the_original_blocks(name, target):
         rest, taken = blocks(original)
         rest_back, taken_back = blocks(back.data)
         assert rest_back == rest
-        assert sorted(taken_back) == sorted(taken)
+        # Each block as written, but for the indentation of its first line: that is where
+        # it stands now (those of one xacro macro come back together where the first stood).
+        assert sorted(map(bytes.lstrip, taken_back)) == sorted(map(bytes.lstrip, taken))
 
 
 def test_the_corpus_has_both_kinds():

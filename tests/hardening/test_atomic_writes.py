@@ -18,6 +18,10 @@ from tests.corpus import corpus_files
 from txtool.cli import cli
 from txtool.io.xmlio import write_atomic
 
+# Named, not the default placeholder (which a written conversion points out): what these
+# tests check is elsewhere.
+MOCK = "mock_components/GenericSystem"
+
 FIXTURES = Path(__file__).resolve().parents[2] / "fixtures"
 DEMO = (FIXTURES / "demo_robot.urdf").read_bytes()
 ROBOT = b"""\
@@ -68,12 +72,12 @@ def run(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Run:
 def _convert_to_other(folder: Path) -> tuple[list[str], Path]:
     (folder / "demo.urdf").write_bytes(DEMO)
     (folder / "out.urdf").write_bytes(OLD_OUTPUT)
-    return ["convert", "demo.urdf", "--to", "ros2-p2", "-o", "out.urdf"], folder / "out.urdf"
+    return ["convert", "demo.urdf", "--to", "ros2-p2", "--hardware-plugin", MOCK, "-o", "out.urdf"], folder / "out.urdf"
 
 
 def _convert_in_place(folder: Path) -> tuple[list[str], Path]:
     (folder / "demo.urdf").write_bytes(DEMO)
-    return (["convert", "demo.urdf", "--to", "ros2-p2", "-o", "demo.urdf", "--write"],
+    return (["convert", "demo.urdf", "--to", "ros2-p2", "--hardware-plugin", MOCK, "-o", "demo.urdf", "--write"],
             folder / "demo.urdf")
 
 
@@ -183,7 +187,7 @@ def test_an_interrupt_while_writing_leaves_the_original_and_no_temporary_file(
 
 @pytest.mark.parametrize("umask", [0o022, 0o077, 0o002])
 @pytest.mark.parametrize("args", [
-    ["convert", "demo.urdf", "--to", "ros2-p2", "-o", "new.urdf"],
+    ["convert", "demo.urdf", "--to", "ros2-p2", "--hardware-plugin", MOCK, "-o", "new.urdf"],
     ["schema", "-o", "new.urdf"],
 ])
 def test_a_new_output_file_gets_the_umask_mode(run, tmp_path, args, umask):
@@ -202,7 +206,7 @@ def test_convert_writes_through_a_symbolic_link(run, tmp_path):
     target.write_bytes(DEMO)
     link = tmp_path / "demo.urdf"
     link.symlink_to(Path("real") / "demo.urdf")
-    assert run("convert", "demo.urdf", "--to", "ros2-p2", "-o", "demo.urdf", "--write") == (
+    assert run("convert", "demo.urdf", "--to", "ros2-p2", "--hardware-plugin", MOCK, "-o", "demo.urdf", "--write") == (
         0, "", "")
     assert link.is_symlink() and os.readlink(link) == str(Path("real") / "demo.urdf")
     assert b"<ros2_control" in target.read_bytes()
@@ -233,7 +237,7 @@ def test_output_naming_the_input_needs_write(run, tmp_path, spelling):
     (tmp_path / "demo.urdf").write_bytes(DEMO)
     (tmp_path / "sub").mkdir()
     output = SPELLINGS[spelling](tmp_path)
-    args = ["convert", "demo.urdf", "--to", "ros2-p2", "-o", output]
+    args = ["convert", "demo.urdf", "--to", "ros2-p2", "--hardware-plugin", MOCK, "-o", output]
     assert run(*args) == (
         2, "", f"txtool: {output}: is the input file; add --write to convert it in place\n")
     assert (tmp_path / "demo.urdf").read_bytes() == DEMO
@@ -250,7 +254,7 @@ def test_output_naming_the_input_needs_write(run, tmp_path, spelling):
 def test_a_xacro_file_is_not_replaced_by_its_expansion(run, tmp_path):
     path = tmp_path / "arm.urdf.xacro"
     path.write_bytes(XACRO)
-    args = ["convert", "arm.urdf.xacro", "--to", "ros2-p2", "-o", "arm.urdf.xacro", "--write"]
+    args = ["convert", "arm.urdf.xacro", "--to", "ros2-p2", "--hardware-plugin", MOCK, "-o", "arm.urdf.xacro", "--write"]
     assert run(*args) == (2, "", (
         "txtool: arm.urdf.xacro: converting a xacro file in place would replace it with its "
         "expansion; use 'txtool migrate --write --to TARGET' (or --no-xacro)\n"))
@@ -283,7 +287,7 @@ def _migrate_twice(run: Run, paths: list[Path], *options: str) -> None:
     assert err.endswith(f"nothing to do ({len(paths)} file(s) checked)\n")
 
 
-@pytest.mark.parametrize("options", [(), ("--to", "ros2-p2", "--allow-lossy"),
+@pytest.mark.parametrize("options", [(), ("--to", "ros2-p2", "--hardware-plugin", MOCK, "--allow-lossy"),
                                      ("--to", "ros1", "--allow-lossy")])
 def test_migrating_the_fixtures_twice_changes_nothing_the_second_time(run, tmp_path, options):
     shutil.copytree(FIXTURES, tmp_path / "fixtures")
@@ -360,7 +364,7 @@ def test_convert_write_refuses_a_file_edited_during_the_run(tmp_path, monkeypatc
         return result
 
     monkeypatch.setattr(convert, "convert_source", edit_meanwhile)
-    result = CliRunner().invoke(cli, ["convert", str(robot), "--to", "ros2-p2", "-o", str(robot),
+    result = CliRunner().invoke(cli, ["convert", str(robot), "--to", "ros2-p2", "--hardware-plugin", MOCK, "-o", str(robot),
                                       "--write"])
     assert result.exit_code == 2
     assert result.stderr.endswith(

@@ -18,6 +18,10 @@ from tests.foundation.test_convert_bytes import convert, documents
 from tests.hardening.hostile_inputs import one_line_error, run
 from txtool.cli import cli
 
+# Named, not the default placeholder (which a written conversion points out): what these
+# tests check is elsewhere.
+MOCK = "mock_components/GenericSystem"
+
 BEFORE = """\
 <?xml version="1.0" encoding="{encoding}"?>
 <robot name="arm">
@@ -77,10 +81,10 @@ FORMS = {
 NEWLINES = {"LF": "\n", "CRLF": "\r\n", "CR": "\r"}
 # Each command that writes a document, and the file it writes.
 WRITES = {
-    "migrate --write": (["migrate", "--to", "ros2-p2", "--write", "robot.urdf"], "robot.urdf"),
-    "convert --write": (["convert", "--to", "ros2-p2", "robot.urdf", "-o", "robot.urdf",
+    "migrate --write": (["migrate", "--to", "ros2-p2", "--hardware-plugin", MOCK, "--write", "robot.urdf"], "robot.urdf"),
+    "convert --write": (["convert", "--to", "ros2-p2", "--hardware-plugin", MOCK, "robot.urdf", "-o", "robot.urdf",
                          "--write"], "robot.urdf"),
-    "convert -o": (["convert", "--to", "ros2-p2", "robot.urdf", "-o", "out.urdf"], "out.urdf"),
+    "convert -o": (["convert", "--to", "ros2-p2", "--hardware-plugin", MOCK, "robot.urdf", "-o", "out.urdf"], "out.urdf"),
 }
 
 
@@ -135,7 +139,7 @@ def test_converting_any_document_gives_its_utf8_conversion_in_its_encoding(docum
 @pytest.mark.parametrize("form", FORMS)
 def test_convert_to_stdout_writes_the_document_in_its_encoding(tmp_path, form):
     (tmp_path / "robot.urdf").write_bytes(encode(BEFORE, form, "\n"))
-    result = CliRunner().invoke(cli, ["convert", "--to", "ros2-p2", str(tmp_path / "robot.urdf")])
+    result = CliRunner().invoke(cli, ["convert", "--to", "ros2-p2", "--hardware-plugin", MOCK, str(tmp_path / "robot.urdf")])
     assert (result.exit_code, result.stderr) == (0, "")
     assert_written_as(result.stdout_bytes, form, "\n")
 
@@ -145,7 +149,7 @@ def test_a_document_with_nothing_to_change_is_left_byte_for_byte(tmp_path, form)
     document = tmp_path / "robot.urdf"
     document.write_bytes(encode(AFTER, form, "\r"))
     before = document.read_bytes()
-    assert run("migrate", "--to", "ros2-p2", "--write", str(document))[0] == 0
+    assert run("migrate", "--to", "ros2-p2", "--hardware-plugin", MOCK, "--write", str(document))[0] == 0
     assert document.read_bytes() == before
 
 
@@ -211,7 +215,7 @@ def test_validate_finds_a_misplaced_declaration_in_any_encoding(tmp_path, monkey
 def test_migrate_diff_shows_the_text(tmp_path, monkeypatch, form):
     monkeypatch.chdir(tmp_path)
     (tmp_path / "robot.urdf").write_bytes(encode(BEFORE, form, "\n"))
-    code, out, err = run("migrate", "--to", "ros2-p2", "--diff", "robot.urdf")
+    code, out, err = run("migrate", "--to", "ros2-p2", "--hardware-plugin", MOCK, "--diff", "robot.urdf")
     assert (code, err) == (1, "would change robot.urdf (1 transmission(s) to ros2-p2)\n"
                               "1 file(s) would be changed\n")
     declared = FORMS[form][2]
@@ -226,7 +230,7 @@ def test_migrate_diff_of_a_utf16_document_applies_to_its_text(tmp_path, monkeypa
     """The diff is of the text: applied to the text decoded, it gives the text written."""
     monkeypatch.chdir(tmp_path)
     (tmp_path / "robot.urdf").write_bytes(encode(BEFORE, "UTF-16LE with BOM", "\n"))
-    out = run("migrate", "--to", "ros2-p2", "--diff", "robot.urdf")[1]
+    out = run("migrate", "--to", "ros2-p2", "--hardware-plugin", MOCK, "--diff", "robot.urdf")[1]
     removed = [line[1:] for line in out.splitlines()[3:] if line[:1] in " -"]
     added = [line[1:] for line in out.splitlines()[3:] if line[:1] in " +"]
     before = BEFORE.format(encoding="UTF-16").splitlines()
@@ -271,10 +275,10 @@ def test_a_declaration_that_names_another_encoding_is_one_line(tmp_path, case):
     document = tmp_path / "robot.urdf"
     document.write_bytes(data)
     expected = f"txtool: {document}:1:31: {reason}"
-    for args in (["show"], ["convert", "--to", "ros2-p2"]):
+    for args in (["show"], ["convert", "--to", "ros2-p2", "--hardware-plugin", MOCK]):
         code, out, err = run(*args, str(document))
         assert (code, out, one_line_error(err)) == (2, "", expected), args
-    code, out, err = run("migrate", "--to", "ros2-p2", "--write", str(document))
+    code, out, err = run("migrate", "--to", "ros2-p2", "--hardware-plugin", MOCK, "--write", str(document))
     assert (code, out, err) == (2, "", f"{expected}\n1 file(s) could not be read or written\n")
     assert document.read_bytes() == data
     code, out, err = run("validate", str(document))

@@ -23,6 +23,10 @@ from txtool.cli import cli
 from txtool.io.encodings import document_text
 from txtool.io.xmlio import parse_bytes
 
+# Named, not the default placeholder (which a written conversion points out): what these
+# tests check is elsewhere.
+MOCK = "mock_components/GenericSystem"
+
 GERMAN = robot(joint="gelenk_ä", transmission="getriebe_ä",
                comment="\n  <!-- Getriebe für das Gelenk: ä ö ü ß -->")
 
@@ -66,7 +70,7 @@ def test_encoded_robot_is_read_validated_and_converted(tmp_path, name):
 
     ros2 = tmp_path / "robot.ros2.urdf"
     back = tmp_path / "robot.back.urdf"
-    assert run("convert", "--to", "ros2-p2", str(document), "-o", str(ros2))[0] == 0
+    assert run("convert", "--to", "ros2-p2", "--hardware-plugin", MOCK, str(document), "-o", str(ros2))[0] == 0
     assert run("convert", "--to", "ros1", str(ros2), "-o", str(back))[0] == 0
     for converted in (ros2, back):
         text = document_text(converted.read_bytes())
@@ -79,7 +83,7 @@ def test_encoded_robot_is_read_validated_and_converted(tmp_path, name):
 def test_convert_to_stdout_keeps_the_text(tmp_path, name):
     document = tmp_path / "robot.urdf"
     document.write_bytes(ENCODINGS[name])
-    result = CliRunner().invoke(cli, ["convert", "--to", "ros2-p2", str(document)])
+    result = CliRunner().invoke(cli, ["convert", "--to", "ros2-p2", "--hardware-plugin", MOCK, str(document)])
     assert (result.exit_code, result.stderr) == (0, "")
     # Written in the encoding the declaration names, as a redirect to a file needs.
     tree = parse_bytes(result.stdout_bytes, "stdout")
@@ -121,7 +125,7 @@ def test_declaration_after_a_comment_is_read_and_flagged():
     assert (code, err) == (1, "")
     problems = json.loads(out)["problems"]
     assert [(p["code"], p["line"]) for p in problems] == [("TX001", declaration_line)]
-    code, out, err = run("convert", "--to", "ros2-p2", str(path))
+    code, out, err = run("convert", "--to", "ros2-p2", "--hardware-plugin", MOCK, str(path))
     assert code == 0 and err.count("is not converted") == 24  # custom types, left as written
     # Printed byte for byte but for the declaration, which strict parsers refuse there.
     lines = path.read_bytes().split(b"\n")
@@ -154,7 +158,7 @@ def test_odd_document_is_one_line_and_a_finding_in_validate(tmp_path, name):
     document = tmp_path / "robot.urdf"
     document.write_bytes(data)
     expected = f"txtool: {document}:1:1: {reason}"
-    for args in (["show"], ["convert", "--to", "ros2-p2"]):
+    for args in (["show"], ["convert", "--to", "ros2-p2", "--hardware-plugin", MOCK]):
         code, out, err = run(*args, str(document))
         assert (code, out, one_line_error(err)) == (2, "", expected), args
     code, out, err = run("validate", str(document))

@@ -18,6 +18,10 @@ import pytest
 
 from tests.hardening.test_atomic_writes import DEMO, ROBOT
 
+# Named, not the default placeholder (which a written conversion points out): what these
+# tests check is elsewhere.
+MOCK = "mock_components/GenericSystem"
+
 Run = Callable[..., tuple[int, str, str]]
 SECRET = b"export TOKEN=runner-secret\n"
 LINK_REFUSED = ("is a symbolic link; txtool writes a new output only to a regular file or a new "
@@ -29,7 +33,7 @@ INPUT_REFUSED = "is an input of this command; its output is not written over it"
 
 WRITERS = {
     "validate --output": ["validate", "robot.urdf", "--output"],
-    "convert -o": ["convert", "robot.urdf", "--to", "ros2-p2", "-o"],
+    "convert -o": ["convert", "robot.urdf", "--to", "ros2-p2", "--hardware-plugin", MOCK, "-o"],
     "convert --to bb -o": ["convert", "robot.urdf", "--to", "bb", "--allow-lossy", "-o"],
     "schema -o": ["schema", "-o"],
 }
@@ -108,7 +112,7 @@ def test_convert_does_not_overwrite_a_file_its_xacro_input_includes(run, tmp_pat
     (tmp_path / "top.urdf.xacro").write_bytes(
         b"<robot name='top' xmlns:xacro='http://www.ros.org/wiki/xacro'>"
         b"<xacro:include filename='arm.xacro'/></robot>\n")
-    code, out, err = run("convert", "top.urdf.xacro", "--to", "ros2-p2", "-o", "arm.xacro")
+    code, out, err = run("convert", "top.urdf.xacro", "--to", "ros2-p2", "--hardware-plugin", MOCK, "-o", "arm.xacro")
     if code == 2 and "xacro" in err and INPUT_REFUSED not in err:
         pytest.skip(f"xacro is not expanded here: {err.strip()}")
     assert (code, out, err.splitlines()[-1]) == (2, "", f"txtool: arm.xacro: {INPUT_REFUSED}")
@@ -119,8 +123,8 @@ EDITED = b"<!-- an edit saved while txtool wrote -->\n"
 
 
 @pytest.mark.parametrize(("args", "during"), [
-    (["migrate", "--write", "--to", "ros2-p2", "robot.urdf"], "migration"),
-    (["convert", "robot.urdf", "--to", "ros2-p2", "-o", "robot.urdf", "--write"], "conversion"),
+    (["migrate", "--write", "--to", "ros2-p2", "--hardware-plugin", MOCK, "robot.urdf"], "migration"),
+    (["convert", "robot.urdf", "--to", "ros2-p2", "--hardware-plugin", MOCK, "-o", "robot.urdf", "--write"], "conversion"),
 ])
 def test_an_edit_saved_while_the_new_text_is_written_is_kept(run, tmp_path, monkeypatch, args,
                                                              during):
@@ -168,7 +172,7 @@ def test_temporaries_a_killed_run_left_are_removed_and_nothing_else(run, tmp_pat
                  deeper]:
         _age(path, 2 * 3600)
     _age(fresh, 60)
-    assert run("convert", "robot.urdf", "--to", "ros2-p2", "-o", "new.urdf") == (0, "", "")
+    assert run("convert", "robot.urdf", "--to", "ros2-p2", "--hardware-plugin", MOCK, "-o", "new.urdf") == (0, "", "")
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted([
         "robot.urdf", "new.urdf", fresh.name, *kept, ".txtool-linkedxx.tmp", "sub"])
     assert deeper.exists() and (tmp_path / "robot.urdf").read_bytes() == DEMO

@@ -441,7 +441,8 @@ def test_a_conversion_that_would_nest_too_deep_is_refused_not_written(tmp_path, 
     assert code == 2 and line in err and document.read_bytes() == before
 
     document.write_text(deep_transmission(249))  # three levels up: converted as usual
-    code, out, err = run("convert", "--to", target, str(document))
+    code, out, err = run("convert", "--to", target, "--hardware-plugin", "deep/Hardware",
+                         str(document))
     assert (code, err) == (0, "") and "<ros2_control" in out
 
 

@@ -239,7 +239,8 @@ def reduction_read_by(command: str, out: str) -> str:
 
 COMMANDS = {
     "show": ["show", "robot.urdf.xacro", "--format", "json"],
-    "convert": ["convert", "robot.urdf.xacro", "--to", "ros2-p2"],
+    "convert": ["convert", "robot.urdf.xacro", "--to", "ros2-p2",
+                "--hardware-plugin", "arm_driver/ArmHardware"],  # (not the placeholder)
     "map": ["map", "robot.urdf.xacro", "-t", "t", "--to", "actuator", "--position", "1",
             "--format", "json"],
 }

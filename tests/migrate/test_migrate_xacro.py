@@ -148,6 +148,10 @@ def test_a_custom_type_is_left_as_written_with_a_warning_not_refused(run, write)
     assert err == (
         "warning: panda.urdf: transmission 'state': custom type 'franka_hw/FrankaStateInterface' "
         "is not converted (txtool knows only the standard types); left as written, in ros1 form\n"
+        "warning: panda.urdf: <ros2_control name=\"panda\"> generated with the placeholder "
+        "hardware plugin 'mock_components/GenericSystem' (ros2_control's mock hardware: it "
+        "copies commands to states and drives no robot); replace it with the robot's hardware "
+        "plugin, or convert with --hardware-plugin PLUGIN\n"
         "changed panda.urdf (1 transmission(s) to ros2-p2)\n1 file(s) changed\n"
     )
     text = path.read_text()

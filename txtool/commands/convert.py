@@ -32,7 +32,7 @@ TARGETS = ("ros1", "ros2-p1", "ros2-p2", "bb")
 @click.option("--write", "in_place", is_flag=True, help="Allow OUTPUT to be INPUT itself.")
 @click.option("--allow-lossy", is_flag=True,
               help="Exit 0 even when something cannot be carried (it is still reported).")
-@click.option("--hardware-plugin", default="mock_components/GenericSystem", show_default=True,
+@click.option("--hardware-plugin", default=None, show_default="mock_components/GenericSystem",
               help="<plugin> of a <ros2_control> block created for ROS 1 transmissions "
                    "(the default, ros2_control's mock hardware, is a placeholder to replace).")
 @click.option("--reversible", is_flag=True,
@@ -81,22 +81,24 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, revers
         raise InputError(f"{path}: converting a xacro file in place would replace it with its "
                          "expansion; use 'txtool migrate --write --to TARGET' (or --no-xacro)")
     to_bb = target == "bb"  # Elixir, not a robot: kept off robot descriptions as a report is
+    placeholder = None  # the placeholder plugin a generated block names, said once written
     if to_bb:
         data, losses, notes = _bb(source, bb_direction or "reversed", bb_topology)
     else:
         from txtool.transform.convert import convert_source
         from txtool.transform.edits.declaration import without_late_declaration
+        from txtool.transform.placement.placer import DEFAULT_HARDWARE_PLUGIN
 
-        result = convert_source(source, target, hardware_plugin=hardware_plugin, consume=True,
-                                reversible=reversible)
+        result = convert_source(source, target, consume=True, reversible=reversible,
+                                hardware_plugin=hardware_plugin or DEFAULT_HARDWARE_PLUGIN)
         # Well-formed even where nothing changed: a declaration after a comment or spaces
         # (which txtool reads) is not printed there.
         data = without_late_declaration(result.data)
         losses, notes = result.losses, result.notes
         for left in result.warnings:
             click.echo(f"warning: {printable(left)}", err=True)
-        if allow_lossy and result.placeholder is not None:
-            click.echo(f"warning: {printable(result.placeholder)}", err=True)
+        # (one named on the command line was chosen: not a placeholder)
+        placeholder = result.placeholder if hardware_plugin is None else None
         if not result.converted and not result.losses:
             held = (f"{result.found} found, {result.already} already {target}; the document is "
                     "unchanged" if result.found else "the document has no transmission")
@@ -118,6 +120,8 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, revers
         sys.stdout.flush()
         sys.stdout.buffer.write(data)
         sys.stdout.buffer.flush()
+    if placeholder is not None:
+        click.echo(f"warning: {printable(placeholder)}", err=True)
     return 0
 
 

@@ -37,7 +37,7 @@ def _mode(check: bool, diff: bool, write: bool) -> str:
               help="Use this configuration file instead of searching for one.")
 @click.option("--allow-lossy", is_flag=True,
               help="Convert even when something cannot be carried (it is still reported).")
-@click.option("--hardware-plugin", default="mock_components/GenericSystem", show_default=True,
+@click.option("--hardware-plugin", default=None, show_default="mock_components/GenericSystem",
               help="<plugin> of a <ros2_control> block created for ROS 1 transmissions "
                    "(the default, ros2_control's mock hardware, is a placeholder to replace).")
 @click.option("--reversible", is_flag=True,
@@ -58,7 +58,7 @@ def command(paths, target, check, diff, write, select, ignore, config_path, allo
     Exit codes: 0 nothing to do (or all written), 1 changes pending (--check, --diff) or a
     conversion refused for losses, 2 usage, configuration or input error.
     """
-    from txtool.transform.migrate import MigrateOptions, migrate_paths
+    from txtool.transform.migrate import DEFAULT_HARDWARE_PLUGIN, MigrateOptions, migrate_paths
 
     if reversible and target not in ("ros2-p1", "ros2-p2"):
         raise click.UsageError("--reversible needs --to ros2-p1 or --to ros2-p2 (migrating "
@@ -70,7 +70,8 @@ def command(paths, target, check, diff, write, select, ignore, config_path, allo
         ignore=_codes(ignore),
         config=config_path,
         allow_lossy=allow_lossy,
-        hardware_plugin=hardware_plugin,
+        hardware_plugin=hardware_plugin or DEFAULT_HARDWARE_PLUGIN,
+        plugin_chosen=hardware_plugin is not None,
         reversible=reversible,
     )
     report = migrate_paths(paths, options)

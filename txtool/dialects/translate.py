@@ -35,6 +35,7 @@ class Translation:
     losses: list[str] = field(default_factory=list)  # information that does not survive
     notes: list[str] = field(default_factory=list)  # changes that keep behaviour
     warnings: list[str] = field(default_factory=list)  # to look at, though nothing is lost
+    interfaces_taken: bool = False  # the actuators' interfaces went to bare joints
 
 
 def family(dialect: Dialect) -> str:
@@ -55,13 +56,37 @@ def interface_kind(name: str) -> str | None:
     return None
 
 
+# ros_control's combined command interfaces (hardware_interface/posvel_command_interface.h,
+# posvelacc_command_interface.h): one handle commanding several values, which ros2_control
+# declares as one command interface each (hardware_interface_type_values.hpp: HW_IF_POSITION,
+# HW_IF_VELOCITY, HW_IF_ACCELERATION).
+COMBINED = {
+    "PosVelJointInterface": ("position", "velocity"),
+    "PosVelAccJointInterface": ("position", "velocity", "acceleration"),
+}
+
+
+def combined_kinds(name: str) -> tuple[str, ...] | None:
+    """``hardware_interface/PosVelJointInterface`` -> ``("position", "velocity")``."""
+    return COMBINED.get(name.strip().rsplit("/", 1)[-1])
+
+
+def command_kinds(name: str) -> tuple[str, ...]:
+    """The ros2_control command interfaces a ROS 1 hardware interface name stands for."""
+    combined = combined_kinds(name)
+    if combined is not None:
+        return combined
+    kind = interface_kind(name)
+    return (kind,) if kind in ("position", "velocity", "effort") else ()
+
+
 def ros2_interfaces(ros1_names: tuple[str, ...]) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """Command and state interfaces of a ros2_control joint for ROS 1 hardware interfaces."""
     commands: list[str] = []
     for name in ros1_names:
-        kind = interface_kind(name)
-        if kind in ("position", "velocity", "effort") and kind not in commands:
-            commands.append(kind)
+        for kind in command_kinds(name):
+            if kind not in commands:
+                commands.append(kind)
     states = ["position", "velocity"]
     if "effort" in commands:
         states.append("effort")
@@ -119,6 +144,7 @@ def _order_coupled(t: Transmission, result: Translation) -> tuple[tuple[Member, 
 
 def _to_ros2(t: Transmission, target: Dialect) -> Translation:
     result = Translation(t)
+    t = _interfaces_from_actuators(t, result)
     joints, actuators = t.joints, t.actuators
     if t.kind == "simple":
         joints, actuators = _simple_to_ros2(t, result)
@@ -134,6 +160,29 @@ def _to_ros2(t: Transmission, target: Dialect) -> Translation:
         dialect=target,
     )
     return result
+
+
+def _interfaces_from_actuators(t: Transmission, result: Translation) -> Transmission:
+    """``t`` with the actuators' hardware interfaces on each joint that names none, where
+    all actuators that name some agree: the place from before ROS Indigo, which
+    gazebo_ros_control still reads (gazebo_ros_control/src/default_robot_hw_sim.cpp,
+    ``initSim``: "The <hardware_interface> element of tranmission ... should be nested inside
+    the <joint> element, not <actuator>"), as TX301's fix moves it."""
+    named = {tuple(i.strip() for i in a.interfaces) for a in t.actuators if a.interfaces}
+    if len(named) != 1 or all(j.interfaces for j in t.joints):
+        return t
+    interfaces = next(a.interfaces for a in t.actuators if a.interfaces)
+    joints = []
+    for joint in t.joints:
+        if not joint.interfaces:
+            result.notes.append(
+                f"joint '{joint.name}': names no <hardwareInterface>; given its actuator's "
+                f"({', '.join(i.strip() for i in interfaces)}), as gazebo_ros_control reads "
+                "it (ros_control since Indigo skips such a joint: TX301)")
+            joint = replace(joint, interfaces=interfaces)
+        joints.append(joint)
+    result.interfaces_taken = True
+    return replace(t, joints=tuple(joints))
 
 
 def _simple_to_ros2(t: Transmission, result: Translation) -> tuple[tuple[Member, ...], ...]:
@@ -166,7 +215,14 @@ def _ros2_joint(joint: Member, result: Translation, **changes: Any) -> Member:
             "the expanded robot, or write the interface"
         )
     unknown = [i for i in joint.interfaces
-               if interface_kind(i) is None and i not in expressions]
+               if interface_kind(i) is None and combined_kinds(i) is None
+               and i not in expressions]
+    for name in joint.interfaces:
+        if combined_kinds(name) is not None:
+            result.notes.append(
+                f"joint '{joint.name}': {name.strip()} (ros_control's combined command "
+                f"handle) is declared as the command interfaces "
+                f"{', '.join(combined_kinds(name) or ())}")
     if unknown:
         # ros_control loads no provider for such a name: it skips it, and refuses the
         # transmission when no valid one remains (transmission_interface_loader.cpp,
@@ -184,7 +240,7 @@ def _ros2_joint(joint: Member, result: Translation, **changes: Any) -> Member:
 
 
 def _ros2_actuator(actuator: Member, result: Translation, **changes: Any) -> Member:
-    if actuator.interfaces:
+    if actuator.interfaces and not result.interfaces_taken:
         result.notes.append(
             f"actuator '{actuator.name}': <hardwareInterface> is not used by ros_control's "
             "loaders and has no place in ROS 2; dropped"

@@ -35,6 +35,8 @@ from txtool.model.semantics import Effective, NotLoadable, effective, listed_aga
 from txtool.transform.edits.conversion_edits import ConversionEdits, Expected, check_written
 from txtool.transform.edits.core import Edit
 from txtool.transform.edits.spans import NotIndexed
+from txtool.transform.next_steps import gazebo_plugin
+from txtool.transform.placement.macros import MacroCalls
 from txtool.transform.placement.placer import DEFAULT_HARDWARE_PLUGIN, Placer
 from txtool.transform.repeated.block_text import Written, fill, read_back
 from txtool.transform.repeated.cycle_collector import paused
@@ -72,8 +74,7 @@ class ConvertedDocument:
     found: int = 0  # transmissions in the document
     already: int = 0  # of them, already in the target dialect
     # Which generated blocks name the placeholder plugin (the default --hardware-plugin),
-    # said as a warning where losses are accepted (--allow-lossy): the result is then
-    # written to be finished by hand, and that plugin must be replaced.
+    # said as a warning wherever the result is written: that plugin must be replaced.
     placeholder: str | None = None
     # The edits of the original (its UTF-8 form if UTF-16/32) that make ``data``; None for
     # an unchanged document or a xacro expansion (written whole).
@@ -84,6 +85,7 @@ class ConvertedDocument:
 def convert_source(
     source: Source, target: Dialect, *, hardware_plugin: str = DEFAULT_HARDWARE_PLUGIN,
     consume: bool = False, reversible: bool = False, check: bool = True, repeats: bool = True,
+    macro_calls: MacroCalls | None = None,
 ) -> ConvertedDocument:
     """Convert ``source``: the change is said as edits of ``source.data``
     (:mod:`.edits.conversion_edits`; the result's ``edits``), unless ``source`` is a xacro
@@ -102,17 +104,22 @@ def convert_source(
     :mod:`.repeated.templates`), and the block generated for the document is written as text
     (:mod:`.repeated.block_text`). Off, every transmission is converted in full; the bytes and
     messages are the same either way.
+
+    ``macro_calls``: where the files converted with this one call each xacro macro
+    (:func:`.placement.macros.calls_in_files`; ``migrate`` gives those of its files).
     """
     try:
         result, expected = _convert_document(source, target, hardware_plugin, consume,
-                                             reversible, check, repeats, near=True)
+                                             reversible, check, repeats, macro_calls,
+                                             near=True)
     except NotIndexed:
         # The placer changed the root's children next to one the index passed over: again,
         # with every child of the root indexed (a conversion in place consumed the tree).
         if consume:
             source.tree = parse_bytes(source.data, source.path, limit=None)
         result, expected = _convert_document(source, target, hardware_plugin, consume,
-                                             reversible, check, repeats, near=False)
+                                             reversible, check, repeats, macro_calls,
+                                             near=False)
     if expected is not None:  # the converted tree, and nothing else of the conversion
         assert result.edits is not None
         check_written(result.data, result.edits, source.path, expected)
@@ -120,7 +127,8 @@ def convert_source(
 
 
 def _convert_document(source: Source, target: Dialect, hardware_plugin: str, consume: bool,
-                      reversible: bool, check: bool, repeats: bool, *, near: bool
+                      reversible: bool, check: bool, repeats: bool,
+                      macro_calls: MacroCalls | None, *, near: bool
                       ) -> tuple[ConvertedDocument, Expected | None]:
     """:func:`convert_source`, and what the written bytes must read as (checked by the
     caller); ``near``: as :class:`.ConversionEdits` takes it."""
@@ -136,7 +144,8 @@ def _convert_document(source: Source, target: Dialect, hardware_plugin: str, con
         source.path, source.data, tree.getroot(), elements, at_root, target, near=near)
     result = ConvertedDocument(data=b"", target=target, found=len(elements))
     placer = Placer(tree.getroot(), hardware_plugin, components=source.expanded or (
-        detect_encoding(source.data).codec not in SCANNABLE or b"ros2_control" in source.data))
+        detect_encoding(source.data).codec not in SCANNABLE or b"ros2_control" in source.data),
+        macro_calls=macro_calls)
     placer.after = carry.after_block
     items, olds = _place_each(elements, tree, target, result, placer, carry, memo,
                               all_top=len(at_root) == len(elements))
@@ -153,6 +162,9 @@ def _convert_document(source: Source, target: Dialect, hardware_plugin: str, con
             writer.substitute(node, block)
     result.notes.extend(placer.notes)
     result.losses.extend(placer.losses)
+    result.warnings.extend(placer.warnings)
+    if target != "ros1" and result.converted:
+        result.warnings.extend(gazebo_plugin(tree.getroot()))
     result.placeholder = placer.placeholder
     built_for = placer.built.get
     for item in items:
@@ -215,9 +227,9 @@ def _place_each(elements: list[etree._Element], tree: etree._ElementTree, target
             keyed = memo.keyed(element)
         if keyed.__class__ is Follower:
             assert isinstance(keyed, Follower)
-            placer.place_follower(element, keyed, keyed.record.original.dialect)
             items.append(keyed)
-            result.converted += 1
+            if placer.place_follower(element, keyed, keyed.record.original.dialect):
+                result.converted += 1
             continue
         renaming = keyed if isinstance(keyed, Renaming) else None
         t = read_transmission(element, None, components)
@@ -323,8 +335,7 @@ def _convert_one(found: Found, tree: etree._ElementTree, target: Dialect, result
         result.warnings)
     if memo is not None and memo.learn(renaming, t, translation.transmission, clean) is None:
         renaming = None
-    placer.place(found.element, translation.transmission, carried, renaming, t.dialect)
-    return True
+    return placer.place(found.element, translation.transmission, carried, renaming, t.dialect)
 
 
 def _other_children(

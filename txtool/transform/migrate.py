@@ -14,9 +14,10 @@ files only in ``write`` mode. Nothing here prints.
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from collections import Counter
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Literal
 
@@ -46,6 +47,8 @@ from txtool.transform.edits.spans import SpanError, SpanIndex
 from txtool.transform.edits.tree_edits import NotEditable, TreeChange, reads_as
 from txtool.transform.fixable import might_fix, might_fix_converted
 from txtool.transform.linediff import unified_ascii, unified_text
+from txtool.transform.next_steps import package_build_types, package_gazebo_plugins
+from txtool.transform.placement.macros import MacroCalls, calls_in_files
 from txtool.transform.repeated.cycle_collector import paused
 from txtool.transform.reversible import MARK
 
@@ -64,6 +67,9 @@ class MigrateOptions:
     config: str | None = None
     allow_lossy: bool = False
     hardware_plugin: str = DEFAULT_HARDWARE_PLUGIN
+    plugin_chosen: bool = False  # named by the user: not a placeholder to point out
+    # Where the files migrated call each xacro macro (set by migrate_paths, to ROS 2).
+    macro_calls: MacroCalls | None = None
     reversible: bool = False
 
 
@@ -147,7 +153,10 @@ def migrate_paths(paths: Iterable[str], options: MigrateOptions) -> Report:
     (:class:`~txtool.lint.config.ConfigError`, exit 2) stops the run with nothing written.
     """
     report = Report(mode=options.mode)
-    for path, rules in _plan(paths, options, report):
+    plan = _plan(paths, options, report)
+    if options.target is not None and options.target != "ros1":
+        options = dataclasses.replace(options, macro_calls=calls_in_files(_bytes_of(plan)))
+    for path, rules in plan:
         try:
             result = migrate_file(path, rules, options)
         except InputError as exc:
@@ -155,8 +164,23 @@ def migrate_paths(paths: Iterable[str], options: MigrateOptions) -> Report:
             continue
         report.files.append(result)
         _record(report, result, options)
+    if options.target is not None and options.target != "ros1":
+        converted = [f.path for f in report.files if f.converted and f.changed]
+        steps = package_gazebo_plugins(converted) + package_build_types(converted)
+        report.messages.extend(f"warning: {step}" for step in steps)
     report.messages.append(report.summary())
     return report
+
+
+def _bytes_of(plan: list[tuple[str, list[Rule]]]) -> Iterator[tuple[str, bytes]]:
+    """The bytes of each planned file that can be read (the others are reported when
+    migrated)."""
+    for path, _ in plan:
+        try:
+            display, data = read_bytes(path)
+        except InputError:
+            continue
+        yield display, data
 
 
 def _plan(
@@ -261,7 +285,8 @@ def _steps(result: FileResult, source: Source, rules: Sequence[Rule],
         try:  # the conversion frees the tree once converted
             conversion = convert_source(source, options.target,
                                         hardware_plugin=options.hardware_plugin, consume=True,
-                                        reversible=options.reversible)
+                                        reversible=options.reversible,
+                                        macro_calls=options.macro_calls)
         except ValueError as exc:
             result.losses.append(f"cannot convert: {exc}")
             result.refused = True
@@ -319,7 +344,8 @@ def _take_messages(result: FileResult, conversion: ConvertedDocument,
                    options: MigrateOptions) -> None:
     result.notes.extend(conversion.notes)
     result.warnings.extend(conversion.warnings)
-    if options.allow_lossy and conversion.placeholder is not None:
+    if conversion.placeholder is not None and not options.plugin_chosen and (
+            options.allow_lossy or not conversion.losses):
         result.warnings.append(conversion.placeholder)
     result.losses.extend(conversion.losses)
     result.converted = conversion.converted

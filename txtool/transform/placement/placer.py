@@ -24,6 +24,11 @@ from txtool.dialects.read import detect_dialect, enclosing_component
 from txtool.io.xmlio import local
 from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
+from txtool.transform.placement.bindable import (
+    RobotJoints,
+    left_as_written,
+    not_mimicking,
+)
 from txtool.transform.placement.layout import (
     append,
     become,
@@ -37,6 +42,14 @@ from txtool.transform.placement.layout import (
     restyle_roles,
     runs_of,
     with_comments,
+)
+from txtool.transform.placement.macros import (
+    MacroCalls,
+    calls_in,
+    enclosing_macro,
+    per_call,
+    refusal,
+    times,
 )
 from txtool.transform.placement.moves import Carried, Move
 from txtool.transform.placement.recognition import generated_from
@@ -54,14 +67,18 @@ class Placer:
     once every transmission has been placed."""
 
     def __init__(self, root: etree._Element, hardware_plugin: str, *,
-                 components: bool = True) -> None:
+                 components: bool = True, macro_calls: MacroCalls | None = None) -> None:
         """``components=False``: the document is known to hold no ``<ros2_control>`` (its
-        tree is then not searched for one until a block is added)."""
+        tree is then not searched for one until a block is added); ``macro_calls``: where
+        the files converted with this one call each macro (:mod:`.macros`)."""
         self.root = root
+        self.macro_calls = macro_calls or {}
+        self._calls: MacroCalls | None = None  # the document's, when asked
         self._robot = local(root) == "robot"
         self.hardware_plugin = hardware_plugin
         self.notes: list[str] = []
         self._into_new: list[Move] = []
+        self._in_place: dict[etree._Element, list[Move]] = {}  # by the parent they stand in
         self._out_of: dict[etree._Element, list[Move]] = {}
         self._components: list[etree._Element] | None = None if components else []
         self._declared: dict[etree._Element, set[str]] = {}
@@ -81,6 +98,10 @@ class Placer:
         self._replaced = etree.Element("replaced")  # what the generated block replaced
         # What the conversion cannot do as the document asks (it says why).
         self.losses: list[str] = []
+        # What to look at, though nothing is lost (a transmission left as written).
+        self.warnings: list[str] = []
+        # The document's URDF joints: which a <ros2_control> may declare, and how.
+        self.joints = RobotJoints(root)
         # Set when a block names the placeholder plugin: which blocks, and what to do.
         self.placeholder: str | None = None
         self._placeholders: list[str] = []  # blocks generated with the default plugin
@@ -93,16 +114,19 @@ class Placer:
         self._taken: set[str] | None = None if components else set()
 
     def place(self, old: etree._Element, t: Transmission, carried: Carried | None = None,
-              renaming: Renaming | None = None, dialect: Dialect | None = None) -> None:
+              renaming: Renaming | None = None, dialect: Dialect | None = None) -> bool:
         """Place the conversion ``t`` of ``old``; ``carried``: children of ``old`` (by
         owner) that go along as written; ``renaming``: ``old``'s key and names (see
         :mod:`txtool.transform.repeated.renamings`), so that the elements built for one key
-        are built once; ``dialect``: ``old``'s, when known."""
+        are built once; ``dialect``: ``old``'s, when known. Whether it is placed: one on a
+        joint no ``<ros2_control>`` may declare is left as written (:mod:`.bindable`)."""
         move = Move(old, t, carried, renaming)
         component = enclosing_component(old)
         moving_out = t.dialect == "ros1" and component is not None
         moving_in = (t.dialect != "ros1" and component is None and old.getparent() is not None
                      and (dialect or detect_dialect(old)) == "ros1")
+        if moving_in and not self._bindable(t.name, [j.name for j in t.joints]):
+            return False
         if moving_out and component.getparent() is not None:
             if not self._conditions_between(old, component, t.name):
                 return
@@ -117,9 +141,9 @@ class Placer:
                 append(existing, self.build(move, *child_indentation(existing), existing))
         elif moving_in:
             # Inside a xacro macro or conditional (or a file whose root is not a <robot>): a
-            # <ros2_control> of its own, in place, so that the transmission stays in the scope
-            # of its ${...} parameters.
-            self._wrap_in_place(move)
+            # <ros2_control> in place, one for those that stand together (:mod:`.macros`), so
+            # that the transmission stays in the scope of its ${...} parameters.
+            self._in_place.setdefault(old.getparent(), []).append(move)
         elif t.dialect != "ros1" and (dialect or detect_dialect(old)) != "ros1":
             restyle_roles(old, t.dialect)  # Proposal 1 <-> 2: only the roles change
         else:
@@ -129,12 +153,24 @@ class Placer:
                 become(old, new)  # a bare <transmission> fragment
             else:
                 old.getparent().replace(old, new)
+        return True
+
+    def _bindable(self, name: str, joints: list[str]) -> bool:
+        """Whether a ``<ros2_control>`` may declare ``joints`` (a warning where not)."""
+        refusal = self.joints.refusal(joints)
+        if refusal is not None:
+            self.warnings.append(left_as_written(name, refusal))
+        return refusal is None
 
     def place_follower(self, old: etree._Element, follower: Follower, dialect: Dialect
-                       ) -> None:
+                       ) -> bool:
         """:meth:`place` for a follower (:mod:`txtool.transform.repeated.renamings`) outside
         any ``<ros2_control>``: one that goes into the block generated for the document is not
         built here."""
+        if dialect == "ros1" and follower.record.dialect != "ros1" and not self._bindable(
+                follower.name, [name for name, _, _ in follower.record.joints_for(
+                    follower.names)]):
+            return False
         into_new = (dialect == "ros1" and follower.record.dialect != "ros1"
                     and old.getparent() is self.root and self._robot)
         if into_new and (self._components == [] or self._component_for(
@@ -143,12 +179,14 @@ class Placer:
             if self._components:  # (the check reads the follower's joints)
                 self._not_in_scope(follower.translated())
             self._into_new.append(Move(old, None, None, None, follower))
-        else:
-            self.place(old, follower.translated(), {}, follower.renaming(), dialect)
+            return True
+        return self.place(old, follower.translated(), {}, follower.renaming(), dialect)
 
     def finish(self) -> None:
         if self._into_new:
             self._generate(self._into_new)
+        for moves in self._in_place.values():
+            self._wrap_in_place(moves)
         self._placeholder_warning()
         for component, moves in self._out_of.items():
             sources = generated_from(component, moves, self.root.get("name", "robot"), self)
@@ -202,7 +240,8 @@ class Placer:
         runs = runs_of([m.old for m in moves])
         name = self._fresh_name(self.root.get("name", "robot"),
                                 "the <ros2_control> generated for the document")
-        block = self._write_block(name, moves, runs, first, indent, step)
+        block = None if self._mimics(moves) else self._write_block(name, moves, runs, first,
+                                                                   indent, step)
         if block is None:
             block = self.block(name, self.hardware_plugin, moves, first, indent, step,
                                 alone=True)
@@ -241,7 +280,22 @@ class Placer:
         for move, new in zip(moves, built, strict=False):
             if alone and move.old not in shared:
                 self.alone.add(new)
+        notes = not_mimicking(block, self.joints)
+        if record:
+            self.notes.extend(notes)
         return block
+
+    def _document_calls(self) -> MacroCalls:
+        """The macro calls of the document (:func:`.macros.calls_in`), read once."""
+        if self._calls is None:
+            self._calls = {name: tuple(calls) for name, calls in calls_in(self.root).items()}
+        return self._calls
+
+    def _mimics(self, moves: list[Move]) -> bool:
+        """Whether a joint of ``moves`` mimics another (its declaration is then made in the
+        tree, where :func:`.bindable.not_mimicking` finds it)."""
+        return any(self.joints.mimicked(name) is not None
+                   for move in moves for name, _, _ in move.joints())
 
     def _fill(self, block: etree._Element, declared: list[tuple[str, tuple]],
               moves: list[Move], like: etree._Element, indent: str, step: str, record: bool
@@ -398,7 +452,18 @@ class Placer:
             return
         names = {j.name for j in t.joints}
         for element in self._components:
-            if element.getparent() is not self.root and names & self._joints_of(element):
+            shared = names & self._joints_of(element)
+            if shared and element.getparent() is self.root:
+                # It declares some of them (the transmission would go in had it declared
+                # them all): a block of its own would declare those a second time.
+                self.losses.append(
+                    f"transmission '{t.name}': <ros2_control name=\"{element.get('name')}\"> "
+                    f"declares its joint(s) {', '.join(sorted(shared))} but not "
+                    f"{', '.join(sorted(names - shared))}: a <ros2_control> of its own would "
+                    "declare them a second time (two hardware components claiming one joint); "
+                    "declare all its joints in one <ros2_control>, then convert again")
+                return
+            if element.getparent() is not self.root and shared:
                 scope = element.getparent()
                 self.losses.append(
                     f"transmission '{t.name}': <ros2_control name=\"{element.get('name')}\"> "
@@ -466,15 +531,38 @@ class Placer:
             self._declared[component] = {j.get("name") for j in children(component, "joint")}
         return self._declared[component]
 
-    def _wrap_in_place(self, move: Move) -> None:
-        old = move.old
+    def _wrap_in_place(self, moves: list[Move]) -> None:
+        """One ``<ros2_control>`` around ``moves`` (which stand in one parent), at the place
+        of the first: refused (a loss) in a macro that the document calls several times."""
+        old = moves[0].old
+        macro = enclosing_macro(old)
+        name = (macro.get("name") or "").strip() if macro is not None else ""
+        known = self.macro_calls or self._document_calls()
+        count = times(name, known) if macro is not None else 0
+        if count > 1:
+            self.losses.append(refusal([m.new.name for m in moves], macro, count,
+                                       list(known[name]), "the files migrated with it expand"
+                                       if self.macro_calls else "this file expands"))
         indent, step = indentation(old)
-        name = self._fresh_name(move.new.name, f"the <ros2_control> around transmission "
-                                f"'{move.new.name}'")
-        block = self.block(name, self.hardware_plugin, [move], old, indent, step)
-        block.tail = old.tail
-        old.getparent().replace(old, block)
+        fresh = self._fresh_name(moves[0].new.name, f"the <ros2_control> around transmission "
+                                 f"'{moves[0].new.name}'")
+        block = self.block(fresh, self.hardware_plugin, moves, old, indent, step)
+        # Laid out as _generate lays out the document's block: the first run stays together
+        # in it, the others are cut from where they stood.
+        runs = runs_of([move.old for move in moves])
+        for first in runs[0][:-1]:
+            self.built[first].tail = reindent(first.tail, indent + step)
+        block.tail = runs[0][-1].tail
+        for run in runs[1:]:
+            for later in run:
+                cut(later)
+        parent = old.getparent()
+        for later in runs[0][1:]:
+            parent.remove(later)  # with its tail: the block's is the run's last
+        parent.replace(old, block)
         self._components = None
+        if macro is not None and not count:
+            self.notes.append(per_call(block.get("name"), macro))
 
     # ROS 2 -> ROS 1 ----------------------------------------------------------------------
 

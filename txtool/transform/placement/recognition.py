@@ -53,8 +53,8 @@ def generated_from(component: etree._Element, moves: list[Move], document: str,
     for the document is named after."""
     inside = [e for e in component.iter("{*}transmission") if e is not component]
     bases = [document]  # a block for the document
-    if len(moves) == 1:
-        bases.append(moves[0].new.name)  # a block wrapped around one, in a xacro macro
+    if moves:  # a block wrapped in place around those of a xacro macro, after the first
+        bases.append(moves[0].new.name)
     if [m.old for m in moves] != inside or not named_after(component.get("name"), bases):
         return None
     plugins = [p for h in children(component, "hardware") for p in children(h, "plugin")]
