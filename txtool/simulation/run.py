@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from txtool.io.load import load
-from txtool.io.xmlio import InputError, XacroOptions
+from txtool.io.xmlio import InputError, Source, XacroOptions
 from txtool.lint.config import readers_of
 from txtool.lint.readers import FileReaders, record
 from txtool.simulation import (
@@ -24,7 +24,7 @@ from txtool.simulation import (
     setup,
 )
 from txtool.simulation.drive import Drive, read_drive
-from txtool.simulation.model import RobotModel, build
+from txtool.simulation.model import Massless, RobotModel, build
 from txtool.simulation.parameter_files import load_params
 from txtool.simulation.params import Params
 from txtool.simulation.plan import Controller, Plan, RunState
@@ -136,6 +136,19 @@ class Unchecked:
             notes=self.notes, coverage=self.coverage, readers=self.readers)
 
 
+def _nothing_to_move(options: Options, candidate: Source, label: str,
+                     readers: dict[str, FileReaders], massless: Massless) -> Unchecked:
+    """A robot without inertials whose config has no transmission either: nothing of the
+    config is there to check (inconclusive), whether or not the robot could be simulated.
+    With a transmission to check, the robot's missing inertials are the input error."""
+    from txtool.dialects.read import read_source
+
+    if read_source(candidate, locate=False):
+        raise massless
+    note = f"the robot could not be simulated either: {massless}"
+    return Unchecked(options, label, [note], result.Coverage(), readers)
+
+
 def coverage_of(robot: RobotModel, ctrl: Drive) -> result.Coverage:
     """What a run of ``ctrl`` on ``robot`` checks: the transmissions it drives, of those read."""
     return result.Coverage(
@@ -149,7 +162,6 @@ def prepare(options: Options, config: str | None, label: str | None = None
     """Load ROBOT and the config, build the model, parameters, reference and loop matrices."""
     started = time.perf_counter()
     source = load(options.robot, xacro=options.xacro)
-    robot = build(source)
     # Each file's transmissions as its readers read them (validate's decision).
     robot_readers = readers_of(source, options.ros_distro)
     candidate, config_readers = source, robot_readers
@@ -159,6 +171,11 @@ def prepare(options: Options, config: str | None, label: str | None = None
     readers = {"robot": record(source.path, robot_readers)}
     if config is not None:
         readers["config"] = record(candidate.path, config_readers)
+    label = label or (config if config is not None else options.robot)
+    try:
+        robot = build(source)
+    except Massless as massless:
+        return _nothing_to_move(options, candidate, label, readers, massless)
     # The plant is physics: power-conserving effort maps (ros2_control's). The controller
     # runs the maps of the loader that reads its file, unless --effort-convention says.
     plant = read_drive(source, robot, loader=options.loader, readers=robot_readers,
@@ -169,7 +186,6 @@ def prepare(options: Options, config: str | None, label: str | None = None
     if unknown:
         raise InputError(f"--skip: no transmission named {', '.join(map(repr, unknown))} in "
                          f"{options.robot}" + (f" or {config}" if config else ""))
-    label = label or (config if config is not None else options.robot)
     covered = coverage_of(robot, ctrl)
     if covered.nothing:
         return Unchecked(options, label, _notes(robot, plant, ctrl, config is not None), covered,
