@@ -161,6 +161,24 @@ def test_xacro_candidate_with_arguments(tmp_path, arm):
     assert code == 1 and "FAIL: joint 'shoulder'" in out
 
 
+def test_xacro_arguments_for_the_robot_are_no_warning_about_a_plain_candidate(tmp_path, arm):
+    """--xacro-arg reaches the xacro robot: the plain candidate (and the robot in the other
+    order) gets no "has no effect"; given where no file uses xacro, each is named once."""
+    text = arm_ros1(n="${n}").replace(
+        '<robot name="arm" xmlns:drake="http://drake.mit.edu">',
+        '<robot name="arm" xmlns:drake="http://drake.mit.edu" '
+        'xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:arg name="n" default="50"/><xacro:property name="n" value="$(arg n)"/>')
+    robot = write(tmp_path, "arm.urdf.xacro", text)
+    code, out, err = txtool(robot, "--candidate", arm, "--xacro-arg", "n:=50", "--duration",
+                            "0.5")
+    assert (code, err) == (0, ""), out
+    code, out, err = txtool(arm, "--candidate", arm, "--xacro-arg", "n:=50", "--duration", "0.5")
+    assert (code, err) == (0, f"txtool: warning: {arm}: --xacro-arg has no effect: it uses no "
+                              "xacro (no xacro element, ${...} or $(...)) and is read as "
+                              "written\n"), out
+
+
 def test_an_element_of_absurdly_many_attributes_is_refused_before_pinocchio(tmp_path, arm):
     crowded = tmp_path / "crowded.urdf"
     attributes = " ".join(f'a{i}="1"' for i in range(20_000))

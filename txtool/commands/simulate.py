@@ -67,8 +67,20 @@ def run_campaign(options: Options, *, campaign_path: str, scheduler: str | None,
     listed = read_campaign(campaign_path).candidates
     if xacro_disabled(no_xacro, options.robot, *listed):
         refuse_unexpanded("simulate", *listed)
+    if options.xacro.args:
+        warn_unused_args(options.robot, *listed)
 
     return main(campaign_path, options, Where(serial, scheduler, workers), output_format)
+
+
+def warn_unused_args(*paths: str) -> None:
+    """``--xacro-arg`` is for whichever of the files xacro expands: a warning only when it is
+    none of them, naming each."""
+    from txtool.io import load
+
+    if not any(load.file_needs_expansion(path) is not False for path in paths):
+        for path in dict.fromkeys(paths):
+            load.warn_unused_args(path, load.PLAIN)
 
 
 def refuse_campaign_options(campaign: dict[str, Any]) -> None:
@@ -174,5 +186,7 @@ def command(robot: str, configs: tuple[str, ...], params: tuple[str, ...],
         return run_campaign(options, csv_path=csv_path, plot_path=plot_path,
                             output_format=output_format, no_xacro=no_xacro, **campaign)
     refuse_campaign_options(campaign)
+    if xacro.args:
+        warn_unused_args(robot, *configs)
     _, code = main(options, output=output_format, csv_path=csv_path, plot_path=plot_path)
     return code

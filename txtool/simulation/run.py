@@ -161,12 +161,14 @@ def prepare(options: Options, config: str | None, label: str | None = None
             ) -> Prepared | Unchecked:
     """Load ROBOT and the config, build the model, parameters, reference and loop matrices."""
     started = time.perf_counter()
-    source = load(options.robot, xacro=options.xacro)
+    # The command says once whether --xacro-arg reaches any of its files (a plain candidate
+    # beside a xacro robot is no reason for a warning).
+    source = load(options.robot, xacro=options.xacro, warn_unused=False)
     # Each file's transmissions as its readers read them (validate's decision).
     robot_readers = readers_of(source, options.ros_distro)
     candidate, config_readers = source, robot_readers
     if config is not None:
-        candidate = load(config, xacro=options.xacro)
+        candidate = load(config, xacro=options.xacro, warn_unused=False)
         config_readers = readers_of(candidate, options.ros_distro)
     readers = {"robot": record(source.path, robot_readers)}
     if config is not None:
