@@ -12,7 +12,7 @@ import time
 
 from click.testing import CliRunner
 
-from tests.simulate.robots import ARM_BODY, EFFORT, arm_ros1, write
+from tests.simulate.robots import ARM_BODY, ARM_ROS1_SHOULDER, EFFORT, arm_ros1, write
 from txtool.cli import cli
 from txtool.simulation.report import overall_verdict
 from txtool.simulation.result import Coverage, RunResult
@@ -61,6 +61,23 @@ def test_a_robot_without_transmissions_is_inconclusive(tmp_path):
     assert (code, err) == (3, "")
     assert out.splitlines()[-1] == ("INCONCLUSIVE: nothing checked: the config has no "
                                     "transmission: every joint is driven directly")
+
+
+def test_a_candidate_that_drops_the_robots_only_transmission_fails_naming_it(tmp_path):
+    """The robot drives 'shoulder' through 't_shoulder'; the candidate drives it directly: the
+    comparison shows the fault before any run (not inconclusive)."""
+    robot = write(tmp_path, "one.urdf",
+                  f'<robot name="arm">{ARM_BODY}{ARM_ROS1_SHOULDER.format(n=50)}</robot>')
+    dropped = write(tmp_path, "dropped.urdf", f'<robot name="arm">{ARM_BODY}</robot>')
+    code, out, err = txtool(robot, "--candidate", dropped)
+    assert (code, err) == (1, "")
+    assert out.splitlines()[0] == f"simulate {robot} with {dropped}: not simulated"
+    assert out.splitlines()[-1] == (
+        "FAIL: the config has no transmission 't_shoulder': joint 'shoulder' is driven "
+        "directly where the robot has a simple transmission to actuator 'm_shoulder'")
+    doc = json.loads(txtool(robot, "--candidate", dropped, "--format", "json")[1])
+    assert (doc["verdict"], [c["kind"] for c in doc["runs"][0]["causes"]]) == (
+        "fail", ["missing_transmission"])
 
 
 def test_a_partial_run_says_how_much_it_checked(tmp_path):

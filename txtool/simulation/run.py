@@ -128,12 +128,36 @@ class Unchecked:
     notes: list[str]
     coverage: result.Coverage
     readers: dict[str, FileReaders] = field(default_factory=dict)
+    causes: list[result.Cause] = field(default_factory=list)  # the config's fault, seen unrun
 
     def judged(self) -> result.RunResult:
         return result.RunResult(
             robot=self.options.robot, config=self.label, dt=0.0, steps=0, duration=0.0,
-            reference="not simulated", joints={}, actuators={}, reasons=[],
-            notes=self.notes, coverage=self.coverage, readers=self.readers)
+            reference="not simulated", joints={}, actuators={},
+            reasons=[cause.text for cause in self.causes], notes=self.notes,
+            coverage=self.coverage, readers=self.readers, causes=list(self.causes))
+
+
+def dropped(plant: Drive, ctrl: Drive) -> list[result.Cause]:
+    """A candidate without any transmission where the robot simulates some: each of the
+    robot's is missing (its joints driven directly), a fault no run needs to show."""
+    if ctrl.names or ctrl.unread:
+        return []
+    return [result.Cause("missing_transmission",
+                         f"the config has no transmission '{m.name}': "
+                         f"{_named('joint', m.joints)} driven directly where the robot has a "
+                         f"{_KINDS[m.kind]} transmission to {_named('actuator', m.actuators)}")
+            for m in plant.maps]
+
+
+def _named(what: str, names: tuple[str, ...]) -> str:
+    """``joint 'a' is`` or ``joints 'a', 'b' are`` (``actuator 'm'``, ``actuators ...``)."""
+    quoted = ", ".join(f"'{name}'" for name in names)
+    verb = "" if what == "actuator" else (" is" if len(names) == 1 else " are")
+    return f"{what}{'' if len(names) == 1 else 's'} {quoted}{verb}"
+
+
+_KINDS = {"simple": "simple", "differential": "differential", "four_bar": "four-bar"}
 
 
 def _nothing_to_move(options: Options, candidate: Source, label: str,
@@ -191,7 +215,7 @@ def prepare(options: Options, config: str | None, label: str | None = None
     covered = coverage_of(robot, ctrl)
     if covered.nothing:
         return Unchecked(options, label, _notes(robot, plant, ctrl, config is not None), covered,
-                         readers)
+                         readers, dropped(plant, ctrl) if config is not None else [])
     params = load_params(options.params, options.robot)
     params.check_names(set(plant.actuators) | set(ctrl.actuators), set(robot.joints),
                        options.robot)
