@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -278,6 +278,16 @@ def _finder(robot: RobotModel, plant: Drive, effort_limit: np.ndarray
                                                effort_limit)
 
 
+STILL = 0.005  # a joint moving less than this share of the default move is not moved
+
+
+def _still(p: Prepared) -> tuple[str, ...]:
+    """The checked joints the reference moves less than STILL of the default 25% -> 75%."""
+    ranges = _ranges(p.robot)
+    return tuple(j for v, j in enumerate(p.robot.joints) if j not in p.ctrl.direct
+                 and np.ptp(p.ref.q[:, v]) < STILL * 0.5 * (ranges[v][1] - ranges[v][0]))
+
+
 def simulate_one(options: Options, config: str | None, label: str | None = None,
                  progress: Progress | None = None) -> result.RunResult:
     """Simulate ``options.robot`` controlled through ``config`` (None: the robot's own)."""
@@ -307,7 +317,7 @@ def finish(p: Prepared, state: RunState, loop_s: float) -> result.RunResult:
         run.notes.append(p.plan.dynamics.note)
     run.gains, run.tolerance = p.gains, p.settings.tolerance
     run.counterbalance = p.carried
-    run.coverage = coverage_of(p.robot, p.ctrl)
+    run.coverage = replace(coverage_of(p.robot, p.ctrl), still=_still(p))
     run.readers = p.readers
     checks.judge(run, series, p.plant, p.ctrl, p.binding.S, p.config is not None,
                  p.plan.encoder, p.plan.delay)
@@ -336,6 +346,13 @@ def _default_reference(robot: RobotModel, s: Settings, limits: feasible.Limits,
     ref = reference.follow(ref, robot.joints, robot.followers)
     ref, notes = reference.saturate(ref, robot.joints, robot.lower, robot.upper,
                                     robot.velocity, s.dt)
+    wide = [j for j, k, lo, hi in zip(robot.joints, robot.kinds, robot.lower, robot.upper,
+                                       strict=True)
+            if k != "continuous" and math.isfinite(hi - lo) and reference.limitless(lo, hi)]
+    if wide:
+        notes.insert(0, f"limits more than {reference.LIMITLESS:g} apart taken as none: "
+                        + ", ".join(f"'{j}'" for j in wide)
+                        + " move in a range of 2 near 0, as continuous joints do")
     return (ref, float(ref.time[-1]), list(chosen.notes) + notes, list(chosen.cannot_hold),
             chosen.carry)
 
