@@ -136,6 +136,24 @@ def test_plot_is_written(tmp_path, arm):
     assert target.read_text().lstrip().startswith(("<?xml", "<svg"))
 
 
+@pytest.mark.skipif(importlib.util.find_spec("matplotlib") is None,
+                    reason="matplotlib (extra 'plot') is not installed")
+def test_plot_joints_chooses_the_joints_drawn(tmp_path, arm):
+    target = tmp_path / "p.svg"
+    code, out, err = txtool(arm, "--duration", "0.5", "--plot", str(target), "--joints",
+                            "elbow,wri*")
+    assert (code, err) == (0, "") and out.splitlines()[-1].startswith("PASS")
+    svg = target.read_text()
+    assert "<!-- elbow -->" in svg and "<!-- wrist -->" in svg and "shoulder" not in svg
+    code, out, err = txtool(arm, "--duration", "0.5", "--plot", str(target), "--joints", "hand")
+    assert (code, out, err) == (2, "", f"txtool: --joints: no joint of {arm} is named 'hand'\n")
+
+
+def test_joints_without_plot_is_one_line(arm):
+    assert txtool(arm, "--joints", "elbow") == (
+        2, "", "txtool: --joints: only with --plot (it chooses the joints drawn)\n")
+
+
 def test_demo_robot_against_its_conversions():
     robot = FIXTURES / "demo_robot.urdf"
     if not robot.is_file():

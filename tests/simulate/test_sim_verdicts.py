@@ -157,6 +157,9 @@ def test_an_inconclusive_run_writes_no_csv_or_plot(tmp_path):
                   f'<robot name="arm">{ARM_BODY}{customs("shoulder", "elbow", "wrist")}</robot>')
     csv, plot = tmp_path / "run.csv", tmp_path / "run.png"
     code, out, err = txtool(robot, "--csv", str(csv), "--plot", str(plot))
-    assert (code, err) == (3, "")
+    why = ("nothing was simulated (none of the config's 3 transmissions can be simulated "
+           "(custom type 'acme_mechanism_model/MagicTransmission' has no standard maths))")
+    assert (code, err) == (3, f"txtool: {csv}: not written (--csv): {why}\n"
+                              f"txtool: {plot}: not written (--plot): {why}\n")
     assert out.splitlines()[-1].startswith("INCONCLUSIVE: nothing checked")
     assert not csv.exists() and not plot.exists()  # nothing was simulated: no time series
