@@ -1,4 +1,4 @@
-"""--plot for big robots: a grid sized for the number of joints, failing ones first."""
+"""--plot for big robots: a summary first, the driven joints only (or those --joints names), the worst first, in a grid sized for their number."""
 
 from __future__ import annotations
 
@@ -17,7 +17,6 @@ from txtool.simulation.result import (
     actuator_stats,
     joint_stats,
 )
-
 
 NEEDS_MATPLOTLIB = pytest.mark.skipif(importlib.util.find_spec("matplotlib") is None,
                                       reason="matplotlib (extra 'plot') is not installed")
