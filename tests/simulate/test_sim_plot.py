@@ -1,4 +1,5 @@
-"""--plot for big robots: a summary first, the driven joints only (or those --joints names), the worst first, in a grid sized for their number."""
+"""--plot for big robots: a summary first, the driven joints only (or those --joints names),
+the worst first, in a grid sized for their number."""
 
 from __future__ import annotations
 
