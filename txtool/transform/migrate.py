@@ -35,6 +35,7 @@ from txtool.io.xmlio import (
 )
 from txtool.lint.config import Overrides, SettingsCache
 from txtool.lint.discover import expand_paths
+from txtool.lint.read_fixes import fixes_read
 from txtool.lint.suppress import Suppressions
 from txtool.lint.suppress import parse as parse_suppressions
 from txtool.model.core import Dialect
@@ -65,6 +66,7 @@ class MigrateOptions:
     allow_lossy: bool = False
     hardware_plugin: str = DEFAULT_HARDWARE_PLUGIN
     reversible: bool = False
+    ros_distro: str | None = None  # --ros-distro: the readers whose findings are fixed
 
 
 @dataclass
@@ -232,6 +234,10 @@ def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions) -> F
         declarations) else []
     result = FileResult(path=display, original=original, data=original, target=options.target)
     clean = not might_fix(tree.getroot(), rules, original)  # fix_tree() would find nothing
+    if not clean:  # only what validate reports under the file's readers is fixed
+        rules = fixes_read(Source(display, original, tree), rules, options.ros_distro,
+                           options.config)
+        clean = not rules
     if clean and options.target is None:
         return result
     source = Source(display, original, tree)
