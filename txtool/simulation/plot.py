@@ -29,7 +29,7 @@ MAX_COLUMNS = 6
 REFERENCE = {"color": "black", "linestyle": "--", "linewidth": 1.0, "zorder": 3}
 LIMIT = {"color": "tab:red", "linestyle": ":", "linewidth": 1.0}
 BAND = {"color": "tab:green", "alpha": 0.15, "linewidth": 0}
-SUMMARY_BARS = 40  # the worst joints and actuators the summary cell draws bars for
+SUMMARY_BARS = 20  # the worst joints and actuators the summary cell draws bars for
 
 
 def require(path: str) -> None:
@@ -146,22 +146,23 @@ def _share(value: float, limit: float) -> float:
 
 def _summary(figure: Any, cell: Any, runs: list[RunResult], colors: list[str],
              cells: list[tuple[str, str]]) -> None:
-    """Bars of every drawn joint's error (in tolerances) and actuator's peak (in limits)."""
+    """Bars of every drawn joint's error (in tolerances) and actuator's peak (in limits), the
+    worst at the top."""
     for slot, (kind, measure, label) in enumerate((
-            ("joint", error_ratio, "max error / tolerance"),
-            ("actuator", limit_ratio, "peak / limit"))):
+            ("joint", error_ratio, "joints: max error / tolerance, worst first"),
+            ("actuator", limit_ratio, "actuators: peak / limit, worst first"))):
         ax = figure.add_subplot(cell[slot])
         names = [name for k, name in cells if k == kind][:SUMMARY_BARS]
+        height = 1 / (len(runs) + 1)
         for index, (run, color) in enumerate(zip(runs, colors, strict=True)):
             values = [measure([run], name) for name in names]
-            ax.bar(np.arange(len(names)) + index / (len(runs) + 1), values,
-                   width=1 / (len(runs) + 1), color=color)
-        ax.axhline(1.0, **LIMIT)
-        ax.set_yscale("symlog", linthresh=1.0)  # within the bound linear, far beyond it log
-        ax.set_xticks(np.arange(len(names)), names, rotation=90, fontsize="x-small")
-        ax.set_ylabel(label, fontsize="small")
-        ax.grid(alpha=0.3, axis="y")
-    figure.axes[-2].set_title("worst first", fontsize="small")
+            ax.barh(np.arange(len(names)) + index * height, values, height=height, color=color)
+        ax.axvline(1.0, **LIMIT)
+        ax.set_xscale("symlog", linthresh=1.0)  # within the bound linear, far beyond it log
+        ax.set_yticks(np.arange(len(names)), names, fontsize="x-small")
+        ax.invert_yaxis()  # the worst first, at the top
+        ax.set_title(label, fontsize="small")
+        ax.grid(alpha=0.3, axis="x")
 
 
 def _joint_row(axes: Any, runs: list[RunResult], colors: list[str], joint: str,
