@@ -89,6 +89,20 @@ def test_the_neovim_recipes_cover_every_version_from_debian_12s_on():
         assert fitting, f"no recipe for Neovim {version[0]}.{version[1]}"
 
 
+def test_every_neovim_recipe_is_lua_the_installed_neovim_compiles(tmp_path):
+    """The recipes for other versions cannot run here; their Lua is compiled, not run."""
+    if neovim_version() is None:
+        pytest.skip("Neovim is not installed (apt-get install neovim)")
+    for index, (_, _, recipe) in enumerate(neovim_recipes()):
+        init = tmp_path / f"recipe{index}.lua"
+        init.write_text(recipe)
+        shown = subprocess.run(
+            ["nvim", "--headless", "--clean", "-u", "NONE", "-c",
+             f"lua local ok, why = loadfile('{init}'); io.stdout:write(tostring(why))",
+             "-c", "qa!"], capture_output=True, text=True, timeout=60)
+        assert (shown.returncode, shown.stdout) == (0, "nil"), recipe
+
+
 def test_the_neovim_recipe_for_the_installed_neovim_shows_the_findings(tmp_path):
     version = neovim_version()
     if version is None:
