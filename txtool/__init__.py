@@ -3,15 +3,22 @@
 The command line is ``txtool``; this module is the small API for scripts. Importing it is
 cheap: each function imports what it needs when called (``simulate`` alone loads Pinocchio).
 
->>> import txtool
->>> [p.code for p in txtool.validate(["fixtures/broken_robot.urdf"])][:2]  # doctest: +SKIP
-['TX106', 'TX102']
->>> [t.name for t in txtool.read("fixtures/demo_robot.urdf")]  # doctest: +SKIP
-['shoulder_trans', 'elbow_trans']
->>> txtool.convert("fixtures/demo_robot.urdf", to="ros2-p2").losses  # doctest: +SKIP
-[]
+In a clone of the repository (the tests run these examples from its root):
 
-Bad input raises :class:`InputError` with the one-line message the CLI prints.
+>>> import txtool
+>>> [(p.line, p.code) for p in txtool.validate("fixtures/broken_robot.urdf")][:2]
+[(37, 'TX303'), (45, 'TX105')]
+>>> [(t.name, t.kind) for t in txtool.read("fixtures/demo_robot.urdf")]
+[('shoulder_trans', 'simple'), ('wrist_trans', 'differential')]
+>>> done = txtool.convert("fixtures/demo_robot.urdf", to="ros2-p2")
+>>> (done.converted, done.losses)
+(2, [])
+>>> txtool.convert("fixtures/demo_robot.urdf", to="bb").losses  # doctest: +ELLIPSIS
+["transmission 'wrist_trans': differential type ... (BB has simple transmissions only)"]
+
+Bad input raises :class:`InputError` with the one-line message the CLI prints; ``simulate``
+without the ``sim`` extra raises :class:`MissingExtra` (a ``ModuleNotFoundError``) whose one
+line names the extra to install.
 """
 
 from __future__ import annotations
@@ -25,23 +32,31 @@ if _signals.started_as_command():
 
 import os  # noqa: E402
 from collections.abc import Iterable, Mapping, Sequence  # noqa: E402
-from typing import TYPE_CHECKING, Any, Union
+from typing import TYPE_CHECKING, Any, Literal, Union
 
 PathLike = Union[str, "os.PathLike[str]"]
 DIALECT_CHOICES = ("ros1", "ros2-p1", "ros2-p2")
+TARGET_CHOICES = (*DIALECT_CHOICES, "bb")
 
 __version__ = "0.1.0"
 
 if TYPE_CHECKING:
+    from txtool.io.resources import MissingExtra
     from txtool.io.xmlio import InputError, Source, XacroOptions
     from txtool.lint.problem import Problem
     from txtool.model.core import Dialect, Transmission
+    from txtool.simulation.result import ActuatorStats, Coverage, JointStats, RunResult
     from txtool.transform.api import Conversion
 
 __all__ = [
+    "ActuatorStats",
     "Conversion",
+    "Coverage",
     "InputError",
+    "JointStats",
+    "MissingExtra",
     "Problem",
+    "RunResult",
     "Transmission",
     "__version__",
     "convert",
@@ -51,9 +66,14 @@ __all__ = [
 ]
 
 _LAZY = {
+    "ActuatorStats": "txtool.simulation.result",
     "Conversion": "txtool.transform.api",
+    "Coverage": "txtool.simulation.result",
     "InputError": "txtool.io.xmlio",
+    "JointStats": "txtool.simulation.result",
+    "MissingExtra": "txtool.io.resources",
     "Problem": "txtool.lint.problem",
+    "RunResult": "txtool.simulation.result",
     "Transmission": "txtool.model.core",
 }
 
@@ -126,23 +146,38 @@ def read(
 def convert(
     source: PathLike,
     *,
-    to: Dialect,
+    to: Dialect | Literal["bb"],
     expand: bool = True,
     xacro_args: Mapping[str, str] | None = None,
     pkg_dirs: Sequence[PathLike] = (),
     pkg_paths: Mapping[str, PathLike] | None = None,
+    bb_direction: Literal["reversed", "negative-reduction"] = "reversed",
+    bb_topology: bool = False,
 ) -> Conversion:
     """Convert a file or XML text to ``to`` (``"ros1"``, ``"ros2-p1"`` or ``"ros2-p2"``) as
     ``txtool convert`` does, keeping every byte it need not change; nothing is written.
-    Another ``to`` raises ``ValueError`` naming the choices."""
-    if to not in DIALECT_CHOICES:
+    ``"bb"`` gives the Beam Bots DSL blocks of ``--to bb`` as ``text`` (``bb_direction`` and
+    ``bb_topology`` are ``--bb-direction`` and ``--bb-topology``). Another ``to`` raises
+    ``ValueError`` naming the choices."""
+    if to not in TARGET_CHOICES:
         raise ValueError(f"unknown target dialect {to!r}: choose one of "
-                         + ", ".join(map(repr, DIALECT_CHOICES)))
-    from txtool.io.encodings import document_text
+                         + ", ".join(map(repr, TARGET_CHOICES)))
     from txtool.transform.api import Conversion
-    from txtool.transform.convert import convert_source
 
     loaded = _source(source, expand, _xacro_options(xacro_args, pkg_dirs, pkg_paths))
+    if to == "bb":
+        from txtool.transform.bb.export import export_bb
+
+        exported = export_bb(loaded, direction=bb_direction, topology=bb_topology)
+        # One "# transmission 'NAME'" comment heads each exported actuator.
+        carried = sum(1 for line in exported.text.splitlines()
+                      if line.lstrip().startswith("# transmission '"))
+        return Conversion(text=exported.text, data=exported.text.encode("utf-8"),
+                          losses=list(exported.losses), notes=list(exported.notes),
+                          converted=carried)
+    from txtool.io.encodings import document_text
+    from txtool.transform.convert import convert_source
+
     done = convert_source(loaded, to)
     return Conversion(
         text=document_text(done.data), data=done.data, losses=list(done.losses),
@@ -150,20 +185,76 @@ def convert(
     )
 
 
-def simulate(robot: PathLike, configs: PathLike | Sequence[PathLike] = (),
-             **options: Any) -> list[Any]:
-    """Run ``txtool simulate ROBOT --config ...`` and return one result per config (the robot's
-    own when ``configs`` is empty; one config may be given alone). Each result has ``verdict``
-    (``pass``, ``fail`` or ``inconclusive``: nothing of the config could be simulated),
-    ``passed``, ``reasons`` and ``coverage`` (what was checked). ``options`` are those of
-    :class:`txtool.simulation.run.Options` (``duration``, ``dt``, ``tolerance``, ...). Needs
-    the ``sim`` extra (Pinocchio)."""
-    from txtool.simulation.run import Options, simulate_one
+def simulate(
+    robot: PathLike,
+    configs: PathLike | Sequence[PathLike] = (),
+    *,
+    params: PathLike | Sequence[PathLike] = (),
+    duration: float | None = None,
+    dt: float | None = None,
+    tolerance: float | None = None,
+    bandwidth: float | None = None,
+    trajectory: PathLike | None = None,
+    interpolation: Literal["cubic", "linear"] = "cubic",
+    allow_saturation: bool = False,
+    loader: Literal["auto", "ros1", "ros2"] = "auto",
+    effort_convention: Literal["ros1", "ros2"] | None = None,
+    ros_distro: str | None = None,
+    delay: bool = True,
+    encoder_counts: int | None = None,
+    counterbalance: bool = True,
+    skip: Sequence[str] = (),
+    jobs: int = 1,
+    keep_series: bool = False,
+    xacro_args: Mapping[str, str] | None = None,
+    pkg_dirs: Sequence[PathLike] = (),
+    pkg_paths: Mapping[str, PathLike] | None = None,
+) -> list[RunResult]:
+    """Run ``txtool simulate ROBOT --candidate ...`` and return one :class:`RunResult` per
+    config (the robot's own when ``configs`` is empty; one config may be given alone).
 
-    given = [configs] if isinstance(configs, str | os.PathLike) else list(configs)
-    paths = tuple(os.fspath(c) for c in given)
-    settings = Options(robot=os.fspath(robot), configs=paths, keep_series=False, **options)
-    return [simulate_one(settings, config) for config in (paths or (None,))]
+    Each result has ``verdict`` (``pass``, ``fail`` or ``inconclusive``: nothing of the config
+    could be simulated), ``passed``, ``reasons``, ``notes``, ``coverage`` (a
+    :class:`Coverage`), ``joints`` (:class:`JointStats` by joint) and ``actuators``
+    (:class:`ActuatorStats`); ``series`` holds the time series when ``keep_series``. The
+    keywords are the command's options (``effort_convention`` is ``--effort-convention``);
+    None takes the value of the parameter files, else the default. Needs the ``sim`` extra
+    (Pinocchio): without it :class:`MissingExtra` names the extra to install."""
+    _require("pinocchio", "sim", "txtool.simulate")
+    from txtool.simulation.jobs import execute
+    from txtool.simulation.run import Options
+
+    options = Options(
+        robot=os.fspath(robot), configs=_paths(configs), params=_paths(params) or None,
+        duration=duration, dt=dt, tolerance=tolerance, bandwidth=bandwidth,
+        trajectory=os.fspath(trajectory) if trajectory is not None else None,
+        interpolation=interpolation, allow_saturation=allow_saturation, loader=loader,
+        convention=effort_convention, ros_distro=ros_distro, delay=delay,
+        encoder_counts=encoder_counts, counterbalance=counterbalance, skip=tuple(skip),
+        jobs=jobs, keep_series=keep_series,
+        xacro=_xacro_options(xacro_args, pkg_dirs, pkg_paths),
+    )
+    return execute(options)
+
+
+def _paths(given: PathLike | Sequence[PathLike]) -> tuple[str, ...]:
+    if isinstance(given, str | os.PathLike):
+        return (os.fspath(given),)
+    return tuple(os.fspath(p) for p in given)
+
+
+def _require(module: str, extra: str, what: str) -> None:
+    import importlib.util
+
+    try:
+        found = importlib.util.find_spec(module) is not None
+    except (ImportError, ValueError):  # a parent package missing, or a module set to None
+        found = False
+    if not found:
+        from txtool.io.resources import MissingExtra, install_extra
+
+        raise MissingExtra(f"{what} needs the '{extra}' extra: {install_extra(extra)}",
+                           name=module)
 
 
 def _xacro_options(

@@ -99,12 +99,60 @@ def test_simulate_returns_one_result_per_config(tmp_path):
     assert not bad.passed and bad.reasons
     (alone,) = txtool.simulate(Path(DEMO), Path(flipped), duration=0.5)  # one config, a Path
     assert (alone.verdict, alone.reasons) == ("fail", bad.reasons)
+    assert isinstance(alone, txtool.RunResult) and isinstance(alone.coverage, txtool.Coverage)
+    assert all(isinstance(j, txtool.JointStats) for j in alone.joints.values())
+    assert alone.series is None
+    (kept,) = txtool.simulate(DEMO, duration=0.2, keep_series=True, skip=["wrist_trans"])
+    assert kept.series is not None and kept.coverage.skipped[0][0] == "wrist_trans"
+
+
+def test_the_examples_of_help_txtool_give_what_they_show(monkeypatch):
+    import doctest
+
+    monkeypatch.chdir(FIXTURES.parent)
+    failed, tried = doctest.testmod(txtool, report=True)
+    assert (failed, tried >= 5) == (0, True)
+
+
+def test_convert_to_bb_gives_what_the_cli_prints(tmp_path):
+    from click.testing import CliRunner
+
+    from txtool.cli import cli
+
+    robot = SNIPPET.replace('<robot name="r">', """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="j" type="revolute"><parent link="a"/><child link="b"/>
+    <limit effort="1" velocity="1" lower="-1" upper="1"/></joint>""")
+    done = txtool.convert(robot, to="bb")
+    assert (done.converted, done.losses) == (1, [])
+    assert "actuator :m, Driver do" in done.text and done.data == done.text.encode("utf-8")
+    (tmp_path / "r.urdf").write_text(robot)
+    printed = CliRunner().invoke(cli, ["convert", str(tmp_path / "r.urdf"), "--to", "bb"])
+    assert (printed.exit_code, printed.stdout) == (0, done.text)
+    topology = txtool.convert(DEMO, to="bb", bb_topology=True, bb_direction="negative-reduction")
+    assert "topology do" in topology.text
+    assert "reduction -" in topology.text and topology.losses
+
+
+def test_simulate_refuses_a_misspelt_option():
+    with pytest.raises(TypeError, match="duraton"):
+        txtool.simulate(DEMO, duraton=0.5)  # type: ignore[call-arg]
+
+
+def test_simulate_without_the_sim_extra_says_which_extra_in_one_line(monkeypatch):
+    monkeypatch.setitem(sys.modules, "pinocchio", None)  # as if it were not installed
+    with pytest.raises(txtool.MissingExtra) as raised:
+        txtool.simulate(DEMO, duration=0.5)
+    message = str(raised.value)
+    assert isinstance(raised.value, ModuleNotFoundError) and "\n" not in message
+    assert message.startswith("txtool.simulate needs the 'sim' extra: pip install 'txtool[sim]")
 
 
 def test_the_api_is_what_all_says():
     assert sorted(txtool.__all__) == sorted(
-        ["Conversion", "InputError", "Problem", "Transmission", "__version__", "convert", "read",
-         "simulate", "validate"])
+        ["ActuatorStats", "Conversion", "Coverage", "InputError", "JointStats", "MissingExtra",
+         "Problem", "RunResult", "Transmission", "__version__", "convert", "read", "simulate",
+         "validate"])
     for name in txtool.__all__:
         assert getattr(txtool, name) is not None
     with pytest.raises(AttributeError):

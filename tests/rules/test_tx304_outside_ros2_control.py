@@ -61,3 +61,17 @@ def test_macro_bodies_of_a_xacro_library_are_not_reported():
         "</robot>\n"
     )
     assert check(xml, select=["TX304"], filename="lib.xacro") == []
+
+
+def test_only_ros1_readers_read_it_there_is_nothing_to_report():
+    """--ros-distro noetic: ros_control reads the top-level transmission; no ROS 2 program
+    reads this file, so "ros2_control ignores it" would name a reader the run ruled out."""
+    xml = "<robot name=\"r\">" + LINKS + ROS1_TRANSMISSION + COMPONENT + "\n</robot>\n"
+    assert check(xml, select=["TX304"], **{"ros-distro": "noetic"}) == []
+
+
+def test_decided_ros2_readers_are_named_with_why():
+    xml = "<robot name=\"r\">" + LINKS + ROS1_TRANSMISSION + COMPONENT + "\n</robot>\n"
+    (found,) = problems(xml, select=["TX304"], readers=["ros_control", "ros2_control"])
+    assert found.message.endswith("stands outside every <ros2_control> block of this document: "
+                                  "ros2_control (readers in the test options) ignores it")

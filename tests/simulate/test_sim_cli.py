@@ -136,6 +136,24 @@ def test_plot_is_written(tmp_path, arm):
     assert target.read_text().lstrip().startswith(("<?xml", "<svg"))
 
 
+@pytest.mark.skipif(importlib.util.find_spec("matplotlib") is None,
+                    reason="matplotlib (extra 'plot') is not installed")
+def test_plot_joints_chooses_the_joints_drawn(tmp_path, arm):
+    target = tmp_path / "p.svg"
+    code, out, err = txtool(arm, "--duration", "0.5", "--plot", str(target), "--joints",
+                            "elbow,wri*")
+    assert (code, err) == (0, "") and out.splitlines()[-1].startswith("PASS")
+    svg = target.read_text()
+    assert "<!-- elbow -->" in svg and "<!-- wrist -->" in svg and "shoulder" not in svg
+    code, out, err = txtool(arm, "--duration", "0.5", "--plot", str(target), "--joints", "hand")
+    assert (code, out, err) == (2, "", f"txtool: --joints: no joint of {arm} is named 'hand'\n")
+
+
+def test_joints_without_plot_is_one_line(arm):
+    assert txtool(arm, "--joints", "elbow") == (
+        2, "", "txtool: --joints: only with --plot (it chooses the joints drawn)\n")
+
+
 def test_demo_robot_against_its_conversions():
     robot = FIXTURES / "demo_robot.urdf"
     if not robot.is_file():
@@ -159,6 +177,24 @@ def test_xacro_candidate_with_arguments(tmp_path, arm):
     assert code == 0, out
     code, out, _ = txtool(arm, "--candidate", candidate, "--xacro-arg", "n:=-50")
     assert code == 1 and "FAIL: joint 'shoulder'" in out
+
+
+def test_xacro_arguments_for_the_robot_are_no_warning_about_a_plain_candidate(tmp_path, arm):
+    """--xacro-arg reaches the xacro robot: the plain candidate (and the robot in the other
+    order) gets no "has no effect"; given where no file uses xacro, each is named once."""
+    text = arm_ros1(n="${n}").replace(
+        '<robot name="arm" xmlns:drake="http://drake.mit.edu">',
+        '<robot name="arm" xmlns:drake="http://drake.mit.edu" '
+        'xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:arg name="n" default="50"/><xacro:property name="n" value="$(arg n)"/>')
+    robot = write(tmp_path, "arm.urdf.xacro", text)
+    code, out, err = txtool(robot, "--candidate", arm, "--xacro-arg", "n:=50", "--duration",
+                            "0.5")
+    assert (code, err) == (0, ""), out
+    code, out, err = txtool(arm, "--candidate", arm, "--xacro-arg", "n:=50", "--duration", "0.5")
+    assert (code, err) == (0, f"txtool: warning: {arm}: --xacro-arg has no effect: it uses no "
+                              "xacro (no xacro element, ${...} or $(...)) and is read as "
+                              "written\n"), out
 
 
 def test_an_element_of_absurdly_many_attributes_is_refused_before_pinocchio(tmp_path, arm):

@@ -51,6 +51,27 @@ def test_the_excess_static_load_is_carried_and_named(tmp_path):
     assert not any("held still" in n for n in run.notes)
 
 
+def test_a_motion_cut_below_the_limit_is_not_said_to_go_beyond_it(tmp_path):
+    """Hanging at the centre of its range, the pendulum loads its joint beyond the limit only
+    far from it: a given duration that cuts the motion leaves it over half its limit (the
+    counterbalance carries the excess over that half, and the note says so), or below half
+    (nothing carried, no note)."""
+    hanging = pendulum(1.0, 0.5, 40.0).replace('<origin xyz="0.5 0 0"/>',
+                                                '<origin xyz="0 0 -0.5"/>')
+    robot = write(tmp_path, "p.urdf", hanging)
+    params = write(tmp_path, "p.toml", WEAK_MOTOR)
+    run = simulate_one(Options(robot=robot, params=params, duration=1.0), None)
+    (note,) = [n for n in run.notes if n.startswith("joint 'swing': gravity needs")]
+    load = run.counterbalance["swing"]["static_load"]
+    assert KEEP * 2.0 < load < 2.0 and run.passed
+    assert note.startswith(f"joint 'swing': gravity needs up to {load:.4g} N·m to hold it, "
+                           f"{50 * load:.0f}% of its effort limit 2 N·m (beyond the limit on "
+                           "the motion before it was cut): a counterbalance")
+    run = simulate_one(Options(robot=robot, params=params, duration=0.5), None)
+    assert run.passed and run.counterbalance == {}
+    assert not any("counterbalance or spring" in n for n in run.notes)
+
+
 def test_without_the_assumption_the_robot_cannot_hold_itself(tmp_path):
     robot, params = weak_pendulum(tmp_path)
     run = simulate_one(Options(robot=robot, params=params, duration=2.0, counterbalance=False),

@@ -149,11 +149,31 @@ def test_both_dialects_run_the_ros2_transmissions(tmp_path, loader):
     assert said == (loader == "auto")
 
 
+BARE = ('<robot name="r"><link name="a"/><link name="b"/>'
+        '<joint name="elbow" type="revolute"><parent link="a"/><child link="b"/>'
+        '<axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+        "{}</robot>")
+
+
+def test_a_robot_without_inertias_or_transmissions_is_inconclusive(tmp_path):
+    """Nothing of the config to check whatever the model: inconclusive (exit 3) as
+    docs/simulate.md promises for a config without transmissions, the inertias in a note."""
+    robot = write(tmp_path, "bare.urdf", BARE.format(""))
+    code, out, err = txtool(robot)
+    assert (code, err) == (3, "")
+    assert out.splitlines()[-2:] == [
+        f"note: the robot could not be simulated either: {robot}: no joint moves a link with "
+        "mass or inertia (joints elbow): simulate needs the URDF's <inertial> elements",
+        "INCONCLUSIVE: nothing checked: the config has no transmission: every joint is driven "
+        "directly"]
+
+
 def test_a_robot_without_inertias_says_so(tmp_path):
-    robot = write(tmp_path, "bare.urdf", '<robot name="r"><link name="a"/><link name="b"/>'
-                  '<joint name="elbow" type="revolute"><parent link="a"/><child link="b"/>'
-                  '<axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/>'
-                  "</joint></robot>")
+    robot = write(tmp_path, "bare.urdf", BARE.format(
+        '<transmission name="t"><type>transmission_interface/SimpleTransmission</type>'
+        '<joint name="elbow"><hardwareInterface>hardware_interface/EffortJointInterface'
+        '</hardwareInterface></joint><actuator name="m"><mechanicalReduction>2'
+        "</mechanicalReduction></actuator></transmission>"))
     code, out, err = txtool(robot)
     assert (code, out) == (2, "")
     assert err.strip() == (f"txtool: {robot}: no joint moves a link with mass or inertia "

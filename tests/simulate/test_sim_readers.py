@@ -46,6 +46,17 @@ def test_a_ros2_robots_stale_ros1_transmissions_are_not_simulated_and_named(tmp_
     assert doc["verdict"] == "pass"
 
 
+def test_the_verdict_counts_every_transmission_of_the_file(tmp_path):
+    """4 transmissions in the file, 2 of them ROS 1 ones ros2_control does not read: "2 of 4",
+    not "2 of 2" (a file of 5 said "checked 1 of 1")."""
+    robot = write(in_package(tmp_path, "ament_cmake"), "arm.urdf", arm_both())
+    code, out, err = txtool(robot, "--duration", "1")
+    assert (code, err) == (0, "")
+    assert out.splitlines()[-1].endswith(
+        "no limit exceeded; checked 2 of 4 transmissions (2 read by no reader of the file) and "
+        "3 of 3 joints")
+
+
 def test_a_ros2_package_whose_file_holds_only_ros1_transmissions_checks_nothing(tmp_path):
     robot = write(in_package(tmp_path, "ament_cmake"), "arm.urdf", arm_ros1())
     code, out, err = txtool(robot, "--duration", "1")

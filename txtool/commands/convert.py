@@ -94,6 +94,10 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, revers
         # Well-formed even where nothing changed: a declaration after a comment or spaces
         # (which txtool reads) is not printed there.
         data = without_late_declaration(result.data)
+        if source.expanded:  # xacro's text: a few long lines, this machine's paths
+            from txtool.io.expansion_text import readable
+
+            data = readable(data, source.path)
         losses, notes = result.losses, result.notes
         for left in result.warnings:
             click.echo(f"warning: {printable(left)}", err=True)

@@ -6,6 +6,7 @@ import click
 
 from txtool.commands.common import TARGET_HINTS, Choice, exit_on_input_error
 from txtool.io.printable import printable
+from txtool.model.distro import CHOICES
 
 TARGETS = ("ros1", "ros2-p1", "ros2-p2")
 
@@ -43,13 +44,17 @@ def _mode(check: bool, diff: bool, write: bool) -> str:
 @click.option("--reversible", is_flag=True,
               help="With --to ros2-p1/ros2-p2: keep each transmission's original text in a "
                    "comment before it, so that migrating back gives its bytes back.")
+@click.option("--ros-distro", type=click.Choice(CHOICES), default=None,
+              help="The ROS distribution whose programs read the files, as validate takes it: "
+                   "only what validate reports for them is fixed (over the configuration's "
+                   "ros-distro and what package.xml and <gazebo> plugins say).")
 @click.option("--no-xacro", is_flag=True,
               help="Accepted for uniformity with the other commands: migrate never runs xacro.")
 @click.option("--trust-xacro", is_flag=True,
               help="Accepted for uniformity with the other commands: migrate never runs xacro.")
 @exit_on_input_error
 def command(paths, target, check, diff, write, select, ignore, config_path, allow_lossy,
-            hardware_plugin, reversible, no_xacro, trust_xacro) -> int:
+            hardware_plugin, reversible, ros_distro, no_xacro, trust_xacro) -> int:
     """Apply the fixable rules (and, with --to, the conversion) to files and folders in place.
 
     Folders are searched like validate does (*.urdf, *.xacro, robot *.xml). xacro files are
@@ -73,6 +78,7 @@ def command(paths, target, check, diff, write, select, ignore, config_path, allo
         hardware_plugin=hardware_plugin or DEFAULT_HARDWARE_PLUGIN,
         plugin_chosen=hardware_plugin is not None,
         reversible=reversible,
+        ros_distro=ros_distro,
     )
     report = migrate_paths(paths, options)
     for diff in report.diffs:  # ASCII bytes go to the binary stream as they are

@@ -67,8 +67,20 @@ def run_campaign(options: Options, *, campaign_path: str, scheduler: str | None,
     listed = read_campaign(campaign_path).candidates
     if xacro_disabled(no_xacro, options.robot, *listed):
         refuse_unexpanded("simulate", *listed)
+    if options.xacro.args:
+        warn_unused_args(options.robot, *listed)
 
     return main(campaign_path, options, Where(serial, scheduler, workers), output_format)
+
+
+def warn_unused_args(*paths: str) -> None:
+    """``--xacro-arg`` is for whichever of the files xacro expands: a warning only when it is
+    none of them, naming each."""
+    from txtool.io import load
+
+    if not any(load.file_needs_expansion(path) is not False for path in paths):
+        for path in dict.fromkeys(paths):
+            load.warn_unused_args(path, load.PLAIN)
 
 
 def refuse_campaign_options(campaign: dict[str, Any]) -> None:
@@ -132,6 +144,10 @@ def refuse_campaign_options(campaign: dict[str, Any]) -> None:
               metavar="PATH.png|.svg|.pdf",
               help="Plot reference and actual positions, errors, actuator efforts and speeds "
                    "against their limits, all configs overlaid (needs the 'plot' extra).")
+@click.option("--joints", "plot_joints", multiple=True, metavar="NAMES",
+              help="With --plot: draw these joints (comma-separated names or shell patterns "
+                   "such as 'arm_*'; repeatable) and their actuators (default: the joints a "
+                   "transmission drives).")
 @click.option("--skip", "skip", multiple=True, metavar="TRANSMISSION",
               help="Leave this transmission out (its joints are driven directly); repeatable.")
 @click.option("--jobs", "-j", type=click.IntRange(min=1), default=1, show_default=True,
@@ -147,7 +163,8 @@ def command(robot: str, configs: tuple[str, ...], params: tuple[str, ...],
             trajectory: str | None, interpolation: str, allow_saturation: bool, loader: str,
             ros_distro: str | None, convention: str | None, delay: bool, encoder_counts: int | None,
             counterbalance: bool, output_format: str, csv_path: str | None,
-            plot_path: str | None, skip: tuple[str, ...], jobs: int, no_xacro: bool,
+            plot_path: str | None, plot_joints: tuple[str, ...], skip: tuple[str, ...],
+            jobs: int, no_xacro: bool,
             xacro: XacroOptions, **campaign: Any) -> int:
     """Check a transmission config in closed loop against the robot's own.
 
@@ -158,6 +175,10 @@ def command(robot: str, configs: tuple[str, ...], params: tuple[str, ...],
     .xacro ROBOT or CANDIDATE is refused: the model needs the expanded robot.
     """
     require_extra("pinocchio", "sim", "txtool simulate")
+    if plot_joints and plot_path is None:
+        raise InputError("--joints: only with --plot (it chooses the joints drawn)")
+    joints = tuple(name.strip() for given in plot_joints for name in given.split(",")
+                   if name.strip())
     if xacro_disabled(no_xacro, robot, *configs):
         refuse_unexpanded("simulate", robot, *configs)
     from txtool.simulation.app import main
@@ -174,5 +195,8 @@ def command(robot: str, configs: tuple[str, ...], params: tuple[str, ...],
         return run_campaign(options, csv_path=csv_path, plot_path=plot_path,
                             output_format=output_format, no_xacro=no_xacro, **campaign)
     refuse_campaign_options(campaign)
-    _, code = main(options, output=output_format, csv_path=csv_path, plot_path=plot_path)
+    if xacro.args:
+        warn_unused_args(robot, *configs)
+    _, code = main(options, output=output_format, csv_path=csv_path, plot_path=plot_path,
+                   plot_joints=joints)
     return code

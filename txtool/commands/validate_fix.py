@@ -33,6 +33,7 @@ class FixSelection:
     select: tuple[str, ...] | None
     ignore: tuple[str, ...]
     config: str | None
+    ros_distro: str | None = None  # its readers: migrate fixes what validate reports for them
 
 
 def fixable_paths(problems: Sequence[Problem], stdin_name: str | None) -> list[str]:
@@ -90,7 +91,7 @@ def run_fixes(paths: Sequence[str], mode: str, selection: FixSelection) -> Repor
 
     options = MigrateOptions(mode=mode,  # type: ignore[arg-type]
                              select=selection.select, ignore=selection.ignore,
-                             config=selection.config)
+                             config=selection.config, ros_distro=selection.ros_distro)
     return migrate_paths(paths, options)
 
 

@@ -40,17 +40,19 @@ def load(
     xacro: XacroOptions | None = None,
     stdin_name: str | None = None,
     expand: bool = True,
+    warn_unused: bool = True,
 ) -> Source:
     """Load one input; xacro files are expanded in-process unless ``expand`` is False.
 
     ``--xacro-arg`` given for an input that is not expanded is said on standard error, once
-    per input, never silently dropped.
+    per input, never silently dropped; ``warn_unused=False`` leaves that to a caller whose
+    arguments are for another of its files.
     """
     display, data = read_bytes(path, stdin_name=stdin_name)
     tree = parse_bytes(data, display)
     unexpanded = not_expanded_because(path, display, data, tree, expand)
     if unexpanded is not None:
-        if xacro is not None and xacro.args:
+        if warn_unused and xacro is not None and xacro.args:
             warn_unused_args(display, unexpanded)
         return Source(path=display, data=data, tree=tree)
     from txtool.io.xacro import expand_xacro  # xacro is slow to import; only xacro needs it

@@ -55,3 +55,11 @@ def install_extra(extra: str) -> str:
     release on a package index yet) or, in a clone, in place."""
     return (f"pip install 'txtool[{extra}] @ git+{REPOSITORY}' "
             f"(in a clone: pip install -e '.[{extra}]')")
+
+
+class MissingExtra(ModuleNotFoundError):
+    """An optional dependency is not installed; the message is one line naming the extra that
+    brings it (``str(error)``), as the command line prints it."""
+
+    def __str__(self) -> str:
+        return str(self.msg)

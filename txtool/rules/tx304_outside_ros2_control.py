@@ -7,7 +7,9 @@ macro may be instantiated inside a ``<ros2_control>`` block. This is the verdict
 says which programs read the file (the ``<ros2_control>`` blocks alone do not rule ros_control
 out); where the readers are known (``package.xml``, a ``<gazebo>`` plugin, ``--ros-distro``,
 the configuration; see "Readers" in the loader documentation), a transmission none of them
-reads is TX305's.
+reads is TX305's, one that only ROS 1 programs read (``--ros-distro noetic``) is not reported,
+and one that a ROS 1 and a ROS 2 program read both is reported naming the ROS 2 readers and
+why they were decided.
 
 Why it matters: ros2_control reads transmissions only from the ``<transmission>`` children of a
 ``<ros2_control>`` element; a top-level one is ignored without a message. Its reduction and
@@ -65,6 +67,7 @@ from txtool.io.xmlio import local
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.rule_helpers import is_xacro, label
+from txtool.model.readers import Assumption, Placement
 
 CODE = "TX304"
 NAME = "outside-ros2-control"
@@ -75,10 +78,21 @@ FIXABLE = False
 def check(ctx: LintContext) -> Iterable[Problem]:
     if not ctx.hints.components:
         return ()  # no <ros2_control> in the document
-    return _outside(ctx)
+    readers = ctx.readers
+    if readers.decided and not readers.reads(Placement.IN_COMPONENT):
+        return ()  # no ROS 2 program reads the file: its top-level transmissions are the read
+    return _outside(ctx, _ignoring(readers))
 
 
-def _outside(ctx: LintContext) -> Iterator[Problem]:
+def _ignoring(readers: Assumption) -> str:
+    """Who ignores a top-level transmission: the decided ROS 2 readers, and why they are."""
+    if not readers.decided:
+        return "ros2_control"
+    names = ", ".join(r.named() for r in readers.readers if r.reads is Placement.IN_COMPONENT)
+    return f"{names} ({'; '.join(dict.fromkeys(readers.because))})"
+
+
+def _outside(ctx: LintContext, ignoring: str) -> Iterator[Problem]:
     for tx in ctx.facts:
         found = tx.found
         if tx.component is not None or _in_macro(ctx, found.element):
@@ -88,7 +102,7 @@ def _outside(ctx: LintContext) -> Iterator[Problem]:
             CODE,
             found.element,
             f"{form}{label(found)} stands outside every <ros2_control> block of this document: "
-            "ros2_control ignores it",
+            f"{ignoring} ignores it",
         )
 
 

@@ -43,8 +43,18 @@ class LazyProgress:
             self.bar.stop()
 
 
+def nothing_drawn(runs: list[RunResult]) -> str:
+    """Why no run has a time series to write: each was judged without being simulated."""
+    whys = [run.coverage.why_nothing() if run.verdict == "inconclusive"
+            else "its fault shows without a run" for run in runs]
+    shown = "; ".join(dict.fromkeys(whys))
+    return f"nothing was simulated ({shown})" if len(runs) == 1 else \
+        f"none of the {len(runs)} configs was simulated ({shown})"
+
+
 def main(options: Options, *, output: str = "text", csv_path: str | None = None,
-         plot_path: str | None = None, console: Console | None = None,
+         plot_path: str | None = None, plot_joints: tuple[str, ...] = (),
+         console: Console | None = None,
          err_console: Console | None = None) -> tuple[list[RunResult], int]:
     """Run every config, print the report, write the optional files; (runs, exit code)."""
     if console is None:
@@ -67,7 +77,11 @@ def main(options: Options, *, output: str = "text", csv_path: str | None = None,
             if run.series is not None:  # an inconclusive run simulated nothing
                 report.write_csv(run, report.numbered(csv_path, index, len(runs)))
     if plot_path is not None and any(run.series is not None for run in runs):
-        plot.plot(runs, plot_path)
+        plot.plot(runs, plot_path, plot_joints)
+    for path, option in ((csv_path, "--csv"), (plot_path, "--plot")):
+        if path is not None and all(run.series is None for run in runs):
+            err_console.print(f"txtool: {path}: not written ({option}): {nothing_drawn(runs)}",
+                              soft_wrap=True, highlight=False, markup=False)
     if output == "json":
         console.file.write(json.dumps(json_report.document(runs), indent=2,
                                       ensure_ascii=False) + "\n")

@@ -76,18 +76,24 @@ class Counterbalance:
         return notes
 
     def notes(self, gravity: np.ndarray) -> list[str]:
-        """One note per counterbalanced joint, from the gravity along the run's reference."""
+        """One note per joint the counterbalance carries a part of along the run's reference
+        (``gravity``: its rows). The joints were found on the planned motion; the one that runs
+        may have been cut since, and load them less than their limit, or no more than half."""
         load = np.abs(gravity).max(axis=0, initial=0.0)
         carried = np.abs(self.carried(gravity)).max(axis=0, initial=0.0)
         notes = []
-        for v in np.nonzero(np.isfinite(self.keep))[0]:
+        for v in self._carrying(carried):
             unit = "N" if self.units[v] == "m" else "N·m"
+            limit = f"{self.capacity[v]:.4g} {unit}"
+            how = (f"beyond its effort limit {limit}" if load[v] > self.capacity[v] else
+                   f"{100 * load[v] / self.capacity[v]:.0f}% of its effort limit {limit} "
+                   "(beyond the limit on the motion before it was cut)")
             notes.append(
                 f"joint '{self.joints[v]}': gravity needs up to {load[v]:.4g} {unit} to hold it, "
-                f"beyond its effort limit {self.capacity[v]:.4g} {unit}: a counterbalance or "
-                f"spring the URDF does not describe is assumed to carry up to {carried[v]:.4g} "
-                f"{unit} (what exceeds {100 * KEEP:.0f}% of the limit), applied to the joint "
-                "directly; the actuator is checked on the rest (--no-counterbalance: off)")
+                f"{how}: a counterbalance or spring the URDF does not describe is assumed to "
+                f"carry up to {carried[v]:.4g} {unit} (what exceeds {100 * KEEP:.0f}% of the "
+                "limit), applied to the joint directly; the actuator is checked on the rest "
+                "(--no-counterbalance: off)")
         return notes
 
     def table(self, gravity: np.ndarray) -> dict[str, dict[str, float | str]]:
@@ -98,7 +104,11 @@ class Counterbalance:
                                  "limit": float(self.capacity[v]),
                                  "carried": float(carried[v]),
                                  "units": "N" if self.units[v] == "m" else "N·m"}
-                for v in np.nonzero(np.isfinite(self.keep))[0]}
+                for v in self._carrying(carried)}
+
+    def _carrying(self, carried: np.ndarray) -> list[int]:
+        """The DoFs with a counterbalance that carries something of ``carried`` (peaks)."""
+        return [int(v) for v in np.nonzero(np.isfinite(self.keep) & (carried > 0))[0]]
 
 
 def capacity(eff_j2a: np.ndarray, actuator_effort: np.ndarray) -> np.ndarray:

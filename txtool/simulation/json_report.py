@@ -82,6 +82,7 @@ def coverage_json(covered: Coverage) -> dict[str, Any]:
             "skipped": {name: why for name, why in covered.skipped},
             "unread": {name: why for name, why in covered.unread},
             "joints": covered.joints, "joints_checked": covered.joints_checked,
+            "still": list(covered.still),
             "units": {"transmissions": ONE, "joints": ONE, "joints_checked": ONE}}
 
 

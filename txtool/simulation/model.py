@@ -78,6 +78,10 @@ class RobotModel:
         return q
 
 
+class Massless(InputError):
+    """The robot has moving joints but none moves a link with mass or inertia."""
+
+
 def build(source: Source) -> RobotModel:
     """The model of ``source`` (its xacro expansion for .xacro files)."""
     info = robot_joints(source.root)
@@ -110,9 +114,9 @@ def build(source: Source) -> RobotModel:
     joints = [name for name, joint in zip(model.names[1:], model.joints[1:], strict=True)
               if joint.nv > 0]  # a mimic joint has no DoF of its own
     if not joints and locked:
-        raise InputError(f"{source.path}: no joint moves a link with mass or inertia "
-                         f"(joints {', '.join(sorted(locked))}): simulate needs the URDF's "
-                         "<inertial> elements")
+        raise Massless(f"{source.path}: no joint moves a link with mass or inertia "
+                       f"(joints {', '.join(sorted(locked))}): simulate needs the URDF's "
+                       "<inertial> elements")
     if not joints:
         raise InputError(f"{source.path}: the robot has no moving joints")
     order = sorted(joints, key=lambda n: model.joints[model.getJointId(n)].idx_v)

@@ -10,9 +10,11 @@ The file format follows the suffix: .png, .svg or .pdf.
 
 from __future__ import annotations
 
+import fnmatch
 import importlib.util
 import io
 import math
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -27,6 +29,7 @@ MAX_COLUMNS = 6
 REFERENCE = {"color": "black", "linestyle": "--", "linewidth": 1.0, "zorder": 3}
 LIMIT = {"color": "tab:red", "linestyle": ":", "linewidth": 1.0}
 BAND = {"color": "tab:green", "alpha": 0.15, "linewidth": 0}
+SUMMARY_BARS = 20  # the worst joints and actuators the summary cell draws bars for
 
 
 def require(path: str) -> None:
@@ -40,25 +43,27 @@ def require(path: str) -> None:
                          f"{install_extra('plot')}")
 
 
-def plot(runs: list[RunResult], path: str) -> None:
-    """Write the figure of ``runs`` (all on the same robot) to ``path``."""
+def plot(runs: list[RunResult], path: str, joints: Sequence[str] = ()) -> None:
+    """Write the figure of ``runs`` (all on the same robot) to ``path``: the joints
+    ``joints`` names (names or shell patterns; default: those a transmission drives)."""
+    kept = [run for run in runs if run.series is not None]
+    if not kept:
+        raise ValueError("no run kept its time series")
+    cells = cell_order(kept, selected(kept, joints))
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    kept = [run for run in runs if run.series is not None]
-    if not kept:
-        raise ValueError("no run kept its time series")
     first = kept[0].series
     assert first is not None
-    cells = cell_order(kept)
-    columns, rows = grid(len(cells))
+    columns, rows = grid(len(cells) + 1)
     figure = plt.figure(figsize=(CELL[0] * columns, CELL[1] * rows + 1.2),
                         layout="constrained")
     outer = figure.add_gridspec(rows, columns)
     colors = [f"C{i % 10}" for i in range(len(kept))]
-    for index, (kind, name) in enumerate(cells):
+    _summary(figure, outer[0, 0].subgridspec(2, 1), kept, colors, cells)
+    for index, (kind, name) in enumerate(cells, 1):
         inner = outer[index // columns, index % columns].subgridspec(2, 1)
         top = figure.add_subplot(inner[0])
         bottom = figure.add_subplot(inner[1], sharex=top)
@@ -82,35 +87,82 @@ def plot(runs: list[RunResult], path: str) -> None:
     write_atomic(path, image.getvalue(), report=True)
 
 
+def selected(runs: list[RunResult], patterns: Sequence[str]) -> list[str]:
+    """The joints to draw, in the robot's order: those ``patterns`` match (each must match
+    one), else those a transmission drives in any run (all of them when none is)."""
+    first = runs[0].series
+    assert first is not None
+    if patterns:
+        for pattern in patterns:
+            if not fnmatch.filter(first.joints, pattern):
+                raise InputError(f"--joints: no joint of {runs[0].robot} is named {pattern!r}")
+        return [j for j in first.joints if any(fnmatch.fnmatchcase(j, p) for p in patterns)]
+    driven = [j for j in first.joints
+              if any(r.joints[j].transmission for r in runs if j in r.joints)]
+    return driven or list(first.joints)
+
+
 def grid(cells: int) -> tuple[int, int]:
     """(columns, rows) for ``cells`` cells: about as wide as tall, at most MAX_COLUMNS wide."""
     columns = max(1, min(MAX_COLUMNS, math.ceil(math.sqrt(cells * CELL[1] / CELL[0]))))
     return columns, math.ceil(cells / columns)
 
 
-def cell_order(runs: list[RunResult]) -> list[tuple[str, str]]:
-    """("joint"|"actuator", name) in drawing order: joints, then actuators; within each, those
-    outside the tolerance or their limits in any run first, the worst first; the rest in the
-    robot's order."""
+def cell_order(runs: list[RunResult], joints: Sequence[str] | None = None
+               ) -> list[tuple[str, str]]:
+    """("joint"|"actuator", name) in drawing order: the ``joints`` (default: all), then the
+    actuators driving them; within each, the worst first (tracking error against the
+    tolerance; effort or speed against the limit), in the robot's order where equal."""
     first = runs[0].series
     assert first is not None
-    tolerance = runs[0].tolerance or 0.0
+    shown = set(first.joints if joints is None else joints)
+    actuators = {i for j in shown for i in first.joint_actuators.get(j, [])
+                 if first.transmission_of[i]}
+    order = sorted((v for v, j in enumerate(first.joints) if j in shown),
+                   key=lambda v: (-error_ratio(runs, first.joints[v]), v))
+    motors = sorted(actuators, key=lambda i: (-limit_ratio(runs, first.actuators[i]), i))
+    return [("joint", first.joints[v]) for v in order] + [
+        ("actuator", first.actuators[i]) for i in motors]
 
-    def joint_key(item: tuple[int, str]) -> tuple[bool, float, int]:
-        v, name = item
-        worst = max((r.joints[name].max_error for r in runs if name in r.joints), default=0.0)
-        return (not worst > tolerance, -worst if worst > tolerance else 0.0, v)
 
-    def actuator_key(item: tuple[int, str]) -> tuple[bool, float, int]:
-        i, name = item
-        over = max((max(r.actuators[name].peak_effort / r.actuators[name].effort_limit,
-                        r.actuators[name].peak_velocity / r.actuators[name].velocity_limit)
-                    for r in runs if name in r.actuators), default=0.0)
-        return (not over > 1.0, -over if over > 1.0 else 0.0, i)
+def error_ratio(runs: list[RunResult], joint: str) -> float:
+    """The largest tracking error of ``joint`` over the runs, in tolerances."""
+    tolerance = runs[0].tolerance or 1.0
+    return max((r.joints[joint].max_error for r in runs if joint in r.joints),
+               default=0.0) / tolerance
 
-    joints = sorted(enumerate(first.joints), key=joint_key)
-    actuators = sorted(enumerate(first.actuators), key=actuator_key)
-    return [("joint", n) for _, n in joints] + [("actuator", n) for _, n in actuators]
+
+def limit_ratio(runs: list[RunResult], actuator: str) -> float:
+    """The largest share of its effort or speed limit ``actuator`` reaches over the runs."""
+    shares = [max(_share(a.peak_effort, a.effort_limit), _share(a.peak_velocity,
+                                                                 a.velocity_limit))
+              for a in (r.actuators.get(actuator) for r in runs) if a is not None]
+    return max(shares, default=0.0)
+
+
+def _share(value: float, limit: float) -> float:
+    return value / limit if limit > 0 else 0.0  # no limit (0 or inf): nothing to reach
+
+
+def _summary(figure: Any, cell: Any, runs: list[RunResult], colors: list[str],
+             cells: list[tuple[str, str]]) -> None:
+    """Bars of every drawn joint's error (in tolerances) and actuator's peak (in limits), the
+    worst at the top."""
+    for slot, (kind, measure, label) in enumerate((
+            ("joint", error_ratio, "joints: max error / tolerance, worst first"),
+            ("actuator", limit_ratio, "actuators: peak / limit, worst first"))):
+        ax = figure.add_subplot(cell[slot])
+        names = [name for k, name in cells if k == kind][:SUMMARY_BARS]
+        height = 1 / (len(runs) + 1)
+        for index, (run, color) in enumerate(zip(runs, colors, strict=True)):
+            values = [measure([run], name) for name in names]
+            ax.barh(np.arange(len(names)) + index * height, values, height=height, color=color)
+        ax.axvline(1.0, **LIMIT)
+        ax.set_xscale("symlog", linthresh=1.0)  # within the bound linear, far beyond it log
+        ax.set_yticks(np.arange(len(names)), names, fontsize="x-small")
+        ax.invert_yaxis()  # the worst first, at the top
+        ax.set_title(label, fontsize="small")
+        ax.grid(alpha=0.3, axis="x")
 
 
 def _joint_row(axes: Any, runs: list[RunResult], colors: list[str], joint: str,

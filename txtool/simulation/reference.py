@@ -19,6 +19,7 @@ from txtool.io.xmlio import InputError
 from txtool.model.numbers import parse_strict
 
 CONTINUOUS_RANGE = (-1.0, 1.0)
+LIMITLESS = 1e3  # rad or m: limits wider apart than this are taken as none (see limitless)
 # The default motion moves each joint about a centre of its own, shifted from the middle of its
 # range by up to SHIFT of the range: alike joints (twin fingers, mirrored arms) then follow
 # different references however their amplitudes are cut, so a config that swaps two of them is
@@ -189,9 +190,23 @@ def _clamped_second_derivatives(x: np.ndarray, y: np.ndarray) -> np.ndarray:
 
 
 def joint_range(kind: str, lower: float, upper: float) -> tuple[float, float]:
+    """The range the default motion moves a joint in: its limits, or, for a joint without
+    limits (continuous, none given, or :func:`limitless`), CONTINUOUS_RANGE as near 0 as its
+    limits allow."""
     if kind == "continuous" or not (math.isfinite(lower) and math.isfinite(upper)):
         return CONTINUOUS_RANGE
+    if limitless(lower, upper):
+        low, high = CONTINUOUS_RANGE
+        centre = min(max(0.0, lower - low), upper - high)
+        return centre + low, centre + high
     return lower, upper
+
+
+def limitless(lower: float, upper: float) -> bool:
+    """Limits so far apart that they say "no limit" in a number (URDFs write ±1e10 or ±1e16
+    for it): 25% -> 75% of such a range is no motion a robot makes, and the speed limits would
+    cut it to nothing."""
+    return upper - lower > LIMITLESS
 
 
 def follow(ref: Reference, joints: tuple[str, ...],

@@ -78,7 +78,7 @@ def render_text(runs: list[RunResult], console: Console) -> None:
 
 
 def render_run(run: RunResult, console: Console) -> None:
-    if run.verdict == "inconclusive":
+    if run.steps == 0:  # judged unrun: nothing to check, or a fault seen without a run
         console.print(f"[bold]simulate[/] {escape(run.robot)} with {escape(run.config)}: "
                       "not simulated", soft_wrap=True)
         for line in readers_lines(run):
@@ -86,6 +86,8 @@ def render_run(run: RunResult, console: Console) -> None:
         for note in run.notes:
             console.print(f"note: {escape(note)}", soft_wrap=True)
         console.print(verdict_line(run), soft_wrap=True)
+        for reason in run.reasons[1:]:
+            console.print(f"  - {escape(reason)}", soft_wrap=True)
         return
     console.print(f"[bold]simulate[/] {escape(run.robot)} with {escape(run.config)}: "
                   f"{run.steps} steps of {run.dt:g} s ({run.duration:g} s)", soft_wrap=True)

@@ -145,19 +145,32 @@ class Coverage:
     joints: int = 0  # moving joints of the model
     joints_checked: int = 0  # joints driven through a simulated transmission
     unread: tuple[tuple[str, str], ...] = ()  # (transmission, why) no reader of the file reads
+    still: tuple[str, ...] = ()  # checked joints the reference does not move (limits cut it)
 
     @property
     def nothing(self) -> bool:
         return not self.simulated
 
     @property
+    def in_file(self) -> int:
+        """The config's transmissions, read or not: the count of the file."""
+        return self.transmissions + len(self.unread)
+
+    @property
     def partial(self) -> bool:
-        return bool(self.simulated) and (len(self.simulated) < self.transmissions
-                                         or self.joints_checked < self.joints)
+        return bool(self.simulated) and (len(self.simulated) < self.in_file
+                                         or self.joints_checked < self.joints
+                                         or bool(self.still))
 
     def summary(self) -> str:
-        return (f"checked {len(self.simulated)} of {self.transmissions} transmissions and "
-                f"{self.joints_checked} of {self.joints} joints")
+        unread = f" ({len(self.unread)} read by no reader of the file)" if self.unread else ""
+        named = ", ".join(f"'{j}'" for j in self.still[:SHOWN_REASONS])
+        if len(self.still) > SHOWN_REASONS:
+            named += f" and {len(self.still) - SHOWN_REASONS} more"
+        still = (f"; the reference does not move {len(self.still)} of them ({named}: see the "
+                 "notes)" if self.still else "")
+        return (f"checked {len(self.simulated)} of {self.in_file} transmissions{unread} and "
+                f"{self.joints_checked} of {self.joints} joints{still}")
 
     def why_nothing(self) -> str:
         if not self.transmissions and self.unread:

@@ -5,12 +5,12 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from txtool.io.load import load
-from txtool.io.xmlio import InputError, XacroOptions
+from txtool.io.xmlio import InputError, Source, XacroOptions
 from txtool.lint.config import readers_of
 from txtool.lint.readers import FileReaders, record
 from txtool.simulation import (
@@ -24,7 +24,7 @@ from txtool.simulation import (
     setup,
 )
 from txtool.simulation.drive import Drive, read_drive
-from txtool.simulation.model import RobotModel, build
+from txtool.simulation.model import Massless, RobotModel, build
 from txtool.simulation.parameter_files import load_params
 from txtool.simulation.params import Params
 from txtool.simulation.plan import Controller, Plan, RunState
@@ -128,12 +128,49 @@ class Unchecked:
     notes: list[str]
     coverage: result.Coverage
     readers: dict[str, FileReaders] = field(default_factory=dict)
+    causes: list[result.Cause] = field(default_factory=list)  # the config's fault, seen unrun
 
     def judged(self) -> result.RunResult:
         return result.RunResult(
             robot=self.options.robot, config=self.label, dt=0.0, steps=0, duration=0.0,
-            reference="not simulated", joints={}, actuators={}, reasons=[],
-            notes=self.notes, coverage=self.coverage, readers=self.readers)
+            reference="not simulated", joints={}, actuators={},
+            reasons=[cause.text for cause in self.causes], notes=self.notes,
+            coverage=self.coverage, readers=self.readers, causes=list(self.causes))
+
+
+def dropped(plant: Drive, ctrl: Drive) -> list[result.Cause]:
+    """A candidate without any transmission where the robot simulates some: each of the
+    robot's is missing (its joints driven directly), a fault no run needs to show."""
+    if ctrl.names or ctrl.unread:
+        return []
+    return [result.Cause("missing_transmission",
+                         f"the config has no transmission '{m.name}': "
+                         f"{_named('joint', m.joints)} driven directly where the robot has a "
+                         f"{_KINDS[m.kind]} transmission to {_named('actuator', m.actuators)}")
+            for m in plant.maps]
+
+
+def _named(what: str, names: tuple[str, ...]) -> str:
+    """``joint 'a' is`` or ``joints 'a', 'b' are`` (``actuator 'm'``, ``actuators ...``)."""
+    quoted = ", ".join(f"'{name}'" for name in names)
+    verb = "" if what == "actuator" else (" is" if len(names) == 1 else " are")
+    return f"{what}{'' if len(names) == 1 else 's'} {quoted}{verb}"
+
+
+_KINDS = {"simple": "simple", "differential": "differential", "four_bar": "four-bar"}
+
+
+def _nothing_to_move(options: Options, candidate: Source, label: str,
+                     readers: dict[str, FileReaders], massless: Massless) -> Unchecked:
+    """A robot without inertials whose config has no transmission either: nothing of the
+    config is there to check (inconclusive), whether or not the robot could be simulated.
+    With a transmission to check, the robot's missing inertials are the input error."""
+    from txtool.dialects.read import read_source
+
+    if read_source(candidate, locate=False):
+        raise massless
+    note = f"the robot could not be simulated either: {massless}"
+    return Unchecked(options, label, [note], result.Coverage(), readers)
 
 
 def coverage_of(robot: RobotModel, ctrl: Drive) -> result.Coverage:
@@ -148,17 +185,23 @@ def prepare(options: Options, config: str | None, label: str | None = None
             ) -> Prepared | Unchecked:
     """Load ROBOT and the config, build the model, parameters, reference and loop matrices."""
     started = time.perf_counter()
-    source = load(options.robot, xacro=options.xacro)
-    robot = build(source)
+    # The command says once whether --xacro-arg reaches any of its files (a plain candidate
+    # beside a xacro robot is no reason for a warning).
+    source = load(options.robot, xacro=options.xacro, warn_unused=False)
     # Each file's transmissions as its readers read them (validate's decision).
     robot_readers = readers_of(source, options.ros_distro)
     candidate, config_readers = source, robot_readers
     if config is not None:
-        candidate = load(config, xacro=options.xacro)
+        candidate = load(config, xacro=options.xacro, warn_unused=False)
         config_readers = readers_of(candidate, options.ros_distro)
     readers = {"robot": record(source.path, robot_readers)}
     if config is not None:
         readers["config"] = record(candidate.path, config_readers)
+    label = label or (config if config is not None else options.robot)
+    try:
+        robot = build(source)
+    except Massless as massless:
+        return _nothing_to_move(options, candidate, label, readers, massless)
     # The plant is physics: power-conserving effort maps (ros2_control's). The controller
     # runs the maps of the loader that reads its file, unless --effort-convention says.
     plant = read_drive(source, robot, loader=options.loader, readers=robot_readers,
@@ -169,11 +212,10 @@ def prepare(options: Options, config: str | None, label: str | None = None
     if unknown:
         raise InputError(f"--skip: no transmission named {', '.join(map(repr, unknown))} in "
                          f"{options.robot}" + (f" or {config}" if config else ""))
-    label = label or (config if config is not None else options.robot)
     covered = coverage_of(robot, ctrl)
     if covered.nothing:
         return Unchecked(options, label, _notes(robot, plant, ctrl, config is not None), covered,
-                         readers)
+                         readers, dropped(plant, ctrl) if config is not None else [])
     params = load_params(options.params, options.robot)
     params.check_names(set(plant.actuators) | set(ctrl.actuators), set(robot.joints),
                        options.robot)
@@ -236,6 +278,16 @@ def _finder(robot: RobotModel, plant: Drive, effort_limit: np.ndarray
                                                effort_limit)
 
 
+STILL = 0.005  # a joint moving less than this share of the default move is not moved
+
+
+def _still(p: Prepared) -> tuple[str, ...]:
+    """The checked joints the reference moves less than STILL of the default 25% -> 75%."""
+    ranges = _ranges(p.robot)
+    return tuple(j for v, j in enumerate(p.robot.joints) if j not in p.ctrl.direct
+                 and np.ptp(p.ref.q[:, v]) < STILL * 0.5 * (ranges[v][1] - ranges[v][0]))
+
+
 def simulate_one(options: Options, config: str | None, label: str | None = None,
                  progress: Progress | None = None) -> result.RunResult:
     """Simulate ``options.robot`` controlled through ``config`` (None: the robot's own)."""
@@ -265,7 +317,7 @@ def finish(p: Prepared, state: RunState, loop_s: float) -> result.RunResult:
         run.notes.append(p.plan.dynamics.note)
     run.gains, run.tolerance = p.gains, p.settings.tolerance
     run.counterbalance = p.carried
-    run.coverage = coverage_of(p.robot, p.ctrl)
+    run.coverage = replace(coverage_of(p.robot, p.ctrl), still=_still(p))
     run.readers = p.readers
     checks.judge(run, series, p.plant, p.ctrl, p.binding.S, p.config is not None,
                  p.plan.encoder, p.plan.delay)
@@ -294,6 +346,13 @@ def _default_reference(robot: RobotModel, s: Settings, limits: feasible.Limits,
     ref = reference.follow(ref, robot.joints, robot.followers)
     ref, notes = reference.saturate(ref, robot.joints, robot.lower, robot.upper,
                                     robot.velocity, s.dt)
+    wide = [j for j, k, lo, hi in zip(robot.joints, robot.kinds, robot.lower, robot.upper,
+                                       strict=True)
+            if k != "continuous" and math.isfinite(hi - lo) and reference.limitless(lo, hi)]
+    if wide:
+        notes.insert(0, f"limits more than {reference.LIMITLESS:g} apart taken as none: "
+                        + ", ".join(f"'{j}'" for j in wide)
+                        + " move in a range of 2 near 0, as continuous joints do")
     return (ref, float(ref.time[-1]), list(chosen.notes) + notes, list(chosen.cannot_hold),
             chosen.carry)
 

@@ -36,6 +36,7 @@ from txtool.io.xmlio import (
 )
 from txtool.lint.config import Overrides, SettingsCache
 from txtool.lint.discover import expand_paths
+from txtool.lint.read_fixes import fixes_read
 from txtool.lint.suppress import Suppressions
 from txtool.lint.suppress import parse as parse_suppressions
 from txtool.model.core import Dialect
@@ -71,6 +72,7 @@ class MigrateOptions:
     # Where the files migrated call each xacro macro (set by migrate_paths, to ROS 2).
     macro_calls: MacroCalls | None = None
     reversible: bool = False
+    ros_distro: str | None = None  # --ros-distro: the readers whose findings are fixed
 
 
 @dataclass
@@ -256,6 +258,10 @@ def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions) -> F
         declarations) else []
     result = FileResult(path=display, original=original, data=original, target=options.target)
     clean = not might_fix(tree.getroot(), rules, original)  # fix_tree() would find nothing
+    if not clean:  # only what validate reports under the file's readers is fixed
+        rules = fixes_read(Source(display, original, tree), rules, options.ros_distro,
+                           options.config)
+        clean = not rules
     if clean and options.target is None:
         return result
     source = Source(display, original, tree)
