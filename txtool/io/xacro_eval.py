@@ -47,6 +47,7 @@ MAX_DIGITS = MAX_INT_BITS  # of round(x, n): |n| (a negative n builds 10**-n)
 # Steps of work one file's expansion may take: each about a tenth of a microsecond of work,
 # so the budget is spent in well under a second; real robots take a few thousand.
 MAX_WORK = 5_000_000
+CALL_STEPS = 10  # a node evaluated or a function called: about a microsecond of Python
 
 
 class EvalRefused(Exception):
@@ -122,6 +123,7 @@ class SafeFunction:
 
     def __call__(self, *args: Any, **kwargs: Any) -> Any:
         meter = current_meter()
+        meter.charge(CALL_STEPS)
         meter.charge_values(*args, *kwargs.values())
         result = self.function(*args, **kwargs)
         meter.charge(cost(result))
@@ -421,7 +423,7 @@ class Evaluator:
         return value
 
     def run(self, node: ast.AST) -> Any:
-        self.meter.charge(1)
+        self.meter.charge(CALL_STEPS)
         handler = getattr(self, "_" + type(node).__name__, None)
         if handler is None:
             raise EvalRefused(f"{_describe(node)} is not allowed in a xacro expression "
