@@ -112,7 +112,10 @@ class XacroGuard:
         first = next(i for i, part in enumerate(parts) if _MAGIC.search(part))
         folder = os.sep.join(parts[:first]) or os.sep
         real = os.path.realpath(folder)
-        if ".." in parts[first:] or not any(is_within(real, r) for r in self.roots):
+        root = next((r for r in self.roots if is_within(real, r)), None)
+        below = os.path.relpath(real, root).split(os.sep) if root else []
+        hidden = [p for p in below + parts[first:] if p.startswith(".") and p != "."]
+        if root is None or hidden:  # ('..' after a wildcard climbs out of the folder checked)
             raise Refusal(f"include of '{pattern}' is outside the repository and the packages "
                           "found (txtool lists no other folder for an untrusted xacro; see "
                           "--trust-xacro)", needle=os.path.basename(pattern))
