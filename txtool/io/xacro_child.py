@@ -6,9 +6,9 @@ dump) and expands with a new :class:`txtool.io.xacro_guard.XacroGuard` installed
 of nodes and work are the file's own). What it imports is imported before the first
 request's limits are set.
 
-It ends as soon as the parent does, even in the middle of a request: a thread waits on a pipe
-whose other end only the parent holds (:func:`main`'s ``lifeline``), and its end of file
-means the parent is gone, however it ended (``kill -9`` included).
+It ends as soon as the parent does, even in the middle of a request: it watches a pipe whose
+other end only the parent holds (:func:`main`'s ``lifeline``), and its closing means the
+parent is gone, however it ended (``kill -9`` included).
 """
 
 from __future__ import annotations
@@ -18,6 +18,7 @@ import contextlib
 import io
 import json
 import os
+import signal
 import sys
 import threading
 from typing import Any
@@ -80,8 +81,25 @@ def _answer(header: dict[str, Any], text: str = "") -> None:
 
 
 def _end_with_parent(descriptor: int) -> None:
-    """Exit when the parent's end of the pipe ``descriptor`` closes (the parent ended)."""
-    def watch() -> None:
+    """End when the parent's end of the pipe ``descriptor`` closes (the parent ended).
+
+    The pipe is set to signal this process (SIGIO, whose default action ends it) when it turns
+    readable, which only its closing does: the kernel ends the child at once, with no thread
+    (a thread's stack and malloc arena would count against the memory limit) and whatever
+    the child is doing."""
+    import fcntl
+    import select
+
+    if hasattr(fcntl, "F_SETOWN") and hasattr(os, "O_ASYNC"):
+        signal.signal(signal.SIGIO, signal.SIG_DFL)
+        fcntl.fcntl(descriptor, fcntl.F_SETOWN, os.getpid())
+        flags = fcntl.fcntl(descriptor, fcntl.F_GETFL)
+        fcntl.fcntl(descriptor, fcntl.F_SETFL, flags | os.O_ASYNC | os.O_NONBLOCK)
+        if select.select([descriptor], [], [], 0)[0]:  # the parent ended before this was set
+            os._exit(1)
+        return
+
+    def watch() -> None:  # elsewhere: a thread that waits for the end of file
         with contextlib.suppress(OSError):
             while os.read(descriptor, 1):
                 pass

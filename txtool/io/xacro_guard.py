@@ -34,6 +34,8 @@ import re
 import xml.dom.minidom as minidom
 from collections.abc import Iterator, Mapping
 from typing import Any
+from xml.parsers.expat import ExpatError
+from xml.parsers.expat import errors as expat_errors
 
 from txtool.io.packages import enclosing_manifest, is_within, locate_package, workspace_roots
 from txtool.io.xacro_eval import (
@@ -48,6 +50,8 @@ from txtool.io.xacro_eval import (
     plain_attribute,
 )
 from txtool.io.xmlio import InputError, TooLarge, XacroOptions, read_regular
+
+_EXPAT_NO_MEMORY = expat_errors.codes[expat_errors.XML_ERROR_NO_MEMORY]
 
 MAX_YAML_NODES = 1_000_000
 # XML nodes created by cloning (macro bodies, blocks) in one expansion: minidom takes some
@@ -308,6 +312,8 @@ class XacroGuard:
         """Let a refusal through xacro's error handling unchanged, as a :class:`Refusal`."""
         if isinstance(cause, Refusal | NodeLimit | WorkLimit | MemoryError | RecursionError):
             raise cause
+        if isinstance(cause, ExpatError) and cause.code == _EXPAT_NO_MEMORY:
+            raise MemoryError  # expat says so as a syntax error: the memory limit, not the file
         if isinstance(cause, EvalRefused):
             raise _refusal(str(cause), None) from None
 
