@@ -170,6 +170,10 @@ WORK = {
     "sorted twice and compared": "python.sorted(range(999999)) == python.sorted(range(999999))",
     "deep compare": "[[0] * 999] * 1000 == [[0] * 999] * 1000",
     "many sums": " + ".join(["python.sum(range(999999))"] * 30),
+    "a % template of many fields": "python.len(('%s' * 499999) % python.tuple(range(499999)))",
+    "a % template of %%": "python.len(('%%' * 499999) % ())",
+    "a format template of many fields": "python.len(('{0}' * 333333).format(1)) * 0 + "
+                                        "python.len(('{0}' * 333333).format(1))",
     "repeated deep sizes": "python.len(str([[0] * 999] * 1000) * 1)",
     "a long pipeline": ("python.len(python.list(python.map(str, python.filter(None, "
                         "python.map(python.abs, range(999999))))))"),
@@ -259,6 +263,14 @@ EXPANSIONS = {
     "tokenize with a backtracking separator": (
         '<xacro:property name="s" value="${\'a\' * 1500}"/>'
         '<a n="${xacro.tokenize(s, \'(a+)+b\')}"/>', OK),
+    "a block re-read with many $ tokens": (  # xacro's lexer copies the rest at each token
+        '<xacro:property name="big" value="${(\'a$\' + \'$\' + \'{\') * 240000}"/>'
+        '<xacro:macro name="m" params="*b"><xacro:insert_block name="b"/></xacro:macro>'
+        "<xacro:m><t>${big}</t></xacro:m>", "steps of work"),
+    "a block re-read with fewer $ tokens": (
+        '<xacro:property name="big" value="${(\'a$\' + \'$\' + \'{\') * 1000}"/>'
+        '<xacro:macro name="m" params="*b"><xacro:insert_block name="b"/></xacro:macro>'
+        "<xacro:m><t>${big}</t></xacro:m>", OK),
     "a 2^10 fan-out": (fan_out(10, 2, "<a/>"), OK),
 }
 

@@ -210,8 +210,10 @@ def _check_percent_format(template: str) -> None:
     """Refuse a ``%`` field wider or more precise than :data:`MAX_WIDTH`, or one whose width
     comes from the arguments (``*``), read as CPython's ``%`` reads them: a ``(key)`` may hold
     nested parentheses, so no regular expression finds every width."""
+    meter = current_meter()
     at = template.find("%")
     while at >= 0:
+        meter.charge(CALL_STEPS)  # read here in Python, then formatted: a field at a time
         at += 1
         if template.startswith("(", at):
             depth = 0
@@ -249,7 +251,9 @@ def _check_format_spec(spec: str) -> None:
 def _safe_format(template: str, *args: Any, **kwargs: Any) -> str:
     """``str.format`` for plain fields: ``{}``, ``{0}``, ``{name}``, with a bounded spec; never
     ``{0.attr}`` or ``{0[key]}``, which reach into objects."""
+    meter = current_meter()
     for _text, field, spec, _conversion in string.Formatter().parse(template):
+        meter.charge(CALL_STEPS)
         if field is None:
             continue
         if "." in field or "[" in field:

@@ -60,6 +60,8 @@ MAX_NODES = 100_000
 CLONE_STEPS = 10  # steps of work a cloned node is charged (its evaluation follows)
 YAML_STEPS_PER_BYTE = 16  # PyYAML's pure-Python loader: a step of work per 16th of a byte
 LIST_SCAN_PER_STEP = 8  # items of a child list that minidom scans in C, per step of work
+# xacro's lexer copies the rest of a text after each token it takes: bytes copied per step.
+LEXER_COPY_PER_STEP = 1024
 _MAGIC = re.compile(r"[*?[]")
 
 
@@ -247,7 +249,8 @@ class XacroGuard:
 
         saved = (xacro.safe_eval, xacro._global_symbols, substitution_args._eval,
                  substitution_args._eval_env, substitution_args._eval_optenv,
-                 substitution_args._eval_find, xacro.glob)
+                 substitution_args._eval_find, xacro.glob, xacro.eval_text)
+        xacro.eval_text = self._priced_eval_text(xacro.eval_text)
         xacro.safe_eval = self.safe_eval
         xacro._global_symbols = self.globals()
         substitution_args._eval = self.substitution_eval
@@ -261,7 +264,19 @@ class XacroGuard:
         finally:
             (xacro.safe_eval, xacro._global_symbols, substitution_args._eval,
              substitution_args._eval_env, substitution_args._eval_optenv,
-             substitution_args._eval_find, xacro.glob) = saved
+             substitution_args._eval_find, xacro.glob, xacro.eval_text) = saved
+
+    def _priced_eval_text(self, eval_text: Any) -> Any:
+        """xacro's ``eval_text``, charged before it lexes: its lexer copies what is left of
+        the text after each token, so a text of many ``$`` tokens (a block inserted again
+        re-reads what its expressions wrote) costs its length times its tokens."""
+        def priced(text: Any, symbols: Any) -> Any:
+            if isinstance(text, str):
+                tokens = 2 * text.count("$") + 1
+                self.meter.charge(1 + len(text) // 16 + tokens * len(text) // 2
+                                  // LEXER_COPY_PER_STEP)
+            return eval_text(text, symbols)
+        return priced
 
     @contextlib.contextmanager
     def _tree_counted(self) -> Iterator[None]:
