@@ -97,6 +97,20 @@ def current_meter() -> Meter:
     return _meter if _meter is not None else Meter()
 
 
+def _words(value: Any) -> int:
+    return abs(value).bit_length() // 64 + 1 if isinstance(value, int) else 1
+
+
+def int_work(*values: Any) -> int:
+    """Steps of an arithmetic operation on integers: CPython multiplies, divides and prints
+    them in time the product of their sizes in 64-bit words (one number: its square)."""
+    sizes = sorted((_words(v) for v in values if isinstance(v, int)
+                    and not isinstance(v, bool)), reverse=True)
+    if not sizes:
+        return 0
+    return sizes[0] * (sizes[1] if len(sizes) > 1 else sizes[0]) // 8
+
+
 def cost(value: Any) -> int:
     """Steps to read or make ``value``: its size, as :func:`deep_size` counts it."""
     if isinstance(value, str | bytes):
@@ -123,7 +137,7 @@ class SafeFunction:
 
     def __call__(self, *args: Any, **kwargs: Any) -> Any:
         meter = current_meter()
-        meter.charge(CALL_STEPS)
+        meter.charge(CALL_STEPS + int_work(*args))
         meter.charge_values(*args, *kwargs.values())
         result = self.function(*args, **kwargs)
         meter.charge(cost(result))
@@ -388,6 +402,8 @@ def _python_namespace() -> Namespace:
 def _bounded_pow(base: Any, exponent: Any, *modulo: Any) -> Any:
     if not modulo or modulo[0] is None:
         _check_binop(ast.Pow(), base, exponent)
+    elif isinstance(exponent, int):  # a squaring and a product per bit of the exponent
+        current_meter().charge(abs(exponent).bit_length() * int_work(modulo[0]))
     return _refuse_large(pow(base, exponent, *modulo))
 
 
@@ -474,6 +490,7 @@ class Evaluator:
     def _BinOp(self, node: ast.BinOp) -> Any:
         left, right = self.run(node.left), self.run(node.right)
         _check_binop(node.op, left, right)
+        self.meter.charge(int_work(left, right))
         self.meter.charge_values(left, right)
         return self._made(_refuse_deep(_BINARY[type(node.op)](left, right)))
 

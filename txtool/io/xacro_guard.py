@@ -58,10 +58,14 @@ MAX_YAML_NODES = 1_000_000
 # microseconds to clone one and as many to evaluate it, so this many cost about half a second.
 MAX_NODES = 100_000
 CLONE_STEPS = 10  # steps of work a cloned node is charged (its evaluation follows)
-YAML_STEPS_PER_BYTE = 16  # PyYAML's pure-Python loader: a step of work per 16th of a byte
+YAML_STEPS_PER_BYTE = 64  # PyYAML's pure-Python loader: some 6 microseconds a byte
 LIST_SCAN_PER_STEP = 8  # items of a child list that minidom scans in C, per step of work
 # xacro's lexer copies the rest of a text after each token it takes: bytes copied per step.
 LEXER_COPY_PER_STEP = 1024
+# xacro's own work for an element (its attributes, its dispatch) and for a macro call (a new
+# scope, its parameters, its body evaluated and moved): tens of microseconds.
+ELEMENT_STEPS = 20
+MACRO_CALL_STEPS = 300
 _MAGIC = re.compile(r"[*?[]")
 
 
@@ -88,6 +92,7 @@ class XacroGuard:
         self.roots = [os.path.realpath(root) for root in _roots(self.path)]
         self.meter = Meter()
         self.nodes = MAX_NODES
+        self.yaml: dict[str, Any] = {}  # what load_yaml read, by file: read and paid once
 
     # -- files -------------------------------------------------------------------------------
     def check_readable(self, path: str, what: str) -> None:
@@ -203,10 +208,19 @@ class XacroGuard:
     def load_yaml(self, filename: str) -> Any:
         """xacro's ``load_yaml``, reading only a regular file inside the roots."""
         import xacro
-        import yaml
 
         path = xacro.abs_filename_spec(filename)
         self.check_readable(path, "load_yaml")
+        key = os.path.realpath(path)
+        if key not in self.yaml:  # no expression can change a value it loaded: shared
+            self.yaml[key] = self._read_yaml(filename, path)
+        xacro.all_includes.append(path)
+        return xacro.YamlListWrapper.wrap(self.yaml[key])
+
+    def _read_yaml(self, filename: str, path: str) -> Any:
+        import xacro
+        import yaml
+
         try:
             data = read_regular(path)
         except TooLarge as exc:
@@ -231,8 +245,7 @@ class XacroGuard:
                                        f"reads{where}; its text is not shown") from None
         finally:
             xacro.filestack.pop()
-        xacro.all_includes.append(path)
-        return xacro.YamlListWrapper.wrap(value)
+        return value
 
     def globals(self) -> dict[str, Any]:
         import xacro
@@ -249,8 +262,10 @@ class XacroGuard:
 
         saved = (xacro.safe_eval, xacro._global_symbols, substitution_args._eval,
                  substitution_args._eval_env, substitution_args._eval_optenv,
-                 substitution_args._eval_find, xacro.glob, xacro.eval_text)
+                 substitution_args._eval_find, xacro.glob, xacro.eval_text,
+                 xacro.handle_macro_call)
         xacro.eval_text = self._priced_eval_text(xacro.eval_text)
+        xacro.handle_macro_call = self._priced_macro_call(xacro.handle_macro_call)
         xacro.safe_eval = self.safe_eval
         xacro._global_symbols = self.globals()
         substitution_args._eval = self.substitution_eval
@@ -264,7 +279,17 @@ class XacroGuard:
         finally:
             (xacro.safe_eval, xacro._global_symbols, substitution_args._eval,
              substitution_args._eval_env, substitution_args._eval_optenv,
-             substitution_args._eval_find, xacro.glob, xacro.eval_text) = saved
+             substitution_args._eval_find, xacro.glob, xacro.eval_text,
+             xacro.handle_macro_call) = saved
+
+    def _priced_macro_call(self, handle_macro_call: Any) -> Any:
+        """xacro's ``handle_macro_call`` (asked for every element eval_all does not know
+        otherwise), charged for the element, and for the call when it is one."""
+        def priced(node: Any, macros: Any, symbols: Any) -> Any:
+            tag = getattr(node, "tagName", "")
+            self.meter.charge(MACRO_CALL_STEPS if tag.startswith("xacro:") else ELEMENT_STEPS)
+            return handle_macro_call(node, macros, symbols)
+        return priced
 
     def _priced_eval_text(self, eval_text: Any) -> Any:
         """xacro's ``eval_text``, charged before it lexes: its lexer copies what is left of
@@ -273,8 +298,8 @@ class XacroGuard:
         def priced(text: Any, symbols: Any) -> Any:
             if isinstance(text, str):
                 tokens = 2 * text.count("$") + 1
-                self.meter.charge(1 + len(text) // 16 + tokens * len(text) // 2
-                                  // LEXER_COPY_PER_STEP)
+                # a text without '$' is one token, matched by a regular expression in C
+                self.meter.charge(1 + tokens * len(text) // 2 // LEXER_COPY_PER_STEP)
             return eval_text(text, symbols)
         return priced
 
