@@ -151,7 +151,7 @@ def _expand(request: dict[str, Any]) -> tuple[dict[str, Any], str]:
         return {"error": exc.reason, "line": exc.line, "missing": exc.missing}, ""
     except (NodeLimit, WorkLimit, MemoryError, RecursionError) as exc:
         what = {NodeLimit: f"{MAX_NODES} XML nodes", MemoryError: f"{request['memory']} MiB "
-                "of memory", RecursionError: "Python's recursion limit (macros nested too deep)",
+                "of memory", RecursionError: "Python's recursion limit (macros or expressions nested too deep)",
                 WorkLimit: str(exc)}
         return {"limit": what[type(exc)], "retire": True}, ""
     except Exception as exc:  # reported as the parent reports its own internal errors

@@ -106,9 +106,9 @@ class XacroGuard:
                           "found (txtool reads no other file for an untrusted xacro; "
                           "see --trust-xacro)", needle=os.path.basename(path))
         if any(part.startswith(".") for part in os.path.relpath(real, root).split(os.sep)):
-            raise Refusal(f"{what} of '{path}' names a hidden file or folder (such as .git, "
-                          "which holds a checkout's credentials; txtool reads none for an "
-                          "untrusted xacro; see --trust-xacro)", needle=os.path.basename(path))
+            raise Refusal(f"{what} of '{path}' is or leads to a hidden file or folder (such "
+                          "as .git, which holds a checkout's credentials; txtool reads none for "
+                          "an untrusted xacro; see --trust-xacro)", needle=os.path.basename(path))
 
     def add_package_root(self, folder: str) -> None:
         if os.path.isfile(os.path.join(folder, "package.xml")):
