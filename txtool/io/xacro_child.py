@@ -150,9 +150,10 @@ def _expand(request: dict[str, Any]) -> tuple[dict[str, Any], str]:
     except XacroError as exc:
         return {"error": exc.reason, "line": exc.line, "missing": exc.missing}, ""
     except (NodeLimit, WorkLimit, MemoryError, RecursionError) as exc:
-        what = {NodeLimit: f"{MAX_NODES} XML nodes", MemoryError: f"{request['memory']} MiB "
-                "of memory", RecursionError: "Python's recursion limit (macros or expressions nested too deep)",
-                WorkLimit: str(exc)}
+        what = {NodeLimit: f"{MAX_NODES} XML nodes",
+                MemoryError: f"{request['memory']} MiB of memory",
+                RecursionError: "Python's recursion limit (macros or expressions nested too "
+                "deep)", WorkLimit: str(exc)}
         return {"limit": what[type(exc)], "retire": True}, ""
     except Exception as exc:  # reported as the parent reports its own internal errors
         return {"error": f"internal error in the xacro sandbox: {type(exc).__name__}: {exc}",
