@@ -264,10 +264,11 @@ def _xacro_options(
 ) -> XacroOptions:
     from txtool.io.xmlio import XacroOptions
 
-    return XacroOptions(
-        args=tuple((args or {}).items()),
-        pkg_dirs=tuple(os.path.abspath(d) for d in pkg_dirs),
-        pkg_paths=tuple((n, os.path.abspath(d)) for n, d in (pkg_paths or {}).items()),
+    dirs = tuple(os.path.abspath(d) for d in pkg_dirs)
+    paths = tuple((n, os.path.abspath(d)) for n, d in (pkg_paths or {}).items())
+    return XacroOptions(  # the caller's folders, as the command line's: readable
+        args=tuple((args or {}).items()), pkg_dirs=dirs, pkg_paths=paths,
+        readable=dirs + tuple(folder for _, folder in paths),
     )
 
 

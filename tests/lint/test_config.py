@@ -126,6 +126,8 @@ def test_missing_explicit_config_is_exit_2(validate, tmp_path):
 
 
 def test_xacro_args_and_package_folders_relative_to_the_config(validate, tmp_path):
+    (tmp_path / ".git").mkdir()  # a repository: its configuration's folders inside it are read
+    write(tmp_path / "deps" / "COLCON_IGNORE", "")  # found by pkg-dirs only, not by the crawl
     write(tmp_path / "deps" / "my_pkg" / "package.xml", "<package><name>my_pkg</name></package>")
     write(tmp_path / "deps" / "my_pkg" / "inc.xacro",
           '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="inc"/></robot>')

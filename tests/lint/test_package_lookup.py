@@ -248,14 +248,17 @@ COMMANDS = {
 
 @pytest.fixture
 def configured_repo(tmp_path) -> Path:
-    """A repository whose configuration names a package folder outside it (ratio 7); another
-    folder outside it holds the same package with ratio 10."""
+    """A repository whose configuration names a package folder in it (ratio 7; a folder the
+    crawl of the repository passes over, COLCON_IGNORE); a folder outside it holds the same
+    package with ratio 10. (A configuration cannot make a folder outside readable: see
+    tests/hardening/test_xacro_confinement.py.)"""
     repo = tmp_path / "repo"
     (repo / ".git").mkdir(parents=True)
-    package(tmp_path / "configured" / "arm_description", "arm_description", "7")
+    package(repo / "configured" / "arm_description", "arm_description", "7")
+    (repo / "configured" / "COLCON_IGNORE").write_text("")
     package(tmp_path / "cli" / "arm_description", "arm_description", "10")
     (repo / "robot.urdf.xacro").write_text(ROBOT)
-    (repo / ".txtool.toml").write_text('pkg-dirs = ["../configured"]\n')
+    (repo / ".txtool.toml").write_text('pkg-dirs = ["configured"]\n')
     return repo
 
 
@@ -278,10 +281,10 @@ def test_roundtrip_reads_the_configured_package_folders_and_config_names_the_fil
     assert code == 0 and json.loads(out)
     (configured_repo / ".txtool.toml").write_text("")
     elsewhere = configured_repo.parent / "other.toml"
-    elsewhere.write_text('pkg-dirs = ["cli"]\n')
+    elsewhere.write_text('pkg-dirs = ["repo/configured"]\n')
     code, out, err = run("show", "robot.urdf.xacro", "--format", "json", "--config",
                          str(elsewhere), cwd=configured_repo, monkeypatch=monkeypatch)
-    assert (code, err, reduction(out)) == (0, "", "10")
+    assert (code, err, reduction(out)) == (0, "", "7")
     code, out, err = run("show", "robot.urdf.xacro", cwd=configured_repo,
                          monkeypatch=monkeypatch)
     assert code == 2 and out == "" and "package 'arm_description' not found" in err

@@ -100,8 +100,8 @@ def xacro_options(function: Callable[..., Any]) -> Callable[..., Any]:
                        "access: only for files you trust (default: a restricted evaluator in "
                        "a bounded process; see docs/security.md).")
     @click.option("--xacro-env", "xacro_env", multiple=True, metavar="NAME",
-                  help="An environment variable $(env NAME) may read (repeatable; names that "
-                       "look like secrets are never read).")
+                  help="An environment variable $(env NAME) and $(optenv NAME) may read "
+                       "(repeatable; only here: never from a file of the repository).")
     @click.option("--xacro-arg", "xacro_args", multiple=True, metavar="NAME:=VALUE",
                   help="A xacro argument (repeatable).")
     @click.option("--pkg-dir", "pkg_dirs", multiple=True, metavar="DIR",
@@ -112,14 +112,12 @@ def xacro_options(function: Callable[..., Any]) -> Callable[..., Any]:
     @functools.wraps(function)
     def wrapper(*args: Any, xacro_args, pkg_dirs, pkg_paths, xacro_env, trust_xacro,
                 **kwargs: Any) -> Any:
+        dirs = tuple(os.path.abspath(d) for d in pkg_dirs)
+        paths = tuple((name, os.path.abspath(d)) for name, d in _pairs(pkg_paths, "--pkg-path"))
         options = XacroOptions(  # folders relative to where the command runs, not to the file
-            args=_pairs(xacro_args, "--xacro-arg"),
-            pkg_dirs=tuple(os.path.abspath(d) for d in pkg_dirs),
-            pkg_paths=tuple(
-                (name, os.path.abspath(d)) for name, d in _pairs(pkg_paths, "--pkg-path")
-            ),
-            trust=trust_xacro,
-            env=tuple(xacro_env),
+            args=_pairs(xacro_args, "--xacro-arg"), pkg_dirs=dirs, pkg_paths=paths,
+            trust=trust_xacro, env=tuple(xacro_env),
+            readable=dirs + tuple(folder for _, folder in paths),
         )
         if not (trust_xacro or kwargs.get("no_xacro")) and _names_a_xacro_file(kwargs.values()):
             _prestart_sandbox()

@@ -22,8 +22,10 @@ The order, first match wins:
    symbolic links;
 5. with no sourced environment naming it: the package whose ``package.xml`` encloses the file
    being expanded, then every package of the workspace or repository the file belongs to:
-   below the nearest ancestor holding ``.git``, else below the ``src`` folder of a
-   colcon/catkin workspace (as ``colcon build`` would find them);
+   below the nearest ancestor holding ``.git``, and below the ``src`` folder of a
+   colcon/catkin workspace (as ``colcon build`` would find them). A workspace is known by the
+   marks its build tools leave beside ``src`` (:func:`is_workspace`), never by the name ``src``
+   alone: a clone in ``~/src/robot`` is not a workspace of everything in ``~/src``;
 6. ``CMAKE_PREFIX_PATH``: ``<prefix>/share/<pkg>`` holding a ``package.xml`` (where catkin and
    colcon install packages; a fallback of txtool's, which neither xacro reads).
 
@@ -33,6 +35,11 @@ with ``--pkg-dir`` is crawled even if it carries one itself). Every crawl skips 
 folders, follows symbolic links (each real folder once), does not descend into a package
 (packages do not nest) and stops after :data:`MAX_FOLDERS` folders, so a file in a huge tree
 costs a bounded look.
+
+For an untrusted expansion (``confine``, the folders the command line names), the crawls of
+the repository and of the configuration's ``pkg-dirs`` follow no link out of the folder
+crawled, and :func:`locate_package` says whether the package came from outside the checkout's
+say (the command line, the ROS environment): only such a package may widen what is read.
 """
 
 from __future__ import annotations
@@ -107,15 +114,20 @@ def is_ignored(folder: str, markers: tuple[str, ...] = IGNORE_MARKERS) -> bool:
 
 def crawl(
     root: str, markers: tuple[str, ...] = IGNORE_MARKERS, *, skip_ignored_root: bool = True,
+    confined: bool = False,
 ) -> Iterator[Path]:
-    """``package.xml`` files below ``root`` (root itself included), not inside a package."""
+    """``package.xml`` files below ``root`` (root itself included), not inside a package;
+    ``confined``: none reached through a link that leads out of ``root``."""
     budget = MAX_FOLDERS
     stack = [root]
     seen: set[str] = set()
+    inside = os.path.realpath(root)
     while stack and budget > 0:
         folder = stack.pop()
         real = os.path.realpath(folder)
         if real in seen:  # a symbolic link back up, or two links to one folder
+            continue
+        if confined and not is_within(real, inside):
             continue
         seen.add(real)
         budget -= 1
@@ -132,6 +144,12 @@ def crawl(
         stack.extend(e.path for e in entries if not e.name.startswith(".") and _is_dir(e))
 
 
+def is_within(real: str, folder: str) -> bool:
+    """Whether the resolved path ``real`` is the resolved ``folder`` or below it: by path
+    components, so that ``/home/u/repo-old`` is not inside ``/home/u/repo``."""
+    return real == folder or real.startswith(folder.rstrip(os.sep) + os.sep)
+
+
 def _is_dir(entry: os.DirEntry[str]) -> bool:
     try:
         return entry.is_dir()  # through symbolic links, as colcon and rospkg crawl
@@ -142,10 +160,11 @@ def _is_dir(entry: os.DirEntry[str]) -> bool:
 @lru_cache(maxsize=64)
 def packages_below(
     root: str, markers: tuple[str, ...] = IGNORE_MARKERS, skip_ignored_root: bool = True,
+    confined: bool = False,
 ) -> Mapping[str, str]:
     """Package name -> folder for every package below ``root`` (first found wins)."""
     found: dict[str, str] = {}
-    for manifest in crawl(root, markers, skip_ignored_root=skip_ignored_root):
+    for manifest in crawl(root, markers, skip_ignored_root=skip_ignored_root, confined=confined):
         name = package_name(manifest)
         if name and name not in found:
             found[name] = str(manifest.parent)
@@ -171,10 +190,28 @@ def workspace_roots(path: str) -> list[str]:
     folder = Path(os.path.abspath(path)).parent
     ancestors = (folder, *folder.parents)
     roots = [str(c) for c in ancestors if (c / ".git").exists()][:1]
-    roots += [str(c) for c in ancestors if c.name == "src"][:1]
+    roots += [str(c) for c in ancestors if c.name == "src" and is_workspace(c.parent)][:1]
     if len(roots) == 2 and not Path(roots[0]).is_relative_to(roots[1]):
         return roots[:1]  # the repository holds the workspace: one crawl covers both
     return roots
+
+
+# What the build tools leave in a workspace's top folder, beside ``src``: colcon puts a
+# COLCON_IGNORE in each folder it creates (build, install, log); catkin_make writes
+# .catkin_workspace; catkin_tools' `catkin init` makes .catkin_tools; catkin's devel space
+# holds a .catkin file.
+WORKSPACE_MARKS = (
+    os.path.join("build", "COLCON_IGNORE"), os.path.join("install", "COLCON_IGNORE"),
+    os.path.join("log", "COLCON_IGNORE"), ".catkin_workspace", ".catkin_tools",
+    os.path.join("devel", ".catkin"),
+)
+
+
+def is_workspace(folder: Path) -> bool:
+    """Whether ``folder`` is the top folder of a colcon or catkin workspace: a ``src`` folder
+    and one of the marks its build tools leave (:data:`WORKSPACE_MARKS`)."""
+    return (folder / "src").is_dir() and any(
+        os.path.lexists(folder / mark) for mark in WORKSPACE_MARKS)
 
 
 def find_package(
@@ -185,27 +222,47 @@ def find_package(
     pkg_dirs: tuple[str, ...] = (),
 ) -> str:
     """The folder of package ``name`` for a file at ``near``; :class:`PackageNotFound` if none."""
+    return locate_package(name, near=near, pkg_paths=pkg_paths, pkg_dirs=pkg_dirs)[0]
+
+
+def locate_package(
+    name: str,
+    *,
+    near: str | None,
+    pkg_paths: tuple[tuple[str, str], ...] = (),
+    pkg_dirs: tuple[str, ...] = (),
+    confine: tuple[str, ...] | None = None,
+) -> tuple[str, bool]:
+    """(folder, given): :func:`find_package`'s answer, and whether it came from outside the
+    repository's say (``--pkg-dir``/``--pkg-path``, listed in ``confine``, or the ROS
+    environment). With ``confine`` (an untrusted expansion), the other crawls follow no link
+    out of the folder they crawl."""
     search = Search(name)
+    trusted = None if confine is None else {os.path.abspath(f) for f in confine}
     for pkg, folder in pkg_paths:
         if pkg == name:
-            return folder
+            return folder, trusted is None or os.path.abspath(folder) in trusted
     if pkg_paths:
         search.looked.append("--pkg-path " + ", ".join(pkg for pkg, _ in pkg_paths))
-    return (
-        _in_pkg_dirs(name, pkg_dirs, search)
-        or _in_ament_index(name, search)
-        or _in_package_path(name, search)
-        or (_near_file(name, near, search) if near is not None else None)
-        or _in_cmake_prefixes(name, search)
-        or _raise(name, search)
-    )
+    hit = _in_pkg_dirs(name, pkg_dirs, search, trusted)
+    if hit is not None:
+        return hit
+    found = _in_ament_index(name, search) or _in_package_path(name, search)
+    if found is not None:
+        return found, True
+    found = _near_file(name, near, search, trusted is not None) if near is not None else None
+    if found is not None:
+        return found, trusted is None
+    return _in_cmake_prefixes(name, search) or _raise(name, search), True
 
 
-def _in_pkg_dirs(name: str, roots: tuple[str, ...], search: Search) -> str | None:
+def _in_pkg_dirs(name: str, roots: tuple[str, ...], search: Search,
+                 trusted: set[str] | None) -> tuple[str, bool] | None:
     for root in roots:
-        hit = packages_below(root, IGNORE_MARKERS, False).get(name)
+        given = trusted is None or os.path.abspath(root) in trusted
+        hit = packages_below(root, IGNORE_MARKERS, False, not given).get(name)
         if hit:
-            return hit
+            return hit, given
         search.looked.append(f"--pkg-dir {root}{_namesake(root, name)}")
     return None
 
@@ -258,7 +315,7 @@ def _in_cmake_prefixes(name: str, search: Search) -> str | None:
     return None
 
 
-def _near_file(name: str, near: str, search: Search) -> str | None:
+def _near_file(name: str, near: str, search: Search, confined: bool = False) -> str | None:
     manifest = enclosing_manifest(near)
     if manifest is not None:
         own = package_name(manifest)
@@ -270,7 +327,7 @@ def _near_file(name: str, near: str, search: Search) -> str | None:
         roots = [str(manifest.parent.parent)]  # the package's siblings (never all of /)
     for root in roots:
         search.looked.append(f"the packages below {root}")
-        hit = packages_below(root).get(name)
+        hit = packages_below(root, IGNORE_MARKERS, True, confined).get(name)
         if hit:
             return hit
     return None

@@ -2,9 +2,13 @@
 
 Started by :mod:`txtool.io.xacro_sandbox` as ``python -I -S`` with an empty environment. For
 each request it sets the limits the parent sent (CPU time, memory, no file written, no core
-dump), counts the XML nodes macros create, and expands with
-:class:`txtool.io.xacro_guard.XacroGuard` installed. What it imports is imported before the
-first request's limits are set.
+dump) and expands with a new :class:`txtool.io.xacro_guard.XacroGuard` installed (its budgets
+of nodes and work are the file's own). What it imports is imported before the first
+request's limits are set.
+
+It ends as soon as the parent does, even in the middle of a request: it watches a pipe whose
+other end only the parent holds (:func:`main`'s ``lifeline``), and its closing means the
+parent is gone, however it ended (``kill -9`` included).
 """
 
 from __future__ import annotations
@@ -14,15 +18,17 @@ import contextlib
 import io
 import json
 import os
+import signal
 import sys
-import xml.dom.minidom as minidom
+import threading
 from typing import Any
 
 from txtool.io import targets
 from txtool.io import xacro as xacro_support
 from txtool.io.xacro import expand_text
-from txtool.io.xacro_guard import NodeLimit, Refusal, XacroGuard
-from txtool.io.xacro_sandbox import MAX_NODES, MAX_OUTPUT, PACKAGE_VARIABLES
+from txtool.io.xacro_eval import WorkLimit
+from txtool.io.xacro_guard import MAX_NODES, NodeLimit, Refusal, XacroGuard
+from txtool.io.xacro_sandbox import MAX_OUTPUT, PACKAGE_VARIABLES
 from txtool.io.xmlio import MAX_BYTES, XacroError, XacroOptions
 
 
@@ -43,29 +49,6 @@ def _set_limits(seconds: float, memory_mb: int) -> None:
             resource.setrlimit(limit, (value, hard))
 
 
-class _CloneCounter:
-    """Counts the nodes xacro creates by cloning (macro bodies, blocks), against MAX_NODES."""
-
-    budget = MAX_NODES
-    installed = False
-
-    @classmethod
-    def reset(cls) -> None:
-        cls.budget = MAX_NODES
-        if cls.installed:
-            return
-        original = minidom._clone_node  # type: ignore[attr-defined]
-
-        def clone(node: Any, deep: bool, new_owner: Any) -> Any:
-            cls.budget -= 1
-            if cls.budget < 0:
-                raise NodeLimit
-            return original(node, deep, new_owner)
-
-        minidom._clone_node = clone  # type: ignore[attr-defined]
-        cls.installed = True
-
-
 def _line_of(path: str, needle: str | None, data: bytes | None = None) -> int:
     """The line of ``needle`` in ``data``, else in the file at ``path``; 1 if not found."""
     if not needle:
@@ -81,7 +64,13 @@ def _line_of(path: str, needle: str | None, data: bytes | None = None) -> int:
 
 
 def _answer(header: dict[str, Any], text: str = "") -> None:
-    data = text.encode("utf-8")
+    try:
+        data = text.encode("utf-8")
+    except UnicodeEncodeError as exc:  # a lone surrogate, made by an expression: not text
+        character = f"U+{ord(text[exc.start]):04X}"
+        header = {"error": f"the expansion holds {character}, a lone surrogate, which is no "
+                  "character of an XML document"}
+        data = b""
     if len(data) > MAX_OUTPUT:
         header, data = {"limit": f"{MAX_OUTPUT} bytes of output"}, b""
     header["size"] = len(data)
@@ -91,8 +80,39 @@ def _answer(header: dict[str, Any], text: str = "") -> None:
     out.flush()
 
 
-def main() -> None:
-    """The child: answer each request line with a header line and the expanded text."""
+def _end_with_parent(descriptor: int) -> None:
+    """End when the parent's end of the pipe ``descriptor`` closes (the parent ended).
+
+    The pipe is set to signal this process (SIGIO, whose default action ends it) when it turns
+    readable, which only its closing does: the kernel ends the child at once, with no thread
+    (a thread's stack and malloc arena would count against the memory limit) and whatever
+    the child is doing."""
+    import fcntl
+    import select
+
+    if hasattr(fcntl, "F_SETOWN") and hasattr(os, "O_ASYNC"):
+        signal.signal(signal.SIGIO, signal.SIG_DFL)
+        fcntl.fcntl(descriptor, fcntl.F_SETOWN, os.getpid())
+        flags = fcntl.fcntl(descriptor, fcntl.F_GETFL)
+        fcntl.fcntl(descriptor, fcntl.F_SETFL, flags | os.O_ASYNC | os.O_NONBLOCK)
+        if select.select([descriptor], [], [], 0)[0]:  # the parent ended before this was set
+            os._exit(1)
+        return
+
+    def watch() -> None:  # elsewhere: a thread that waits for the end of file
+        with contextlib.suppress(OSError):
+            while os.read(descriptor, 1):
+                pass
+        os._exit(1)
+
+    threading.Thread(target=watch, daemon=True).start()
+
+
+def main(lifeline: int | None = None) -> None:
+    """The child: answer each request line with a header line and the expanded text;
+    ``lifeline``: the pipe to watch for the parent's end."""
+    if lifeline is not None:
+        _end_with_parent(lifeline)
     sys.stderr = io.StringIO()  # xacro.warning(...) and friends: nobody reads it
     for line in sys.stdin.buffer:
         request = json.loads(line)
@@ -114,11 +134,11 @@ def _expand(request: dict[str, Any]) -> tuple[dict[str, Any], str]:
         pkg_dirs=tuple(request["pkg_dirs"]),
         pkg_paths=tuple(tuple(pair) for pair in request["pkg_paths"]),  # type: ignore[misc]
         env=tuple(request["env_names"]),
+        readable=tuple(request["readable"]),
     )
     path, display = request["path"], request["display"]
     given = request.get("data")
     data = None if given is None else base64.b64decode(given)
-    _CloneCounter.reset()
     targets.forget_inputs()
     try:
         guard = XacroGuard(path, options, request["env"])
@@ -129,9 +149,11 @@ def _expand(request: dict[str, Any]) -> tuple[dict[str, Any], str]:
         return {"refused": exc.reason, "line": _line_of(path, exc.needle, data)}, ""
     except XacroError as exc:
         return {"error": exc.reason, "line": exc.line, "missing": exc.missing}, ""
-    except (NodeLimit, MemoryError, RecursionError) as exc:
-        what = {NodeLimit: f"{MAX_NODES} XML nodes", MemoryError: f"{request['memory']} MiB "
-                "of memory", RecursionError: "Python's recursion limit (macros nested too deep)"}
+    except (NodeLimit, WorkLimit, MemoryError, RecursionError) as exc:
+        what = {NodeLimit: f"{MAX_NODES} XML nodes",
+                MemoryError: f"{request['memory']} MiB of memory",
+                RecursionError: "Python's recursion limit (macros or expressions nested too "
+                "deep)", WorkLimit: str(exc)}
         return {"limit": what[type(exc)], "retire": True}, ""
     except Exception as exc:  # reported as the parent reports its own internal errors
         return {"error": f"internal error in the xacro sandbox: {type(exc).__name__}: {exc}",

@@ -18,25 +18,108 @@ and knows only:
 No lambda, comprehension, walrus, starred call or keyword splat. Sizes are bounded: integers
 to :data:`MAX_INT_BITS` bits, strings and sequences to :data:`MAX_LENGTH` items, before they
 are built (``9**9**9``, ``'a' * 10**9`` and ``'%9999999999d'`` are refused, not computed).
+
+Work is priced as it is done, against one budget per file (:class:`Meter`,
+:data:`MAX_WORK` steps): every node evaluated, and every value an operation reads or makes at
+its size (a string by its length, a container by its items counted through nested ones, a
+range by its length, an integer by its bits). Operations whose cost a size does not say are
+bounded by their arguments first (rounding digits, products over ranges, format widths in
+every syntax), and ``map``, ``filter``, ``zip``, ``enumerate`` and ``reversed`` give lists,
+so no lazy pipeline runs unpriced inside a builtin. Past the budget: :class:`WorkLimit`.
 """
 
 from __future__ import annotations
 
 import ast
+import contextlib
+import itertools
 import math
 import re
 import string
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from typing import Any
 
 MAX_EXPRESSION = 100_000  # characters of one expression
 MAX_INT_BITS = 4096
 MAX_LENGTH = 1_000_000  # characters of a string, items of a list, tuple, set, dict or range
 MAX_WIDTH = 1000  # of a field in a format string (%-format, str.format, f-string)
+MAX_DIGITS = MAX_INT_BITS  # of round(x, n): |n| (a negative n builds 10**-n)
+# Steps of work one file's expansion may take: each about a tenth of a microsecond of work,
+# so the budget is spent in well under a second; real robots take a few thousand.
+MAX_WORK = 5_000_000
+CALL_STEPS = 10  # a node evaluated or a function called: about a microsecond of Python
 
 
 class EvalRefused(Exception):
     """The expression uses something outside the restricted grammar, or is too large."""
+
+
+class WorkLimit(Exception):
+    """The expansion of one file took more than its budget of work (:class:`Meter`)."""
+
+    def __init__(self, budget: int) -> None:
+        super().__init__(f"{budget} steps of work")
+        self.what = f"{budget} steps of work"
+
+
+class Meter:
+    """The work one file's expansion may still do: charged as it is done, never reset."""
+
+    def __init__(self, budget: int = MAX_WORK) -> None:
+        self.budget = budget
+        self.left = budget
+
+    def charge(self, steps: int) -> None:
+        self.left -= steps
+        if self.left < 0:
+            raise WorkLimit(self.budget)
+
+    def charge_values(self, *values: Any) -> None:
+        self.charge(sum(cost(v) for v in values))
+
+
+_meter: Meter | None = None  # the file's, while an expansion runs (see metered)
+
+
+@contextlib.contextmanager
+def metered(meter: Meter) -> Iterator[Meter]:
+    """Charge every evaluation inside to ``meter`` (one file's expansion)."""
+    global _meter
+    saved, _meter = _meter, meter
+    try:
+        yield meter
+    finally:
+        _meter = saved
+
+
+def current_meter() -> Meter:
+    """The meter of the running expansion; a fresh one outside any."""
+    return _meter if _meter is not None else Meter()
+
+
+def _words(value: Any) -> int:
+    return abs(value).bit_length() // 64 + 1 if isinstance(value, int) else 1
+
+
+def int_work(*values: Any) -> int:
+    """Steps of an arithmetic operation on integers: CPython multiplies, divides and prints
+    them in time the product of their sizes in 64-bit words (one number: its square)."""
+    sizes = sorted((_words(v) for v in values if isinstance(v, int)
+                    and not isinstance(v, bool)), reverse=True)
+    if not sizes:
+        return 0
+    return sizes[0] * (sizes[1] if len(sizes) > 1 else sizes[0]) // 8
+
+
+def cost(value: Any) -> int:
+    """Steps to read or make ``value``: its size, as :func:`deep_size` counts it."""
+    if isinstance(value, str | bytes):
+        return 1 + len(value) // 16
+    if isinstance(value, int) and not isinstance(value, bool):
+        return 1 + value.bit_length() // 64
+    if isinstance(value, list | tuple | set | frozenset | dict | range):
+        return deep_size(value)
+    return 1
 
 
 class Namespace(dict):
@@ -53,7 +136,12 @@ class SafeFunction:
         self.function = function
 
     def __call__(self, *args: Any, **kwargs: Any) -> Any:
-        return self.function(*args, **kwargs)
+        meter = current_meter()
+        meter.charge(CALL_STEPS + int_work(*args))
+        meter.charge_values(*args, *kwargs.values())
+        result = self.function(*args, **kwargs)
+        meter.charge(cost(result))
+        return result
 
     def __repr__(self) -> str:
         return f"<function {self.name}>"
@@ -87,6 +175,8 @@ def deep_size(value: Any, budget: int = MAX_LENGTH) -> int:
         elif isinstance(item, list | tuple | set | frozenset):
             total += 1
             stack.extend(item)
+        elif isinstance(item, range):
+            total += 1 + len(item)
         else:
             total += 1
     return total
@@ -130,26 +220,54 @@ def _check_binop(op: ast.operator, left: Any, right: Any) -> None:
         _check_percent_format(left)
 
 
-_PERCENT_FIELD = re.compile(r"%(?:\([^)]*\))?[-#0 +]*(\*|\d+)?(?:\.(\*|\d+))?")
-
-
 def _check_percent_format(template: str) -> None:
-    for match in _PERCENT_FIELD.finditer(template):
-        for part in match.groups():
-            if part == "*" or (part and int(part) > MAX_WIDTH):
-                raise EvalRefused(f"a format field wider than {MAX_WIDTH} (a safety limit)")
+    """Refuse a ``%`` field wider or more precise than :data:`MAX_WIDTH`, or one whose width
+    comes from the arguments (``*``), read as CPython's ``%`` reads them: a ``(key)`` may hold
+    nested parentheses, so no regular expression finds every width."""
+    meter = current_meter()
+    at = template.find("%")
+    while at >= 0:
+        meter.charge(CALL_STEPS)  # read here in Python, then formatted: a field at a time
+        at += 1
+        if template.startswith("(", at):
+            depth = 0
+            while at < len(template):
+                depth += {"(": 1, ")": -1}.get(template[at], 0)
+                at += 1
+                if depth == 0:
+                    break
+        while at < len(template) and template[at] in "-+ #0":
+            at += 1
+        at = _percent_number(template, at)
+        if template.startswith(".", at):
+            at = _percent_number(template, at + 1)
+        at = template.find("%", at + 1)
+
+
+def _percent_number(template: str, at: int) -> int:
+    """Past a width or precision at ``at``, refused when ``*`` or over the limit."""
+    if template.startswith("*", at):
+        raise EvalRefused(f"a format field wider than {MAX_WIDTH} (a safety limit)")
+    end = at
+    while end < len(template) and template[end].isdigit():
+        end += 1
+    if end - at > 4 or (end > at and int(template[at:end]) > MAX_WIDTH):
+        raise EvalRefused(f"a format field wider than {MAX_WIDTH} (a safety limit)")
+    return end
 
 
 def _check_format_spec(spec: str) -> None:
     for number in re.findall(r"\d+", spec):
-        if int(number) > MAX_WIDTH:
+        if len(number) > 4 or int(number) > MAX_WIDTH:
             raise EvalRefused(f"a format field wider than {MAX_WIDTH} (a safety limit)")
 
 
 def _safe_format(template: str, *args: Any, **kwargs: Any) -> str:
     """``str.format`` for plain fields: ``{}``, ``{0}``, ``{name}``, with a bounded spec; never
     ``{0.attr}`` or ``{0[key]}``, which reach into objects."""
+    meter = current_meter()
     for _text, field, spec, _conversion in string.Formatter().parse(template):
+        meter.charge(CALL_STEPS)
         if field is None:
             continue
         if "." in field or "[" in field:
@@ -175,6 +293,29 @@ def _safe_join(separator: str, items: Any) -> str:
     if deep_size(items) + len(separator) * len(items) > MAX_LENGTH:
         raise EvalRefused(_TOO_LONG)
     return separator.join(items)
+
+
+def _bounded_round(number: Any, *digits: Any) -> Any:
+    if digits and isinstance(digits[0], int) and abs(digits[0]) > MAX_DIGITS:
+        raise EvalRefused(f"round() to more than {MAX_DIGITS} digits (a safety limit)")
+    return round(number, *digits)
+
+
+def _bounded_prod(items: Any, *, start: Any = 1) -> Any:
+    """``math.prod``, refusing a product over :data:`MAX_INT_BITS` bits as it grows."""
+    product = start
+    for item in items:
+        product = _refuse_large(product * item)
+    return product
+
+
+def _eager(function: Callable[..., Any]) -> Callable[..., list[Any]]:
+    """``map`` and its kind as lists, at most :data:`MAX_LENGTH` items: a lazy pipeline would
+    run inside the builtin that consumes it, one unpriced step per item."""
+    def listed(*args: Any) -> list[Any]:
+        items = list(itertools.islice(function(*args), MAX_LENGTH + 1))
+        return _refuse_deep(_refuse_large(items))  # type: ignore[no-any-return]
+    return listed
 
 
 def _numeric_sum(items: Any, start: Any = 0) -> Any:
@@ -225,8 +366,10 @@ def _math_namespace() -> Namespace:
         if name.startswith("_"):
             continue
         if callable(value):
-            if name in ("factorial", "comb", "perm", "prod", "lcm"):
+            if name in ("factorial", "comb", "perm", "lcm"):
                 value = _bounded_int(name, value, 1000)
+            elif name == "prod":
+                value = _bounded_prod
             space[name] = SafeFunction(f"math.{name}", value)
         else:
             space[name] = value
@@ -246,6 +389,9 @@ def _python_namespace() -> Namespace:
     space = Namespace({"True": True, "False": False})
     for name in _PYTHON_BUILTINS:
         space[name] = SafeFunction(name, getattr(builtins, name))
+    for name in ("map", "filter", "zip", "enumerate", "reversed"):
+        space[name] = SafeFunction(name, _eager(getattr(builtins, name)))
+    space["round"] = SafeFunction("round", _bounded_round)
     space["range"] = SafeFunction("range", _bounded_range)
     space["sum"] = SafeFunction("sum", _numeric_sum)
     space["pow"] = SafeFunction("pow", _bounded_pow)
@@ -254,8 +400,10 @@ def _python_namespace() -> Namespace:
 
 
 def _bounded_pow(base: Any, exponent: Any, *modulo: Any) -> Any:
-    if not modulo:
+    if not modulo or modulo[0] is None:
         _check_binop(ast.Pow(), base, exponent)
+    elif isinstance(exponent, int):  # a squaring and a product per bit of the exponent
+        current_meter().charge(abs(exponent).bit_length() * int_work(modulo[0]))
     return _refuse_large(pow(base, exponent, *modulo))
 
 
@@ -283,11 +431,19 @@ def make_globals(xacro_functions: Mapping[str, Callable[..., Any]]) -> dict[str,
 class Evaluator:
     """Evaluates one parsed expression against a symbol table (xacro's ``Table``)."""
 
-    def __init__(self, symbols: Mapping[str, Any], attribute: Callable[[Any, str], Any]) -> None:
+    def __init__(self, symbols: Mapping[str, Any], attribute: Callable[[Any, str], Any],
+                 meter: Meter | None = None) -> None:
         self.symbols = symbols
         self.attribute = attribute
+        self.meter = meter or current_meter()
+
+    def _made(self, value: Any) -> Any:
+        """``value``, charged at its size (what making or reading it cost)."""
+        self.meter.charge(cost(value))
+        return value
 
     def run(self, node: ast.AST) -> Any:
+        self.meter.charge(CALL_STEPS)
         handler = getattr(self, "_" + type(node).__name__, None)
         if handler is None:
             raise EvalRefused(f"{_describe(node)} is not allowed in a xacro expression "
@@ -334,11 +490,13 @@ class Evaluator:
     def _BinOp(self, node: ast.BinOp) -> Any:
         left, right = self.run(node.left), self.run(node.right)
         _check_binop(node.op, left, right)
-        return _refuse_deep(_BINARY[type(node.op)](left, right))
+        self.meter.charge(int_work(left, right))
+        self.meter.charge_values(left, right)
+        return self._made(_refuse_deep(_BINARY[type(node.op)](left, right)))
 
     def _UnaryOp(self, node: ast.UnaryOp) -> Any:
         operand = self.run(node.operand)
-        return _UNARY[type(node.op)](operand)
+        return self._made(_UNARY[type(node.op)](operand))
 
     def _BoolOp(self, node: ast.BoolOp) -> Any:
         value: Any = None
@@ -354,6 +512,7 @@ class Evaluator:
         left = self.run(node.left)
         for op, right_node in zip(node.ops, node.comparators, strict=True):
             right = self.run(right_node)
+            self.meter.charge_values(left, right)
             if not _COMPARE[type(op)](left, right):
                 return False
             left = right
@@ -363,19 +522,20 @@ class Evaluator:
         return self.run(node.body) if self.run(node.test) else self.run(node.orelse)
 
     def _List(self, node: ast.List) -> Any:
-        return _refuse_deep([self.run(item) for item in self._items(node.elts)])
+        return self._made(_refuse_deep([self.run(item) for item in self._items(node.elts)]))
 
     def _Tuple(self, node: ast.Tuple) -> Any:
-        return _refuse_deep(tuple(self.run(item) for item in self._items(node.elts)))
+        return self._made(_refuse_deep(tuple(self.run(item) for item in self._items(node.elts))))
 
     def _Set(self, node: ast.Set) -> Any:
-        return {self.run(item) for item in self._items(node.elts)}
+        return self._made({self.run(item) for item in self._items(node.elts)})
 
     def _Dict(self, node: ast.Dict) -> Any:
         if any(key is None for key in node.keys):
             raise EvalRefused("a ** in a dict literal is not allowed")
         pairs = zip(node.keys, node.values, strict=True)
-        return _refuse_deep({self.run(k): self.run(v) for k, v in pairs})  # type: ignore[arg-type]
+        return self._made(_refuse_deep({self.run(k): self.run(v)  # type: ignore[arg-type]
+                                        for k, v in pairs}))
 
     @staticmethod
     def _items(items: list[ast.expr]) -> list[ast.expr]:
@@ -388,7 +548,7 @@ class Evaluator:
         index = self.run(node.slice)
         if not isinstance(container, str | list | tuple | dict | range):
             raise EvalRefused(f"indexing {_describe_value(container)} is not allowed")
-        return container[index]
+        return self._made(container[index])
 
     def _Slice(self, node: ast.Slice) -> Any:
         parts = [None if part is None else self.run(part)
@@ -396,7 +556,7 @@ class Evaluator:
         return slice(*parts)
 
     def _JoinedStr(self, node: ast.JoinedStr) -> Any:
-        return "".join(str(self.run(part)) for part in node.values)
+        return self._made("".join(str(self.run(part)) for part in node.values))
 
     def _FormattedValue(self, node: ast.FormattedValue) -> Any:
         value = self.run(node.value)
@@ -408,11 +568,23 @@ class Evaluator:
             value = str(value)
         elif node.conversion == ord("a"):
             value = ascii(value)
-        return format(value, spec)
+        self.meter.charge(cost(value))
+        return self._made(format(value, spec))
 
 
 class BoundMethod(SafeFunction):
-    """A whitelisted method of a string, list or dict, bound to its value."""
+    """A whitelisted method of a string, list or dict, bound to its value (read at each call,
+    and charged as an argument is)."""
+
+    __slots__ = ("value",)
+
+    def __init__(self, name: str, function: Callable[..., Any], value: Any) -> None:
+        super().__init__(name, function)
+        self.value = value
+
+    def __call__(self, *args: Any, **kwargs: Any) -> Any:
+        current_meter().charge(cost(self.value))
+        return super().__call__(*args, **kwargs)
 
 
 def plain_attribute(value: Any, name: str) -> Any:
@@ -423,11 +595,11 @@ def plain_attribute(value: Any, name: str) -> Any:
         raise NameError(f"name '{name}' is not defined")
     if isinstance(value, str) and name in STR_METHODS:
         method = STR_METHODS[name]
-        return BoundMethod(f"str.{name}", lambda *a, **k: method(value, *a, **k))
+        return BoundMethod(f"str.{name}", lambda *a, **k: method(value, *a, **k), value)
     if isinstance(value, list | tuple) and name in SEQUENCE_METHODS:
-        return BoundMethod(name, getattr(value, SEQUENCE_METHODS[name]))
+        return BoundMethod(name, getattr(value, SEQUENCE_METHODS[name]), value)
     if isinstance(value, dict) and name in DICT_METHODS:
-        return BoundMethod(name, getattr(value, DICT_METHODS[name]))
+        return BoundMethod(name, getattr(value, DICT_METHODS[name]), value)
     raise EvalRefused(f"the attribute '{name}' of {_describe_value(value)} is not allowed")
 
 

@@ -362,7 +362,10 @@ class XacroOptions(NamedTuple):
     pkg_dirs: tuple[str, ...] = ()
     pkg_paths: tuple[tuple[str, str], ...] = ()
     trust: bool = False  # --trust-xacro: upstream xacro, in process; never from a file
-    env: tuple[str, ...] = ()  # names $(env)/$(optenv) may read (xacro-env)
+    env: tuple[str, ...] = ()  # names $(env)/$(optenv) may read: --xacro-env, never a file
+    # Folders the command line names (--pkg-dir, --pkg-path): the only package folders besides
+    # the ROS environment's that an untrusted expansion may read outside the repository.
+    readable: tuple[str, ...] = ()
 
 
 def serialize(tree: etree._ElementTree, original: bytes | None = None) -> bytes:

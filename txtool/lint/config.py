@@ -70,7 +70,6 @@ class Values:
     pkg_dirs: list[str] | tuple[str, ...] = ()
     pkg_paths: dict[str, str] = field(default_factory=dict)
     no_xacro: bool = False
-    xacro_env: list[str] | tuple[str, ...] = ()
     exclude: list[str] | tuple[str, ...] = ()
     extend_exclude: list[str] | tuple[str, ...] = ()
     respect_gitignore: bool = True
@@ -167,6 +166,11 @@ def load_config(path: Path) -> Config:
             f"{path}: key 'tool.txtool': this file takes txtool's keys at its top level, as "
             f"{CONFIG_FILE} does; [tool.txtool] is read only from a file named {PYPROJECT}"
         )
+    if "xacro-env" in table:
+        raise ConfigError(
+            f"{path}: key '{prefix}xacro-env': the environment variables $(env) may read are "
+            "named on the command line (--xacro-env NAME), never in a file of the repository"
+        )
     from pydantic import ValidationError
 
     from txtool.lint.config_model import Config
@@ -228,7 +232,6 @@ def resolve(
             args=tuple(config.xacro_args.items()),
             pkg_dirs=tuple(str(folder / d) for d in config.pkg_dirs),
             pkg_paths=tuple((name, str(folder / d)) for name, d in config.pkg_paths.items()),
-            env=tuple(config.xacro_env),
         ),
         no_xacro=config.no_xacro,
         origin=origin,
@@ -427,8 +430,8 @@ class SettingsCache:
             args=settings.xacro.args,
             pkg_dirs=extra.pkg_dirs + settings.xacro.pkg_dirs,
             pkg_paths=extra.pkg_paths + settings.xacro.pkg_paths,
-            trust=extra.trust,  # the command line only, never a file
-            env=extra.env + settings.xacro.env,
+            # the command line only, never a file: what may leave the machine, what is trusted
+            trust=extra.trust, env=extra.env, readable=extra.readable,
         )
         return dataclasses.replace(settings, xacro=xacro)
 

@@ -33,11 +33,6 @@ class Config(BaseModel):
     pkg_dirs: list[str] = Field(default_factory=list, alias="pkg-dirs")
     pkg_paths: dict[str, str] = Field(default_factory=dict, alias="pkg-paths")
     no_xacro: bool = Field(default=False, alias="no-xacro")
-    xacro_env: list[str] = Field(
-        default_factory=list, alias="xacro-env",
-        description="Environment variables $(env NAME) and $(optenv NAME) may read in an "
-        "untrusted expansion (names that look like secrets never are).",
-    )
     exclude: list[str] = Field(
         default_factory=list,
         description="gitignore-style patterns, relative to this file's folder, that folder "

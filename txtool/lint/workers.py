@@ -30,6 +30,8 @@ import signal
 from collections.abc import Callable, Iterator
 from typing import Any
 
+from txtool.io.xacro_sandbox import sharing
+
 MAX_CHUNKS = 1024  # 4 bytes each: 4 KB, what a pipe holds at the least on Linux
 _WIDTH = 4
 
@@ -54,27 +56,29 @@ def forked_map(function: Callable[[int], Any], count: int, processes: int,
         for start in starts:
             yield from _chunk(function, start, size, count)
         return
-    children: list[tuple[int, int]] = []
-    counts = _Counts(progress) if progress is not None else None
-    finished = False
-    try:
-        for _ in range(processes - 1):
-            children.append(_fork(function, queue, size, count, counts))
-        if counts is not None:
-            counts.forked()
-        done = _work(function, queue, size, count, counts)
-        for part in _collect_all([results for _, results in children], counts):
-            done.update(part)
-        for pid, _ in children:
-            os.waitpid(pid, 0)
-        children.clear()
-        finished = True
-    finally:
-        os.close(queue)
-        if counts is not None:
-            counts.close()
-        if not finished:  # an error or Ctrl-C here: stop the forks still running
-            _stop(children)
+    # the xacro workers of this process and its forks share the command's memory bound
+    with sharing(processes):
+        children: list[tuple[int, int]] = []
+        counts = _Counts(progress) if progress is not None else None
+        finished = False
+        try:
+            for _ in range(processes - 1):
+                children.append(_fork(function, queue, size, count, counts))
+            if counts is not None:
+                counts.forked()
+            done = _work(function, queue, size, count, counts)
+            for part in _collect_all([results for _, results in children], counts):
+                done.update(part)
+            for pid, _ in children:
+                os.waitpid(pid, 0)
+            children.clear()
+            finished = True
+        finally:
+            os.close(queue)
+            if counts is not None:
+                counts.close()
+            if not finished:  # an error or Ctrl-C here: stop the forks still running
+                _stop(children)
     for start in starts:
         part = done.get(start)
         if part is None:  # a fork died before reporting it
