@@ -1,0 +1,253 @@
+"""What a conversion or a fix writes, judged by the programs that will read it.
+
+convert, migrate (its fixes and ``--to``), ``validate --fix`` and the language server's fixes
+hand what they wrote to :func:`judge`, which runs every rule of ``validate`` on it with the
+readers forced to the target's (:func:`runs_for`):
+
+* ``ros2-p2``: ros2_control, once per ROS 2 distribution txtool models (Humble reads numbers
+  as its C++17 build does and accepts a mimic joint's command interface; Jazzy and later do
+  not), or only the one ``--ros-distro`` names;
+* ``ros2-p1``: the same, since ros2_control is the only ROS 2 program that reads
+  transmissions; it never adopted Proposal 1 and throws "no attribute 'role' in 'joint' tag"
+  on its ``<role>`` elements (TX303). That finding is the form the user asked for: it is
+  said once as a warning, not as a loss, and everything else is held to ros2_control;
+* ``ros1``: ros_control (Noetic); and, where the written document still has ``<ros2_control>``
+  blocks, ros2_control as for ``ros2-p2``, which still reads them (a transmission left in one
+  in ROS 1 form makes it throw "Missing <plugin> tag");
+* no target (fixes only): the readers ``validate`` assumes for the file.
+
+A finding of severity ``error`` for one of these readers (the reader refuses the document or
+silently reads something else) is a loss, unless the input had it already for the same
+reader: findings are compared by rule code and message (which names the element: the
+transmission, joint or actuator and what is wrong with it) as a multiset, so a problem the
+conversion carried over unchanged is not blamed on it, and one it made (a mimic joint given a
+command interface, a transmission put on a fixed joint) is. The input is linted only when the
+output has such an error.
+
+A xacro file migrated as written is judged on the expansion of the written source, as
+``validate`` expands it (its includes and ``$(find)`` found from where the file is); where
+the expansion fails, on the source as written, as ``validate`` does.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections import Counter
+from collections.abc import Callable, Sequence
+from typing import NamedTuple
+
+from txtool.io.encodings import text_lines
+from txtool.io.load import needs_expansion
+from txtool.io.xmlio import Source, parse_bytes
+from txtool.lint.config import Settings, resolve
+from txtool.lint.engine import lint_source
+from txtool.lint.problem import Problem
+from txtool.model.core import Dialect
+from txtool.model.distro import ROS2, Distro
+from txtool.model.readers import ROS2_CONTROL, ROS_CONTROL, Stated
+
+__all__ = ["Judged", "Run", "judge", "judge_converted", "prepared", "runs_for", "target_distro"]
+
+# The finding ros2_control gives every <role> element of Proposal 1 (see the module doc).
+_P1_FORM = "TX303"
+
+
+class Run(NamedTuple):
+    """One reader the written document is checked for: its name and distribution in
+    messages, and what the lint is told."""
+
+    reader: str
+    distro: str
+    stated: Stated
+
+
+@dataclasses.dataclass
+class Judged:
+    """What the check found: ``losses`` (the command exits 1 on them unless losses are
+    allowed) and ``warnings`` (said, nothing lost)."""
+
+    losses: list[str] = dataclasses.field(default_factory=list)
+    warnings: list[str] = dataclasses.field(default_factory=list)
+
+
+def target_distro(target: Dialect | None, distro: str | None) -> Distro | None:
+    """``--ros-distro`` for a conversion to ``target``: ``ValueError`` when it names the other
+    ROS generation (ros_control reads ROS 1, ros2_control ROS 2)."""
+    if distro is None:
+        return None
+    from txtool.model.distro import parse_distro
+
+    parsed = parse_distro(distro)
+    if target is not None and (target == "ros1") == parsed.ros2:
+        reader = "ros_control (noetic)" if target == "ros1" else "ros2_control"
+        raise ValueError(f"--ros-distro {parsed.value} does not read --to {target}: "
+                         f"{reader} does")
+    return parsed
+
+
+def runs_for(target: Dialect | None, distro: Distro | None, written: Source,
+             own: Stated | None = None) -> list[Run]:
+    """The readers ``written`` (a document in ``target``) is checked for (see the module
+    documentation); ``own``: what the user said of the file's readers, for fixes alone."""
+    if target is None:
+        stated = own or Stated()
+        if distro is not None:
+            stated = dataclasses.replace(stated, distro=distro,
+                                         distro_said=f"--ros-distro {distro.value}")
+        return [Run("the readers validate assumes for it", "", stated)]
+    runs = []
+    if target == "ros1":
+        runs.append(Run(ROS_CONTROL.key, Distro.NOETIC.value,
+                        Stated((ROS_CONTROL,), origin="target")))
+        if not _has_components(written):
+            return runs
+    for each in (distro,) if distro is not None and distro.ros2 else ROS2:
+        runs.append(Run(ROS2_CONTROL.key, each.value,
+                        Stated((ROS2_CONTROL,), each, origin="target")))
+    return runs
+
+
+def _has_components(source: Source) -> bool:
+    root = source.root
+    return next(root.iter("{*}ros2_control", "ros2_control"), None) is not None
+
+
+def judge_converted(data: bytes, source: Source, target: Dialect, *,
+                    distro: Distro | None = None,
+                    reload: Callable[[], Source | None] | None = None) -> Judged:
+    """:func:`judge` for ``convert``: ``data`` is what the conversion of ``source`` wrote (of a
+    xacro input, its expansion converted); ``reload`` reads a xacro input again when its
+    expansion is needed to compare with (the conversion consumed it)."""
+    if data == source.data:
+        return Judged()
+    written = prepared(source.path, source.path, data, expand=False, expanded=source.expanded)
+
+    def before() -> Source | None:
+        if source.expanded:
+            return reload() if reload is not None else None
+        return prepared(source.path, source.path, source.data, expand=False)
+
+    return judge(written, before, target, distro=distro)
+
+
+def prepared(path: str, display: str, data: bytes, settings: Settings | None = None,
+             expand: bool = True, expanded: bool = False) -> Source:
+    """``data``, the text written for the file at ``path``, read as ``validate`` reads it: a
+    xacro document expanded (unless ``expand`` is False or ``settings`` turn xacro off),
+    else, or where the expansion fails, as written. ``expanded``: ``data`` is an expansion
+    already (what convert writes of a xacro input)."""
+    tree = parse_bytes(data, display, limit=None)
+    source = Source(display, data, tree, expanded=expanded)
+    if expanded:
+        return source
+    xacro_off = settings is not None and settings.no_xacro
+    if not expand or xacro_off or path == "-" or not needs_expansion(display, data, tree):
+        return source
+    from txtool.io.xacro import XacroError, expand_xacro
+    from txtool.io.xmlio import XacroOptions
+
+    options = settings.xacro if settings is not None else XacroOptions()
+    try:
+        expanded = expand_xacro(path, display, options, data=data)
+    except XacroError:
+        return source
+    return Source(display, data, expanded, expanded=True, source_tree=tree)
+
+
+def judge(written: Source, before: Callable[[], Source | None], target: Dialect | None, *,
+          distro: Distro | None = None, own: Stated | None = None,
+          settings: Settings | None = None) -> Judged:
+    """The errors of ``written`` for its target's readers that ``before()`` (the input, read
+    the same way; None: nothing to compare with) does not have for the same reader.
+
+    ``settings`` give the rules' options and the file's suppressions are honoured; every rule
+    runs at its registered severity, whatever a configuration selects.
+    """
+    base = _base(settings)
+    judged = Judged()
+    runs = runs_for(target, distro, written, own)
+    found = [(run, _errors(written, base, run)) for run in runs]
+    if not any(errors for _, errors in found):
+        return judged
+    earlier: Source | None = None
+    asked = False
+    blamed: dict[tuple[int, int, str, str], list[Run]] = {}
+    form: list[Problem] = []
+    for run, errors in found:
+        if not errors:
+            continue
+        if not asked:
+            earlier, asked = before(), True
+        had = Counter((p.code, p.message) for p in _errors(earlier, base, run)) if (
+            earlier is not None) else Counter()
+        for problem in errors:
+            key = (problem.code, problem.message)
+            if had[key] > 0:
+                had[key] -= 1
+                continue
+            if target == "ros2-p1" and _p1_form(problem, written):
+                form.append(problem)
+                continue
+            blamed.setdefault((problem.line, problem.column, problem.code, problem.message),
+                              []).append(run)
+    judged.losses.extend(_loss(*where, labels) for where, labels in sorted(blamed.items()))
+    if form:
+        judged.warnings.append(_p1_warning(form[0]))
+    return judged
+
+
+def _base(settings: Settings | None) -> Settings:
+    defaults = _defaults()
+    if settings is None:
+        return defaults
+    return dataclasses.replace(defaults, options=settings.options, xacro=settings.xacro,
+                               no_xacro=settings.no_xacro)
+
+
+_DEFAULTS: list[Settings] = []
+
+
+def _defaults() -> Settings:
+    if not _DEFAULTS:
+        _DEFAULTS.append(resolve())
+    return _DEFAULTS[0]
+
+
+def _errors(source: Source, base: Settings, run: Run) -> list[Problem]:
+    settings = dataclasses.replace(base, stated=run.stated)
+    return [p for p in lint_source(source, settings) if p.severity == "error"]
+
+
+def _p1_form(problem: Problem, written: Source) -> bool:
+    """Whether ``problem`` is ros2_control's refusal of a Proposal 1 ``<role>`` element: TX303
+    placed on a ``<role>`` start tag of the text checked."""
+    if problem.code != _P1_FORM:
+        return False
+    lines = text_lines(written.data)
+    if not 1 <= problem.line <= len(lines):
+        return False
+    text = lines[problem.line - 1][problem.column - 1:]
+    return text.startswith("<role") and text[5:6] in (">", "/", " ", "\t", "")
+
+
+def _loss(line: int, _column: int, code: str, message: str, runs: Sequence[Run]) -> str:
+    from txtool.rules import all_rules
+
+    name = all_rules()[code].name
+    return f"line {line}: {code} {name} for {_readers(runs)}: {message}"
+
+
+def _readers(runs: Sequence[Run]) -> str:
+    """``ros2_control (jazzy, kilted, rolling)`` from one run per distribution."""
+    names: dict[str, list[str]] = {}
+    for run in runs:
+        names.setdefault(run.reader, []).append(run.distro)
+    return "; ".join(f"{reader} ({', '.join(d for d in distros if d)})" if any(distros)
+                     else reader for reader, distros in names.items())
+
+
+def _p1_warning(problem: Problem) -> str:
+    return (f"line {problem.line}: ros2-p1 is Proposal 1 of the ROS 2 format, which ros2_control "
+            "never adopted: it throws \"no attribute 'role' in 'joint' tag\" on each <role> "
+            f"element ({_P1_FORM}) and loads no hardware of this file; everything else is "
+            "checked as ros2_control reads it (--to ros2-p2 writes what it reads)")
