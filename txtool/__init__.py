@@ -131,23 +131,20 @@ def convert(
     xacro_args: Mapping[str, str] | None = None,
     pkg_dirs: Sequence[PathLike] = (),
     pkg_paths: Mapping[str, PathLike] | None = None,
+    ros_distro: str | None = None,
 ) -> Conversion:
     """Convert a file or XML text to ``to`` (``"ros1"``, ``"ros2-p1"`` or ``"ros2-p2"``) as
     ``txtool convert`` does, keeping every byte it need not change; nothing is written.
+    What is written is checked with validate's rules for the target's loaders (every ROS 2
+    distribution, or ``ros_distro``): an error there is in ``losses``.
     Another ``to`` raises ``ValueError`` naming the choices."""
     if to not in DIALECT_CHOICES:
         raise ValueError(f"unknown target dialect {to!r}: choose one of "
                          + ", ".join(map(repr, DIALECT_CHOICES)))
-    from txtool.io.encodings import document_text
-    from txtool.transform.api import Conversion
-    from txtool.transform.convert import convert_source
+    from txtool.transform.api import converted
 
     loaded = _source(source, expand, _xacro_options(xacro_args, pkg_dirs, pkg_paths))
-    done = convert_source(loaded, to)
-    return Conversion(
-        text=document_text(done.data), data=done.data, losses=list(done.losses),
-        notes=list(done.notes), converted=done.converted,
-    )
+    return converted(loaded, to, ros_distro)
 
 
 def simulate(robot: PathLike, configs: PathLike | Sequence[PathLike] = (),

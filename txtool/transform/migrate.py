@@ -29,11 +29,12 @@ from txtool.io.printable import printable
 from txtool.io.xmlio import (
     InputError,
     Source,
+    XacroOptions,
     parse_bytes,
     read_bytes,
     replace_if_unchanged,
 )
-from txtool.lint.config import Overrides, SettingsCache
+from txtool.lint.config import Overrides, Settings, SettingsCache
 from txtool.lint.discover import expand_paths
 from txtool.lint.suppress import Suppressions
 from txtool.lint.suppress import parse as parse_suppressions
@@ -65,6 +66,11 @@ class MigrateOptions:
     allow_lossy: bool = False
     hardware_plugin: str = DEFAULT_HARDWARE_PLUGIN
     reversible: bool = False
+    # How what is written is read for its check (.target_check): the distribution
+    # (--ros-distro), and xacro as validate runs it.
+    ros_distro: str | None = None
+    xacro: XacroOptions = XacroOptions()
+    no_xacro: bool = False
 
 
 @dataclass
@@ -147,9 +153,9 @@ def migrate_paths(paths: Iterable[str], options: MigrateOptions) -> Report:
     (:class:`~txtool.lint.config.ConfigError`, exit 2) stops the run with nothing written.
     """
     report = Report(mode=options.mode)
-    for path, rules in _plan(paths, options, report):
+    for path, rules, settings in _plan(paths, options, report):
         try:
-            result = migrate_file(path, rules, options)
+            result = migrate_file(path, rules, options, settings)
         except InputError as exc:
             _error(report, str(exc))
             continue
@@ -161,16 +167,19 @@ def migrate_paths(paths: Iterable[str], options: MigrateOptions) -> Report:
 
 def _plan(
     paths: Iterable[str], options: MigrateOptions, report: Report
-) -> list[tuple[str, list[Rule]]]:
-    overrides = Overrides(select=options.select, ignore=options.ignore)
+) -> list[tuple[str, list[Rule], Settings]]:
+    overrides = Overrides(select=options.select, ignore=options.ignore, xacro=options.xacro,
+                          no_xacro=options.no_xacro, ros_distro=options.ros_distro)
     settings = SettingsCache(overrides, options.config)
     plan = []
     unread = lambda where, reason: _error(report, f"{where}: {reason}")  # noqa: E731
     for path in expand_paths(paths, report=unread):
         if path == "-":
             raise InputError("-: migrate rewrites files in place; standard input is not supported")
-        enabled = settings.for_file(path).enabled
-        plan.append((path, [r for r in all_rules().values() if r.fixable and r.code in enabled]))
+        each = settings.for_file(path)
+        enabled = each.enabled
+        plan.append((path, [r for r in all_rules().values() if r.fixable and r.code in enabled],
+                     each))
     report.messages.extend(f"txtool: note: {note}" for note in settings.notes)
     return plan
 
@@ -216,13 +225,44 @@ def _write(result: FileResult) -> None:
         raise InputError(f"{result.path}: cannot write: {exc.strerror or exc}") from None
 
 
-@paused
-def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions) -> FileResult:
+def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions,
+                 settings: Settings | None = None) -> FileResult:
     """The migrated bytes of one file (nothing is written); :class:`InputError` if unreadable.
 
     A file whose conversion would lose something is refused (left unchanged) unless
-    ``allow_lossy``; losses of a file that would not change anyway are only reported.
+    ``allow_lossy``; losses of a file that would not change anyway are only reported. What
+    would be written is checked for the target's loaders (:mod:`.target_check`; ``settings``:
+    the file's, as validate resolves them): an error they did not have with the original is
+    a loss.
     """
+    result = _migrated(path, rules, options)
+    if not result.refused and result.data != result.original:
+        _judge(result, path, options, settings)
+    return result
+
+
+def _judge(result: FileResult, path: str, options: MigrateOptions,
+           settings: Settings | None) -> None:
+    from txtool.transform.target_check import judge, prepared, target_distro
+
+    if settings is None:
+        settings = SettingsCache(Overrides(xacro=options.xacro, no_xacro=options.no_xacro,
+                                           ros_distro=options.ros_distro)).for_file(path)
+    try:
+        distro = target_distro(options.target, options.ros_distro)
+    except ValueError as exc:
+        raise InputError(str(exc)) from None
+    written = prepared(path, result.path, result.data, settings)
+    judged = judge(written, lambda: prepared(path, result.path, result.original, settings),
+                   options.target, distro=distro, own=settings.stated, settings=settings)
+    result.warnings.extend(judged.warnings)
+    result.losses.extend(judged.losses)
+    if judged.losses and not options.allow_lossy:
+        result.refused = True
+
+
+@paused
+def _migrated(path: str, rules: Sequence[Rule], options: MigrateOptions) -> FileResult:
     display, original = read_bytes(path)
     tree = parse_bytes(original, display)
     # What the end needs of the document as read is kept, and its tree is fixed in place:
