@@ -32,13 +32,14 @@ the expansion fails, on the source as written, as ``validate`` does.
 from __future__ import annotations
 
 import dataclasses
+import re
 from collections import Counter
 from collections.abc import Callable, Sequence
 from typing import NamedTuple
 
 from txtool.io.encodings import text_lines
 from txtool.io.load import needs_expansion
-from txtool.io.xmlio import Source, parse_bytes
+from txtool.io.xmlio import Source, local, parse_bytes
 from txtool.lint.config import Settings, resolve
 from txtool.lint.engine import lint_source
 from txtool.lint.problem import Problem
@@ -118,9 +119,9 @@ def judge_converted(data: bytes, source: Source, target: Dialect, *,
     """:func:`judge` for ``convert``: ``data`` is what the conversion of ``source`` wrote (of a
     xacro input, its expansion converted); ``reload`` reads a xacro input again when its
     expansion is needed to compare with (the conversion consumed it)."""
-    if data == source.data:
-        return Judged()
     written = prepared(source.path, source.path, data, expand=False, expanded=source.expanded)
+    if data == source.data:  # nothing converted: only what the document misses as a whole
+        return Judged(losses=_whole(written, target))
 
     def before() -> Source | None:
         if source.expanded:
@@ -164,7 +165,7 @@ def judge(written: Source, before: Callable[[], Source | None], target: Dialect 
     runs at its registered severity, whatever a configuration selects.
     """
     base = _base(settings)
-    judged = Judged()
+    judged = Judged(losses=_whole(written, target))
     runs = runs_for(target, distro, written, own)
     found = [(run, _errors(written, base, run)) for run in runs]
     if not any(errors for _, errors in found):
@@ -178,12 +179,15 @@ def judge(written: Source, before: Callable[[], Source | None], target: Dialect 
             continue
         if not asked:
             earlier, asked = before(), True
-        had = Counter((p.code, p.message) for p in _errors(earlier, base, run)) if (
-            earlier is not None) else Counter()
+        before_found = _findings(earlier, base, run) if earlier is not None else []
+        had = Counter((p.code, p.message) for p in before_found if p.severity == "error")
+        flagged = _flagged(before_found) if target is None else frozenset()
         for problem in errors:
             key = (problem.code, problem.message)
             if had[key] > 0:
                 had[key] -= 1
+                continue
+            if _transmission(problem) in flagged:
                 continue
             if target == "ros2-p1" and _p1_form(problem, written):
                 form.append(problem)
@@ -194,6 +198,23 @@ def judge(written: Source, before: Callable[[], Source | None], target: Dialect 
     if form:
         judged.warnings.append(_p1_warning(form[0]))
     return judged
+
+
+def _whole(written: Source, target: Dialect | None) -> list[str]:
+    """ros2_control's refusal of a robot without ``<ros2_control>`` (no rule says it: where
+    nothing decides its readers, a ROS 1 robot is not refused for it): a conversion to ROS 2
+    that leaves every transmission outside such a block writes a robot it refuses whole."""
+    if target not in ("ros2-p1", "ros2-p2") or _has_components(written):
+        return []
+    root = written.root
+    if not isinstance(root.tag, str) or local(root) != "robot":
+        return []
+    if next(root.iter("{*}transmission", "transmission"), None) is None:
+        return []
+    return ["ros2_control refuses this robot whole: it throws \"no "
+            "'ros2_control' tag found in the URDF\" (component_parser.cpp "
+            "parse_control_resources_from_urdf): no transmission of it stands in a "
+            "<ros2_control> block"]
 
 
 def _base(settings: Settings | None) -> Settings:
@@ -213,9 +234,29 @@ def _defaults() -> Settings:
     return _DEFAULTS[0]
 
 
+def _findings(source: Source, base: Settings, run: Run) -> list[Problem]:
+    return lint_source(source, dataclasses.replace(base, stated=run.stated))
+
+
 def _errors(source: Source, base: Settings, run: Run) -> list[Problem]:
-    settings = dataclasses.replace(base, stated=run.stated)
-    return [p for p in lint_source(source, settings) if p.severity == "error"]
+    return [p for p in _findings(source, base, run) if p.severity == "error"]
+
+
+_NAMED = re.compile(r"transmission '([^']*)'")
+
+
+def _transmission(problem: Problem) -> str | None:
+    """The transmission a finding is about, as its message names it."""
+    found = _NAMED.search(problem.message)
+    return found.group(1) if found else None
+
+
+def _flagged(found: list[Problem]) -> frozenset[str | None]:
+    """The transmissions with an error or a warning: a fix rewrites a transmission in its own
+    dialect, so an error it brings to light on one of them (a legacy type attribute made an
+    element: the loader now reads a transmission it skipped) was that transmission's."""
+    return frozenset(_transmission(p) for p in found
+                     if p.severity in ("error", "warning") and _transmission(p) is not None)
 
 
 def _p1_form(problem: Problem, written: Source) -> bool:
@@ -247,7 +288,6 @@ def _readers(runs: Sequence[Run]) -> str:
 
 
 def _p1_warning(problem: Problem) -> str:
-    return (f"line {problem.line}: ros2-p1 is Proposal 1 of the ROS 2 format, which ros2_control "
-            "never adopted: it throws \"no attribute 'role' in 'joint' tag\" on each <role> "
-            f"element ({_P1_FORM}) and loads no hardware of this file; everything else is "
-            "checked as ros2_control reads it (--to ros2-p2 writes what it reads)")
+    return (f"ros2-p1 is not what ros2_control reads: it throws \"no attribute 'role' in "
+            f"'joint' tag\" on its <role> elements ({_P1_FORM}, first at line {problem.line}); "
+            "the rest is checked as ros2_control reads it (--to ros2-p2 writes that)")
