@@ -1,0 +1,174 @@
+"""What convert and migrate write is judged by the loaders of the target: ros2_control of each
+ROS 2 distribution for ros2-p1/ros2-p2, ros_control for ros1 (txtool.transform.target_check).
+
+An error of validate's rules for those readers that the input did not have is a loss: exit 1,
+nothing written, unless --allow-lossy.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+import txtool
+
+JOINTS = """\
+  <link name="base"/><link name="l1"/><link name="l2"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
+    <limit effort="1" velocity="1" lower="-1" upper="1"/></joint>
+  <joint name="j2" type="revolute"><parent link="base"/><child link="l2"/><mimic joint="j1"/>
+    <limit effort="1" velocity="1" lower="-1" upper="1"/></joint>
+"""
+
+
+def _simple(name: str, joint: str) -> str:
+    return f"""\
+  <transmission name="{name}">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="{joint}">
+      <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+    </joint>
+    <actuator name="{name}_motor"><mechanicalReduction>20</mechanicalReduction></actuator>
+  </transmission>
+"""
+
+
+MIMIC = f'<?xml version="1.0"?>\n<robot name="gripper">\n{JOINTS}{_simple("t1", "j1")}' \
+        f'{_simple("t2", "j2")}</robot>\n'
+CLEAN = f'<?xml version="1.0"?>\n<robot name="arm">\n{JOINTS}{_simple("t1", "j1")}</robot>\n'
+TX206 = ("error: line {line}: TX206 mimic-command-interface for ros2_control (jazzy, kilted, "
+         "rolling): joint 'j2' mimics 'j1' in the URDF and has a command interface here: "
+         "ros2_control from Jazzy on refuses the robot (\"Activated mimic joints cannot have "
+         "command interfaces\"); drop its command interface or say mimic=\"false\"\n")
+REFUSED = "txtool: 1 item(s) would be lost; nothing written (use --allow-lossy to accept)\n"
+
+
+@pytest.fixture
+def here(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    return tmp_path
+
+
+def _line_of(text: str, needle: str) -> int:
+    return next(n for n, line in enumerate(text.splitlines(), 1) if needle in line)
+
+
+def test_a_conversion_ros2_control_refuses_exits_1_and_names_the_loader(run, here):
+    (here / "gripper.urdf").write_text(MIMIC)
+    code, out, err = run("convert", "gripper.urdf", "--to", "ros2-p2", "-o", "out.urdf")
+    assert code == 1 and out == "" and not (here / "out.urdf").exists()
+    code, out, lossy = run("convert", "gripper.urdf", "--to", "ros2-p2", "--allow-lossy")
+    assert code == 0
+    line = _line_of(out, '<joint name="j2">')
+    assert err == TX206.format(line=line) + REFUSED
+    assert TX206.format(line=line).replace("error:", "warning:") in lossy
+
+
+def test_ros_distro_narrows_the_distributions_checked(run, here):
+    (here / "gripper.urdf").write_text(MIMIC)
+    # Humble's parser accepts a mimic joint's command interface (TX206)
+    code, out, err = run("convert", "gripper.urdf", "--to", "ros2-p2", "--ros-distro", "humble")
+    assert (code, err) == (0, "")
+    code, out, err = run("convert", "gripper.urdf", "--to", "ros2-p2", "--ros-distro", "jazzy")
+    assert code == 1 and "TX206 mimic-command-interface for ros2_control (jazzy):" in err
+    code, out, err = run("convert", "gripper.urdf", "--to", "ros2-p2", "--ros-distro", "noetic")
+    assert (code, out, err) == (2, "", "txtool: --ros-distro noetic does not read --to ros2-p2: "
+                                       "ros2_control does\n")
+
+
+def test_an_error_the_input_had_for_the_same_reader_is_not_the_conversions(run, here):
+    # t1 already spells its reduction in ROS 1 form inside <ros2_control> (TX303): converting
+    # t2 leaves it as it was, and the conversion is not refused for it.
+    existing = CLEAN.replace("</robot>", """\
+  <ros2_control name="Arm" type="system">
+    <hardware><plugin>arm_driver/ArmHardware</plugin></hardware>
+    <joint name="j2"><state_interface name="position"/></joint>
+    <transmission name="t0">
+      <plugin>transmission_interface/SimpleTransmission</plugin>
+      <joint name="j2" role="joint1"><mechanicalReduction>50</mechanicalReduction></joint>
+      <actuator name="m0" role="actuator1"/>
+    </transmission>
+  </ros2_control>
+</robot>""")
+    (here / "arm.urdf").write_text(existing)
+    code, out, err = run("validate", "arm.urdf", "--ros-distro", "jazzy")
+    assert code == 1 and "TX303" in out
+    code, out, err = run("convert", "arm.urdf", "--to", "ros2-p2")
+    assert code == 0 and "TX303" not in err
+
+
+def test_a_robot_left_without_ros2_control_is_refused_whole(run, here):
+    (here / "hand.urdf").write_text(CLEAN.replace("transmission_interface/SimpleTransmission",
+                                                  "vendor/SimpleTransmission"))
+    code, out, err = run("convert", "hand.urdf", "--to", "ros2-p2")
+    assert code == 1 and out == ""
+    assert ("error: ros2_control refuses this robot whole: it throws \"no 'ros2_control' tag "
+            "found in the URDF\"") in err
+
+
+def test_ros2_p1_is_held_to_ros2_control_but_for_its_role_elements(run, here):
+    (here / "arm.urdf").write_text(CLEAN)
+    code, out, err = run("convert", "arm.urdf", "--to", "ros2-p1")
+    line = _line_of(out, "<role>")
+    assert (code, err) == (0, "warning: ros2-p1 is not what ros2_control reads: it throws \"no "
+                              "attribute 'role' in 'joint' tag\" on its <role> elements (TX303, "
+                              f"first at line {line}); the rest is checked as ros2_control "
+                              "reads it (--to ros2-p2 writes that)\n")
+    (here / "gripper.urdf").write_text(MIMIC)
+    code, out, err = run("convert", "gripper.urdf", "--to", "ros2-p1")
+    assert code == 1 and "TX206 mimic-command-interface" in err
+
+
+def test_migrate_refuses_to_write_what_the_target_refuses(run, here):
+    (here / "gripper.urdf").write_text(MIMIC)
+    code, out, err = run("migrate", "--write", "--to", "ros2-p2", "gripper.urdf")
+    assert code == 1 and (here / "gripper.urdf").read_text() == MIMIC
+    assert err.endswith("refused gripper.urdf: 1 item(s) would be lost; not changed (use "
+                        "--allow-lossy to accept)\n1 file(s) refused (losses; see "
+                        "--allow-lossy)\n")
+    assert "error: gripper.urdf: line " in err and "TX206 mimic-command-interface" in err
+    code, out, err = run("migrate", "--write", "--to", "ros2-p2", "--allow-lossy",
+                         "gripper.urdf")
+    assert code == 0 and "<ros2_control" in (here / "gripper.urdf").read_text()
+
+
+MACRO_IN_BLOCK = """\
+<?xml version="1.0"?>
+<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="trans" params="j">
+    <transmission name="${j}_trans">
+      <plugin>transmission_interface/SimpleTransmission</plugin>
+      <joint name="${j}" role="joint1"><mechanical_reduction>50</mechanical_reduction></joint>
+      <actuator name="${j}_motor" role="actuator1"/>
+    </transmission>
+  </xacro:macro>
+  <link name="base"/><link name="a"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="a"/>
+    <limit effort="1" velocity="1" lower="-1" upper="1"/></joint>
+  <ros2_control name="HW" type="system">
+    <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+    <joint name="j1"><command_interface name="position"/></joint>
+    <xacro:trans j="j1"/>
+  </ros2_control>
+</robot>
+"""
+
+
+def test_back_to_ros1_is_held_to_what_still_reads_the_file(run, here):
+    """A ROS 2 transmission in a macro called inside <ros2_control>: rewritten in ROS 1 form
+    where it is, ros_control never reads it and ros2_control, which still reads the block,
+    throws. The expansion of the written source says so."""
+    (here / "robot.urdf.xacro").write_text(MACRO_IN_BLOCK)
+    code, out, err = run("migrate", "--write", "--to", "ros1", "robot.urdf.xacro")
+    assert code == 1 and (here / "robot.urdf.xacro").read_text() == MACRO_IN_BLOCK
+    assert ("error: robot.urdf.xacro: line 4: TX101 missing-type for ros2_control (humble, "
+            "jazzy, kilted, rolling): transmission 'j1_trans' has no <plugin>: ros2_control "
+            "throws \"Missing <plugin> tag of <transmission> element\" (after xacro "
+            "expansion)\n") in err
+
+
+def test_the_library_reports_the_same_losses():
+    assert txtool.convert(CLEAN, to="ros2-p2").losses == []
+    (loss,) = txtool.convert(MIMIC, to="ros2-p2").losses
+    assert loss.startswith("line ") and "TX206 mimic-command-interface for ros2_control " \
+        "(jazzy, kilted, rolling)" in loss
+    assert txtool.convert(MIMIC, to="ros2-p2", ros_distro="humble").losses == []
