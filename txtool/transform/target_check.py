@@ -18,11 +18,12 @@ readers forced to the target's (:func:`runs_for`):
 
 A finding of severity ``error`` for one of these readers (the reader refuses the document or
 silently reads something else) is a loss, unless the input had it already for the same
-reader: findings are compared by rule code and message (which names the element: the
-transmission, joint or actuator and what is wrong with it) as a multiset, so a problem the
-conversion carried over unchanged is not blamed on it, and one it made (a mimic joint given a
-command interface, a transmission put on a fixed joint) is. The input is linted only when the
-output has such an error.
+reader (a conversion then says it as a warning): findings are compared by rule code and
+message (which names the element: the transmission, joint or actuator and what is wrong with
+it) as a multiset, so a problem the conversion carried over unchanged is not blamed on it, and
+one it made (a mimic joint given a command interface, a transmission put on a fixed joint) is.
+A fix is not blamed either for an error on a transmission the input already had an error or a
+warning for (see :func:`_flagged`). The input is linted only when the output has an error.
 
 A xacro file migrated as written is judged on the expansion of the written source, as
 ``validate`` expands it (its includes and ``$(find)`` found from where the file is); where
@@ -36,6 +37,8 @@ import re
 from collections import Counter
 from collections.abc import Callable, Sequence
 from typing import NamedTuple
+
+from lxml import etree
 
 from txtool.io.encodings import text_lines
 from txtool.io.load import needs_expansion
@@ -54,12 +57,18 @@ _P1_FORM = "TX303"
 
 
 class Run(NamedTuple):
-    """One reader the written document is checked for: its name and distribution in
-    messages, and what the lint is told."""
+    """One lint of the written document: the reader and its distributions, as messages name
+    them, and what the lint is told."""
 
     reader: str
-    distro: str
+    distros: tuple[str, ...]
     stated: Stated
+
+    def split(self) -> list[Run]:
+        """One run per distribution (see :func:`judge`)."""
+        reader = self.stated.readers[0]
+        return [Run(self.reader, (name,), Stated((reader,), Distro(name), origin="target"))
+                for name in self.distros]
 
 
 @dataclasses.dataclass
@@ -95,16 +104,19 @@ def runs_for(target: Dialect | None, distro: Distro | None, written: Source,
         if distro is not None:
             stated = dataclasses.replace(stated, distro=distro,
                                          distro_said=f"--ros-distro {distro.value}")
-        return [Run("the readers validate assumes for it", "", stated)]
+        return [Run("the readers validate assumes for it", (), stated)]
     runs = []
     if target == "ros1":
-        runs.append(Run(ROS_CONTROL.key, Distro.NOETIC.value,
+        runs.append(Run(ROS_CONTROL.key, (Distro.NOETIC.value,),
                         Stated((ROS_CONTROL,), origin="target")))
         if not _has_components(written):
             return runs
-    for each in (distro,) if distro is not None and distro.ros2 else ROS2:
-        runs.append(Run(ROS2_CONTROL.key, each.value,
-                        Stated((ROS2_CONTROL,), each, origin="target")))
+    if distro is not None and distro.ros2:
+        runs.append(Run(ROS2_CONTROL.key, (distro.value,),
+                        Stated((ROS2_CONTROL,), distro, origin="target")))
+    else:  # every distribution at once (split where their verdicts differ: see judge)
+        runs.append(Run(ROS2_CONTROL.key, tuple(d.value for d in ROS2),
+                        Stated((ROS2_CONTROL,), origin="target")))
     return runs
 
 
@@ -119,28 +131,32 @@ def judge_converted(data: bytes, source: Source, target: Dialect, *,
     """:func:`judge` for ``convert``: ``data`` is what the conversion of ``source`` wrote (of a
     xacro input, its expansion converted); ``reload`` reads a xacro input again when its
     expansion is needed to compare with (the conversion consumed it)."""
-    written = prepared(source.path, source.path, data, expand=False, expanded=source.expanded)
+    # The expansion of a xacro input is judged as the plain document it is (its lines, not
+    # traced back to the source), and the input's expansion likewise.
+    name = f"{source.path}.expanded" if source.expanded else source.path
+    written = prepared(source.path, name, data, expand=False)
     if data == source.data:  # nothing converted: only what the document misses as a whole
         return Judged(losses=_whole(written, target))
 
     def before() -> Source | None:
-        if source.expanded:
-            return reload() if reload is not None else None
-        return prepared(source.path, source.path, source.data, expand=False)
+        if not source.expanded:
+            return prepared(source.path, name, source.data, expand=False)
+        again = reload() if reload is not None else None
+        if again is None:
+            return None
+        text = etree.tostring(again.tree, encoding="utf-8", xml_declaration=True)
+        return Source(name, text, again.tree)
 
     return judge(written, before, target, distro=distro)
 
 
 def prepared(path: str, display: str, data: bytes, settings: Settings | None = None,
-             expand: bool = True, expanded: bool = False) -> Source:
+             expand: bool = True) -> Source:
     """``data``, the text written for the file at ``path``, read as ``validate`` reads it: a
     xacro document expanded (unless ``expand`` is False or ``settings`` turn xacro off),
-    else, or where the expansion fails, as written. ``expanded``: ``data`` is an expansion
-    already (what convert writes of a xacro input)."""
+    else, or where the expansion fails, as written."""
     tree = parse_bytes(data, display, limit=None)
-    source = Source(display, data, tree, expanded=expanded)
-    if expanded:
-        return source
+    source = Source(display, data, tree)
     xacro_off = settings is not None and settings.no_xacro
     if not expand or xacro_off or path == "-" or not needs_expansion(display, data, tree):
         return source
@@ -167,12 +183,21 @@ def judge(written: Source, before: Callable[[], Source | None], target: Dialect 
     base = _base(settings)
     judged = Judged(losses=_whole(written, target))
     runs = runs_for(target, distro, written, own)
-    found = [(run, _errors(written, base, run)) for run in runs]
+    found = []
+    for run in runs:
+        # Read by every distribution at once, a verdict is an error where all of them refuse
+        # and a warning where some do (txtool.model.distro): only a warning asks which.
+        problems = _findings(written, base, run)
+        if len(run.distros) > 1 and any(p.severity == "warning" for p in problems):
+            found += [(each, _errors(written, base, each)) for each in run.split()]
+        else:
+            found.append((run, [p for p in problems if p.severity == "error"]))
     if not any(errors for _, errors in found):
         return judged
     earlier: Source | None = None
     asked = False
     blamed: dict[tuple[int, int, str, str], list[Run]] = {}
+    kept: dict[tuple[int, int, str, str], list[Run]] = {}  # the input's own, carried over
     form: list[Problem] = []
     for run, errors in found:
         if not errors:
@@ -184,17 +209,22 @@ def judge(written: Source, before: Callable[[], Source | None], target: Dialect 
         flagged = _flagged(before_found) if target is None else frozenset()
         for problem in errors:
             key = (problem.code, problem.message)
+            where = (problem.line, problem.column, problem.code, problem.message)
             if had[key] > 0:
                 had[key] -= 1
+                if target is not None:
+                    kept.setdefault(where, []).append(run)
                 continue
             if _transmission(problem) in flagged:
                 continue
             if target == "ros2-p1" and _p1_form(problem, written):
                 form.append(problem)
                 continue
-            blamed.setdefault((problem.line, problem.column, problem.code, problem.message),
-                              []).append(run)
-    judged.losses.extend(_loss(*where, labels) for where, labels in sorted(blamed.items()))
+            blamed.setdefault(where, []).append(run)
+    judged.losses.extend(_loss(*where, runs) for where, runs in sorted(blamed.items()))
+    # The target refuses what was written all the same: said, not blamed on the conversion
+    judged.warnings.extend(f"{_loss(*where, runs)} (the input has it already)"
+                           for where, runs in sorted(kept.items()))
     if form:
         judged.warnings.append(_p1_warning(form[0]))
     return judged
@@ -282,7 +312,7 @@ def _readers(runs: Sequence[Run]) -> str:
     """``ros2_control (jazzy, kilted, rolling)`` from one run per distribution."""
     names: dict[str, list[str]] = {}
     for run in runs:
-        names.setdefault(run.reader, []).append(run.distro)
+        names.setdefault(run.reader, []).extend(run.distros)
     return "; ".join(f"{reader} ({', '.join(d for d in distros if d)})" if any(distros)
                      else reader for reader, distros in names.items())
 
