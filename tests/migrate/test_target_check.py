@@ -175,3 +175,34 @@ def test_the_library_reports_the_same_losses():
     assert loss.startswith("line ") and "TX206 mimic-command-interface for ros2_control " \
         "(jazzy, kilted, rolling)" in loss
     assert txtool.convert(MIMIC, to="ros2-p2", ros_distro="humble").losses == []
+
+
+ROBOT_INCLUDING = """\
+<?xml version="1.0"?>
+<robot name="gripper" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="base"/><link name="l1"/><link name="l2"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
+    <limit effort="1" velocity="1" lower="-1" upper="1"/></joint>
+  <joint name="j2" type="revolute"><parent link="base"/><child link="l2"/><mimic joint="j1"/>
+    <limit effort="1" velocity="1" lower="-1" upper="1"/></joint>
+  <xacro:include filename="gripper.transmission.xacro"/>
+</robot>
+"""
+
+
+def test_a_fragment_is_judged_in_the_robot_that_includes_it(run, here):
+    """Alone, the fragment has no joints to say that j2 is a mimic joint; the robot that
+    includes it, expanded with what would be written, does."""
+    fragment = ('<?xml version="1.0"?>\n<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                f'{_simple("t1", "j1")}{_simple("t2", "j2")}</robot>\n')
+    (here / "robot.urdf.xacro").write_text(ROBOT_INCLUDING)
+    (here / "gripper.transmission.xacro").write_text(fragment)
+    code, out, err = run("migrate", "--write", "--to", "ros2-p2", ".")
+    assert code == 1 and (here / "gripper.transmission.xacro").read_text() == fragment
+    assert ("error: ./gripper.transmission.xacro: as ./robot.urdf.xacro includes it (lines of "
+            "its expansion): line ") in err
+    assert "TX206 mimic-command-interface for ros2_control (jazzy, kilted, rolling): joint " \
+        "'j2' mimics 'j1'" in err
+    assert err.endswith("1 file(s) refused (losses; see --allow-lossy)\n")
+    code, out, err = run("migrate", "--write", "--to", "ros2-p2", "--ros-distro", "humble", ".")
+    assert code == 0 and "<ros2_control" in (here / "gripper.transmission.xacro").read_text()

@@ -153,16 +153,50 @@ def migrate_paths(paths: Iterable[str], options: MigrateOptions) -> Report:
     (:class:`~txtool.lint.config.ConfigError`, exit 2) stops the run with nothing written.
     """
     report = Report(mode=options.mode)
-    for path, rules, settings in _plan(paths, options, report):
+    plan = _plan(paths, options, report)
+    done: list[FileResult | str] = []  # each file's result, or why it could not be read
+    for path, rules, settings in plan:
         try:
             result = migrate_file(path, rules, options, settings)
         except InputError as exc:
-            _error(report, str(exc))
+            done.append(str(exc))
             continue
-        report.files.append(result)
-        _record(report, result, options)
+        if not result.changed and not result.refused:  # nothing of it is written
+            result.original = result.data = b""
+        done.append(result)
+    _judge_includers([r for r in done if isinstance(r, FileResult)], plan, options)
+    for each in done:
+        if isinstance(each, str):
+            _error(report, each)
+            continue
+        report.files.append(each)
+        _record(report, each, options)
     report.messages.append(report.summary())
     return report
+
+
+def _judge_includers(results: list[FileResult], plan: list[tuple[str, list[Rule], Settings]],
+                     options: MigrateOptions) -> None:
+    """Refuse a written xacro file that a robot of the run includes, where that robot's
+    expansion with what would be written has an error it did not have
+    (:func:`.target_check.judge_includers`)."""
+    from txtool.io.xmlio import is_xacro
+
+    written = [r for r in results if r.changed and is_xacro(r.path)]
+    if not written:
+        return
+    from txtool.transform.target_check import Written, judge_includers, target_distro
+
+    settings = {path: each for path, _, each in plan}
+    found = judge_includers([Written(r.path, r.original, r.data) for r in written],
+                            [path for path, _, _ in plan], options.target,
+                            lambda path: settings[path],
+                            distro=target_distro(options.target, options.ros_distro))
+    for result in written:
+        losses = found.get(result.path, [])
+        result.losses.extend(losses)
+        if losses and not options.allow_lossy:
+            result.refused = True
 
 
 def _plan(

@@ -33,6 +33,7 @@ the expansion fails, on the source as written, as ``validate`` does.
 from __future__ import annotations
 
 import dataclasses
+import os
 import re
 from collections import Counter
 from collections.abc import Callable, Sequence
@@ -42,7 +43,7 @@ from lxml import etree
 
 from txtool.io.encodings import text_lines
 from txtool.io.load import needs_expansion
-from txtool.io.xmlio import Source, local, parse_bytes
+from txtool.io.xmlio import InputError, Source, XacroOptions, local, parse_bytes
 from txtool.lint.config import Settings, resolve
 from txtool.lint.engine import lint_source
 from txtool.lint.problem import Problem
@@ -50,7 +51,8 @@ from txtool.model.core import Dialect
 from txtool.model.distro import ROS2, Distro
 from txtool.model.readers import ROS2_CONTROL, ROS_CONTROL, Stated
 
-__all__ = ["Judged", "Run", "judge", "judge_converted", "prepared", "runs_for", "target_distro"]
+__all__ = ["Judged", "Run", "Written", "judge", "judge_converted", "judge_includers", "prepared",
+           "runs_for", "target_distro"]
 
 # The finding ros2_control gives every <role> element of Proposal 1 (see the module doc).
 _P1_FORM = "TX303"
@@ -321,3 +323,125 @@ def _p1_warning(problem: Problem) -> str:
     return (f"ros2-p1 is not what ros2_control reads: it throws \"no attribute 'role' in "
             f"'joint' tag\" on its <role> elements ({_P1_FORM}, first at line {problem.line}); "
             "the rest is checked as ros2_control reads it (--to ros2-p2 writes that)")
+
+
+# -- the robots that include what migrate writes ------------------------------------------------
+
+
+class Written(NamedTuple):
+    """A file migrate would write: where it is, its bytes before and after."""
+
+    path: str
+    original: bytes
+    data: bytes
+
+
+def judge_includers(written: Sequence[Written], candidates: Sequence[str],
+                    target: Dialect | None, settings_of: Callable[[str], Settings], *,
+                    distro: Distro | None = None) -> dict[str, list[str]]:
+    """The losses of each file of ``written`` as the robots that include it read it.
+
+    A xacro fragment (``arm.transmission.xacro``) is no robot: its errors show only in the
+    expansion of the file that includes it. Each of ``candidates`` (the other files of the
+    run) that includes a written file is expanded twice, as it is and in a copy of its
+    package (and of the written files' packages) holding what would be written, and
+    :func:`judge` compares the two. The losses go to every written file that robot includes,
+    each prefixed with the robot's path.
+    """
+    from txtool.io.xmlio import is_xacro
+    from txtool.lint.fragments import fragments
+
+    by_key = {os.path.realpath(w.path): w for w in written}
+    found: dict[str, list[str]] = {}
+    for robot in candidates:
+        if not is_xacro(robot):
+            continue
+        settings = settings_of(robot)
+        if settings.no_xacro:
+            continue
+        included = [by_key[os.path.realpath(p)] for p in fragments(
+            [(robot, settings.xacro)], [w.path for w in written])]
+        if not included:
+            continue
+        losses = _as_included(robot, [*included, *_itself(robot, by_key)], target, settings,
+                              distro)
+        for each in included:
+            found.setdefault(each.path, []).extend(
+                f"as {robot} includes it (lines of its expansion): {loss}" for loss in losses)
+    return found
+
+
+def _itself(robot: str, by_key: dict[str, Written]) -> list[Written]:
+    own = by_key.get(os.path.realpath(robot))
+    return [own] if own is not None else []
+
+
+def _as_included(robot: str, written: Sequence[Written], target: Dialect | None,
+                 settings: Settings, distro: Distro | None) -> list[str]:
+    """:func:`judge` of ``robot``'s expansion with ``written`` in place of those files."""
+    import shutil
+    import tempfile
+
+    from txtool.io.package_xml import package_of
+    from txtool.io.xacro import XacroError, expand_xacro
+
+    before = expand_or_none(robot, settings.xacro)
+    if before is None:
+        return []
+    with tempfile.TemporaryDirectory(prefix="txtool-check-") as scratch:
+        copies: dict[str, str] = {}  # package folder -> its copy
+        names: list[tuple[str, str]] = []
+        for path in (robot, *(w.path for w in written)):
+            info = package_of(path)
+            folder = os.path.dirname(info.manifest) if info is not None else os.path.dirname(
+                os.path.abspath(path))
+            if folder not in copies:
+                copies[folder] = os.path.join(scratch, str(len(copies)))
+                shutil.copytree(folder, copies[folder], ignore=_not_read_by_xacro,
+                                symlinks=True)
+                if info is not None:
+                    names.append((info.name, copies[folder]))
+        for w in written:
+            _put(w, copies)
+        moved = _moved(robot, copies)
+        options = settings.xacro._replace(pkg_paths=(*names, *settings.xacro.pkg_paths))
+        try:
+            tree = expand_xacro(moved, robot, options)
+        except XacroError as exc:
+            return [f"xacro cannot expand it with what would be written: {exc.reason}"]
+    data = etree.tostring(tree, encoding="utf-8", xml_declaration=True)
+    after = Source(f"{robot}.expanded", data, tree)
+    earlier = Source(f"{robot}.expanded",
+                     etree.tostring(before, encoding="utf-8", xml_declaration=True), before)
+    return judge(after, lambda: earlier, target, distro=distro, settings=settings,
+                 own=settings.stated).losses
+
+
+def expand_or_none(path: str, options: XacroOptions) -> etree._ElementTree | None:
+    from txtool.io.xacro import XacroError, expand_xacro
+
+    try:
+        return expand_xacro(path, path, options)
+    except (XacroError, InputError):
+        return None
+
+
+def _not_read_by_xacro(folder: str, names: list[str]) -> list[str]:
+    """Meshes, images and the like: large, and never read by xacro."""
+    kept = (".xacro", ".urdf", ".xml", ".yaml", ".yml", ".gazebo", ".trans", ".sdf", ".launch")
+    return [name for name in names if not os.path.isdir(os.path.join(folder, name))
+            and not name.endswith(kept)]
+
+
+def _moved(path: str, copies: dict[str, str]) -> str:
+    real = os.path.abspath(path)
+    for folder, copy in copies.items():
+        if real.startswith(folder + os.sep):
+            return copy + real[len(folder):]
+    return path
+
+
+def _put(w: Written, copies: dict[str, str]) -> None:
+    target = _moved(w.path, copies)
+    with open(target, "wb") as handle:
+        handle.write(w.data)
