@@ -404,10 +404,15 @@ def _as_included(robot: str, written: Sequence[Written], target: Dialect | None,
         for w in written:
             _put(w, copies)
         moved = _moved(robot, copies)
-        options = settings.xacro._replace(pkg_paths=(*names, *settings.xacro.pkg_paths))
+        # The copies first; the other packages found where the originals are
+        options = settings.xacro._replace(
+            pkg_paths=(*names, *settings.xacro.pkg_paths),
+            pkg_dirs=(*settings.xacro.pkg_dirs, *_around(robot, copies)))
         try:
             tree = expand_xacro(moved, robot, options)
         except XacroError as exc:
+            if exc.missing:  # what the copy lacks, not what is written
+                return []
             return [f"xacro cannot expand it with what would be written: {exc.reason}"]
     data = etree.tostring(tree, encoding="utf-8", xml_declaration=True)
     after = Source(f"{robot}.expanded", data, tree)
@@ -431,6 +436,15 @@ def _not_read_by_xacro(folder: str, names: list[str]) -> list[str]:
     kept = (".xacro", ".urdf", ".xml", ".yaml", ".yml", ".gazebo", ".trans", ".sdf", ".launch")
     return [name for name in names if not os.path.isdir(os.path.join(folder, name))
             and not name.endswith(kept)]
+
+
+def _around(robot: str, copies: dict[str, str]) -> list[str]:
+    """Where the packages beside the copied ones are: the workspace of ``robot``, or the
+    folder holding each copied package."""
+    from txtool.io.packages import workspace_roots
+
+    return list(dict.fromkeys(workspace_roots(robot) or [
+        os.path.dirname(folder) for folder in copies if len(folder.split(os.sep)) > 2]))
 
 
 def _moved(path: str, copies: dict[str, str]) -> str:
