@@ -4,9 +4,10 @@ convert, migrate (its fixes and ``--to``), ``validate --fix`` and the language s
 hand what they wrote to :func:`judge`, which runs every rule of ``validate`` on it with the
 readers forced to the target's (:func:`runs_for`):
 
-* ``ros2-p2``: ros2_control, once per ROS 2 distribution txtool models (Humble reads numbers
+* ``ros2-p2``: ros2_control of every ROS 2 distribution txtool models (Humble reads numbers
   as its C++17 build does and accepts a mimic joint's command interface; Jazzy and later do
-  not), or only the one ``--ros-distro`` names;
+  not), or only the one ``--ros-distro`` names: one lint for all of them, and one per
+  distribution where that lint has a warning (a verdict some of them only refuse);
 * ``ros2-p1``: the same, since ros2_control is the only ROS 2 program that reads
   transmissions; it never adopted Proposal 1 and throws "no attribute 'role' in 'joint' tag"
   on its ``<role>`` elements (TX303). That finding is the form the user asked for: it is
@@ -25,9 +26,13 @@ one it made (a mimic joint given a command interface, a transmission put on a fi
 A fix is not blamed either for an error on a transmission the input already had an error or a
 warning for (see :func:`_flagged`). The input is linted only when the output has an error.
 
+A robot that a conversion to ROS 2 leaves without any ``<ros2_control>`` is refused whole
+(:func:`_whole`: no rule says so, since a ROS 1 robot is not refused for it).
+
 A xacro file migrated as written is judged on the expansion of the written source, as
 ``validate`` expands it (its includes and ``$(find)`` found from where the file is); where
-the expansion fails, on the source as written, as ``validate`` does.
+the expansion fails, on the source as written, as ``validate`` does. A written file that
+other files of the run include is judged in their expansions too (:func:`judge_includers`).
 """
 
 from __future__ import annotations
