@@ -30,6 +30,7 @@ from txtool.io.xmlio import (
     InputError,
     Source,
     XacroOptions,
+    is_xacro,
     parse_bytes,
     read_bytes,
     replace_if_unchanged,
@@ -154,35 +155,44 @@ def migrate_paths(paths: Iterable[str], options: MigrateOptions) -> Report:
     """
     report = Report(mode=options.mode)
     plan = _plan(paths, options, report)
-    done: list[FileResult | str] = []  # each file's result, or why it could not be read
+    # Each file's result, or why it could not be read, in order: told (and written) as it
+    # comes until a changed xacro file, which waits for the robots of the run that include
+    # it (_judge_includers), and the files after it with it.
+    waiting: list[FileResult | str] = []
+    held: list[FileResult] = []
     for path, rules, settings in plan:
         try:
-            result = migrate_file(path, rules, options, settings)
+            waiting.append(migrate_file(path, rules, options, settings))
         except InputError as exc:
-            done.append(str(exc))
-            continue
-        if not result.changed and not result.refused:  # nothing of it is written
-            result.original = result.data = b""
-        done.append(result)
-    _judge_includers([r for r in done if isinstance(r, FileResult)], plan, options)
-    for each in done:
+            waiting.append(str(exc))
+        last = waiting[-1]
+        if isinstance(last, FileResult) and last.changed and is_xacro(last.path):
+            held.append(last)
+        if not held:
+            _tell(report, waiting, options)
+    _judge_includers(held, plan, options)
+    _tell(report, waiting, options)
+    report.messages.append(report.summary())
+    return report
+
+
+def _tell(report: Report, waiting: list[FileResult | str], options: MigrateOptions) -> None:
+    for each in waiting:
         if isinstance(each, str):
             _error(report, each)
             continue
         report.files.append(each)
         _record(report, each, options)
-    report.messages.append(report.summary())
-    return report
+        if not each.changed:  # nothing of it is written: its bytes are not needed
+            each.original = each.data = b""
+    waiting.clear()
 
 
-def _judge_includers(results: list[FileResult], plan: list[tuple[str, list[Rule], Settings]],
+def _judge_includers(written: list[FileResult], plan: list[tuple[str, list[Rule], Settings]],
                      options: MigrateOptions) -> None:
     """Refuse a written xacro file that a robot of the run includes, where that robot's
     expansion with what would be written has an error it did not have
     (:func:`.target_check.judge_includers`)."""
-    from txtool.io.xmlio import is_xacro
-
-    written = [r for r in results if r.changed and is_xacro(r.path)]
     if not written:
         return
     from txtool.transform.target_check import Written, judge_includers, target_distro
