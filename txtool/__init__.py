@@ -153,16 +153,19 @@ def convert(
     pkg_paths: Mapping[str, PathLike] | None = None,
     bb_direction: Literal["reversed", "negative-reduction"] = "reversed",
     bb_topology: bool = False,
+    ros_distro: str | None = None,
 ) -> Conversion:
     """Convert a file or XML text to ``to`` (``"ros1"``, ``"ros2-p1"`` or ``"ros2-p2"``) as
     ``txtool convert`` does, keeping every byte it need not change; nothing is written.
+    What is written is checked with validate's rules for the target's loaders (every ROS 2
+    distribution, or ``ros_distro``): an error there is in ``losses``.
     ``"bb"`` gives the Beam Bots DSL blocks of ``--to bb`` as ``text`` (``bb_direction`` and
     ``bb_topology`` are ``--bb-direction`` and ``--bb-topology``). Another ``to`` raises
     ``ValueError`` naming the choices."""
     if to not in TARGET_CHOICES:
         raise ValueError(f"unknown target dialect {to!r}: choose one of "
                          + ", ".join(map(repr, TARGET_CHOICES)))
-    from txtool.transform.api import Conversion
+    from txtool.transform.api import Conversion, converted
 
     loaded = _source(source, expand, _xacro_options(xacro_args, pkg_dirs, pkg_paths))
     if to == "bb":
@@ -175,14 +178,7 @@ def convert(
         return Conversion(text=exported.text, data=exported.text.encode("utf-8"),
                           losses=list(exported.losses), notes=list(exported.notes),
                           converted=carried)
-    from txtool.io.encodings import document_text
-    from txtool.transform.convert import convert_source
-
-    done = convert_source(loaded, to)
-    return Conversion(
-        text=document_text(done.data), data=done.data, losses=list(done.losses),
-        notes=list(done.notes), converted=done.converted,
-    )
+    return converted(loaded, to, ros_distro)
 
 
 def simulate(

@@ -163,7 +163,14 @@ def test_a_block_declaring_some_of_the_joints_refuses_a_second_block(run, tmp_pa
         "not b: a <ros2_control> of its own would declare them a second time (two hardware "
         "components claiming one joint); declare all its joints in one <ros2_control>, then "
         "convert again",
-        "txtool: 1 item(s) would be lost; nothing written (use --allow-lossy to accept)"]
+        # what the written file would be: the resource manager's own verdict on it
+        "error: line 13: TX209 duplicate-interface for ros2_control (humble, jazzy, kilted, "
+        "rolling): joint 'a' of <ros2_control> 'gripper' exports command interface 'a/effort', "
+        "which <ros2_control> 'hw' (line 5) exports too: ros2_control's resource manager keeps "
+        "one handle per name (Humble drops this block's without a word; from Jazzy on it logs "
+        "\"Tried to insert CommandInterface with already existing key\"), so this block's "
+        "hardware never gets it",
+        "txtool: 2 item(s) would be lost; nothing written (use --allow-lossy to accept)"]
 
 
 MACRO = """\

@@ -192,7 +192,10 @@ def test_what_convert_prints_begins_as_xml_requires(prolog, bom, declaration, do
     body = document[0].removeprefix(codecs.BOM_UTF8)
     body = body[body.index(b"<robot"):]  # without the generated declaration and licence
     data = (codecs.BOM_UTF8 if bom else b"") + prolog + declaration + b"\n" + body
-    result = CliRunner().invoke(cli, ["convert", "-", "--to", target], input=data)
+    # (the generated robots may lack a joint a transmission names, which ros2_control
+    # refuses: what is printed is the question here)
+    result = CliRunner().invoke(cli, ["convert", "-", "--to", target, "--allow-lossy"],
+                                input=data)
     assert result.exit_code == 0, result.stderr
     out = result.stdout_bytes
     etree.fromstring(out)  # well-formed for a strict parser: nothing before the declaration

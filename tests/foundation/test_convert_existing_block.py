@@ -56,8 +56,10 @@ def test_an_interface_the_block_does_not_command_is_a_loss(run, tmp_path):
 
 def test_the_real_arm_that_carries_both_forms_converts_without_loss(run):
     # ROBOTIS OMY-F3M: ROS 1 transmissions beside the <ros2_control> blocks of its hardware.
+    # (Humble's parser: from Jazzy on, the generated block's command interfaces on its mimic
+    # gripper joints are refused, TX206, and the conversion with them.)
     path = corpus_file("open_manipulator__omy_f3m.urdf")
-    code, out, err = run("convert", str(path), "--to", "ros2-p2")
+    code, out, err = run("convert", str(path), "--to", "ros2-p2", "--ros-distro", "humble")
     assert code == 0, err
     # The one warning: the block generated for the three mimic joints no block declares
     # names the placeholder plugin.

@@ -77,10 +77,18 @@ def test_rrbot_proposal_1_to_2_and_back(run, fixtures):
 def test_demo_robot_conversions_match_the_checked_in_files(run, fixtures):
     for target in ("ros2-p1", "ros2-p2"):
         code, out, err = run("convert", str(fixtures / "demo_robot.urdf"), "--to", target)
-        # The one message: the block names the placeholder plugin, to be replaced.
-        assert code == 0 and err.startswith('warning: <ros2_control name="demo_arm"> generated '
-                                            "with the placeholder hardware plugin")
-        assert err.count("\n") == 1
+        # ros2_control never adopted Proposal 1's <role> elements: said once (target_check)
+        said = ("warning: ros2-p1 is not what ros2_control reads: it throws \"no attribute "
+                "'role' in 'joint' tag\" on its <role> elements (TX303, first at line 85); the "
+                "rest is checked as ros2_control reads it (--to ros2-p2 writes that)")
+        # and the block names the placeholder plugin, to be replaced
+        lines = err.splitlines()
+        placeholder = [line for line in lines if line.startswith(
+            'warning: <ros2_control name="demo_arm"> generated with the placeholder hardware '
+            "plugin")]
+        assert code == 0 and len(placeholder) == 1
+        rest = [line for line in lines if line not in placeholder]
+        assert rest == ([said] if target == "ros2-p1" else [])
         golden = (fixtures / f"demo_robot.{target}.urdf").read_bytes()
         strip = lambda data: [line for line in data.splitlines() if b"demo robot" not in line]  # noqa: E731
         assert strip(out.encode()) == strip(golden)

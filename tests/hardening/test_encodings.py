@@ -126,7 +126,12 @@ def test_declaration_after_a_comment_is_read_and_flagged():
     problems = json.loads(out)["problems"]
     assert [(p["code"], p["line"]) for p in problems] == [("TX001", declaration_line)]
     code, out, err = run("convert", "--to", "ros2-p2", "--hardware-plugin", MOCK, str(path))
-    assert code == 0 and err.count("is not converted") == 24  # custom types, left as written
+    # custom types, left as written: no <ros2_control>, which ros2_control refuses whole
+    assert (code, out) == (1, "") and err.count("is not converted") == 24
+    assert "ros2_control refuses this robot whole" in err
+    code, out, err = run("convert", "--to", "ros2-p2", "--hardware-plugin", MOCK,
+                         "--allow-lossy", str(path))
+    assert code == 0 and err.count("is not converted") == 24
     # Printed byte for byte but for the declaration, which strict parsers refuse there.
     lines = path.read_bytes().split(b"\n")
     del lines[declaration_line - 1]

@@ -152,7 +152,14 @@ def test_map_refuses_it_in_one_line(huge):
 
 
 def test_convert_keeps_the_text_and_says_it_was_not_loadable(huge):
+    # ros2_control reads the kept text as "not a number" and uses 1.0: what is written is
+    # refused for it (target_check), unless losses are allowed
     code, out, err = invoke("convert", huge, "--to", "ros2-p2")
+    assert (code, out) == (1, "")
+    assert ("TX105 invalid-number for ros2_control (humble, jazzy, kilted, rolling): reduction "
+            "of joint 'j1' of transmission 't1' is '0x1p99999999999999999999', not a finite "
+            "number: ros2_control silently uses 1.0") in err
+    code, out, err = invoke("convert", huge, "--to", "ros2-p2", "--allow-lossy")
     assert code == 0
     assert "<mechanical_reduction>0x1p99999999999999999999</mechanical_reduction>" in out
     assert "the original is not loadable ('m1' reduction '0x1p99999999999999999999' is not a number)" in err

@@ -19,6 +19,7 @@ from txtool.commands.common import (
     xacro_options,
 )
 from txtool.io.printable import printable
+from txtool.model.distro import CHOICES as DISTROS
 
 TARGETS = ("ros1", "ros2-p1", "ros2-p2", "bb")
 
@@ -39,6 +40,9 @@ TARGETS = ("ros1", "ros2-p1", "ros2-p2", "bb")
               help="To ROS 2: keep each transmission's original text in a comment before it, "
                    "so that converting back gives its bytes back.")
 @click.option("--stdin-filename", help="Name to report for '-' (stdin).")
+@click.option("--ros-distro", type=click.Choice(DISTROS), default=None,
+              help="Check what is written for this distribution's loaders only (default: "
+                   "every ROS 2 distribution for ros2-p1/ros2-p2, noetic for ros1).")
 # --- Beam Bots (--to bb) options ---
 @click.option("--bb-direction", type=Choice(["reversed", "negative-reduction"]),
               help="bb: write a reversed joint as 'reversed? true' (default) or as a negative "
@@ -51,20 +55,25 @@ TARGETS = ("ros1", "ros2-p1", "ros2-p2", "bb")
 @xacro_options
 @exit_on_input_error
 def command(path, target, output, in_place, allow_lossy, hardware_plugin, reversible,
-            stdin_filename, bb_direction, bb_topology, no_xacro, config_path,
+            stdin_filename, ros_distro, bb_direction, bb_topology, no_xacro, config_path,
             xacro) -> int:
     """Convert the transmissions of INPUT to another dialect, keeping the rest of the document.
 
     The result is read back and converted back; anything that does not survive, or that the
-    target loader would read differently, is reported. Exit 1 if anything would be lost
-    (unless --allow-lossy), 2 on unreadable input. A xacro INPUT is converted after expansion;
-    under --no-xacro its source is converted as written, ${...} kept.
+    target loader would read differently, is reported; what is written is checked with
+    validate's rules for the target's loaders (ros2_control of every ROS 2 distribution, or
+    --ros-distro's; ros_control for ros1), and an error there is a loss. Exit 1 if anything
+    would be lost (unless --allow-lossy), 2 on unreadable input. A xacro INPUT is converted
+    after expansion; under --no-xacro its source is converted as written, ${...} kept.
     """
     from txtool.io.load import load
     from txtool.io.xmlio import InputError, replace_if_unchanged, write_atomic
 
     if target != "bb" and (bb_direction or bb_topology):
         raise InputError("--bb-direction and --bb-topology apply to --to bb only")
+    if target == "bb" and ros_distro:
+        raise InputError("--ros-distro applies to robot dialects, not --to bb")
+    distro = _distro(target, ros_distro)
     if reversible and target in ("ros1", "bb"):
         raise InputError("--reversible applies to --to ros2-p1 and ros2-p2 (converting back to "
                          "ros1 puts carried originals back by itself)")
@@ -94,12 +103,13 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, revers
         # Well-formed even where nothing changed: a declaration after a comment or spaces
         # (which txtool reads) is not printed there.
         data = without_late_declaration(result.data)
+        judged = _judged(data, source, target, distro, path, xacro, stdin_filename)
         if source.expanded:  # xacro's text: a few long lines, this machine's paths
             from txtool.io.expansion_text import readable
 
             data = readable(data, source.path)
-        losses, notes = result.losses, result.notes
-        for left in result.warnings:
+        losses, notes = [*result.losses, *judged.losses], result.notes
+        for left in [*result.warnings, *judged.warnings]:
             click.echo(f"warning: {printable(left)}", err=True)
         # (one named on the command line was chosen: not a placeholder)
         placeholder = result.placeholder if hardware_plugin is None else None
@@ -127,6 +137,28 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, revers
     if placeholder is not None:
         click.echo(f"warning: {printable(placeholder)}", err=True)
     return 0
+
+
+def _distro(target: str, ros_distro: str | None):
+    from txtool.io.xmlio import InputError
+    from txtool.transform.target_check import target_distro
+
+    try:
+        return target_distro(None if target == "bb" else target, ros_distro)  # type: ignore[arg-type]
+    except ValueError as exc:
+        raise InputError(str(exc)) from None
+
+
+def _judged(data: bytes, source, target: str, distro, path: str, xacro, stdin_filename):
+    """What the target's loaders say of ``data`` that they did not say of the input."""
+    from txtool.io.load import load
+    from txtool.transform.target_check import judge_converted
+
+    def reload():
+        return load(path, xacro=xacro, stdin_name=stdin_filename, expand=True)
+
+    return judge_converted(data, source, target, distro=distro,  # type: ignore[arg-type]
+                           reload=reload if path != "-" else None)
 
 
 def _same_file(a: str, b: str) -> bool:

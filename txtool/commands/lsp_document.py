@@ -130,9 +130,12 @@ def fixable_rules(path: str, root: str, options: Options,
             if rule.fixable and rule.code in enabled and (codes is None or rule.code in codes)]
 
 
-def fixed_text(path: str, text: str, rules: Sequence[Rule]) -> tuple[str, dict[str, int]]:
+def fixed_text(path: str, text: str, rules: Sequence[Rule],
+               settings: Settings | None = None) -> tuple[str, dict[str, int]]:
     """The buffer as ``txtool migrate`` fixes it with ``rules`` (suppressions honoured), and
-    how many fixes of each code; the text unchanged when nothing applies."""
+    how many fixes of each code; the text unchanged when nothing applies, or when what the
+    fixes write has an error for the file's readers (``settings``: the file's, as validate
+    resolves them) that the buffer does not have."""
     from txtool.transform.migrate import MigrateOptions, migrate_file
 
     if not rules:
@@ -144,7 +147,7 @@ def fixed_text(path: str, text: str, rules: Sequence[Rule]) -> tuple[str, dict[s
         with open(copy, "wb") as handle:
             handle.write(data)
         try:
-            result = migrate_file(copy, rules, MigrateOptions())
+            result = migrate_file(copy, rules, MigrateOptions(), settings)
         except InputError:
             return text, {}
     if not result.changed:

@@ -28,6 +28,7 @@ from txtool.commands.lsp_document import (
     line_edits,
     problems_of,
     root_of,
+    settings_for,
 )
 from txtool.lint.problem import Problem
 from txtool.reporters.sarif import RULE_DOCS
@@ -154,7 +155,8 @@ def code_actions(document: TextDocument, context: lsp.CodeActionContext,
     if only is None or any(lsp.CodeActionKind.QuickFix.startswith(kind) for kind in only):
         for code in sorted({str(d.code) for d in ours}):
             rules = fixable_rules(path, root, options, [code])
-            fixed, counts = fixed_text(path, document.source, rules)
+            fixed, counts = fixed_text(path, document.source, rules,
+                                       settings_for(path, root, options))
             if not counts:
                 continue
             many = f" ({counts[code]} in this file)" if counts.get(code, 0) > 1 else ""
@@ -167,7 +169,8 @@ def code_actions(document: TextDocument, context: lsp.CodeActionContext,
         found = problems_of(path, document.source, root, options)
         codes = sorted({p.code for p in found if p.fixable}) if isinstance(found, list) else []
         rules = fixable_rules(path, root, options, codes) if codes else []
-        fixed, counts = fixed_text(path, document.source, rules) if rules else ("", {})
+        fixed, counts = fixed_text(path, document.source, rules,
+                                   settings_for(path, root, options)) if rules else ("", {})
         if counts:
             what = ", ".join(f"{code} x{n}" for code, n in sorted(counts.items()))
             actions.append(_action(document, f"Fix all txtool fixable problems ({what})",

@@ -6,7 +6,7 @@ import click
 
 from txtool.commands.common import TARGET_HINTS, Choice, exit_on_input_error
 from txtool.io.printable import printable
-from txtool.model.distro import CHOICES
+from txtool.model.distro import CHOICES as DISTROS
 
 TARGETS = ("ros1", "ros2-p1", "ros2-p2")
 
@@ -44,30 +44,42 @@ def _mode(check: bool, diff: bool, write: bool) -> str:
 @click.option("--reversible", is_flag=True,
               help="With --to ros2-p1/ros2-p2: keep each transmission's original text in a "
                    "comment before it, so that migrating back gives its bytes back.")
-@click.option("--ros-distro", type=click.Choice(CHOICES), default=None,
+@click.option("--ros-distro", type=click.Choice(DISTROS), default=None,
               help="The ROS distribution whose programs read the files, as validate takes it: "
                    "only what validate reports for them is fixed (over the configuration's "
-                   "ros-distro and what package.xml and <gazebo> plugins say).")
+                   "ros-distro and what package.xml and <gazebo> plugins say), and what is "
+                   "written is checked for its loaders only (default: every ROS 2 "
+                   "distribution for ros2-p1/ros2-p2, noetic for ros1).")
 @click.option("--no-xacro", is_flag=True,
-              help="Accepted for uniformity with the other commands: migrate never runs xacro.")
+              help="Check a xacro file's result as written, not its expansion (the file itself "
+                   "is always migrated as written).")
 @click.option("--trust-xacro", is_flag=True,
-              help="Accepted for uniformity with the other commands: migrate never runs xacro.")
+              help="Expand xacro files for the check with upstream xacro in this process "
+                   "(only for files you trust).")
 @exit_on_input_error
 def command(paths, target, check, diff, write, select, ignore, config_path, allow_lossy,
             hardware_plugin, reversible, ros_distro, no_xacro, trust_xacro) -> int:
     """Apply the fixable rules (and, with --to, the conversion) to files and folders in place.
 
     Folders are searched like validate does (*.urdf, *.xacro, robot *.xml). xacro files are
-    migrated as written, never expanded: ${...} expressions, macros and comments are kept.
+    migrated as written: ${...} expressions, macros and comments are kept. What would be
+    written is checked with validate's rules for the target's loaders (a xacro file on its
+    expansion); an error there that the file did not have is a loss.
 
     Exit codes: 0 nothing to do (or all written), 1 changes pending (--check, --diff) or a
-    conversion refused for losses, 2 usage, configuration or input error.
+    file refused for losses, 2 usage, configuration or input error.
     """
+    from txtool.io.xmlio import XacroOptions
     from txtool.transform.migrate import DEFAULT_HARDWARE_PLUGIN, MigrateOptions, migrate_paths
+    from txtool.transform.target_check import target_distro
 
     if reversible and target not in ("ros2-p1", "ros2-p2"):
         raise click.UsageError("--reversible needs --to ros2-p1 or --to ros2-p2 (migrating "
                                "back to ros1 puts carried originals back by itself)")
+    try:
+        target_distro(target, ros_distro)
+    except ValueError as exc:
+        raise click.UsageError(str(exc)) from None
     options = MigrateOptions(
         mode=_mode(check, diff, write),  # type: ignore[arg-type]
         target=target,
@@ -79,6 +91,8 @@ def command(paths, target, check, diff, write, select, ignore, config_path, allo
         plugin_chosen=hardware_plugin is not None,
         reversible=reversible,
         ros_distro=ros_distro,
+        xacro=XacroOptions(trust=trust_xacro),
+        no_xacro=no_xacro,
     )
     report = migrate_paths(paths, options)
     for diff in report.diffs:  # ASCII bytes go to the binary stream as they are

@@ -134,17 +134,18 @@ def command(paths, output_formats, select, ignore, strict, exit_zero, config_pat
     if xacro.args:
         _warn_unused_args(list(paths), no_xacro)
     targets = list(paths) or ["."]
-    selection = FixSelection(options.select, options.ignore, config_path, ros_distro)
+    selection = FixSelection(options.select, options.ignore, config_path, ros_distro,
+                             options.xacro, options.no_xacro)
     from txtool.commands.progress import file_progress
 
     with file_progress() as progress:
         result = lint_paths(targets, options, progress)
-    fix_failed = False
+    fix_failed = refused = False
     if diff:
         tell(result)
         return print_diff(result, selection)
     if fix:
-        fixed, fix_failed = apply_fixes(result, selection)
+        fixed, fix_failed, refused = apply_fixes(result, selection)
         if fixed:
             result = lint_paths(targets, options)
     tell(result)
@@ -152,7 +153,7 @@ def command(paths, output_formats, select, ignore, strict, exit_zero, config_pat
     code = _report_all(result, main, files, output_file, stdin_name, selection,
                        _Look(use_color(color, output_file), quiet, statistics,
                              ("error", "warning") if strict else ("error",)), paths)
-    return 2 if fix_failed else max(code, exit_code(result, options))
+    return 2 if fix_failed else max(code, exit_code(result, options), int(refused))
 
 
 class _Look(NamedTuple):

@@ -20,6 +20,7 @@ import click
 from txtool.io.printable import printable
 
 if TYPE_CHECKING:
+    from txtool.io.xmlio import XacroOptions
     from txtool.lint.api import LintResult
     from txtool.lint.problem import Problem
     from txtool.reporters.fixes import Edit
@@ -33,7 +34,10 @@ class FixSelection:
     select: tuple[str, ...] | None
     ignore: tuple[str, ...]
     config: str | None
-    ros_distro: str | None = None  # its readers: migrate fixes what validate reports for them
+    # How validate read the files: the fixed text is checked the same way (.target_check)
+    ros_distro: str | None = None
+    xacro: XacroOptions | None = None
+    no_xacro: bool = False
 
 
 def fixable_paths(problems: Sequence[Problem], stdin_name: str | None) -> list[str]:
@@ -58,18 +62,22 @@ def print_diff(result: LintResult, selection: FixSelection) -> int:
     return 2 if result.errors else report.exit_code
 
 
-def apply_fixes(result: LintResult, selection: FixSelection) -> tuple[bool, bool]:
+def apply_fixes(result: LintResult, selection: FixSelection) -> tuple[bool, bool, bool]:
     """``--fix``: migrate rewrites the files holding fixable findings; whether it changed one,
-    and whether a write failed."""
+    whether a write failed, and whether a file's fixes were refused (what they would write
+    has an error for the file's readers that it did not have: it is left unchanged)."""
     paths = _targets(result.problems)
     if not paths:
-        return False, False
+        return False, False, False
     report = run_fixes(paths, "write", selection)
+    for message in report.messages:
+        if message.startswith(("error: ", "refused ")):
+            click.echo(printable(message), err=True)
     for changed in report.changed:
         click.echo(f"txtool: fixed {printable(changed.path)} ({changed.describe()})", err=True)
     for error in report.errors:
         click.echo(f"txtool: {printable(error)}", err=True)
-    return bool(report.changed), bool(report.errors)
+    return bool(report.changed), bool(report.errors), bool(report.refused)
 
 
 def _targets(problems: Sequence[Problem]) -> list[str]:
@@ -91,7 +99,10 @@ def run_fixes(paths: Sequence[str], mode: str, selection: FixSelection) -> Repor
 
     options = MigrateOptions(mode=mode,  # type: ignore[arg-type]
                              select=selection.select, ignore=selection.ignore,
-                             config=selection.config, ros_distro=selection.ros_distro)
+                             config=selection.config, ros_distro=selection.ros_distro,
+                             no_xacro=selection.no_xacro)
+    if selection.xacro is not None:
+        options = dataclasses.replace(options, xacro=selection.xacro)
     return migrate_paths(paths, options)
 
 

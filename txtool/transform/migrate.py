@@ -30,11 +30,13 @@ from txtool.io.printable import printable
 from txtool.io.xmlio import (
     InputError,
     Source,
+    XacroOptions,
+    is_xacro,
     parse_bytes,
     read_bytes,
     replace_if_unchanged,
 )
-from txtool.lint.config import Overrides, SettingsCache
+from txtool.lint.config import Overrides, Settings, SettingsCache
 from txtool.lint.discover import expand_paths
 from txtool.lint.read_fixes import fixes_read
 from txtool.lint.suppress import Suppressions
@@ -72,7 +74,11 @@ class MigrateOptions:
     # Where the files migrated call each xacro macro (set by migrate_paths, to ROS 2).
     macro_calls: MacroCalls | None = None
     reversible: bool = False
-    ros_distro: str | None = None  # --ros-distro: the readers whose findings are fixed
+    # --ros-distro: the readers whose findings are fixed, and for whom what is written is
+    # checked (.target_check); xacro as validate runs it, for that check.
+    ros_distro: str | None = None
+    xacro: XacroOptions = XacroOptions()
+    no_xacro: bool = False
 
 
 @dataclass
@@ -158,14 +164,23 @@ def migrate_paths(paths: Iterable[str], options: MigrateOptions) -> Report:
     plan = _plan(paths, options, report)
     if options.target is not None and options.target != "ros1":
         options = dataclasses.replace(options, macro_calls=calls_in_files(_bytes_of(plan)))
-    for path, rules in plan:
+    # Each file's result, or why it could not be read, in order: told (and written) as it
+    # comes until a changed xacro file, which waits for the robots of the run that include
+    # it (_judge_includers), and the files after it with it.
+    waiting: list[FileResult | str] = []
+    held: list[FileResult] = []
+    for path, rules, settings in plan:
         try:
-            result = migrate_file(path, rules, options)
+            waiting.append(migrate_file(path, rules, options, settings))
         except InputError as exc:
-            _error(report, str(exc))
-            continue
-        report.files.append(result)
-        _record(report, result, options)
+            waiting.append(str(exc))
+        last = waiting[-1]
+        if isinstance(last, FileResult) and last.changed and is_xacro(last.path):
+            held.append(last)
+        if not held:
+            _tell(report, waiting, options)
+    _judge_includers(held, plan, options)
+    _tell(report, waiting, options)
     if options.target is not None and options.target != "ros1":
         converted = [f.path for f in report.files if f.converted and f.changed]
         steps = package_gazebo_plugins(converted) + package_build_types(converted)
@@ -174,10 +189,10 @@ def migrate_paths(paths: Iterable[str], options: MigrateOptions) -> Report:
     return report
 
 
-def _bytes_of(plan: list[tuple[str, list[Rule]]]) -> Iterator[tuple[str, bytes]]:
+def _bytes_of(plan: list[tuple[str, list[Rule], Settings]]) -> Iterator[tuple[str, bytes]]:
     """The bytes of each planned file that can be read (the others are reported when
     migrated)."""
-    for path, _ in plan:
+    for path, _, _ in plan:
         try:
             display, data = read_bytes(path)
         except InputError:
@@ -185,18 +200,54 @@ def _bytes_of(plan: list[tuple[str, list[Rule]]]) -> Iterator[tuple[str, bytes]]
         yield display, data
 
 
+def _tell(report: Report, waiting: list[FileResult | str], options: MigrateOptions) -> None:
+    for each in waiting:
+        if isinstance(each, str):
+            _error(report, each)
+            continue
+        report.files.append(each)
+        _record(report, each, options)
+        if not each.changed:  # nothing of it is written: its bytes are not needed
+            each.original = each.data = b""
+    waiting.clear()
+
+
+def _judge_includers(written: list[FileResult], plan: list[tuple[str, list[Rule], Settings]],
+                     options: MigrateOptions) -> None:
+    """Refuse a written xacro file that a robot of the run includes, where that robot's
+    expansion with what would be written has an error it did not have
+    (:func:`.target_check.judge_includers`)."""
+    if not written:
+        return
+    from txtool.transform.target_check import Written, judge_includers, target_distro
+
+    settings = {path: each for path, _, each in plan}
+    found = judge_includers([Written(r.path, r.original, r.data) for r in written],
+                            [path for path, _, _ in plan], options.target,
+                            lambda path: settings[path],
+                            distro=target_distro(options.target, options.ros_distro))
+    for result in written:
+        losses = found.get(result.path, [])
+        result.losses.extend(losses)
+        if losses and not options.allow_lossy:
+            result.refused = True
+
+
 def _plan(
     paths: Iterable[str], options: MigrateOptions, report: Report
-) -> list[tuple[str, list[Rule]]]:
-    overrides = Overrides(select=options.select, ignore=options.ignore)
+) -> list[tuple[str, list[Rule], Settings]]:
+    overrides = Overrides(select=options.select, ignore=options.ignore, xacro=options.xacro,
+                          no_xacro=options.no_xacro, ros_distro=options.ros_distro)
     settings = SettingsCache(overrides, options.config)
     plan = []
     unread = lambda where, reason: _error(report, f"{where}: {reason}")  # noqa: E731
     for path in expand_paths(paths, report=unread):
         if path == "-":
             raise InputError("-: migrate rewrites files in place; standard input is not supported")
-        enabled = settings.for_file(path).enabled
-        plan.append((path, [r for r in all_rules().values() if r.fixable and r.code in enabled]))
+        each = settings.for_file(path)
+        enabled = each.enabled
+        plan.append((path, [r for r in all_rules().values() if r.fixable and r.code in enabled],
+                     each))
     report.messages.extend(f"txtool: note: {note}" for note in settings.notes)
     return plan
 
@@ -242,13 +293,44 @@ def _write(result: FileResult) -> None:
         raise InputError(f"{result.path}: cannot write: {exc.strerror or exc}") from None
 
 
-@paused
-def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions) -> FileResult:
+def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions,
+                 settings: Settings | None = None) -> FileResult:
     """The migrated bytes of one file (nothing is written); :class:`InputError` if unreadable.
 
     A file whose conversion would lose something is refused (left unchanged) unless
-    ``allow_lossy``; losses of a file that would not change anyway are only reported.
+    ``allow_lossy``; losses of a file that would not change anyway are only reported. What
+    would be written is checked for the target's loaders (:mod:`.target_check`; ``settings``:
+    the file's, as validate resolves them): an error they did not have with the original is
+    a loss.
     """
+    result = _migrated(path, rules, options)
+    if not result.refused and result.data != result.original:
+        _judge(result, path, options, settings)
+    return result
+
+
+def _judge(result: FileResult, path: str, options: MigrateOptions,
+           settings: Settings | None) -> None:
+    from txtool.transform.target_check import judge, prepared, target_distro
+
+    if settings is None:
+        settings = SettingsCache(Overrides(xacro=options.xacro, no_xacro=options.no_xacro,
+                                           ros_distro=options.ros_distro)).for_file(path)
+    try:
+        distro = target_distro(options.target, options.ros_distro)
+    except ValueError as exc:
+        raise InputError(str(exc)) from None
+    written = prepared(path, result.path, result.data, settings)
+    judged = judge(written, lambda: prepared(path, result.path, result.original, settings),
+                   options.target, distro=distro, own=settings.stated, settings=settings)
+    result.warnings.extend(judged.warnings)
+    result.losses.extend(judged.losses)
+    if judged.losses and not options.allow_lossy:
+        result.refused = True
+
+
+@paused
+def _migrated(path: str, rules: Sequence[Rule], options: MigrateOptions) -> FileResult:
     display, original = read_bytes(path)
     tree = parse_bytes(original, display)
     # What the end needs of the document as read is kept, and its tree is fixed in place:

@@ -1,0 +1,210 @@
+"""What convert and migrate write is judged by the loaders of the target: ros2_control of each
+ROS 2 distribution for ros2-p1/ros2-p2, ros_control for ros1 (txtool.transform.target_check).
+
+An error of validate's rules for those readers that the input did not have is a loss: exit 1,
+nothing written, unless --allow-lossy.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+import txtool
+
+JOINTS = """\
+  <link name="base"/><link name="l1"/><link name="l2"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
+    <limit effort="1" velocity="1" lower="-1" upper="1"/></joint>
+  <joint name="j2" type="revolute"><parent link="base"/><child link="l2"/><mimic joint="j1"/>
+    <limit effort="1" velocity="1" lower="-1" upper="1"/></joint>
+"""
+
+
+def _simple(name: str, joint: str) -> str:
+    return f"""\
+  <transmission name="{name}">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="{joint}">
+      <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+    </joint>
+    <actuator name="{name}_motor"><mechanicalReduction>20</mechanicalReduction></actuator>
+  </transmission>
+"""
+
+
+CLEAN = f'<?xml version="1.0"?>\n<robot name="arm">\n{JOINTS}{_simple("t1", "j1")}</robot>\n'
+# An offset that underflows a double: Humble's parser reads it as 0, Jazzy's from_chars
+# refuses it and ros2_control silently uses 0.0 (ros_control's std::stod throws on it too).
+UNDERFLOW = CLEAN.replace("</joint>\n    <actuator",
+                          "<offset>1e-400</offset></joint>\n    <actuator", 1)
+TX105 = ("error: line {line}: TX105 invalid-number for ros2_control (jazzy, kilted, rolling): "
+         "offset of joint 'j1' of transmission 't1' is '1e-400', not a finite number: "
+         "ros2_control silently uses 0.0\n")
+REFUSED = "txtool: 1 item(s) would be lost; nothing written (use --allow-lossy to accept)\n"
+
+
+@pytest.fixture
+def here(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    return tmp_path
+
+
+def _line_of(text: str, needle: str) -> int:
+    return next(n for n, line in enumerate(text.splitlines(), 1) if needle in line)
+
+
+def test_a_conversion_ros2_control_refuses_exits_1_and_names_the_loader(run, here):
+    (here / "arm.urdf").write_text(UNDERFLOW)
+    code, out, err = run("convert", "arm.urdf", "--to", "ros2-p2", "-o", "out.urdf")
+    assert code == 1 and out == "" and not (here / "out.urdf").exists()
+    code, out, lossy = run("convert", "arm.urdf", "--to", "ros2-p2", "--allow-lossy")
+    assert code == 0
+    line = _line_of(out, "<offset>1e-400</offset>")
+    assert err.endswith(TX105.format(line=line) + REFUSED)
+    assert TX105.format(line=line).replace("error:", "warning:") in lossy
+
+
+def test_ros_distro_narrows_the_distributions_checked(run, here):
+    (here / "arm.urdf").write_text(UNDERFLOW)
+    # Humble's parser reads the offset as 0 (TX105 is for the other distributions)
+    code, out, err = run("convert", "arm.urdf", "--to", "ros2-p2", "--ros-distro", "humble",
+                         "--hardware-plugin", "arm/Hardware")
+    assert code == 0 and "TX105" not in err
+    code, out, err = run("convert", "arm.urdf", "--to", "ros2-p2", "--ros-distro", "jazzy")
+    assert code == 1 and "TX105 invalid-number for ros2_control (jazzy):" in err
+    code, out, err = run("convert", "arm.urdf", "--to", "ros2-p2", "--ros-distro", "noetic")
+    assert (code, out, err) == (2, "", "txtool: --ros-distro noetic does not read --to ros2-p2: "
+                                       "ros2_control does\n")
+
+
+def test_an_error_the_input_had_for_the_same_reader_is_not_the_conversions(run, here):
+    # t0 already spells its reduction in ROS 1 form inside <ros2_control> (TX303): converting
+    # t1 leaves it as it was; the conversion says so, and is not refused for it.
+    existing = CLEAN.replace("</robot>", """\
+  <ros2_control name="Arm" type="system">
+    <hardware><plugin>arm_driver/ArmHardware</plugin></hardware>
+    <joint name="j2"><state_interface name="position"/></joint>
+    <transmission name="t0">
+      <plugin>transmission_interface/SimpleTransmission</plugin>
+      <joint name="j2" role="joint1"><mechanicalReduction>50</mechanicalReduction></joint>
+      <actuator name="m0" role="actuator1"/>
+    </transmission>
+  </ros2_control>
+</robot>""")
+    (here / "arm.urdf").write_text(existing)
+    code, out, err = run("validate", "arm.urdf", "--ros-distro", "jazzy")
+    assert code == 1 and "TX303" in out
+    code, out, err = run("convert", "arm.urdf", "--to", "ros2-p2")
+    (said,) = [line for line in err.splitlines() if "TX303" in line]
+    assert code == 0 and said.startswith("warning: line ")
+    assert said.endswith("ros2_control reads only <mechanical_reduction>, so the reduction "
+                         "silently becomes 1.0 (the input has it already)")
+
+
+def test_a_robot_left_without_ros2_control_is_refused_whole(run, here):
+    (here / "hand.urdf").write_text(CLEAN.replace("transmission_interface/SimpleTransmission",
+                                                  "vendor/SimpleTransmission"))
+    code, out, err = run("convert", "hand.urdf", "--to", "ros2-p2")
+    assert code == 1 and out == ""
+    assert ("error: ros2_control refuses this robot whole: it throws \"no 'ros2_control' tag "
+            "found in the URDF\"") in err
+
+
+def test_ros2_p1_is_held_to_ros2_control_but_for_its_role_elements(run, here):
+    (here / "arm.urdf").write_text(CLEAN)
+    code, out, err = run("convert", "arm.urdf", "--to", "ros2-p1", "--hardware-plugin",
+                         "arm/Hardware")
+    line = _line_of(out, "<role>")
+    assert (code, err) == (0, "warning: ros2-p1 is not what ros2_control reads: it throws \"no "
+                              "attribute 'role' in 'joint' tag\" on its <role> elements (TX303, "
+                              f"first at line {line}); the rest is checked as ros2_control "
+                              "reads it (--to ros2-p2 writes that)\n")
+    (here / "bad.urdf").write_text(UNDERFLOW)
+    code, out, err = run("convert", "bad.urdf", "--to", "ros2-p1")
+    assert code == 1 and "TX105 invalid-number" in err
+
+
+def test_migrate_refuses_to_write_what_the_target_refuses(run, here):
+    (here / "arm.urdf").write_text(UNDERFLOW)
+    code, out, err = run("migrate", "--write", "--to", "ros2-p2", "arm.urdf")
+    assert code == 1 and (here / "arm.urdf").read_text() == UNDERFLOW
+    assert err.endswith("refused arm.urdf: 1 item(s) would be lost; not changed (use "
+                        "--allow-lossy to accept)\n1 file(s) refused (losses; see "
+                        "--allow-lossy)\n")
+    assert "error: arm.urdf: line " in err and "TX105 invalid-number" in err
+    code, out, err = run("migrate", "--write", "--to", "ros2-p2", "--allow-lossy", "arm.urdf")
+    assert code == 0 and "<ros2_control" in (here / "arm.urdf").read_text()
+
+
+MACRO_IN_BLOCK = """\
+<?xml version="1.0"?>
+<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="trans" params="j">
+    <transmission name="${j}_trans">
+      <plugin>transmission_interface/SimpleTransmission</plugin>
+      <joint name="${j}" role="joint1"><mechanical_reduction>50</mechanical_reduction></joint>
+      <actuator name="${j}_motor" role="actuator1"/>
+    </transmission>
+  </xacro:macro>
+  <link name="base"/><link name="a"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="a"/>
+    <limit effort="1" velocity="1" lower="-1" upper="1"/></joint>
+  <ros2_control name="HW" type="system">
+    <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+    <joint name="j1"><command_interface name="position"/></joint>
+    <xacro:trans j="j1"/>
+  </ros2_control>
+</robot>
+"""
+
+
+def test_back_to_ros1_is_held_to_what_still_reads_the_file(run, here):
+    """A ROS 2 transmission in a macro called inside <ros2_control>: rewritten in ROS 1 form
+    where it is, ros_control never reads it and ros2_control, which still reads the block,
+    throws. The expansion of the written source says so."""
+    (here / "robot.urdf.xacro").write_text(MACRO_IN_BLOCK)
+    code, out, err = run("migrate", "--write", "--to", "ros1", "robot.urdf.xacro")
+    assert code == 1 and (here / "robot.urdf.xacro").read_text() == MACRO_IN_BLOCK
+    assert ("error: robot.urdf.xacro: line 4: TX101 missing-type for ros2_control (humble, "
+            "jazzy, kilted, rolling): transmission 'j1_trans' has no <plugin>: ros2_control "
+            "throws \"Missing <plugin> tag of <transmission> element\" (after xacro "
+            "expansion)\n") in err
+
+
+def test_the_library_reports_the_same_losses():
+    assert txtool.convert(CLEAN, to="ros2-p2").losses == []
+    (loss,) = txtool.convert(UNDERFLOW, to="ros2-p2").losses
+    assert loss.startswith("line ") and "TX105 invalid-number for ros2_control " \
+        "(jazzy, kilted, rolling)" in loss
+    assert txtool.convert(UNDERFLOW, to="ros2-p2", ros_distro="humble").losses == []
+
+
+ROBOT_INCLUDING = """\
+<?xml version="1.0"?>
+<robot name="gripper" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="base"/><link name="l1"/><link name="l2"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
+    <limit effort="1" velocity="1" lower="-1" upper="1"/></joint>
+  <joint name="j2" type="revolute"><parent link="base"/><child link="l2"/><mimic joint="j1"/>
+    <limit effort="1" velocity="1" lower="-1" upper="1"/></joint>
+  <xacro:include filename="gripper.transmission.xacro"/>
+</robot>
+"""
+
+
+def test_a_fragment_is_judged_in_the_robot_that_includes_it(run, here):
+    """Alone, the fragment has no joints to say that j2 is a mimic joint; the robot that
+    includes it, expanded with what would be written, does."""
+    fragment = ('<?xml version="1.0"?>\n<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                f'{_simple("t1", "j1")}{_simple("t2", "j2")}</robot>\n')
+    (here / "robot.urdf.xacro").write_text(ROBOT_INCLUDING)
+    (here / "gripper.transmission.xacro").write_text(fragment)
+    code, out, err = run("migrate", "--write", "--to", "ros2-p2", ".")
+    assert code == 1 and (here / "gripper.transmission.xacro").read_text() == fragment
+    assert ("error: ./gripper.transmission.xacro: as ./robot.urdf.xacro includes it (lines of "
+            "its expansion): line ") in err
+    assert "TX206 mimic-command-interface for ros2_control (jazzy, kilted, rolling): joint " \
+        "'j2' mimics 'j1'" in err
+    assert err.endswith("1 file(s) refused (losses; see --allow-lossy)\n")
+    code, out, err = run("migrate", "--write", "--to", "ros2-p2", "--ros-distro", "humble", ".")
+    assert code == 0 and "<ros2_control" in (here / "gripper.transmission.xacro").read_text()
