@@ -189,7 +189,8 @@ def render_text(outcome: MapOutcome) -> str:
     for quantity, values in outcome.values.items():
         table.add_row(quantity, *(_show(v) for v in values))
     buffer = io.StringIO()
-    console = Console(file=buffer, width=100, color_system=None, highlight=False)
+    console = Console(file=buffer, width=100, color_system=None, highlight=False,
+                      emoji=False)
     console.print(table)
     if "effort" in outcome.values:
         console.print(f"effort convention: {outcome.convention} ({_LOADERS[outcome.convention]} "
