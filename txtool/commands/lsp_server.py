@@ -16,6 +16,7 @@ Only this module and :mod:`txtool.commands.lsp_transport` import pygls, and only
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import os
 import threading
 from collections.abc import Callable, Sequence
@@ -131,10 +132,8 @@ class TxtoolServer(LanguageServer):
             async with self._server:
                 await self._server.serve_forever()
 
-        try:
+        with contextlib.suppress(asyncio.CancelledError):  # shut down
             asyncio.run(listen())
-        except asyncio.CancelledError:  # shut down
-            pass
 
 
 def build(options: Options) -> TxtoolServer:
