@@ -52,6 +52,10 @@ PARAMETERS: dict[str, tuple[str, str]] = {
 BOUND_KEYS = ("damping", "friction", "rotor_inertia", "gains", "sensor_noise", "payload")
 PAYLOAD_KEYS = ("link", "mass", "xyz")
 MAX_SAMPLES = 100_000
+# The largest value of any bound and of a payload's coordinates: far beyond any robot, and
+# small enough that the loop's arithmetic stays finite (1e307 overflowed it).
+MAX_BOUND = 1e6
+MAX_XYZ = 1e3
 
 
 @dataclass(frozen=True)
@@ -146,8 +150,10 @@ def _payload(shell: Campaign, table: Any) -> tuple[Payload, tuple[float, float]]
         raise shell.error(where, f"{where}.mass: missing (kg, [low, high] or one number)")
     mass = _bound(shell, f"{where}.mass", "payload_mass", table["mass"])
     xyz = table.get("xyz", [0.0, 0.0, 0.0])
-    if not (isinstance(xyz, list) and len(xyz) == 3 and all(_finite_number(v) for v in xyz)):
-        raise shell.error(f"{where}.xyz", f"{where}.xyz: expected three numbers (m), got {xyz!r}")
+    if not (isinstance(xyz, list) and len(xyz) == 3
+            and all(_finite_number(v) and abs(v) <= MAX_XYZ for v in xyz)):
+        raise shell.error(f"{where}.xyz", f"{where}.xyz: expected three numbers (m) within "
+                                          f"±{MAX_XYZ:g}, got {xyz!r}")
     return Payload(link, (float(xyz[0]), float(xyz[1]), float(xyz[2]))), mass
 
 
@@ -165,6 +171,8 @@ def _bound(shell: Campaign, dotted: str, name: str, value: Any) -> tuple[float, 
     wanted = PARAMETERS[name][1]
     if low < 0 or (wanted == "positive" and low == 0):
         raise shell.error(dotted, f"{dotted}: must be {wanted}, got {low:g}")
+    if high > MAX_BOUND:
+        raise shell.error(dotted, f"{dotted}: at most {MAX_BOUND:g}, got {high:g}")
     return low, high
 
 
