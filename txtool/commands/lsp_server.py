@@ -116,7 +116,11 @@ class TxtoolServer(LanguageServer):
         async def connection(reader: asyncio.StreamReader,
                              writer: asyncio.StreamWriter) -> None:
             nonlocal taken
-            body = await first_message(reader)
+            try:
+                body = await first_message(reader)
+            except asyncio.CancelledError:  # the server ends while this one says nothing
+                writer.close()
+                return
             if taken or body is None or not authentic(body, token):
                 writer.close()
                 return

@@ -14,7 +14,6 @@ from __future__ import annotations
 import asyncio
 import hmac
 import json
-import logging
 import re
 import sys
 import threading
@@ -27,8 +26,6 @@ MAX_FIRST = 1024 * 1024  # bytes of the first message over TCP, read before the 
 FIRST_WAIT = 10.0  # seconds a TCP client has to send its first message
 _CHUNK = 1024 * 1024
 _LENGTH = re.compile(rb"Content-Length: *(\d+)\r\n", re.IGNORECASE)
-
-logger = logging.getLogger(__name__)
 
 
 class Reader(Protocol):
@@ -128,7 +125,8 @@ async def serve(reader: Reader, protocol: Any, stop: threading.Event,
         try:
             protocol.handle_message(json.loads(body, object_hook=protocol.structure_message))
         except Exception as exc:  # as pygls's loop: a bad message is reported, not fatal
-            logger.exception("Unable to handle message")
+            print(f"txtool lsp: a message was refused: {type(exc).__name__}: {exc}"[:500],
+                  file=sys.stderr, flush=True)
             on_error(exc, JsonRpcException)
 
 
