@@ -92,7 +92,8 @@ def _client(where: Where) -> Iterator[Any]:
         try:
             client = Client(where.address, timeout=CONNECT_TIMEOUT)
         except (OSError, TimeoutError, ValueError) as exc:
-            raise InputError(f"--scheduler {where.address}: cannot connect: {exc}") from None
+            reason = str(exc) or f"no answer within {CONNECT_TIMEOUT}"  # (a bare timeout)
+            raise InputError(f"--scheduler {where.address}: cannot connect: {reason}") from None
         with client:
             yield client
         return
