@@ -37,6 +37,12 @@ def test_show_and_roundtrip_print_names_as_text(run: Run, robot: str, command: l
     assert_shown_as_text(code, out)
 
 
+def test_map_prints_names_as_text(run: Run, robot: str):
+    code, out, _ = run("map", robot, "-t", NAME, "--to", "actuator", "--position", "0.1")
+    assert "[bold]" in out.replace("\n", "").replace(" ", ""), out  # (the title wraps)
+    assert_shown_as_text(code, out.replace("\n", "").replace(" ", ""))
+
+
 @pytest.mark.skipif(importlib.util.find_spec("pinocchio") is None,
                     reason="simulate needs the 'sim' extra (pinocchio)")
 @pytest.mark.parametrize("colour", COLOURS)
