@@ -137,8 +137,11 @@ def server() -> Iterator[callable]:
                     continue
                 sockets.append(connection)
                 if reply is not None:  # says it, and leaves
-                    connection.sendall(reply)
-                    connection.shutdown(socket.SHUT_WR)
+                    try:
+                        connection.sendall(reply)
+                        connection.shutdown(socket.SHUT_WR)
+                    except OSError:  # the client left first (it read enough)
+                        pass
 
         threading.Thread(target=serve, daemon=True).start()
         return f"tcp://127.0.0.1:{listener.getsockname()[1]}"
