@@ -73,6 +73,7 @@ def test_a_campaign_value_out_of_range_is_one_line(run: Run, tmp_path: Path, arm
 @pytest.mark.parametrize("text", [
     "samples = 9223372036854775807\n", "samples = -1\n", "samples = 1e3\n", "seed = -1\n",
     "samples = 99999\ncorners = true\n[bounds]\ndamping = [0, 1]\nfriction = [0, 1]\n",
+    "samples = 100000\ncandidates = [" + ", ".join(['"arm.urdf"'] * 2000) + "]\n",  # 2e8 runs
 ])
 def test_counts_are_bounded_before_any_sample_is_drawn(run: Run, tmp_path: Path, arm: str,
                                                        text: str):

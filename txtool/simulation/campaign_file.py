@@ -52,6 +52,7 @@ PARAMETERS: dict[str, tuple[str, str]] = {
 BOUND_KEYS = ("damping", "friction", "rotor_inertia", "gains", "sensor_noise", "payload")
 PAYLOAD_KEYS = ("link", "mass", "xyz")
 MAX_SAMPLES = 100_000
+MAX_RUNS = 1_000_000  # samples times candidates: each is a task built before any runs
 # The largest value of any bound and of a payload's coordinates: far beyond any robot, and
 # small enough that the loop's arithmetic stays finite (1e307 overflowed it).
 MAX_BOUND = 1e6
@@ -101,6 +102,10 @@ def read_campaign(path: str) -> Campaign:
         raise shell.error("samples", "no samples: give samples = N (N > 0) or corners = true")
     if count > MAX_SAMPLES:
         raise shell.error("samples", f"{count} samples; a campaign takes at most {MAX_SAMPLES}")
+    if count * len(candidates) > MAX_RUNS:
+        raise shell.error("candidates", f"{len(candidates)} candidates of {count} samples: "
+                                        f"{count * len(candidates)} runs; a campaign makes at "
+                                        f"most {MAX_RUNS}")
     return Campaign(path, seed, samples, corners, candidates, bounds, payload, text)
 
 
