@@ -11,8 +11,10 @@ checked once, at its newest version; every edit names the version it was made fo
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import json
 import os
+import signal
 import socket
 import sys
 from pathlib import Path
@@ -28,6 +30,25 @@ ROOT = Path(__file__).resolve().parents[2]
 TOKEN = "hostile-test-token-0123456789"
 WAIT = 20.0  # seconds for one answer
 ENV = {**os.environ, "PYTHONPATH": str(ROOT), "TXTOOL_LSP_TOKEN": TOKEN}
+
+
+STARTED: list[asyncio.subprocess.Process] = []  # the servers a test started
+
+
+@pytest.fixture(autouse=True)
+def no_server_left() -> Any:
+    """A server a failed test left (blocked, or waiting for its client) is killed, if the
+    process of that number is still one of these servers."""
+    yield
+    while STARTED:
+        process = STARTED.pop()
+        if process.returncode is not None:
+            continue
+        with contextlib.suppress(OSError):
+            command = Path(f"/proc/{process.pid}/cmdline").read_bytes()
+            if b"txtool\x00lsp" in command and str(ROOT).encode() in Path(
+                    f"/proc/{process.pid}/environ").read_bytes():
+                os.kill(process.pid, signal.SIGKILL)
 
 
 def frame(message: dict[str, Any]) -> bytes:
@@ -110,6 +131,7 @@ async def stdio_server() -> tuple[asyncio.subprocess.Process, Raw]:
         sys.executable, "-m", "txtool", "lsp", cwd=str(ROOT), env=ENV,
         stdin=asyncio.subprocess.PIPE, stdout=asyncio.subprocess.PIPE,
         stderr=asyncio.subprocess.PIPE, limit=2**24)
+    STARTED.append(process)
     assert process.stdin is not None and process.stdout is not None
     return process, Raw(process.stdout, process.stdin)
 
@@ -268,9 +290,11 @@ def free_port() -> int:
 
 
 async def tcp_server(port: int, env: dict[str, str] = ENV) -> asyncio.subprocess.Process:
-    return await asyncio.create_subprocess_exec(
+    process = await asyncio.create_subprocess_exec(
         sys.executable, "-m", "txtool", "lsp", "--tcp", f"127.0.0.1:{port}", cwd=str(ROOT),
         env=env, stdout=asyncio.subprocess.PIPE, stderr=asyncio.subprocess.PIPE)
+    STARTED.append(process)
+    return process
 
 
 async def connect(port: int) -> Raw:
