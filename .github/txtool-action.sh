@@ -7,7 +7,9 @@
 #             ~/.cache/txtool-action)
 #   validate: TXTOOL_PATHS (one path a line; see paths_of), TXTOOL_ARGS (options, split on
 #             spaces), TXTOOL_SARIF (empty: no SARIF), TXTOOL_CONFIG (empty: the repository's
-#             own configuration), TXTOOL_TRUST_XACRO (true or false, default false)
+#             own configuration; on a pull request, the base commit's: see base_config),
+#             TXTOOL_TRUST_XACRO (true or false, default false); GITHUB_EVENT_NAME and
+#             GITHUB_EVENT_PATH (the base commit of a pull request)
 # cache-key writes to GITHUB_OUTPUT the key and the prefix to restore the cache by.
 # install uses uv where it is on PATH, else pip, each with its cache in TXTOOL_CACHE; the
 # action's checkout is built into a wheel once per content (wheel_of), not on every run.
@@ -110,6 +112,42 @@ paths_of() {
     done <<< "$text"
 }
 
+# A pull request's checkout holds the pull request's own configuration at its root, which
+# could silence every finding: unless config: names a file, the base commit's configuration
+# applies (its .txtool.toml, else its pyproject.toml with [tool.txtool], else the defaults).
+# The base commit is read from the checkout, fetched (one commit) when it is not there; when
+# it cannot be read the run stops with one line rather than use the pull request's.
+base_config() {
+    case "${GITHUB_EVENT_NAME:-}" in
+        pull_request | pull_request_target) ;;
+        *) return 0 ;;
+    esac
+    local base="" folder
+    if [ -n "${GITHUB_EVENT_PATH:-}" ] && [ -f "$GITHUB_EVENT_PATH" ]; then
+        base=$(python -c 'import json, sys; print(json.load(open(sys.argv[1]))["pull_request"]["base"]["sha"])' \
+               "$GITHUB_EVENT_PATH" 2>/dev/null)
+    fi
+    if ! [[ "$base" =~ ^[0-9a-f]{40}([0-9a-f]{24})?$ ]]; then
+        echo "txtool action: a pull request whose base commit is not in GITHUB_EVENT_PATH: set config: to the base branch's configuration (see docs/ci.md)" >&2
+        return 2
+    fi
+    if ! git cat-file -e "$base^{commit}" 2>/dev/null \
+            && ! git fetch --quiet --no-tags --depth=1 origin "$base" 2>/dev/null; then
+        echo "txtool action: cannot read the pull request's base commit $base for its configuration: set config: to the base branch's configuration (see docs/ci.md)" >&2
+        return 2
+    fi
+    folder=$(mktemp -d "${RUNNER_TEMP:-${TMPDIR:-/tmp}}/txtool-base.XXXXXX") || return 2
+    if git show "$base:.txtool.toml" > "$folder/.txtool.toml" 2>/dev/null; then
+        options+=(--config "$folder/.txtool.toml")
+    elif git show "$base:pyproject.toml" > "$folder/pyproject.toml" 2>/dev/null \
+            && grep -q '^[[:space:]]*\[tool\.txtool' "$folder/pyproject.toml"; then
+        options+=(--config "$folder/pyproject.toml")
+    else
+        : > "$folder/.txtool.toml"  # the base has none: the defaults, not the pull request's
+        options+=(--config "$folder/.txtool.toml")
+    fi
+}
+
 validate() {
     local -a paths=() args options=()
     paths_of
@@ -121,6 +159,9 @@ validate() {
     read -r -a args <<< "${TXTOOL_ARGS:-}"
     if [ -n "${TXTOOL_CONFIG:-}" ]; then
         options+=(--config "$TXTOOL_CONFIG")
+    elif ! base_config; then
+        record 2
+        return 2
     fi
     case "${TXTOOL_TRUST_XACRO:-false}" in
         true) options+=(--trust-xacro) ;;

@@ -156,11 +156,19 @@ def main() -> None:
     # What is loaded so far lives as long as the process: the garbage collector need not walk
     # it in every full collection (nor at exit).
     gc.freeze()
+    # The first signal raises Stopped wherever it lands between the two swaps of handlers
+    # (while either is being installed too), and always inside this try: none ends in a
+    # traceback. Before the first swap and after the second, a signal ends the process at once.
+    try:
+        _stopping_on_signals()
+    except signals.Stopped as stop:  # a signal while leaving: nothing is left to clean up
+        _leave(stop.line, stop.exit_code)
+
+
+def _stopping_on_signals() -> None:
     signals.stop_on_signals()
     try:
         _main()
-    except signals.Stopped as stop:  # a signal while leaving: nothing is left to clean up
-        _leave(stop.line, stop.exit_code)
     finally:
         signals.exit_on_signals()  # until the process ends
 

@@ -29,10 +29,18 @@ LEGACY = """<robot name="r">
 """
 
 
+def outside_an_event() -> dict[str, str]:
+    """This process's environment without the event GitHub would be running the tests for
+    (on a pull request, the action reads the base commit's configuration)."""
+    return {k: v for k, v in os.environ.items()
+            if k not in ("GITHUB_EVENT_NAME", "GITHUB_EVENT_PATH")}
+
+
 def action_step(step: str, cwd: Path, **env: str) -> subprocess.CompletedProcess[str]:
     """Run one step of action.yml's script with a PATH whose txtool is this checkout's."""
     bin_dir = Path(sys.executable).parent
-    variables = {**os.environ, "PATH": f"{bin_dir}{os.pathsep}{os.environ['PATH']}", **env}
+    variables = {**outside_an_event(), "PATH": f"{bin_dir}{os.pathsep}{os.environ['PATH']}",
+                 **env}
     variables.pop("GITHUB_ACTIONS", None)
     return subprocess.run(["bash", str(SCRIPT), step], cwd=cwd, env=variables,
                           capture_output=True, text=True, timeout=120)
@@ -111,7 +119,7 @@ def recorded_argv(cwd: Path, tmp_path: Path, **env: str) -> tuple[int, list[list
         f"#!{sys.executable}\nimport json, sys\n"
         f"open({str(log)!r}, 'a').write(json.dumps(sys.argv[1:]) + '\\n')\n")
     (fake / "txtool").chmod(0o755)
-    variables = {**os.environ, "PATH": f"{fake}{os.pathsep}{os.environ['PATH']}", **env}
+    variables = {**outside_an_event(), "PATH": f"{fake}{os.pathsep}{os.environ['PATH']}", **env}
     done = subprocess.run(["bash", str(SCRIPT), "validate"], cwd=cwd, env=variables,
                           capture_output=True, text=True, timeout=60)
     calls = [json.loads(line) for line in log.read_text().splitlines()] if log.exists() else []

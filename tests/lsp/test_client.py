@@ -55,6 +55,16 @@ def applied(text: str, edits: list[lsp.TextEdit]) -> str:
     return text
 
 
+def edits_of(action: lsp.CodeAction, version: int | None = None) -> list[lsp.TextEdit]:
+    """The edits of ``action``: one document's, naming the version they were made for."""
+    assert action.edit is not None and action.edit.changes is None
+    [change] = action.edit.document_changes or []
+    assert isinstance(change, lsp.TextDocumentEdit)
+    assert change.text_document.version is not None
+    assert version is None or change.text_document.version == version
+    return [edit for edit in change.edits if isinstance(edit, lsp.TextEdit)]
+
+
 def full_change(uri: str, version: int, text: str) -> lsp.DidChangeTextDocumentParams:
     return lsp.DidChangeTextDocumentParams(
         text_document=lsp.VersionedTextDocumentIdentifier(uri=uri, version=version),
@@ -130,8 +140,7 @@ async def _edits(editor: Editor, repository: Path) -> None:
         context=lsp.CodeActionContext(diagnostics=[unprefixed],
                                       only=[lsp.CodeActionKind.QuickFix]))), WAIT)
     assert [a.title for a in actions] == ["Fix TX300 unprefixed-interface"]
-    assert actions[0].edit is not None and actions[0].edit.changes is not None
-    fixed = applied(ARM, actions[0].edit.changes[uri])
+    fixed = applied(ARM, edits_of(actions[0]))
     assert fixed == ARM.replace(">PositionJointInterface<",
                                 ">hardware_interface/PositionJointInterface<")
     editor.text_document_did_change(full_change(uri, 2, fixed))

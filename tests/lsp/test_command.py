@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import asyncio
+import os
 import socket
 import subprocess
 import sys
@@ -17,6 +18,7 @@ from pygls.lsp.client import LanguageClient
 from txtool.cli import cli
 
 ROOT = Path(__file__).resolve().parents[2]
+TOKEN = "a-token-the-test-chose"
 
 
 def invoke(*args: str) -> tuple[int, str, str]:
@@ -57,7 +59,8 @@ def test_a_session_over_tcp(tmp_path: Path) -> None:
         probe.bind(("127.0.0.1", 0))
         port = probe.getsockname()[1]
     server = subprocess.Popen([sys.executable, "-m", "txtool", "lsp", "--tcp",
-                               f"127.0.0.1:{port}"], cwd=ROOT, stderr=subprocess.PIPE)
+                               f"127.0.0.1:{port}"], cwd=ROOT, stderr=subprocess.PIPE,
+                              env={**os.environ, "TXTOOL_LSP_TOKEN": TOKEN})
     try:
         found = asyncio.run(asyncio.wait_for(_session(port, tmp_path), 30))
         _, err = server.communicate(timeout=10)  # it leaves on "exit", by itself
@@ -88,7 +91,8 @@ async def _session(port: int, folder: Path) -> list[str]:
                 raise
             await asyncio.sleep(0.1)
     await client.initialize_async(lsp.InitializeParams(
-        capabilities=lsp.ClientCapabilities(), root_uri=folder.as_uri()))
+        capabilities=lsp.ClientCapabilities(), root_uri=folder.as_uri(),
+        initialization_options={"token": TOKEN}))
     client.initialized(lsp.InitializedParams())
     uri = (folder / "arm.urdf").as_uri()
     text = ARM.replace(">PositionJointInterface<", ">hardware_interface/PositionJointInterface<")

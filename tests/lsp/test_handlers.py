@@ -10,7 +10,7 @@ from lsprotocol import types as lsp
 from pygls.workspace import TextDocument
 
 from tests.lsp.robots import ARM, ARM_XACRO, REDUCTION, REDUCTION_LINE
-from tests.lsp.test_client import applied
+from tests.lsp.test_client import applied, edits_of
 from txtool.commands.lsp_document import Options, problems_of
 from txtool.commands.lsp_server import code_actions, diagnostics_of, hover_of
 from txtool.io.xmlio import XacroOptions
@@ -153,8 +153,7 @@ def test_the_quick_fix_and_the_fix_all_remove_what_they_fix(repo: Path) -> None:
         ("Fix TX300 unprefixed-interface", lsp.CodeActionKind.QuickFix),
         ("Fix all txtool fixable problems (TX300 x1)", "source.fixAll.txtool")]
     for action in actions:
-        assert action.edit is not None and action.edit.changes is not None
-        edits = action.edit.changes[buffer.uri]
+        edits = edits_of(action)
         assert len(edits) == 1 and edits[0].range.start.line == 12  # one line changes
         fixed = document(repo / "arm.urdf", applied(ARM, edits), version=2)
         assert codes(diagnostics_of(fixed, [str(repo)], OPTIONS)) == ["TX106"]
@@ -184,7 +183,7 @@ def test_fix_edits_keep_every_other_line_and_the_missing_last_newline(repo: Path
     text = text.replace('<robot name="arm">', '<robot name="arm"><!-- été -->')
     buffer = document(repo / "arm.urdf", text)
     actions = code_actions(buffer, lsp.CodeActionContext(diagnostics=[]), [str(repo)], OPTIONS)
-    edits = actions[0].edit.changes[buffer.uri]  # type: ignore[union-attr,index]
+    edits = edits_of(actions[0])  # type: ignore[union-attr,index]
     assert applied(text, edits) == text.replace(">PositionJointInterface<",
                                                 ">hardware_interface/PositionJointInterface<")
 
@@ -338,7 +337,7 @@ def test_a_buffer_is_read_in_the_encoding_its_declaration_names(repo: Path) -> N
     assert zero.range.start.character == len("      <!--é-->")
     actions = code_actions(document(repo / "arm.urdf", latin),
                            lsp.CodeActionContext(diagnostics=[]), [str(repo)], OPTIONS)
-    fixed = applied(latin, actions[0].edit.changes[(repo / "arm.urdf").as_uri()])  # type: ignore
+    fixed = applied(latin, edits_of(actions[0]))  # type: ignore
     assert fixed == latin.replace(">PositionJointInterface<",
                                   ">hardware_interface/PositionJointInterface<")
     # An encoding that cannot hold the text, or that is no encoding: UTF-8.

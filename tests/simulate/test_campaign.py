@@ -180,7 +180,7 @@ sensor_noise = [0.0, 1e-4]
     ("samples = 1\n[bounds.payload]\nlink = \"rod\"\n",
      "campaign.toml:2: bounds.payload.mass: missing"),
     ("samples = 1\n[bounds.payload]\nlink = \"rod\"\nmass = 1\nxyz = [0, 0]\n",
-     "campaign.toml:5: bounds.payload.xyz: expected three numbers (m), got [0, 0]"),
+     "campaign.toml:5: bounds.payload.xyz: expected three numbers (m) within ±1000, got [0, 0]"),
     ("samples = 1\n[bounds.payload]\nlink = \"rod\"\nmass = 1\ncolour = 1\n",
      "campaign.toml:5: bounds.payload.colour: unknown"),
     ("samples = 1\n[bounds]\npayload = 2\n",

@@ -66,13 +66,17 @@ def test_a_local_cluster_gives_the_serial_json_to_the_bit(serial, tmp_path):
     assert simulate(*args, "--workers", "2", cwd=tmp_path) == (code, out, "")
 
 
+# A cluster of the user's own, on plain TCP (txtool's embedded one speaks TLS with a key of
+# its own, which no other client has).
 CLUSTER = """
-import sys
-from txtool.simulation import campaign
-cluster = campaign.local_cluster(2)
-print(cluster.scheduler_address, flush=True)
-sys.stdin.read()  # until the test closes it
-cluster.close()
+import logging, sys
+from distributed import LocalCluster
+if __name__ == "__main__":
+    cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                           dashboard_address=None, silence_logs=logging.CRITICAL)
+    print(cluster.scheduler_address, flush=True)
+    sys.stdin.read()  # until the test closes it
+    cluster.close()
 """
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import sys
+from collections.abc import Callable
 
 import click
 
@@ -30,7 +31,10 @@ def _address(value: str | None) -> tuple[str, int] | None:
 
 @click.command("lsp")
 @click.option("--tcp", "tcp", metavar="HOST:PORT",
-              help="Listen on this address instead of speaking on standard input and output.")
+              help="Listen on this address instead of speaking on standard input and output; "
+                   "the client is served if its initialize request carries the session's "
+                   "token in initializationOptions.token (TXTOOL_LSP_TOKEN, else one made "
+                   "and printed on standard error).")
 @click.option("--ros-distro", type=click.Choice(CHOICES), default=None,
               help="The ROS distribution whose programs read the files (over the "
                    "configuration's ros-distro).")
@@ -59,9 +63,10 @@ def command(tcp, ros_distro, no_xacro, config_path, xacro) -> int:
     server = build(Options(xacro=xacro, no_xacro=no_xacro, config=config_path,
                            ros_distro=ros_distro))
     if address is not None:
+        token, said = _token()
         _quiet_exit_over_tcp()
         try:
-            server.start_tcp(*address)
+            server.start_tcp(*address, token, said)
         except OSError as exc:  # the address is taken, or not this machine's
             raise InputError(f"--tcp {tcp}: {(exc.strerror or str(exc)).lower()}") from None
         return 0
@@ -72,6 +77,26 @@ def command(tcp, ros_distro, no_xacro, config_path, xacro) -> int:
         server.thread_pool.submit(int).result()  # the one thread that reads, made now
     server.start_io(stdin, stdout)
     return 0
+
+
+def _token() -> tuple[str, Callable[[], None]]:
+    """The session's token: ``TXTOOL_LSP_TOKEN``, else a new one said on standard error once
+    the server listens (any local process can connect to a port: only the client that was
+    told the token is served); and what to do once listening."""
+    given = os.environ.get("TXTOOL_LSP_TOKEN", "")
+    if given:
+        if len(given) < 16:
+            raise InputError("TXTOOL_LSP_TOKEN: at least 16 characters")
+        return given, lambda: None
+    import secrets
+
+    token = secrets.token_urlsafe(24)
+
+    def say() -> None:
+        print(f"txtool lsp: the client sends initializationOptions.token = {token}",
+              file=sys.stderr, flush=True)
+
+    return token, say
 
 
 def _quiet_exit_over_tcp() -> None:

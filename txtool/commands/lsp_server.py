@@ -4,14 +4,26 @@ Each opened, changed or saved buffer is checked as ``txtool validate`` checks th
 (:mod:`txtool.commands.lsp_document`) and its problems are published; a fixable problem gets
 ``txtool migrate``'s fix as a quick fix, and the document a "fix all"; a hover on a
 ``<transmission>`` shows what each loader reads of it (:mod:`txtool.commands.lsp_hover`).
-Only this module imports pygls, and only ``txtool lsp`` imports it.
+
+Only documents the client opened are served: the server never reads a file for a document
+(pygls would read one it was asked about from disk, special files included); over TCP, only
+those inside the workspace folders the client declared. Changes are checked once typing
+pauses (:data:`PAUSE`), the newest version only; every edit names the version it applies to.
+Only this module and :mod:`txtool.commands.lsp_transport` import pygls, and only
+``txtool lsp`` imports them.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import asyncio
+import contextlib
+import os
+import threading
+from collections.abc import Callable, Sequence
+from urllib.parse import unquote
 
 from lsprotocol import types as lsp
+from pygls.exceptions import FeatureNotificationError
 from pygls.lsp.server import LanguageServer
 from pygls.uris import to_fs_path
 from pygls.workspace import TextDocument
@@ -37,6 +49,7 @@ SOURCE = "txtool"
 SEVERITY = {"error": lsp.DiagnosticSeverity.Error, "warning": lsp.DiagnosticSeverity.Warning,
             "info": lsp.DiagnosticSeverity.Information}
 FIX_ALL = lsp.CodeActionKind.SourceFixAll + ".txtool"
+PAUSE = 0.3  # seconds without a change before a changed buffer is checked
 
 
 class TxtoolServer(LanguageServer):
@@ -47,12 +60,85 @@ class TxtoolServer(LanguageServer):
         super().__init__("txtool", __version__, max_workers=1,
                          text_document_sync_kind=lsp.TextDocumentSyncKind.Incremental)
         self.options = options
+        self.confined = False  # over TCP: only documents inside the declared folders
+        self.pending: dict[str, asyncio.TimerHandle] = {}  # checks waiting for a pause
 
     def workspace_paths(self) -> list[str]:
         """The folders the editor opened (each like the folder ``txtool validate`` runs in)."""
         folders = [to_fs_path(f.uri) for f in self.workspace.folders.values()]
         root = self.workspace.root_path
         return [path for path in [*folders, root] if path]
+
+    def opened(self, uri: str) -> TextDocument | None:
+        """The buffer the client opened at ``uri``, if it is one this server serves."""
+        document = self.workspace.text_documents.get(unquote(uri))
+        if document is None or not self.confined:
+            return document
+        path = document.path
+        inside = path is not None and any(
+            os.path.realpath(path).startswith(os.path.join(os.path.realpath(top), ""))
+            for top in self.workspace_paths())
+        return document if inside else None
+
+    def start_io(self, stdin, stdout) -> None:  # type: ignore[no-untyped-def, override]
+        """Serve standard input and output with the bounded loop."""
+        from pygls.io_ import StdoutWriter
+
+        from txtool.commands.lsp_transport import StdinReader, serve
+
+        self._stop_event = threading.Event()
+        self.protocol.set_writer(StdoutWriter(stdout))
+        try:
+            asyncio.run(serve(StdinReader(stdin, self.thread_pool), self.protocol,
+                              self._stop_event, self.report_server_error))
+        except BrokenPipeError:  # the editor is gone
+            pass
+        finally:
+            self.shutdown()
+
+    def start_tcp(self, host: str, port: int, token: str,  # type: ignore[override]
+                  listening: Callable[[], None] = lambda: None) -> None:
+        """Serve one client at a time on ``host:port``: the first that sends ``initialize``
+        with ``token``; then only documents inside the folders it declares. ``listening`` is
+        called once the address is bound."""
+        from txtool.commands.lsp_transport import (
+            MAX_LINE,
+            StreamReader,
+            authentic,
+            first_message,
+            frame,
+            serve,
+        )
+
+        self._stop_event = stop = threading.Event()
+        self.confined = True
+        taken = False
+
+        async def connection(reader: asyncio.StreamReader,
+                             writer: asyncio.StreamWriter) -> None:
+            nonlocal taken
+            try:
+                body = await first_message(reader)
+            except asyncio.CancelledError:  # the server ends while this one says nothing
+                writer.close()
+                return
+            if taken or body is None or not authentic(body, token):
+                writer.close()
+                return
+            taken = True
+            self.protocol.set_writer(writer)  # type: ignore[arg-type]
+            await serve(StreamReader(reader, replay=frame(body)), self.protocol, stop,
+                        self.report_server_error)
+            self.shutdown()
+
+        async def listen() -> None:
+            self._server = await asyncio.start_server(connection, host, port, limit=MAX_LINE)
+            listening()
+            async with self._server:
+                await self._server.serve_forever()
+
+        with contextlib.suppress(asyncio.CancelledError):  # shut down
+            asyncio.run(listen())
 
 
 def build(options: Options) -> TxtoolServer:
@@ -65,7 +151,7 @@ def build(options: Options) -> TxtoolServer:
 
     @server.feature(lsp.TEXT_DOCUMENT_DID_CHANGE)
     def did_change(ls: TxtoolServer, params: lsp.DidChangeTextDocumentParams) -> None:
-        publish(ls, params.text_document.uri)
+        after_a_pause(ls, params.text_document.uri)
 
     @server.feature(lsp.TEXT_DOCUMENT_DID_SAVE)
     def did_save(ls: TxtoolServer, params: lsp.DidSaveTextDocumentParams) -> None:
@@ -73,25 +159,51 @@ def build(options: Options) -> TxtoolServer:
 
     @server.feature(lsp.TEXT_DOCUMENT_DID_CLOSE)
     def did_close(ls: TxtoolServer, params: lsp.DidCloseTextDocumentParams) -> None:
+        waiting = ls.pending.pop(params.text_document.uri, None)
+        if waiting is not None:
+            waiting.cancel()
         ls.text_document_publish_diagnostics(
             lsp.PublishDiagnosticsParams(uri=params.text_document.uri, diagnostics=[]))
 
     @server.feature(lsp.TEXT_DOCUMENT_CODE_ACTION, lsp.CodeActionOptions(
         code_action_kinds=[lsp.CodeActionKind.QuickFix, FIX_ALL]))
     def code_action(ls: TxtoolServer, params: lsp.CodeActionParams) -> list[lsp.CodeAction]:
-        document = ls.workspace.get_text_document(params.text_document.uri)
+        document = ls.opened(params.text_document.uri)
+        if document is None:  # never opened: nothing is read for it
+            return []
         return code_actions(document, params.context, ls.workspace_paths(), ls.options)
 
     @server.feature(lsp.TEXT_DOCUMENT_HOVER)
     def hover(ls: TxtoolServer, params: lsp.HoverParams) -> lsp.Hover | None:
-        document = ls.workspace.get_text_document(params.text_document.uri)
+        document = ls.opened(params.text_document.uri)
+        if document is None:
+            return None
         return hover_of(document, params.position, ls.workspace_paths(), ls.options)
 
     return server
 
 
+def after_a_pause(ls: TxtoolServer, uri: str) -> None:
+    """Check ``uri`` once no change has come for :data:`PAUSE` seconds: a burst of keystrokes
+    is one check, of the newest version (each version checked in turn fell seconds behind)."""
+    waiting = ls.pending.pop(uri, None)
+    if waiting is not None:
+        waiting.cancel()
+
+    def check() -> None:
+        ls.pending.pop(uri, None)
+        try:
+            publish(ls, uri)
+        except Exception as exc:  # as a handler's error: reported, the server goes on
+            ls.report_server_error(exc, FeatureNotificationError)
+
+    ls.pending[uri] = asyncio.get_running_loop().call_later(PAUSE, check)
+
+
 def publish(ls: TxtoolServer, uri: str) -> None:
-    document = ls.workspace.get_text_document(uri)
+    document = ls.opened(uri)
+    if document is None:  # never opened (or outside the folders): nothing is read for it
+        return
     diagnostics = diagnostics_of(document, ls.workspace_paths(), ls.options)
     ls.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(
         uri=uri, diagnostics=diagnostics, version=document.version))
@@ -183,7 +295,11 @@ def _action(document: TextDocument, title: str, kind: str, fixed: str,
     return lsp.CodeAction(
         title=title, kind=kind, diagnostics=diagnostics or None,
         is_preferred=kind == lsp.CodeActionKind.QuickFix,
-        edit=lsp.WorkspaceEdit(changes={document.uri: text_edits(document, fixed)}),
+        # The version the edits were made for: an editor whose buffer moved on refuses them.
+        edit=lsp.WorkspaceEdit(document_changes=[lsp.TextDocumentEdit(
+            text_document=lsp.OptionalVersionedTextDocumentIdentifier(
+                uri=document.uri, version=document.version),
+            edits=list(text_edits(document, fixed)))]),
     )
 
 

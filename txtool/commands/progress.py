@@ -68,7 +68,8 @@ class _DelayedBar:
         from txtool.views.plain import output_size
 
         width, height = output_size(self.stream)
-        console = Console(file=self.stream, width=width, height=height, highlight=False)
+        console = Console(file=self.stream, width=width, height=height, highlight=False,
+                          emoji=False)
         self.progress = Progress("checking", BarColumn(), MofNCompleteColumn(), "files",
                                  TimeElapsedColumn(), console=console, transient=True,
                                  auto_refresh=False)

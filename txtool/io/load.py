@@ -83,15 +83,21 @@ def uses_xacro(data: bytes, tree: etree._ElementTree) -> bool:
     return any(marker in uncommented for marker in _MARKERS)
 
 
+# One query for the attributes of the whole document: lxml's ``attrib.values()`` looks each
+# value up by its name along the element's list of attributes (quadratic in their number).
+_EXPRESSION_IN_AN_ATTRIBUTE = etree.XPath(
+    'boolean(//@*[contains(., "${") or contains(., "$(")])')
+
+
 def _uses_xacro_in_tree(tree: etree._ElementTree) -> bool:
+    if _EXPRESSION_IN_AN_ATTRIBUTE(tree):
+        return True
     for node in tree.getroot().iter():
         if _has_expression(node.tail):
             return True
         if not isinstance(node.tag, str):
             continue  # a comment or processing instruction: its text is not read
         if is_xacro_element(node) or _has_expression(node.text):
-            return True
-        if any(_has_expression(value) for value in node.attrib.values()):
             return True
     return False
 

@@ -253,7 +253,8 @@ def _mentions(call: etree._Element, element: etree._Element) -> int:
     """Length of the longest argument of ``call`` found in ``element``'s name (0: none): macros
     usually build names from their arguments (``prefix="left_"`` makes ``left_wheel_trans``)."""
     name = element.get("name") or ""
-    return max((len(value) for value in call.attrib.values() if value and value in name),
+    # (``@*``: lxml's ``attrib.values()`` is quadratic in the number of attributes)
+    return max((len(value) for value in call.xpath("@*") if value and value in name),
                default=0)
 
 

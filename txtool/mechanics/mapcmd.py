@@ -179,17 +179,24 @@ def _show(value: float) -> str:
 def render_text(outcome: MapOutcome) -> str:
     """A small table: one row per quantity, one column per output member (role order)."""
     from rich.console import Console
+    from rich.markup import escape
     from rich.table import Table
 
+    from txtool.io.printable import printable
+
+    def text(name: str) -> str:  # a name from the file: shown as written, never as markup
+        return escape(printable(name))
+
     src, dst = ("joint", "actuator") if outcome.to == "actuator" else ("actuator", "joint")
-    table = Table(title=f"transmission '{outcome.transmission}': {src} -> {dst}")
+    table = Table(title=f"transmission '{text(outcome.transmission)}': {src} -> {dst}")
     table.add_column("quantity")
     for name in outcome.outputs:
-        table.add_column(f"{dst} '{name}'", justify="right")
+        table.add_column(f"{dst} '{text(name)}'", justify="right")
     for quantity, values in outcome.values.items():
         table.add_row(quantity, *(_show(v) for v in values))
     buffer = io.StringIO()
-    console = Console(file=buffer, width=100, color_system=None, highlight=False)
+    console = Console(file=buffer, width=100, color_system=None, highlight=False,
+                      emoji=False)
     console.print(table)
     if "effort" in outcome.values:
         console.print(f"effort convention: {outcome.convention} ({_LOADERS[outcome.convention]} "

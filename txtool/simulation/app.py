@@ -60,7 +60,7 @@ def main(options: Options, *, output: str = "text", csv_path: str | None = None,
     if console is None:
         # The terminal's width (--color never too), or wide enough for the tables in a pipe.
         console = render.console()
-    err_console = err_console or Console(stderr=True)
+    err_console = err_console or Console(stderr=True, emoji=False)
     if plot_path is not None:
         plot.require(plot_path)
     keep = csv_path is not None or plot_path is not None

@@ -6,6 +6,12 @@ embedded ``distributed.LocalCluster`` (one process per core, one thread each) by
 cluster of ``--scheduler ADDRESS``, or one after the other in this process (``--serial``). The
 records come back in task order whatever ran them, so the report is the same to the bit.
 Dask is imported here only, when a campaign runs on a cluster.
+
+The embedded cluster listens on this machine's loopback, where any local process could connect
+and run code as the user: it speaks TLS with a key and certificate made for the run
+(:func:`run_security`), and a connection without them is refused. A scheduler address is first
+checked with one bounded exchange (:func:`check_scheduler`): Dask's own client waits for ever
+on a server that accepts and never answers, and believes the sizes a garbled one sends.
 """
 
 from __future__ import annotations
@@ -14,6 +20,14 @@ import contextlib
 import json
 import logging
 import multiprocessing
+import os
+import shutil
+import socket
+import ssl
+import struct
+import subprocess
+import tempfile
+import time
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, replace
 from typing import Any
@@ -31,6 +45,7 @@ from txtool.simulation.run import EXIT_INCONCLUSIVE, Options, candidates
 from txtool.views import render
 
 CONNECT_TIMEOUT = "10s"
+GREETING_LIMIT = 64 * 1024  # bytes of a scheduler's greeting (a real one is about 200)
 PRELOAD = ("distributed", "txtool.simulation.campaign_task")  # what a forked worker runs
 
 
@@ -73,15 +88,101 @@ def _client(where: Where) -> Iterator[Any]:
     from distributed import Client
 
     if where.address is not None:
+        check_scheduler(where.address)
         try:
             client = Client(where.address, timeout=CONNECT_TIMEOUT)
         except (OSError, TimeoutError, ValueError) as exc:
-            raise InputError(f"--scheduler {where.address}: cannot connect: {exc}") from None
+            reason = str(exc) or f"no answer within {CONNECT_TIMEOUT}"  # (a bare timeout)
+            raise InputError(f"--scheduler {where.address}: cannot connect: {reason}") from None
         with client:
             yield client
         return
-    with local_cluster(where.workers or usable_cpus()) as cluster, Client(cluster) as client:
+    with local_cluster(where.workers or usable_cpus()) as cluster, \
+            Client(cluster, security=cluster.security) as client:
         yield client
+
+
+def check_scheduler(address: str) -> None:
+    """Refuse, in one line, an address that is not a Dask scheduler's: an unknown scheme, no
+    answer within ``CONNECT_TIMEOUT``, or a greeting that is not Dask's (read within
+    :data:`GREETING_LIMIT` bytes, whatever sizes it claims)."""
+    from dask.utils import parse_timedelta
+    from distributed.comm.addressing import parse_address, parse_host_port
+
+    def refused(reason: str) -> InputError:
+        return InputError(f"--scheduler {address}: {reason}")
+
+    try:
+        scheme, location = parse_address(address, strict=False)
+        if scheme not in ("tcp", "tls"):
+            raise refused(f"unknown scheme '{scheme}' (expected tcp:// or tls://)")
+        host, port = parse_host_port(location)
+    except (ValueError, TypeError) as exc:
+        raise refused(f"not an address ({exc})") from None
+    wait = float(parse_timedelta(CONNECT_TIMEOUT))
+    context = _client_tls() if scheme == "tls" else None
+    if scheme == "tls" and context is None:
+        raise refused("tls:// needs Dask's TLS configuration (distributed.comm.tls)")
+    deadline = time.monotonic() + wait
+    try:
+        with socket.create_connection((host, port), timeout=wait) as raw:
+            stream = context.wrap_socket(raw) if context is not None else raw
+            with stream:
+                greeting = _greeting(stream, deadline)
+    except TimeoutError:
+        raise refused(f"no answer within {wait:g} s") from None
+    except (OSError, ssl.SSLError) as exc:
+        raise refused(f"cannot connect: {(getattr(exc, 'strerror', None) or exc)}") from None
+    if greeting is None:
+        raise refused("what answers is not a Dask scheduler")
+
+
+def _client_tls() -> ssl.SSLContext | None:
+    from distributed.security import Security
+
+    return Security().get_connection_args("client")["ssl_context"]
+
+
+def _greeting(stream: socket.socket, deadline: float) -> dict[str, Any] | None:
+    """A Dask server's first message (its handshake), or None for anything else."""
+
+    def read(count: int) -> bytes:
+        data = b""
+        while len(data) < count:
+            stream.settimeout(max(deadline - time.monotonic(), 0.001))
+            piece = stream.recv(count - len(data))
+            if not piece:
+                break
+            data += piece
+        return data
+
+    head = read(8)
+    if len(head) < 8:
+        return None
+    (size,) = struct.unpack("Q", head)
+    if size > GREETING_LIMIT:
+        return None
+    packed = read(size)
+    if len(packed) < size or size < 8:
+        return None
+    (count,) = struct.unpack_from("Q", packed)
+    if 8 + 8 * count > size:
+        return None
+    lengths = struct.unpack_from(f"{count}Q", packed, 8)
+    rest = sum(lengths) - (size - 8 - 8 * count)
+    if rest < 0 or rest > GREETING_LIMIT:
+        return None
+    data = packed + read(rest)
+    if len(data) < size + rest:
+        return None
+    from distributed.protocol import loads
+    from distributed.protocol.utils import unpack_frames
+
+    try:
+        message = loads(unpack_frames(data), deserialize=False)
+    except Exception:  # whatever the bytes make the decoder raise: not Dask's greeting
+        return None
+    return message if isinstance(message, dict) and "python" in message else None
 
 
 def local_cluster(workers: int) -> Any:
@@ -97,11 +198,44 @@ def local_cluster(workers: int) -> Any:
 
     forkserver = "forkserver" in multiprocessing.get_all_start_methods()  # not on Windows
     method = "forkserver" if forkserver else "spawn"
+    security = run_security()
     with dask.config.set({"distributed.worker.multiprocessing-method": method}):
         if forkserver:  # pragma: no branch - POSIX platforms have it
             get_mp_context().set_forkserver_preload(list(PRELOAD))  # after Dask's own list
         return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                            dashboard_address=None, silence_logs=logging.CRITICAL)
+                            dashboard_address=None, silence_logs=logging.CRITICAL,
+                            security=security, protocol="tls://", host="127.0.0.1")
+
+
+def run_security() -> Any:
+    """Dask's security for one local cluster: TLS both ways with a key and self-signed
+    certificate made now, known to this process and its workers only (they receive them
+    through the pipe that starts them). Made by ``cryptography`` when it is installed
+    (``Security.temporary``), else by the ``openssl`` program."""
+    from distributed.security import Security
+
+    with contextlib.suppress(ImportError):
+        return Security.temporary()
+    openssl = shutil.which("openssl")
+    if openssl is None:
+        raise InputError("simulate --campaign: the local cluster is secured with TLS, which "
+                         "needs the 'cryptography' package or the openssl program (or --serial)")
+    with tempfile.TemporaryDirectory(prefix="txtool-tls-") as folder:
+        key, cert = os.path.join(folder, "key.pem"), os.path.join(folder, "cert.pem")
+        try:
+            subprocess.run([openssl, "req", "-x509", "-newkey", "rsa:2048", "-nodes",
+                            "-keyout", key, "-out", cert, "-days", "2",
+                            "-subj", "/CN=dask-internal"],
+                           check=True, capture_output=True, timeout=60)
+            with open(key, encoding="ascii") as k, open(cert, encoding="ascii") as c:
+                key_text, cert_text = k.read(), c.read()
+        except (OSError, subprocess.SubprocessError) as exc:
+            raise InputError(f"simulate --campaign: cannot make the local cluster's TLS "
+                             f"certificate with {openssl}: {exc}") from None
+    return Security(require_encryption=True, tls_ca_file=cert_text,
+                    tls_client_key=key_text, tls_client_cert=cert_text,
+                    tls_scheduler_key=key_text, tls_scheduler_cert=cert_text,
+                    tls_worker_key=key_text, tls_worker_cert=cert_text)
 
 
 def run_campaign(path: str, options: Options, where: Where) -> dict[str, Any]:

@@ -52,6 +52,11 @@ PARAMETERS: dict[str, tuple[str, str]] = {
 BOUND_KEYS = ("damping", "friction", "rotor_inertia", "gains", "sensor_noise", "payload")
 PAYLOAD_KEYS = ("link", "mass", "xyz")
 MAX_SAMPLES = 100_000
+MAX_RUNS = 1_000_000  # samples times candidates: each is a task built before any runs
+# The largest value of any bound and of a payload's coordinates: far beyond any robot, and
+# small enough that the loop's arithmetic stays finite (1e307 overflowed it).
+MAX_BOUND = 1e6
+MAX_XYZ = 1e3
 
 
 @dataclass(frozen=True)
@@ -97,6 +102,10 @@ def read_campaign(path: str) -> Campaign:
         raise shell.error("samples", "no samples: give samples = N (N > 0) or corners = true")
     if count > MAX_SAMPLES:
         raise shell.error("samples", f"{count} samples; a campaign takes at most {MAX_SAMPLES}")
+    if count * len(candidates) > MAX_RUNS:
+        raise shell.error("candidates", f"{len(candidates)} candidates of {count} samples: "
+                                        f"{count * len(candidates)} runs; a campaign makes at "
+                                        f"most {MAX_RUNS}")
     return Campaign(path, seed, samples, corners, candidates, bounds, payload, text)
 
 
@@ -146,8 +155,10 @@ def _payload(shell: Campaign, table: Any) -> tuple[Payload, tuple[float, float]]
         raise shell.error(where, f"{where}.mass: missing (kg, [low, high] or one number)")
     mass = _bound(shell, f"{where}.mass", "payload_mass", table["mass"])
     xyz = table.get("xyz", [0.0, 0.0, 0.0])
-    if not (isinstance(xyz, list) and len(xyz) == 3 and all(_finite_number(v) for v in xyz)):
-        raise shell.error(f"{where}.xyz", f"{where}.xyz: expected three numbers (m), got {xyz!r}")
+    if not (isinstance(xyz, list) and len(xyz) == 3
+            and all(_finite_number(v) and abs(v) <= MAX_XYZ for v in xyz)):
+        raise shell.error(f"{where}.xyz", f"{where}.xyz: expected three numbers (m) within "
+                                          f"±{MAX_XYZ:g}, got {xyz!r}")
     return Payload(link, (float(xyz[0]), float(xyz[1]), float(xyz[2]))), mass
 
 
@@ -165,6 +176,8 @@ def _bound(shell: Campaign, dotted: str, name: str, value: Any) -> tuple[float, 
     wanted = PARAMETERS[name][1]
     if low < 0 or (wanted == "positive" and low == 0):
         raise shell.error(dotted, f"{dotted}: must be {wanted}, got {low:g}")
+    if high > MAX_BOUND:
+        raise shell.error(dotted, f"{dotted}: at most {MAX_BOUND:g}, got {high:g}")
     return low, high
 
 

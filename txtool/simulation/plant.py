@@ -143,7 +143,8 @@ def substeps_for(dt: float, damping: np.ndarray, inertia: np.ndarray) -> tuple[i
     if not np.any(rate > 0):
         return 1, None
     stiffest = int(np.argmax(rate))
-    needed = math.ceil(dt * float(rate[stiffest]) / STIFF)
+    wanted = dt * float(rate[stiffest]) / STIFF
+    needed = math.ceil(wanted) if math.isfinite(wanted) else MAX_SUBSTEPS
     return max(1, min(needed, MAX_SUBSTEPS)), stiffest
 
 

@@ -32,6 +32,11 @@ from txtool.simulation.sensing import Sensing
 
 DEFAULTS = {"bandwidth": 20.0, "duration": 5.0, "dt": 0.001, "tolerance": 0.01}
 MAX_STEPS = 20_000_000
+MAX_SETTING = 1e9  # of --bandwidth, --duration, --dt, --tolerance (far beyond any robot's)
+# What a run holds per step and per joint or actuator, measured (reference, loop state and
+# series: about 17 floats), and the most a run may hold: priced before anything is allocated.
+BYTES_PER_STEP_AND_COLUMN = 160
+MAX_RUN_BYTES = 2 * 1024**3
 
 Progress = Callable[[int, int], None]  # (steps done, steps in all)
 
@@ -78,6 +83,8 @@ def settings(options: Options, params: Params) -> Settings:
         value = given if given is not None else params.run.get(key, default)
         if not (math.isfinite(value) and value > 0):
             raise InputError(f"--{key}: must be a positive number, got {value!r}")
+        if value > MAX_SETTING:  # (a bandwidth of 1e307 overflowed the gains' powers)
+            raise InputError(f"--{key}: at most {MAX_SETTING:g}, got {value!r}")
         values[key] = float(value)
     if values["dt"] > values["duration"]:
         raise InputError(f"--dt: {values['dt']:g} s is longer than the run "
@@ -85,6 +92,17 @@ def settings(options: Options, params: Params) -> Settings:
     if values["duration"] / values["dt"] > MAX_STEPS:
         raise InputError(f"--duration/--dt: more than {MAX_STEPS} steps")
     return Settings(**values)
+
+
+def price(duration: float, dt: float, columns: int, what: str) -> None:
+    """Refuse, in one line, a run of ``duration`` at ``dt`` whose arrays for ``columns``
+    joints and actuators would exceed :data:`MAX_RUN_BYTES` (before they are allocated)."""
+    steps = duration / dt + 1
+    needed = steps * max(columns, 1) * BYTES_PER_STEP_AND_COLUMN
+    if needed > MAX_RUN_BYTES:
+        raise InputError(f"{what}: {steps:.0f} steps of {columns} joints and actuators would "
+                         f"hold about {needed / 1024**3:.1f} GiB (at most "
+                         f"{MAX_RUN_BYTES // 1024**3} GiB): a shorter run or a longer --dt")
 
 
 @dataclass
@@ -220,6 +238,8 @@ def prepare(options: Options, config: str | None, label: str | None = None
     params.check_names(set(plant.actuators) | set(ctrl.actuators), set(robot.joints),
                        options.robot)
     run_settings = settings(options, params)
+    columns = len(robot.joints) + len(plant.actuators)
+    price(run_settings.duration, run_settings.dt, columns, "--duration/--dt")
     binding = setup.bind(plant, ctrl)
     rotor = (setup.rotor_inertias(plant.actuators, params, plant, ctrl),
              setup.rotor_inertias(ctrl.actuators, params, plant, ctrl))
@@ -342,6 +362,7 @@ def _default_reference(robot: RobotModel, s: Settings, limits: feasible.Limits,
     ranges = _ranges(robot)
     chosen = feasible.plan_motion(ranges, limits, dynamics, s.duration / 2, fixed, s.tolerance,
                                   finder)
+    price(2 * chosen.move, s.dt, 2 * len(robot.joints), "the motion slowed to be feasible")
     ref = feasible.sample(ranges, chosen, s.dt)
     ref = reference.follow(ref, robot.joints, robot.followers)
     ref, notes = reference.saturate(ref, robot.joints, robot.lower, robot.upper,
@@ -383,6 +404,7 @@ def _reference(options: Options, table: reference.Table, robot: RobotModel, s: S
         duration = table.end
     if duration / s.dt > MAX_STEPS:
         raise InputError(f"{options.trajectory}: more than {MAX_STEPS} steps at --dt {s.dt:g}")
+    price(duration, s.dt, 2 * len(robot.joints), f"{options.trajectory}")
     hold = np.array([(lo + hi) / 2 for lo, hi in ranges])
     t = reference.step_times(duration, s.dt)
     ref = reference.from_table(table, robot.joints, hold, t, options.interpolation)

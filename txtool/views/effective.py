@@ -361,7 +361,8 @@ def effective_text(path: str, transmissions: Sequence[Transmission],
     from txtool.io.printable import printable
 
     buffer = io.StringIO()
-    out = Console(file=buffer, width=WIDTH, color_system=None, highlight=False)
+    out = Console(file=buffer, width=WIDTH, color_system=None, highlight=False,
+                  emoji=False)
     out.print(printable(path), soft_wrap=True, markup=False)
     out.print(f"{len(transmissions)} transmission(s), as their loaders bind them", markup=False)
     for t, b in zip(transmissions, bindings, strict=True):

@@ -89,7 +89,7 @@ def console(*, stderr: bool = False):
 
     stream = sys.stderr if stderr else sys.stdout
     width, height = output_size(stream)
-    return Console(file=stream, width=width, height=height, highlight=False)
+    return Console(file=stream, width=width, height=height, highlight=False, emoji=False)
 
 
 MAX_STRETCH = 400  # columns a table in a pipe may take, at most (a title is padded to them)
