@@ -24,7 +24,6 @@ from txtool.model.core import DIALECTS, Dialect, Transmission, builder
 from txtool.model.robot import JointInfo, JointsOnDemand, joint_elements
 from txtool.model.semantics import listed_against_roles
 from txtool.transform.convert import convert_source, judge
-from txtool.transform.repeated.cycle_collector import paused
 from txtool.transform.repeated.nameless_shapes import ordered_shape, shape
 from txtool.transform.repeats import Plan, cycled_document, plan_repeats
 from txtool.views.tables import FIELDS
@@ -86,7 +85,6 @@ def _reconvert(source: Source, target: Dialect, *, consume: bool) -> bytes:
     return convert_source(source, target, consume=consume, check=False).data
 
 
-@paused
 def roundtrip(source: Source, *, consume: bool = False) -> RoundTripReport:
     """The rows of every cycle of every transmission of ``source``. With ``consume`` the
     caller gives up ``source.tree``: the last conversion of it converts it in place."""
