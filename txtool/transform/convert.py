@@ -87,6 +87,35 @@ def convert_source(
     by a document are put back whenever it goes back to ROS 1. ``check=False`` leaves out the
     read-back judgement, for a caller that judges the result itself (``roundtrip``).
     """
+    result, tree, originals, restored, deep = _converted(source, target, hardware_plugin,
+                                                         consume, reversible)
+    if consume:
+        source.tree = etree.ElementTree(etree.Element("consumed"))
+    if deep:
+        _reads_back(result.data, source.path)
+    # What the edits must write, kept as text: the tree goes before the bytes are parsed.
+    expected = serialization(tree) if result.edits and not restored else None
+    if check:
+        if restored and result.data != source.data:
+            # Originals written as their bytes: only a parse of the output shows what it holds.
+            del tree
+            tree = parse_bytes(result.data, source.path, limit=None)
+        verdict = round_trip(originals, tree.getroot())
+        result.losses.extend(verdict.losses)
+        result.notes.extend(verdict.notes)
+    del tree
+    if expected is not None:
+        check_written(result.data, source.path, expected)
+    return result
+
+
+def _converted(source: Source, target: Dialect, hardware_plugin: str, consume: bool,
+               reversible: bool
+               ) -> tuple[ConvertedDocument, etree._ElementTree, list[Transmission], bool, bool]:
+    """:func:`convert_source` up to its checks: the result, the converted tree, the
+    transmissions as read, whether originals were put back as their bytes, and whether a
+    transmission stood near the depth limit. What the conversion held besides (the index,
+    the elements replaced) is freed at the return, before the result is read back."""
     carry = Carrier(source, target, reversible)
     tree = source.tree if consume else copy.deepcopy(source.tree)
     root = tree.getroot()
@@ -112,20 +141,7 @@ def convert_source(
         result.edits = edits or None
         result.data = writer.applied(edits) if edits else source.data
     result.notes.extend(carry.notes)
-    if consume:
-        source.tree = etree.ElementTree(etree.Element("consumed"))
-    if deep:
-        _reads_back(result.data, source.path)
-    if writer is not None and result.edits and not restored:
-        check_written(result.data, source.path, serialization(tree))
-    if check:
-        if restored and result.data != source.data:
-            # Originals written as their bytes: only a parse of the output shows what it holds.
-            tree = parse_bytes(result.data, source.path, limit=None)
-        verdict = round_trip(originals, tree.getroot())
-        result.losses.extend(verdict.losses)
-        result.notes.extend(verdict.notes)
-    return result
+    return result, tree, originals, bool(restored), deep
 
 
 def _place_each(elements: list[etree._Element], tree: etree._ElementTree, target: Dialect,
