@@ -118,3 +118,14 @@ def test_what_could_hide_an_end_tag_is_read_through(inside: str) -> None:
     data = (f'<robot name="r">\n  <joint name="a">{inside}<parent link="p"/></joint>\n'
             '  <link name="b"/>\n</robot>\n').encode()
     _same_spans(data, lambda root: [root[1]], lambda root: {"within": [], "shallow": [root]})
+
+
+def test_nodes_past_line_65535_are_paired_by_kind_and_name() -> None:
+    """libxml2 may report a line one off past 65,535 (the line after a start tag): there the
+    index pairs nodes by kind and name, and a robot that long converts."""
+    data = (b"<robot>\n" + b'<link name="l"/>\n' * 65_540 + b'<transmission name="t">\n'
+            b"  <type>x</type>\n</transmission>\n</robot>\n")
+    root = parse_bytes(data, "long.urdf", limit=None).getroot()
+    index = SpanIndex(data, root, [root[-1]])
+    span = index[root[-1][0]]
+    assert data[span.start:span.end] == b"<type>x</type>"
