@@ -52,7 +52,6 @@ class Placer:
 
     def __init__(self, root: etree._Element, hardware_plugin: str) -> None:
         self.root = root
-        self._robot = local(root) == "robot"
         self.hardware_plugin = hardware_plugin
         self.notes: list[str] = []
         self._into_new: list[Move] = []
@@ -195,7 +194,7 @@ class Placer:
 
     def _fill(self, block: etree._Element, declared: list[tuple[str, tuple]],
               moves: list[Move], like: etree._Element, indent: str, step: str, record: bool
-              ) -> list[etree._Element]:
+              ) -> None:
         """Declare the joints in ``block`` and put in the transmissions built for ``moves``,
         laid out as :func:`dialects.pretty` lays out the block."""
         q = qualifier(like)
@@ -213,11 +212,8 @@ class Placer:
         dialects.pretty(hardware, indent + step, step)
         hardware.tail, block.text = inner, inner
         block[-1].tail = "\n" + indent
-        built = []
         for move in moves:
-            built.append(self.build(move, indent + step, step, like, record=record))
-            append(block, built[-1])
-        return built
+            append(block, self.build(move, indent + step, step, like, record=record))
 
     def _component_for(self, joints: Callable[[], set[str]]) -> etree._Element | None:
         """The first ``<ros2_control>`` that declares all of ``joints()``."""
