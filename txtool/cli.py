@@ -18,7 +18,7 @@ from typing import Any
 import click
 
 from txtool import __version__
-from txtool.io import allocator, signals
+from txtool.io import signals
 from txtool.io.printable import printable
 
 # Commands whose output rich may colour: each gets --color (see commands.common.with_color).
@@ -149,7 +149,6 @@ def cli(ctx: click.Context, debug: bool) -> None:
     """Lint, convert and verify robot transmission configurations (ros_control, ros2_control)."""
     ctx.ensure_object(dict)
     ctx.obj["debug"] = debug
-    allocator.enable()
 
 
 def main() -> None:

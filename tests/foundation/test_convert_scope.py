@@ -314,7 +314,7 @@ def test_migrate_allow_lossy_says_so_too(run, tmp_path):
 
 
 def test_every_transmission_of_a_repeated_shape_is_checked_for_its_scope(run, tmp_path):
-    # The second is converted as a repeat of the first (transform/repeated/renamings.py), under its names.
+    # The second is the first under other names: each is checked on its own.
     path = tmp_path / "arm.urdf.xacro"
     path.write_text(CONDITIONAL_BLOCK.replace(
         "    </ros2_control>",

@@ -161,9 +161,7 @@ def test_a_checked_document_is_freed_without_the_garbage_collector(name: str) ->
      ["a"], ["a"]),
     # a bare fragment: the root itself, which is no child of itself
     ('<transmission name="a"><transmission name="n"/></transmission>', ["a"], []),
-    # what counting "<transmission" in the bytes must not be misled by: a comment (one
-    # occurrence more than elements), a prefixed tag (an element with no occurrence), a
-    # longer name, and none at the root
+    # a comment that holds one, a prefixed tag, a longer name, and none at the root
     ('<robot><transmission name="a"/><!-- <transmission name="c"/> -->'
      '<transmission name="b"/></robot>', ["a", "b"], ["a", "b"]),
     ('<robot xmlns:p="u"><transmission name="a"/><p:macro><p:transmission name="b"/>'
@@ -173,14 +171,11 @@ def test_a_checked_document_is_freed_without_the_garbage_collector(name: str) ->
 ])
 @pytest.mark.parametrize("encoding", ["utf-8", "utf-16"])
 def test_transmissions_found_and_those_at_the_root(xml, found, at_root, encoding):
-    """The same with and without the bytes (whose count of "<transmission" may spare the
-    walk of the tree, where it shows that all are at the root)."""
-    from txtool.dialects.read import transmission_elements, transmissions_with_those_at_root
+    """The transmissions of a document, in order (not one nested in another), and which of
+    them stand at its root."""
+    from txtool.dialects.read import transmission_elements
 
-    data = xml.encode(encoding)
-    root = parse_bytes(data, "r.urdf").getroot()
-    for given in (None, data):
-        elements, at_the_root = transmissions_with_those_at_root(root, given)
-        assert [e.get("name") for e in elements] == found
-        assert transmission_elements(root) == elements
-        assert [e.get("name") for e in at_the_root] == at_root
+    root = parse_bytes(xml.encode(encoding), "r.urdf").getroot()
+    elements = transmission_elements(root)
+    assert [e.get("name") for e in elements] == found
+    assert [e.get("name") for e in elements if e.getparent() is root] == at_root

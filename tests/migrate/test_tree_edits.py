@@ -7,20 +7,19 @@ import textwrap
 from collections.abc import Callable
 
 import pytest
-from hypothesis import example, given
+from hypothesis import given
 from hypothesis import strategies as st
 from lxml import etree
 
-from txtool.io.xmlio import InputError, parse_bytes
+from txtool.io.xmlio import parse_bytes
 from txtool.rules import all_rules
 from txtool.transform.edits.core import EditedText
-from txtool.transform.edits.spans import NotIndexed, SpanIndex
+from txtool.transform.edits.spans import SpanIndex
 from txtool.transform.edits.tree_edits import (
     NotEditable,
     TreeChange,
     reads_as,
     reads_as_serialized,
-    serialization,
 )
 from txtool.transform.migrate import MigrateOptions, migrate_file
 
@@ -170,55 +169,6 @@ def test_bytes_read_as_a_tree_by_names_texts_and_comments(written: bytes, same: 
     assert reads_as(written, tree, "robot.urdf") is same
 
 
-def test_bytes_lxml_would_write_for_the_tree_are_told_without_canonical_forms(monkeypatch
-                                                                            ) -> None:
-    """The serializations are compared first (a third of the time): the canonical forms
-    are made only where they differ."""
-    from txtool.transform.edits import tree_edits
-
-    made = []
-
-    def canonical(tree):
-        made.append(tree)
-        return etree.tostring(tree, method="c14n", exclusive=True)
-
-    monkeypatch.setattr(tree_edits, "canonical", canonical)
-    tree = parse_bytes(b"<robot name='r'>\n  <link name=\"l\" ></link>\n</robot>", "r.urdf")
-    assert reads_as(b'<robot name="r">\n  <link name="l"/>\n</robot>', tree, "r.urdf")
-    assert made == []
-    assert not reads_as(b'<robot name="r">\n  <link name="m"/>\n</robot>', tree, "r.urdf")
-    assert len(made) == 2
-
-
-@pytest.mark.parametrize(("written", "same", "canonical_forms"), [
-    (b'<robot name="r"><role>a</role></robot>', True, 0),  # as lxml writes the tree
-    (b'<robot name="r"><role/></robot>', True, 2),  # an empty text: read back as none
-    (b"<robot name='r'><role></role></robot>", True, 2),  # the same, as a person writes it
-    (b'<robot name="r"><role>b</role></robot>', False, 2),
-    (b'<robot name="r"><role>a</role><!-- c --></robot>', False, 2),
-])
-def test_a_converted_tree_kept_as_its_serialization_is_told_as_the_tree_is(
-        written, same, canonical_forms, monkeypatch) -> None:
-    """The conversion's check keeps the converted document as lxml writes it, so that the
-    tree can go before the written bytes are parsed (the parse reuses its memory): where the
-    serializations differ, the canonical form of the serialization parsed decides, as the
-    tree's own would (an element whose text a conversion set empty is written <a></a> and
-    read back as <a/>)."""
-    from txtool.transform.edits import tree_edits
-
-    made = []
-    canonical = tree_edits.canonical
-    monkeypatch.setattr(tree_edits, "canonical", lambda tree: made.append(1) or canonical(tree))
-    root = etree.Element("robot", name="r")
-    etree.SubElement(root, "role").text = "" if canonical_forms and same else "a"
-    tree = root.getroottree()
-    text = serialization(tree)
-    read = parse_bytes(written, "r.urdf")
-    assert reads_as_serialized(read, text, "r.urdf") is same
-    assert len(made) == canonical_forms
-    assert reads_as(written, tree, "r.urdf") is same  # the verdict of the tree itself
-
-
 def test_a_serialization_that_does_not_parse_reads_as_no_tree() -> None:
     read = parse_bytes(b"<robot/>", "r.urdf")
     assert not reads_as_serialized(read, "<robot>", "r.urdf")
@@ -226,38 +176,6 @@ def test_a_serialization_that_does_not_parse_reads_as_no_tree() -> None:
 
 def test_bytes_that_do_not_parse_do_not_read_as_the_tree() -> None:
     assert not reads_as(b"<robot>", parse_bytes(b"<robot/>", "robot.urdf"), "robot.urdf")
-
-
-@pytest.mark.parametrize(("failing", "reason"), [
-    ("SpanIndex", "the bytes do not read as parsed (refused)"), ("TreeChange.edits", "refused"),
-    ("reads_as", "what the edits write does not read as the fixed document"),
-])
-def test_where_the_edits_cannot_say_the_fixes_the_file_is_refused(failing, reason, tmp_path,
-                                                                  monkeypatch) -> None:
-    """No other writer stands behind the edits: a change they cannot say is one line naming
-    the file, and nothing is written."""
-    from txtool.transform import migrate
-    from txtool.transform.edits.spans import SpanError
-
-    def refuse(*_args, **_kwargs):
-        if failing == "reads_as":
-            return False
-        raise (SpanError if failing == "SpanIndex" else NotEditable)("refused")
-
-    data = (b'<robot>\n  <transmission name="t" type="SimpleTransmission">\n    '
-            b'<joint name="j"><hardwareInterface>EffortJointInterface</hardwareInterface>'
-            b'</joint>\n    <actuator name="m"/>\n  </transmission>\n</robot>\n')
-    path = tmp_path / "robot.urdf"
-    path.write_bytes(data)
-    edited = migrate_file(str(path), FIXES, MigrateOptions())
-    assert edited.edits is not None and edited.fixes == {"TX300": 1, "TX302": 1}
-    target, _, attribute = failing.partition(".")
-    monkeypatch.setattr(getattr(migrate, target) if attribute else migrate, attribute or target,
-                        refuse)
-    with pytest.raises(InputError) as refused:
-        migrate_file(str(path), FIXES, MigrateOptions(mode="write"))
-    assert str(refused.value).startswith(f"{path}: cannot fix: {reason}")
-    assert path.read_bytes() == data
 
 
 def test_a_new_attribute_in_a_namespace_takes_a_prefix_in_scope() -> None:
@@ -345,42 +263,3 @@ def test_children_changed_at_random_are_written_and_kept_ones_keep_their_bytes(
 
 
 _FOUR = [("<a/>", None), ("<b n='1'/>", "\n"), ("<c>t</c>", None), ("<d><e/></d>", "\n")]
-
-
-@given(st.lists(st.tuples(_CHILD, _TAILS), min_size=1, max_size=10), _TAILS,
-       st.lists(st.tuples(st.sampled_from(["remove", "insert", "tail", "text", "move"]),
-                          st.integers(0, 20), _TAILS), max_size=5), st.integers(1, 10))
-# At the window's edge (two passed over): the last one passed over taken out, one put in
-# before the first recorded, the tail before it, the text, the first recorded moved last.
-@example(_FOUR, None, [("remove", 1, None)], 2)
-@example(_FOUR, None, [("insert", 2, None)], 2)
-@example(_FOUR, None, [("tail", 1, " ")], 2)
-@example(_FOUR, None, [("text", 0, " ")], 2)
-@example(_FOUR, None, [("move", 2, None)], 2)
-def test_a_window_over_the_first_children_gives_the_same_edits_or_asks_for_the_whole(
-        children: list[tuple[str, str | None]], text: str | None,
-        changes: list[tuple[str, int, str | None]], skip: int) -> None:
-    """A container recorded past its first children (a robot's links and joints before its
-    transmissions) gives the edits of one recorded whole, or, where the change reached the
-    children it passed over, asks for the whole (:class:`NotIndexed`): never other edits."""
-    tree, edited, index = _robot_of(children, text)
-    root = tree.getroot()
-    window = min(skip, len(root))
-    before, text_before = [(child, child.tail) for child in root], root.text
-    first = root[window] if window < len(root) else None  # the first child recorded
-    whole = TreeChange([], [root])
-    windowed = TreeChange([], [root], None if first is None else {root: first})
-    taken = window if first is not None else 0
-    assert windowed.children_before(root) == [child for child, _ in before[taken:]]
-    _change(root, changes)
-    edits = whole.edits(edited, index)
-    after = [(child, child.tail) for child in root]
-    kept = [child for child, _ in after if any(child is old for old, _ in before)]
-    untouched = (root.text == text_before and after[:taken + 1] == before[:taken + 1]
-                 and kept == [old for old, _ in before if old in kept])
-    if after[:max(taken - 1, 0)] != before[:max(taken - 1, 0)]:
-        return  # changed further among those passed over: not seen (the read-back tells)
-    try:
-        assert windowed.edits(edited, index) == edits
-    except NotIndexed:
-        assert not untouched

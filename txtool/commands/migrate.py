@@ -95,7 +95,7 @@ def command(paths, target, check, diff, write, select, ignore, config_path, allo
         no_xacro=no_xacro,
     )
     report = migrate_paths(paths, options)
-    for diff in report.diffs:  # ASCII bytes go to the binary stream as they are
+    for diff in report.diffs:
         click.echo(diff, nl=False)
     for message in report.messages:  # each one line, whatever the file names hold
         click.echo(printable(message), err=True)

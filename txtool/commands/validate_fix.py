@@ -54,7 +54,7 @@ def print_diff(result: LintResult, selection: FixSelection) -> int:
         click.echo("txtool: nothing to fix", err=True)
         return 2 if result.errors else 0
     report = run_fixes(paths, "diff", selection)
-    for text in report.diffs:  # ASCII bytes go to the binary stream as they are
+    for text in report.diffs:
         click.echo(text, nl=False)
     for message in report.messages:
         if not message.startswith("txtool: note: "):  # the configuration's, told already

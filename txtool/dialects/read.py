@@ -18,7 +18,6 @@ from typing import TYPE_CHECKING, Any
 
 from lxml import etree
 
-from txtool.io.encodings import SCANNABLE, detect_encoding
 from txtool.io.xmlio import Source
 from txtool.model.core import (
     Dialect,
@@ -120,38 +119,6 @@ def transmission_elements(
     """``<transmission>`` elements that are transmissions (not nested in another one), of
     ``root`` or among its already collected ``candidates``."""
     return _found(root, candidates)[0]
-
-
-def transmissions_with_those_at_root(root: etree._Element, data: bytes | None = None
-                                     ) -> tuple[list[etree._Element], list[etree._Element]]:
-    """:func:`transmission_elements` of ``root``, and those of them (in document order)
-    that are children of ``root``, in one walk of the tree. ``data``: the bytes ``root``'s
-    document was parsed from, when the caller has them: where they show that every
-    transmission is a child of ``root`` (:func:`_all_at_root`), the tree is not walked."""
-    if data is not None:
-        children = _all_at_root(root, data)
-        if children is not None:
-            return children, children
-    found, all_at_root = _found(root, None)
-    if all_at_root:
-        return found, found
-    return found, [element for element in found if element.getparent() is root]
-
-
-def _all_at_root(root: etree._Element, data: bytes) -> list[etree._Element] | None:
-    """The ``<transmission>`` children of ``root`` when they are all the document's
-    ``<transmission>`` elements, as its bytes ``data`` show; else None.
-
-    In bytes of an ASCII-compatible encoding with no ``:transmission`` (no prefixed tag),
-    each ``<transmission>`` element has a start tag that begins ``<transmission``, so there
-    are at most as many such elements as occurrences (an end tag begins ``</``; a comment or a
-    longer name adds occurrences, never elements; a document has no entity that could add
-    an element, :func:`txtool.io.xmlio.parse_bytes` refuses them). So as many children as
-    occurrences are all of them (a ``root`` that is a transmission itself is one more)."""
-    if detect_encoding(data).codec not in SCANNABLE or b":transmission" in data:
-        return None
-    children = list(root.iterchildren("{*}transmission"))
-    return children if len(children) == data.count(b"<transmission") else None
 
 
 def _found(root: etree._Element, candidates: Iterable[etree._Element] | None

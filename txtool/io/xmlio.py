@@ -21,7 +21,6 @@ from typing import NamedTuple
 
 from lxml import etree
 
-from txtool.io import allocator
 from txtool.io.encodings import detect_encoding, mislabelled, parsing_form, utf8_form
 from txtool.io.targets import refused_target, remember_input, sweep_stale_temporaries
 
@@ -208,7 +207,6 @@ def parse_bytes(data: bytes, path: str, *, limit: int | None = MAX_BYTES) -> etr
     wrong = mislabelled(data)
     if wrong is not None:
         raise XMLSyntax(path, *wrong)
-    allocator.before_large_tree(len(data))
     parser = _reused_parser()
     try:
         text = parsing_form(data)

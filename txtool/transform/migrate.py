@@ -24,8 +24,7 @@ from typing import Literal
 from lxml import etree
 
 from txtool.dialects.read import transmission_elements
-from txtool.io.byte_search import find_by
-from txtool.io.encodings import SCANNABLE, detect_encoding, document_text
+from txtool.io.encodings import document_text
 from txtool.io.printable import printable
 from txtool.io.xmlio import (
     InputError,
@@ -48,11 +47,10 @@ from txtool.transform.edits.core import Edit, EditedText, compose
 from txtool.transform.edits.declaration import late_declaration
 from txtool.transform.edits.spans import SpanError, SpanIndex
 from txtool.transform.edits.tree_edits import NotEditable, TreeChange, reads_as
-from txtool.transform.fixable import might_fix, might_fix_converted
-from txtool.transform.linediff import unified_ascii, unified_text
+from txtool.transform.fixable import might_fix
+from txtool.transform.linediff import unified_text
 from txtool.transform.next_steps import package_build_types, package_gazebo_plugins
 from txtool.transform.placement.macros import MacroCalls, calls_in_files
-from txtool.transform.repeated.cycle_collector import paused
 from txtool.transform.reversible import MARK
 
 Mode = Literal["check", "diff", "write"]
@@ -119,8 +117,8 @@ class Report:
     mode: Mode
     files: list[FileResult] = field(default_factory=list)
     errors: list[str] = field(default_factory=list)
-    # Each changed file's diff; one of ASCII documents in bytes (written as they are).
-    diffs: list[str | bytes] = field(default_factory=list)
+    # Each changed file's diff.
+    diffs: list[str] = field(default_factory=list)
     messages: list[str] = field(default_factory=list)
 
     @property
@@ -329,17 +327,13 @@ def _judge(result: FileResult, path: str, options: MigrateOptions,
         result.refused = True
 
 
-@paused
 def _migrated(path: str, rules: Sequence[Rule], options: MigrateOptions) -> FileResult:
     display, original = read_bytes(path)
     tree = parse_bytes(original, display)
-    # What the end needs of the document as read is kept, and its tree is fixed in place:
-    # one tree alive at a time.
-    declarations = _may_declare(original)
-    comments = [(node.text, node.sourceline) for node in _comment_nodes(tree)] if (
-        declarations) else []
+    # What the end needs of the document as read is kept, and its tree is fixed in place.
+    comments = [(node.text, node.sourceline) for node in _comment_nodes(tree)]
     result = FileResult(path=display, original=original, data=original, target=options.target)
-    clean = not might_fix(tree.getroot(), rules, original)  # fix_tree() would find nothing
+    clean = not might_fix(tree.getroot(), rules)  # fix_tree() would find nothing
     if not clean:  # only what validate reports under the file's readers is fixed
         rules = fixes_read(Source(display, original, tree), rules, options.ros_distro,
                            options.config)
@@ -382,16 +376,11 @@ def _steps(result: FileResult, source: Source, rules: Sequence[Rule],
         _take_messages(result, conversion, options)
         stages.append(conversion.edits or [])
         data = conversion.data
-        scanned = _comment_texts(data) if comments else []
-        if scanned is not None and detect_encoding(data).codec in SCANNABLE and not (
-                might_fix_converted(data, rules, options.target)):
-            after = scanned  # the bytes tell: no fix finds anything in what was written
-        else:
-            converted = parse_bytes(data, display, limit=None)
-            if might_fix(converted.getroot(), rules, data):
-                data = _fix_stage(result, data, converted, rules, stages)
-            after = _comments(converted)
-            del converted
+        converted = parse_bytes(data, display, limit=None)
+        if might_fix(converted.getroot(), rules):
+            data = _fix_stage(result, data, converted, rules, stages)
+        after = _comments(converted)
+        del converted
     result.losses.extend(_dropped(comments, after))
     if result.losses and not options.allow_lossy and data != original:
         result.refused = True
@@ -466,37 +455,6 @@ def _fixed(data: bytes, tree: etree._ElementTree, rules: Sequence[Rule], path: s
         raise InputError(f"{path}: cannot fix: what the edits write does not read as the "
                          "fixed document; please report this file")
     return fixed, edits, fixes
-
-
-def _may_declare(data: bytes) -> bool:
-    """Whether ``data`` may hold a comment, a DOCTYPE or a CDATA section ("<!" begins each;
-    one byte is looked for faster than two)."""
-    return detect_encoding(data).codec not in SCANNABLE or b"!" in data
-
-
-def _comment_texts(data: bytes) -> list[str] | None:
-    """The texts of the comments of ``data`` as a parse reads them, or None where the bytes
-    alone may not tell (a CDATA section, a DOCTYPE or a processing instruction could hold
-    ``<!--``; a text not in UTF-8)."""
-    if detect_encoding(data).codec not in ("utf-8", "ascii"):
-        return None
-    instruction = find_by(data, b"<?", 1)
-    if instruction >= 0:
-        end = data.find(b"?>", instruction)
-        if end < 0 or find_by(data, b"<?", 1, instruction + 2) >= 0 or (
-                b"<!--" in data[instruction:end]):
-            return None
-    bodies = []
-    at = find_by(data, b"<!", 1)
-    while at >= 0:  # outside comments, "<!" begins a comment, a CDATA section or the DOCTYPE
-        if not data.startswith(b"<!--", at):
-            return None
-        end = find_by(data, b"-->", 0, at + 4)
-        if end < 0:
-            break
-        bodies.append(data[at + 4:end])
-        at = find_by(data, b"<!", 1, end + 3)
-    return [text.decode("utf-8").replace("\r\n", "\n").replace("\r", "\n") for text in bodies]
 
 
 def _carried(comment: str | None) -> bool:
@@ -587,25 +545,15 @@ def _silenced(element: etree._Element, code: str, suppressions: Suppressions) ->
 
 def unified_diff(path: str, before: bytes, after: bytes) -> str:
     """A unified diff with ``a/PATH`` and ``b/PATH`` headers (``git apply`` / ``patch -p1``)."""
-    diff = diff_of(path, before, after)
-    return diff if isinstance(diff, str) else diff.decode("ascii")
+    return diff_of(path, before, after)
 
 
-def diff_of(path: str, before: bytes, after: bytes) -> str | bytes:
-    """:func:`unified_diff`, ASCII-encoded where it is made from the bytes (a large document
-    in ASCII changed in one run of lines, see :func:`.linediff.unified_ascii`) and its path
-    is ASCII."""
+def diff_of(path: str, before: bytes, after: bytes) -> str:
+    """:func:`unified_diff`: the lines of both documents as text (:mod:`.linediff`)."""
     name = path.replace(os.sep, "/")
     while name.startswith("./"):  # a walk of "." names src/robot.urdf, as git diff does
         name = name[2:]
     name = printable(name.lstrip("/"))  # a name's newline: not a new line
-    if {detect_encoding(before).codec, detect_encoding(after).codec} <= SCANNABLE:
-        fast = unified_ascii(before, after, f"a/{name}", f"b/{name}")
-        if fast is not None:
-            header, rest = fast
-            if header.isascii():
-                return b"".join([header.encode("ascii"), *rest])
-            return header + b"".join(rest).decode("ascii")
     return unified_text(
         document_text(before).splitlines(keepends=True),
         document_text(after).splitlines(keepends=True),

@@ -19,6 +19,7 @@ import base64
 import binascii
 import re
 import zlib
+from collections import deque
 
 from lxml import etree
 
@@ -39,10 +40,10 @@ _END_LINE = re.compile(rb"</([\w.-]+:)?transmission\s*>$")
 _EMPTY_LINE = re.compile(rb"\s*<([\w.-]+:)?transmission\b[^>]*/>\s*")
 
 
-def block_of(data: bytes, element: etree._Element) -> bytes | None:
-    """The whole lines ``element`` stands on in ``data``, or None when they hold more: its
-    start tag must open its first line and its end tag close its last."""
-    lines = data.splitlines(keepends=True)
+def block_of(lines: list[bytes], element: etree._Element) -> bytes | None:
+    """The whole lines ``element`` stands on (``lines``: those of the document, with their
+    endings), or None when they hold more: its start tag must open its first line and its
+    end tag close its last."""
     start = (element.sourceline or 0) - 1
     if not 0 <= start < len(lines) or not _START.match(lines[start].lstrip()):
         return None
@@ -156,7 +157,9 @@ class Carrier:
         # Elements going back to ROS 1 after their <ros2_control> (the placer's ``after``).
         self.after_block: set[etree._Element] = set()
         self._pending: list[tuple[etree._Element, bytes]] = []
-        self._text = utf8_form(source.data) if self.reversible else b""
+        # The document's lines, once (each transmission's block is found among them).
+        self._lines = utf8_form(source.data).splitlines(keepends=True) if (
+            self.reversible) else []
 
     def before(self, found: Found) -> None:
         """Called for each transmission about to be converted, before it is placed."""
@@ -164,7 +167,7 @@ class Carrier:
         if self.target == "ros1":
             self._take_back(found)
         elif self.reversible and t.dialect == "ros1":
-            block = block_of(self._text, found.element)
+            block = block_of(self._lines, found.element)
             if block is None:
                 self.notes.append(f"transmission '{t.name}': shares its lines with other "
                                   "elements; its original is not carried (--reversible)")
@@ -183,12 +186,14 @@ class Carrier:
             self.notes.append(f"{count} transmission{'s' if count > 1 else ''}: the original "
                               "bytes carried by --reversible are put back")
         if self._carried:
-            placed = [e for e in tree.getroot().iter() if isinstance(e.tag, str)
-                      and local(e) == "transmission" and _in_component(e)]
+            placed: dict[str | None, deque[etree._Element]] = {}  # by name, in order
+            for e in tree.getroot().iter():
+                if isinstance(e.tag, str) and local(e) == "transmission" and _in_component(e):
+                    placed.setdefault(e.get("name"), deque()).append(e)
             for name, block, old in self._carried:
-                element = next((e for e in placed if e.get("name") == name), None)
-                if element is not None:
-                    placed.remove(element)
+                same = placed.get(name)
+                if same:
+                    element = same.popleft()
                     annotate(element, block, _stood_after(old, element.getparent()))
         return restored
 

@@ -3,7 +3,7 @@
 For every transmission and every cycle that starts from its dialect (``ros1 -> ros2-p2 ->
 ros1``, ``ros1 -> ros2-p1 -> ros2-p2 -> ros1``, ...), the whole document is converted through
 the cycle, read back, and compared field by field with the original (floats bit for bit), on
-what the original defines (:func:`txtool.transform.convert.judge`).
+what the original defines (:func:`txtool.transform.check.judge`).
 Each first leg is also checked numerically: the converted config must drive the actuators
 exactly like the original (:mod:`txtool.mechanics.equivalence`).
 """
@@ -12,21 +12,19 @@ from __future__ import annotations
 
 import hashlib
 import itertools
-from collections import Counter
-from collections.abc import Hashable, Mapping
+from collections import deque
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 from lxml import etree
 
 from txtool.dialects.read import read_source
 from txtool.io.xmlio import Source, parse_bytes
-from txtool.model.core import DIALECTS, Dialect, Transmission, builder
+from txtool.model.core import DIALECTS, Dialect, Transmission
 from txtool.model.robot import JointInfo, JointsOnDemand, joint_elements
 from txtool.model.semantics import listed_against_roles
-from txtool.transform.convert import convert_source, judge
-from txtool.transform.repeated.cycle_collector import paused
-from txtool.transform.repeated.nameless_shapes import ordered_shape, shape
-from txtool.transform.repeats import Plan, cycled_document, plan_repeats
+from txtool.transform.check import judge
+from txtool.transform.convert import convert_source
 from txtool.views.tables import FIELDS
 
 
@@ -51,10 +49,7 @@ class RoundTripReport:
 
     @property
     def ok(self) -> bool:
-        # The rows of repeated transmissions share their fields (see .repeats): each fields
-        # and verdict they share is looked at once.
-        shared = {(id(row.fields), row.equivalent): row for row in self.rows}
-        return all(row.ok for row in shared.values())
+        return all(row.ok for row in self.rows)
 
     def to_json(self) -> dict:
         """The JSON document (schemas/roundtrip.schema.json; its --against keys empty)."""
@@ -86,28 +81,16 @@ def _reconvert(source: Source, target: Dialect, *, consume: bool) -> bytes:
     return convert_source(source, target, consume=consume, check=False).data
 
 
-@paused
 def roundtrip(source: Source, *, consume: bool = False) -> RoundTripReport:
     """The rows of every cycle of every transmission of ``source``. With ``consume`` the
     caller gives up ``source.tree``: the last conversion of it converts it in place."""
     joints = JointsOnDemand(joint_elements(source.root))
-    plan = plan_repeats(source, joints)
-    while plan is not None:
-        # A transmission that repeats another is cycled once, with it (see .repeats).
-        report, originals = _report(cycled_document(source, plan), joints, consume=True)
-        spoken = spoken_firsts(report, originals, plan)
-        if not spoken:
-            report.rows = with_followers(report, originals, plan)
-            return report
-        plan = plan.without(spoken)
-        if not plan.first_of:
-            plan = None
-    return _report(source, joints, consume=consume)[0]
+    return _report(source, joints, consume=consume)
 
 
 def _report(source: Source, joints: Mapping[str, JointInfo], *, consume: bool
-            ) -> tuple[RoundTripReport, list[Transmission]]:
-    """:func:`roundtrip`'s report on ``source`` cycled in full, and its transmissions."""
+            ) -> RoundTripReport:
+    """:func:`roundtrip`'s report on ``source``."""
     report = RoundTripReport(source.path)
     originals = [f.transmission for f in read_source(source, locate=False)]
     groups = _groups(originals)
@@ -119,7 +102,7 @@ def _report(source: Source, joints: Mapping[str, JointInfo], *, consume: bool
     for start in starts:
         report.rows.extend(_cycles(source.path, start, groups[start], joints, legs))
     report.skipped = [f"{t.name}: custom type '{t.type}'" for t in originals if t.kind == "other"]
-    return report, originals
+    return report
 
 
 def _groups(originals: list[Transmission]) -> dict[Dialect, list[Transmission]]:
@@ -128,88 +111,22 @@ def _groups(originals: list[Transmission]) -> dict[Dialect, list[Transmission]]:
             for start in DIALECTS}
 
 
-_new_row = builder(CycleRow)
-_ByPosition = dict[int, CycleRow]  # a cycle's rows by their transmission's position
-
-
-def _by_cycle(report: RoundTripReport, originals: list[Transmission]
-              ) -> list[tuple[tuple[Dialect, ...], _ByPosition]]:
-    """The rows of ``report`` cycle by cycle, by the position of each one's transmission
-    among ``originals`` (the report's rows, in :func:`_report`'s order)."""
-    rows = iter(report.rows)
-    found = []
-    for start in DIALECTS:
-        members = [j for j, t in enumerate(originals) if t.dialect == start and t.kind != "other"]
-        found.extend((cycle, {j: next(rows) for j in members}) for cycle in cycles_from(start)
-                     if members)
-    return found
-
-
-def _silent(row: CycleRow) -> bool:
-    return row.equivalent == "yes" and not row.details and all(row.fields.values())
-
-
-def _kept(plan: Plan) -> dict[int, int]:
-    """Each transmission cycled: its position in the document -> in the document cycled."""
-    kept = (p for p in range(len(plan.elements)) if p not in plan.first_of)
-    return {p: j for j, p in enumerate(kept)}
-
-
-def spoken_firsts(report: RoundTripReport, originals: list[Transmission], plan: Plan
-                  ) -> set[int]:
-    """The firsts of ``plan`` whose rows in ``report`` (of the document cycled) say something
-    or are missing: their followers are cycled in full."""
-    firsts = set(plan.first_of.values())
-    at = _kept(plan)
-    if len(at) != len(originals):
-        return firsts  # not the transmissions planned: cycle everything
-    covered: Counter[int] = Counter()
-    spoken = set()
-    by_cycle = _by_cycle(report, originals)
-    for first in firsts:
-        for _, rows in by_cycle:
-            row = rows.get(at[first])
-            if row is not None:
-                covered[first] += 1
-                if not _silent(row):
-                    spoken.add(first)
-    return spoken | {f for f in firsts if not covered[f]}
-
-
-def with_followers(report: RoundTripReport, originals: list[Transmission], plan: Plan
-                   ) -> list[CycleRow]:
-    """The rows of the whole document: ``report``'s, and each follower's after its first's
-    (the same, with its name), in document order."""
-    at = _kept(plan)
-    rows = []
-    for cycle, by_position in _by_cycle(report, originals):
-        for position, element in enumerate(plan.elements):
-            first = plan.first_of.get(position)
-            row = by_position.get(at[position if first is None else first])
-            if row is None:
-                continue
-            rows.append(row if first is None else _new_row(
-                transmission=element.get("name", ""), cycle=cycle, fields=row.fields,
-                equivalent=row.equivalent))
-    return rows
-
-
 _Key = tuple[str, bool]
 
 
-def _by_name(source: Source) -> dict[_Key, list[Transmission]]:
+def _by_name(source: Source) -> dict[_Key, deque[Transmission]]:
     """Standard and custom transmissions by name; same-named ones in document order (the
     order conversions keep among them)."""
-    found: dict[_Key, list[Transmission]] = {}
+    found: dict[_Key, deque[Transmission]] = {}
     for f in read_source(source, locate=False):
-        found.setdefault((f.transmission.name, f.transmission.kind == "other"), []).append(
+        found.setdefault((f.transmission.name, f.transmission.kind == "other"), deque()).append(
             f.transmission)
     return found
 
 
-def _take(found: dict[_Key, list[Transmission]], name: str) -> Transmission | None:
+def _take(found: dict[_Key, deque[Transmission]], name: str) -> Transmission | None:
     same = found.get((name, False))
-    return same.pop(0) if same else None
+    return same.popleft() if same else None
 
 
 def _cycles(path: str, start: Dialect, group: list[Transmission], joints,
@@ -274,60 +191,31 @@ def _digest(data: bytes) -> bytes:
 
 class _Verdicts:
     """Whether each transmission's first conversion drives the actuators like the original,
-    computed when a cycle first asks (once per first leg). A pair whose ordered shape
-    (:func:`.repeated.nameless_shapes.ordered_shape`: the same up to names that compare alike) and
-    joint limits were already found equivalent is equivalent: the comparison reads names only
-    to order and match them."""
+    computed when a cycle first asks (once per first leg)."""
 
-    def __init__(self, group: list[Transmission], first_leg: dict[_Key, list[Transmission]],
+    def __init__(self, group: list[Transmission], first_leg: dict[_Key, deque[Transmission]],
                  joints) -> None:
         self.converted = [_take(first_leg, t.name) for t in group]
         self.group = group
         self.joints = joints
         self.known: dict[int, str] = {}
-        self.equivalent: set[Hashable] = set()
 
     def __getitem__(self, index: int) -> str:
         from txtool.mechanics.equivalence import compare_pair
 
         if index not in self.known:
             t, converted = self.group[index], self.converted[index]
-            if converted is None:
-                self.known[index] = _verdict(None)
-                return self.known[index]
-            key = (ordered_shape(t, converted),
-                   tuple(_limits(self.joints.get(j.name)) for j in t.joints))
-            if key in self.equivalent:
-                self.known[index] = "yes"
-                return "yes"
-            self.known[index] = _verdict(compare_pair(t, converted, self.joints))
-            if self.known[index] == "yes":
-                self.equivalent.add(key)
+            self.known[index] = _verdict(
+                None if converted is None else compare_pair(t, converted, self.joints))
         return self.known[index]
 
 
-def _limits(info: JointInfo | None) -> tuple[str, ...] | None:
-    """What the equivalence samples of a joint (its floats as text: -0.0 is not 0.0)."""
-    if info is None:
-        return None
-    return (repr(info.position_range()), repr(info.velocity), repr(info.effort))
-
-
-def _judge(group: list[Transmission], final: dict[_Key, list[Transmission]]) -> _Judged:
+def _judge(group: list[Transmission], final: dict[_Key, deque[Transmission]]) -> _Judged:
     """What each transmission of ``group`` lost in ``final`` (None: it is missing there)."""
     judged: _Judged = []
-    # shapes (:func:`.repeated.nameless_shapes.shape`) that came back whole
-    kept: set[Hashable] = set()
     for t in group:
         back = _take(final, t.name)
-        if back is None:
-            judged.append(None)
-            continue
-        key = shape(t, back)
-        lost = {} if key in kept else judge(t, back)
-        if not lost:
-            kept.add(key)
-        judged.append(lost)
+        judged.append(None if back is None else judge(t, back))
     return judged
 
 

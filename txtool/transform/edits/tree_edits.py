@@ -21,10 +21,9 @@ from lxml import etree
 
 from txtool.io.xmlio import InputError, parse_bytes
 from txtool.transform.edits.core import Edit, EditedText
-from txtool.transform.edits.spans import Attribute, NotIndexed, Span, SpanIndex
+from txtool.transform.edits.spans import Attribute, Span, SpanIndex
 
 _TAIL = attrgetter("tail")
-_GONE = etree.Comment("taken out")  # in place of a child let go (:meth:`TreeChange.let_go`)
 
 
 class NotEditable(ValueError):
@@ -46,28 +45,13 @@ class TreeChange:
     that write it (:meth:`edits`)."""
 
     def __init__(self, elements: Iterable[etree._Element],
-                 containers: Iterable[etree._Element] = (),
-                 windows: dict[etree._Element, etree._Element] | None = None) -> None:
+                 containers: Iterable[etree._Element] = ()) -> None:
         """``elements``: recorded with all their descendants; ``containers``: recorded
         alone (their attributes, text and children), for a change that adds, removes or
         replaces their children but changes nothing inside the children it keeps. The roots
         of the change are the containers that are no descendant of another, and the elements
-        that are in none of them.
-
-        ``windows``: for a container, the first of its children recorded: those before it
-        (and their tails, and its text) the change leaves as they are, passed over (a
-        robot's links and joints before its transmissions; neither a list of them is made
-        nor a step per child). Where that child is no longer where it was, after the same
-        one, or the text before it (that one's tail) or the container's text changed,
-        :meth:`edits` raises :class:`.spans.NotIndexed` (the caller records the container
-        whole); a change further among those passed over is not seen (a conversion's
-        read-back check tells it)."""
+        that are in none of them."""
         self._before: dict[etree._Element, _Before] = {}
-        # For a container with a window: the child before its first recorded, and that
-        # one's tail.
-        self._windows = {container: first for container, first in (windows or {}).items()
-                         if first.getparent() is container}
-        self._leads: dict[etree._Element, tuple[etree._Element | None, str | None]] = {}
         for element in containers:
             self._record(element)
         outer = set(self._before)
@@ -82,34 +66,9 @@ class TreeChange:
         self._redeclare = False
 
     def _record(self, element: etree._Element) -> None:
-        children = self._children(element)
-        if element in self._windows:
-            self._leads[element] = self._lead(children[0])
+        children = element[:]
         self._before[element] = _Before(dict(element.attrib), element.text, children,
                                         list(map(_TAIL, children)), element.tag)
-
-    def let_go(self) -> None:
-        """Hold no more the nodes the change took out of a container (their places are kept,
-        not them), so that lxml frees them now: on a large robot, the megabytes of the
-        transmissions a conversion replaced, which writing the document then reuses."""
-        for container, before in self._before.items():
-            children = before.children
-            for place, child in enumerate(children):
-                if child.getparent() is not container:
-                    children[place] = _GONE
-
-    def _children(self, element: etree._Element) -> list[etree._Element]:
-        """The children of ``element``, from the first recorded where it has a window."""
-        first = self._windows.get(element)
-        if first is None:
-            return element[:]  # (a slice makes its list faster than an iterator)
-        return [first, *first.itersiblings()] if first.getparent() is element else []
-
-    def children_before(self, container: etree._Element) -> list[etree._Element]:
-        """The children a container held before the change, past its window, if it has
-        one (a list not to be changed; after :meth:`let_go`, a placeholder stands where a
-        child was taken out)."""
-        return self._before[container].children
 
     def substitute(self, node: etree._Element, markup: bytes) -> None:
         """Write ``node`` (a node the change puts in) as ``markup``, bytes of the document,
@@ -142,12 +101,7 @@ class TreeChange:
         if element.tag != before.tag:
             raise NotEditable(f"<{etree.QName(element).localname}> changed its name")
         edits.extend(_attribute_edits(element, index, before.attributes, text, self._redeclare))
-        children = self._children(element)
-        window = element in self._windows
-        if window and (not children or element.text != before.text
-                       or self._lead(children[0]) != self._leads[element]):
-            raise NotIndexed(f"<{etree.QName(element).localname}> changed before the "
-                             f"first of its children recorded")
+        children = element[:]
         tails = list(map(_TAIL, children))
         if (children, tails, element.text) == (before.children, before.tails, before.text):
             for child in filter(self._before.__contains__, children):
@@ -169,18 +123,10 @@ class TreeChange:
         places = list(compress(range(len(children)), is_kept))
         kept_olds = list(compress(olds, is_kept))
         if not all(map(lt, kept_olds, kept_olds[1:])):
-            if window:  # (the content before the window would be written over)
-                raise NotIndexed(f"<{etree.QName(element).localname}> reordered children")
             places = kept_olds = []  # reordered: all of the content is written anew
         self._regions(element, span, children, tails, places, kept_olds, text, index, edits)
         for child in filter(self._before.__contains__, map(children.__getitem__, places)):
             self._element(child, text, index, edits)
-
-    @staticmethod
-    def _lead(first: etree._Element) -> tuple[etree._Element | None, str | None]:
-        """The child before ``first``, and its tail: what a window holds before it."""
-        previous = first.getprevious()
-        return previous, None if previous is None else previous.tail
 
     def _regions(self, element: etree._Element, span: Span, children: list[etree._Element],
                  tails: list[str | None], places: list[int], olds: list[int],

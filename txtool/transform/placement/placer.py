@@ -54,9 +54,6 @@ from txtool.transform.placement.macros import (
 from txtool.transform.placement.moves import Carried, Move
 from txtool.transform.placement.recognition import generated_from
 from txtool.transform.placement.scope import between, is_condition, prefixed
-from txtool.transform.repeated.block_text import Written, blank, write
-from txtool.transform.repeated.renamings import Follower, Renaming
-from txtool.transform.repeated.templates import Templates, parse_children
 
 # ros2_control's mock hardware (hardware_interface/src/mock_components/generic_system.cpp):
 # it sets each state to its command and drives nothing, a stand-in for the robot's own plugin.
@@ -67,34 +64,20 @@ class Placer:
     once every transmission has been placed."""
 
     def __init__(self, root: etree._Element, hardware_plugin: str, *,
-                 components: bool = True, macro_calls: MacroCalls | None = None) -> None:
-        """``components=False``: the document is known to hold no ``<ros2_control>`` (its
-        tree is then not searched for one until a block is added); ``macro_calls``: where
-        the files converted with this one call each macro (:mod:`.macros`)."""
+                 macro_calls: MacroCalls | None = None) -> None:
+        """``macro_calls``: where the files converted with this one call each macro
+        (:mod:`.macros`)."""
         self.root = root
         self.macro_calls = macro_calls or {}
         self._calls: MacroCalls | None = None  # the document's, when asked
-        self._robot = local(root) == "robot"
         self.hardware_plugin = hardware_plugin
         self.notes: list[str] = []
         self._into_new: list[Move] = []
         self._in_place: dict[etree._Element, list[Move]] = {}  # by the parent they stand in
         self._out_of: dict[etree._Element, list[Move]] = {}
-        self._components: list[etree._Element] | None = None if components else []
+        self._components: list[etree._Element] | None = None
         self._declared: dict[etree._Element, set[str]] = {}
         self.built: dict[etree._Element, etree._Element] = {}  # old element -> the last built
-        # Built elements in the block generated for the document whose joints it declares
-        # from them alone: what reading one back gives depends on that element only.
-        self.alone: set[etree._Element | Written] = set()
-        self._templates = Templates()
-        # Set by the caller: the old elements whose built ones may not be written as text
-        # (:mod:`txtool.transform.repeated.block_text`) rather than parsed into the tree;
-        # None: none may.
-        self.crowded: set[etree._Element] | None = None
-        # The marker, and the pieces of its text.
-        self.written: tuple[etree._Comment, list[bytes]] | None = None
-        self.unwritten: dict[Written, etree._Element] = {}  # by :meth:`unwrite`
-        self._written_block: list[Written] = []  # the transmissions of :attr:`written`
         self._replaced = etree.Element("replaced")  # what the generated block replaced
         # What the conversion cannot do as the document asks (it says why).
         self.losses: list[str] = []
@@ -111,16 +94,15 @@ class Placer:
         self.after: set[etree._Element] = set()
         # The names of the <ros2_control> elements in the document (stripped, as ros2_control
         # reads them), once known: a block txtool adds takes a name none has.
-        self._taken: set[str] | None = None if components else set()
+        self._taken: set[str] | None = None
 
     def place(self, old: etree._Element, t: Transmission, carried: Carried | None = None,
-              renaming: Renaming | None = None, dialect: Dialect | None = None) -> bool:
+              dialect: Dialect | None = None) -> bool:
         """Place the conversion ``t`` of ``old``; ``carried``: children of ``old`` (by
-        owner) that go along as written; ``renaming``: ``old``'s key and names (see
-        :mod:`txtool.transform.repeated.renamings`), so that the elements built for one key
-        are built once; ``dialect``: ``old``'s, when known. Whether it is placed: one on a
-        joint no ``<ros2_control>`` may declare is left as written (:mod:`.bindable`)."""
-        move = Move(old, t, carried, renaming)
+        owner) that go along as written; ``dialect``: ``old``'s, when known. Whether it is
+        placed: one on a joint no ``<ros2_control>`` may declare is left as written
+        (:mod:`.bindable`)."""
+        move = Move(old, t, carried)
         component = enclosing_component(old)
         moving_out = t.dialect == "ros1" and component is not None
         moving_in = (t.dialect != "ros1" and component is None and old.getparent() is not None
@@ -161,26 +143,6 @@ class Placer:
         if refusal is not None:
             self.warnings.append(left_as_written(name, refusal))
         return refusal is None
-
-    def place_follower(self, old: etree._Element, follower: Follower, dialect: Dialect
-                       ) -> bool:
-        """:meth:`place` for a follower (:mod:`txtool.transform.repeated.renamings`) outside
-        any ``<ros2_control>``: one that goes into the block generated for the document is not
-        built here."""
-        if dialect == "ros1" and follower.record.dialect != "ros1" and not self._bindable(
-                follower.name, [name for name, _, _ in follower.record.joints_for(
-                    follower.names)]):
-            return False
-        into_new = (dialect == "ros1" and follower.record.dialect != "ros1"
-                    and old.getparent() is self.root and self._robot)
-        if into_new and (self._components == [] or self._component_for(
-                lambda: {name for name, _, _ in follower.record.joints_for(follower.names)}
-        ) is None):
-            if self._components:  # (the check reads the follower's joints)
-                self._not_in_scope(follower.translated())
-            self._into_new.append(Move(old, None, None, None, follower))
-            return True
-        return self.place(old, follower.translated(), {}, follower.renaming(), dialect)
 
     def finish(self) -> None:
         if self._into_new:
@@ -240,13 +202,9 @@ class Placer:
         runs = runs_of([m.old for m in moves])
         name = self._fresh_name(self.root.get("name", "robot"),
                                 "the <ros2_control> generated for the document")
-        block = None if self._mimics(moves) else self._write_block(name, moves, runs, first,
-                                                                   indent, step)
-        if block is None:
-            block = self.block(name, self.hardware_plugin, moves, first, indent, step,
-                                alone=True)
-            for old in runs[0][:-1]:
-                self.built[old].tail = reindent(old.tail, indent + step)
+        block = self.block(name, self.hardware_plugin, moves, first, indent, step)
+        for old in runs[0][:-1]:
+            self.built[old].tail = reindent(old.tail, indent + step)
         for run in runs[1:]:
             for old in run:
                 cut(old)
@@ -259,27 +217,16 @@ class Placer:
 
     def block(self, name: str, plugin: str, moves: list[Move], like: etree._Element,
                indent: str, step: str, *, record: bool = True,
-               transmissions: bool = True, alone: bool = False) -> etree._Element:
+               transmissions: bool = True) -> etree._Element:
         """A ``<ros2_control type="system">`` block declaring the joints of the converted
         transmissions and holding them (unless ``transmissions`` is false), as txtool
-        generates it (``record``: as :meth:`build`; ``alone``: keep in :attr:`alone` the
-        transmissions whose joints none before declared)."""
+        generates it (``record``: as :meth:`build`)."""
         q = qualifier(like)
         block = etree.Element(q("ros2_control"), name=name, type="system")
         hardware = etree.SubElement(block, q("hardware"))
         etree.SubElement(hardware, q("plugin")).text = plugin
-        declared, shared = _declared(moves)
-        texts = self._texts(moves, like, indent + step, step) if transmissions and record \
-            else None
-        if texts is not None:
-            built = self._fill_by_text(block, declared, texts, indent, step)
-            self.built.update(zip([m.old for m in moves], built, strict=True))
-        else:
-            built = self._fill(block, declared, moves if transmissions else [], like, indent,
-                               step, record)
-        for move, new in zip(moves, built, strict=False):
-            if alone and move.old not in shared:
-                self.alone.add(new)
+        self._fill(block, _declared(moves), moves if transmissions else [], like, indent, step,
+                   record)
         notes = not_mimicking(block, self.joints)
         if record:
             self.notes.extend(notes)
@@ -291,15 +238,9 @@ class Placer:
             self._calls = {name: tuple(calls) for name, calls in calls_in(self.root).items()}
         return self._calls
 
-    def _mimics(self, moves: list[Move]) -> bool:
-        """Whether a joint of ``moves`` mimics another (its declaration is then made in the
-        tree, where :func:`.bindable.not_mimicking` finds it)."""
-        return any(self.joints.mimicked(name) is not None
-                   for move in moves for name, _, _ in move.joints())
-
     def _fill(self, block: etree._Element, declared: list[tuple[str, tuple]],
               moves: list[Move], like: etree._Element, indent: str, step: str, record: bool
-              ) -> list[etree._Element]:
+              ) -> None:
         """Declare the joints in ``block`` and put in the transmissions built for ``moves``,
         laid out as :func:`dialects.pretty` lays out the block."""
         q = qualifier(like)
@@ -310,124 +251,15 @@ class Placer:
                 declarations[interfaces] = _declaration(q, *interfaces)
                 dialects.pretty(declarations[interfaces], indent + step, step)
                 declarations[interfaces].tail = inner
-            declaration = declarations[interfaces].__deepcopy__(None)  # see Templates
+            declaration = copy.deepcopy(declarations[interfaces])
             declaration.set("name", name)
             block.append(declaration)
         hardware = block[0]
         dialects.pretty(hardware, indent + step, step)
         hardware.tail, block.text = inner, inner
         block[-1].tail = "\n" + indent
-        built = []
         for move in moves:
-            built.append(self.build(move, indent + step, step, like, record=record))
-            append(block, built[-1])
-        return built
-
-    def _texts(self, moves: list[Move], like: etree._Element, indent: str, step: str
-               ) -> list[bytes] | None:
-        """The text of each transmission :meth:`build` would build, when all have one."""
-        if namespace_of(like) is not None:
-            return None
-        texts = []
-        templates = self._templates
-        forms: dict[int, tuple[str, Callable, bool] | None] = {}  # a follower's, by record
-        for move in moves:
-            follower = move.follower
-            if move.carried or follower is None and move.renaming is None:
-                return None
-            if follower is None:
-                text = templates.text(move.renaming, move.dialect, indent, step, move)
-            else:  # the same key and dialect as its record's: the same form
-                form = forms.get(id(follower.record), False)
-                if form is False:
-                    form = forms[id(follower.record)] = templates.form(
-                        follower.renaming(), move.dialect, indent, step, move)
-                text = None if form is None else (form[0] % form[1](follower.names)).encode()
-            if text is None:
-                return None
-            texts.append(text)
-        return texts
-
-    def _write_block(self, name: str, moves: list[Move], runs: list[list[etree._Element]],
-                     like: etree._Element, indent: str, step: str) -> etree._Element | None:
-        """The block :meth:`_generate` makes, with its declarations and transmissions left as
-        text (:func:`txtool.transform.repeated.block_text.write`, kept in :attr:`written`), or
-        None when it cannot be so."""
-        crowded = self.crowded
-        if crowded is None or namespace_of(like) is not None or not (blank(indent)
-                                                                   and blank(step)):
-            return None
-        if crowded and not crowded.isdisjoint([move.old for move in moves]):
-            return None
-        tails = self._tails(moves, runs, indent, step)
-        if tails is None:
-            return None
-        made = write(name, self.hardware_plugin, moves, tails, indent, step, self._templates)
-        if made is None:
-            return None
-        block, written, alone, self.written = made
-        self._written_block = written
-        self.built.update(zip([move.old for move in moves], written, strict=True))
-        self.alone.update(alone)
-        return block
-
-    def _tails(self, moves: list[Move], runs: list[list[etree._Element]], indent: str,
-               step: str) -> list[str] | None:
-        """What follows each transmission of a generated block: the blank lines that followed
-        it in the first run, one line break, or the block's end; None when not blank."""
-        tails = ["\n" + indent + step] * len(moves)
-        reindented: dict[str | None, str] = {}
-        for position, old in enumerate(runs[0][:-1]):
-            tail = reindented.get(old.tail)
-            if tail is None:
-                tail = reindented[old.tail] = reindent(old.tail, indent + step)
-            tails[position] = tail
-        tails[-1] = "\n" + indent
-        if not all([blank(tail) for tail in {*reindented.values(), tails[-1]}]):
-            return None
-        return tails
-
-    def release(self) -> None:
-        """Let go of the elements replaced (and of :attr:`built`): they are freed before the
-        document is written, and its text takes their memory."""
-        self._into_new, self._out_of, self.crowded, self.built = [], {}, None, {}
-        self._replaced = etree.Element("replaced")  # freed as one subtree
-
-    def unwrite(self) -> None:
-        """Parse the text of :attr:`written` into the tree in place of its marker."""
-        assert self.written is not None
-        comment, pieces = self.written
-        self.written = None
-        block = comment.getparent()
-        block.remove(comment)
-        elements = parse_children(pieces)
-        block.extend(elements)
-        block_written = self._written_block
-        for written, element in zip(block_written, elements[len(elements) - len(block_written):],
-                                    strict=True):
-            self.unwritten[written] = element
-            if written in self.alone:
-                self.alone.discard(written)
-                self.alone.add(element)
-
-    def _fill_by_text(self, block: etree._Element, declared: list[tuple[str, tuple]],
-                      texts: list[bytes], indent: str, step: str
-                      ) -> list[etree._Element]:
-        """What :meth:`_fill` gives, the declarations and transmissions parsed from text."""
-        inner = ("\n" + indent + step).encode()
-        pieces: list[bytes] = []
-        for name, interfaces in declared:
-            head, tail = self._templates.declaration(interfaces, indent + step, step)
-            pieces += (head, name.encode(), tail, inner)
-        for text in texts:
-            pieces += (text, inner)
-        hardware = block[0]
-        dialects.pretty(hardware, indent + step, step)
-        hardware.tail, block.text = inner.decode(), inner.decode()
-        pieces[-1] = ("\n" + indent).encode()  # there is a transmission at least
-        children = parse_children(pieces)
-        block.extend(children)
-        return children[len(declared):]
+            append(block, self.build(move, indent + step, step, like, record=record))
 
     def _component_for(self, joints: Callable[[], set[str]]) -> etree._Element | None:
         """The first ``<ros2_control>`` that declares all of ``joints()``."""
@@ -591,39 +423,31 @@ class Placer:
         comments and carried children of the old one; ``record``: as what replaces the old
         one (:attr:`built`), not a trial build to compare with."""
         t = move.new
-        if move.renaming is not None and not move.carried:
-            # A keyed element has no comment (see :mod:`txtool.transform.repeated.renamings`):
-            # nothing to add.
-            new = self._templates.element(move.renaming, t, indent, step, namespace_of(like))
-        else:
-            new = dialects.build(t, t.dialect, indent=indent, step=step,
-                                 namespace=namespace_of(like))
-            for (kind, name), elements in (move.carried or {}).items():
-                owner = new if kind == "transmission" else next(
-                    (m for m in children(new, kind) if m.get("name") == name), new)
-                owner.extend(copy.deepcopy(e) for e in elements)
-            with_comments(new, move.old)
-            if move.carried or has_comment(new):
-                dialects.pretty(new, indent, step)  # build() laid out all but these
+        new = dialects.build(t, t.dialect, indent=indent, step=step,
+                             namespace=namespace_of(like))
+        for (kind, name), elements in (move.carried or {}).items():
+            owner = new if kind == "transmission" else next(
+                (m for m in children(new, kind) if m.get("name") == name), new)
+            owner.extend(copy.deepcopy(e) for e in elements)
+        with_comments(new, move.old)
+        if move.carried or has_comment(new):
+            dialects.pretty(new, indent, step)  # build() laid out all but these
         if record:
             self.built[move.old] = new
         return new
 
 
-def _declared(moves: list[Move]) -> tuple[list[tuple[str, tuple]], set[etree._Element]]:
+def _declared(moves: list[Move]) -> list[tuple[str, tuple]]:
     """The joints a generated block declares (names and interfaces, in order: the first of
-    each name) and the old elements of the moves with a joint declared before."""
+    each name)."""
     seen: set[str] = set()
     declared: list[tuple[str, tuple]] = []
-    shared: set[etree._Element] = set()
     for move in moves:
         for name, commands, states in move.joints():
-            if name in seen:
-                shared.add(move.old)
-            else:
+            if name not in seen:
                 seen.add(name)
                 declared.append((name, (commands, states)))
-    return declared, shared
+    return declared
 
 
 def _declaration(q: Callable[[str], str], commands: tuple[str, ...],

@@ -1,1 +1,0 @@
-"""Robots that repeat a transmission under other names: each shape converted once, then copied."""
