@@ -328,7 +328,99 @@ def test_hooks_leave_xml_that_is_no_robot_alone(tmp_path):
     assert run_hook("txtool-migrate", package)[0] == 0
     assert package.read_text() == text
     code, out = run_hook("txtool-validate", package)
-    assert code == 0 and "TX006" in out
+    assert (code, out) == (0, "No problems in 0 files.\n")
+
+
+LAUNCH = """<launch>
+  <arg name="use_sim_time" default="false"/>
+  <node pkg="robot_state_publisher" exec="robot_state_publisher">
+    <param name="robot_description"
+           value="$(command 'xacro $(find-pkg-share demo_description)/urdf/robot.urdf.xacro')"/>
+    <param name="use_sim_time" value="$(var use_sim_time)"/>
+  </node>
+</launch>
+"""
+PACKAGE = """<?xml version="1.0"?>
+<package format="3">
+  <name>demo_description</name>
+  <version>0.1.0</version>
+  <description>A robot</description>
+  <maintainer email="m@example.com">M</maintainer>
+  <license>BSD</license>
+  <buildtool_depend>ament_cmake</buildtool_depend>
+  <export><build_type>ament_cmake</build_type></export>
+</package>
+"""
+GOOD_XACRO = """<?xml version="1.0"?>
+<robot name="demo" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="prefix" default=""/>
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j1" type="revolute">
+    <parent link="base"/><child link="arm"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+  <ros2_control name="demo" type="system">
+    <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+    <joint name="j1"><command_interface name="position"/><state_interface name="position"/></joint>
+    <transmission name="t1">
+      <plugin>transmission_interface/SimpleTransmission</plugin>
+      <joint name="j1" role="joint1"><mechanical_reduction>2.0</mechanical_reduction></joint>
+      <actuator name="a1" role="actuator1"/>
+    </transmission>
+  </ros2_control>
+</robot>
+"""
+
+
+@pytest.fixture
+def ros2_package(tmp_path, monkeypatch) -> list[Path]:
+    """A ROS 2 description package as pre-commit stages it: every .xml, .urdf and .xacro."""
+    files = {"package.xml": PACKAGE, "launch/robot.launch.xml": LAUNCH,
+             "launch/display.xml": LAUNCH, "worlds/empty.sdf":
+             '<?xml version="1.0"?>\n<sdf version="1.6"><world name="w"/></sdf>\n',
+             "urdf/robot.urdf.xacro": GOOD_XACRO}
+    for name, text in files.items():
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text(text)
+    (tmp_path / "config").mkdir()
+    (tmp_path / "config" / "controllers.yaml").write_text("controller_manager: {}\n")
+    monkeypatch.chdir(tmp_path)
+    return [Path(name) for name in files]
+
+
+def test_validate_hook_passes_a_ros2_package_whose_robot_is_good(ros2_package):
+    """Launch files (``$(find-pkg-share ...)``, ``$(var ...)``), package.xml and an SDF world
+    are no robot descriptions: their root elements say so, and they are passed over quietly."""
+    code, out = run_hook("txtool-validate", *ros2_package)
+    assert (code, out) == (0, "No problems in 1 file.\n")
+
+
+def test_validate_hook_still_reports_the_robot_of_that_package(ros2_package):
+    robot = Path("urdf/robot.urdf.xacro")
+    robot.write_text(GOOD_XACRO.replace("2.0</mechanical", "0</mechanical"))
+    code, out = run_hook("txtool-validate", *ros2_package)
+    assert code == 1
+    assert [line.split(":")[0] for line in out.splitlines()[:-1]] == ["urdf/robot.urdf.xacro"]
+
+
+def test_a_xacro_library_of_any_root_is_still_checked_when_named(tmp_path):
+    library = tmp_path / "arm.xacro"
+    library.write_text(BROKEN.replace('<robot name="r">',
+                                      '<root xmlns:xacro="http://www.ros.org/wiki/xacro">')
+                       .replace("</robot>", "</root>"))
+    code, out = run_hook("txtool-validate", library)
+    assert code == 1 and "TX106" in out
+
+
+def test_the_validate_hook_applies_the_configuration_exclude_to_files_named(ros2_package):
+    """As ruff's hook passes --force-exclude: pre-commit names files one by one."""
+    Path("urdf/old.urdf").write_text(GOOD_XACRO.replace("2.0</mechanical", "0</mechanical"))
+    Path(".txtool.toml").write_text('exclude = ["urdf/old.urdf"]\n')
+    assert run_hook("txtool-validate", *ros2_package, Path("urdf/old.urdf")) == (
+        0, "No problems in 1 file.\n")
+    result = CliRunner().invoke(cli, ["validate", "urdf/old.urdf"])
+    assert result.exit_code == 1 and "urdf/old.urdf:" in result.output
 
 
 def test_no_page_sends_users_to_a_release_that_does_not_exist():

@@ -89,6 +89,9 @@ def use_color(mode: str, output_file: str | None = None) -> bool:
                    "relative to this folder; replaces the configuration's exclude (repeatable).")
 @click.option("--extend-exclude", multiple=True, metavar="PATTERN",
               help="Like --exclude, but kept beside the configuration's exclude (repeatable).")
+@click.option("--force-exclude", is_flag=True,
+              help="Exclude patterns pass over files named on the command line too (as "
+                   "pre-commit names every staged .xml file).")
 @click.option("--respect-gitignore/--no-respect-gitignore", default=None,
               help="Pass over what .gitignore files ignore in folder walks [default: respect].")
 @click.option("--ros-distro", type=click.Choice(CHOICES), default=None,
@@ -98,8 +101,11 @@ def use_color(mode: str, output_file: str | None = None) -> bool:
 @exit_on_input_error
 def command(paths, output_formats, select, ignore, strict, exit_zero, config_path, no_xacro,
             stdin_filename, jobs, color, output_file, fix, diff, quiet, statistics, exclude,
-            extend_exclude, respect_gitignore, ros_distro, xacro) -> int:
+            extend_exclude, force_exclude, respect_gitignore, ros_distro, xacro) -> int:
     """Check transmissions in files and folders (*.urdf, *.xacro, robot *.xml; '-' is stdin).
+
+    A file named whose root element is no robot description's (a launch file, package.xml,
+    an SDF world) is passed over.
 
     Exit codes: 0 nothing at the failing level, 1 findings at it (errors; warnings too with
     --strict; infos never), 2 usage, configuration or input error.
@@ -128,6 +134,7 @@ def command(paths, output_formats, select, ignore, strict, exit_zero, config_pat
         jobs=jobs,
         exclude=exclude or None,
         extend_exclude=extend_exclude,
+        force_exclude=force_exclude,
         respect_gitignore=respect_gitignore,
         ros_distro=ros_distro,
     )
