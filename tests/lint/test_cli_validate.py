@@ -172,3 +172,19 @@ def test_a_folder_with_nothing_to_check_is_an_input_error_not_a_pass(validate, t
         assert err == (f"txtool: {tmp_path / folder}: no .urdf, .xacro or robot .xml file to "
                        "check in this folder (or its subfolders, leaving out ignored and "
                        "excluded ones)\n")
+
+
+def test_tx305_names_the_configuration_by_its_file_name_and_offers_migrate(validate, tmp_path):
+    """The configuration's folder was repeated on every finding, filling the line."""
+    config = tmp_path / "settings" / "txtool.toml"
+    config.parent.mkdir()
+    config.write_text('ros-distro = "jazzy"\n')
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(CLEAN)
+    code, out, _ = validate("--config", str(config), str(robot))
+    assert code == 0
+    assert out == (
+        f"{robot}:2:3: info TX305 unread-transmission: ROS 1 transmission 't' stands outside "
+        "every <ros2_control> block, where none of this file's readers looks (ros2_control "
+        "(jazzy): ros-distro jazzy in txtool.toml): nothing reads it; txtool migrate --write "
+        "--to ros2-p2 moves it into a <ros2_control> block\nFound 1 info in 1 file.\n")
