@@ -188,3 +188,16 @@ def test_tx305_names_the_configuration_by_its_file_name_and_offers_migrate(valid
         "every <ros2_control> block, where none of this file's readers looks (ros2_control "
         "(jazzy): ros-distro jazzy in txtool.toml): nothing reads it; txtool migrate --write "
         "--to ros2-p2 moves it into a <ros2_control> block\nFound 1 info in 1 file.\n")
+
+
+def test_a_walk_of_the_working_folder_names_files_without_dot_slash(validate, tmp_path,
+                                                                     monkeypatch):
+    (tmp_path / "urdf").mkdir()
+    (tmp_path / "urdf" / "robot.urdf").write_text(BROKEN)
+    monkeypatch.chdir(tmp_path)
+    code, out, _ = validate("--format", "concise", ".")
+    assert code == 1
+    assert out.splitlines()[0] == ("urdf/robot.urdf:6:24: TX106 reduction of actuator 'm' of "
+                                   "transmission 't' is zero")
+    code, out, _ = validate("--format", "concise", "./urdf")  # as the user wrote it
+    assert code == 1 and out.startswith("./urdf/robot.urdf:6:24: TX106 ")

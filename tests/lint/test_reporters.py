@@ -98,6 +98,39 @@ def test_sarif_report_matches_golden(report):
     assert stable == golden("report.sarif", stable)
 
 
+def test_gitlab_report_matches_golden(report):
+    code, out = report("gitlab")
+    assert code == 1
+    assert out == golden("report.gitlab", out)
+    issues = json.loads(out)
+    assert {issue["location"]["path"] for issue in issues} == {"urdf/robot.urdf"}
+    assert len({issue["fingerprint"] for issue in issues}) == len(issues)
+
+
+def test_concise_report_matches_golden(report):
+    code, out = report("concise")
+    assert code == 1
+    assert out == golden("report.concise", out)
+    assert all(len(line) <= 120 for line in out.splitlines()[:-1])  # about 100
+
+
+@pytest.mark.parametrize("output_format", ["sarif", "gitlab"])
+def test_fingerprints_stay_when_lines_are_added_above(report, output_format):
+    """Code scanning and GitLab match a finding across commits by its fingerprint."""
+
+    def prints(out: str) -> list[str]:
+        found = json.loads(out)
+        if output_format == "gitlab":
+            return [issue["fingerprint"] for issue in found]
+        return [r["partialFingerprints"]["txtoolFinding/v1"] for r in found["runs"][0]["results"]]
+
+    code, before = report(output_format)
+    robot = Path("urdf/robot.urdf")
+    robot.write_text(robot.read_text().replace("<robot", "<!-- a comment -->\n\n<robot", 1))
+    assert report(output_format)[1] != before  # the lines moved
+    assert prints(report(output_format)[1]) == prints(before) and code == 1
+
+
 def sarif_schema() -> dict:
     try:
         from importlib.resources import files

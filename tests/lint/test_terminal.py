@@ -330,3 +330,22 @@ def test_an_empty_folder_or_an_unexpanded_file_prints_no_summary_of_success(vali
     code, out, _ = validate(str(robot))
     assert code == 0 and "No problems" not in out
     assert out.endswith("Found 1 info in 1 file; 1 file not expanded (TX002).\n")
+
+
+BROKEN_DEMO = "fixtures/broken_robot.urdf"
+
+
+@pytest.mark.parametrize(("columns", "color"), [(80, "auto"), (120, "auto"), (80, "never")])
+def test_findings_on_a_terminal_wrap_to_its_width(columns, color):
+    """Each finding on the lines it needs, the next ones indented; in a pipe, one a line."""
+    code, piped, _ = in_pipe("validate", BROKEN_DEMO)
+    findings = piped.splitlines()[:-1]
+    assert code == 1 and any(len(line) > 120 for line in findings)
+    code, _, screen = in_terminal("validate", BROKEN_DEMO, "--color", color, columns=columns)
+    shown = ANSI.sub("", screen).splitlines()
+    assert code == 1 and widest(screen) <= columns
+    starts = [line for line in shown if not line.startswith(" ")]
+    assert [line.split(": ")[0] for line in starts[:-1]] == [
+        line.split(": ")[0] for line in findings]
+    assert " ".join(" ".join(line.split()) for line in shown[:-1]) == " ".join(
+        " ".join(line.split()) for line in findings)

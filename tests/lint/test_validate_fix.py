@@ -216,7 +216,7 @@ def test_json_says_which_findings_are_fixable(robots):
     (["--format", "json:a.json", "-o", "./a.json", "x.urdf"], "two reports named the same file"),
     (["--format", "sarif:", "x.urdf"], "'sarif:': no file name after ':'"),
     (["--format", "xml:a.xml", "x.urdf"], "'xml' is not one of"),
-    (["--format", "json", "--statistics", "x.urdf"], "go with --format text, not json"),
+    (["--format", "json", "--statistics", "x.urdf"], "go with --format text or concise, not json"),
 ])
 def test_usage_errors(robots, args, message):
     code, out, err = run("validate", *args, input=LEGACY)

@@ -19,7 +19,7 @@ from txtool.commands.common import (
 from txtool.io.printable import printable
 from txtool.model.distro import CHOICES
 
-FORMATS = ("text", "json", "github", "sarif", "junit")
+FORMATS = ("text", "concise", "json", "github", "sarif", "junit", "gitlab")
 
 
 class OutputFormat(Choice):
@@ -45,6 +45,15 @@ def default_format() -> str:
 
 def use_color(mode: str, output_file: str | None = None) -> bool:
     return color_wanted(mode, output_file is None and sys.stdout.isatty())
+
+
+def terminal_width(output_file: str | None) -> int | None:
+    """The width the text report wraps to: a terminal's (COLUMNS if set), else None."""
+    if output_file is not None or not sys.stdout.isatty():
+        return None
+    import shutil
+
+    return shutil.get_terminal_size().columns
 
 
 @click.command("validate")
@@ -114,8 +123,9 @@ def command(paths, output_formats, select, ignore, strict, exit_zero, config_pat
     from txtool.lint.api import LintOptions, exit_code, lint_paths
 
     main, files = _outputs(output_formats, output_file)
-    if (quiet or statistics) and main != "text":
-        raise click.UsageError(f"--quiet and --statistics go with --format text, not {main}")
+    if (quiet or statistics) and main not in ("text", "concise"):
+        raise click.UsageError("--quiet and --statistics go with --format text or concise, "
+                               f"not {main}")
     if diff and (output_formats or output_file or quiet or statistics):
         raise click.UsageError("--diff prints a diff: it takes no --format, --output, "
                                "--quiet or --statistics")
@@ -158,7 +168,8 @@ def command(paths, output_formats, select, ignore, strict, exit_zero, config_pat
     stdin_name = (stdin_filename or "<stdin>") if "-" in paths else None
     code = _report_all(result, main, files, output_file, stdin_name, selection,
                        _Look(use_color(color, output_file), quiet, statistics,
-                             ("error", "warning") if strict else ("error",)), paths)
+                             ("error", "warning") if strict else ("error",),
+                             terminal_width(output_file)), paths)
     return 2 if fix_failed else max(code, exit_code(result, options))
 
 
@@ -167,6 +178,7 @@ class _Look(NamedTuple):
     quiet: bool
     statistics: bool
     failing: tuple[str, ...]  # the severities that fail the run (JUnit failures)
+    width: int | None = None  # a terminal's: the text report wraps to it
 
 
 def _outputs(formats: tuple[tuple[str, str | None], ...],
@@ -205,10 +217,9 @@ def _report_all(result, main: str, files: list[tuple[str, str]], output_file: st
     summary = Summary.of(problems, result.files, failures=result.errors, readers=result.readers,
                          edits=edits, failing=look.failing)
     colored = main == "text" and look.color
-    outputs = [(output_file, _report(main, problems, summary, colored, look.quiet,
-                                     look.statistics))]
-    outputs += [(path, _report(name, problems, summary, False, False, False))
-                for name, path in files]
+    outputs = [(output_file, _report(main, problems, summary, colored, look))]
+    plain = _Look(False, False, False, look.failing)
+    outputs += [(path, _report(name, problems, summary, False, plain)) for name, path in files]
     code = 0
     for path, report in outputs:
         if path is None:
@@ -237,11 +248,13 @@ def _warn_unused_args(paths: list[str], no_xacro: bool) -> None:
             warn_unused_args("<stdin>" if path == "-" else path, STDIN if path == "-" else PLAIN)
 
 
-def _report(fmt: str, problems, summary, colored: bool, quiet: bool, statistics: bool) -> str:
-    from txtool.reporters import render, text
+def _report(fmt: str, problems, summary, colored: bool, look: _Look) -> str:
+    from txtool.reporters import concise, render, text
 
-    if statistics:
+    if look.statistics:
         return text.statistics(problems, summary)
-    if quiet:
-        return text.render_quiet(problems, color=colored)
-    return render(fmt, problems, summary, color=colored)
+    if look.quiet and fmt == "concise":
+        return "".join(concise.line_of(p) + "\n" for p in problems)
+    if look.quiet:
+        return text.render_quiet(problems, color=colored, width=look.width)
+    return render(fmt, problems, summary, color=colored, width=look.width)
