@@ -67,6 +67,35 @@ def test_action_is_a_composite_action_calling_its_script():
     assert action["outputs"]["exit-code"]["value"] == "${{ steps.validate.outputs.exit-code }}"
 
 
+def test_action_leaves_the_job_s_python_alone():
+    """setup-python changes nothing of the job (update-environment: false); txtool goes into
+    a virtual environment of its own, made from that Python, which validate runs."""
+    action = yaml.safe_load((ROOT / "action.yml").read_text())
+    python = next(step for step in action["runs"]["steps"]
+                  if step.get("uses", "").startswith("actions/setup-python"))
+    assert python["with"]["update-environment"] is False
+    for step in action["runs"]["steps"]:
+        if "run" in step:
+            assert step["env"]["TXTOOL_PYTHON"] == "${{ steps.python.outputs.python-path }}"
+        if step.get("id") in ("validate",) or step.get("name") == "Install txtool":
+            assert step["env"]["TXTOOL_VENV"] == "${{ runner.temp }}/txtool-venv"
+
+
+def test_action_writes_a_job_summary_of_the_same_run(repo, tmp_path):
+    summary = tmp_path / "summary.md"
+    summary.write_text("earlier step\n")
+    (repo / "urdf" / "odd.urdf").write_text(BROKEN.replace('name="t"', 'name="[x](http://e)|t"'))
+    done = action_step("validate", repo, TXTOOL_PATHS="urdf", GITHUB_STEP_SUMMARY=str(summary),
+                       RUNNER_TEMP=str(tmp_path))
+    assert done.returncode == 1 and done.stdout.startswith("::")
+    text = summary.read_text()
+    assert text.startswith("earlier step\n## txtool validate\n\n2 errors, 2 warnings, 0 infos in "
+                           "3 files; 0 unreadable; exit code 1.\n")
+    assert "| urdf/broken.urdf:6:24 | error | TX106 zero-reduction | reduction of actuator " in text
+    assert "'\\[x\\](http://e)\\|t'" in text  # no link, no extra cell
+    assert not list(tmp_path.glob("txtool-summary.*"))  # the JSON report is removed
+
+
 def test_action_validate_annotates_and_reports_its_exit_code(repo, tmp_path):
     output = tmp_path / "github_output"
     done = action_step("validate", repo, TXTOOL_PATHS="urdf", TXTOOL_ARGS="--select TX1",
@@ -80,15 +109,15 @@ def test_action_validate_annotates_and_reports_its_exit_code(repo, tmp_path):
 
 
 def test_action_writes_sarif_and_still_annotates(repo, tmp_path):
+    (repo / "taken").write_text("a file, not a folder")
     done = action_step("validate", repo, TXTOOL_PATHS="urdf/clean.urdf urdf/broken.urdf",
-                       TXTOOL_SARIF="out/txtool.sarif")
-    assert done.returncode == 2  # the folder for the SARIF file does not exist
-    assert "out/txtool.sarif" in done.stderr
+                       TXTOOL_SARIF="taken/txtool.sarif")
+    assert done.returncode == 2  # no folder can be made for the SARIF file
+    assert "taken/txtool.sarif" in done.stderr
     assert done.stdout.startswith("::error file=urdf/broken.urdf,")  # annotated all the same
-    (repo / "out").mkdir()
     done = action_step("validate", repo, TXTOOL_PATHS="urdf/clean.urdf urdf/broken.urdf",
                        TXTOOL_SARIF="out/txtool.sarif")
-    assert done.returncode == 1
+    assert done.returncode == 1  # its folder made
     log = json.loads((repo / "out" / "txtool.sarif").read_text())
     assert {r["locations"][0]["physicalLocation"]["artifactLocation"]["uri"]
             for r in log["runs"][0]["results"]} == {"urdf/broken.urdf"}
@@ -164,6 +193,9 @@ def fake_installers(tmp_path: Path, *, uv: bool) -> tuple[dict[str, str], Path]:
         f"#!{sys.executable}\nimport json, os, sys\n"
         f"if sys.argv[1:2] == ['-']:\n    os.execv({sys.executable!r}, [{sys.executable!r}, *sys.argv[1:]])\n"
         f"open({str(log)!r}, 'a').write(json.dumps([os.environ.get('PIP_CACHE_DIR'), *sys.argv[1:]]) + '\\n')\n"
+        "if sys.argv[1:3] == ['-m', 'venv']:\n"
+        "    os.makedirs(os.path.join(sys.argv[-1], 'bin'))\n"
+        "    os.symlink(sys.argv[0], os.path.join(sys.argv[-1], 'bin', 'python'))\n"
         "if sys.argv[2:4] == ['pip', 'wheel']:\n"
         "    folder = sys.argv[sys.argv.index('--wheel-dir') + 1]\n"
         "    open(os.path.join(folder, 'txtool-0.1.0-py3-none-any.whl'), 'w').close()\n")
@@ -236,6 +268,20 @@ def test_action_cache_key_holds_no_comma_and_changes_with_the_version(tmp_path):
     assert len({pinned["key"], other["key"], moved["key"]}) == 3
     assert cache_key(tmp_path, TXTOOL_VERSION="txtool>=0.1,<0.2",
                      TXTOOL_ACTION_REF="v0.1.0") == pinned
+
+
+def test_action_install_makes_and_fills_a_virtual_environment_of_its_own(tmp_path):
+    env, log = fake_installers(tmp_path, uv=False)
+    venv = tmp_path / "runner temp" / "txtool-venv"
+    python = str(tmp_path / "fake-bin" / "python")
+    inputs = {"TXTOOL_VERSION": "txtool==0.1.0", "TXTOOL_CACHE": str(tmp_path / "cache"),
+              "TXTOOL_PYTHON": python, "TXTOOL_VENV": str(venv)}
+    code, err, calls = install(env, log, **inputs)
+    assert (code, err) == (0, "")
+    assert calls == [[None, "-m", "venv", "--", str(venv)],
+                     [str(tmp_path / "cache" / "pip"), "-m", "pip", "install", "--quiet",
+                      "--disable-pip-version-check", "--", "txtool==0.1.0"]]
+    assert install(env, log, **inputs)[2] == calls[1:]  # made once
 
 
 def test_action_install_uses_uv_where_it_is(tmp_path, checkout):

@@ -240,11 +240,12 @@ def test_several_reports_from_one_run(robots):
 
 
 def test_a_report_that_cannot_be_written_fails_the_run_after_the_others(robots):
-    code, out, err = run("validate", "--format", "sarif:missing/r.sarif", "--format",
+    (robots.parent / "taken").write_text("a file where the report's folder should be")
+    code, out, err = run("validate", "--format", "sarif:taken/r.sarif", "--format",
                          "json:r.json", "urdf")
     assert code == 2
     assert out.splitlines()[-1].startswith("Found ")  # the text report is printed
-    assert "missing/r.sarif" in err and "r.json" not in err
+    assert "taken/r.sarif" in err and "r.json" not in err
     assert json.loads((robots.parent / "r.json").read_text())["problems"]
 
 
