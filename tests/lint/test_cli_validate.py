@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import pytest
 
@@ -199,5 +200,22 @@ def test_a_walk_of_the_working_folder_names_files_without_dot_slash(validate, tm
     assert code == 1
     assert out.splitlines()[0] == ("urdf/robot.urdf:6:24: TX106 reduction of actuator 'm' of "
                                    "transmission 't' is zero")
-    code, out, _ = validate("--format", "concise", "./urdf")  # as the user wrote it
-    assert code == 1 and out.startswith("./urdf/robot.urdf:6:24: TX106 ")
+    code, out, _ = validate("--format", "concise", "./urdf")  # a walk of any folder
+    assert code == 1 and out.startswith("urdf/robot.urdf:6:24: TX106 ")
+
+
+def test_a_report_into_a_folder_that_does_not_exist_makes_the_folder(validate, tmp_path,
+                                                                     monkeypatch):
+    """As the Action's ``sarif-file: out/txtool.sarif``; a file where a folder must be is
+    one line and exit 2."""
+    monkeypatch.chdir(tmp_path)
+    Path("robot.urdf").write_text(BROKEN)
+    code, out, err = validate("-o", "out/deep/report.sarif", "--format", "sarif",
+                              "--format", "json:other/report.json", "robot.urdf")
+    assert (code, out, err) == (1, "", "")
+    assert json.loads(Path("out/deep/report.sarif").read_text())["version"] == "2.1.0"
+    assert json.loads(Path("other/report.json").read_text())["summary"]["errors"] == 1
+    Path("taken").write_text("a file")
+    code, out, err = validate("-o", "taken/report.json", "--format", "json", "robot.urdf")
+    assert code == 2 and out == ""
+    assert err.startswith("txtool: taken/report.json: cannot write: ") and err.count("\n") == 1

@@ -444,3 +444,28 @@ def test_fix_all_fixes_only_what_the_buffer_shows(repo: Path) -> None:
     assert "TX305" in {p.code for p in found} and "TX300" not in {p.code for p in found}
     everything = lsp.CodeActionContext(diagnostics=[])
     assert code_actions(buffer, everything, [str(repo)], OPTIONS) == []
+
+
+def test_a_finding_made_by_a_macro_call_carries_the_macro_as_related_information(
+        repo: Path) -> None:
+    """The diagnostic is on the call's argument; the macro's line is its related place."""
+    text = ('<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+            '  <xacro:macro name="tx" params="n r">\n'
+            '    <transmission name="${n}_t">\n'
+            '      <type>transmission_interface/SimpleTransmission</type>\n'
+            '      <joint name="${n}"><hardwareInterface>hardware_interface/'
+            'EffortJointInterface</hardwareInterface></joint>\n'
+            '      <actuator name="${n}_m"><mechanicalReduction>${r}</mechanicalReduction>'
+            '</actuator>\n'
+            '    </transmission>\n'
+            '  </xacro:macro>\n'
+            '  <xacro:tx n="a" r="0"/>\n'
+            '</robot>\n')
+    found = [d for d in diagnostics_of(document(repo / "tx.urdf.xacro", text), [str(repo)],
+                                       OPTIONS) if d.code == "TX106"]
+    assert [(d.range.start.line, d.range.start.character) for d in found] == [(8, 18)]
+    [related] = found[0].related_information
+    assert related.location.uri == (repo / "tx.urdf.xacro").as_uri()
+    assert related.location.range.start == lsp.Position(line=5, character=30)
+    assert related.message == "in expansion of macro 'tx' defined at " + str(
+        repo / "tx.urdf.xacro").rsplit("/", 1)[-1] + ":2"

@@ -76,8 +76,6 @@ def expand_paths(
         empty = True
         for candidate in found:
             empty = False
-            if path in (".", "./") and candidate.startswith("./") and candidate != "./-":
-                candidate = candidate[2:]  # shown as ruff shows it: urdf/r.urdf
             key = _identity(candidate)
             if key not in seen:
                 seen.add(key)

@@ -25,7 +25,7 @@ def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False
                                          f"{problem.line}:{problem.column}")
         path = problem.path.removeprefix("./")
         line = (f"{path}:{problem.line}:{problem.column}: {problem.severity} "
-                f"{problem.code} {problem.name}: {problem.message}")
+                f"{problem.code} {problem.name}: {problem.message}{problem.chain()}")
         if problem.severity in summary.failing:
             failed += 1
             failure = etree.SubElement(case, "failure", message=_text(problem.message),

@@ -19,7 +19,7 @@ from typing import Any
 from urllib.parse import quote
 
 from txtool import __version__
-from txtool.lint.problem import InputFailure, Problem
+from txtool.lint.problem import InputFailure, Note, Problem
 from txtool.lint.readers import FileReaders
 from txtool.lint.ruledoc import markdown, plain
 from txtool.reporters import Summary, end_of, fingerprints
@@ -142,11 +142,25 @@ def _result(problem: Problem, index: dict[str, int], uris: dict[str, str],
         # Code scanning matches a result across commits by this, not by its line.
         "partialFingerprints": {FINGERPRINT: fingerprint},
     }
+    if problem.related:
+        result["relatedLocations"] = [_related(number, note, uris)
+                                      for number, note in enumerate(problem.related, 1)]
     if problem.code in index:
         result["ruleIndex"] = index[problem.code]
     if problem.fixable and edits:
         result["fixes"] = [_fix(problem, edits_for(edits, problem.line, end_line), uris)]
     return result
+
+
+def _related(number: int, note: Note, uris: dict[str, str]) -> dict[str, Any]:
+    return {
+        "id": number,
+        "physicalLocation": {
+            "artifactLocation": _artifact(note.path, uris),
+            "region": {"startLine": note.line, "startColumn": note.column},
+        },
+        "message": {"text": note.message},
+    }
 
 
 def _fix(problem: Problem, edits: Sequence[Edit], uris: dict[str, str]) -> dict[str, Any]:

@@ -25,7 +25,8 @@ def line_of(problem: Problem) -> str:
     """One finding on one line: control characters in its path or message are escaped."""
     return (
         f"{printable(problem.path)}:{problem.line}:{problem.column}: {problem.severity} "
-        f"{problem.code}{_mark(problem)} {problem.name}: {printable(problem.message)}"
+        f"{problem.code}{_mark(problem)} {problem.name}: "
+        f"{printable(problem.message + problem.chain())}"
     )
 
 
