@@ -21,6 +21,7 @@ from __future__ import annotations
 import os
 import re
 from collections.abc import Iterator, Sequence
+from functools import lru_cache
 
 from lxml import etree
 
@@ -52,6 +53,7 @@ class Tracer:
         self._options = options or XacroOptions()
         self._files: dict[str, tuple[etree._Element, list[str]] | None] = {}
         self._definitions = self._find_definitions()
+        self._pools: Pools = {}
         locator.add_macros({name: body for name, (_, body) in self._definitions.items()})
 
     def position(self, element: etree._Element) -> tuple[Position, tuple[Note, ...]] | None:
@@ -68,7 +70,7 @@ class Tracer:
         if found is None:
             return call, ()
         where, body = found
-        twin, nested = _twin(body, made, element, self._definitions)
+        twin, nested = _twin(body, made, element, self._definitions, self._pools)
         if twin is None:
             note_at = self._at(where, body)
             return call, (Note(where, note_at.line, note_at.column,
@@ -184,29 +186,46 @@ def _macros_of(root: etree._Element, where: str,
 
 
 Chain = list[tuple[str, str, etree._Element]]  # (macro, file, body) of nested calls
+Entry = tuple[etree._Element, Chain]
+# What an element makes where it stands, by tag, for each element and macro chain asked about:
+# each body is walked once however many findings its expansions hold.
+Pools = dict[tuple[etree._Element, tuple[str, ...]], dict[str, list[Entry]]]
+MAX_PATTERNS = 64  # names matched as patterns per step: a bounded cost per finding
 
 
 def _twin(body: etree._Element, made: etree._Element, element: etree._Element,
-          macros: dict[str, tuple[str, etree._Element]]) -> tuple[etree._Element | None, Chain]:
+          macros: dict[str, tuple[str, etree._Element]],
+          pools: Pools) -> tuple[etree._Element | None, Chain]:
     """The element of ``body`` (a macro) written for ``element``, which the call made as (or
     within) ``made``: ``made``'s twin among the body's children (or those of the macros the
     body calls), then down by tag and name; and the nested macros it was found in."""
     steps = [element, *element.iterancestors()]
     chain = steps[: steps.index(made) + 1][::-1] if made in steps else [element]
-    pool = list(_in_place(body, macros, []))
+    parent: etree._Element = body
     best: etree._Element | None = None
     nested: Chain = []
     for step in chain:
-        found = _named(pool, step)
+        found = _named(_pool(parent, nested, macros, pools).get(local(step), []), step)
         if found is None:
             break
         best, nested = found
-        pool = list(_in_place(best, macros, nested))
+        parent = best
     return best, nested
 
 
+def _pool(parent: etree._Element, nested: Chain,
+          macros: dict[str, tuple[str, etree._Element]], pools: Pools) -> dict[str, list[Entry]]:
+    key = (parent, tuple(name for name, _, _ in nested))
+    known = pools.get(key)
+    if known is None:
+        known = pools[key] = {}
+        for entry in _in_place(parent, macros, nested):
+            known.setdefault(local(entry[0]), []).append(entry)
+    return known
+
+
 def _in_place(parent: etree._Element, macros: dict[str, tuple[str, etree._Element]],
-              nested: Chain, depth: int = 0) -> Iterator[tuple[etree._Element, Chain]]:
+              nested: Chain, depth: int = 0) -> Iterator[Entry]:
     """The elements ``parent`` makes where it stands: conditionals' children, and the bodies
     of the known macros it calls (to a depth of 8), each with the macros it is written in."""
     for child in parent:
@@ -221,19 +240,24 @@ def _in_place(parent: etree._Element, macros: dict[str, tuple[str, etree._Elemen
             yield from _in_place(body, macros, [*nested, (local(child), file, body)], depth + 1)
 
 
-def _named(pool: Sequence[tuple[etree._Element, Chain]],
-           step: etree._Element) -> tuple[etree._Element, Chain] | None:
-    alike = [entry for entry in pool if local(entry[0]) == local(step)]
+def _named(alike: Sequence[Entry], step: etree._Element) -> Entry | None:
+    """The entry whose element is ``step`` written: its name, or a ``${...}`` pattern of it."""
     name = step.get("name")
     if name is None or len(alike) < 2:
         return alike[0] if alike else None
+    patterns = 0
     for entry in alike:
         written = entry[0].get("name") or ""
-        if written == name or ("$" in written and _pattern(written).fullmatch(name)):
+        if written == name:
             return entry
+        if "$" in written and patterns < MAX_PATTERNS:
+            patterns += 1
+            if _pattern(written).fullmatch(name):
+                return entry
     return alike[0]
 
 
+@lru_cache(maxsize=256)
 def _pattern(text: str) -> re.Pattern[str]:
     parts = re.split(r"\$\{[^}]*\}|\$\([^)]*\)", text)
     return re.compile(".*".join(re.escape(p) for p in parts), re.DOTALL)
