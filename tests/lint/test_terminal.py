@@ -349,3 +349,16 @@ def test_findings_on_a_terminal_wrap_to_its_width(columns, color):
         line.split(": ")[0] for line in findings]
     assert " ".join(" ".join(line.split()) for line in shown[:-1]) == " ".join(
         " ".join(line.split()) for line in findings)
+
+
+@pytest.mark.parametrize("command", [("show", DEMO), ("show", DEMO, "--actuator-limits")])
+def test_a_table_wider_than_the_terminal_folds_to_one_record_a_row(command):
+    """At 80 columns rich cut every cell of the table to a few letters."""
+    code, _, screen = in_terminal(*command, columns=80)
+    text = ANSI.sub("", screen)
+    assert code == 0 and widest(screen) <= 80 and "…" not in text
+    assert "transmission  shoulder_trans:60" in text
+    assert "member        actuator wrist_right_motor" in text
+    assert "interfaces    EffortJointInterface" in text
+    code, _, screen = in_terminal(*command, columns=200)
+    assert code == 0 and "┃ transmission" in ANSI.sub("", screen)  # the table, where it fits

@@ -71,7 +71,7 @@ def command(path, output_format, effective, actuator_limits, stdin_filename, ros
         click.echo(json.dumps(data, indent=2))
         return 0
     from txtool.views.render import console as make_console
-    from txtool.views.render import fit, limits_table, transmissions_table
+    from txtool.views.render import limits_table, print_table, transmissions_table
 
     console = make_console()
     if readers is not None:
@@ -86,12 +86,9 @@ def command(path, output_format, effective, actuator_limits, stdin_filename, ros
     else:
         table = transmissions_table(transmissions, f"{source.path}: "
                                     f"{len(transmissions)} transmission(s)")
-        fit(console, table)
-        console.print(table)
+        print_table(console, table)
     if limits is not None:
-        table = limits_table(limits)
-        fit(console, table)
-        console.print(table)
+        print_table(console, limits_table(limits))
     return 0
 
 

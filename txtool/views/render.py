@@ -106,3 +106,39 @@ def fit(out, *tables: Table) -> None:
     needed = max(out.measure(table, options=options).maximum for table in tables)
     if needed > out.width:
         out.width = needed
+
+
+def print_table(out, table: Table) -> None:
+    """``table`` on the console ``out``: whole in a pipe (see :func:`fit`); on a terminal
+    narrower than the table, folded to one record per row (see :func:`folded`), where rich
+    would cut every cell to a few letters."""
+    fit(out, table)
+    options = out.options.update_width(MAX_STRETCH)
+    if out.measure(table, options=options).maximum > out.width:
+        out.print(folded(table))
+    else:
+        out.print(table)
+
+
+def folded(table: Table):
+    """``table`` laid out vertically: its title, then each row as ``column  value`` lines
+    (empty cells left out), rows apart by a blank line, sections by a rule."""
+    from rich.console import Group
+    from rich.rule import Rule
+
+    columns = [(str(column.header), list(column.cells)) for column in table.columns]
+    width = max((len(header) for header, _ in columns), default=0)
+    parts: list = [table.title, ""] if table.title else []
+    for index, row in enumerate(table.rows):
+        record = Table.grid(padding=(0, 2))
+        record.add_column(style="bold", no_wrap=True, min_width=width)
+        record.add_column(overflow="fold")
+        for header, cells in columns:
+            value = cells[index] if index < len(cells) else ""
+            if value != "":
+                record.add_row(header, value)
+        parts.append(record)
+        last = index == len(table.rows) - 1
+        if not last:
+            parts.append(Rule(style="dim") if row.end_section else "")
+    return Group(*parts)
