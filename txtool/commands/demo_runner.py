@@ -19,6 +19,8 @@ from txtool.views.render import print_table, transmissions_table
 
 
 def run_demo(console: Console) -> int:
+    console.print("Each heading below is the command whose result it shows; the commands run "
+                  "as shown in a folder that `txtool demo --copy DIR` fills.", markup=False)
     robot = load(str(shipped("fixtures", "demo_robot.urdf")))
     _show(console, robot)
     _convert(console, robot)
@@ -74,10 +76,11 @@ def _validate(console: Console, robot: Source) -> None:
     from txtool.lint.engine import lint_source
 
     for source in (robot, load(str(shipped("fixtures", "broken_robot.urdf")))):
-        console.print(Rule(f"txtool validate {Path(source.path).name}"))
+        shown = f"fixtures/{Path(source.path).name}"  # where --copy puts it
+        console.print(Rule(f"txtool validate {shown}"))
         problems = lint_source(source)
         for p in problems:
-            console.print(f"{Path(p.path).name}:{p.line}:{p.column}: {p.severity} {p.code} "
+            console.print(f"{shown}:{p.line}:{p.column}: {p.severity} {p.code} "
                           f"{p.name}: {p.message}", markup=False)
         console.print(f"{len(problems)} finding(s)")
 

@@ -7,6 +7,7 @@ cut at a word, with ``…``.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
 
 from txtool.io.printable import printable
@@ -29,7 +30,7 @@ def line_of(problem: Problem) -> str:
 
 def headline(message: str) -> str:
     """The message up to its first ``: `` or ``; `` outside parentheses and double quotes
-    (once it has said enough), else the whole message."""
+    (once it has said enough: more than a name), else the whole message."""
     depth, quoted = 0, False
     for index, char in enumerate(message):
         if char == '"':
@@ -39,9 +40,14 @@ def headline(message: str) -> str:
         elif char in ")]>" and not quoted and depth:
             depth -= 1
         elif (not depth and not quoted and index >= MIN_CLAUSE
-              and message.startswith(_SEPARATORS, index)):
+              and message.startswith(_SEPARATORS, index)
+              and not _LABEL.fullmatch(message, 0, index)):
             return message[:index]
     return message
+
+
+# A clause that only names what the finding is about ("transmission 't'"): the next one says.
+_LABEL = re.compile(r"(?:[\w-]+ )+'[^']*'")
 
 
 def shorten(text: str, room: int) -> str:
