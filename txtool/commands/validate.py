@@ -13,6 +13,7 @@ from txtool.commands.common import (
     Choice,
     RenamedOption,
     color_wanted,
+    complete_codes,
     exit_on_input_error,
     xacro_options,
 )
@@ -63,9 +64,9 @@ def terminal_width(output_file: str | None) -> int | None:
               help="Output format [default: text; github when GITHUB_ACTIONS=true]; "
                    "NAME:FILE writes that report to FILE as well (repeatable, e.g. "
                    "--format github --format sarif:txtool.sarif).")
-@click.option("--select", multiple=True, metavar="CODES",
+@click.option("--select", multiple=True, metavar="CODES", shell_complete=complete_codes,
               help="Only these rule codes or prefixes (comma-separated, repeatable).")
-@click.option("--ignore", multiple=True, metavar="CODES",
+@click.option("--ignore", multiple=True, metavar="CODES", shell_complete=complete_codes,
               help="Skip these rule codes or prefixes (comma-separated, repeatable).")
 @click.option("--strict", is_flag=True, help="Warnings fail too (exit 1).")
 @click.option("--exit-zero", is_flag=True, help="Exit 0 even when there are findings.")
