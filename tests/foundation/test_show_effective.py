@@ -231,10 +231,10 @@ def test_simple_transmissions_name_what_their_loader_ignores_or_invents(run, tmp
                              "('actuator1' stands in here)"]
 
 
-UNPREFIXED = """
+MISSPELT = """
     <transmission name="t">
       <type>transmission_interface/SimpleTransmission</type>
-      <joint name="j"><hardwareInterface>PositionJointInterface</hardwareInterface></joint>
+      <joint name="j"><hardwareInterface>PositionInterface</hardwareInterface></joint>
       <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
     </transmission>
     <transmission name="good">
@@ -248,26 +248,27 @@ UNPREFIXED = """
 
 
 def test_show_marks_what_validate_says_the_loader_refuses(run, tmp_path):
-    """An interface ros_control refuses (TX205) no longer shows like a good one."""
-    path = write(tmp_path, UNPREFIXED)
+    """An interface ros_control refuses (TX205; TX204 says why) no longer shows like a good
+    one."""
+    path = write(tmp_path, MISSPELT)
     code, out, err = run("show", path)
     assert (code, err) == (0, "")
     rows = out.splitlines()
     assert "┃ validate" in rows[2]
-    assert "✗ TX205, ! TX300" in next(row for row in rows if "│ t:2 " in row)
+    assert "✗ TX205, ! TX204" in next(row for row in rows if "│ t:2 " in row)
     assert not any("TX" in row for row in rows if "good" in row)
-    clean = write(tmp_path, UNPREFIXED.replace(">PositionJointInterface<",
-                                               ">hardware_interface/PositionJointInterface<"),
+    clean = write(tmp_path, MISSPELT.replace(">PositionInterface<",
+                                             ">hardware_interface/PositionJointInterface<"),
                   "clean.urdf")
     assert "┃ validate" not in run("show", clean)[1]
 
 
 def test_show_effective_says_the_loader_refuses_what_it_reads(run, tmp_path):
-    code, out, err = run("show", "--effective", write(tmp_path, UNPREFIXED))
+    code, out, err = run("show", "--effective", write(tmp_path, MISSPELT))
     assert (code, err) == (0, "")
     refused, good = out.split("\n\n")[1:3]
     assert refused.splitlines()[1] == ("  read by ros_control, which refuses it or reads it "
                                        "other than written (TX205)")
     assert ("  validate: error TX205: transmission 't' names no hardware interface ros_control "
-            "knows\n    ('PositionJointInterface')") in refused
+            "knows\n    ('PositionInterface')") in refused
     assert good.splitlines()[1] == "  read by ros_control" and "validate" not in good

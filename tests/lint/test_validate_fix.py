@@ -191,8 +191,8 @@ def test_a_finding_migrate_cannot_fix_as_written_is_not_marked(robots):
     (robots / "m.urdf.xacro").write_text(XACRO)
     code, out, _ = run("validate", "--format", "json", "urdf/m.urdf.xacro")
     assert code == 1
-    assert [(p["code"], p["fixable"]) for p in json.loads(out)["problems"]] == [
-        ("TX205", False), ("TX300", False)]
+    assert [(p["code"], p["severity"], p["fixable"]) for p in json.loads(out)["problems"]] == [
+        ("TX300", "error", False)]  # the refusal, said once (TX205's severity)
     code, out, err = run("validate", "--fix", "urdf/m.urdf.xacro")
     assert code == 1 and "[*]" not in out and "fixable" not in out and err == ""
     assert (robots / "m.urdf.xacro").read_text() == XACRO

@@ -74,10 +74,16 @@ class LintContext:
     (see :meth:`unknown`). ``options`` holds each rule's validated options by code.
     """
 
+    def runs(self, code: str) -> bool:
+        """Whether the rule ``code`` runs on this document."""
+        return self.enabled is None or code in self.enabled
+
     def __init__(self, source: Source, found: list[Found] | None = None, literal: bool = False,
-                 options: Mapping[str, Any] | None = None, stated: Stated | None = None
-                 ) -> None:
+                 options: Mapping[str, Any] | None = None, stated: Stated | None = None,
+                 enabled: frozenset[str] | None = None) -> None:
         self.source = source
+        # The rules that run (None: all), for a rule whose finding another one's covers.
+        self.enabled = enabled
         self.stated = stated
         self.literal = literal
         self.options: Mapping[str, Any] = {} if options is None else options
