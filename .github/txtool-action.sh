@@ -5,6 +5,10 @@
 #   install:  TXTOOL_VERSION (pip requirement; empty: the action's checkout, TXTOOL_ACTION_PATH),
 #             TXTOOL_CACHE (the folder action.yml caches between runs; default
 #             ~/.cache/txtool-action)
+#   every step: TXTOOL_PYTHON (the Python that builds and runs txtool; default python on PATH)
+#             and TXTOOL_VENV (a virtual environment of txtool's own, made from it, which
+#             install fills and validate runs; empty: the Python itself). action.yml gives
+#             both, so the job's Python and its packages are left as they were.
 #   validate: TXTOOL_PATHS (one path a line; see paths_of), TXTOOL_ARGS (options, split on
 #             spaces), TXTOOL_SARIF (empty: no SARIF), TXTOOL_CONFIG (empty: the repository's
 #             own configuration; on a pull request, the base commit's: see base_config),
@@ -14,18 +18,21 @@
 # install uses uv where it is on PATH, else pip, each with its cache in TXTOOL_CACHE; the
 # action's checkout is built into a wheel once per content (wheel_of), not on every run.
 # validate writes workflow-command annotations (--format github) and, when asked, SARIF, in
-# one run; its exit code is txtool's, also written to GITHUB_OUTPUT as exit-code.
+# one run; its exit code is txtool's, also written to GITHUB_OUTPUT as exit-code. With
+# GITHUB_STEP_SUMMARY set, the same run's JSON report becomes the job summary (job_summary).
 # Paths are file names a pull request chooses: they go after "--", so that a file named
 # "--exit-zero" is a file, and "-" becomes "./-" (after "--" txtool still reads "-" as stdin).
 set -uo pipefail
+
+PY="${TXTOOL_PYTHON:-python}"
 
 # The cache's key: the runner's OS, the Python version and a digest of the version input and
 # the action's ref (the cache refuses keys holding a comma, which a requirement may hold).
 cache_key() {
     local prefix digest
-    prefix="txtool-action-${RUNNER_OS:-local}-$(python -c \
+    prefix="txtool-action-${RUNNER_OS:-local}-$("$PY" -c \
         'import sys; print("py%d.%d.%d" % sys.version_info[:3])')-" || return 2
-    digest="$(printf '%s\n%s' "${TXTOOL_VERSION:-}" "${TXTOOL_ACTION_REF:-}" | python -c \
+    digest="$(printf '%s\n%s' "${TXTOOL_VERSION:-}" "${TXTOOL_ACTION_REF:-}" | "$PY" -c \
         'import hashlib, sys; print(hashlib.sha256(sys.stdin.buffer.read()).hexdigest()[:16])'
     )" || return 2
     if [ -n "${GITHUB_OUTPUT:-}" ]; then
@@ -42,13 +49,28 @@ install() {
         "") requirement="$(wheel_of "${TXTOOL_ACTION_PATH:?TXTOOL_ACTION_PATH is not set}" \
                                     "$cache")" || return $? ;;
     esac
+    local target
+    target="$(target_python)" || return 2
     if command -v uv > /dev/null 2>&1; then
-        UV_CACHE_DIR="$cache/uv" uv pip install --quiet --python "$(command -v python)" \
+        UV_CACHE_DIR="$cache/uv" uv pip install --quiet --python "$target" \
             -- "$requirement"
     else
-        PIP_CACHE_DIR="$cache/pip" python -m pip install --quiet --disable-pip-version-check \
-            -- "$requirement"
+        PIP_CACHE_DIR="$cache/pip" "$target" -m pip install --quiet \
+            --disable-pip-version-check -- "$requirement"
     fi
+}
+
+# The Python txtool is installed into: TXTOOL_VENV's, made from TXTOOL_PYTHON the first time;
+# without TXTOOL_VENV, TXTOOL_PYTHON itself (or python on PATH).
+target_python() {
+    if [ -z "${TXTOOL_VENV:-}" ]; then
+        command -v "$PY"
+        return
+    fi
+    if [ ! -x "$TXTOOL_VENV/bin/python" ]; then
+        "$PY" -m venv -- "$TXTOOL_VENV" >&2 || return 2
+    fi
+    printf '%s\n' "$TXTOOL_VENV/bin/python"
 }
 
 # The wheel of the checkout at $1, built once into a folder of $2/wheels named by a digest of
@@ -56,7 +78,7 @@ install() {
 # folders). Prints the wheel's path.
 wheel_of() {
     local source="$1" cache="$2" wheels="$2/wheels" digest folder building
-    digest="$(python - "$source" <<'PYTHON'
+    digest="$("$PY" - "$source" <<'PYTHON'
 import hashlib, sys
 from pathlib import Path
 
@@ -74,7 +96,7 @@ PYTHON
     folder="$wheels/$digest"
     if [ ! -d "$folder" ]; then
         mkdir -p "$wheels" && building="$(mktemp -d "$wheels/.building.XXXXXX")" || return 2
-        PIP_CACHE_DIR="$cache/pip" python -m pip wheel \
+        PIP_CACHE_DIR="$cache/pip" "$PY" -m pip wheel \
             --quiet --disable-pip-version-check --no-deps --wheel-dir "$building" -- "$source" \
             >&2 || { rm -rf "$building"; return 2; }
         if [ -d "$folder" ]; then  # built meanwhile by another run sharing the cache
@@ -175,10 +197,57 @@ validate() {
         # One run: the annotations on stdout, the SARIF report written to its file.
         formats+=(--format "sarif:$TXTOOL_SARIF")
     fi
-    local code=0
-    txtool validate "${formats[@]}" "${options[@]}" "${args[@]}" -- "${paths[@]}" || code=$?
+    local summary=""
+    if [ -n "${GITHUB_STEP_SUMMARY:-}" ]; then
+        summary="$(mktemp "${RUNNER_TEMP:-${TMPDIR:-/tmp}}/txtool-summary.XXXXXX")" || summary=""
+        [ -z "$summary" ] || formats+=(--format "json:$summary")
+    fi
+    local code=0 txtool=txtool
+    [ -z "${TXTOOL_VENV:-}" ] || txtool="$TXTOOL_VENV/bin/txtool"
+    "$txtool" validate "${formats[@]}" "${options[@]}" "${args[@]}" -- "${paths[@]}" || code=$?
     record "$code"
+    if [ -n "$summary" ]; then
+        job_summary "$summary" "$code" >> "$GITHUB_STEP_SUMMARY"
+        rm -f -- "$summary"
+    fi
     return "$code"
+}
+
+# The job summary (Markdown) of the JSON report at $1 of a run that exited $2: the counts and
+# a table of the findings (the first 100). Names and messages come from the files checked:
+# Markdown's special characters are escaped, so no finding can forge a link or a heading.
+job_summary() {
+    "$PY" - "$1" "$2" <<'PYTHON'
+import json, re, sys
+
+def cell(text):
+    text = " ".join(str(text).split())
+    return re.sub(r"([\\`*_\[\]<>|~])", r"\\\1", text)
+
+code = sys.argv[2]
+try:
+    with open(sys.argv[1], encoding="utf-8") as handle:
+        report = json.load(handle)
+except (OSError, ValueError):
+    print(f"## txtool validate\n\nNo report (exit code {code}).\n")
+    sys.exit(0)
+totals = report["summary"]
+problems = report["problems"]
+print("## txtool validate\n")
+print(f"{totals['errors']} errors, {totals['warnings']} warnings, {totals['infos']} infos "
+      f"in {totals['files']} files; {len(report['unreadable'])} unreadable; exit code {code}.\n")
+if problems:
+    print("| Where | Severity | Rule | Message |")
+    print("| --- | --- | --- | --- |")
+    for p in problems[:100]:
+        print(f"| {cell(p['path'])}:{p['line']}:{p['column']} | {p['severity']} | "
+              f"{p['code']} {p['name']} | {cell(p['message'])} |")
+    if len(problems) > 100:
+        print(f"\n{len(problems) - 100} more findings: see the annotations or the SARIF report.")
+for failure in report["unreadable"]:
+    print(f"\n- {cell(failure['message'])}")
+print()
+PYTHON
 }
 
 record() {

@@ -334,3 +334,17 @@ def test_every_help_example_runs_as_written(tmp_path, fixtures, name, example):
         json.loads(done.stdout)
     if stdout is not None:
         assert done.stdout.startswith(("_txtool_completion", "#compdef", "function")), example
+
+
+def test_the_command_list_keeps_each_summary_whole_at_80_columns():
+    """click cut the summaries to the line with "..."; each now goes on over the next lines."""
+    from click.testing import CliRunner as Runner
+
+    from txtool.cli import cli as main
+
+    result = Runner().invoke(main, ["--help"], terminal_width=80)
+    commands = result.output.split("Commands:\n", 1)[1]
+    assert result.exit_code == 0 and "..." not in commands
+    assert max(len(line) for line in commands.splitlines()) <= 80
+    assert "  validate    Check transmissions in files and folders (*.urdf, *.xacro, robot\n" \
+           "              *.xml; '-' is stdin).\n" in commands

@@ -22,8 +22,8 @@ STEPS = [
     "txtool convert fixtures/demo_robot.urdf --to ros2-p2",
     "txtool convert fixtures/demo_robot.urdf --to ros2-p1",
     "txtool roundtrip fixtures/demo_robot.urdf",
-    "txtool validate demo_robot.urdf",
-    "txtool validate broken_robot.urdf",
+    "txtool validate fixtures/demo_robot.urdf",
+    "txtool validate fixtures/broken_robot.urdf",
     "txtool simulate fixtures/demo_robot.urdf",
     "txtool simulate fixtures/demo_robot.urdf --candidate <'shoulder_trans' reversed>",
     "done",
@@ -109,7 +109,7 @@ def _validate_clean(body: str) -> None:
 
 
 def _validate_broken(body: str) -> None:
-    findings = re.findall(r"^broken_robot\.urdf:(\d+):\d+: (\w+) (TX\d+)", body, re.M)
+    findings = re.findall(r"^fixtures/broken_robot\.urdf:(\d+):\d+: (\w+) (TX\d+)", body, re.M)
     assert findings == [("37", "error", "TX303"), ("45", "error", "TX105"),
                         ("50", "error", "TX113"), ("52", "error", "TX200")]
     assert body.rstrip().endswith("4 finding(s)")
@@ -149,9 +149,10 @@ def test_demo_copy_lays_out_the_documentation_examples(tmp_path):
     target = tmp_path / "try"
     result = CliRunner().invoke(cli, ["demo", "--copy", str(target)])
     assert result.exit_code == 0, result.output
-    assert result.output.startswith(f"wrote 13 files into {target}: ")
+    assert result.output.startswith(f"wrote 14 files into {target}: ")
     assert (target / "robot.urdf").read_bytes() == (examples / "robot.urdf").read_bytes()
     assert (target / "fixtures" / "demo_robot.urdf").is_file()
+    assert (target / ".txtool.toml").read_text().startswith("# The documentation's examples.")
 
     again = CliRunner().invoke(cli, ["demo", "--copy", str(target)])
     assert again.exit_code == 2
@@ -161,3 +162,32 @@ def test_demo_copy_lays_out_the_documentation_examples(tmp_path):
     a_file.write_text("x")
     refused = CliRunner().invoke(cli, ["demo", "--copy", str(a_file)])
     assert (refused.exit_code, refused.output) == (2, f"txtool: {a_file}: not a folder\n")
+
+
+def test_the_copied_folder_passes_its_own_validate(tmp_path, monkeypatch):
+    """Its examples that hold mistakes on purpose (and the security example) are excluded by
+    the folder's configuration; named, they are still checked, as the documentation does."""
+    target = tmp_path / "try"
+    assert CliRunner().invoke(cli, ["demo", "--copy", str(target)]).exit_code == 0
+    monkeypatch.chdir(target)
+    monkeypatch.delenv("GITHUB_ACTIONS", raising=False)
+    walked = CliRunner().invoke(cli, ["validate", "."])
+    assert (walked.exit_code, walked.output) == (0, "No problems in 5 files.\n")
+    named = CliRunner().invoke(cli, ["validate", "fixtures/broken_robot.urdf"])
+    assert named.exit_code == 1 and named.output.endswith("Found 4 errors in 1 file.\n")
+
+
+def test_every_demo_heading_is_a_command_that_runs_in_the_copied_folder(tmp_path):
+    """The headings but simulate's (its candidate is made by the demo) and the closing one."""
+    target = tmp_path / "try"
+    assert CliRunner().invoke(cli, ["demo", "--copy", str(target)]).exit_code == 0
+    _, out, _ = demo_output()
+    assert out.splitlines()[0].startswith("Each heading below is the command")
+    env = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
+    for step in STEPS:
+        if not step.startswith(("txtool show", "txtool convert", "txtool roundtrip",
+                                "txtool validate")):
+            continue
+        done = subprocess.run(step.split(), cwd=target, env=env, capture_output=True, text=True,
+                              timeout=120)
+        assert done.returncode in (0, 1) and done.stderr == "", step

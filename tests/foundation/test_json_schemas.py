@@ -165,3 +165,22 @@ def test_rules_json_is_always_a_list():
         assert RulesOutput.model_validate_json(out).root[0].name == "zero-reduction"
     with pytest.raises(jsonschema.ValidationError):
         schema.validate(one[0])  # a bare object, as a single rule was printed before
+
+
+def test_txtool_schema_prints_each_schema_by_name():
+    from click.testing import CliRunner
+
+    from txtool.cli import cli
+    from txtool.commands.schema import SCHEMAS
+
+    listed = CliRunner().invoke(cli, ["schema", "--list"])
+    assert listed.exit_code == 0
+    assert [line.split()[0] for line in listed.output.splitlines()] == list(SCHEMAS)
+    assert {file_name for file_name, _ in SCHEMAS.values()} == {
+        path.name for path in (ROOT / "schemas").glob("*.schema.json")}
+    for name, (file_name, _) in SCHEMAS.items():
+        result = CliRunner().invoke(cli, ["schema", name])
+        assert result.exit_code == 0, name
+        assert result.output == (ROOT / "schemas" / file_name).read_text(), name
+    assert CliRunner().invoke(cli, ["schema"]).output == (
+        ROOT / "schemas" / "transmission.schema.json").read_text()

@@ -229,3 +229,46 @@ def test_simple_transmissions_name_what_their_loader_ignores_or_invents(run, tmp
         3.0, "actuator1", ["actuator_reduction"])
     assert ros2["notes"] == ["no <actuator>: the hardware plugin names the actuator handle "
                              "('actuator1' stands in here)"]
+
+
+MISSPELT = """
+    <transmission name="t">
+      <type>transmission_interface/SimpleTransmission</type>
+      <joint name="j"><hardwareInterface>PositionInterface</hardwareInterface></joint>
+      <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
+    </transmission>
+    <transmission name="good">
+      <type>transmission_interface/SimpleTransmission</type>
+      <joint name="k">
+        <hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>
+      </joint>
+      <actuator name="n"><mechanicalReduction>50</mechanicalReduction></actuator>
+    </transmission>
+"""
+
+
+def test_show_marks_what_validate_says_the_loader_refuses(run, tmp_path):
+    """An interface ros_control refuses (TX205; TX204 says why) no longer shows like a good
+    one."""
+    path = write(tmp_path, MISSPELT)
+    code, out, err = run("show", path)
+    assert (code, err) == (0, "")
+    rows = out.splitlines()
+    assert "┃ validate" in rows[2]
+    assert "✗ TX205, ! TX204" in next(row for row in rows if "│ t:2 " in row)
+    assert not any("TX" in row for row in rows if "good" in row)
+    clean = write(tmp_path, MISSPELT.replace(">PositionInterface<",
+                                             ">hardware_interface/PositionJointInterface<"),
+                  "clean.urdf")
+    assert "┃ validate" not in run("show", clean)[1]
+
+
+def test_show_effective_says_the_loader_refuses_what_it_reads(run, tmp_path):
+    code, out, err = run("show", "--effective", write(tmp_path, MISSPELT))
+    assert (code, err) == (0, "")
+    refused, good = out.split("\n\n")[1:3]
+    assert refused.splitlines()[1] == ("  read by ros_control, which refuses it or reads it "
+                                       "other than written (TX205)")
+    assert ("  validate: error TX205: transmission 't' names no hardware interface ros_control "
+            "knows\n    ('PositionInterface')") in refused
+    assert good.splitlines()[1] == "  read by ros_control" and "validate" not in good

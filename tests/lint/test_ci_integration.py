@@ -75,6 +75,35 @@ def test_action_is_a_composite_action_calling_its_script():
     assert action["outputs"]["exit-code"]["value"] == "${{ steps.validate.outputs.exit-code }}"
 
 
+def test_action_leaves_the_job_s_python_alone():
+    """setup-python changes nothing of the job (update-environment: false); txtool goes into
+    a virtual environment of its own, made from that Python, which validate runs."""
+    action = yaml.safe_load((ROOT / "action.yml").read_text())
+    python = next(step for step in action["runs"]["steps"]
+                  if step.get("uses", "").startswith("actions/setup-python"))
+    assert python["with"]["update-environment"] is False
+    for step in action["runs"]["steps"]:
+        if "run" in step:
+            assert step["env"]["TXTOOL_PYTHON"] == "${{ steps.python.outputs.python-path }}"
+        if step.get("id") in ("validate",) or step.get("name") == "Install txtool":
+            assert step["env"]["TXTOOL_VENV"] == "${{ runner.temp }}/txtool-venv"
+
+
+def test_action_writes_a_job_summary_of_the_same_run(repo, tmp_path):
+    summary = tmp_path / "summary.md"
+    summary.write_text("earlier step\n")
+    (repo / "urdf" / "odd.urdf").write_text(BROKEN.replace('name="t"', 'name="[x](http://e)|t"'))
+    done = action_step("validate", repo, TXTOOL_PATHS="urdf", GITHUB_STEP_SUMMARY=str(summary),
+                       RUNNER_TEMP=str(tmp_path))
+    assert done.returncode == 1 and done.stdout.startswith("::")
+    text = summary.read_text()
+    assert text.startswith("earlier step\n## txtool validate\n\n2 errors, 2 warnings, 0 infos in "
+                           "3 files; 0 unreadable; exit code 1.\n")
+    assert "| urdf/broken.urdf:6:24 | error | TX106 zero-reduction | reduction of actuator " in text
+    assert "'\\[x\\](http://e)\\|t'" in text  # no link, no extra cell
+    assert not list(tmp_path.glob("txtool-summary.*"))  # the JSON report is removed
+
+
 def test_action_validate_annotates_and_reports_its_exit_code(repo, tmp_path):
     output = tmp_path / "github_output"
     done = action_step("validate", repo, TXTOOL_PATHS="urdf", TXTOOL_ARGS="--select TX1",
@@ -88,15 +117,15 @@ def test_action_validate_annotates_and_reports_its_exit_code(repo, tmp_path):
 
 
 def test_action_writes_sarif_and_still_annotates(repo, tmp_path):
+    (repo / "taken").write_text("a file, not a folder")
     done = action_step("validate", repo, TXTOOL_PATHS="urdf/clean.urdf urdf/broken.urdf",
-                       TXTOOL_SARIF="out/txtool.sarif")
-    assert done.returncode == 2  # the folder for the SARIF file does not exist
-    assert "out/txtool.sarif" in done.stderr
+                       TXTOOL_SARIF="taken/txtool.sarif")
+    assert done.returncode == 2  # no folder can be made for the SARIF file
+    assert "taken/txtool.sarif" in done.stderr
     assert done.stdout.startswith("::error file=urdf/broken.urdf,")  # annotated all the same
-    (repo / "out").mkdir()
     done = action_step("validate", repo, TXTOOL_PATHS="urdf/clean.urdf urdf/broken.urdf",
                        TXTOOL_SARIF="out/txtool.sarif")
-    assert done.returncode == 1
+    assert done.returncode == 1  # its folder made
     log = json.loads((repo / "out" / "txtool.sarif").read_text())
     assert {r["locations"][0]["physicalLocation"]["artifactLocation"]["uri"]
             for r in log["runs"][0]["results"]} == {"urdf/broken.urdf"}
@@ -172,6 +201,9 @@ def fake_installers(tmp_path: Path, *, uv: bool) -> tuple[dict[str, str], Path]:
         f"#!{sys.executable}\nimport json, os, sys\n"
         f"if sys.argv[1:2] == ['-']:\n    os.execv({sys.executable!r}, [{sys.executable!r}, *sys.argv[1:]])\n"
         f"open({str(log)!r}, 'a').write(json.dumps([os.environ.get('PIP_CACHE_DIR'), *sys.argv[1:]]) + '\\n')\n"
+        "if sys.argv[1:3] == ['-m', 'venv']:\n"
+        "    os.makedirs(os.path.join(sys.argv[-1], 'bin'))\n"
+        "    os.symlink(sys.argv[0], os.path.join(sys.argv[-1], 'bin', 'python'))\n"
         "if sys.argv[2:4] == ['pip', 'wheel']:\n"
         "    folder = sys.argv[sys.argv.index('--wheel-dir') + 1]\n"
         "    open(os.path.join(folder, 'txtool-0.1.0-py3-none-any.whl'), 'w').close()\n")
@@ -244,6 +276,20 @@ def test_action_cache_key_holds_no_comma_and_changes_with_the_version(tmp_path):
     assert len({pinned["key"], other["key"], moved["key"]}) == 3
     assert cache_key(tmp_path, TXTOOL_VERSION="txtool>=0.1,<0.2",
                      TXTOOL_ACTION_REF="v0.1.0") == pinned
+
+
+def test_action_install_makes_and_fills_a_virtual_environment_of_its_own(tmp_path):
+    env, log = fake_installers(tmp_path, uv=False)
+    venv = tmp_path / "runner temp" / "txtool-venv"
+    python = str(tmp_path / "fake-bin" / "python")
+    inputs = {"TXTOOL_VERSION": "txtool==0.1.0", "TXTOOL_CACHE": str(tmp_path / "cache"),
+              "TXTOOL_PYTHON": python, "TXTOOL_VENV": str(venv)}
+    code, err, calls = install(env, log, **inputs)
+    assert (code, err) == (0, "")
+    assert calls == [[None, "-m", "venv", "--", str(venv)],
+                     [str(tmp_path / "cache" / "pip"), "-m", "pip", "install", "--quiet",
+                      "--disable-pip-version-check", "--", "txtool==0.1.0"]]
+    assert install(env, log, **inputs)[2] == calls[1:]  # made once
 
 
 def test_action_install_uses_uv_where_it_is(tmp_path, checkout):
@@ -336,7 +382,99 @@ def test_hooks_leave_xml_that_is_no_robot_alone(tmp_path):
     assert run_hook("txtool-migrate", package)[0] == 0
     assert package.read_text() == text
     code, out = run_hook("txtool-validate", package)
-    assert code == 0 and "TX006" in out
+    assert (code, out) == (0, "No problems in 0 files.\n")
+
+
+LAUNCH = """<launch>
+  <arg name="use_sim_time" default="false"/>
+  <node pkg="robot_state_publisher" exec="robot_state_publisher">
+    <param name="robot_description"
+           value="$(command 'xacro $(find-pkg-share demo_description)/urdf/robot.urdf.xacro')"/>
+    <param name="use_sim_time" value="$(var use_sim_time)"/>
+  </node>
+</launch>
+"""
+PACKAGE = """<?xml version="1.0"?>
+<package format="3">
+  <name>demo_description</name>
+  <version>0.1.0</version>
+  <description>A robot</description>
+  <maintainer email="m@example.com">M</maintainer>
+  <license>BSD</license>
+  <buildtool_depend>ament_cmake</buildtool_depend>
+  <export><build_type>ament_cmake</build_type></export>
+</package>
+"""
+GOOD_XACRO = """<?xml version="1.0"?>
+<robot name="demo" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="prefix" default=""/>
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j1" type="revolute">
+    <parent link="base"/><child link="arm"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+  <ros2_control name="demo" type="system">
+    <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+    <joint name="j1"><command_interface name="position"/><state_interface name="position"/></joint>
+    <transmission name="t1">
+      <plugin>transmission_interface/SimpleTransmission</plugin>
+      <joint name="j1" role="joint1"><mechanical_reduction>2.0</mechanical_reduction></joint>
+      <actuator name="a1" role="actuator1"/>
+    </transmission>
+  </ros2_control>
+</robot>
+"""
+
+
+@pytest.fixture
+def ros2_package(tmp_path, monkeypatch) -> list[Path]:
+    """A ROS 2 description package as pre-commit stages it: every .xml, .urdf and .xacro."""
+    files = {"package.xml": PACKAGE, "launch/robot.launch.xml": LAUNCH,
+             "launch/display.xml": LAUNCH, "worlds/empty.sdf":
+             '<?xml version="1.0"?>\n<sdf version="1.6"><world name="w"/></sdf>\n',
+             "urdf/robot.urdf.xacro": GOOD_XACRO}
+    for name, text in files.items():
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text(text)
+    (tmp_path / "config").mkdir()
+    (tmp_path / "config" / "controllers.yaml").write_text("controller_manager: {}\n")
+    monkeypatch.chdir(tmp_path)
+    return [Path(name) for name in files]
+
+
+def test_validate_hook_passes_a_ros2_package_whose_robot_is_good(ros2_package):
+    """Launch files (``$(find-pkg-share ...)``, ``$(var ...)``), package.xml and an SDF world
+    are no robot descriptions: their root elements say so, and they are passed over quietly."""
+    code, out = run_hook("txtool-validate", *ros2_package)
+    assert (code, out) == (0, "No problems in 1 file.\n")
+
+
+def test_validate_hook_still_reports_the_robot_of_that_package(ros2_package):
+    robot = Path("urdf/robot.urdf.xacro")
+    robot.write_text(GOOD_XACRO.replace("2.0</mechanical", "0</mechanical"))
+    code, out = run_hook("txtool-validate", *ros2_package)
+    assert code == 1
+    assert [line.split(":")[0] for line in out.splitlines()[:-1]] == ["urdf/robot.urdf.xacro"]
+
+
+def test_a_xacro_library_of_any_root_is_still_checked_when_named(tmp_path):
+    library = tmp_path / "arm.xacro"
+    library.write_text(BROKEN.replace('<robot name="r">',
+                                      '<root xmlns:xacro="http://www.ros.org/wiki/xacro">')
+                       .replace("</robot>", "</root>"))
+    code, out = run_hook("txtool-validate", library)
+    assert code == 1 and "TX106" in out
+
+
+def test_the_validate_hook_applies_the_configuration_exclude_to_files_named(ros2_package):
+    """As ruff's hook passes --force-exclude: pre-commit names files one by one."""
+    Path("urdf/old.urdf").write_text(GOOD_XACRO.replace("2.0</mechanical", "0</mechanical"))
+    Path(".txtool.toml").write_text('exclude = ["urdf/old.urdf"]\n')
+    assert run_hook("txtool-validate", *ros2_package, Path("urdf/old.urdf")) == (
+        0, "No problems in 1 file.\n")
+    result = CliRunner().invoke(cli, ["validate", "urdf/old.urdf"])
+    assert result.exit_code == 1 and "urdf/old.urdf:" in result.output
 
 
 def test_no_page_sends_users_to_a_release_that_does_not_exist():

@@ -102,7 +102,7 @@ def test_statistics_count_the_findings_per_rule(broken):
 def test_statistics_and_quiet_are_for_the_text_format(broken):
     code, out, err = invoke("validate", "--statistics", "--format", "json", str(broken))
     assert (code, out) == (2, "")
-    assert "--quiet and --statistics go with --format text, not json" in err
+    assert "--quiet and --statistics go with --format text or concise, not json" in err
 
 
 def test_output_file_receives_the_report(broken, tmp_path):

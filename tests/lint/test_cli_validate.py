@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import pytest
 
@@ -172,3 +173,49 @@ def test_a_folder_with_nothing_to_check_is_an_input_error_not_a_pass(validate, t
         assert err == (f"txtool: {tmp_path / folder}: no .urdf, .xacro or robot .xml file to "
                        "check in this folder (or its subfolders, leaving out ignored and "
                        "excluded ones)\n")
+
+
+def test_tx305_names_the_configuration_by_its_file_name_and_offers_migrate(validate, tmp_path):
+    """The configuration's folder was repeated on every finding, filling the line."""
+    config = tmp_path / "settings" / "txtool.toml"
+    config.parent.mkdir()
+    config.write_text('ros-distro = "jazzy"\n')
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(CLEAN)
+    code, out, _ = validate("--config", str(config), str(robot))
+    assert code == 0
+    assert out == (
+        f"{robot}:2:3: info TX305 unread-transmission: ROS 1 transmission 't' stands outside "
+        "every <ros2_control> block, where none of this file's readers looks (ros2_control "
+        "(jazzy): ros-distro jazzy in txtool.toml): nothing reads it; txtool migrate --write "
+        "--to ros2-p2 moves it into a <ros2_control> block\nFound 1 info in 1 file.\n")
+
+
+def test_a_walk_of_the_working_folder_names_files_without_dot_slash(validate, tmp_path,
+                                                                     monkeypatch):
+    (tmp_path / "urdf").mkdir()
+    (tmp_path / "urdf" / "robot.urdf").write_text(BROKEN)
+    monkeypatch.chdir(tmp_path)
+    code, out, _ = validate("--format", "concise", ".")
+    assert code == 1
+    assert out.splitlines()[0] == ("urdf/robot.urdf:6:24: TX106 reduction of actuator 'm' of "
+                                   "transmission 't' is zero")
+    code, out, _ = validate("--format", "concise", "./urdf")  # a walk of any folder
+    assert code == 1 and out.startswith("urdf/robot.urdf:6:24: TX106 ")
+
+
+def test_a_report_into_a_folder_that_does_not_exist_makes_the_folder(validate, tmp_path,
+                                                                     monkeypatch):
+    """As the Action's ``sarif-file: out/txtool.sarif``; a file where a folder must be is
+    one line and exit 2."""
+    monkeypatch.chdir(tmp_path)
+    Path("robot.urdf").write_text(BROKEN)
+    code, out, err = validate("-o", "out/deep/report.sarif", "--format", "sarif",
+                              "--format", "json:other/report.json", "robot.urdf")
+    assert (code, out, err) == (1, "", "")
+    assert json.loads(Path("out/deep/report.sarif").read_text())["version"] == "2.1.0"
+    assert json.loads(Path("other/report.json").read_text())["summary"]["errors"] == 1
+    Path("taken").write_text("a file")
+    code, out, err = validate("-o", "taken/report.json", "--format", "json", "robot.urdf")
+    assert code == 2 and out == ""
+    assert err.startswith("txtool: taken/report.json: cannot write: ") and err.count("\n") == 1

@@ -40,8 +40,8 @@ def cases(suite):
 def test_errors_fail_warnings_pass_with_their_line():
     suite = junit([ERROR, WARNING])
     assert (suite.get("tests"), suite.get("failures"), suite.get("errors")) == ("2", "1", "0")
-    assert cases(suite) == [("urdf/arm.urdf", "TX106 zero-reduction 42:7", ["failure"]),
-                            ("urdf/arm.urdf", "TX300 unprefixed-interface 58:7", ["system-out"])]
+    assert cases(suite) == [("txtool.urdf.arm_urdf", "TX106 zero-reduction 42:7", ["failure"]),
+                            ("txtool.urdf.arm_urdf", "TX300 unprefixed-interface 58:7", ["system-out"])]
     assert suite[1][0].text == ("urdf/arm.urdf:58:7: warning TX300 unprefixed-interface: "
                                 "no prefix")
 
@@ -50,7 +50,7 @@ def test_strict_fails_warnings_too_and_unreadable_files_are_errors():
     suite = junit([WARNING], [InputFailure("gone.urdf", "gone.urdf: no such file")],
                   failing=("error", "warning"))
     assert (suite.get("tests"), suite.get("failures"), suite.get("errors")) == ("2", "1", "1")
-    assert cases(suite)[1] == ("gone.urdf", "read", ["error"])
+    assert cases(suite)[1] == ("txtool.gone_urdf", "read", ["error"])
 
 
 def test_a_clean_run_is_one_passed_case():
@@ -135,3 +135,12 @@ def test_colcon_test_result_reads_the_ament_cmake_result_file(tmp_path):
     assert report.returncode == 1
     assert "txtool.xunit.xml: 4 tests, 0 errors, 4 failures, 0 skipped" in report.stdout
     assert "TX113 unknown-standard-type 50:7" in report.stdout
+
+
+def test_a_class_name_holds_no_dot_of_a_file_name_and_no_dot_folder():
+    """JUnit readers take a class name's dots for packages: robot.urdf is no package."""
+    walked = Problem("./urdf/robot.urdf.xacro", 3, 5, "TX106", "zero", name="zero-reduction")
+    suite = junit([walked])
+    assert cases(suite) == [("txtool.urdf.robot_urdf_xacro", "TX106 zero-reduction 3:5",
+                             ["failure"])]
+    assert suite[0][0].text == "urdf/robot.urdf.xacro:3:5: error TX106 zero-reduction: zero"

@@ -99,13 +99,19 @@ def test_explicit_config_replaces_the_search(validate, tmp_path):
 @pytest.mark.parametrize(
     ("text", "error"),
     [
-        ('[tool.txtool]\nselct = ["TX106"]\n', "key 'tool.txtool.selct': unknown key"),
+        ('[tool.txtool]\nselct = ["TX106"]\n',
+         "key 'tool.txtool.selct': unknown key; did you mean 'select'?\n"),
+        ('[tool.txtool]\nper-file-ignore = {}\n',
+         "key 'tool.txtool.per-file-ignore': unknown key; did you mean 'per-file-ignores'?\n"),
+        ('[tool.txtool]\nzzz = 1\n', "key 'tool.txtool.zzz': unknown key\n"),
         ('[tool.txtool]\nselect = ["TX999"]\n', "key 'tool.txtool.select': unknown rule code 'TX999'"),
         ('[tool.txtool]\nignore = "TX106"\n', "key 'tool.txtool.ignore': Input should be a valid"),
         ('[tool.txtool.severity]\nTX106 = "fatal"\n', "key 'tool.txtool.severity.TX106': Input"),
         ('[tool.txtool.severity]\nTX9 = "error"\n', "key 'tool.txtool.severity.TX9': unknown rule code"),
         ('[tool.txtool.rules.TX106]\nx = 1\n', "key 'tool.txtool.rules.TX106': TX106 takes no options"),
         ('[tool.txtool.rules.TX102]\nfamilies = []\n', "key 'tool.txtool.rules.TX102.families': unknown key"),
+        ('[tool.txtool.rules.TX102]\nknown-family = []\n',
+         "key 'tool.txtool.rules.TX102.known-family': unknown key; did you mean 'known-families'?"),
         ("[tool.txtool\n", "invalid TOML"),
     ],
 )

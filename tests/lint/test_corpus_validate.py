@@ -25,7 +25,7 @@ EXPECTED: dict[str, tuple[dict[str, int], set[str]]] = {
     # (transmission_interface_loader.cpp:190-194 @0a09467), but the robot's loader is its
     # <gazebo> plugin libbaxter_gazebo_ros_control.so (gazebo_ros_control's DefaultRobotHWSim),
     # which accepts them with a deprecation warning: warnings, exit 0.
-    "baxter__baxter.urdf": ({}, {"TX205", "TX300"}),
+    "baxter__baxter.urdf": ({}, {"TX300"}),  # TX300 at TX205's severity: one finding
     # macro with <hardwareInterface> and no <mechanicalReduction>: the simple loader requires it
     "franka_ros__franka_description_utils.xacro": ({"TX104": 1}, set()),
     # the same, but its loader is franka_gazebo's FrankaHWSim (its <gazebo> plugin's
@@ -48,7 +48,7 @@ EXPECTED: dict[str, tuple[dict[str, int], set[str]]] = {
     # unprefixed 'PositionJointInterface' only, 26 times: refused by ros_control, accepted by
     # its libgazebo_ros_control.so plugin (DefaultRobotHWSim): warnings; RHipYawPitch mimics
     # LHipYawPitch yet has its own transmission
-    "nao_robot__naoV50.urdf": ({}, {"TX202", "TX205", "TX300"}),
+    "nao_robot__naoV50.urdf": ({}, {"TX202", "TX300"}),
     # stale ROS 1 transmissions beside <ros2_control> blocks of a robot whose <gazebo> plugin
     # is gz_ros2_control: its readers (gz_ros2_control and ros2_control's component parser,
     # component_parser.cpp parse_resource_from_xml) read only <ros2_control>'s children, and
@@ -56,7 +56,7 @@ EXPECTED: dict[str, tuple[dict[str, int], set[str]]] = {
     # (the shared actuators, mimic joints and unprefixed interfaces load nowhere)
     "open_manipulator__omy_f3m.urdf": ({}, {"TX305"}),
     # macro library: unprefixed 'PositionJointInterface' only, refused by ros_control
-    "open_manipulator__open_manipulator_x.gazebo.xacro": ({}, {"TX205", "TX300"}),
+    "open_manipulator__open_manipulator_x.gazebo.xacro": ({}, {"TX300"}),
     "pr2__base.transmission.xacro": ({}, {"TX302"}),
     "pr2__forearm.transmission.xacro": ({}, {"TX302"}),
     "pr2__gripper.transmission.xacro": ({}, {"TX302"}),
@@ -86,7 +86,7 @@ EXPECTED: dict[str, tuple[dict[str, int], set[str]]] = {
     # ros2_control's early parse_transmissions_from_urdf (transmission_interface/src/
     # transmission_parser.cpp @7f93398, any interface text), which ros2_control no longer
     # builds (transmission_interface/CMakeLists.txt @1796d3e): today only ros_control reads it.
-    "ros2_control_test_assets__minimal_robot_transmissions.urdf": ({}, {"TX205", "TX300"}),
+    "ros2_control_test_assets__minimal_robot_transmissions.urdf": ({}, {"TX300"}),
     # 'transmission_interface/SimpleTansmission': the parser copies it, no loader has the name
     "ros2_control_test_assets__modular_robot_sensors_SimpleTansmission_typo.urdf": (
         {"TX113": 1}, set()

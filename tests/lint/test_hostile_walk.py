@@ -164,7 +164,7 @@ def test_a_configuration_dropped_beside_the_files_is_passed_over(repo, validate)
     (repo / "urdf" / ".txtool.toml").write_text('ignore = ["ALL"]\nexclude = ["*"]\n')
     code, out, err = validate("--select", "TX106", ".")
     assert code == 1
-    assert out.startswith("./urdf/broken.urdf:6:24: error TX106 ")
+    assert out.startswith("urdf/broken.urdf:6:24: error TX106 ")
     assert err == (f"txtool: note: {repo / 'urdf' / '.txtool.toml'}: not read: a configuration "
                    "below the repository's root is passed over (the defaults apply; --config "
                    "names the file to use)\n")

@@ -98,6 +98,112 @@ def test_sarif_report_matches_golden(report):
     assert stable == golden("report.sarif", stable)
 
 
+def test_gitlab_report_matches_golden(report):
+    code, out = report("gitlab")
+    assert code == 1
+    assert out == golden("report.gitlab", out)
+    issues = json.loads(out)
+    assert {issue["location"]["path"] for issue in issues} == {"urdf/robot.urdf"}
+    assert len({issue["fingerprint"] for issue in issues}) == len(issues)
+
+
+def test_concise_report_matches_golden(report):
+    code, out = report("concise")
+    assert code == 1
+    assert out == golden("report.concise", out)
+    assert all(len(line) <= 120 for line in out.splitlines()[:-1])  # about 100
+
+
+@pytest.mark.parametrize("output_format", ["sarif", "gitlab"])
+def test_fingerprints_stay_when_lines_are_added_above(report, output_format):
+    """Code scanning and GitLab match a finding across commits by its fingerprint."""
+
+    def prints(out: str) -> list[str]:
+        found = json.loads(out)
+        if output_format == "gitlab":
+            return [issue["fingerprint"] for issue in found]
+        return [r["partialFingerprints"]["txtoolFinding/v1"] for r in found["runs"][0]["results"]]
+
+    code, before = report(output_format)
+    robot = Path("urdf/robot.urdf")
+    robot.write_text(robot.read_text().replace("<robot", "<!-- a comment -->\n\n<robot", 1))
+    assert report(output_format)[1] != before  # the lines moved
+    assert prints(report(output_format)[1]) == prints(before) and code == 1
+
+
+ARM_MACRO = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="arm_transmission" params="side reduction">
+    <transmission name="${side}_t">
+      <type>transmission_interface/SimpleTransmission</type>
+      <joint name="${side}_j">
+        <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+      </joint>
+      <actuator name="${side}_m">
+        <mechanicalReduction>${reduction}</mechanicalReduction>
+      </actuator>
+    </transmission>
+  </xacro:macro>
+</robot>
+"""
+ARM = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="macros/arm.xacro"/>
+  <link name="base"/>
+  <xacro:arm_transmission side="left" reduction="50"/>
+  <xacro:arm_transmission side="right"
+                          reduction="0"/>
+</robot>
+"""
+
+
+@pytest.fixture
+def xacro_report(validate, tmp_path, monkeypatch):
+    """A robot calling an included macro, the second call with a zero reduction."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "urdf" / "macros").mkdir(parents=True)
+    (tmp_path / "urdf" / "macros" / "arm.xacro").write_text(ARM_MACRO)
+    (tmp_path / "urdf" / "robot.urdf.xacro").write_text(ARM)
+
+    def run(output_format: str, *paths: str) -> tuple[int, str]:
+        code, out, err = validate("--format", output_format, "--select", "TX106",
+                                  *(paths or ["urdf/robot.urdf.xacro"]))
+        assert err == ""
+        return code, out
+
+    return run
+
+
+def test_a_finding_in_an_expansion_is_at_the_argument_with_its_macro_related(xacro_report):
+    code, out = xacro_report("text")
+    assert (code, out) == (1, (
+        "urdf/robot.urdf.xacro:6:27: error TX106 zero-reduction: reduction of actuator "
+        "'right_m' of transmission 'right_t' is zero: ros_control refuses it (\"Transmission "
+        "reduction ratio cannot be zero\") (in expansion of macro 'arm_transmission' defined "
+        "at urdf/macros/arm.xacro:2)\nFound 1 error in 1 file.\n"))
+    code, out = xacro_report("json")
+    assert code == 1 and out == golden("report_xacro.json", out)
+    Report.model_validate_json(out)
+    code, out = xacro_report("sarif")
+    stable = json.dumps(_stable(json.loads(out)), indent=2) + "\n"
+    assert code == 1 and stable == golden("report_xacro.sarif", stable)
+    jsonschema.Draft4Validator(sarif_schema()).validate(json.loads(out))
+    code, out = xacro_report("github")
+    assert code == 1 and out.startswith(
+        "::error file=urdf/robot.urdf.xacro,line=6,col=27,") and (
+        "(in expansion of macro 'arm_transmission' defined at urdf/macros/arm.xacro:2)\n"
+        in out)
+
+
+def test_one_mistake_in_an_included_macro_is_reported_once(xacro_report):
+    """The macro library, checked too, reports its own mistake; its includer's expansion
+    of the same place is left out."""
+    library = Path("urdf/macros/arm.xacro")
+    library.write_text(ARM_MACRO.replace("${reduction}", "0"))
+    code, out = xacro_report("concise", "urdf")
+    assert (code, out) == (1, (
+        "urdf/macros/arm.xacro:9:9: TX106 reduction of actuator '${side}_m' of transmission "
+        "'${side}_t' is zero\nFound 1 error in 2 files.\n"))
+
+
 def sarif_schema() -> dict:
     try:
         from importlib.resources import files

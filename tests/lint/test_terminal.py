@@ -267,7 +267,7 @@ def test_no_help_page_shows_restructuredtext_markup():
     pages = {"txtool": _help()}
     pages.update({name: _help(name) for name in COMMAND_MODULES})
     assert {name: RST.findall(text) for name, text in pages.items() if RST.search(text)} == {}
-    assert "'txtool show --format json'" in pages["schema"]
+    assert "(--list says what each describes)" in pages["schema"]
 
 
 def test_no_rule_text_shows_restructuredtext_markup():
@@ -330,3 +330,35 @@ def test_an_empty_folder_or_an_unexpanded_file_prints_no_summary_of_success(vali
     code, out, _ = validate(str(robot))
     assert code == 0 and "No problems" not in out
     assert out.endswith("Found 1 info in 1 file; 1 file not expanded (TX002).\n")
+
+
+BROKEN_DEMO = "fixtures/broken_robot.urdf"
+
+
+@pytest.mark.parametrize(("columns", "color"), [(80, "auto"), (120, "auto"), (80, "never")])
+def test_findings_on_a_terminal_wrap_to_its_width(columns, color):
+    """Each finding on the lines it needs, the next ones indented; in a pipe, one a line."""
+    code, piped, _ = in_pipe("validate", BROKEN_DEMO)
+    findings = piped.splitlines()[:-1]
+    assert code == 1 and any(len(line) > 120 for line in findings)
+    code, _, screen = in_terminal("validate", BROKEN_DEMO, "--color", color, columns=columns)
+    shown = ANSI.sub("", screen).splitlines()
+    assert code == 1 and widest(screen) <= columns
+    starts = [line for line in shown if not line.startswith(" ")]
+    assert [line.split(": ")[0] for line in starts[:-1]] == [
+        line.split(": ")[0] for line in findings]
+    assert " ".join(" ".join(line.split()) for line in shown[:-1]) == " ".join(
+        " ".join(line.split()) for line in findings)
+
+
+@pytest.mark.parametrize("command", [("show", DEMO), ("show", DEMO, "--actuator-limits")])
+def test_a_table_wider_than_the_terminal_folds_to_one_record_a_row(command):
+    """At 80 columns rich cut every cell of the table to a few letters."""
+    code, _, screen = in_terminal(*command, columns=80)
+    text = ANSI.sub("", screen)
+    assert code == 0 and widest(screen) <= 80 and "…" not in text
+    assert "transmission  shoulder_trans:60" in text
+    assert "member        actuator wrist_right_motor" in text
+    assert "interfaces    EffortJointInterface" in text
+    code, _, screen = in_terminal(*command, columns=200)
+    assert code == 0 and "┃ transmission" in ANSI.sub("", screen)  # the table, where it fits

@@ -191,8 +191,8 @@ def test_a_finding_migrate_cannot_fix_as_written_is_not_marked(robots):
     (robots / "m.urdf.xacro").write_text(XACRO)
     code, out, _ = run("validate", "--format", "json", "urdf/m.urdf.xacro")
     assert code == 1
-    assert [(p["code"], p["fixable"]) for p in json.loads(out)["problems"]] == [
-        ("TX205", False), ("TX300", False)]
+    assert [(p["code"], p["severity"], p["fixable"]) for p in json.loads(out)["problems"]] == [
+        ("TX300", "error", False)]  # the refusal, said once (TX205's severity)
     code, out, err = run("validate", "--fix", "urdf/m.urdf.xacro")
     assert code == 1 and "[*]" not in out and "fixable" not in out and err == ""
     assert (robots / "m.urdf.xacro").read_text() == XACRO
@@ -216,7 +216,7 @@ def test_json_says_which_findings_are_fixable(robots):
     (["--format", "json:a.json", "-o", "./a.json", "x.urdf"], "two reports named the same file"),
     (["--format", "sarif:", "x.urdf"], "'sarif:': no file name after ':'"),
     (["--format", "xml:a.xml", "x.urdf"], "'xml' is not one of"),
-    (["--format", "json", "--statistics", "x.urdf"], "go with --format text, not json"),
+    (["--format", "json", "--statistics", "x.urdf"], "go with --format text or concise, not json"),
 ])
 def test_usage_errors(robots, args, message):
     code, out, err = run("validate", *args, input=LEGACY)
@@ -240,11 +240,12 @@ def test_several_reports_from_one_run(robots):
 
 
 def test_a_report_that_cannot_be_written_fails_the_run_after_the_others(robots):
-    code, out, err = run("validate", "--format", "sarif:missing/r.sarif", "--format",
+    (robots.parent / "taken").write_text("a file where the report's folder should be")
+    code, out, err = run("validate", "--format", "sarif:taken/r.sarif", "--format",
                          "json:r.json", "urdf")
     assert code == 2
     assert out.splitlines()[-1].startswith("Found ")  # the text report is printed
-    assert "missing/r.sarif" in err and "r.json" not in err
+    assert "taken/r.sarif" in err and "r.json" not in err
     assert json.loads((robots.parent / "r.json").read_text())["problems"]
 
 

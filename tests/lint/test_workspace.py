@@ -63,7 +63,7 @@ def test_validate_from_the_workspace_root_checks_each_source_file_once(workspace
     # rrbot.xacro (expanded: its own package found), materials.xacro and the stale rrbot.xml;
     # none of the copies in build/ and install/.
     assert report["summary"]["files"] == 3
-    assert all(p["path"].startswith("./src/") for p in report["problems"])
+    assert all(p["path"].startswith("src/") for p in report["problems"])
     # The stale rrbot.xml names interfaces only on its actuators: ros_control skips such joints,
     # but its loader is gazebo_ros_control (libgazebo_ros_control.so), which takes the
     # actuator's interface with a warning (default_robot_hw_sim.cpp initSim): warnings only.
@@ -181,10 +181,10 @@ def files_checked(*args: str, cwd: Path, monkeypatch) -> list[str]:
 
 def test_gitignore_is_respected_in_folder_walks(repo, monkeypatch):
     assert files_checked(".", cwd=repo, monkeypatch=monkeypatch) == [
-        "./robots/a.urdf", "./robots/generated/b.urdf", "./test/d.urdf"]
+        "robots/a.urdf", "robots/generated/b.urdf", "test/d.urdf"]
     assert files_checked(".", "--no-respect-gitignore", cwd=repo, monkeypatch=monkeypatch) == [
-        "./robots/a.urdf", "./robots/generated/b.urdf", "./robots/tmp.urdf", "./test/d.urdf",
-        "./vendor/c.urdf"]
+        "robots/a.urdf", "robots/generated/b.urdf", "robots/tmp.urdf", "test/d.urdf",
+        "vendor/c.urdf"]
 
 
 def test_a_file_named_on_the_command_line_is_always_checked(repo, monkeypatch):
@@ -194,10 +194,10 @@ def test_a_file_named_on_the_command_line_is_always_checked(repo, monkeypatch):
 
 def test_exclude_patterns_from_the_command_line_and_the_configuration(repo, monkeypatch):
     (repo / ".txtool.toml").write_text('exclude = ["generated/"]\nextend-exclude = ["test/"]\n')
-    assert files_checked(".", cwd=repo, monkeypatch=monkeypatch) == ["./robots/a.urdf"]
+    assert files_checked(".", cwd=repo, monkeypatch=monkeypatch) == ["robots/a.urdf"]
     # --exclude replaces the configuration's exclude; its extend-exclude stays
     assert files_checked(".", "--exclude", "a.urdf", cwd=repo, monkeypatch=monkeypatch) == [
-        "./robots/generated/b.urdf"]
+        "robots/generated/b.urdf"]
     code, out, err = run("validate", ".", "--extend-exclude", "robots/", cwd=repo,
                          monkeypatch=monkeypatch)
     assert (code, out) == (2, "")  # everything excluded: a CI step must not pass silently
@@ -207,7 +207,7 @@ def test_exclude_patterns_from_the_command_line_and_the_configuration(repo, monk
 def test_per_file_ignores(repo, monkeypatch):
     (repo / ".txtool.toml").write_text('[per-file-ignores]\n"test/*.urdf" = ["TX106"]\n')
     assert files_checked(".", cwd=repo, monkeypatch=monkeypatch) == [
-        "./robots/a.urdf", "./robots/generated/b.urdf"]
+        "robots/a.urdf", "robots/generated/b.urdf"]
 
 
 def test_per_file_ignores_with_an_unknown_code_is_a_configuration_error(repo, monkeypatch):
@@ -230,4 +230,4 @@ def test_per_file_xacro_args(tmp_path, monkeypatch):
 """)
     (tmp_path / ".txtool.toml").write_text(
         '[per-file-xacro-args."left.urdf.xacro"]\nratio = "0"\n')
-    assert files_checked(".", cwd=tmp_path, monkeypatch=monkeypatch) == ["./left.urdf.xacro"]
+    assert files_checked(".", cwd=tmp_path, monkeypatch=monkeypatch) == ["left.urdf.xacro"]

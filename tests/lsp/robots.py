@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-# A ROS 1 transmission: an interface without its prefix (TX300, fixable; so ros_control finds
-# no valid interface, TX205) and a zero actuator reduction (TX106) on line 16.
+# A ROS 1 transmission: an interface without its prefix (TX300, fixable; ros_control finds no
+# valid interface, which TX300 says at TX205's severity) and a zero actuator reduction (TX106)
+# on line 16.
 ARM = """\
 <?xml version="1.0"?>
 <robot name="arm">

@@ -257,7 +257,7 @@ def test_a_bad_configuration_stops_the_run_with_nothing_written(run, write):
     code, out, err = run("migrate", "--write", "a", "b")
     assert (code, out) == (2, "")
     assert err.startswith("txtool: ") and err.count("\n") == 1
-    assert err.endswith(".txtool.toml: key 'selectt': unknown key\n")
+    assert err.endswith(".txtool.toml: key 'selectt': unknown key; did you mean 'select'?\n")
     assert path.read_text() == first.read_text() == ROBOT.lstrip("\n")
 
 

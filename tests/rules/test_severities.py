@@ -109,7 +109,8 @@ TABLE: dict[str, tuple[str, str, str]] = {
                                      "</hardwareInterface>")), "r.urdf"),
     "TX204": ("warning", robot(ros1(joint=EFFORT + "<hardwareInterface>my/Iface"
                                     "</hardwareInterface>")), "r.urdf"),
-    "TX205": ("error", robot(ros1(joint="<hardwareInterface>PositionJointInterface"
+    # a misspelt name (an unprefixed one is TX300's finding, at this severity)
+    "TX205": ("error", robot(ros1(joint="<hardwareInterface>PositionInterface"
                                   "</hardwareInterface>")), "r.urdf"),
     # from Jazzy on (a Humble reader as well would make it a warning: see OPTIONS)
     "TX206": ("error", robot('<ros2_control name="s" type="system"><joint name="k">'
@@ -120,7 +121,8 @@ TABLE: dict[str, tuple[str, str, str]] = {
     "TX208": ("error", robot(ros2("") + ros2("").replace('name="j"', 'name="x"')
                              .replace('name="k"', 'name="y"')), "r.urdf"),
     "TX209": ("error", robot(ros2("") + ros2("").replace('name="hw"', 'name="hw2"')), "r.urdf"),
-    "TX300": ("warning", robot(ros1(joint="<hardwareInterface>PositionJointInterface"
+    # beside a registered interface: alone, the transmission is refused (TX205's severity)
+    "TX300": ("warning", robot(ros1(joint=EFFORT + "<hardwareInterface>PositionJointInterface"
                                     "</hardwareInterface>")), "r.urdf"),
     "TX301": ("warning", robot(ros1(joint="", actuator=EFFORT + "<mechanicalReduction>1"
                                     "</mechanicalReduction>")), "r.urdf"),

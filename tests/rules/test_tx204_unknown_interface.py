@@ -50,7 +50,8 @@ def test_ros1_registered_interfaces_pass():
 
 def test_ros1_unprefixed_registered_name_is_tx300_not_tx204():
     xml = ROS1.format(type=SIMPLE, interface="PositionJointInterface")
-    assert check(xml, select=["TX204", "TX300"]) == [(4, 5, "TX300", "warning")]
+    # alone, the name leaves the transmission refused: TX300 at TX205's severity
+    assert check(xml, select=["TX204", "TX300"]) == [(4, 5, "TX300", "error")]
 
 
 def test_ros1_custom_types_and_xacro_values_are_not_checked():

@@ -14,11 +14,17 @@ from tests.rules.test_tx204_unknown_interface import ROS1, ROS2, SIMPLE
 
 
 def test_ros1_only_an_unprefixed_interface_is_refused():
+    """One mistake, one finding: TX300's, with its fix, at this rule's severity; TX205's own
+    where TX300 does not run."""
     xml = ROS1.format(type=SIMPLE, interface="PositionJointInterface")
     found = problems(xml, select=["TX205", "TX300"])
-    assert [(p.line, p.column, p.code, p.severity) for p in found] == [
-        (3, 3, "TX205", "error"), (4, 5, "TX300", "warning")
-    ]
+    assert [(p.line, p.column, p.code, p.severity, p.fixable) for p in found] == [
+        (4, 5, "TX300", "error", True)]
+    assert found[0].message.endswith(
+        "and drops it, which leaves no interface: it refuses the transmission (\"It contains "
+        "no valid hardware interfaces\"); write 'hardware_interface/PositionJointInterface'")
+    found = problems(xml, select=["TX205"])
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(3, 3, "TX205", "error")]
     assert "ros_control refuses it (\"It contains no valid hardware interfaces\")" in (
         found[0].message)
     assert "write 'hardware_interface/PositionJointInterface'" in found[0].message
@@ -94,4 +100,4 @@ def test_a_ros1_leftover_beside_ros2_control_is_read_by_no_loader():
     assert sorted((code, severity) for _, _, code, severity in check(xml)) == [
         ("TX300", "warning"), ("TX304", "warning")]
     alone = xml.replace('<ros2_control name="hw" type="system"><joint name="j"><command_interface name="position"/></joint></ros2_control>\n', "")
-    assert ("TX205", "error") in [(code, severity) for _, _, code, severity in check(alone)]
+    assert ("TX300", "error") in [(code, severity) for _, _, code, severity in check(alone)]

@@ -38,8 +38,9 @@ def test_unprefixed_interface_warns_on_the_joint_only():
     # ros_control reads interfaces from joints only: transmission_interface_loader.cpp:152
     # @0a09467 takes the first joint's list; the actuator's is never looked up.
     found = problems(BEFORE, select=["TX300"])
-    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(5, 7, "TX300", "warning")]
-    assert found[0].severity == "warning" and found[0].fixable
+    # its joint names no other interface: ros_control refuses the transmission (TX205's error)
+    assert [(p.line, p.column, p.code, p.severity) for p in found] == [(5, 7, "TX300", "error")]
+    assert found[0].fixable
     assert "'PositionJointInterface' of joint 'j' in transmission 't'" in found[0].message
     assert "write 'hardware_interface/PositionJointInterface'" in found[0].message
 

@@ -91,3 +91,27 @@ def test_ros1_spellings_in_ros1_pass():
     </transmission>
     """
     assert check(xml, select=["TX303"]) == []
+
+
+def test_the_one_obvious_fix_is_offered():
+    """The value respelt as the loader reads it; none for a value that is no plain text."""
+    found = problems(ROS2.format(body="<mechanicalReduction> 50 </mechanicalReduction>"),
+                     select=["TX303"])
+    assert found[0].message.endswith(
+        "silently becomes 1.0: write <mechanical_reduction>50</mechanical_reduction>")
+    found = problems(ROS2.format(body="<mechanicalReduction>${r}</mechanicalReduction>"),
+                     select=["TX303"])
+    assert found[0].message.endswith("silently becomes 1.0")
+    role = ROS2.replace('<actuator name="m" role="actuator1"/>',
+                        '<actuator name="m"><role>actuator1</role></actuator>')
+    found = problems(role.format(body=""), select=["TX303"])
+    assert found[0].message.endswith(
+        "'actuator' tag\": write <actuator name=\"m\" role=\"actuator1\">")
+    ros1 = """<transmission name="t">
+      <type>transmission_interface/SimpleTransmission</type>
+      <joint name="j"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+      <actuator name="m"><mechanical_reduction>50</mechanical_reduction></actuator>
+    </transmission>"""
+    found = problems(ros1, select=["TX303"])
+    assert found[0].message.endswith(
+        "never sees this value: write <mechanicalReduction>50</mechanicalReduction>")

@@ -308,3 +308,29 @@ FORMAT_OPTION = click.option(
     "--format", "output_format", type=Choice(["text", "json"]), default="text",
     show_default=True, help="Output format.",
 )
+
+
+def complete_codes(ctx: click.Context, param: click.Parameter, incomplete: str) -> list:
+    """Shell completion of rule codes for ``--select``/``--ignore`` (the last of a
+    comma-separated list: ``TX1,TX30`` offers ``TX1,TX300``...), each with its rule's name."""
+    from click.shell_completion import CompletionItem
+
+    from txtool.rules import all_rules
+
+    head, comma, last = incomplete.rpartition(",")
+    prefix = head + comma
+    return [CompletionItem(prefix + code, help=rule.name)
+            for code, rule in sorted(all_rules().items()) if code.startswith(last.upper())]
+
+
+def complete_rules(ctx: click.Context, param: click.Parameter, incomplete: str) -> list:
+    """Shell completion of a rule's code or name (``txtool rules CODE``)."""
+    from click.shell_completion import CompletionItem
+
+    from txtool.rules import all_rules
+
+    rules = sorted(all_rules().values(), key=lambda rule: rule.code)
+    return ([CompletionItem(rule.code, help=rule.name) for rule in rules
+             if rule.code.startswith(incomplete.upper())]
+            + [CompletionItem(rule.name, help=rule.code) for rule in rules
+               if incomplete and rule.name.startswith(incomplete.lower())])

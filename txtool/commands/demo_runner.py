@@ -15,10 +15,12 @@ from txtool.io.resources import shipped
 from txtool.io.xmlio import InputError, Source, parse_bytes
 from txtool.transform.convert import convert_source
 from txtool.transform.roundtrip import roundtrip
-from txtool.views.render import transmissions_table
+from txtool.views.render import print_table, transmissions_table
 
 
 def run_demo(console: Console) -> int:
+    console.print("Each heading below is the command whose result it shows; the commands run "
+                  "as shown in a folder that `txtool demo --copy DIR` fills.", markup=False)
     robot = load(str(shipped("fixtures", "demo_robot.urdf")))
     _show(console, robot)
     _convert(console, robot)
@@ -37,7 +39,7 @@ def run_demo(console: Console) -> int:
 def _show(console: Console, robot: Source) -> None:
     console.print(Rule("txtool show fixtures/demo_robot.urdf"))
     transmissions = [f.transmission for f in read_source(robot)]
-    console.print(transmissions_table(transmissions, "the demo arm's ROS 1 transmissions"))
+    print_table(console, transmissions_table(transmissions, "the demo arm's ROS 1 transmissions"))
 
 
 def _convert(console: Console, robot: Source) -> None:
@@ -45,9 +47,9 @@ def _convert(console: Console, robot: Source) -> None:
         console.print(Rule(f"txtool convert fixtures/demo_robot.urdf --to {target}"))
         result = convert_source(robot, target)
         converted = Source(robot.path, result.data, parse_bytes(result.data, robot.path))
-        console.print(transmissions_table([f.transmission for f in read_source(converted)],
-                                          f"converted to {target} (lossless: "
-                                          f"{'yes' if not result.losses else 'no'})"))
+        print_table(console, transmissions_table([f.transmission for f in read_source(converted)],
+                                                 f"converted to {target} (lossless: "
+                                                 f"{'yes' if not result.losses else 'no'})"))
         back = convert_source(converted, "ros1")
         same = back.losses == [] and _fields(back.data) == _fields(robot.data)
         console.print(f"and back to ros1: {'same transmissions' if same else 'DIFFERENT'}")
@@ -74,10 +76,11 @@ def _validate(console: Console, robot: Source) -> None:
     from txtool.lint.engine import lint_source
 
     for source in (robot, load(str(shipped("fixtures", "broken_robot.urdf")))):
-        console.print(Rule(f"txtool validate {Path(source.path).name}"))
+        shown = f"fixtures/{Path(source.path).name}"  # where --copy puts it
+        console.print(Rule(f"txtool validate {shown}"))
         problems = lint_source(source)
         for p in problems:
-            console.print(f"{Path(p.path).name}:{p.line}:{p.column}: {p.severity} {p.code} "
+            console.print(f"{shown}:{p.line}:{p.column}: {p.severity} {p.code} "
                           f"{p.name}: {p.message}", markup=False)
         console.print(f"{len(problems)} finding(s)")
 

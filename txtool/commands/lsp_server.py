@@ -25,7 +25,7 @@ from urllib.parse import unquote
 from lsprotocol import types as lsp
 from pygls.exceptions import FeatureNotificationError
 from pygls.lsp.server import LanguageServer
-from pygls.uris import to_fs_path
+from pygls.uris import from_fs_path, to_fs_path
 from pygls.workspace import TextDocument
 from pygls.workspace.position_codec import ServerTextPosition, ServerTextRange
 
@@ -42,7 +42,7 @@ from txtool.commands.lsp_document import (
     root_of,
     settings_for,
 )
-from txtool.lint.problem import Problem
+from txtool.lint.problem import Note, Problem
 from txtool.reporters.sarif import RULE_DOCS
 
 SOURCE = "txtool"
@@ -241,7 +241,17 @@ def diagnostic(document: TextDocument, problem: Problem) -> lsp.Diagnostic:
         code_description=lsp.CodeDescription(href=RULE_DOCS.format(code=problem.code)),
         source=SOURCE,
         data={"fixable": bool(problem.fixable)},
+        related_information=[_related(note) for note in problem.related] or None,
     )
+
+
+def _related(note: Note) -> lsp.DiagnosticRelatedInformation:
+    """A place of the finding's xacro call chain ("in expansion of macro ..."), in any file."""
+    at = lsp.Position(line=note.line - 1, character=note.column - 1)
+    return lsp.DiagnosticRelatedInformation(
+        location=lsp.Location(uri=from_fs_path(os.path.abspath(note.path)) or note.path,
+                              range=lsp.Range(start=at, end=at)),
+        message=note.message)
 
 
 def _failure(document: TextDocument, failure: Failure) -> lsp.Diagnostic:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from txtool.commands.common import TARGET_HINTS, Choice, exit_on_input_error
+from txtool.commands.common import TARGET_HINTS, Choice, complete_codes, exit_on_input_error
 from txtool.io.printable import printable
 from txtool.model.distro import CHOICES as DISTROS
 
@@ -30,9 +30,9 @@ def _mode(check: bool, diff: bool, write: bool) -> str:
 @click.option("--diff", is_flag=True,
               help="Write nothing; print a unified diff and exit 1 if a file would change.")
 @click.option("--write", is_flag=True, help="Rewrite the files that change (atomically).")
-@click.option("--select", multiple=True, metavar="CODES",
+@click.option("--select", multiple=True, metavar="CODES", shell_complete=complete_codes,
               help="Only these fix codes or prefixes (comma-separated, repeatable).")
-@click.option("--ignore", multiple=True, metavar="CODES",
+@click.option("--ignore", multiple=True, metavar="CODES", shell_complete=complete_codes,
               help="Skip these fix codes or prefixes (comma-separated, repeatable).")
 @click.option("--config", "config_path", type=click.Path(dir_okay=False), metavar="PATH",
               help="Use this configuration file instead of searching for one.")

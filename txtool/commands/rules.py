@@ -6,11 +6,11 @@ import json
 
 import click
 
-from txtool.commands.common import Choice, exit_on_input_error
+from txtool.commands.common import Choice, complete_rules, exit_on_input_error
 
 
 @click.command("rules")
-@click.argument("code", required=False)
+@click.argument("code", required=False, shell_complete=complete_rules)
 @click.option("--format", "output_format", type=Choice(["text", "json"]), default="text",
               show_default=True, help="Output format.")
 @exit_on_input_error

@@ -71,28 +71,51 @@ def command(path, output_format, effective, actuator_limits, stdin_filename, ros
         click.echo(json.dumps(data, indent=2))
         return 0
     from txtool.views.render import console as make_console
-    from txtool.views.render import fit, limits_table, transmissions_table
+    from txtool.views.render import limits_table, print_table, transmissions_table
 
     console = make_console()
+    verdicts = _verdicts(source, transmissions, ros_distro, config_path)
     if readers is not None:
         from txtool.views.effective import effective_text
         from txtool.views.readers_view import readers_text
 
         assumption, unread = readers
         click.echo(effective_text(source.path, transmissions,
-                                  bindings_of(found, _one_ros2_distro(assumption)), unread),
+                                  bindings_of(found, _one_ros2_distro(assumption)), unread,
+                                  verdicts),
                    nl=False)
         click.echo(readers_text(*readers), nl=False)
     else:
         table = transmissions_table(transmissions, f"{source.path}: "
-                                    f"{len(transmissions)} transmission(s)")
-        fit(console, table)
-        console.print(table)
+                                    f"{len(transmissions)} transmission(s)", verdicts)
+        print_table(console, table)
     if limits is not None:
-        table = limits_table(limits)
-        fit(console, table)
-        console.print(table)
+        print_table(console, limits_table(limits))
     return 0
+
+
+def _verdicts(source, transmissions, ros_distro, config_path) -> dict[str, list[str]]:
+    """What ``txtool validate`` says of each transmission at error or warning (the findings
+    whose message names it): ``error TX205: transmission 't' names no hardware interface
+    ros_control knows ('PositionJointInterface')``, the finding's first clause."""
+    from txtool.lint.api import lint_source
+    from txtool.lint.config import ConfigError, Overrides, SettingsCache
+    from txtool.reporters.concise import headline
+
+    try:
+        settings = SettingsCache(Overrides(ros_distro=ros_distro), config_path).for_file(
+            source.path)
+    except ConfigError:
+        return {}  # validate says what is wrong with the configuration
+    problems = [p for p in lint_source(source, settings) if p.severity in ("error", "warning")]
+    verdicts: dict[str, list[str]] = {}
+    for t in transmissions:
+        named = f"transmission '{t.name}'"
+        said = [f"{p.severity} {p.code}: {headline(p.message)}" for p in problems
+                if named in p.message]
+        if said:
+            verdicts[t.name] = list(dict.fromkeys(said))
+    return verdicts
 
 
 def _readers(source, found, ros_distro, config_path):

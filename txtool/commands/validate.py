@@ -13,13 +13,14 @@ from txtool.commands.common import (
     Choice,
     RenamedOption,
     color_wanted,
+    complete_codes,
     exit_on_input_error,
     xacro_options,
 )
 from txtool.io.printable import printable
 from txtool.model.distro import CHOICES
 
-FORMATS = ("text", "json", "github", "sarif", "junit")
+FORMATS = ("text", "concise", "json", "github", "sarif", "junit", "gitlab")
 
 
 class OutputFormat(Choice):
@@ -47,6 +48,15 @@ def use_color(mode: str, output_file: str | None = None) -> bool:
     return color_wanted(mode, output_file is None and sys.stdout.isatty())
 
 
+def terminal_width(output_file: str | None) -> int | None:
+    """The width the text report wraps to: a terminal's (COLUMNS if set), else None."""
+    if output_file is not None or not sys.stdout.isatty():
+        return None
+    import shutil
+
+    return shutil.get_terminal_size().columns
+
+
 @click.command("validate")
 @click.argument("paths", nargs=-1, type=click.Path())
 @click.option("--format", "output_formats", type=OutputFormat(FORMATS), multiple=True,
@@ -54,9 +64,9 @@ def use_color(mode: str, output_file: str | None = None) -> bool:
               help="Output format [default: text; github when GITHUB_ACTIONS=true]; "
                    "NAME:FILE writes that report to FILE as well (repeatable, e.g. "
                    "--format github --format sarif:txtool.sarif).")
-@click.option("--select", multiple=True, metavar="CODES",
+@click.option("--select", multiple=True, metavar="CODES", shell_complete=complete_codes,
               help="Only these rule codes or prefixes (comma-separated, repeatable).")
-@click.option("--ignore", multiple=True, metavar="CODES",
+@click.option("--ignore", multiple=True, metavar="CODES", shell_complete=complete_codes,
               help="Skip these rule codes or prefixes (comma-separated, repeatable).")
 @click.option("--strict", is_flag=True, help="Warnings fail too (exit 1).")
 @click.option("--exit-zero", is_flag=True, help="Exit 0 even when there are findings.")
@@ -89,6 +99,9 @@ def use_color(mode: str, output_file: str | None = None) -> bool:
                    "relative to this folder; replaces the configuration's exclude (repeatable).")
 @click.option("--extend-exclude", multiple=True, metavar="PATTERN",
               help="Like --exclude, but kept beside the configuration's exclude (repeatable).")
+@click.option("--force-exclude", is_flag=True,
+              help="Exclude patterns pass over files named on the command line too (as "
+                   "pre-commit names every staged .xml file).")
 @click.option("--respect-gitignore/--no-respect-gitignore", default=None,
               help="Pass over what .gitignore files ignore in folder walks [default: respect].")
 @click.option("--ros-distro", type=click.Choice(CHOICES), default=None,
@@ -98,8 +111,11 @@ def use_color(mode: str, output_file: str | None = None) -> bool:
 @exit_on_input_error
 def command(paths, output_formats, select, ignore, strict, exit_zero, config_path, no_xacro,
             stdin_filename, jobs, color, output_file, fix, diff, quiet, statistics, exclude,
-            extend_exclude, respect_gitignore, ros_distro, xacro) -> int:
+            extend_exclude, force_exclude, respect_gitignore, ros_distro, xacro) -> int:
     """Check transmissions in files and folders (*.urdf, *.xacro, robot *.xml; '-' is stdin).
+
+    A file named whose root element is no robot description's (a launch file, package.xml,
+    an SDF world) is passed over.
 
     Exit codes: 0 nothing at the failing level, 1 findings at it (errors; warnings too with
     --strict; infos never), 2 usage, configuration or input error.
@@ -108,8 +124,9 @@ def command(paths, output_formats, select, ignore, strict, exit_zero, config_pat
     from txtool.lint.api import LintOptions, exit_code, lint_paths
 
     main, files = _outputs(output_formats, output_file)
-    if (quiet or statistics) and main != "text":
-        raise click.UsageError(f"--quiet and --statistics go with --format text, not {main}")
+    if (quiet or statistics) and main not in ("text", "concise"):
+        raise click.UsageError("--quiet and --statistics go with --format text or concise, "
+                               f"not {main}")
     if diff and (output_formats or output_file or quiet or statistics):
         raise click.UsageError("--diff prints a diff: it takes no --format, --output, "
                                "--quiet or --statistics")
@@ -128,6 +145,7 @@ def command(paths, output_formats, select, ignore, strict, exit_zero, config_pat
         jobs=jobs,
         exclude=exclude or None,
         extend_exclude=extend_exclude,
+        force_exclude=force_exclude,
         respect_gitignore=respect_gitignore,
         ros_distro=ros_distro,
     )
@@ -152,7 +170,8 @@ def command(paths, output_formats, select, ignore, strict, exit_zero, config_pat
     stdin_name = (stdin_filename or "<stdin>") if "-" in paths else None
     code = _report_all(result, main, files, output_file, stdin_name, selection,
                        _Look(use_color(color, output_file), quiet, statistics,
-                             ("error", "warning") if strict else ("error",)), paths)
+                             ("error", "warning") if strict else ("error",),
+                             terminal_width(output_file)), paths)
     return 2 if fix_failed else max(code, exit_code(result, options), int(refused))
 
 
@@ -161,6 +180,7 @@ class _Look(NamedTuple):
     quiet: bool
     statistics: bool
     failing: tuple[str, ...]  # the severities that fail the run (JUnit failures)
+    width: int | None = None  # a terminal's: the text report wraps to it
 
 
 def _outputs(formats: tuple[tuple[str, str | None], ...],
@@ -199,10 +219,9 @@ def _report_all(result, main: str, files: list[tuple[str, str]], output_file: st
     summary = Summary.of(problems, result.files, failures=result.errors, readers=result.readers,
                          edits=edits, failing=look.failing)
     colored = main == "text" and look.color
-    outputs = [(output_file, _report(main, problems, summary, colored, look.quiet,
-                                     look.statistics))]
-    outputs += [(path, _report(name, problems, summary, False, False, False))
-                for name, path in files]
+    outputs = [(output_file, _report(main, problems, summary, colored, look))]
+    plain = _Look(False, False, False, look.failing)
+    outputs += [(path, _report(name, problems, summary, False, plain)) for name, path in files]
     code = 0
     for path, report in outputs:
         if path is None:
@@ -231,11 +250,13 @@ def _warn_unused_args(paths: list[str], no_xacro: bool) -> None:
             warn_unused_args("<stdin>" if path == "-" else path, STDIN if path == "-" else PLAIN)
 
 
-def _report(fmt: str, problems, summary, colored: bool, quiet: bool, statistics: bool) -> str:
-    from txtool.reporters import render, text
+def _report(fmt: str, problems, summary, colored: bool, look: _Look) -> str:
+    from txtool.reporters import concise, render, text
 
-    if statistics:
+    if look.statistics:
         return text.statistics(problems, summary)
-    if quiet:
-        return text.render_quiet(problems, color=colored)
-    return render(fmt, problems, summary, color=colored)
+    if look.quiet and fmt == "concise":
+        return "".join(concise.line_of(p) + "\n" for p in problems)
+    if look.quiet:
+        return text.render_quiet(problems, color=colored, width=look.width)
+    return render(fmt, problems, summary, color=colored, width=look.width)

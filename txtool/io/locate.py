@@ -118,17 +118,31 @@ class Locator:
         """The source element that produced ``element``: a macro call or include (or a literal
         element whose name xacro computed), by aligning each level of the
         expansion with the file as written."""
+        return self.producer(element)[0]
+
+    def producer(
+        self, element: etree._Element
+    ) -> tuple[etree._Element | None, etree._Element | None]:
+        """The source element that produced ``element`` (see :meth:`_producer`), and when that
+        is a xacro element (a macro call, an include), the element of the expansion it made
+        that holds ``element`` (``element`` itself, or an ancestor)."""
         tree = self.source.source_tree
         if tree is None:
-            return None
+            return None, None
         chain = [element, *element.iterancestors()][::-1]
         written = tree.getroot()
         for step in chain[1:]:
             made = self._alignment(written, step.getparent()).get(step)
             if made is None or is_xacro_element(made):
-                return made
+                return made, step if made is not None else None
             written = made
-        return written
+        return written, None
+
+    def add_macros(self, macros: dict[str, etree._Element]) -> None:
+        """Macros defined in other files (included ones), so that the calls between two
+        literal elements share what they produced by what each macro's body holds."""
+        for name, body in macros.items():
+            self._macros.setdefault(name, body)
 
     def _alignment(
         self, written: etree._Element, produced: etree._Element
@@ -211,11 +225,20 @@ def _next_twin(made: list[etree._Element], start: int, child: etree._Element) ->
     name = child.get("name")
     for index in range(start, len(made)):
         candidate = made[index]
-        if local(candidate) != local(child):
+        if local(candidate) != local(child) or not _same_attributes(child, candidate):
             continue
         if name is None or _match_named([child], candidate.get("name"))[0] is not None:
             return index
     return None
+
+
+def _same_attributes(written: etree._Element, produced: etree._Element) -> bool:
+    """Whether ``produced`` may be ``written`` expanded: the same attributes, those written
+    without an expression with the same value. A literal ``<gazebo>`` is not the ``<gazebo
+    reference="...">`` a macro call made before it."""
+    if set(written.attrib) != set(produced.attrib):
+        return False
+    return all("$" in value or produced.get(key) == value for key, value in written.items())
 
 
 def _attribute(
@@ -258,11 +281,13 @@ def _mentions(call: etree._Element, element: etree._Element) -> int:
                default=0)
 
 
-def _expected(producer: etree._Element, macros: dict[str, etree._Element]) -> dict[str, int] | None:
-    """How many elements of each tag a call or conditional produces, when the file tells."""
+def _expected(producer: etree._Element, macros: dict[str, etree._Element],
+              depth: int = 0) -> dict[str, int] | None:
+    """How many elements of each tag a call produces, when the file tells: its macro's body,
+    nested calls of known macros counted in (to a depth of 8)."""
     name = local(producer)
     body = macros.get(name) if name not in ("include", "call", "insert_block") else None
-    if body is None:
+    if body is None or depth > 8:
         return None
     counts: dict[str, int] = {}
     for child in body:
@@ -271,7 +296,12 @@ def _expected(producer: etree._Element, macros: dict[str, etree._Element]) -> di
         if is_xacro_element(child):
             if local(child) in _SILENT:
                 continue
-            return None  # nested calls and conditionals: unknown
+            nested = _expected(child, macros, depth + 1)
+            if nested is None:
+                return None  # conditionals, blocks, unknown macros: unknown
+            for tag, count in nested.items():
+                counts[tag] = counts.get(tag, 0) + count
+            continue
         counts[local(child)] = counts.get(local(child), 0) + 1
     return counts
 

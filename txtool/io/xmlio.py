@@ -441,8 +441,9 @@ def write_atomic(path: str, data: bytes, *, in_place: Unchanged | None = None,
 
     A new output (``in_place`` None) is never written through a symbolic link nor over a file
     read as an input (or named in ``inputs``); a ``report`` not over a robot description either
-    (:func:`txtool.io.targets.refused_target`). An input rewritten ``in_place`` is written
-    through a symbolic link to its target, and only if its status is still the one compared.
+    (:func:`txtool.io.targets.refused_target`), and its missing folders are made. An input
+    rewritten ``in_place`` is written through a symbolic link to its target, and only if its
+    status is still the one compared.
     """
     import tempfile
 
@@ -459,6 +460,8 @@ def write_atomic(path: str, data: bytes, *, in_place: Unchanged | None = None,
     folder = os.path.dirname(target) or "."
     temp = None
     try:
+        if report and in_place is None:  # ``-o out/report.sarif``, as other linters do
+            os.makedirs(folder, exist_ok=True)
         old = _replaceable(path, target)
         sweep_stale_temporaries(folder)
         with held():  # a signal must not fall between creating the file and naming it

@@ -11,8 +11,9 @@ from typing import NamedTuple
 from txtool.io.xmlio import InputError, XacroOptions
 from txtool.lint.config import Overrides, Settings, SettingsCache
 from txtool.lint.config_files import find_config_cache_clear
-from txtool.lint.discover import expand_paths
+from txtool.lint.discover import describes_robot, expand_paths
 from txtool.lint.engine import lint_file, lint_source
+from txtool.lint.macro_calls import without_repeats
 from txtool.lint.problem import InputFailure, Problem
 from txtool.lint.readers import FileReaders
 
@@ -35,6 +36,7 @@ class LintOptions(NamedTuple):
     extend_exclude: tuple[str, ...] = ()
     respect_gitignore: bool | None = None  # None: as configured (default True)
     ros_distro: str | None = None  # --ros-distro: the distribution reading the files
+    force_exclude: bool = False  # exclude patterns pass over files named as well
 
 
 class LintResult:
@@ -74,10 +76,20 @@ def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions,
     find_config_cache_clear()
     settings = SettingsCache(overrides, options.config)
     work: list[tuple[str, Settings]] = []
+    named = frozenset(paths)
     unread: list[InputFailure] = []  # what a folder walk could not read; it went on
+    def pass_over(path: str) -> bool:
+        """A file named that describes no robot (a launch file, package.xml), or one an
+        exclude pattern names under ``force_exclude`` (as pre-commit names every .xml file)."""
+        return (options.force_exclude and settings.excluded(path, False)) or not describes_robot(
+            path)
+
     for path in expand_paths(paths, skip=settings.excluded, gitignore=settings.respects_gitignore,
                              report=lambda where, reason: unread.append(
-                                 InputFailure(where, f"{where}: {reason}"))):
+                                 InputFailure(where, f"{where}: {reason}")),
+                             pass_over=pass_over):
+        if path not in named and path.startswith("./") and path != "./-":
+            path = path[2:]  # noqa: PLW2901 - a walk of '.' names urdf/r.urdf, as ruff does
         where = options.stdin_filename if path == "-" and options.stdin_filename else path
         work.append((path, settings.for_file(where)))  # a ConfigError stops the run
     result = LintResult()
@@ -96,6 +108,7 @@ def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions,
         readers = getattr(outcome, "readers", None)
         if readers is not None:
             result.readers.append(readers)
+    result.problems = without_repeats(result.problems)
     return result
 
 

@@ -180,7 +180,8 @@ def load_config(path: Path) -> Config:
     except ValidationError as exc:
         error = exc.errors()[0]
         key = prefix + ".".join(str(part) for part in error["loc"])
-        reason = "unknown key" if error["type"] == "extra_forbidden" else error["msg"]
+        reason = (unknown_key(Config, error["loc"]) if error["type"] == "extra_forbidden"
+                  else error["msg"])
         raise ConfigError(f"{path}: key '{key}': {reason}") from None
 
 
@@ -295,8 +296,26 @@ def _options(rule: Any, values: dict[str, Any], origin: str, where: str) -> Any:
     except ValidationError as exc:
         error = exc.errors()[0]
         key = f"{where}." + ".".join(str(part) for part in error["loc"])
-        reason = "unknown key" if error["type"] == "extra_forbidden" else error["msg"]
+        reason = (unknown_key(model, error["loc"]) if error["type"] == "extra_forbidden"
+                  else error["msg"])
         raise ConfigError(f"{origin}: key '{key}': {reason}") from None
+
+
+def unknown_key(model: Any, loc: tuple[Any, ...]) -> str:
+    """``unknown key``, and the known key of that table it is likely a typo of (``selct``:
+    did you mean 'select'?), found among the fields of the pydantic ``model`` at ``loc``."""
+    import difflib
+
+    for part in loc[:-1]:
+        field = next((f for name, f in getattr(model, "model_fields", {}).items()
+                      if part in (name, f.alias)), None)
+        model = getattr(field, "annotation", None)
+    fields = getattr(model, "model_fields", None)
+    if not isinstance(fields, dict):
+        return "unknown key"
+    known = [field.alias or name for name, field in fields.items()]
+    close = difflib.get_close_matches(str(loc[-1]), known, n=1, cutoff=0.6)
+    return "unknown key" + (f"; did you mean '{close[0]}'?" if close else "")
 
 
 class Overrides(NamedTuple):

@@ -10,7 +10,7 @@ from lxml import etree
 from txtool.dialects.read import Found, transmission_elements
 from txtool.io.xmlio import Source, is_xacro_element, local
 from txtool.lint.facts import Facts, Hints, LintFound, facts_of
-from txtool.lint.problem import Problem, Severity
+from txtool.lint.problem import Note, Problem, Severity
 from txtool.lint.text import scanned_form
 from txtool.model.robot import (
     Component,
@@ -22,6 +22,7 @@ from txtool.model.robot import (
 
 if TYPE_CHECKING:
     from txtool.io.locate import Locator, Position
+    from txtool.lint.macro_calls import Tracer
     from txtool.model.readers import Assumption, Sim, Stated
 
 
@@ -73,10 +74,16 @@ class LintContext:
     (see :meth:`unknown`). ``options`` holds each rule's validated options by code.
     """
 
+    def runs(self, code: str) -> bool:
+        """Whether the rule ``code`` runs on this document."""
+        return self.enabled is None or code in self.enabled
+
     def __init__(self, source: Source, found: list[Found] | None = None, literal: bool = False,
-                 options: Mapping[str, Any] | None = None, stated: Stated | None = None
-                 ) -> None:
+                 options: Mapping[str, Any] | None = None, stated: Stated | None = None,
+                 enabled: frozenset[str] | None = None) -> None:
         self.source = source
+        # The rules that run (None: all), for a rule whose finding another one's covers.
+        self.enabled = enabled
         self.stated = stated
         self.literal = literal
         self.options: Mapping[str, Any] = {} if options is None else options
@@ -226,11 +233,35 @@ class LintContext:
         ``fixable=False`` marks a finding the rule's fix declines by design;
         ``loader_severity`` lowers a finding that the file's own loader accepts.
         """
+        traced = self.traced(element) if self.source.expanded else None
+        if traced is not None:  # at the macro call, the macro's body related
+            where, related = traced
+            return Problem(self.source.path, where.line, where.column, code, message,
+                           fixable=fixable, loader_severity=loader_severity, related=related)
         where = self.position(element)
         if where.expanded:
             message = f"{message} (after xacro expansion)"
         return Problem(self.source.path, where.line, where.column, code, message, fixable=fixable,
                        loader_severity=loader_severity)
+
+    def traced(self, element: etree._Element) -> tuple[Position, tuple[Note, ...]] | None:
+        """In an expansion: where a finding at ``element`` goes (the macro call that made it)
+        and its related places, see :mod:`txtool.lint.macro_calls`; None where no call made
+        it."""
+        known = self._traced.get(element)
+        if known is None and element not in self._traced:
+            known = self._traced[element] = self.tracer.position(element)
+        return known
+
+    @lazy
+    def _traced(self) -> dict[etree._Element, tuple[Position, tuple[Note, ...]] | None]:
+        return {}
+
+    @lazy
+    def tracer(self) -> Tracer:
+        from txtool.lint.macro_calls import Tracer
+
+        return Tracer(self.locator, self.source.path)
 
     @property
     def gazebo_sim(self) -> Sim | None:

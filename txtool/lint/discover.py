@@ -4,7 +4,9 @@ In a folder, recursively: ``*.urdf``, ``*.xacro`` and ``.xml`` files whose root 
 description. Passed over, as ruff and colcon do: hidden folders; folders holding
 ``COLCON_IGNORE``, ``AMENT_IGNORE`` or ``CATKIN_IGNORE`` (colcon's ``build/``, ``install/`` and
 ``log/`` carry one); what ``.gitignore`` files ignore (unless told not to); and what an exclude
-pattern names (see :class:`Excludes`). A file named on the command line is always checked. A
+pattern names (see :class:`Excludes`). A file named on the command line is checked unless its
+root element says it describes no robot (a launch file, a ``package.xml``, an SDF world: see
+:func:`describes_robot`), whatever its name, or the caller passes it over (``--force-exclude``). A
 device, FIFO or socket named ``*.urdf`` or ``*.xacro`` is passed on, so that loading refuses it (an
 ``.xml`` one is never opened to read its root, so passed over).
 """
@@ -27,6 +29,8 @@ from txtool.lint.patterns import Excludes, absolute_folder
 SUFFIXES = (".urdf", ".xacro")  # ``.urdf.xacro`` ends with ``.xacro``
 XML_ROOTS = frozenset({"robot", "ros2_control", "transmission"})
 SEMANTIC = (".srdf.xacro",)  # MoveIt's semantic description: no transmission loader reads it
+# A xacro library may have any root (``<root xmlns:xacro=...>``): its namespace says what it is.
+XACRO_NAMESPACES = frozenset({"http://www.ros.org/wiki/xacro", "http://ros.org/wiki/xacro"})
 
 # (path, is_folder, is_link) -> True when the path found in a folder walk must be passed over.
 Skip = Callable[[str, bool, bool], bool]
@@ -45,12 +49,14 @@ def expand_paths(
     skip: Skip | None = None,
     gitignore: Callable[[str], bool] = lambda folder: True,
     report: Report | None = None,
+    pass_over: Callable[[str], bool] | None = None,
 ) -> Iterator[str]:
     """Files to lint, in a stable order: given files as they are, folders searched recursively.
 
     ``skip`` passes over what a folder walk finds (exclude patterns); ``gitignore`` says per
-    folder given whether its walk respects ``.gitignore``. A given file is always checked,
-    whatever its name and patterns; a missing one is passed on so that loading reports it.
+    folder given whether its walk respects ``.gitignore``. A given file is checked whatever its
+    name and patterns, unless ``pass_over`` says otherwise; a missing one is passed on so that
+    loading reports it.
     ``-`` (stdin) is passed on as well. Each file is produced once. A folder holding nothing to
     check is an :class:`~txtool.io.xmlio.InputError`: a CI step given the wrong folder must not
     pass silently. What a walk cannot read (a folder it may not list, a symbolic link that
@@ -63,6 +69,8 @@ def expand_paths(
         if path != "-" and os.path.isdir(path):
             ignores = GitIgnores(path, tell) if gitignore(path) else None
             found = _walk(path, skip, ignores, tell)
+        elif path != "-" and pass_over is not None and pass_over(path):
+            continue
         else:
             found = iter([path])
         empty = True
@@ -228,8 +236,29 @@ def is_candidate(path: str) -> bool:
     return name.endswith(".xml") and root_tag(Path(path)) in XML_ROOTS
 
 
+def describes_robot(path: str) -> bool:
+    """Whether a file named on the command line is one to check: False only when its root
+    element is known and is no robot description's (``<launch>``, ``<package>``, ``<sdf>``...),
+    unless the root declares the xacro namespace (a macro library may have any root). A file
+    that cannot be read or parsed is one to check: loading it says what is wrong."""
+    root = _root(Path(path))
+    if root is None:
+        return True
+    return _local(root.tag) in XML_ROOTS or not XACRO_NAMESPACES.isdisjoint(root.nsmap.values())
+
+
 def root_tag(path: Path) -> str | None:
-    """The local name of the root element, reading no further than it; None if unreadable.
+    """The local name of the root element, reading no further than it; None if unreadable."""
+    root = _root(path)
+    return None if root is None else _local(root.tag)
+
+
+def _local(tag: str) -> str:
+    return tag.rsplit("}", 1)[-1]
+
+
+def _root(path: Path) -> etree._Element | None:
+    """The root element as its start tag reads (no children); None if unreadable.
 
     Only a regular file is opened: a FIFO would block, a device never end.
     """
@@ -239,8 +268,7 @@ def root_tag(path: Path) -> str | None:
         with path.open("rb") as handle:
             events = etree.iterparse(handle, events=("start",), **SAFE_OPTIONS)
             for _, element in events:
-                tag = element.tag
-                return tag.rsplit("}", 1)[-1] if isinstance(tag, str) else None
+                return element if isinstance(element.tag, str) else None
     except (etree.XMLSyntaxError, OSError):
         return None
     return None

@@ -162,14 +162,17 @@ def context_for(source: Source, settings: Settings) -> LintContext:
     """The context the rules see (see the module documentation for the choice)."""
     options = settings.options
     stated = settings.stated
+    enabled = settings.enabled
     if not source.expanded:
         literal = needs_expansion(source.path, source.data, source.tree)
-        return LintContext(source, literal=literal, options=options, stated=stated)
-    expanded = LintContext(source, options=options, stated=stated)
+        return LintContext(source, literal=literal, options=options, stated=stated,
+                           enabled=enabled)
+    expanded = LintContext(source, options=options, stated=stated, enabled=enabled)
     if expanded.found or source.source_tree is None:
         return expanded
     as_written = Source(path=source.path, data=source.data, tree=source.source_tree)
-    literal = LintContext(as_written, literal=True, options=options, stated=stated)
+    literal = LintContext(as_written, literal=True, options=options, stated=stated,
+                          enabled=enabled)
     return literal if literal.found else expanded
 
 
@@ -279,6 +282,7 @@ def _stamped(problem: Problem, rule: Rule, settings: Settings, lines: _Lines) ->
         severity=settings.severity.get(rule.code, problem.loader_severity or rule.severity),
         name=rule.name,
         fixable=rule.fixable and problem.fixable is not False,
+        related=problem.related,
     )
 
 

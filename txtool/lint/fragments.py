@@ -55,6 +55,12 @@ def fragments(work: Iterable[tuple[str, XacroOptions]], walked: Iterable[str]) -
     return frozenset(targets[key] for key in found)
 
 
+def included_files(path: str, options: XacroOptions) -> list[str]:
+    """The files ``path`` includes whose names hold no placeholder, absolute, in order."""
+    return [name for name in _included(path, options, {})
+            if _ANY not in name and os.path.isfile(name)]
+
+
 def _key(path: str) -> str:
     return os.path.realpath(path)
 

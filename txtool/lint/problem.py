@@ -17,6 +17,16 @@ class InputFailure(NamedTuple):
 SEVERITIES: tuple[Severity, ...] = ("error", "warning", "info")
 
 
+class Note(NamedTuple):
+    """A place related to a finding: where the macro whose expansion holds it is written, say
+    (SARIF ``relatedLocations``, LSP ``relatedInformation``)."""
+
+    path: str
+    line: int
+    column: int
+    message: str
+
+
 @dataclass(frozen=True, order=True)
 class Problem:
     """A finding at a 1-based ``line:column`` of ``path``.
@@ -40,9 +50,16 @@ class Problem:
     # A rule sets this below its registered severity for a finding the file's own loader
     # accepts (gazebo_ros_control's, say); a configured severity still wins.
     loader_severity: Severity | None = field(default=None, compare=False)
+    # The xacro call chain of a finding in an expansion: "in expansion of macro M ...".
+    related: tuple[Note, ...] = field(default=(), compare=False)
 
     def __str__(self) -> str:
         """The finding as ``txtool validate`` prints it: ``path:line:col: severity CODE name:
         message``."""
         rule = f"{self.code} {self.name}" if self.name else self.code
-        return f"{self.path}:{self.line}:{self.column}: {self.severity} {rule}: {self.message}"
+        return (f"{self.path}:{self.line}:{self.column}: {self.severity} {rule}: "
+                f"{self.message}{self.chain()}")
+
+    def chain(self) -> str:
+        """`` (in expansion of macro 'arm' defined at arm.xacro:3)`` per note, or ``""``."""
+        return "".join(f" ({note.message})" for note in self.related)

@@ -6,6 +6,7 @@ imported only when chosen (the text format loads rich only when colouring).
 
 from __future__ import annotations
 
+import hashlib
 import importlib
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, NamedTuple
@@ -18,10 +19,12 @@ if TYPE_CHECKING:
 
 FORMATS: dict[str, str] = {
     "text": "text",
+    "concise": "concise",
     "json": "json_format",
     "github": "github",
     "sarif": "sarif",
     "junit": "junit",
+    "gitlab": "gitlab",
 }
 
 
@@ -58,10 +61,14 @@ class Summary(NamedTuple):
 
 
 def render(
-    output_format: str, problems: Sequence[Problem], summary: Summary, *, color: bool = False
+    output_format: str, problems: Sequence[Problem], summary: Summary, *, color: bool = False,
+    width: int | None = None,
 ) -> str:
-    """The report in ``output_format`` (one of :data:`FORMATS`)."""
+    """The report in ``output_format`` (one of :data:`FORMATS`); ``width``: the text format's
+    findings wrapped to that many columns (a terminal's), else one a line."""
     module = importlib.import_module(f"{__name__}.{FORMATS[output_format]}")
+    if output_format == "text":
+        return module.render(problems, summary, color=color, width=width)  # type: ignore[no-any-return]
     return module.render(problems, summary, color=color)  # type: ignore[no-any-return]
 
 
@@ -70,3 +77,17 @@ def end_of(problem: Problem) -> tuple[int, int]:
     if problem.end_line is None or problem.end_column is None:
         return problem.line, problem.column + 1
     return problem.end_line, problem.end_column
+
+
+def fingerprints(problems: Sequence[Problem]) -> list[str]:
+    """Each finding's identity across commits: a digest of its path, code and message, and
+    how many alike came before it in the file, never of its line (a line added above moves
+    it, and it stays the same finding: SARIF ``partialFingerprints``, GitLab ``fingerprint``)."""
+    seen: dict[tuple[str, str, str], int] = {}
+    found = []
+    for problem in problems:
+        key = (problem.path.removeprefix("./"), problem.code, problem.message)
+        seen[key] = occurrence = seen.get(key, 0) + 1
+        text = "\0".join([*key, str(occurrence)])
+        found.append(hashlib.sha256(text.encode("utf-8", "surrogateescape")).hexdigest())
+    return found

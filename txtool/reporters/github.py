@@ -47,7 +47,7 @@ def annotation(problem: Problem) -> str:
         f"title={_property(f'{problem.code} {problem.name}')}",
     ]
     level = LEVELS.get(problem.severity, "error")
-    return f"::{level} {','.join(fields)}::{_data(problem.message)}"
+    return f"::{level} {','.join(fields)}::{_data(problem.message + problem.chain())}"
 
 
 def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False) -> str:

@@ -28,7 +28,8 @@ _ROW = """    {
       "code": %s,
       "name": %s,
       "message": %s,
-      "fixable": %s
+      "fixable": %s,
+      "related": %s
     }"""
 
 
@@ -40,11 +41,24 @@ def report(problems: Sequence[Problem], summary: Summary) -> dict[str, Any]:
         rows.append({
             "path": p.path, "line": p.line, "column": p.column, "end_line": end_line,
             "end_column": end_column, "severity": p.severity, "code": p.code, "name": p.name,
-            "message": p.message, "fixable": bool(p.fixable),
+            "message": p.message, "fixable": bool(p.fixable), "related": _related(p),
         })
     unreadable = [{"path": f.path, "message": f.message} for f in summary.failures]
     return {"problems": rows, "unreadable": unreadable, "readers": _readers(summary),
             "summary": _totals(summary)}
+
+
+def _related(problem: Problem) -> list[dict[str, object]]:
+    return [{"path": note.path, "line": note.line, "column": note.column,
+             "message": note.message} for note in problem.related]
+
+
+def _related_text(problem: Problem) -> str:
+    """:func:`_related` as ``json.dumps(..., indent=2)`` writes it inside a problem's row."""
+    if not problem.related:
+        return "[]"
+    text = json.dumps(_related(problem), indent=2, ensure_ascii=False)
+    return text.replace("\n", "\n" + " " * 6)
 
 
 def _readers(summary: Summary) -> list[dict[str, object]]:
@@ -74,6 +88,6 @@ def _render(problems: Sequence[Problem], summary: Summary) -> str:
         rows.append(_ROW % (
             encode_basestring(p.path), p.line, p.column, end_line, end_column,
             encode_basestring(p.severity), encode_basestring(p.code), encode_basestring(p.name),
-            encode_basestring(p.message), "true" if p.fixable else "false",
+            encode_basestring(p.message), "true" if p.fixable else "false", _related_text(p),
         ))
     return '{\n  "problems": [\n' + ",\n".join(rows) + "\n  ],\n" + totals + "\n"

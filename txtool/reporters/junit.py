@@ -23,8 +23,9 @@ def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False
     for problem in problems:
         case = _case(suite, problem.path, f"{problem.code} {problem.name} "
                                          f"{problem.line}:{problem.column}")
-        line = (f"{problem.path}:{problem.line}:{problem.column}: {problem.severity} "
-                f"{problem.code} {problem.name}: {problem.message}")
+        path = problem.path.removeprefix("./")
+        line = (f"{path}:{problem.line}:{problem.column}: {problem.severity} "
+                f"{problem.code} {problem.name}: {problem.message}{problem.chain()}")
         if problem.severity in summary.failing:
             failed += 1
             failure = etree.SubElement(case, "failure", message=_text(problem.message),
@@ -37,7 +38,7 @@ def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False
         etree.SubElement(case, "error", message=_text(failure.message)).text = \
             _text(failure.message)
     if not problems and not summary.failures:
-        _case(suite, SUITE, "no problems")
+        _case(suite, "", "no problems")
     suite.set("tests", str(len(suite)))
     suite.set("failures", str(failed))
     suite.set("errors", str(len(summary.failures)))
@@ -46,9 +47,17 @@ def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False
     return '<?xml version="1.0" encoding="UTF-8"?>\n' + body
 
 
-def _case(suite: etree._Element, classname: str, name: str) -> etree._Element:
-    return etree.SubElement(suite, "testcase", classname=_text(classname), name=_text(name),
-                            time="0")
+def _case(suite: etree._Element, path: str, name: str) -> etree._Element:
+    return etree.SubElement(suite, "testcase", classname=_text(class_name(path)),
+                            name=_text(name), time="0")
+
+
+def class_name(path: str) -> str:
+    """``urdf/robot.urdf`` as ``txtool.urdf.robot_urdf``: JUnit readers (Jenkins, GitLab,
+    ``colcon test-result``) take the dots of a class name for packages, so the file's own dots
+    become ``_`` and its folders the packages."""
+    parts = [part for part in path.replace("\\", "/").split("/") if part not in ("", ".")]
+    return ".".join([SUITE, *(part.replace(".", "_") for part in parts)])
 
 
 def _text(value: str) -> str:

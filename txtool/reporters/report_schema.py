@@ -13,6 +13,19 @@ from typing import Any, Literal
 from pydantic import BaseModel, ConfigDict, Field
 
 
+class ReportNote(BaseModel):
+    """A place related to a finding: where the xacro macro whose expansion holds it is
+    written (innermost first), or the call a finding in a macro's body was expanded from."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    path: str
+    line: int = Field(ge=1)
+    column: int = Field(ge=1)
+    message: str = Field(description="e.g. \"in expansion of macro 'arm' defined at "
+                         "urdf/arm.xacro:3\".")
+
+
 class ReportProblem(BaseModel):
     """One finding; positions are 1-based, ``end_column`` is exclusive."""
 
@@ -29,6 +42,8 @@ class ReportProblem(BaseModel):
     message: str
     fixable: bool = Field(description="Whether `txtool validate --fix` fixes it (with the fixes "
                           "of `txtool migrate`).")
+    related: list[ReportNote] = Field(description="The xacro call chain of a finding in an "
+                                      "expansion; empty elsewhere.")
 
 
 class ReportUnreadable(BaseModel):

@@ -19,10 +19,10 @@ from typing import Any
 from urllib.parse import quote
 
 from txtool import __version__
-from txtool.lint.problem import InputFailure, Problem
+from txtool.lint.problem import InputFailure, Note, Problem
 from txtool.lint.readers import FileReaders
 from txtool.lint.ruledoc import markdown, plain
-from txtool.reporters import Summary, end_of
+from txtool.reporters import Summary, end_of, fingerprints
 from txtool.reporters.fixes import Edit, edits_for
 
 SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
@@ -30,6 +30,7 @@ HOME = "https://github.com/txtool/txtool"
 RULE_DOCS = HOME + "/blob/main/docs/rules/{code}.md"  # docs/generate_rules.py writes them
 SRCROOT = "%SRCROOT%"
 LEVELS = {"error": "error", "warning": "warning", "info": "note"}
+FINGERPRINT = "txtoolFinding/v1"  # path, code, message and occurrence: see fingerprints()
 
 
 def render(problems: Sequence[Problem], summary: Summary, *, color: bool = False) -> str:
@@ -64,8 +65,8 @@ def sarif_log(
                 "invocations": [_invocation(failures, uris)],
                 "originalUriBaseIds": {SRCROOT: {"uri": Path(os.getcwd()).as_uri() + "/"}},
                 "columnKind": "unicodeCodePoints",
-                "results": [_result(p, index, uris, (edits or {}).get(p.path, ()))
-                            for p in problems],
+                "results": [_result(p, index, uris, (edits or {}).get(p.path, ()), digest)
+                            for p, digest in zip(problems, fingerprints(problems), strict=True)],
                 "properties": {"readers": [file.as_json() for file in readers]},
             }
         ],
@@ -119,7 +120,7 @@ def _artifact(path: str, uris: dict[str, str]) -> dict[str, str]:
 
 
 def _result(problem: Problem, index: dict[str, int], uris: dict[str, str],
-            edits: Sequence[Edit] = ()) -> dict[str, Any]:
+            edits: Sequence[Edit] = (), fingerprint: str = "") -> dict[str, Any]:
     end_line, end_column = end_of(problem)
     result: dict[str, Any] = {
         "ruleId": problem.code,
@@ -138,12 +139,28 @@ def _result(problem: Problem, index: dict[str, int], uris: dict[str, str],
                 }
             }
         ],
+        # Code scanning matches a result across commits by this, not by its line.
+        "partialFingerprints": {FINGERPRINT: fingerprint},
     }
+    if problem.related:
+        result["relatedLocations"] = [_related(number, note, uris)
+                                      for number, note in enumerate(problem.related, 1)]
     if problem.code in index:
         result["ruleIndex"] = index[problem.code]
     if problem.fixable and edits:
         result["fixes"] = [_fix(problem, edits_for(edits, problem.line, end_line), uris)]
     return result
+
+
+def _related(number: int, note: Note, uris: dict[str, str]) -> dict[str, Any]:
+    return {
+        "id": number,
+        "physicalLocation": {
+            "artifactLocation": _artifact(note.path, uris),
+            "region": {"startLine": note.line, "startColumn": note.column},
+        },
+        "message": {"text": note.message},
+    }
 
 
 def _fix(problem: Problem, edits: Sequence[Edit], uris: dict[str, str]) -> dict[str, Any]:

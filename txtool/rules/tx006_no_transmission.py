@@ -3,7 +3,8 @@
 What it does: reports a file named on the command line (``txtool validate links.urdf``) with
 no ``<transmission>`` after xacro expansion, and none inside xacro macros either. Files met in
 a folder walk are not reported: a walk meets many included fragments (materials, macros) that
-rightly hold none. Produced by the pipeline.
+rightly hold none. A named file whose root element is no robot description's (a launch file,
+a ``package.xml``, an SDF world) is passed over before, quietly. Produced by the pipeline.
 
 Why it matters: such a run checks nothing, and saying "no problems" would suggest the robot's
 transmissions were checked. Nothing is wrong with the file for any loader: severity ``info``,

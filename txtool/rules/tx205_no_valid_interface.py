@@ -7,7 +7,10 @@ set, TX203). The usual cause is the unprefixed ``PositionJointInterface`` or
 ``EffortJointInterface`` that gazebo_ros_control accepts with a deprecation warning. In ROS 2,
 a transmission joint whose ``<joint>`` in the enclosing ``<ros2_control>`` declares interfaces,
 none of which the transmission maps (``position``, ``velocity``, ``effort``; Simple and
-Differential also ``torque``, ``force``, ``absolute_position``): ``Position``, say. Custom
+Differential also ``torque``, ``force``, ``absolute_position``): ``Position``, say. A
+transmission whose names are all registered ones without their ``hardware_interface/`` prefix
+(``PositionJointInterface``) is reported by TX300 instead, at this rule's severity and with its
+fix, while TX300 runs: one mistake, one finding. Custom
 transmission types, families with loaders of their own and names holding xacro expressions are
 not checked; nor is a ROS 1 transmission outside every ``<ros2_control>`` block of a document
 that has such blocks (the robot's loader is then ros2_control, which never reads it: TX304).
@@ -33,16 +36,15 @@ Failing example::
       <transmission name="t">
         <type>transmission_interface/SimpleTransmission</type>
         <joint name="j1">
-          <hardwareInterface>PositionJointInterface</hardwareInterface>
+          <hardwareInterface>PositionInterface</hardwareInterface>
         </joint>
         <actuator name="m"><mechanicalReduction>50</mechanicalReduction></actuator>
       </transmission>
     </robot>
 
 Expected finding: ``4:5 error TX205 transmission 't' names no hardware interface ros_control
-knows ('PositionJointInterface'): ros_control refuses it ("It contains no valid hardware
-interfaces"); write 'hardware_interface/PositionJointInterface' (gazebo_ros_control accepts the
-unprefixed name with a deprecation warning, ros_control does not)``
+knows ('PositionInterface'): ros_control refuses it ("It contains no valid hardware
+interfaces"); did you mean 'hardware_interface/PositionJointInterface'?``
 
 Passing example::
 
@@ -67,7 +69,7 @@ from collections.abc import Iterator
 from txtool.dialects.read import Found
 from txtool.lint.context import LintContext
 from txtool.lint.facts import Facts
-from txtool.lint.problem import Problem
+from txtool.lint.problem import Problem, Severity
 from txtool.lint.rule_helpers import label, opaque, per_transmission
 from txtool.model.readers import accepts
 from txtool.rules.tx204_unknown_interface import (
@@ -92,31 +94,58 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         if tx.kind == "other":
             continue
         if tx.ros1:
-            if tx.component is None and ctx.components:
-                continue  # a ROS 2 robot's leftover: no loader reads it (TX304)
-            if not tx.typed_ros1 or tx.own_loader:
-                continue
-            for ref in tx.joints:  # the first joint that names interfaces
-                if ref.interfaces:
-                    if REGISTERED.isdisjoint(ref.interfaces):
-                        yield from _check_ros1(ctx, tx)  # else nothing to say (see there)
-                    break
+            refused = refusal(ctx, tx)
+            if refused is not None and not covered_by_tx300(ctx, refused[1]):
+                yield from _check_ros1(ctx, tx, *refused)
         elif tx.component is not None:  # else no component declares its joints' interfaces
             yield from _check_ros2(ctx, tx.found)
 
 
-def _check_ros1(ctx: LintContext, tx: Facts) -> Iterator[Problem]:
+def refusal(ctx: LintContext, tx: Facts) -> tuple[list, list[str]] | None:
+    """The joints naming interfaces, and the names, of a ROS 1 transmission ros_control
+    refuses for want of a registered interface; None when it does not (or cannot be told)."""
+    if tx.component is None and ctx.components:
+        return None  # a ROS 2 robot's leftover: no loader reads it (TX304)
+    if not tx.typed_ros1 or tx.own_loader:
+        return None
+    first = next((ref for ref in tx.joints if ref.interfaces), None)
+    if first is None or not REGISTERED.isdisjoint(first.interfaces):
+        return None  # the common case: the first joint names a registered interface
     joints = [ref for ref in tx.joints if ref.interfaces]
-    if not joints or any(registered(name) for name in joints[0].interfaces):
-        return  # the common case: the first joint names a registered interface (see below)
     if any(opaque(ctx, ref.element) for ref in joints):
-        return
+        return None
     lists = [ref.interfaces for ref in joints]
     if len({frozenset(names) for names in lists}) > 1:
-        return  # joints with different interfaces: TX203
+        return None  # joints with different interfaces: TX203
     names = lists[0]
     if any(ctx.unknown(name) or registered(name) for name in names):
-        return
+        return None
+    return joints, names
+
+
+def covered_by_tx300(ctx: LintContext, names: list[str]) -> bool:
+    """Whether TX300 reports this refusal: each name is a registered one without its
+    prefix, and TX300 runs. One mistake, one finding: TX300's, which the fix fixes, at this
+    rule's severity (see :func:`consequence`)."""
+    return ctx.runs("TX300") and all(unprefixed_registered(name) for name in names)
+
+
+def consequence(ctx: LintContext, names: list[str]) -> tuple[str, Severity]:
+    """What the loader does with a transmission left without a registered interface, as
+    TX300 says it when it covers this rule's finding, and the severity that goes with it."""
+    sim = ctx.gazebo_sim
+    said = ("drops it, which leaves no interface: it refuses the transmission (\"It contains "
+            "no valid hardware interfaces\")")
+    if sim is not None and sim.default and accepts(names[0]):
+        return (f"{said}; {sim.describe()} accepts the name with a deprecation warning",
+                "warning")
+    if sim is not None and sim.default:
+        said += f", and so does {sim.describe()}"
+    return said, "error"
+
+
+def _check_ros1(ctx: LintContext, tx: Facts, joints: list,
+                names: list[str]) -> Iterator[Problem]:
     shown = ", ".join(f"'{name}'" for name in names)
     fixes = [PREFIX + name for name in names if unprefixed_registered(name)]
     message = (f"{tx.label} names no hardware interface ros_control knows ({shown}): "

@@ -10,7 +10,9 @@ is not reported. Transmission families with loaders of their own (``pr2_mechanis
 Why it matters: ros_control looks the name up as a pluginlib class, and only the prefixed
 names are registered: it warns "Failed to process the 'PositionJointInterface' hardware
 interface for transmission 'T'" and loads the transmission with its other interfaces; with no
-valid interface left it refuses the transmission (TX205 reports that as an error).
+valid interface left it refuses the transmission: then this finding says so, at TX205's severity
+(an error; a warning where gazebo_ros_control's DefaultRobotHWSim loads the robot), in place of
+TX205's (one mistake, one finding, with its fix).
 gazebo_ros_control accepts both spellings but warns "Deprecated syntax, please prepend
 'hardware_interface/'" (gazebo_ros_pkgs#550), so a robot can work in simulation and fail on
 the real hardware.
@@ -67,6 +69,7 @@ from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.rule_helpers import OWN_LOADER_FAMILIES, children, label, per_transmission
 from txtool.rules.tx204_unknown_interface import PREFIX, UNPREFIXED, unprefixed_registered
+from txtool.rules.tx205_no_valid_interface import consequence, covered_by_tx300, refusal
 
 CODE = "TX300"
 NAME = "unprefixed-interface"
@@ -93,6 +96,11 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         if UNPREFIXED.isdisjoint(tx.joint_interfaces):
             continue  # the common case (the joints' interface names are the texts below)
         found = tx.found
+        # Left without a registered interface, the transmission is refused: TX205's finding,
+        # said here once, with the fix (see TX205's covered_by_tx300).
+        refused = refusal(ctx, tx)
+        said, severity = (consequence(ctx, refused[1]) if refused is not None
+                          and covered_by_tx300(ctx, refused[1]) else ("drops it", None))
         for member, element, text in _unprefixed(found.element):
             yield ctx.problem(
                 CODE,
@@ -100,7 +108,8 @@ def check(ctx: LintContext) -> Iterator[Problem]:
                 f"hardware interface '{text}' of {local(member)} '{member.get('name', '')}' in "
                 f"{label(found)} lacks the '{PREFIX}' prefix: "
                 "ros_control does not find it ('Failed to process the hardware interface') and "
-                f"drops it; write '{PREFIX}{text}'",
+                f"{said}; write '{PREFIX}{text}'",
+                loader_severity=severity,
             )
 
 

@@ -42,7 +42,7 @@ Failing example::
 
 Expected finding: ``8:9 error TX303 joint 'joint1' of transmission 't' uses the ROS 1
 <mechanicalReduction>: ros2_control reads only <mechanical_reduction>, so the reduction silently
-becomes 1.0``
+becomes 1.0: write <mechanical_reduction>50</mechanical_reduction>``
 
 Passing example::
 
@@ -60,8 +60,9 @@ Passing example::
       </ros2_control>
     </robot>
 
-Fix: write the element as the dialect spells it (``txtool migrate --write`` converts a whole
-transmission: ``--to ros2-p2``).
+Fix: write the element as the dialect spells it, as the message says where the value is
+plain text (``<mechanical_reduction>50</mechanical_reduction>``, ``role="joint1"``);
+``txtool migrate --write --to ros2-p2`` converts a whole transmission.
 """
 
 from __future__ import annotations
@@ -146,13 +147,14 @@ def _check_ros2(ctx: LintContext, found: Found) -> Iterator[Problem]:
                     loader_severity="warning",
                 )
                 continue
+            alone = "mechanical_reduction" not in kids
             yield ctx.problem(
                 CODE,
                 element,
                 f"{where} uses the ROS 1 <mechanicalReduction>: ros2_control reads only "
                 + ("<mechanical_reduction>, so the reduction silently becomes 1.0"
-                   if "mechanical_reduction" not in kids else
-                   "the <mechanical_reduction> beside it, which says otherwise"),
+                   if alone else "the <mechanical_reduction> beside it, which says otherwise")
+                + (_respelt(element, "mechanical_reduction") if alone else ""),
             )
         for spelling in ("hardwareInterface", "hardware_interface"):
             for element in kids.get(spelling, ()):
@@ -164,7 +166,7 @@ def _check_ros2(ctx: LintContext, found: Found) -> Iterator[Problem]:
                 )
     for member in _members(found):
         for element in children(member, "role"):
-            yield ctx.problem(CODE, element, _role_message(found, member))
+            yield ctx.problem(CODE, element, _role_message(found, member, element))
 
 
 def _used_reduction(kids: dict[str, list[etree._Element]]) -> float | None:
@@ -178,15 +180,27 @@ def _used_reduction(kids: dict[str, list[etree._Element]]) -> float | None:
     return 1.0
 
 
-def _role_message(found: Found, member: etree._Element) -> str:
+def _role_message(found: Found, member: etree._Element, element: etree._Element) -> str:
     where = _whose(found, member)
     if member.get("role") is not None:
         return f"{where} has a <role> element beside its role attribute: ros2_control ignores it"
+    role = (text_of(element) or "").strip()
+    fix = (f": write <{local(member)} name=\"{member.get('name', '')}\" role=\"{role}\">"
+           if role and '"' not in role else "")
     return (
         f"{where} gives its role as a <role> element (the ROS 2 Proposal 1 form): "
         f"ros2_control reads only the role attribute and throws \"no attribute 'role' in "
-        f"'{local(member)}' tag\""
+        f"'{local(member)}' tag\"{fix}"
     )
+
+
+def _respelt(element: etree._Element, spelling: str) -> str:
+    """``: write <spelling>TEXT</spelling>``, the one obvious fix, when the value is plain text
+    (one that holds markup or an expression is for the author to carry over)."""
+    text = (text_of(element) or "").strip()
+    if not text or len(element) or any(c in text for c in "<&$"):
+        return ""
+    return f": write <{spelling}>{text}</{spelling}>"
 
 
 def _check_ros1(ctx: LintContext, found: Found) -> Iterator[Problem]:
@@ -200,7 +214,9 @@ def _check_ros1(ctx: LintContext, found: Found) -> Iterator[Problem]:
                 CODE,
                 element,
                 f"{where} uses the ROS 2 <mechanical_reduction>: ros_control reads only "
-                "<mechanicalReduction> and never sees this value",
+                "<mechanicalReduction> and never sees this value"
+                + ("" if "mechanicalReduction" in kids
+                   else _respelt(element, "mechanicalReduction")),
             )
         for element in kids.get("hardware_interface", ()):
             yield ctx.problem(

@@ -43,9 +43,9 @@ Failing example::
     </robot>
 
 Expected finding: ``2:3 info TX305 ROS 1 transmission 'wheel_trans' stands outside every
-<ros2_control> block, where none of this file's readers looks (only ROS 2 programs read this
-file: gz_ros2_control, ros2_control (<gazebo> plugin gz_ros2_control-system)): nothing reads it,
-so its contents are not judged``
+<ros2_control> block, where none of this file's readers looks (gz_ros2_control, ros2_control:
+<gazebo> plugin gz_ros2_control-system): nothing reads it; txtool migrate --write --to
+ros2-p2 moves it into a <ros2_control> block``
 
 Passing example::
 
@@ -73,6 +73,7 @@ ros2-p2``), or delete it.
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterator
 
 from txtool.lint.context import LintContext
@@ -90,7 +91,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
     unread = ctx.unread
     if not unread:
         return
-    named = ctx.readers.explain()
+    named = _readers(ctx)
     for tx in unread:
         element = tx.found.element
         if ctx.in_macro(element):  # a macro's transmission stands where its form belongs
@@ -100,14 +101,35 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             top = placement_of(element) is Placement.TOP_LEVEL
             where = ("stands outside every <ros2_control> block" if top
                      else "stands inside a <ros2_control> block")
-        looks = "only ROS 2 programs" if top else "only ROS 1 programs"
         form = "ROS 1 " if tx.ros1 and not ctx.in_macro(element) else ""
         yield ctx.problem(
             CODE, tx.found.element,
-            f"{form}{tx.label} {where}, where none of this file's readers looks ({looks} read "
-            f"this file: {named}): nothing reads it, so its contents are not judged",
+            f"{form}{tx.label} {where}, where none of this file's readers looks ({named}): "
+            f"nothing reads it; {_FIX[top]}",
             loader_severity=_severity(tx, top),
         )
+
+
+# What moves the transmission where its readers look (or says there is nothing to move it with).
+_FIX = {
+    True: "txtool migrate --write --to ros2-p2 moves it into a <ros2_control> block",
+    False: "move it to the top level in the ROS 1 form, or delete it",
+}
+
+
+def _readers(ctx: LintContext) -> str:
+    """``ros2_control: package.xml: ament_cmake``; a configuration named by its file name alone
+    (the folder is the user's own, and repeated on every finding it filled the line)."""
+    found = ctx.readers
+    if not found.readers:
+        return "no reader known"
+    reasons = "; ".join(dict.fromkeys(_short(why) for why in found.because))
+    return f"{', '.join(found.names())}: {reasons}"
+
+
+def _short(reason: str) -> str:
+    return " ".join(os.path.basename(word) if os.path.isabs(word) else word
+                    for word in reason.split(" "))
 
 
 def _severity(tx: Facts, top: bool) -> Severity:

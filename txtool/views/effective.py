@@ -23,7 +23,7 @@ came from and which joint's and actuator's data the maths maps at each index:
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 from lxml import etree
 
@@ -350,7 +350,8 @@ def shown_json(transmissions: Sequence[Transmission], bindings: Sequence[Binding
 
 
 def effective_text(path: str, transmissions: Sequence[Transmission],
-                   bindings: Sequence[Binding], unread: Sequence[str] = ()) -> str:
+                   bindings: Sequence[Binding], unread: Sequence[str] = (),
+                   verdicts: Mapping[str, Sequence[str]] | None = None) -> str:
     """The effective view as plain text, at most 100 columns wide. ``unread``: the names of
     the transmissions none of the file's readers reads (shown as what their dialect's loader
     would bind, and said so)."""
@@ -367,7 +368,7 @@ def effective_text(path: str, transmissions: Sequence[Transmission],
     out.print(f"{len(transmissions)} transmission(s), as their loaders bind them", markup=False)
     for t, b in zip(transmissions, bindings, strict=True):
         out.print()
-        for line in _block(t, b, t.name in unread):
+        for line in _block(t, b, t.name in unread, (verdicts or {}).get(t.name, ())):
             if isinstance(line, str):  # names from the file: one line each, no escapes
                 out.print(printable(line), soft_wrap=True, markup=False)
             else:
@@ -376,7 +377,8 @@ def effective_text(path: str, transmissions: Sequence[Transmission],
     return "".join(line.rstrip() + "\n" for line in buffer.getvalue().splitlines())
 
 
-def _block(t: Transmission, b: Binding, unread: bool = False) -> list:
+def _block(t: Transmission, b: Binding, unread: bool = False,
+           verdicts: Sequence[str] = ()) -> list:
     import textwrap
 
     from rich.padding import Padding
@@ -385,6 +387,9 @@ def _block(t: Transmission, b: Binding, unread: bool = False) -> list:
     kind = t.type.removeprefix("transmission_interface/") or "(no type)"
     lines: list = [_fit(f"{t.name}{where}: {kind}")]
     how = f"read by {LOADERS[b.loader]}"
+    refused = [v.split(":", 1)[0].split(" ", 1)[1] for v in verdicts if v.startswith("error ")]
+    if refused:  # read, then refused or changed: as validate says (its errors' promise)
+        how += f", which refuses it or reads it other than written ({', '.join(refused)})"
     if unread:
         how = (f"read by none of this file's readers (written for {LOADERS[b.loader]}; "
                "below, what it would bind)")
@@ -403,6 +408,9 @@ def _block(t: Transmission, b: Binding, unread: bool = False) -> list:
         lines.append(Padding(_table(b), (0, 0, 0, 2)))
     for note in b.notes:
         lines += textwrap.wrap(note, WIDTH, initial_indent="  note: ", subsequent_indent="    ")
+    for verdict in verdicts:
+        lines += textwrap.wrap(verdict, WIDTH, initial_indent="  validate: ",
+                               subsequent_indent="    ")
     return lines
 
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 from rich.markup import escape
 from rich.table import Table
@@ -23,20 +23,27 @@ def _number(number: Number | None) -> str:
     return number.text.strip() if number.text and number.text.strip() else "(empty)"
 
 
-def transmissions_table(transmissions: Sequence[Transmission], title: str) -> Table:
-    """One row per joint and actuator, grouped under their transmission."""
+def transmissions_table(transmissions: Sequence[Transmission], title: str,
+                        verdicts: Mapping[str, Sequence[str]] | None = None) -> Table:
+    """One row per joint and actuator, grouped under their transmission; with ``verdicts``
+    (what validate says of a transmission, by name), a ``validate`` column holding them
+    (``✗ TX205`` for an error, ``! TX300`` for a warning), when one has any."""
+    verdicts = verdicts or {}
     table = Table(title=safe(title), title_justify="left")
+    shown = any(t.name in verdicts for t in transmissions)
     for column in ("transmission", "dialect", "type", "member", "role", "reduction", "offset",
-                   "interfaces"):
+                   "interfaces", *(["validate"] if shown else [])):
         table.add_column(column)
     for t in transmissions:
         line = f":{t.location.line}" if t.location else ""
         head = [safe(f"{t.name}{line}"), t.dialect, safe(_short(t.type))]
+        said = [_mark(verdict) for verdict in verdicts.get(t.name, ())]
         members = [("joint", j) for j in t.joints] + [("actuator", a) for a in t.actuators]
         for index, (noun, member) in enumerate(members or [("-", None)]):
             cells = head if index == 0 else ["", "", ""]
+            tail = ([", ".join(said) if index == 0 else ""] if shown else [])
             if member is None:
-                table.add_row(*cells, "-", "", "", "", "", end_section=True)
+                table.add_row(*cells, "-", "", "", "", "", *tail, end_section=True)
                 continue
             table.add_row(
                 *cells,
@@ -45,9 +52,16 @@ def transmissions_table(transmissions: Sequence[Transmission], title: str) -> Ta
                 safe(_number(member.mechanical_reduction)),
                 safe(_number(member.offset)) if noun == "joint" else "",
                 safe(", ".join(_short(i) for i in member.interfaces)),
+                *tail,
                 end_section=index == len(members) - 1,
             )
     return table
+
+
+def _mark(verdict: str) -> str:
+    """``✗ TX205`` of ``error TX205: ...``, ``! TX300`` of a warning."""
+    severity, code = verdict.split(":", 1)[0].split(" ", 1)
+    return f"{'✗' if severity == 'error' else '!'} {code}"
 
 
 def _short(text: str) -> str:
@@ -106,3 +120,39 @@ def fit(out, *tables: Table) -> None:
     needed = max(out.measure(table, options=options).maximum for table in tables)
     if needed > out.width:
         out.width = needed
+
+
+def print_table(out, table: Table) -> None:
+    """``table`` on the console ``out``: whole in a pipe (see :func:`fit`); on a terminal
+    narrower than the table, folded to one record per row (see :func:`folded`), where rich
+    would cut every cell to a few letters."""
+    fit(out, table)
+    options = out.options.update_width(MAX_STRETCH)
+    if out.measure(table, options=options).maximum > out.width:
+        out.print(folded(table))
+    else:
+        out.print(table)
+
+
+def folded(table: Table):
+    """``table`` laid out vertically: its title, then each row as ``column  value`` lines
+    (empty cells left out), rows apart by a blank line, sections by a rule."""
+    from rich.console import Group
+    from rich.rule import Rule
+
+    columns = [(str(column.header), list(column.cells)) for column in table.columns]
+    width = max((len(header) for header, _ in columns), default=0)
+    parts: list = [table.title, ""] if table.title else []
+    for index, row in enumerate(table.rows):
+        record = Table.grid(padding=(0, 2))
+        record.add_column(style="bold", no_wrap=True, min_width=width)
+        record.add_column(overflow="fold")
+        for header, cells in columns:
+            value = cells[index] if index < len(cells) else ""
+            if value != "":
+                record.add_row(header, value)
+        parts.append(record)
+        last = index == len(table.rows) - 1
+        if not last:
+            parts.append(Rule(style="dim") if row.end_section else "")
+    return Group(*parts)
