@@ -94,11 +94,15 @@ def use_color(mode: str, output_file: str | None = None) -> bool:
 @click.option("--ros-distro", type=click.Choice(CHOICES), default=None,
               help="The ROS distribution whose programs read the files (over the "
                    "configuration's ros-distro and what package.xml and <gazebo> plugins say).")
+@click.option("--controllers", "controller_files", multiple=True,
+              type=click.Path(dir_okay=False), metavar="FILE",
+              help="A controller configuration (YAML) to check against the robot files "
+                   "(TX5xx; repeatable). Folder walks pair a package's robot with its own.")
 @xacro_options
 @exit_on_input_error
 def command(paths, output_formats, select, ignore, strict, exit_zero, config_path, no_xacro,
             stdin_filename, jobs, color, output_file, fix, diff, quiet, statistics, exclude,
-            extend_exclude, respect_gitignore, ros_distro, xacro) -> int:
+            extend_exclude, respect_gitignore, ros_distro, controller_files, xacro) -> int:
     """Check transmissions in files and folders (*.urdf, *.xacro, robot *.xml; '-' is stdin).
 
     Exit codes: 0 nothing at the failing level, 1 findings at it (errors; warnings too with
@@ -130,6 +134,7 @@ def command(paths, output_formats, select, ignore, strict, exit_zero, config_pat
         extend_exclude=extend_exclude,
         respect_gitignore=respect_gitignore,
         ros_distro=ros_distro,
+        controllers=tuple(controller_files),
     )
     if xacro.args:
         _warn_unused_args(list(paths), no_xacro)

@@ -35,6 +35,7 @@ class LintOptions(NamedTuple):
     extend_exclude: tuple[str, ...] = ()
     respect_gitignore: bool | None = None  # None: as configured (default True)
     ros_distro: str | None = None  # --ros-distro: the distribution reading the files
+    controllers: tuple[str, ...] = ()  # --controllers: controller files to judge (TX5xx)
 
 
 class LintResult:
@@ -85,6 +86,7 @@ def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions,
     result.notes.extend(settings.notes)
     shared = None if progress is None else (lambda done: progress(done, len(work)))
     outcomes = _outcomes(work, options, paths, _fragments(work, paths), shared)
+    robots: list[tuple[str, Settings]] = []  # the files read, each a robot a controller may drive
     for done, outcome in enumerate(outcomes, 1):
         if progress is not None:
             progress(done, len(work))
@@ -96,7 +98,29 @@ def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions,
         readers = getattr(outcome, "readers", None)
         if readers is not None:
             result.readers.append(readers)
+        if work[done - 1][0] != "-":
+            robots.append(work[done - 1])
+    _add_controllers(result, robots, paths, options, settings)
     return result
+
+
+def _add_controllers(result: LintResult, robots: list[tuple[str, Settings]],
+                     given: list[str] | tuple[str, ...], options: LintOptions,
+                     settings: SettingsCache) -> None:
+    """The controller files' findings (TX5xx): those named with ``--controllers``, and those
+    of the packages of robot files found in folder walks (see
+    :mod:`txtool.lint.controller_files`)."""
+    from txtool.lint.controller_files import controller_problems
+
+    named = frozenset(given)
+    walked = [(path, s) for path, s in robots if path not in named]
+    if not options.controllers and not walked:
+        return
+    for outcome in controller_problems(robots, walked, options.controllers, settings.for_file):
+        if isinstance(outcome, InputFailure):
+            result.errors.append(outcome)
+        else:
+            result.problems.extend(outcome)
 
 
 def _fragments(work: list[tuple[str, Settings]], given: list[str] | tuple[str, ...]

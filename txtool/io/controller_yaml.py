@@ -1,0 +1,141 @@
+"""Controller configuration files (YAML) as the controller managers read them.
+
+ROS 2 (``controller_manager`` of ros2_control): a node's parameters sit under
+``NODE: ros__parameters:``; the manager's own node lists each controller as
+``NAME: {type: PLUGIN}`` among its parameters, and a controller's parameters are its own node's
+(``NAME: ros__parameters: ...``, or ``/**/NAME`` and namespaced keys). ROS 1
+(``controller_manager`` of ros_control): the file is loaded onto the parameter server and a
+controller is a namespace holding ``type`` (``NAME: {type: PLUGIN, joints: [...]}``, at any
+depth of namespaces).
+
+The text is read with PyYAML's safe loader only (no tags that build objects) and within
+:data:`MAX_BYTES`; positions come from the safe loader's node tree (``yaml.compose`` with
+``SafeLoader``, which builds no objects either).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from txtool.io.xmlio import InputError, read_regular
+
+MAX_BYTES = 1 << 20  # a controller configuration is a few kilobytes
+
+
+@dataclass(frozen=True)
+class Entry:
+    """One controller of a file: its name, type, parameters and where its name is written."""
+
+    name: str
+    type: str
+    params: dict[str, Any] = field(compare=False)
+    line: int
+    column: int
+
+
+@dataclass(frozen=True)
+class ControllerFile:
+    path: str
+    generation: str  # "ros1" or "ros2"
+    entries: tuple[Entry, ...]
+
+
+def read_controller_file(path: str, data: bytes | None = None) -> ControllerFile | None:
+    """The controllers of the YAML file at ``path``, or None when it defines none.
+
+    Raises :class:`~txtool.io.xmlio.InputError` (``path:line: reason``) for a file that cannot
+    be read or is not YAML.
+    """
+    import yaml  # only controller configurations need it
+
+    if data is None:
+        data = read_regular(path, MAX_BYTES)
+    try:
+        text = data.decode("utf-8")
+        document = yaml.safe_load(text)
+        node = yaml.compose(text, Loader=yaml.SafeLoader)
+    except UnicodeDecodeError:
+        raise InputError(f"{path}: not UTF-8 text") from None
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        where = f"{path}:{mark.line + 1}" if mark is not None else path
+        reason = getattr(exc, "problem", None) or str(exc).splitlines()[0]
+        raise InputError(f"{where}: not valid YAML: {reason}") from None
+    if not isinstance(document, dict):
+        return None
+    positions = _positions(node)
+    if _has_ros2_parameters(document):
+        entries = _ros2_entries(document, positions)
+        generation = "ros2"
+    else:
+        entries = list(_ros1_entries(document, (), positions))
+        generation = "ros1"
+    if not entries:
+        return None
+    return ControllerFile(path, generation, tuple(entries))
+
+
+Positions = dict[tuple[str, ...], tuple[int, int]]
+
+
+def _positions(node: Any) -> Positions:
+    """Where each mapping key is written, by its path of keys (1-based line and column)."""
+    found: Positions = {}
+    stack = [((), node)]
+    while stack:
+        path, current = stack.pop()
+        if current is None or current.id != "mapping":
+            continue
+        for key, value in current.value:
+            if key.id != "scalar":
+                continue
+            here = (*path, str(key.value))
+            found.setdefault(here, (key.start_mark.line + 1, key.start_mark.column + 1))
+            stack.append((here, value))
+    return found
+
+
+def _has_ros2_parameters(document: dict[Any, Any]) -> bool:
+    return any(isinstance(v, dict) and "ros__parameters" in v for v in document.values())
+
+
+def _node_name(key: Any) -> str:
+    """A node key's last name: ``/robot/controller_manager`` and ``/**/arm`` name
+    ``controller_manager`` and ``arm``."""
+    return str(key).rstrip("/").rsplit("/", 1)[-1]
+
+
+def _ros2_entries(document: dict[Any, Any], positions: Positions) -> list[Entry]:
+    own: dict[str, dict[str, Any]] = {}
+    for key, value in document.items():
+        if isinstance(value, dict) and isinstance(value.get("ros__parameters"), dict):
+            own.setdefault(_node_name(key), value["ros__parameters"])
+    entries = []
+    for key, value in document.items():
+        if _node_name(key) != "controller_manager" or not isinstance(value, dict):
+            continue
+        listed = value.get("ros__parameters")
+        if not isinstance(listed, dict):
+            continue
+        for name, spec in listed.items():
+            if not isinstance(spec, dict) or not isinstance(spec.get("type"), str):
+                continue
+            params = {k: v for k, v in spec.items() if k != "type"}
+            params.update(own.get(str(name), {}))
+            line, column = positions.get((str(key), "ros__parameters", str(name)), (1, 1))
+            entries.append(Entry(str(name), spec["type"].strip(), params, line, column))
+    return entries
+
+
+def _ros1_entries(document: dict[Any, Any], path: tuple[str, ...], positions: Positions):
+    for name, value in document.items():
+        if not isinstance(value, dict):
+            continue
+        here = (*path, str(name))
+        kind = value.get("type")
+        if isinstance(kind, str) and "/" in kind:
+            line, column = positions.get(here, (1, 1))
+            yield Entry(str(name), kind.strip(), dict(value), line, column)
+        else:
+            yield from _ros1_entries(value, here, positions)

@@ -1,0 +1,308 @@
+"""Controller configurations checked against the robot they control (rules TX5xx).
+
+A robot file is paired with controller YAML files: those ``--controllers`` names, and, for a
+robot file found in a package, every YAML file of that package that defines controllers
+(decided from the content: :func:`~txtool.io.controller_yaml.read_controller_file`). What the
+robot provides is read from its expanded tree as the managers' hardware reads it: ROS 1, each
+transmission joint's ``<hardwareInterface>`` classes and the ``JointStateInterface`` the
+transmission loader's interface providers register with them (ros-controls/ros_control
+transmission_interface/src/joint_state_interface_provider.cpp); ROS 2, each ``<ros2_control>``
+joint's ``command_interface`` and ``state_interface`` names (exported by the resource manager).
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from lxml import etree
+
+from txtool.io.controller_yaml import MAX_BYTES, ControllerFile, read_controller_file
+from txtool.io.load import load
+from txtool.io.xmlio import InputError, parse_bytes, read_regular
+from txtool.lint.problem import InputFailure, Problem
+from txtool.model.controllers import (
+    HW,
+    ROS1,
+    STATE,
+    Claim,
+    Controller,
+    known_type,
+    ros1_claims,
+    ros2_claims,
+)
+from txtool.model.robot import children, components, joint_elements
+
+if TYPE_CHECKING:
+    from txtool.lint.config import Settings
+
+YAML_SUFFIXES = (".yaml", ".yml")
+MAX_SCANNED = 200  # YAML files of one package looked at for controllers
+
+
+def ros1_interface(text: str) -> str:
+    """A ``<hardwareInterface>`` text as the class its provider registers:
+    ``EffortJointInterface`` and ``hardware_interface/EffortJointInterface`` are
+    ``hardware_interface::EffortJointInterface``."""
+    name = text.strip().replace("/", "::")
+    return name if "::" in name else HW + name
+
+
+@dataclass
+class Provision:
+    """What a robot gives its controllers: its joint names, and per joint the interfaces."""
+
+    joints: frozenset[str]
+    ros1: dict[str, set[str]] = field(default_factory=dict)
+    ros2_command: dict[str, set[str]] = field(default_factory=dict)
+    ros2_state: dict[str, set[str]] = field(default_factory=dict)
+
+    def has(self, generation: str) -> bool:
+        """Whether the robot says what it provides for ``generation`` at all (a ROS 1 robot
+        without transmissions is driven by a RobotHW written in C++: nothing to check)."""
+        return bool(self.ros1) if generation == ROS1 else bool(self.ros2_state or
+                                                                 self.ros2_command)
+
+    def provides(self, generation: str, claim: Claim) -> bool:
+        if generation == ROS1:
+            return claim.interface in self.ros1.get(claim.joint, ())
+        table = self.ros2_command if claim.command else self.ros2_state
+        return claim.interface in table.get(claim.joint, ())
+
+    def driven(self, generation: str, joint: str) -> bool:
+        if generation == ROS1:
+            return joint in self.ros1
+        return joint in self.ros2_command or joint in self.ros2_state
+
+
+def provision_of(root: etree._Element) -> Provision:
+    provision = Provision(frozenset(joint_elements(root)))
+    for transmission in root.iter("{*}transmission"):
+        for joint in children(transmission, "joint"):
+            named = [ros1_interface(e.text or "") for e in children(joint, "hardwareInterface")
+                     if (e.text or "").strip()]
+            if named:
+                provision.ros1.setdefault(joint.get("name", ""), set()).update([*named, STATE])
+    for component in components(root):
+        for joint in component.joints:
+            provision.ros2_command.setdefault(joint.name, set()).update(joint.command_interfaces)
+            provision.ros2_state.setdefault(joint.name, set()).update(joint.state_interfaces)
+    return provision
+
+
+def controllers_of(file: ControllerFile, exported: frozenset[str] = frozenset()
+                   ) -> list[Controller]:
+    claims = ros1_claims if file.generation == ROS1 else ros2_claims
+    return [
+        Controller(e.name, e.type, file.generation, e.line, e.column, e.params,
+                   known_type(e.type, file.generation, exported), claims(e.type, e.params))
+        for e in file.entries
+    ]
+
+
+@dataclass
+class ControllerContext:
+    """What a TX5xx rule looks at: one controller file with the robot it controls."""
+
+    path: str  # the controller file, where the findings are
+    robot: str
+    generation: str
+    controllers: list[Controller]
+    provision: Provision
+
+    def problem(self, code: str, controller: Controller, message: str) -> Problem:
+        return Problem(self.path, controller.line, controller.column, code, message)
+
+
+def package_root(path: str) -> str | None:
+    """The folder of the nearest ``package.xml`` above ``path``."""
+    folder = Path(path).resolve().parent
+    for candidate in (folder, *folder.parents):
+        if (candidate / "package.xml").is_file():
+            return str(candidate)
+    return None
+
+
+def package_controller_files(package: str) -> list[str]:
+    """The YAML files of a package that define controllers, in path order."""
+    found: list[str] = []
+    scanned = 0
+    for folder, subfolders, files in os.walk(package):
+        subfolders[:] = sorted(d for d in subfolders if not d.startswith("."))
+        if folder != package and (Path(folder) / "package.xml").is_file():
+            subfolders[:] = []  # another package
+            continue
+        for name in sorted(files):
+            if not name.endswith(YAML_SUFFIXES):
+                continue
+            scanned += 1
+            if scanned > MAX_SCANNED:
+                return found
+            path = os.path.join(folder, name)
+            try:
+                data = read_regular(path, MAX_BYTES)
+                # Every controller names its type: most other YAML files are passed unparsed.
+                if b"type" in data and read_controller_file(path, data) is not None:
+                    found.append(path)
+            except InputError:
+                continue  # a YAML file that is no controller configuration of ours to judge
+    return found
+
+
+def exported_controllers(package: str | None) -> frozenset[str]:
+    """The controller types the packages beside ``package`` (its workspace folder) export
+    with pluginlib (``<export><controller_interface plugin="..."/>``)."""
+    if package is None:
+        return frozenset()
+    names: set[str] = set()
+    parent = Path(package).parent
+    for manifest in sorted(parent.glob("*/package.xml"))[:MAX_SCANNED]:
+        names.update(_exported_in(manifest))
+    return frozenset(names)
+
+
+def _exported_in(manifest: Path) -> Iterator[str]:
+    try:
+        root = parse_bytes(read_regular(str(manifest)), str(manifest)).getroot()
+    except (InputError, OSError):
+        return
+    for export in children(root, "export"):
+        for element in children(export, "controller_interface"):
+            plugin = (element.get("plugin") or "").replace("${prefix}", str(manifest.parent))
+            try:
+                description = parse_bytes(read_regular(plugin), plugin).getroot()
+            except (InputError, OSError):
+                continue
+            for cls in description.iter("{*}class"):
+                if cls.get("name") or cls.get("type"):
+                    yield cls.get("name") or cls.get("type", "")
+
+
+def robot_provision(robot: str, settings: Settings) -> Provision | None:
+    """What the robot file at ``robot`` provides, or None when it cannot be read (its own
+    check says why)."""
+    try:
+        source = load(robot, xacro=settings.xacro, expand=not settings.no_xacro,
+                      warn_unused=False)
+    except InputError:
+        return None
+    return provision_of(source.root)
+
+
+def pick_robot(controllers: list[Controller], generation: str,
+               robots: dict[str, Provision | None]) -> str | None:
+    """The robot file the controllers are for: of the robots that say what they provide for
+    ``generation``, the one having the most of the joints the controllers claim (the first of
+    equals); None when no robot says."""
+    claimed = {joint for c in controllers for joint in c.joints}
+    best, score = None, -1
+    for path, provision in robots.items():
+        if provision is None or not provision.has(generation):
+            continue
+        here = len(claimed & provision.joints)
+        if here > score:
+            best, score = path, here
+    return best
+
+
+def controller_problems(
+    robots: list[tuple[str, Settings]], walked: list[tuple[str, Settings]],
+    named: tuple[str, ...], settings_for: Callable[[str], Settings],
+) -> Iterator[list[Problem] | InputFailure]:
+    """The TX5xx findings of each controller file: those ``named`` (``--controllers``),
+    judged against the ``robots`` checked, and those of the package of each robot file found
+    in a folder walk (``walked``), judged against that package's robot files. A named file
+    that cannot be read is an :class:`InputFailure`."""
+    pairs: dict[str, list[tuple[str, Settings]]] = {}
+    for path in named:
+        pairs.setdefault(path, []).extend(robots)
+    by_package: dict[str, list[tuple[str, Settings]]] = {}
+    for robot, settings in walked:
+        package = package_root(robot)
+        if package is not None:
+            by_package.setdefault(package, []).append((robot, settings))
+    stated = {os.path.realpath(path) for path in named}
+    for package, members in by_package.items():
+        for path in package_controller_files(package):
+            if path not in pairs and os.path.realpath(path) not in stated:
+                pairs[path] = members
+    provisions: dict[str, Provision | None] = {}
+    for path, candidates in pairs.items():
+        try:
+            file = read_controller_file(path)
+        except InputError as exc:
+            yield InputFailure(path, str(exc))
+            continue
+        if file is None:
+            continue
+        for robot, settings in candidates:
+            if robot not in provisions:
+                provisions[robot] = robot_provision(robot, settings)
+        controllers = controllers_of(file, exported_controllers(package_root(path)))
+        chosen = pick_robot(controllers, file.generation,
+                            {robot: provisions[robot] for robot, _ in candidates})
+        if chosen is None:
+            continue
+        ctx = ControllerContext(path, chosen, file.generation, controllers, provisions[chosen])
+        yield judged(ctx, settings_for(path))
+
+
+def judged(ctx: ControllerContext, settings: Settings) -> list[Problem]:
+    """The findings of the enabled TX5xx rules, stamped with their name and severity."""
+    from txtool.rules import all_rules
+
+    problems = []
+    for code, rule in all_rules().items():
+        check = getattr(rule.module, "check_controllers", None)
+        if check is None or code not in settings.enabled:
+            continue
+        severity = settings.severity.get(code, rule.severity)
+        problems.extend(
+            Problem(p.path, p.line, p.column, p.code, p.message, severity=severity,
+                    name=rule.name, fixable=False)
+            for p in check(ctx)
+        )
+    return sorted(problems)
+
+
+def refusal(ctx: ControllerContext, claim: Claim) -> str:
+    """What the controller manager says when it refuses a controller for ``claim``."""
+    if ctx.generation != ROS1:
+        kind = "command" if claim.command else "state"
+        return f"{kind} interface '{claim.joint}/{claim.interface}' is not available"
+    if not any(claim.interface in given for given in ctx.provision.ros1.values()):
+        return f"This controller requires a hardware interface of type '{claim.interface}'"
+    return f"Could not find resource '{claim.joint}' in '{claim.interface}'"
+
+
+def controller_interface_problems(ctx: ControllerContext, code: str, *, command: bool
+                                  ) -> Iterator[Problem]:
+    """TX501/TX502: each claimed command (or state) interface of a driven joint that the robot
+    does not provide (a joint that is missing or not driven at all is TX500's)."""
+    provision = ctx.provision
+    generation = ctx.generation
+    if not provision.has(generation):
+        return
+    for controller in ctx.controllers:
+        for claim in controller.claims:
+            if claim.command != command or not provision.driven(generation, claim.joint):
+                continue
+            if provision.provides(generation, claim):
+                continue
+            if generation == ROS1:
+                has = provision.ros1.get(claim.joint, set())
+                what = "hardware interface"
+            else:
+                table = provision.ros2_command if command else provision.ros2_state
+                has = table.get(claim.joint, set())
+                what = "command interface" if command else "state interface"
+            shown = ", ".join(sorted(has)) or "none"
+            yield ctx.problem(
+                code, controller,
+                f"controller '{controller.name}' ({controller.type}): joint '{claim.joint}' has "
+                f"no {what} '{claim.interface}' (it has: {shown}); the controller manager "
+                f"refuses the controller: {refusal(ctx, claim)}",
+            )
