@@ -119,10 +119,10 @@ class ControllerContext:
 
 def package_root(path: str) -> str | None:
     """The folder of the nearest ``package.xml`` above ``path``."""
-    folder = Path(path).resolve().parent
+    folder = Path(path).parent  # as given: the findings name the files the way the walk does
     for candidate in (folder, *folder.parents):
         if (candidate / "package.xml").is_file():
-            return str(candidate)
+            return os.path.join(str(candidate), "") if str(candidate) != "." else ""
     return None
 
 
@@ -130,9 +130,10 @@ def package_controller_files(package: str) -> list[str]:
     """The YAML files of a package that define controllers, in path order."""
     found: list[str] = []
     scanned = 0
-    for folder, subfolders, files in os.walk(package):
+    top = package or "."
+    for folder, subfolders, files in os.walk(top):
         subfolders[:] = sorted(d for d in subfolders if not d.startswith("."))
-        if folder != package and (Path(folder) / "package.xml").is_file():
+        if folder != top and (Path(folder) / "package.xml").is_file():
             subfolders[:] = []  # another package
             continue
         for name in sorted(files):
@@ -142,6 +143,8 @@ def package_controller_files(package: str) -> list[str]:
             if scanned > MAX_SCANNED:
                 return found
             path = os.path.join(folder, name)
+            if not package:  # the current folder: named as the walk names its files
+                path = os.path.normpath(path)
             try:
                 data = read_regular(path, MAX_BYTES)
                 # Every controller names its type: most other YAML files are passed unparsed.
@@ -158,7 +161,7 @@ def exported_controllers(package: str | None) -> frozenset[str]:
     if package is None:
         return frozenset()
     names: set[str] = set()
-    parent = Path(package).parent
+    parent = Path(package).resolve().parent
     for manifest in sorted(parent.glob("*/package.xml"))[:MAX_SCANNED]:
         names.update(_exported_in(manifest))
     return frozenset(names)
