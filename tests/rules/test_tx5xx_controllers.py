@@ -297,3 +297,20 @@ def test_selection_and_configured_severity_apply(tmp_path):
     robot = ros1_robot(j1="EffortJointInterface")
     assert findings(tmp_path, robot, yaml, ignore=["TX503"]) == []
     assert findings(tmp_path, robot, yaml, select=["TX503"]) == [(1, 1, "TX503")]
+
+
+def test_ros2_a_type_among_the_controllers_own_parameters(tmp_path):
+    """ros2_control_demos' layout: no list under controller_manager; joint names with launch
+    substitutions are unknown, not missing."""
+    yaml = """
+    joint_state_broadcaster:
+      ros__parameters:
+        type: joint_state_broadcaster/JointStateBroadcaster
+    forward_position_controller:
+      ros__parameters:
+        type: forward_command_controller/ForwardCommandController
+        joints: [$(var prefix)j1, j2]
+        interface_name: effort
+    """
+    robot = ros2_robot(j1=("position", "position"), j2=("position", "position"))
+    assert findings(tmp_path, robot, yaml) == [(4, 1, "TX501")]

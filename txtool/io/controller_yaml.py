@@ -3,7 +3,8 @@
 ROS 2 (``controller_manager`` of ros2_control): a node's parameters sit under
 ``NODE: ros__parameters:``; the manager's own node lists each controller as
 ``NAME: {type: PLUGIN}`` among its parameters, and a controller's parameters are its own node's
-(``NAME: ros__parameters: ...``, or ``/**/NAME`` and namespaced keys). ROS 1
+(``NAME: ros__parameters: ...``, or ``/**/NAME`` and namespaced keys), where it may name its
+``type`` too. ROS 1
 (``controller_manager`` of ros_control): the file is loaded onto the parameter server and a
 controller is a namespace holding ``type`` (``NAME: {type: PLUGIN, joints: [...]}``, at any
 depth of namespaces).
@@ -125,6 +126,18 @@ def _ros2_entries(document: dict[Any, Any], positions: Positions) -> list[Entry]
             params.update(own.get(str(name), {}))
             line, column = positions.get((str(key), "ros__parameters", str(name)), (1, 1))
             entries.append(Entry(str(name), spec["type"].strip(), params, line, column))
+    # A controller may name its type among its own parameters instead: the spawner reads it
+    # from the parameter file and sets NAME.type on the manager (ros-controls/ros2_control
+    # controller_manager/controller_manager/controller_manager_services.py:498 @53b9999).
+    listed = {entry.name for entry in entries}
+    for key in document:
+        name = _node_name(key)
+        own_type = own.get(name, {}).get("type") if name != "controller_manager" else None
+        if isinstance(own_type, str) and "/" in own_type and name not in listed:
+            listed.add(name)
+            line, column = positions.get((str(key),), (1, 1))
+            params = {k: v for k, v in own[name].items() if k != "type"}
+            entries.append(Entry(name, own_type.strip(), params, line, column))
     return entries
 
 

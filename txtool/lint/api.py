@@ -116,7 +116,9 @@ def _add_controllers(result: LintResult, robots: list[tuple[str, Settings]],
     walked = [(path, s) for path, s in robots if path not in named]
     if not options.controllers and not walked:
         return
-    for outcome in controller_problems(robots, walked, options.controllers, settings.for_file):
+    folders = [path for path in given if path != "-" and os.path.isdir(path)]
+    for outcome in controller_problems(robots, walked, folders, options.controllers,
+                                       settings.for_file):
         if isinstance(outcome, InputFailure):
             result.errors.append(outcome)
         else:

@@ -13,6 +13,7 @@ joint's ``command_interface`` and ``state_interface`` names (exported by the res
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -126,15 +127,25 @@ def package_root(path: str) -> str | None:
     return None
 
 
-def package_controller_files(package: str) -> list[str]:
-    """The YAML files of a package that define controllers, in path order."""
+# Folders of a colcon or catkin workspace that hold copies of its packages' files.
+BUILD_FOLDERS = frozenset({"build", "install", "log", "devel"})
+IGNORE_MARKERS = ("COLCON_IGNORE", "CATKIN_IGNORE", "AMENT_IGNORE")
+
+
+def controller_files_under(top: str, *, one_package: bool = False) -> list[str]:
+    """The YAML files under the folder ``top`` that define controllers, in path order: at most
+    :data:`MAX_SCANNED` YAML files looked at; hidden folders, a workspace's build, install and
+    log folders and ignored packages passed over; with ``one_package``, the package at ``top``
+    alone (no folder holding another ``package.xml``)."""
     found: list[str] = []
     scanned = 0
-    top = package or "."
-    for folder, subfolders, files in os.walk(top):
-        subfolders[:] = sorted(d for d in subfolders if not d.startswith("."))
-        if folder != top and (Path(folder) / "package.xml").is_file():
-            subfolders[:] = []  # another package
+    start = top or "."
+    for folder, subfolders, files in os.walk(start):
+        subfolders[:] = sorted(d for d in subfolders
+                               if not d.startswith(".") and d not in BUILD_FOLDERS)
+        if any(marker in files for marker in IGNORE_MARKERS) or (
+                one_package and folder != start and "package.xml" in files):
+            subfolders[:] = []
             continue
         for name in sorted(files):
             if not name.endswith(YAML_SUFFIXES):
@@ -143,7 +154,7 @@ def package_controller_files(package: str) -> list[str]:
             if scanned > MAX_SCANNED:
                 return found
             path = os.path.join(folder, name)
-            if not package:  # the current folder: named as the walk names its files
+            if top in ("", "."):  # the current folder: named as the walk names its files
                 path = os.path.normpath(path)
             try:
                 data = read_regular(path, MAX_BYTES)
@@ -167,21 +178,39 @@ def exported_controllers(package: str | None) -> frozenset[str]:
     return frozenset(names)
 
 
+# ROS 2 packages export plugins from CMake: pluginlib_export_plugin_description_file(
+# controller_interface FILE.xml) (ros/pluginlib pluginlib/cmake/
+# pluginlib_export_plugin_description_file.cmake).
+_CMAKE_EXPORT = re.compile(
+    rb"pluginlib_export_plugin_description_file\s*\(\s*controller_interface\s+\"?([^\s\")]+)")
+
+
 def _exported_in(manifest: Path) -> Iterator[str]:
+    """The controller classes a package exports: in ``package.xml`` (ROS 1,
+    ``<controller_interface plugin="${prefix}/FILE.xml"/>``) or its ``CMakeLists.txt``."""
+    folder = manifest.parent
+    descriptions = []
     try:
         root = parse_bytes(read_regular(str(manifest)), str(manifest)).getroot()
+        for export in children(root, "export"):
+            for element in children(export, "controller_interface"):
+                plugin = (element.get("plugin") or "").replace("${prefix}", str(folder))
+                descriptions.append(plugin)
     except (InputError, OSError):
         return
-    for export in children(root, "export"):
-        for element in children(export, "controller_interface"):
-            plugin = (element.get("plugin") or "").replace("${prefix}", str(manifest.parent))
-            try:
-                description = parse_bytes(read_regular(plugin), plugin).getroot()
-            except (InputError, OSError):
-                continue
-            for cls in description.iter("{*}class"):
-                if cls.get("name") or cls.get("type"):
-                    yield cls.get("name") or cls.get("type", "")
+    try:
+        cmake = read_regular(str(folder / "CMakeLists.txt"))
+    except (InputError, OSError):
+        cmake = b""
+    descriptions += [str(folder / m.decode(errors="replace")) for m in _CMAKE_EXPORT.findall(cmake)]
+    for plugin in descriptions:
+        try:
+            description = parse_bytes(read_regular(plugin), plugin).getroot()
+        except (InputError, OSError):
+            continue
+        for cls in description.iter("{*}class"):
+            if cls.get("name") or cls.get("type"):
+                yield cls.get("name") or cls.get("type", "")
 
 
 def robot_provision(robot: str, settings: Settings) -> Provision | None:
@@ -199,9 +228,10 @@ def pick_robot(controllers: list[Controller], generation: str,
                robots: dict[str, Provision | None]) -> str | None:
     """The robot file the controllers are for: of the robots that say what they provide for
     ``generation``, the one having the most of the joints the controllers claim (the first of
-    equals); None when no robot says."""
+    equals), and at least one of them when they claim any; None when no robot fits (the
+    controllers are for a robot not checked)."""
     claimed = {joint for c in controllers for joint in c.joints}
-    best, score = None, -1
+    best, score = None, 0 if claimed else -1
     for path, provision in robots.items():
         if provision is None or not provision.has(generation):
             continue
@@ -213,25 +243,28 @@ def pick_robot(controllers: list[Controller], generation: str,
 
 def controller_problems(
     robots: list[tuple[str, Settings]], walked: list[tuple[str, Settings]],
-    named: tuple[str, ...], settings_for: Callable[[str], Settings],
+    folders: list[str], named: tuple[str, ...], settings_for: Callable[[str], Settings],
 ) -> Iterator[list[Problem] | InputFailure]:
     """The TX5xx findings of each controller file: those ``named`` (``--controllers``),
-    judged against the ``robots`` checked, and those of the package of each robot file found
-    in a folder walk (``walked``), judged against that package's robot files. A named file
-    that cannot be read is an :class:`InputFailure`."""
+    judged against the ``robots`` checked; and those found in the walked ``folders`` and in
+    the packages of the robot files the walks found (``walked``), judged against those robot
+    files. Each file is judged against the robot having most of the joints it claims. A named
+    file that cannot be read is an :class:`InputFailure`."""
     pairs: dict[str, list[tuple[str, Settings]]] = {}
     for path in named:
         pairs.setdefault(path, []).extend(robots)
-    by_package: dict[str, list[tuple[str, Settings]]] = {}
-    for robot, settings in walked:
-        package = package_root(robot)
-        if package is not None:
-            by_package.setdefault(package, []).append((robot, settings))
     stated = {os.path.realpath(path) for path in named}
-    for package, members in by_package.items():
-        for path in package_controller_files(package):
-            if path not in pairs and os.path.realpath(path) not in stated:
-                pairs[path] = members
+    if walked:
+        packages = {package_root(robot) for robot, _ in walked} - {None}
+        found = [path for top in folders for path in controller_files_under(top)]
+        found += [path for package in sorted(packages)  # type: ignore[type-var]
+                  for path in controller_files_under(package, one_package=True)]
+        seen = set(stated)
+        for path in found:
+            real = os.path.realpath(path)
+            if real not in seen:
+                seen.add(real)
+                pairs[path] = walked
     provisions: dict[str, Provision | None] = {}
     for path, candidates in pairs.items():
         try:

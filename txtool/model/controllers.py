@@ -174,11 +174,13 @@ _GROUP_INTERFACE = {
 
 
 def _names(value: Any) -> list[str]:
-    """A parameter naming joints: one name or a list of names (anything else: none)."""
+    """A parameter naming joints or interfaces: one name or a list of names (anything else:
+    none). A name holding a launch substitution (``$(var prefix)joint1``, which a launch file
+    resolves when it loads the file with substitutions allowed) is unknown: left out."""
     if isinstance(value, str):
-        return [value] if value else []
+        value = [value]
     if isinstance(value, list):
-        return [v for v in value if isinstance(v, str) and v]
+        return [v for v in value if isinstance(v, str) and v and "$(" not in v]
     return []
 
 
