@@ -314,3 +314,43 @@ def test_ros2_a_type_among_the_controllers_own_parameters(tmp_path):
     """
     robot = ros2_robot(j1=("position", "position"), j2=("position", "position"))
     assert findings(tmp_path, robot, yaml) == [(4, 1, "TX501")]
+
+
+def test_alternatives_in_one_file_are_warnings(tmp_path):
+    """A file with, for the same joints, a controller the robot accepts and one it refuses: a
+    launch file spawns one of them; the other is refused only if it is loaded."""
+    yaml = """
+    position:
+      type: position_controllers/JointGroupPositionController
+      joints: [j1]
+    velocity:
+      type: velocity_controllers/JointGroupVelocityController
+      joints: [j1]
+    """
+    (tmp_path / "robot.urdf").write_text(ros1_robot(j1="PositionJointInterface"))
+    (tmp_path / "c.yaml").write_text(textwrap.dedent(yaml).lstrip("\n"))
+    found = txtool.validate([str(tmp_path / "robot.urdf")], controllers=[str(tmp_path / "c.yaml")])
+    assert [(p.line, p.code, p.severity) for p in found] == [(4, "TX501", "warning")]
+    assert "'position' of this file drives the joint as the robot is" in found[0].message
+
+
+def test_an_interface_written_as_a_xacro_expression_makes_a_warning(tmp_path):
+    """ur_description's transmissions take ${transmission_hw_interface}, which ur_gazebo's
+    launch files set: the robot as expanded with the defaults is not the robot launched."""
+    robot = ros1_robot(j1="PositionJointInterface", j2="PositionJointInterface").replace(
+        '<robot name="r">', '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:arg name="hw" default="hardware_interface/PositionJointInterface"/>'
+        '<xacro:property name="hw" value="$(arg hw)"/>').replace(
+        "hardware_interface/PositionJointInterface</hardwareInterface>",
+        "${hw}</hardwareInterface>")
+    (tmp_path / "robot.urdf.xacro").write_text(robot)
+    (tmp_path / "c.yaml").write_text(
+        "arm:\n  type: effort_controllers/JointTrajectoryController\n  joints: [j1, j2]\n")
+    found = txtool.validate([str(tmp_path / "robot.urdf.xacro")],
+                            controllers=[str(tmp_path / "c.yaml")])
+    assert [(p.line, p.code, p.severity) for p in found] == [(1, "TX501", "warning")]
+    assert "joints 'j1', 'j2' have no hardware interface" in found[0].message
+    effort = txtool.validate([str(tmp_path / "robot.urdf.xacro")],
+                             controllers=[str(tmp_path / "c.yaml")],
+                             xacro_args={"hw": "hardware_interface/EffortJointInterface"})
+    assert effort == []

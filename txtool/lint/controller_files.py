@@ -12,6 +12,7 @@ joint's ``command_interface`` and ``state_interface`` names (exported by the res
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import re
 from collections.abc import Callable, Iterator
@@ -60,6 +61,9 @@ class Provision:
     ros1: dict[str, set[str]] = field(default_factory=dict)
     ros2_command: dict[str, set[str]] = field(default_factory=dict)
     ros2_state: dict[str, set[str]] = field(default_factory=dict)
+    # Where a <hardwareInterface> of the robot's xacro files is an expression (``path:line``;
+    # ur_description's ${transmission_hw_interface}): a launch file's arguments choose it.
+    chosen_by_arguments: str | None = None
 
     def has(self, generation: str) -> bool:
         """Whether the robot says what it provides for ``generation`` at all (a ROS 1 robot
@@ -80,6 +84,7 @@ class Provision:
 
 
 def provision_of(root: etree._Element) -> Provision:
+    """What the robot ``root`` (expanded) provides."""
     provision = Provision(frozenset(joint_elements(root)))
     for transmission in root.iter("{*}transmission"):
         for joint in children(transmission, "joint"):
@@ -221,7 +226,33 @@ def robot_provision(robot: str, settings: Settings) -> Provision | None:
                       warn_unused=False)
     except InputError:
         return None
-    return provision_of(source.root)
+    provision = provision_of(source.root)
+    if source.expanded:
+        from txtool.lint.fragments import included_files
+
+        for path in (robot, *included_files(robot, settings.xacro)):
+            where = _expression_interface(path)
+            if where is not None:
+                provision.chosen_by_arguments = where
+                break
+    return provision
+
+
+_EXPRESSION_INTERFACE = re.compile(rb"<hardwareInterface>\s*[^<]*\$[({]")
+
+
+def _expression_interface(path: str) -> str | None:
+    """``path:line`` of the first ``<hardwareInterface>`` whose text is a xacro expression."""
+    try:
+        data = read_regular(path)
+    except InputError:
+        return None
+    match = _EXPRESSION_INTERFACE.search(data)
+    if match is None:
+        return None
+    line = data.count(b"\n", 0, match.start()) + 1
+    shown = os.path.relpath(path)
+    return f"{path if shown.startswith('..') else shown}:{line}"
 
 
 def pick_robot(controllers: list[Controller], generation: str,
@@ -295,9 +326,10 @@ def judged(ctx: ControllerContext, settings: Settings) -> list[Problem]:
         check = getattr(rule.module, "check_controllers", None)
         if check is None or code not in settings.enabled:
             continue
-        severity = settings.severity.get(code, rule.severity)
+        configured = settings.severity.get(code)
         problems.extend(
-            Problem(p.path, p.line, p.column, p.code, p.message, severity=severity,
+            Problem(p.path, p.line, p.column, p.code, p.message,
+                    severity=configured or p.loader_severity or rule.severity,
                     name=rule.name, fixable=False)
             for p in check(ctx)
         )
@@ -314,31 +346,75 @@ def refusal(ctx: ControllerContext, claim: Claim) -> str:
     return f"Could not find resource '{claim.joint}' in '{claim.interface}'"
 
 
+def accepted(ctx: ControllerContext, controller: Controller) -> bool:
+    """Whether the robot gives the controller every joint and interface it claims."""
+    provision = ctx.provision
+    return all(claim.joint in provision.joints and provision.provides(ctx.generation, claim)
+               for claim in controller.claims)
+
+
+def alternative_to(ctx: ControllerContext, controller: Controller, joint: str
+                   ) -> Controller | None:
+    """Another controller of the file that drives ``joint`` with what the robot provides.
+
+    A file that holds, for the same joints, a controller the robot accepts and one it refuses
+    is a file of alternatives (ur_gazebo's position and effort trajectory controllers, for a
+    robot whose ``<hardwareInterface>`` is a xacro argument): a launch file spawns some of
+    them, and the manager refuses the other only if it is loaded with this robot."""
+    for other in ctx.controllers:
+        if other is not controller and joint in other.joints and accepted(ctx, other):
+            return other
+    return None
+
+
 def controller_interface_problems(ctx: ControllerContext, code: str, *, command: bool
                                   ) -> Iterator[Problem]:
-    """TX501/TX502: each claimed command (or state) interface of a driven joint that the robot
-    does not provide (a joint that is missing or not driven at all is TX500's)."""
+    """TX501/TX502: for each controller, each command (or state) interface it claims of driven
+    joints that the robot does not provide, once for all such joints (a joint that is missing
+    or not driven at all is TX500's); a warning where the robot's interface is a xacro
+    expression, or where another controller of the file drives the joint as the robot is."""
     provision = ctx.provision
     generation = ctx.generation
     if not provision.has(generation):
         return
     for controller in ctx.controllers:
+        missing: dict[str, list[Claim]] = {}
         for claim in controller.claims:
-            if claim.command != command or not provision.driven(generation, claim.joint):
-                continue
-            if provision.provides(generation, claim):
-                continue
-            if generation == ROS1:
-                has = provision.ros1.get(claim.joint, set())
-                what = "hardware interface"
-            else:
-                table = provision.ros2_command if command else provision.ros2_state
-                has = table.get(claim.joint, set())
-                what = "command interface" if command else "state interface"
-            shown = ", ".join(sorted(has)) or "none"
-            yield ctx.problem(
-                code, controller,
-                f"controller '{controller.name}' ({controller.type}): joint '{claim.joint}' has "
-                f"no {what} '{claim.interface}' (it has: {shown}); the controller manager "
-                f"refuses the controller: {refusal(ctx, claim)}",
-            )
+            if (claim.command == command and provision.driven(generation, claim.joint)
+                    and not provision.provides(generation, claim)):
+                missing.setdefault(claim.interface, []).append(claim)
+        for claims in missing.values():
+            yield _missing_interface(ctx, code, controller, claims)
+
+
+def _missing_interface(ctx: ControllerContext, code: str, controller: Controller,
+                       claims: list[Claim]) -> Problem:
+    provision = ctx.provision
+    first = claims[0]
+    if ctx.generation == ROS1:
+        table, what = provision.ros1, "hardware interface"
+    else:
+        table = provision.ros2_command if first.command else provision.ros2_state
+        what = "command interface" if first.command else "state interface"
+    shown = ", ".join(sorted(table.get(first.joint, set()))) or "none"
+    joints = "', '".join(claim.joint for claim in claims)
+    subject = f"joint '{joints}' has" if len(claims) == 1 else f"joints '{joints}' have"
+    message = (f"controller '{controller.name}' ({controller.type}): {subject} no {what} "
+               f"'{first.interface}' (it has: {shown}); ")
+    chosen = provision.chosen_by_arguments if ctx.generation == ROS1 else None
+    other = None if chosen else alternative_to(ctx, controller, first.joint)
+    if chosen is not None:
+        message += (f"the robot's hardwareInterface is a xacro expression ({chosen}) that a "
+                    "launch file's arguments may set (check the robot with those "
+                    "--xacro-arg); as expanded here, the controller manager refuses the "
+                    "controller")
+    elif other is not None:
+        message += (f"'{other.name}' of this file drives the joint as the robot is, so this "
+                    "one may be an alternative for a robot built otherwise: loaded with this "
+                    "robot, the controller manager refuses it")
+    else:
+        message += "the controller manager refuses the controller"
+    problem = ctx.problem(code, controller, f"{message}: {refusal(ctx, first)}")
+    if chosen is None and other is None:
+        return problem
+    return dataclasses.replace(problem, loader_severity="warning")
