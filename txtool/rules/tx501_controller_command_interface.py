@@ -13,7 +13,12 @@ Why it matters: ROS 1's controller manager fails to load the controller ("This c
 requires a hardware interface of type 'INTERFACE'" when no joint has it, "Could not find
 resource 'JOINT' in 'INTERFACE'" when others do). ROS 2's controller manager refuses to
 activate it ("Unable to activate controller ... since the command interface ... is not
-available").
+available"). One finding per controller and interface names every joint concerned. It is a
+warning where the robot as expanded may not be the robot launched: a ROS 1
+``<hardwareInterface>`` of the robot's xacro files is an expression (a launch file's arguments
+set it), or another controller of the file drives the joint as the robot is (a file of
+alternatives, of which a launch file spawns some): the manager refuses the controller only if
+it is loaded with this robot.
 
 Loader: ros_control (ros-controls/ros_control
 controller_interface/include/controller_interface/controller.h:111 and

@@ -10,7 +10,10 @@ reads the joint state through its command interface's handle, and every transmis
 a ``JointStateInterface`` handle.)
 
 Why it matters: ROS 2's controller manager refuses to activate the controller ("Unable to
-activate controller ... since the state interface ... is not available").
+activate controller ... since the state interface ... is not available"). One finding per
+controller and interface names every joint concerned. It is a warning where another controller
+of the file drives the joint as the robot is (a file of alternatives, of which a launch file
+spawns some): the manager refuses the controller only if it is loaded with this robot.
 
 Loader: ros2_control (ros-controls/ros2_control controller_manager/src/controller_manager.cpp:4416
 @53b9999); each controller's interfaces: txtool/model/controllers.py.
