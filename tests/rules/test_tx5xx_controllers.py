@@ -354,3 +354,17 @@ def test_an_interface_written_as_a_xacro_expression_makes_a_warning(tmp_path):
                              controllers=[str(tmp_path / "c.yaml")],
                              xacro_args={"hw": "hardware_interface/EffortJointInterface"})
     assert effort == []
+
+
+def test_other_nodes_types_are_no_controllers(tmp_path):
+    """A filter chain's parameters have a ``type`` too: it is no controller (and a file of
+    them alone is no controller configuration)."""
+    yaml = """
+    mean:
+      name: mean
+      type: filters/MeanFilter
+    arm:
+      type: effort_controllers/JointEfortController
+      joint: j1
+    """
+    assert findings(tmp_path, ros1_robot(j1="EffortJointInterface"), yaml) == [(4, 1, "TX503")]

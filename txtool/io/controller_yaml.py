@@ -7,7 +7,8 @@ ROS 2 (``controller_manager`` of ros2_control): a node's parameters sit under
 ``type`` too. ROS 1
 (``controller_manager`` of ros_control): the file is loaded onto the parameter server and a
 controller is a namespace holding ``type`` (``NAME: {type: PLUGIN, joints: [...]}``, at any
-depth of namespaces).
+depth of namespaces). Outside the ROS 2 manager's own list, a ``type`` is taken for a
+controller's only when it names one (:func:`_names_a_controller`).
 
 The text is read with PyYAML's safe loader only (no tags that build objects) and within
 :data:`MAX_BYTES`; positions come from the safe loader's node tree (``yaml.compose`` with
@@ -101,6 +102,14 @@ def _has_ros2_parameters(document: dict[Any, Any]) -> bool:
     return any(isinstance(v, dict) and "ros__parameters" in v for v in document.values())
 
 
+def _names_a_controller(type_: str) -> bool:
+    """Whether a ``type`` outside the manager's own list names a controller plugin (a
+    ``PACKAGE/CLASS`` with "controller" or "broadcaster" in it): other nodes' parameters have
+    a ``type`` too (filter chains' ``filters/MeanFilter``)."""
+    lowered = type_.lower()
+    return "/" in type_ and ("controller" in lowered or "broadcaster" in lowered)
+
+
 def _node_name(key: Any) -> str:
     """A node key's last name: ``/robot/controller_manager`` and ``/**/arm`` name
     ``controller_manager`` and ``arm``."""
@@ -133,7 +142,7 @@ def _ros2_entries(document: dict[Any, Any], positions: Positions) -> list[Entry]
     for key in document:
         name = _node_name(key)
         own_type = own.get(name, {}).get("type") if name != "controller_manager" else None
-        if isinstance(own_type, str) and "/" in own_type and name not in listed:
+        if isinstance(own_type, str) and _names_a_controller(own_type) and name not in listed:
             listed.add(name)
             line, column = positions.get((str(key),), (1, 1))
             params = {k: v for k, v in own[name].items() if k != "type"}
@@ -147,7 +156,7 @@ def _ros1_entries(document: dict[Any, Any], path: tuple[str, ...], positions: Po
             continue
         here = (*path, str(name))
         kind = value.get("type")
-        if isinstance(kind, str) and "/" in kind:
+        if isinstance(kind, str) and _names_a_controller(kind):
             line, column = positions.get(here, (1, 1))
             yield Entry(str(name), kind.strip(), dict(value), line, column)
         else:

@@ -17,6 +17,7 @@ import os
 import re
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
+from functools import lru_cache
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -120,16 +121,28 @@ class ControllerContext:
     provision: Provision
 
     def problem(self, code: str, controller: Controller, message: str) -> Problem:
-        return Problem(self.path, controller.line, controller.column, code, message)
+        """A finding at the controller's name."""
+        return Problem(self.path, controller.line, controller.column, code, message,
+                       end_line=controller.line,
+                       end_column=controller.column + max(len(controller.name), 1))
 
 
 def package_root(path: str) -> str | None:
-    """The folder of the nearest ``package.xml`` above ``path``."""
-    folder = Path(path).parent  # as given: the findings name the files the way the walk does
-    for candidate in (folder, *folder.parents):
-        if (candidate / "package.xml").is_file():
-            return os.path.join(str(candidate), "") if str(candidate) != "." else ""
-    return None
+    """The folder of the nearest ``package.xml`` above ``path`` (as given, with a trailing
+    separator; ``""`` for the current folder): the findings name files as the walk does."""
+    return _package_of_folder(os.path.dirname(path))
+
+
+@lru_cache(maxsize=4096)
+def _package_of_folder(folder: str) -> str | None:
+    # One look per folder (a walk finds many robot files in few folders); a relative path is
+    # looked up to the current folder, not above it.
+    if os.path.isfile(os.path.join(folder or ".", "package.xml")):
+        return os.path.join(folder, "") if folder not in ("", ".") else ""
+    parent = os.path.dirname(folder)
+    if folder in ("", ".") or parent == folder:
+        return None
+    return _package_of_folder(parent)
 
 
 # Folders of a colcon or catkin workspace that hold copies of its packages' files.
@@ -281,6 +294,7 @@ def controller_problems(
     the packages of the robot files the walks found (``walked``), judged against those robot
     files. Each file is judged against the robot having most of the joints it claims. A named
     file that cannot be read is an :class:`InputFailure`."""
+    _package_of_folder.cache_clear()  # files may have changed since the last run
     pairs: dict[str, list[tuple[str, Settings]]] = {}
     for path in named:
         pairs.setdefault(path, []).extend(robots)
