@@ -75,3 +75,21 @@ def test_a_controller_file_that_is_not_yaml_is_an_input_error(tmp_path, monkeypa
     assert "bad.yaml:2: not valid YAML: expected the node content, but found '<stream end>'" in err
     code, out, err = run("robot.urdf", "--controllers", "missing.yaml", folder=tmp_path)
     assert (code, "missing.yaml: no such file" in err) == (2, True)
+
+
+def test_hostile_controller_files(tmp_path, monkeypatch):
+    """Aliases of aliases (a "billion laughs" of mappings) are read once each, and nesting
+    too deep for the YAML parser is an input error, not a crash."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "robot.urdf").write_text(ROBOT)
+    lines = ["a0: &a0 {type: effort_controllers/JointEffortController, joint: j}"]
+    lines += [f"a{i}: &a{i} {{" + ", ".join(f"k{j}: *a{i - 1}" for j in range(10)) + "}"
+              for i in range(1, 30)]
+    (tmp_path / "laughs.yaml").write_text("\n".join(lines) + "\n")
+    code, out, err = run("robot.urdf", "--controllers", "laughs.yaml", folder=tmp_path)
+    assert (code, out, err) == (0, "No problems in 1 file.\n", "")
+    (tmp_path / "deep.yaml").write_text("a: " + "[" * 100000 + "]" * 100000 + "\n")
+    code, out, err = run("robot.urdf", "--controllers", "deep.yaml", folder=tmp_path)
+    assert code == 2
+    assert err.splitlines()[0] == (
+        "txtool: deep.yaml: nested too deeply to be a controller configuration")

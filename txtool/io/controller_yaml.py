@@ -59,6 +59,8 @@ def read_controller_file(path: str, data: bytes | None = None) -> ControllerFile
         node = yaml.compose(text, Loader=yaml.SafeLoader)
     except UnicodeDecodeError:
         raise InputError(f"{path}: not UTF-8 text") from None
+    except RecursionError:  # PyYAML composes nested collections recursively
+        raise InputError(f"{path}: nested too deeply to be a controller configuration") from None
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         where = f"{path}:{mark.line + 1}" if mark is not None else path
@@ -85,10 +87,12 @@ def _positions(node: Any) -> Positions:
     """Where each mapping key is written, by its path of keys (1-based line and column)."""
     found: Positions = {}
     stack = [((), node)]
-    while stack:
+    seen: set[int] = set()  # an alias is the node it names: each node once, or aliases of
+    while stack:            # aliases would make the walk exponential in the file's size
         path, current = stack.pop()
-        if current is None or current.id != "mapping":
+        if current is None or current.id != "mapping" or id(current) in seen:
             continue
+        seen.add(id(current))
         for key, value in current.value:
             if key.id != "scalar":
                 continue
@@ -150,14 +154,17 @@ def _ros2_entries(document: dict[Any, Any], positions: Positions) -> list[Entry]
     return entries
 
 
-def _ros1_entries(document: dict[Any, Any], path: tuple[str, ...], positions: Positions):
+def _ros1_entries(document: dict[Any, Any], path: tuple[str, ...], positions: Positions,
+                  seen: set[int] | None = None):
+    seen = set() if seen is None else seen
     for name, value in document.items():
-        if not isinstance(value, dict):
-            continue
+        if not isinstance(value, dict) or id(value) in seen:
+            continue  # an alias of a mapping already read (YAML anchors share it)
+        seen.add(id(value))
         here = (*path, str(name))
         kind = value.get("type")
         if isinstance(kind, str) and _names_a_controller(kind):
             line, column = positions.get(here, (1, 1))
             yield Entry(str(name), kind.strip(), dict(value), line, column)
         else:
-            yield from _ros1_entries(value, here, positions)
+            yield from _ros1_entries(value, here, positions, seen)
