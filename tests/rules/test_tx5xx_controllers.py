@@ -368,3 +368,12 @@ def test_other_nodes_types_are_no_controllers(tmp_path):
       joint: j1
     """
     assert findings(tmp_path, ros1_robot(j1="EffortJointInterface"), yaml) == [(4, 1, "TX503")]
+
+
+def test_ros2_a_chained_controllers_reference_interfaces_are_not_the_robots(tmp_path):
+    yaml = manager(("pid", "pid_controller/PidController"),
+                   ("jtc", "joint_trajectory_controller/JointTrajectoryController"),
+                   params="jtc:\n  ros__parameters:\n    joints: [j1]\n"
+                          "    command_joints: [pid/j1]\n    command_interfaces: [velocity]\n"
+                          "    state_interfaces: [position]\n")
+    assert findings(tmp_path, ros2_robot(j1=("effort", "position")), yaml) == []

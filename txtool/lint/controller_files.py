@@ -102,10 +102,16 @@ def provision_of(root: etree._Element) -> Provision:
 
 def controllers_of(file: ControllerFile, exported: frozenset[str] = frozenset()
                    ) -> list[Controller]:
+    """The controllers of ``file``, each with the joint interfaces it claims of the robot.
+
+    A ROS 2 "joint" with a ``/`` (``pid_controller/joint1``) is a chained controller's
+    reference interface, which the robot does not provide: such claims are left out."""
     claims = ros1_claims if file.generation == ROS1 else ros2_claims
     return [
         Controller(e.name, e.type, file.generation, e.line, e.column, e.params,
-                   known_type(e.type, file.generation, exported), claims(e.type, e.params))
+                   known_type(e.type, file.generation, exported),
+                   tuple(c for c in claims(e.type, e.params)
+                         if file.generation == ROS1 or "/" not in c.joint))
         for e in file.entries
     ]
 
