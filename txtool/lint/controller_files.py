@@ -438,3 +438,47 @@ def _missing_interface(ctx: ControllerContext, code: str, controller: Controller
     if chosen is None and other is None:
         return problem
     return dataclasses.replace(problem, loader_severity="warning")
+
+
+def ros1_controller_file(path: str) -> ControllerFile:
+    """The ROS 1 controller configuration at ``path``; :class:`~txtool.io.xmlio.InputError`
+    for a file that cannot be read, is not YAML, or is no ROS 1 controller configuration."""
+    file = read_controller_file(path)
+    if file is None or file.generation != ROS1:
+        raise InputError(f"{path}: no ROS 1 controller configuration (a controller namespace "
+                         "with a type)")
+    return file
+
+
+def _flow(value: object) -> str:
+    """A parameter value as YAML's flow style writes it."""
+    return f"[{', '.join(map(str, value))}]" if isinstance(value, list) else str(value)
+
+
+def ros2_needs(file: ControllerFile, converted: etree._Element) -> tuple[list[str], list[str]]:
+    """What each controller of the ROS 1 controller ``file`` becomes in ROS 2, and whether the
+    ``converted`` robot's ``<ros2_control>`` joints provide what it claims there: (notes,
+    warnings), each a line ``path:line:col: ...``."""
+    from txtool.model.controllers import ros2_equivalent
+
+    provision = provision_of(converted)
+    notes: list[str] = []
+    warnings: list[str] = []
+    for controller in controllers_of(file):
+        where = (f"{file.path}:{controller.line}:{controller.column}: controller "
+                 f"'{controller.name}' ({controller.type})")
+        equivalent = ros2_equivalent(controller)
+        if equivalent is None:
+            notes.append(f"{where}: no ros2_controllers type does its work; port it")
+            continue
+        said = ", ".join(f"{k}: {_flow(v)}" for k, v in equivalent.params.items())
+        head = f"{where} is {equivalent.type} in ROS 2" + (f" ({said})" if said else "")
+        if equivalent.note:
+            head += f"; {equivalent.note}"
+        lacking = [f"{c.joint}/{c.interface} ({'command' if c.command else 'state'})"
+                   for c in equivalent.claims if not provision.provides("ros2", c)]
+        if lacking:
+            warnings.append(f"{head}; the converted <ros2_control> lacks " + ", ".join(lacking))
+        else:
+            notes.append(f"{head}; the converted <ros2_control> provides what it claims")
+    return notes, warnings

@@ -262,3 +262,84 @@ def known_type(type_: str, generation: str, exported: frozenset[str] = frozenset
     if type_ in exported:
         return True
     return type_ in (ROS1_TYPES if generation == ROS1 else ROS2_TYPES)
+
+
+@dataclass(frozen=True)
+class Ros2Equivalent:
+    """What a ROS 1 controller becomes in ros2_controllers: the type, the parameters that
+    say its interfaces, and the ``JOINT/INTERFACE`` claims they make for its joints."""
+
+    type: str
+    params: Mapping[str, Any]
+    claims: tuple[Claim, ...]
+    note: str = ""
+
+
+_TRAJECTORY = "joint_trajectory_controller/JointTrajectoryController"
+_FORWARD = "forward_command_controller/ForwardCommandController"
+_PID = "pid_controller/PidController"
+# ROS 1 type -> (ROS 2 type, command interfaces, state interfaces, note). The ROS 2 types are
+# those ros2_controllers exports (ROS2_TYPES); a PID inside a ROS 1 controller is
+# pid_controller's job in ROS 2 (a chainable controller of its own).
+_ROS2_OF: dict[str, tuple[str, tuple[str, ...], tuple[str, ...], str]] = {
+    "joint_state_controller/JointStateController":
+        ("joint_state_broadcaster/JointStateBroadcaster", (), (), ""),
+    "position_controllers/JointTrajectoryController":
+        (_TRAJECTORY, ("position",), ("position", "velocity"), ""),
+    "velocity_controllers/JointTrajectoryController":
+        (_TRAJECTORY, ("velocity",), ("position", "velocity"), ""),
+    "effort_controllers/JointTrajectoryController":
+        (_TRAJECTORY, ("effort",), ("position", "velocity"), ""),
+    "pos_vel_controllers/JointTrajectoryController":
+        (_TRAJECTORY, ("position", "velocity"), ("position", "velocity"), ""),
+    "pos_vel_acc_controllers/JointTrajectoryController":
+        (_TRAJECTORY, ("position", "velocity", "acceleration"), ("position", "velocity"), ""),
+    "position_controllers/JointPositionController": (_FORWARD, ("position",), (), ""),
+    "position_controllers/JointGroupPositionController": (_FORWARD, ("position",), (), ""),
+    "velocity_controllers/JointVelocityController": (_FORWARD, ("velocity",), (), ""),
+    "velocity_controllers/JointGroupVelocityController": (_FORWARD, ("velocity",), (), ""),
+    "effort_controllers/JointEffortController": (_FORWARD, ("effort",), (), ""),
+    "effort_controllers/JointGroupEffortController": (_FORWARD, ("effort",), (), ""),
+    "effort_controllers/JointPositionController":
+        (_PID, ("effort",), ("position",), "its pid gains go to pid_controller's gains"),
+    "effort_controllers/JointGroupPositionController":
+        (_PID, ("effort",), ("position",), "its pid gains go to pid_controller's gains"),
+    "effort_controllers/JointVelocityController":
+        (_PID, ("effort",), ("velocity",), "its pid gains go to pid_controller's gains"),
+    "velocity_controllers/JointPositionController":
+        (_PID, ("velocity",), ("position",), "its pid gains go to pid_controller's gains"),
+    "position_controllers/GripperActionController":
+        ("parallel_gripper_action_controller/GripperActionController", ("position",),
+         ("position", "velocity"), ""),
+    "effort_controllers/GripperActionController":
+        ("effort_controllers/GripperActionController", ("effort",), ("position", "velocity"),
+         "gripper_controllers' type, which ros2_controllers' newest releases no longer ship"),
+    "diff_drive_controller/DiffDriveController":
+        ("diff_drive_controller/DiffDriveController", ("velocity",), ("position",),
+         "its wheels go to left_wheel_names and right_wheel_names"),
+}
+
+
+def ros2_equivalent(controller: Controller) -> Ros2Equivalent | None:
+    """What the ROS 1 ``controller`` becomes in ROS 2 (None: no ros2_controllers type does
+    its work)."""
+    known = _ROS2_OF.get(controller.type)
+    if known is None:
+        return None
+    type_, commands, states, note = known
+    joints = controller.joints
+    if type_ == _FORWARD:
+        params: dict[str, Any] = {"joints": list(joints), "interface_name": commands[0]}
+    elif type_ == _PID:
+        params = {"dof_names": list(joints), "command_interface": commands[0],
+                  "reference_and_state_interfaces": list(states)}
+    elif type_ == "diff_drive_controller/DiffDriveController" or not commands:
+        params = {}
+    elif "GripperActionController" in type_:
+        params = {"joint": joints[0] if joints else ""}
+    else:
+        params = {"joints": list(joints), "command_interfaces": list(commands),
+                  "state_interfaces": list(states)}
+    claims = tuple([Claim(j, i, True) for j in joints for i in commands]
+                   + [Claim(j, i, False) for j in joints for i in states])
+    return Ros2Equivalent(type_, params, claims, note)
