@@ -1,8 +1,10 @@
 """Controller configurations checked against the robot they control (rules TX5xx).
 
-A robot file is paired with controller YAML files: those ``--controllers`` names, and, for a
-robot file found in a package, every YAML file of that package that defines controllers
-(decided from the content: :func:`~txtool.io.controller_yaml.read_controller_file`). What the
+A controller YAML file is paired with robot files: one ``--controllers`` names with the robot
+files of the run, and one a folder walk finds (under the walked folders, or in the package of
+a robot file the walk found; a controller file is decided from its content:
+:func:`~txtool.io.controller_yaml.read_controller_file`) with the walk's robot files. Of those,
+it is judged against the robot having most of the joints it claims (:func:`pick_robot`). What the
 robot provides is read from its expanded tree as the managers' hardware reads it: ROS 1, each
 transmission joint's ``<hardwareInterface>`` classes and the ``JointStateInterface`` the
 transmission loader's interface providers register with them (ros-controls/ros_control
@@ -43,7 +45,7 @@ if TYPE_CHECKING:
     from txtool.lint.config import Settings
 
 YAML_SUFFIXES = (".yaml", ".yml")
-MAX_SCANNED = 200  # YAML files of one package looked at for controllers
+MAX_SCANNED = 200  # YAML files looked at per walked folder or package
 
 
 def ros1_interface(text: str) -> str:
