@@ -98,12 +98,14 @@ def validate(
     pkg_dirs: Sequence[PathLike] = (),
     pkg_paths: Mapping[str, PathLike] | None = None,
     jobs: int = 1,
+    controllers: Sequence[PathLike] = (),
 ) -> list[Problem]:
     """Lint files and folders as ``txtool validate`` does; the findings in report order.
 
     ``select``/``ignore`` take rule codes or prefixes; the configuration file that applies to
-    each file is found as on the command line unless ``config`` names one. A file that cannot
-    be read raises :class:`InputError` (the CLI's exit 2).
+    each file is found as on the command line unless ``config`` names one. ``controllers``
+    are controller configurations (YAML) checked against the robot files (``--controllers``).
+    A file that cannot be read raises :class:`InputError` (the CLI's exit 2).
     """
     from txtool.lint.api import LintOptions, lint_paths
 
@@ -118,6 +120,7 @@ def validate(
         xacro=_xacro_options(xacro_args, pkg_dirs, pkg_paths),
         no_xacro=no_xacro,
         jobs=jobs,
+        controllers=tuple(os.fspath(c) for c in controllers),
     )
     result = lint_paths(given or ["."], options)
     if result.errors:

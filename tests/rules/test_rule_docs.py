@@ -18,6 +18,7 @@ from pathlib import Path
 
 import pytest
 
+from txtool.lint.api import LintOptions, lint_paths
 from txtool.lint.config import Config, resolve
 from txtool.lint.engine import lint_file
 from txtool.lint.ruledoc import Finding, expected_finding, layout_problems, sections
@@ -46,11 +47,12 @@ PACKAGE = """<?xml version="1.0"?>
 """
 
 
-def findings(section) -> list[Finding]:
+def findings(section, robot=None) -> list[Finding]:
     """The findings of ``txtool validate FILE`` for an example (a file named on the command
     line), with the default configuration. A heading ``(BUILD package, PATH)`` writes the
     example to PATH in a package whose package.xml builds with BUILD (``ament_cmake``,
-    ``catkin``)."""
+    ``catkin``). With a ``robot`` section (a rule about controllers), the example is a
+    controller file: ``txtool validate ROBOT --controllers EXAMPLE``."""
     with tempfile.TemporaryDirectory(prefix="txtool-rule-doc-") as folder:
         name = section.filename or "robot.urdf"
         if ", " in name:
@@ -60,8 +62,14 @@ def findings(section) -> list[Finding]:
         path = Path(folder) / name
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(section.text, encoding="utf-8")
-        settings = resolve(Config.model_validate({}), origin="defaults", base=Path(folder))
-        found = lint_file(str(path), settings, named=True)
+        if robot is not None:
+            robot_path = Path(folder) / (robot.filename or "robot.urdf")
+            robot_path.parent.mkdir(parents=True, exist_ok=True)
+            robot_path.write_text(robot.text, encoding="utf-8")
+            found = lint_paths([str(robot_path)], LintOptions(controllers=(str(path),))).problems
+        else:
+            settings = resolve(Config.model_validate({}), origin="defaults", base=Path(folder))
+            found = lint_file(str(path), settings, named=True)
     return [Finding(p.line, p.column, p.severity, p.code, " ".join(p.message.split()))
             for p in found]
 
@@ -70,8 +78,9 @@ def findings(section) -> list[Finding]:
 def test_the_failing_example_gives_the_expected_finding_and_the_passing_example_none(code):
     by_label = {section.label: section for section in sections(all_rules()[code].doc)}
     expected = expected_finding(by_label["Expected finding"].text)
-    assert expected in findings(by_label["Failing example"])
-    assert [f for f in findings(by_label["Passing example"]) if f.code == code] == []
+    robot = by_label.get("Robot")
+    assert expected in findings(by_label["Failing example"], robot)
+    assert [f for f in findings(by_label["Passing example"], robot) if f.code == code] == []
 
 
 def test_the_layout_check_names_what_is_missing():

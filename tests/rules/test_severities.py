@@ -52,6 +52,12 @@ def ros2_simple(member: str = 'role="joint1"', joint_inner: str = "") -> str:
             f'<joint name="j" {member}>{joint_inner}</joint></transmission>')
 
 
+# A ros2_control joint 'j' commanded and read by position only.
+POSITION_ONLY = ('<ros2_control name="s" type="system"><hardware><plugin>mock_components/'
+                 'GenericSystem</plugin></hardware><joint name="j"><command_interface '
+                 'name="position"/><state_interface name="position"/></joint></ros2_control>')
+
+
 def robot(body: str) -> str:
     return ROBOT.format(body=body)
 
@@ -145,6 +151,17 @@ TABLE: dict[str, tuple[str, str, str]] = {
                              .replace("<role>joint1</role>", "<role>joint0</role>")
                              .replace("<role>joint2</role>", "<role>joint1</role>")
                              .replace("<role>joint0</role>", "<role>joint2</role>")), "r.urdf"),
+    # A robot with a controller configuration (``txtool validate r.urdf --controllers c.yaml``).
+    "TX500": ("error", (robot(ros1()), "c:\n  type: effort_controllers/JointEffortController\n"
+                        "  joint: k\n"), "controllers.yaml"),
+    "TX501": ("error", (robot(ros1()), "c:\n  type: position_controllers/JointPositionController"
+                        "\n  joint: j\n"), "controllers.yaml"),
+    "TX502": ("error", (robot(POSITION_ONLY),
+                        "controller_manager:\n  ros__parameters:\n    c:\n      type: "
+                        "parallel_gripper_action_controller/GripperActionController\n"
+                        "c:\n  ros__parameters:\n    joint: j\n"), "controllers.yaml"),
+    "TX503": ("warning", (robot(ros1()), "c:\n  type: effort_controllers/JointEfortController\n"
+                          "  joint: j\n"), "controllers.yaml"),
 }
 
 
@@ -161,7 +178,15 @@ def test_the_table_covers_every_registered_rule_with_its_registered_severity():
 @pytest.mark.parametrize("code", sorted(TABLE))
 def test_each_rule_reports_its_registered_severity(code, tmp_path):
     severity, document, filename = TABLE[code]
-    if filename == "named.urdf":
+    if filename == "controllers.yaml":
+        import txtool
+
+        (tmp_path / "r.urdf").write_text(document[0])
+        (tmp_path / filename).write_text(document[1])
+        found = [p for p in txtool.validate([str(tmp_path / "r.urdf")],
+                                            controllers=[str(tmp_path / filename)])
+                 if p.code == code]
+    elif filename == "named.urdf":
         import txtool
 
         (tmp_path / filename).write_text(document)

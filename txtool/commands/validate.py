@@ -107,11 +107,16 @@ def terminal_width(output_file: str | None) -> int | None:
 @click.option("--ros-distro", type=click.Choice(CHOICES), default=None,
               help="The ROS distribution whose programs read the files (over the "
                    "configuration's ros-distro and what package.xml and <gazebo> plugins say).")
+@click.option("--controllers", "controller_files", multiple=True,
+              type=click.Path(dir_okay=False), metavar="FILE",
+              help="A controller configuration (YAML) to check against the robot files "
+                   "(TX5xx; repeatable). Folder walks pair a package's robot with its own.")
 @xacro_options
 @exit_on_input_error
 def command(paths, output_formats, select, ignore, strict, exit_zero, config_path, no_xacro,
             stdin_filename, jobs, color, output_file, fix, diff, quiet, statistics, exclude,
-            extend_exclude, force_exclude, respect_gitignore, ros_distro, xacro) -> int:
+            extend_exclude, force_exclude, respect_gitignore, ros_distro, controller_files,
+            xacro) -> int:
     """Check transmissions in files and folders (*.urdf, *.xacro, robot *.xml; '-' is stdin).
 
     A file named whose root element is no robot description's (a launch file, package.xml,
@@ -148,6 +153,7 @@ def command(paths, output_formats, select, ignore, strict, exit_zero, config_pat
         force_exclude=force_exclude,
         respect_gitignore=respect_gitignore,
         ros_distro=ros_distro,
+        controllers=tuple(controller_files),
     )
     if xacro.args:
         _warn_unused_args(list(paths), no_xacro)

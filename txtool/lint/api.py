@@ -37,6 +37,7 @@ class LintOptions(NamedTuple):
     respect_gitignore: bool | None = None  # None: as configured (default True)
     ros_distro: str | None = None  # --ros-distro: the distribution reading the files
     force_exclude: bool = False  # exclude patterns pass over files named as well
+    controllers: tuple[str, ...] = ()  # --controllers: controller files to judge (TX5xx)
 
 
 class LintResult:
@@ -97,6 +98,7 @@ def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions,
     result.notes.extend(settings.notes)
     shared = None if progress is None else (lambda done: progress(done, len(work)))
     outcomes = _outcomes(work, options, paths, _fragments(work, paths), shared)
+    robots: list[tuple[str, Settings]] = []  # the files read, each a robot a controller may drive
     for done, outcome in enumerate(outcomes, 1):
         if progress is not None:
             progress(done, len(work))
@@ -108,8 +110,32 @@ def lint_paths(paths: list[str] | tuple[str, ...], options: LintOptions,
         readers = getattr(outcome, "readers", None)
         if readers is not None:
             result.readers.append(readers)
+        if work[done - 1][0] != "-":
+            robots.append(work[done - 1])
     result.problems = without_repeats(result.problems)
+    _add_controllers(result, robots, paths, options, settings)
     return result
+
+
+def _add_controllers(result: LintResult, robots: list[tuple[str, Settings]],
+                     given: list[str] | tuple[str, ...], options: LintOptions,
+                     settings: SettingsCache) -> None:
+    """The controller files' findings (TX5xx): those named with ``--controllers``, and those
+    of the packages of robot files found in folder walks (see
+    :mod:`txtool.lint.controller_files`)."""
+    from txtool.lint.controller_files import controller_problems
+
+    named = frozenset(given)
+    walked = [(path, s) for path, s in robots if path not in named]
+    if not options.controllers and not walked:
+        return
+    folders = [path for path in given if path != "-" and os.path.isdir(path)]
+    for outcome in controller_problems(robots, walked, folders, options.controllers,
+                                       settings.for_file):
+        if isinstance(outcome, InputFailure):
+            result.errors.append(outcome)
+        else:
+            result.problems.extend(outcome)
 
 
 def _fragments(work: list[tuple[str, Settings]], given: list[str] | tuple[str, ...]

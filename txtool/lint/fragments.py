@@ -55,10 +55,20 @@ def fragments(work: Iterable[tuple[str, XacroOptions]], walked: Iterable[str]) -
     return frozenset(targets[key] for key in found)
 
 
-def included_files(path: str, options: XacroOptions) -> list[str]:
-    """The files ``path`` includes whose names hold no placeholder, absolute, in order."""
-    return [name for name in _included(path, options, {})
-            if _ANY not in name and os.path.isfile(name)]
+def included_files(path: str, options: XacroOptions, limit: int = 200) -> list[str]:
+    """The files ``path`` includes, directly or through other includes (existing files whose
+    names hold no placeholder; at most ``limit``), in the order found."""
+    packages: Packages = {}
+    found: list[str] = []
+    seen = {_key(path)}
+    pending = [path]
+    while pending and len(found) < limit:
+        for name in _included(pending.pop(0), options, packages):
+            if _ANY not in name and _key(name) not in seen and os.path.isfile(name):
+                seen.add(_key(name))
+                found.append(name)
+                pending.append(name)
+    return found[:limit]
 
 
 def _key(path: str) -> str:

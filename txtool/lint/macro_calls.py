@@ -144,17 +144,12 @@ class Tracer:
         _macros_of(tree.getroot(), self.path, found)
         if self.path == "-" or not os.path.isfile(self.path):
             return found
-        queue, seen = [self.path], {os.path.realpath(self.path)}
-        while queue and len(seen) <= MAX_INCLUDED:
-            for name in _includes(queue.pop(0), self._options):
-                key = os.path.realpath(name)
-                if key in seen:
-                    continue
-                seen.add(key)
-                root = self._read(key)
-                if root is not None:
-                    _macros_of(root, _shown_path(name), found)
-                    queue.append(name)
+        from txtool.lint.fragments import included_files
+
+        for name in included_files(self.path, self._options, MAX_INCLUDED):
+            root = self._read(os.path.realpath(name))
+            if root is not None:
+                _macros_of(root, _shown_path(name), found)
         return found
 
     def _read(self, key: str) -> etree._Element | None:
@@ -169,12 +164,6 @@ class Tracer:
                 self._files[key] = None
         known = self._files[key]
         return known[0] if known else None
-
-
-def _includes(path: str, options: XacroOptions) -> list[str]:
-    from txtool.lint.fragments import included_files
-
-    return included_files(path, options)
 
 
 def _macros_of(root: etree._Element, where: str,

@@ -21,7 +21,10 @@ from typing import Any, NamedTuple
 SECTIONS = ("What it does", "Why it matters", "Loader", "Failing example", "Expected finding",
             "Passing example", "Fix")
 _EXAMPLES = ("Failing example", "Passing example")
-_LABEL = re.compile(r"^(" + "|".join(SECTIONS) + r")(?: \(([^)]*)\))?(::?)(?:[ \t]+|$)")
+# A rule about a robot with its controllers (TX5xx) shows the robot its examples control in a
+# section of its own after ``Loader``: ``Robot (urdf/robot.urdf)::``.
+ROBOT = "Robot"
+_LABEL = re.compile(r"^(" + "|".join((*SECTIONS, ROBOT)) + r")(?: \(([^)]*)\))?(::?)(?:[ \t]+|$)")
 _SOURCE_FILE = re.compile(r"\b[\w./-]*\w\.(?:cpp|hpp|h|cc|py|ex|exs|xml)\b")
 _FINDING = re.compile(r"``(\d+):(\d+) (error|warning|info) (TX\d{3}) ([^`]+)``")
 _ROLE = re.compile(r":(?:func|mod|class|meth|data|attr):`~?([^`]+)`")
@@ -47,7 +50,8 @@ def markdown(rule: Any, *, heading: str = "**") -> str:
             out += ["```", ""]
             fenced = False
         if line.rstrip().endswith("::") and not fenced:
-            out += [line.rstrip()[:-1], "", "```xml"]
+            fence = "```yaml" if ".yaml)" in line or ".yml)" in line else "```xml"
+            out += [line.rstrip()[:-1], "", fence]
             fenced = True
             continue
         label = None if fenced else _LABEL.match(line)
@@ -56,7 +60,7 @@ def markdown(rule: Any, *, heading: str = "**") -> str:
         out.append(line[4:] if fenced else line)
     if fenced:
         out.append("```")
-    return "\n".join(out).replace("```xml\n\n", "```xml\n")
+    return "\n".join(out).replace("```xml\n\n", "```xml\n").replace("```yaml\n\n", "```yaml\n")
 
 
 def _inline(text: str) -> str:
@@ -94,7 +98,7 @@ def sections(doc: str) -> list[Section]:
             found[-1][2].append(line)
     result = []
     for label, filename, lines in found:
-        if label in _EXAMPLES:
+        if label in (*_EXAMPLES, ROBOT):
             text = textwrap.dedent("\n".join(lines)).strip("\n") + "\n"
         else:
             text = " ".join(" ".join(lines).split())
@@ -119,6 +123,8 @@ def layout_problems(code: str, doc: str) -> list[str]:
         problems.append("no summary line first")
     found = sections(doc)
     labels = [s.label for s in found]
+    if labels[3:4] == [ROBOT]:
+        labels.pop(3)
     if labels != list(SECTIONS):
         problems.append(f"sections {labels}, expected {list(SECTIONS)} in that order, each once")
     by_label = {s.label: s for s in found}

@@ -68,6 +68,11 @@ RULE_MODULES: tuple[str, ...] = (
     "tx402_four_bar_effort_ros1",
     "tx403_singular_transmission",
     "tx404_ros1_members_against_roles",
+    # TX5xx: controller configurations against the robot (run by lint.controller_files)
+    "tx500_controller_joint_not_driven",
+    "tx501_controller_command_interface",
+    "tx502_controller_state_interface",
+    "tx503_unknown_controller_type",
 )
 
 
