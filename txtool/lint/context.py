@@ -219,18 +219,19 @@ class LintContext:
 
     def problem(
         self, code: str, element: etree._Element, message: str, *, fixable: bool | None = None,
-        loader_severity: Severity | None = None,
+        loader_severity: Severity | None = None, refuses_whole: bool = False,
     ) -> Problem:
         """A problem at ``element``; marks positions only traced through xacro.
 
         ``fixable=False`` marks a finding the rule's fix declines by design;
-        ``loader_severity`` lowers a finding that the file's own loader accepts.
+        ``loader_severity`` lowers a finding that the file's own loader accepts;
+        ``refuses_whole`` marks one for which the reader refuses the whole document.
         """
         where = self.position(element)
         if where.expanded:
             message = f"{message} (after xacro expansion)"
         return Problem(self.source.path, where.line, where.column, code, message, fixable=fixable,
-                       loader_severity=loader_severity)
+                       loader_severity=loader_severity, refuses_whole=refuses_whole)
 
     @property
     def gazebo_sim(self) -> Sim | None:

@@ -279,6 +279,7 @@ def _stamped(problem: Problem, rule: Rule, settings: Settings, lines: _Lines) ->
         severity=settings.severity.get(rule.code, problem.loader_severity or rule.severity),
         name=rule.name,
         fixable=rule.fixable and problem.fixable is not False,
+        refuses_whole=problem.refuses_whole,
     )
 
 
