@@ -32,7 +32,8 @@ def test_a_joint_whose_parent_link_is_missing():
     assert [(p.line, p.column, p.code, p.severity) for p in found] == [(5, 5, "TX210", "error")]
     assert found[0].message == (
         'urdfdom refuses the robot ("Failed to build tree: parent link [torso] of joint '
-        '[shoulder] not found"): ros2_control throws "Failed to parse URDF file"')
+        '[shoulder] not found"): so do the readers of the robot built on it (ros2_control '
+        'throws "Failed to parse URDF file")')
     assert found[0].refuses_whole
 
 

@@ -14,8 +14,8 @@ materials and geometry: those are not checked here.
 Why it matters: ros2_control's parser builds the URDF model with urdfdom after reading the
 ``<ros2_control>`` blocks and throws "Failed to parse URDF file" when it fails: no hardware of
 the robot loads. Every other reader of ``robot_description`` built on urdfdom refuses it too
-(robot_state_publisher, Gazebo's URDF import, gazebo_ros_control's joint limits). The message
-gives urdfdom's own words (logged by ``parseURDF``).
+(robot_state_publisher; Gazebo's URDF import, which then spawns no robot, under ROS 1 too).
+The message gives urdfdom's own words (logged by ``parseURDF``).
 
 Loader: ros/urdfdom urdf_parser/src/model.cpp ``parseURDF``, joint.cpp ``parseJoint``,
 link.cpp ``parseLink`` @9a1f5b4 (the same checks in 3.0.1) and ros/urdfdom_headers
@@ -37,7 +37,8 @@ Failing example::
     </robot>
 
 Expected finding: ``4:5 error TX210 urdfdom refuses the robot ("Failed to build tree: parent
-link [torso] of joint [shoulder] not found"): ros2_control throws "Failed to parse URDF file"``
+link [torso] of joint [shoulder] not found"): so do the readers of the robot built on it
+(ros2_control throws "Failed to parse URDF file")``
 
 Passing example::
 
@@ -96,8 +97,8 @@ def check(ctx: LintContext) -> Iterator[Problem]:
     for element, words in refused:
         yield ctx.problem(
             CODE, element,
-            f"urdfdom refuses the robot (\"{words}\"): ros2_control throws \"Failed to parse "
-            "URDF file\"", refuses_whole=True)
+            f"urdfdom refuses the robot (\"{words}\"): so do the readers of the robot built on "
+            "it (ros2_control throws \"Failed to parse URDF file\")", refuses_whole=True)
 
 
 def _urdf(element: etree._Element, name: str) -> bool:
