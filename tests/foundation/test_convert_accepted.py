@@ -15,8 +15,6 @@ import textwrap
 
 from lxml import etree
 
-
-
 _LINK = re.compile(r'link="(l[0-9]+)"')
 
 

@@ -113,3 +113,15 @@ def test_after_expansion_the_robot_is_whole():
     found = problems(source, filename="robot.urdf.xacro", select=["TX210"])
     assert [(p.line, p.code) for p in found] == [(5, "TX210")]
     assert found[0].message.endswith("(after xacro expansion)")
+
+
+def test_a_xacro_fragment_without_a_robot_name_is_not_judged():
+    """Written to be included: its joints hang from its includer's links."""
+    source = """<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="arm"/>
+  <joint name="shoulder" type="continuous"><parent link="base"/><child link="arm"/></joint>
+""" + TRANSMISSION + "\n</robot>\n"
+    assert check(source, filename="arm.urdf.xacro", select=["TX210"]) == []
+    plain = source.replace(' xmlns:xacro="http://www.ros.org/wiki/xacro"', "")
+    # as a plain file, it is a robot urdfdom refuses first for its missing name
+    assert check(plain, select=["TX210"]) == [(1, 1, "TX210", "error")]

@@ -8,7 +8,8 @@ does not know; a ``revolute`` or ``prismatic`` joint without ``<limit>``, or a `
 without ``effort`` or ``velocity``; a joint without ``<parent link>`` or ``<child link>``, or
 naming a link the robot does not have; and, when every joint holds, links that do not form one
 tree (no link without a parent, or two of them). A xacro file read as written (its links may
-come from its includes or its includer) is not judged. urdfdom also refuses malformed numbers,
+come from its includes or its includer) is not judged, nor the expansion of one whose
+``<robot>`` has no name (a fragment written to be included). urdfdom also refuses malformed numbers,
 materials and geometry: those are not checked here.
 
 Why it matters: ros2_control's parser builds the URDF model with urdfdom after reading the
@@ -87,6 +88,8 @@ def check(ctx: LintContext) -> Iterator[Problem]:
     root = ctx.source.root
     if ctx.literal or not _urdf(root, "robot") or not (ctx.found or ctx.hints.components):
         return
+    if ctx.source.expanded and root.get("name") is None:
+        return  # a xacro fragment: written to be included, its links are its includer's
     links = [e for e in root if _urdf(e, "link")]
     if not links:
         return  # a fragment (urdfdom: "No link elements found in urdf file")
