@@ -2,7 +2,8 @@
 ROS 2 distribution for ros2-p1/ros2-p2, ros_control for ros1 (txtool.transform.target_check).
 
 An error of validate's rules for those readers that the input did not have is a loss: exit 1,
-nothing written, unless --allow-lossy.
+nothing written, unless --allow-lossy; so is one the input had, where the reader refuses the
+whole robot for it (the written file would not load).
 """
 
 from __future__ import annotations
