@@ -251,3 +251,27 @@ def test_migrate_does_not_write_a_robot_the_target_refuses_whole(run, here):
     code, out, err = run("migrate", "--write", "--to", "ros2-p2", "head.urdf")
     assert code == 1 and (here / "head.urdf").read_text() == ORPHAN
     assert URDFDOM in err and ALREADY in err
+
+
+def test_a_fixed_joint_an_existing_block_declares_stays_a_loss(run, here):
+    """The parser throws on the fixed joint of the block the input had: whatever the
+    conversion adds beside it, no hardware of the written robot loads (TX201)."""
+    existing = CLEAN.replace("</robot>", """\
+  <link name="tool"/>
+  <joint name="jf" type="fixed"><parent link="base"/><child link="tool"/></joint>
+  <ros2_control name="Tool" type="system">
+    <hardware><plugin>tool_driver/Tool</plugin></hardware>
+    <joint name="jf"><state_interface name="position"/></joint>
+    <transmission name="t0">
+      <plugin>transmission_interface/SimpleTransmission</plugin>
+      <joint name="jf" role="joint1"><mechanical_reduction>50</mechanical_reduction></joint>
+      <actuator name="m0" role="actuator1"/>
+    </transmission>
+  </ros2_control>
+</robot>""")
+    (here / "arm.urdf").write_text(existing)
+    code, out, err = run("convert", "arm.urdf", "--to", "ros2-p2")
+    assert code == 1 and out == "" and err.endswith(REFUSED)
+    (said,) = [each for each in err.splitlines() if "TX201" in each]
+    assert said.startswith("error: line ") and said.endswith(
+        "ros2_control throws \"Fixed joints do not make sense in ros2_control\" " + ALREADY)
