@@ -10,11 +10,12 @@ test_conversion_accepted.py hands the results to the compiled parsers.
 
 from __future__ import annotations
 
+import re
 import textwrap
 
 from lxml import etree
 
-LINKS = "".join(f'<link name="l{i}"/>' for i in range(5))
+_LINK = re.compile(r'link="(l[0-9]+)"')
 
 
 def _joint(name: str, kind: str = "revolute", parent: int = 0, child: int = 1,
@@ -37,7 +38,10 @@ def _transmission(name: str, joint: str, interface: str = "hardware_interface/Ef
 
 
 def _robot(*parts: str) -> str:
-    return f'<robot name="gripper">\n  {LINKS}\n{"".join(parts)}</robot>\n'
+    """The robot of ``parts`` with the links its joints name: one tree, as urdfdom requires."""
+    body = "".join(parts)
+    links = "".join(f'<link name="{name}"/>' for name in sorted(set(_LINK.findall(body))))
+    return f'<robot name="gripper">\n  {links}\n{body}</robot>\n'
 
 
 GRIPPER = _robot(
@@ -176,7 +180,7 @@ def test_a_block_declaring_some_of_the_joints_refuses_a_second_block(run, tmp_pa
 MACRO = """\
 <robot name="cart" xmlns:xacro="http://ros.org/wiki/xacro">
   <xacro:macro name="wheel" params="side">
-    <joint name="${side}_wheel" type="continuous"><parent link="base"/><child link="${side}"/></joint>
+    <link name="${side}"/><joint name="${side}_wheel" type="continuous"><parent link="base"/><child link="${side}"/></joint>
     <transmission name="${side}_trans">
       <type>transmission_interface/SimpleTransmission</type>
       <joint name="${side}_wheel"><hardwareInterface>hardware_interface/VelocityJointInterface</hardwareInterface></joint>
@@ -258,8 +262,9 @@ def test_migrate_counts_the_calls_in_the_other_files_and_names_the_next_steps(
     # Written from the robot instead: one block, and what else the package must change.
     write("cart_description/urdf/wheel.urdf.xacro", MACRO.split("  <xacro:macro")[0]
           + """\
+  <link name="base"/>
   <xacro:macro name="wheel" params="side">
-    <joint name="${side}_wheel" type="continuous"><parent link="base"/><child link="${side}"/></joint>
+    <link name="${side}"/><joint name="${side}_wheel" type="continuous"><parent link="base"/><child link="${side}"/></joint>
   </xacro:macro>
 </robot>
 """)

@@ -27,7 +27,7 @@ BEFORE = """\
 <robot name="arm">
   <!-- Gelenk für den Ellbogen: ä ö ü -->
   <link name='a' />
-  <joint name="elbow" type="revolute"><parent link="a"/><child link="b"/></joint>
+  <link name="b"/><joint name="elbow" type="continuous"><parent link="a"/><child link="b"/></joint>
   <transmission name="elbow_trans">
     <type>transmission_interface/SimpleTransmission</type>
     <joint name="elbow"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
@@ -43,7 +43,7 @@ AFTER = """\
 <robot name="arm">
   <!-- Gelenk für den Ellbogen: ä ö ü -->
   <link name='a' />
-  <joint name="elbow" type="revolute"><parent link="a"/><child link="b"/></joint>
+  <link name="b"/><joint name="elbow" type="continuous"><parent link="a"/><child link="b"/></joint>
   <ros2_control name="arm" type="system">
     <hardware>
       <plugin>mock_components/GenericSystem</plugin>

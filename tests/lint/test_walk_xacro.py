@@ -26,6 +26,9 @@ ROBOT = f"""<robot name="r" {XACRO_NS}>
   <link name="$(arg prefix)base"/>
   <xacro:include filename="$(find my_robot)/urdf/${{side}}_arm.transmission.xacro"/>
   <xacro:include filename="wheels.xacro"/>
+  <joint name="${{side}}_joint" type="continuous">
+    <parent link="$(arg prefix)base"/><child link="${{side}}_wheel"/>
+  </joint>
 </robot>
 """
 ARM = f"""<robot {XACRO_NS}>

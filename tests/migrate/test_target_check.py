@@ -2,7 +2,8 @@
 ROS 2 distribution for ros2-p1/ros2-p2, ros_control for ros1 (txtool.transform.target_check).
 
 An error of validate's rules for those readers that the input did not have is a loss: exit 1,
-nothing written, unless --allow-lossy.
+nothing written, unless --allow-lossy; so is one the input had, where the reader refuses the
+whole robot for it (the written file would not load).
 """
 
 from __future__ import annotations
@@ -208,3 +209,69 @@ def test_a_fragment_is_judged_in_the_robot_that_includes_it(run, here):
     assert err.endswith("1 file(s) refused (losses; see --allow-lossy)\n")
     code, out, err = run("migrate", "--write", "--to", "ros2-p2", "--ros-distro", "humble", ".")
     assert code == 0 and "<ros2_control" in (here / "gripper.transmission.xacro").read_text()
+
+
+# A joint whose parent link the robot lacks (PAL's REEM-C head, expanded, has one): urdfdom
+# refuses to build the model and ros2_control's parser throws "Failed to parse URDF file".
+ORPHAN = CLEAN.replace("</robot>", """\
+  <link name="stereo_frame"/>
+  <joint name="stereo_frame_joint" type="fixed"><parent link="head_2_link"/>
+    <child link="stereo_frame"/></joint>
+</robot>""")
+URDFDOM = ("TX210 urdf-refused for ros2_control (humble, jazzy, kilted, rolling): urdfdom "
+           "refuses the robot (\"Failed to build tree: parent link [head_2_link] of joint "
+           "[stereo_frame_joint] not found\")")
+LOADERS = ("so do the readers of the robot built on it (ros2_control throws \"Failed to parse "
+           "URDF file\")")
+ALREADY = "(the input has it already: the target refuses the written file whole all the same)"
+
+
+def test_a_robot_the_target_refuses_whole_is_refused_though_the_input_was_too(run, here):
+    """The input's own error, carried over, is no loss of the conversion; but the file written
+    would not load at all, so the conversion fails all the same and says why."""
+    (here / "head.urdf").write_text(ORPHAN)
+    code, out, err = run("validate", "head.urdf")
+    assert code == 1 and "TX210" in out
+    code, out, err = run("convert", "head.urdf", "--to", "ros2-p2", "-o", "out.urdf")
+    assert code == 1 and out == "" and not (here / "out.urdf").exists()
+    assert err.endswith(REFUSED)
+    (refused,) = [each for each in err.splitlines() if "TX210" in each]
+    code, out, err = run("convert", "head.urdf", "--to", "ros2-p2", "--allow-lossy",
+                         "-o", "out.urdf")
+    written = (here / "out.urdf").read_text()
+    assert code == 0 and "<ros2_control" in written
+    (warned,) = [each for each in err.splitlines() if "TX210" in each]
+    line = _line_of(written, "head_2_link")
+    assert refused == f"error: line {line}: {URDFDOM}: {LOADERS} {ALREADY}"
+    assert warned == refused.replace("error:", "warning:", 1)
+
+
+def test_migrate_does_not_write_a_robot_the_target_refuses_whole(run, here):
+    (here / "head.urdf").write_text(ORPHAN)
+    code, out, err = run("migrate", "--write", "--to", "ros2-p2", "head.urdf")
+    assert code == 1 and (here / "head.urdf").read_text() == ORPHAN
+    assert URDFDOM in err and ALREADY in err
+
+
+def test_a_fixed_joint_an_existing_block_declares_stays_a_loss(run, here):
+    """The parser throws on the fixed joint of the block the input had: whatever the
+    conversion adds beside it, no hardware of the written robot loads (TX201)."""
+    existing = CLEAN.replace("</robot>", """\
+  <link name="tool"/>
+  <joint name="jf" type="fixed"><parent link="base"/><child link="tool"/></joint>
+  <ros2_control name="Tool" type="system">
+    <hardware><plugin>tool_driver/Tool</plugin></hardware>
+    <joint name="jf"><state_interface name="position"/></joint>
+    <transmission name="t0">
+      <plugin>transmission_interface/SimpleTransmission</plugin>
+      <joint name="jf" role="joint1"><mechanical_reduction>50</mechanical_reduction></joint>
+      <actuator name="m0" role="actuator1"/>
+    </transmission>
+  </ros2_control>
+</robot>""")
+    (here / "arm.urdf").write_text(existing)
+    code, out, err = run("convert", "arm.urdf", "--to", "ros2-p2")
+    assert code == 1 and out == "" and err.endswith(REFUSED)
+    (said,) = [each for each in err.splitlines() if "TX201" in each]
+    assert said.startswith("error: line ") and said.endswith(
+        "ros2_control throws \"Fixed joints do not make sense in ros2_control\" " + ALREADY)

@@ -127,6 +127,9 @@ TABLE: dict[str, tuple[str, str, str]] = {
     "TX208": ("error", robot(ros2("") + ros2("").replace('name="j"', 'name="x"')
                              .replace('name="k"', 'name="y"')), "r.urdf"),
     "TX209": ("error", robot(ros2("") + ros2("").replace('name="hw"', 'name="hw2"')), "r.urdf"),
+    # a joint whose parent link the robot lacks: urdfdom refuses to build the model
+    "TX210": ("error", robot(ros1()).replace('<parent link="b"/>', '<parent link="x"/>'),
+              "r.urdf"),
     # beside a registered interface: alone, the transmission is refused (TX205's severity)
     "TX300": ("warning", robot(ros1(joint=EFFORT + "<hardwareInterface>PositionJointInterface"
                                     "</hardwareInterface>")), "r.urdf"),

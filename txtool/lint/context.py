@@ -226,12 +226,13 @@ class LintContext:
 
     def problem(
         self, code: str, element: etree._Element, message: str, *, fixable: bool | None = None,
-        loader_severity: Severity | None = None,
+        loader_severity: Severity | None = None, refuses_whole: bool = False,
     ) -> Problem:
         """A problem at ``element``; marks positions only traced through xacro.
 
         ``fixable=False`` marks a finding the rule's fix declines by design;
-        ``loader_severity`` lowers a finding that the file's own loader accepts.
+        ``loader_severity`` lowers a finding that the file's own loader accepts;
+        ``refuses_whole`` marks one for which the reader refuses the whole document.
         """
         traced = self.traced(element) if self.source.expanded else None
         if traced is not None:  # at the macro call, the macro's body related
@@ -242,7 +243,7 @@ class LintContext:
         if where.expanded:
             message = f"{message} (after xacro expansion)"
         return Problem(self.source.path, where.line, where.column, code, message, fixable=fixable,
-                       loader_severity=loader_severity)
+                       loader_severity=loader_severity, refuses_whole=refuses_whole)
 
     def traced(self, element: etree._Element) -> tuple[Position, tuple[Note, ...]] | None:
         """In an expansion: where a finding at ``element`` goes (the macro call that made it)

@@ -283,6 +283,7 @@ def _stamped(problem: Problem, rule: Rule, settings: Settings, lines: _Lines) ->
         name=rule.name,
         fixable=rule.fixable and problem.fixable is not False,
         related=problem.related,
+        refuses_whole=problem.refuses_whole,
     )
 
 

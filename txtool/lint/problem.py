@@ -52,6 +52,10 @@ class Problem:
     loader_severity: Severity | None = field(default=None, compare=False)
     # The xacro call chain of a finding in an expansion: "in expansion of macro M ...".
     related: tuple[Note, ...] = field(default=(), compare=False)
+    # A rule sets this for a finding for which its reader refuses the whole document (the
+    # parser throws, no hardware of the robot loads), not one transmission: a conversion
+    # that writes such a file fails even when its input had the finding already.
+    refuses_whole: bool = field(default=False, compare=False)
 
     def __str__(self) -> str:
         """The finding as ``txtool validate`` prints it: ``path:line:col: severity CODE name:

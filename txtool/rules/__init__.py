@@ -56,6 +56,7 @@ RULE_MODULES: tuple[str, ...] = (
     "tx207_actuator_component_joints",
     "tx208_duplicate_component_name",
     "tx209_duplicate_interface",
+    "tx210_urdf_refused",
     "tx300_unprefixed_interface",
     "tx301_interface_on_actuator",
     "tx302_legacy_type_attribute",

@@ -82,4 +82,5 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         f"<gazebo> plugin {filename} needs a <ros2_control> element and this robot has none: "
         "ros2_control's parser throws (\"no 'ros2_control' tag found in the URDF\") and the "
         "plugin loads no hardware; its transmissions are read by nothing",
+        refuses_whole=True,
     )

@@ -72,11 +72,18 @@ def check(ctx: LintContext) -> Iterator[Problem]:
         ros1 = tx.ros1
         what = _consequence(tx.element, "transmission", ros1, member=False)
         if what:
-            yield ctx.problem(CODE, tx.element, f"{tx.label} {what}")
+            yield ctx.problem(CODE, tx.element, f"{tx.label} {what}",
+                              refuses_whole=_throws(tx.element, ros1))
         for ref in tx.members:
             what = _consequence(ref.element, ref.noun, ros1, member=True)
             if what:
-                yield ctx.problem(CODE, ref.element, f"{ref.noun} of {tx.label} {what}")
+                yield ctx.problem(CODE, ref.element, f"{ref.noun} of {tx.label} {what}",
+                                  refuses_whole=_throws(ref.element, ros1))
+
+
+def _throws(element: etree._Element, ros1: bool) -> bool:
+    """ros2_control's parser throws for a missing name: nothing of the robot loads."""
+    return not ros1 and element.get("name") is None
 
 
 def _consequence(element: etree._Element, tag: str, ros1: bool, *, member: bool) -> str | None:

@@ -76,7 +76,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
                     f"{tx.label} has no <plugin>: ros2_control throws "
                     '"Missing <plugin> tag of <transmission> element"'
                 )
-            yield ctx.problem(CODE, tx.element, message)
+            yield ctx.problem(CODE, tx.element, message, refuses_whole=not ros1)
         elif not (element.text or "").strip():
             if ros1:
                 message = f"{tx.label} has an empty <type>: ros_control skips it"

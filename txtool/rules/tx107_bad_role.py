@@ -132,6 +132,7 @@ def _ros2(ctx: LintContext, found: Found) -> Iterator[Problem]:
             ref.element,
             f"{ref.noun} '{ref.name}' of {label(found)} has no role attribute: "
             f"ros2_control throws \"no attribute 'role' in '{ref.noun}' tag\"",
+            refuses_whole=True,
         )
 
 

@@ -87,4 +87,5 @@ def check(ctx: LintContext) -> Iterator[Problem]:
                 f"{ref.noun} '{ref.name}' of {label(found)} has read_only=\"{value}\": "
                 "ros2_control's parse_bool accepts only true or false (any case) and throws, "
                 "so the robot description fails to load",
+                refuses_whole=True,
             )

@@ -118,6 +118,7 @@ def _unknown(ctx: LintContext) -> Iterator[Problem]:
                     f"joint '{name}' of {tx.label} is not a <joint> of <ros2_control> "
                     f"'{declared[0]}': ros2_control throws \"declared joint '{name}' is not "
                     "available in component\"",
+                    refuses_whole=True,
                 )
             elif robot_joints is not None and stripped not in robot_joints.exact and (
                 stripped not in robot_joints

@@ -86,13 +86,15 @@ def _fixed(ctx: LintContext) -> Iterator[Problem]:
         if robot.get("type") != "fixed":  # JointInfo.is_fixed, without reading the joint
             continue
         info = ctx.joints[joint.get("name", "")]
+        throws = _declared_by_component(found.element, info.name)
         effect = (
             "ros2_control throws \"Fixed joints do not make sense in ros2_control\""
-            if _declared_by_component(found.element, info.name)
+            if throws
             else "it cannot move, so the transmission has nothing to read or command"
         )
         yield ctx.problem(
-            CODE, joint, f"joint '{info.name}' of {label(found)} is a fixed joint: {effect}"
+            CODE, joint, f"joint '{info.name}' of {label(found)} is a fixed joint: {effect}",
+            refuses_whole=throws,
         )
 
 

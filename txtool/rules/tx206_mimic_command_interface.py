@@ -117,4 +117,4 @@ def _refused(ctx: LintContext, accepting: bool) -> Iterator[Problem]:
                 "here: ros2_control from Jazzy on refuses the robot (\"Activated mimic joints "
                 f"cannot have command interfaces\"){humble}; drop its command interface or "
                 "say mimic=\"false\"",
-                loader_severity="warning" if accepting else None)
+                loader_severity="warning" if accepting else None, refuses_whole=True)

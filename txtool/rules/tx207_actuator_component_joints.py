@@ -92,7 +92,8 @@ def check(ctx: LintContext) -> Iterator[Problem]:
                 CODE, tx.element,
                 f"{tx.label} of actuator component '{component}' names {count} joints: "
                 "ros2_control's parser throws \"There should be exactly one joint defined in "
-                f"this component but found {count}.\" and no hardware of the robot loads")
+                f"this component but found {count}.\" and no hardware of the robot loads",
+                refuses_whole=True)
             continue
         if tx.kind != "simple":
             continue

@@ -105,4 +105,4 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             f"<ros2_control> name '{name}' is also the name of the block at line {line}: "
             f"ros2_control's resource manager refuses it (\"Hardware name {name} is "
             "duplicated\"): Humble throws and the controller manager stops; from Jazzy on no "
-            "hardware of the robot is loaded")
+            "hardware of the robot is loaded", refuses_whole=True)

@@ -19,7 +19,9 @@ readers forced to the target's (:func:`runs_for`):
 
 A finding of severity ``error`` for one of these readers (the reader refuses the document or
 silently reads something else) is a loss, unless the input had it already for the same
-reader (a conversion then says it as a warning): findings are compared by rule code and
+reader (a conversion then says it as a warning, unless the finding is one for which the
+reader refuses the whole document, ``Problem.refuses_whole``: the written file would not load,
+so it stays a loss that says the input had it): findings are compared by rule code and
 message (which names the element: the transmission, joint or actuator and what is wrong with
 it) as a multiset, so a problem the conversion carried over unchanged is not blamed on it, and
 one it made (a mimic joint given a command interface, a transmission put on a fixed joint) is.
@@ -205,6 +207,7 @@ def judge(written: Source, before: Callable[[], Source | None], target: Dialect 
     asked = False
     blamed: dict[tuple[int, int, str, str], list[Run]] = {}
     kept: dict[tuple[int, int, str, str], list[Run]] = {}  # the input's own, carried over
+    still: dict[tuple[int, int, str, str], list[Run]] = {}  # ... for which it is refused whole
     form: list[Problem] = []
     for run, errors in found:
         if not errors:
@@ -220,7 +223,7 @@ def judge(written: Source, before: Callable[[], Source | None], target: Dialect 
             if had[key] > 0:
                 had[key] -= 1
                 if target is not None:
-                    kept.setdefault(where, []).append(run)
+                    (still if problem.refuses_whole else kept).setdefault(where, []).append(run)
                 continue
             if _transmission(problem) in flagged:
                 continue
@@ -229,6 +232,10 @@ def judge(written: Source, before: Callable[[], Source | None], target: Dialect 
                 continue
             blamed.setdefault(where, []).append(run)
     judged.losses.extend(_loss(*where, runs) for where, runs in sorted(blamed.items()))
+    # The written file will not load, whoever is to blame: no hardware of the robot runs
+    judged.losses.extend(f"{_loss(*where, runs)} (the input has it already: the target "
+                         "refuses the written file whole all the same)"
+                         for where, runs in sorted(still.items()))
     # The target refuses what was written all the same: said, not blamed on the conversion
     judged.warnings.extend(f"{_loss(*where, runs)} (the input has it already)"
                            for where, runs in sorted(kept.items()))
