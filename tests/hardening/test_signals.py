@@ -17,10 +17,12 @@ from pathlib import Path
 
 import pytest
 
+from tests.conftest import neutral
+
 ROOT = Path(__file__).resolve().parents[2]
 DEMO = (ROOT / "fixtures" / "demo_robot.urdf").read_bytes()
-ENV = {**os.environ, "PYTHONPATH": str(ROOT)}
-ENV.pop("TXTOOL_NO_XACRO", None)
+# Read at import, before the suite's neutral environment (tests/conftest.py) applies.
+ENV = {**neutral(os.environ), "PYTHONPATH": str(ROOT)}
 
 
 def program(sabotage: str) -> str:
