@@ -175,8 +175,10 @@ def test_ctrl_c_at_any_moment_after_txtool_starts_is_one_line_and_exit_130(tmp_p
 def test_importing_txtool_as_a_library_leaves_ctrl_c_alone():
     program = ("import signal, txtool.cli; "
                "print(signal.getsignal(signal.SIGINT) is signal.default_int_handler)")
+    # Python installs its handler only where Ctrl-C is not ignored, as in a background job
     result = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True,
-                            env=ENV, timeout=120)
+                            env=ENV, timeout=120,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     assert (result.returncode, result.stdout, result.stderr) == (0, "True\n", "")
 
 
