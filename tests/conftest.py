@@ -1,9 +1,11 @@
 """Every test starts from the same environment, whatever shell or CI runner started pytest.
 
-txtool reads ``GITHUB_ACTIONS`` (validate's default format), ``TXTOOL_NO_XACRO`` (no
+txtool reads ``GITHUB_ACTIONS`` (validate's default format), ``GITHUB_WORKSPACE`` (what the
+github format's paths are relative to), ``TXTOOL_NO_XACRO`` (no
 expansion), ``NO_COLOR``/``FORCE_COLOR``/``TERM`` (colour) and the ROS package paths
 (``$(find pkg)``); rich reads ``COLUMNS``/``LINES`` (table width). A GitHub runner sets
-``GITHUB_ACTIONS=true``, README recommends ``TXTOOL_NO_XACRO=1`` for CI and a sourced ROS shell
+``GITHUB_ACTIONS=true`` and ``GITHUB_WORKSPACE`` (action.yml's script reads ``GITHUB_OUTPUT``
+and ``RUNNER_OS`` too), README recommends ``TXTOOL_NO_XACRO=1`` for CI and a sourced ROS shell
 sets the package paths, so without this fixture the suite's results would depend on where it
 runs. Tests that need one of these set it themselves with ``monkeypatch``.
 """
@@ -29,6 +31,10 @@ SUITE_CONTROLS = frozenset({"TXTOOL_REQUIRE_CORPUS", "TXTOOL_UPDATE_GOLDEN", "TX
                             HYPOTHESIS_PROFILE})
 CLEARED = (
     "GITHUB_ACTIONS",
+    "GITHUB_WORKSPACE",  # the github format's paths are relative to it
+    "GITHUB_OUTPUT",  # action.yml's script appends its exit code there
+    "GITHUB_STEP_SUMMARY",
+    "RUNNER_OS",  # part of action.yml's cache key
     "NO_COLOR",
     "FORCE_COLOR",
     "CLICOLOR",
@@ -48,6 +54,13 @@ def cleared_names(environ: dict[str, str] | os._Environ[str]) -> list[str]:
     """The variables of ``environ`` that a test must not inherit."""
     own = [name for name in environ if name.startswith("TXTOOL_") and name not in SUITE_CONTROLS]
     return [*CLEARED, *own]
+
+
+def neutral(environ: dict[str, str] | os._Environ[str]) -> dict[str, str]:
+    """A copy of ``environ`` without what :func:`cleared_names` names: for an environment
+    copied when a test module is imported, before :func:`neutral_environment` runs."""
+    cleared = set(cleared_names(environ))
+    return {name: value for name, value in environ.items() if name not in cleared}
 
 
 @pytest.fixture(autouse=True)

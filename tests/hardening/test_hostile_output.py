@@ -20,11 +20,13 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
+from tests.conftest import neutral
 from tests.hardening.test_atomic_writes import DEMO
 from txtool.cli import cli
 
 ROOT = Path(__file__).resolve().parents[2]
-ENV = {**os.environ, "PYTHONPATH": str(ROOT)}
+# Read at import, before the suite's neutral environment (tests/conftest.py) applies.
+ENV = {**neutral(os.environ), "PYTHONPATH": str(ROOT)}
 FORGED_NAME = "evil\n::error file=ok.urdf,line=1::forged.urdf"
 Run = Callable[..., tuple[int, str, str]]
 

@@ -16,9 +16,11 @@ from pathlib import Path
 
 import pytest
 
+from tests.conftest import neutral
+
 ROOT = Path(__file__).resolve().parents[2]
-ENV = {**os.environ, "PYTHONPATH": str(ROOT), "LC_ALL": "C.UTF-8"}
-ENV.pop("GITHUB_ACTIONS", None)
+# Read at import, before the suite's neutral environment (tests/conftest.py) applies.
+ENV = {**neutral(os.environ), "PYTHONPATH": str(ROOT), "LC_ALL": "C.UTF-8"}
 ZERO = """\
 <robot name="arm">
   <transmission name="{name}">

@@ -17,10 +17,19 @@ from pathlib import Path
 
 import pytest
 
+from tests.conftest import neutral
+
 ROOT = Path(__file__).resolve().parents[2]
 DEMO = (ROOT / "fixtures" / "demo_robot.urdf").read_bytes()
-ENV = {**os.environ, "PYTHONPATH": str(ROOT)}
-ENV.pop("TXTOOL_NO_XACRO", None)
+# Read at import, before the suite's neutral environment (tests/conftest.py) applies.
+ENV = {**neutral(os.environ), "PYTHONPATH": str(ROOT)}
+
+
+def as_from_a_terminal() -> None:
+    """In the child, before Python starts: Ctrl-C as a terminal leaves it. A runner that
+    ignores it (a background job) would hand the ignoring down, and Python would then not
+    install its handler, which the tests below tell txtool's own handler from."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
 def program(sabotage: str) -> str:
@@ -34,7 +43,8 @@ def program(sabotage: str) -> str:
 
 def txtool_with(sabotage: str, *args: str, cwd: Path) -> tuple[int, str, str]:
     result = subprocess.run([sys.executable, "-c", program(sabotage), *args], cwd=cwd,
-                            capture_output=True, text=True, timeout=120, env=ENV)
+                            capture_output=True, text=True, timeout=120, env=ENV,
+                            preexec_fn=as_from_a_terminal)
     return result.returncode, result.stdout, result.stderr
 
 
@@ -66,7 +76,8 @@ def test_a_signal_during_a_write_leaves_no_temporary_file(tmp_path, command, num
     (tmp_path / "out.urdf").write_bytes(b"<robot name='previous'/>\n")
     before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
     process = subprocess.Popen([sys.executable, "-c", program(SLOW_FSYNC), *command],
-                               cwd=tmp_path, env=ENV, stdout=subprocess.PIPE,
+                               cwd=tmp_path, env=ENV, preexec_fn=as_from_a_terminal,
+                               stdout=subprocess.PIPE,
                                stderr=subprocess.PIPE, text=True)
     deadline = time.monotonic() + 60
     while not (tmp_path / "writing").exists():
@@ -120,6 +131,7 @@ def start_txtool(tmp_path: Path, *args: str, pause: set[str], hold: float,
     script.parent.mkdir(exist_ok=True)
     script.write_text(CONSOLE_SCRIPT.format(pause=pause, hold=hold, start=start))
     process = subprocess.Popen([sys.executable, str(script), *args], cwd=tmp_path, env=ENV,
+                               preexec_fn=as_from_a_terminal,
                                stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                                stderr=subprocess.PIPE, text=True)
     deadline = time.monotonic() + 60
@@ -174,7 +186,7 @@ def test_importing_txtool_as_a_library_leaves_ctrl_c_alone():
     program = ("import signal, txtool.cli; "
                "print(signal.getsignal(signal.SIGINT) is signal.default_int_handler)")
     result = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True,
-                            env=ENV, timeout=120)
+                            env=ENV, timeout=120, preexec_fn=as_from_a_terminal)
     assert (result.returncode, result.stdout, result.stderr) == (0, "True\n", "")
 
 
@@ -235,6 +247,7 @@ def test_the_language_server_on_standard_input_ends_on_a_signal_while_its_editor
     so a signal while the editor holds the pipe open must not end by the usual unwinding."""
     pytest.importorskip("pygls")
     process = subprocess.Popen([sys.executable, "-m", "txtool", "lsp"], cwd=tmp_path, env=ENV,
+                               preexec_fn=as_from_a_terminal,
                                stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                                stderr=subprocess.PIPE, text=True)
     with process:
@@ -276,6 +289,7 @@ def test_the_language_servers_reading_thread_leaves_the_signals_to_the_main_thre
     loop: the server would not end. Every thread but the main one blocks SIGINT and SIGTERM."""
     pytest.importorskip("pygls")
     process = subprocess.Popen([sys.executable, "-m", "txtool", "lsp"], cwd=tmp_path, env=ENV,
+                               preexec_fn=as_from_a_terminal,
                                stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                                stderr=subprocess.PIPE, text=True)
     with process:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from click.testing import CliRunner
 
 from tests.lint.conftest import BROKEN
@@ -57,8 +59,10 @@ def test_jobs_option_gives_the_same_report_and_exit_code(tmp_path):
 
 def test_progress_counts_every_process_s_files_as_they_are_done(tmp_path):
     """With worker processes, the progress counts the forks' chunks as they are done, not
-    only when their results come back: here this process is slow, so by the time it has done
-    its first chunk the fork has done many, and the count says so."""
+    only when their results come back. Files order the two processes, not a clock: the fork
+    starts once this process has taken a chunk; this process finishes that chunk only after
+    the fork has done a whole chunk (and told its count); the fork goes past its second chunk
+    only once this process has told a count, so that count is not the last one."""
     import os
     import time
 
@@ -67,15 +71,33 @@ def test_progress_counts_every_process_s_files_as_they_are_done(tmp_path):
     parent = os.getpid()
     own = [0]  # indices this process has done (a fork counts in its own copy)
     told: list[tuple[int, int]] = []
+    started = tmp_path / "parent-started"
+    counted = tmp_path / "counted"
+
+    def wait_for(ready: Callable[[], bool]) -> None:
+        deadline = time.monotonic() + 60
+        while not ready():
+            assert time.monotonic() < deadline
+            time.sleep(0.001)
 
     def work(index: int) -> int:
         if os.getpid() == parent:
-            time.sleep(0.05)
+            started.touch()
+            # 5 indices done by the fork: its first chunk of 4, and its count, are written
+            wait_for(lambda: len(list(tmp_path.glob("fork-*"))) > 4)
             own[0] += 1
+        else:
+            wait_for(started.exists)
+            if len(list(tmp_path.glob("fork-*"))) >= 8:
+                wait_for(counted.exists)
+            (tmp_path / f"fork-{index}").touch()
         return os.getpid()
 
-    pids = list(forked_map(work, 64, 2, size=4,
-                           progress=lambda done: told.append((done, own[0]))))
+    def progress(done: int) -> None:
+        told.append((done, own[0]))
+        counted.touch()
+
+    pids = list(forked_map(work, 64, 2, size=4, progress=progress))
     assert len(set(pids)) == 2  # both processes did some
     counts = [done for done, _ in told]
     assert counts == sorted(counts) and counts[-1] == 64

@@ -146,16 +146,26 @@ class Chain:
         return plucker(_axis_angle(body.axis, q), np.zeros(3)), np.concatenate(
             [body.axis, np.zeros(3)])
 
+    def kinematics(self, q: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
+        """(transform from the parent body, motion subspace) of each body at ``q``: what
+        every pass of the algorithms below at the same ``q`` shares."""
+        found = []
+        for i, body in enumerate(self.bodies):
+            joint, s = self._motion(body, q[i])
+            found.append((joint @ body.tree, s))
+        return found
+
     def inverse_dynamics(self, q: np.ndarray, v: np.ndarray, a: np.ndarray,
-                         gravity: float = GRAVITY) -> np.ndarray:
+                         gravity: float = GRAVITY,
+                         kinematics: list[tuple[np.ndarray, np.ndarray]] | None = None,
+                         ) -> np.ndarray:
         """Joint forces for accelerations ``a`` at ``(q, v)``: the recursive Newton-Euler
         algorithm (gravity as an upward acceleration of the base)."""
         n = len(self.bodies)
         up, vel, acc, force, subspace = [], [], [], [], []
         base_acc = np.array([0, 0, 0, 0, 0, gravity], dtype=float)
-        for i, body in enumerate(self.bodies):
-            joint, s = self._motion(body, q[i])
-            x = joint @ body.tree
+        for i, (body, (x, s)) in enumerate(zip(self.bodies, kinematics or self.kinematics(q),
+                                               strict=True)):
             parent_v = vel[body.parent] if body.parent >= 0 else np.zeros(6)
             parent_a = acc[body.parent] if body.parent >= 0 else base_acc
             vi = x @ parent_v + s * v[i]
@@ -174,11 +184,29 @@ class Chain:
                 force[parent] = force[parent] + up[i].T @ force[i]
         return tau
 
-    def mass_matrix(self, q: np.ndarray) -> np.ndarray:
+    def mass_matrix(self, q: np.ndarray,
+                    kinematics: list[tuple[np.ndarray, np.ndarray]] | None = None) -> np.ndarray:
+        """Column j: the joint forces of a unit acceleration of joint j at rest without
+        gravity; the recursive Newton-Euler algorithm run on every column at once (at rest,
+        no velocity term couples them)."""
         n = len(self.bodies)
-        zero = np.zeros(n)
-        return np.column_stack([self.inverse_dynamics(q, zero, e, gravity=0.0)
-                                for e in np.eye(n)])
+        unit = np.eye(n)
+        acc: list[np.ndarray] = []
+        force: list[np.ndarray] = []
+        motion = kinematics or self.kinematics(q)
+        for i, (body, (x, s)) in enumerate(zip(self.bodies, motion, strict=True)):
+            parent_a = acc[body.parent] if body.parent >= 0 else np.zeros((6, n))
+            ai = x @ parent_a + np.outer(s, unit[i])
+            acc.append(ai)
+            force.append(body.inertia @ ai)
+        mass = np.zeros((n, n))
+        for i in reversed(range(n)):
+            x, s = motion[i]
+            mass[i] = s @ force[i]
+            parent = self.bodies[i].parent
+            if parent >= 0:
+                force[parent] = force[parent] + x.T @ force[i]
+        return mass
 
     def bias(self, q: np.ndarray, v: np.ndarray) -> np.ndarray:
         """Coriolis, centrifugal and gravity forces."""
@@ -186,8 +214,10 @@ class Chain:
 
     def acceleration(self, q: np.ndarray, v: np.ndarray, tau: np.ndarray,
                      armature: np.ndarray, damping: np.ndarray) -> np.ndarray:
-        mass = self.mass_matrix(q) + np.diag(armature)
-        return np.linalg.solve(mass, tau - self.bias(q, v) - damping * v)
+        motion = self.kinematics(q)
+        mass = self.mass_matrix(q, motion) + np.diag(armature)
+        bias = self.inverse_dynamics(q, v, np.zeros(len(self.bodies)), kinematics=motion)
+        return np.linalg.solve(mass, tau - bias - damping * v)
 
 
 def rk4(chain: Chain, q: np.ndarray, v: np.ndarray, tau: np.ndarray, dt: float, steps: int,
