@@ -1,5 +1,5 @@
 """What convert and migrate write is judged by the loaders of the target: ros2_control of each
-ROS 2 distribution for ros2-p1/ros2-p2, ros_control for ros1 (txtool.transform.target_check).
+ROS 2 distribution for ros2-p1/ros2-p2, ros_control for ros1 (txtool.lint.target_check).
 
 An error of validate's rules for those readers that the input did not have is a loss: exit 1,
 nothing written, unless --allow-lossy; so is one the input had, where the reader refuses the

@@ -150,7 +150,7 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, revers
 
 def _distro(target: str, ros_distro: str | None):
     from txtool.io.xmlio import InputError
-    from txtool.transform.target_check import target_distro
+    from txtool.lint.target_check import target_distro
 
     try:
         return target_distro(None if target == "bb" else target, ros_distro)  # type: ignore[arg-type]
@@ -161,7 +161,7 @@ def _distro(target: str, ros_distro: str | None):
 def _judged(data: bytes, source, target: str, distro, path: str, xacro, stdin_filename):
     """What the target's loaders say of ``data`` that they did not say of the input."""
     from txtool.io.load import load
-    from txtool.transform.target_check import judge_converted
+    from txtool.lint.target_check import judge_converted
 
     def reload():
         return load(path, xacro=xacro, stdin_name=stdin_filename, expand=True)

@@ -70,8 +70,8 @@ def command(paths, target, check, diff, write, select, ignore, config_path, allo
     file refused for losses, 2 usage, configuration or input error.
     """
     from txtool.io.xmlio import XacroOptions
+    from txtool.lint.target_check import target_distro
     from txtool.transform.migrate import DEFAULT_HARDWARE_PLUGIN, MigrateOptions, migrate_paths
-    from txtool.transform.target_check import target_distro
 
     if reversible and target not in ("ros2-p1", "ros2-p2"):
         raise click.UsageError("--reversible needs --to ros2-p1 or --to ros2-p2 (migrating "

@@ -34,7 +34,7 @@ class FixSelection:
     select: tuple[str, ...] | None
     ignore: tuple[str, ...]
     config: str | None
-    # How validate read the files: the fixed text is checked the same way (.target_check)
+    # How validate read the files: the fixed text is checked the same way (lint.target_check)
     ros_distro: str | None = None
     xacro: XacroOptions | None = None
     no_xacro: bool = False

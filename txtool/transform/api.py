@@ -32,11 +32,11 @@ class Conversion:
 
 def converted(source: Source, to: Dialect, ros_distro: str | None = None) -> Conversion:
     """``source`` converted as ``txtool convert`` does, what is written checked for the
-    target's loaders (:mod:`.target_check`); ``ValueError`` for a ``ros_distro`` of the other
-    ROS generation."""
+    target's loaders (:mod:`txtool.lint.target_check`); ``ValueError`` for a ``ros_distro``
+    of the other ROS generation."""
     from txtool.io.encodings import document_text
+    from txtool.lint.target_check import judge_converted, target_distro
     from txtool.transform.convert import convert_source
-    from txtool.transform.target_check import judge_converted, target_distro
 
     distro = target_distro(to, ros_distro)
     done = convert_source(source, to)  # not consumed: the input is still there to compare

@@ -73,7 +73,7 @@ class MigrateOptions:
     macro_calls: MacroCalls | None = None
     reversible: bool = False
     # --ros-distro: the readers whose findings are fixed, and for whom what is written is
-    # checked (.target_check); xacro as validate runs it, for that check.
+    # checked (lint.target_check); xacro as validate runs it, for that check.
     ros_distro: str | None = None
     xacro: XacroOptions = XacroOptions()
     no_xacro: bool = False
@@ -214,10 +214,10 @@ def _judge_includers(written: list[FileResult], plan: list[tuple[str, list[Rule]
                      options: MigrateOptions) -> None:
     """Refuse a written xacro file that a robot of the run includes, where that robot's
     expansion with what would be written has an error it did not have
-    (:func:`.target_check.judge_includers`)."""
+    (:func:`txtool.lint.target_check.judge_includers`)."""
     if not written:
         return
-    from txtool.transform.target_check import Written, judge_includers, target_distro
+    from txtool.lint.target_check import Written, judge_includers, target_distro
 
     settings = {path: each for path, _, each in plan}
     found = judge_includers([Written(r.path, r.original, r.data) for r in written],
@@ -297,9 +297,9 @@ def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions,
 
     A file whose conversion would lose something is refused (left unchanged) unless
     ``allow_lossy``; losses of a file that would not change anyway are only reported. What
-    would be written is checked for the target's loaders (:mod:`.target_check`; ``settings``:
-    the file's, as validate resolves them): an error they did not have with the original is
-    a loss.
+    would be written is checked for the target's loaders (:mod:`txtool.lint.target_check`;
+    ``settings``: the file's, as validate resolves them): an error they did not have with the
+    original is a loss.
     """
     result = _migrated(path, rules, options)
     if not result.refused and result.data != result.original:
@@ -309,7 +309,7 @@ def migrate_file(path: str, rules: Sequence[Rule], options: MigrateOptions,
 
 def _judge(result: FileResult, path: str, options: MigrateOptions,
            settings: Settings | None) -> None:
-    from txtool.transform.target_check import judge, prepared, target_distro
+    from txtool.lint.target_check import judge, prepared, target_distro
 
     if settings is None:
         settings = SettingsCache(Overrides(xacro=options.xacro, no_xacro=options.no_xacro,

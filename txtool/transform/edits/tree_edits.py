@@ -19,7 +19,7 @@ from operator import attrgetter, is_not, lt, ne, or_, sub
 
 from lxml import etree
 
-from txtool.io.xmlio import InputError, parse_bytes
+from txtool.io.xmlio import InputError, attributes, parse_bytes
 from txtool.transform.edits.core import Edit, EditedText
 from txtool.transform.edits.spans import Attribute, Span, SpanIndex
 
@@ -67,7 +67,7 @@ class TreeChange:
 
     def _record(self, element: etree._Element) -> None:
         children = element[:]
-        self._before[element] = _Before(dict(element.attrib), element.text, children,
+        self._before[element] = _Before(attributes(element), element.text, children,
                                         list(map(_TAIL, children)), element.tag)
 
     def substitute(self, node: etree._Element, markup: bytes) -> None:
@@ -188,8 +188,8 @@ def _prefixed_name(element: etree._Element, key: str) -> str | None:
 
 def _attribute_edits(element: etree._Element, index: SpanIndex, before: dict[str, str],
                      text: EditedText, redeclare: bool = False) -> list[Edit]:
-    after = element.attrib
-    if len(after) == len(before) and all(before.get(k) == v for k, v in after.items()):
+    after = attributes(element)
+    if after == before:
         return []
     written = index.attributes(element)
     span = index[element]
