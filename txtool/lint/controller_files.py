@@ -19,7 +19,6 @@ import os
 import re
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
-from functools import lru_cache
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -28,6 +27,7 @@ from lxml import etree
 from txtool.io.controller_yaml import MAX_BYTES, ControllerFile, read_controller_file
 from txtool.io.load import load
 from txtool.io.xmlio import InputError, parse_bytes, read_regular
+from txtool.lint.discover import scan
 from txtool.lint.problem import InputFailure, Problem
 from txtool.model.controllers import (
     HW,
@@ -141,16 +141,30 @@ def package_root(path: str) -> str | None:
     return _package_of_folder(os.path.dirname(path))
 
 
-@lru_cache(maxsize=4096)
+_PACKAGE_OF: dict[str, str | None] = {}  # folder -> its package's folder, as found
+
+
 def _package_of_folder(folder: str) -> str | None:
-    # One look per folder (a walk finds many robot files in few folders); a relative path is
-    # looked up to the current folder, not above it.
-    if os.path.isfile(os.path.join(folder or ".", "package.xml")):
-        return os.path.join(folder, "") if folder not in ("", ".") else ""
-    parent = os.path.dirname(folder)
-    if folder in ("", ".") or parent == folder:
-        return None
-    return _package_of_folder(parent)
+    # One look per folder (a walk finds many robot files in few folders), up the tree in a
+    # loop (a folder may be a thousand deep); a relative path is looked up to the current
+    # folder, not above it.
+    passed = []
+    found: str | None = None
+    while folder not in _PACKAGE_OF:
+        passed.append(folder)
+        if os.path.isfile(os.path.join(folder or ".", "package.xml")):
+            found = os.path.join(folder, "") if folder not in ("", ".") else ""
+            break
+        parent = os.path.dirname(folder)
+        if folder in ("", ".") or parent == folder:
+            break
+        folder = parent
+    else:
+        found = _PACKAGE_OF[folder]
+    if len(_PACKAGE_OF) > 4096:
+        _PACKAGE_OF.clear()
+    _PACKAGE_OF.update(dict.fromkeys(passed, found))
+    return found
 
 
 # Folders of a colcon or catkin workspace that hold copies of its packages' files.
@@ -166,14 +180,15 @@ def controller_files_under(top: str, *, one_package: bool = False) -> list[str]:
     found: list[str] = []
     scanned = 0
     start = top or "."
-    for folder, subfolders, files in os.walk(start):
-        subfolders[:] = sorted(d for d in subfolders
-                               if not d.startswith(".") and d not in BUILD_FOLDERS)
+    for folder, subfolders, entries in scan(start):  # (no recursion: folders may nest deep)
+        files = [entry.name for entry in entries]
+        subfolders[:] = [d for d in subfolders
+                         if not d.name.startswith(".") and d.name not in BUILD_FOLDERS]
         if any(marker in files for marker in IGNORE_MARKERS) or (
                 one_package and folder != start and "package.xml" in files):
             subfolders[:] = []
             continue
-        for name in sorted(files):
+        for name in files:
             if not name.endswith(YAML_SUFFIXES):
                 continue
             scanned += 1
@@ -302,7 +317,7 @@ def controller_problems(
     the packages of the robot files the walks found (``walked``), judged against those robot
     files. Each file is judged against the robot having most of the joints it claims. A named
     file that cannot be read is an :class:`InputFailure`."""
-    _package_of_folder.cache_clear()  # files may have changed since the last run
+    _PACKAGE_OF.clear()  # files may have changed since the last run
     pairs: dict[str, list[tuple[str, Settings]]] = {}
     for path in named:
         pairs.setdefault(path, []).extend(robots)
