@@ -91,9 +91,9 @@ def test_bash_completes_through_the_script_as_installed(run, tmp_path):
 
 def test_rule_codes_complete_for_select_ignore_and_rules():
     assert complete("txtool validate --select TX30") == [
-        f"plain,TX30{n}" for n in range(6)]
+        f"plain,TX30{n}" for n in range(7)]
     assert complete("txtool validate --ignore TX1,TX10") == [
         f"plain,TX1,TX10{n}" for n in range(10)]  # the last of a comma-separated list
-    assert complete("txtool migrate --select tx30") == [f"plain,TX30{n}" for n in range(6)]
+    assert complete("txtool migrate --select tx30") == [f"plain,TX30{n}" for n in range(7)]
     assert complete("txtool rules TX10")[:2] == ["plain,TX100", "plain,TX101"]
     assert complete("txtool rules zero") == ["plain,zero-reduction"]

@@ -190,4 +190,6 @@ def test_every_demo_heading_is_a_command_that_runs_in_the_copied_folder(tmp_path
             continue
         done = subprocess.run(step.split(), cwd=target, env=env, capture_output=True, text=True,
                               timeout=120)
-        assert done.returncode in (0, 1) and done.stderr == "", step
+        # (a conversion names the placeholder hardware plugin of the block it generates)
+        said = done.stderr.splitlines()
+        assert done.returncode in (0, 1) and all(line.startswith("warning: ") for line in said), step

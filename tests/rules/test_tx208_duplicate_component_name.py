@@ -74,7 +74,9 @@ def test_a_xacro_macro_called_twice_writes_two_blocks_of_one_name():
     """
     found = problems(xml, filename="robot.urdf.xacro", select=["TX208"])
     assert [(p.code, p.severity) for p in found] == [("TX208", "error")]
-    assert found[0].message.endswith("(after xacro expansion)")
+    # found in the expansion: said at the block in the macro, with the call that made it
+    assert [note.message for note in found[0].related] == [
+        "expanded from the call of macro 'hw' at robot.urdf.xacro:12"]
 
 
 def test_validate_exits_1(tmp_path):
