@@ -8,12 +8,12 @@ import sys
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from txtool.mechanics import points
 from txtool.mechanics.equivalence import _Loaded
-from txtool.mechanics.formulas import FORMULAS, formula_key
+from txtool.mechanics.formulas import FORMULAS, formula_key, read_parameters
 from txtool.mechanics.maps import from_effective
 from txtool.mechanics.points import ZeroReduction
 from txtool.mechanics.samples import axis, joint_samples
@@ -66,6 +66,35 @@ def test_python_floats_map_as_numpy_does(load, quantity, pairs):
         return  # the equivalence check maps such a case with IEEE division (points)
     assert all(same_bits(x, y) for a, b in zip(ours_back, back, strict=True)
                for x, y in zip(a, b, strict=True))
+
+
+@settings(max_examples=300, deadline=None)
+@given(loaded(), loaded(), st.lists(st.tuples(FINITE, FINITE), min_size=1, max_size=5))
+def test_parameters_read_alike_map_every_value_alike(load, other, pairs):
+    """The equivalence check maps no samples where both sides read the same parameters: a
+    simple transmission's reduction moved from the actuator (ROS 1) to the joint (ROS 2)
+    reads alike, and two sides that read alike must map every value to the same bits."""
+    eff = load.eff
+    moved = Effective(eff.name, eff.kind, eff.joints, eff.actuators,
+                      (1.0,) * len(eff.joints), tuple(a * j for a, j in zip(
+                          eff.actuator_reduction, eff.joint_reduction, strict=True)),
+                      eff.joint_offset, "ros1")
+    assume(0.0 not in moved.joint_reduction)  # a product that underflows loads nowhere
+    assert eff.kind != "simple" or reads(eff) == reads(moved)
+    rows = [row[: len(load.joints)] for row in pairs]
+    for second in (moved, other.eff):
+        if second.kind != eff.kind or reads(second) != reads(eff):
+            continue
+        for quantity in ("position", "velocity", "effort"):
+            ours = load.joint_to_actuator(quantity, rows)
+            theirs = _Loaded(second, load.convention).joint_to_actuator(quantity, rows)
+            assert all(same_bits(x, y) for a, b in zip(ours, theirs, strict=True)
+                       for x, y in zip(a, b, strict=True))
+
+
+def reads(eff: Effective) -> tuple:
+    return read_parameters(eff.kind, eff.actuator_reduction, eff.joint_reduction,
+                           eff.joint_offset)
 
 
 @settings(max_examples=300, deadline=None)

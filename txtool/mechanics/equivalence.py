@@ -12,7 +12,9 @@ conversion differ in effort, as ros_control and ros2_control do.
 
 The handful of sampled values is mapped in plain Python floats (the same IEEE operations as
 :mod:`txtool.mechanics.maps`, so the same bits, with :mod:`txtool.mechanics.points` where a
-division by zero needs IEEE's infinities), so ``roundtrip`` needs no numpy.
+division by zero needs IEEE's infinities), so ``roundtrip`` needs no numpy. Two sides that
+read the same parameters (bit for bit) through the same formulas are equivalent without
+sampling: every sample would map to the same bits.
 """
 
 from __future__ import annotations
@@ -23,7 +25,7 @@ from dataclasses import dataclass, field
 from typing import Literal, NamedTuple
 
 from txtool.mechanics.convention import effort_convention
-from txtool.mechanics.formulas import FORMULAS, formula_key
+from txtool.mechanics.formulas import FORMULAS, formula_key, read_parameters
 from txtool.mechanics.samples import Sample, joint_samples
 from txtool.model.core import Transmission
 from txtool.model.robot import JointInfo
@@ -107,6 +109,14 @@ class _Loaded(NamedTuple):
     def actuators(self) -> tuple[str, ...]:
         return self.eff.actuators
 
+    def reads(self) -> tuple:
+        """What its joint-to-actuator maps read: members in order, formulas, parameters."""
+        eff = self.eff
+        formulas = tuple(FORMULAS[formula_key(eff.kind, quantity, self.convention)][1]
+                         for quantity in QUANTITIES)
+        return (eff.joints, eff.actuators, formulas, read_parameters(
+            eff.kind, eff.actuator_reduction, eff.joint_reduction, eff.joint_offset))
+
     def joint_to_actuator(self, quantity: str, rows: list[Sample]) -> list[Sample]:
         eff = self.eff
         formula = FORMULAS[formula_key(eff.kind, quantity, self.convention)][1]
@@ -148,6 +158,11 @@ def compare_pair(
     mismatch = _name_mismatch(ma, mb)
     if mismatch:
         return EquivalenceRow(key, ta.name, tb.name, "differs", reason=mismatch)
+    if ma.reads() == mb.reads():
+        # The same formulas on the same bits map every sample to the same bits: sampling
+        # would find a difference of 0 everywhere (a conversion most often gives this).
+        return EquivalenceRow(key, ta.name, tb.name, "equivalent",
+                              dict.fromkeys(QUANTITIES, 0.0))
     differences, reason = _compare_maps(ma, mb, joints)
     status: Status = "differs" if reason else "equivalent"
     return EquivalenceRow(key, ta.name, tb.name, status, differences, reason)

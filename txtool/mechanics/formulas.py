@@ -121,6 +121,16 @@ FORMULAS: dict[tuple[str, str], tuple[Formula, Formula]] = {
 }
 
 
+def read_parameters(kind: str, ar: Red, jr: Red, off: Red) -> tuple[tuple[str, ...], ...]:
+    """What the formulas of ``kind`` read of ``(ar, jr, off)``, bit for bit: two sets of
+    parameters that read the same map every value to the same bits. A simple transmission's
+    formulas read its two reductions only as their product ``ar[0] * jr[0]`` (so ROS 1's
+    reduction on the actuator and ROS 2's on the joint read the same)."""
+    if kind == "simple":
+        return (float(ar[0] * jr[0]).hex(),), (float(off[0]).hex(),)
+    return tuple(tuple(float(v).hex() for v in values) for values in (ar, jr, off))
+
+
 def formula_key(kind: str, quantity: str, convention: str) -> tuple[str, str]:
     """The :data:`FORMULAS` key of ``quantity`` (effort aliases and absolute position
     included) for a transmission of ``kind`` under an effort ``convention``."""
