@@ -9,6 +9,7 @@ process's own limits (time, memory, nodes, output, the variables that set them) 
 
 from __future__ import annotations
 
+import sys
 import time
 from pathlib import Path
 
@@ -35,6 +36,9 @@ from txtool.io.xacro_sandbox import DEFAULT_MEMORY_MB, DEFAULT_TIMEOUT, limits
 from txtool.io.xmlio import XacroOptions
 
 OK = "ok"
+# The time bounds are the shipped program's; under a line tracer (coverage, as .ci/run measures
+# the suite) every Python line of the evaluator costs two to three times as much.
+TRACED = 3.0 if sys.gettrace() is not None or "coverage" in sys.modules else 1.0
 W, L, B, D = MAX_WIDTH, MAX_LENGTH, MAX_INT_BITS, MAX_DIGITS
 
 # (expression, OK or a part of the refusal): for each bound the value just inside, at, and
@@ -134,7 +138,7 @@ def test_each_bound_inside_at_and_outside(expression, expected):
     start = time.process_time()
     said = refusal_of(expression)
     assert (said == OK) if expected == OK else (expected in said), said
-    assert time.process_time() - start < 1.0
+    assert time.process_time() - start < 1.0 * TRACED
 
 
 def cost_of(expression: str) -> int:
@@ -185,7 +189,7 @@ def test_work_past_the_budget_stops_within_a_second(expression):
     start = time.process_time()
     said = refusal_of(expression)
     assert said in (OK, f"{MAX_WORK} steps of work") or "more than" in said
-    assert time.process_time() - start < 1.5
+    assert time.process_time() - start < 1.5 * TRACED
 
 
 # -- xacro.tokenize: the separator is text ---------------------------------------------------
@@ -201,7 +205,7 @@ def test_work_past_the_budget_stops_within_a_second(expression):
 def test_tokenize_splits_on_the_characters_of_its_separator(text, sep, expected):
     start = time.process_time()
     assert tokenize(text, sep) == expected
-    assert time.process_time() - start < 0.1
+    assert time.process_time() - start < 0.1 * TRACED
 
 
 def test_tokenize_agrees_with_upstream_for_plain_separators():
@@ -282,7 +286,7 @@ def test_a_small_file_is_refused_or_expands_within_a_second(repo, body, expected
     text, _ = guarded(repo, body)
     elapsed = time.process_time() - start
     assert (not text.startswith("refused")) if expected == OK else (expected in text), text
-    assert elapsed < 1.5
+    assert elapsed < 1.5 * TRACED
 
 
 def test_the_node_budget_inside_at_and_outside(repo):
