@@ -582,7 +582,7 @@ def attributes(element: etree._Element) -> dict[str, str]:
     """An element's attributes by name, in document order. lxml's ``attrib`` (its ``items``,
     ``values``, ``dict(...)``) finds each value by walking the attribute list from its start,
     which is quadratic in their number; an XPath reads them in one walk."""
-    return {value.attrname: str(value) for value in element.xpath("@*")}
+    return dict(zip(element.keys(), element.xpath("@*", smart_strings=False), strict=True))
 
 
 def local(element: etree._Element) -> str:
