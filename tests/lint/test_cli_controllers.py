@@ -93,3 +93,34 @@ def test_hostile_controller_files(tmp_path, monkeypatch):
     assert code == 2
     assert err.splitlines()[0] == (
         "txtool: deep.yaml: nested too deeply to be a controller configuration")
+
+
+def test_a_robot_the_run_cannot_expand_may_be_the_one_the_controllers_are_for(
+        tmp_path, monkeypatch):
+    """A package holds a lower body (joint j) and a full robot whose xacro needs a package the
+    run lacks; its controllers drive j and an arm joint: they are the full robot's, so the arm
+    joint is not reported as missing from the lower body. Once the full robot is gone, the
+    lower body is the only candidate and the missing joint is the manager's refusal."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "package.xml").write_text('<package format="3"><name>p</name></package>')
+    (tmp_path / "urdf").mkdir()
+    (tmp_path / "config").mkdir()
+    (tmp_path / "urdf" / "lower_body.urdf").write_text(ROBOT)
+    (tmp_path / "urdf" / "full.urdf.xacro").write_text(
+        '<robot name="full" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="$(find hand_description)/urdf/hand.xacro"/>\n</robot>\n')
+    both = CONTROLLERS.replace("position_controllers/JointGroupPosition",
+                               "effort_controllers/JointGroupEffort").replace(
+        "joints: [j]", "joints: [j, arm_1_joint]")
+    (tmp_path / "config" / "controllers.yaml").write_text(both)
+    code, out, err = run(".", "--format", "concise", folder=tmp_path)
+    assert "TX5" not in out and (code, err) == (0, "")
+    assert out.splitlines()[0] == ("urdf/full.urdf.xacro:2:28: TX002 not expanded, checked as "
+                                   "written only")
+    (tmp_path / "urdf" / "full.urdf.xacro").unlink()
+    code, out, err = run(".", folder=tmp_path)
+    assert (code, err) == (1, "")
+    assert out.splitlines()[0].startswith(
+        "config/controllers.yaml:4:3: error TX500 controller-joint-not-driven: controller 'arm' "
+        "(effort_controllers/JointGroupEffortController): joint 'arm_1_joint' is not a joint of "
+        "the robot")

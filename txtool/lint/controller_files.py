@@ -296,7 +296,9 @@ def pick_robot(controllers: list[Controller], generation: str,
     """The robot file the controllers are for: of the robots that say what they provide for
     ``generation``, the one having the most of the joints the controllers claim (the first of
     equals), and at least one of them when they claim any; None when no robot fits (the
-    controllers are for a robot not checked)."""
+    controllers are for a robot not checked). When a candidate could not be read (a xacro
+    robot whose expansion needs a package or an argument the run lacks), the best of the others
+    is chosen only if it has every claimed joint: the file may be that unread robot's."""
     claimed = {joint for c in controllers for joint in c.joints}
     best, score = None, 0 if claimed else -1
     for path, provision in robots.items():
@@ -305,7 +307,8 @@ def pick_robot(controllers: list[Controller], generation: str,
         here = len(claimed & provision.joints)
         if here > score:
             best, score = path, here
-    return best
+    unread = any(provision is None for provision in robots.values())
+    return None if unread and score < len(claimed) else best
 
 
 def controller_problems(
