@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, Any
 
 from lxml import etree
 
+from txtool.io.install_layout import installed_source
 from txtool.io.packages import (
     PackageNotFound,
     enclosing_manifest,
@@ -140,7 +141,11 @@ def _checked_parse(original: Callable[..., Any], xacro: Any, guard: XacroGuard |
             guard.check_readable(path, "include")
         given = top is not None and os.path.abspath(path) == top[0]
         if not given and not os.path.exists(path):
-            return original(inp, filename)  # xacro reports a missing file its own way
+            path = installed_source(path) or ""  # the checkout of a package laid out anew
+            if not path:
+                return original(inp, filename)  # xacro reports a missing file its own way
+            if guard is not None:
+                guard.check_readable(path, "include")
         try:
             data = _given(top[1], budget) if given and top else read_regular(path, budget)
         except TooLarge:

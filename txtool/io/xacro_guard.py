@@ -37,6 +37,7 @@ from typing import Any
 from xml.parsers.expat import ExpatError
 from xml.parsers.expat import errors as expat_errors
 
+from txtool.io.install_layout import installed_source
 from txtool.io.packages import enclosing_manifest, is_within, locate_package, workspace_roots
 from txtool.io.xacro_eval import (
     EvalRefused,
@@ -211,6 +212,9 @@ class XacroGuard:
 
         path = xacro.abs_filename_spec(filename)
         self.check_readable(path, "load_yaml")
+        if not os.path.exists(path):  # the checkout of a package its CMake lays out anew
+            path = installed_source(path) or path
+            self.check_readable(path, "load_yaml")
         key = os.path.realpath(path)
         if key not in self.yaml:  # no expression can change a value it loaded: shared
             self.yaml[key] = self._read_yaml(filename, path)

@@ -292,23 +292,27 @@ def _expression_interface(path: str) -> str | None:
 
 
 def pick_robot(controllers: list[Controller], generation: str,
-               robots: dict[str, Provision | None]) -> str | None:
+               robots: dict[str, Provision | None], near: str = "") -> str | None:
     """The robot file the controllers are for: of the robots that say what they provide for
-    ``generation``, the one having the most of the joints the controllers claim (the first of
-    equals), and at least one of them when they claim any; None when no robot fits (the
-    controllers are for a robot not checked). When a candidate could not be read (a xacro
-    robot whose expansion needs a package or an argument the run lacks), the best of the others
-    is chosen only if it has every claimed joint: the file may be that unread robot's."""
+    ``generation``, the one having the most of the joints the controllers claim, and at least
+    one of them when they claim any; of equals, the nearest to the controller file ``near``
+    (the longest common folder: its own package before a sibling, a sibling before another
+    robot of the workspace), then the first. None when no robot fits (the controllers are for
+    a robot not checked). When a candidate could not be read (a xacro robot whose expansion
+    needs a package or an argument the run lacks), the best of the others is chosen only if it
+    has every claimed joint: the file may be that unread robot's."""
     claimed = {joint for c in controllers for joint in c.joints}
-    best, score = None, 0 if claimed else -1
+    folder = os.path.dirname(os.path.abspath(near)) if near else ""
+    best, rank = None, (-1, -1)
     for path, provision in robots.items():
         if provision is None or not provision.has(generation):
             continue
-        here = len(claimed & provision.joints)
-        if here > score:
-            best, score = path, here
+        shared = os.path.commonpath([folder, os.path.abspath(path)]) if folder else ""
+        here = (len(claimed & provision.joints), len(shared.split(os.sep)) if shared else 0)
+        if here > rank and (here[0] or not claimed):
+            best, rank = path, here
     unread = any(provision is None for provision in robots.values())
-    return None if unread and score < len(claimed) else best
+    return None if unread and rank[0] < len(claimed) else best
 
 
 def controller_problems(
@@ -350,7 +354,7 @@ def controller_problems(
                 provisions[robot] = robot_provision(robot, settings)
         controllers = controllers_of(file, exported_controllers(package_root(path)))
         chosen = pick_robot(controllers, file.generation,
-                            {robot: provisions[robot] for robot, _ in candidates})
+                            {robot: provisions[robot] for robot, _ in candidates}, near=path)
         if chosen is None:
             continue
         ctx = ControllerContext(path, chosen, file.generation, controllers, provisions[chosen])
