@@ -124,3 +124,23 @@ def test_a_robot_the_run_cannot_expand_may_be_the_one_the_controllers_are_for(
         "config/controllers.yaml:4:3: error TX500 controller-joint-not-driven: controller 'arm' "
         "(effort_controllers/JointGroupEffortController): joint 'arm_1_joint' is not a joint of "
         "the robot")
+
+
+def test_of_robots_with_the_same_joints_the_controllers_own_package_is_chosen(
+        tmp_path, monkeypatch):
+    """A repository of examples (ros2_control_demos): every example's robot has joint j, and
+    each example's bringup/config holds its own controllers. Each file is judged against the
+    robot of its own example, not the first robot of the walk."""
+    monkeypatch.chdir(tmp_path)
+    for example, interface in (("example_1", "Effort"), ("example_2", "Position")):
+        (tmp_path / example / "urdf").mkdir(parents=True)
+        (tmp_path / example / "config").mkdir()
+        (tmp_path / example / "package.xml").write_text(
+            f'<package format="3"><name>{example}</name></package>')
+        (tmp_path / example / "urdf" / "robot.urdf").write_text(
+            ROBOT.replace("EffortJointInterface", f"{interface}JointInterface"))
+        (tmp_path / example / "config" / "controllers.yaml").write_text(
+            CONTROLLERS.replace("position_controllers/JointGroupPosition",
+                                f"{interface.lower()}_controllers/JointGroup{interface}"))
+    code, out, err = run(".", folder=tmp_path)
+    assert (code, out, err) == (0, "No problems in 2 files.\n", "")
