@@ -47,13 +47,18 @@ PACKAGE = """<?xml version="1.0"?>
 """
 
 
-def findings(section, robot=None) -> list[Finding]:
+def findings(section, robot=None, launch=None) -> list[Finding]:
     """The findings of ``txtool validate FILE`` for an example (a file named on the command
-    line), with the default configuration. A heading ``(BUILD package, PATH)`` writes the
-    example to PATH in a package whose package.xml builds with BUILD (``ament_cmake``,
-    ``catkin``). With a ``robot`` section (a rule about controllers), the example is a
-    controller file: ``txtool validate ROBOT --controllers EXAMPLE``."""
+    line), with the default configuration; a message names the example's other files from
+    its folder. A heading ``(BUILD
+    package, PATH)`` writes the example to PATH in a package whose package.xml builds with
+    BUILD (``ament_cmake``, ``catkin``). With a ``robot`` section (a rule about controllers),
+    the example is a controller file: ``txtool validate ROBOT --controllers EXAMPLE``; a
+    ``launch`` section is written beside them."""
     with tempfile.TemporaryDirectory(prefix="txtool-rule-doc-") as folder:
+        if launch is not None:
+            (Path(folder) / launch.filename).parent.mkdir(parents=True, exist_ok=True)
+            (Path(folder) / launch.filename).write_text(launch.text, encoding="utf-8")
         name = section.filename or "robot.urdf"
         if ", " in name:
             build, name = name.split(", ", 1)
@@ -70,17 +75,18 @@ def findings(section, robot=None) -> list[Finding]:
         else:
             settings = resolve(Config.model_validate({}), origin="defaults", base=Path(folder))
             found = lint_file(str(path), settings, named=True)
-    return [Finding(p.line, p.column, p.severity, p.code, " ".join(p.message.split()))
-            for p in found]
+    return [Finding(p.line, p.column, p.severity, p.code,
+                    " ".join(p.message.replace(folder + os.sep, "").split())) for p in found]
 
 
 @pytest.mark.parametrize("code", RULES)
 def test_the_failing_example_gives_the_expected_finding_and_the_passing_example_none(code):
     by_label = {section.label: section for section in sections(all_rules()[code].doc)}
     expected = expected_finding(by_label["Expected finding"].text)
-    robot = by_label.get("Robot")
-    assert expected in findings(by_label["Failing example"], robot)
-    assert [f for f in findings(by_label["Passing example"], robot) if f.code == code] == []
+    robot, launch = by_label.get("Robot"), by_label.get("Launch")
+    assert expected in findings(by_label["Failing example"], robot, launch)
+    assert [f for f in findings(by_label["Passing example"], robot, launch)
+            if f.code == code] == []
 
 
 def test_the_layout_check_names_what_is_missing():

@@ -165,6 +165,11 @@ TABLE: dict[str, tuple[str, str, str]] = {
                         "c:\n  ros__parameters:\n    joint: j\n"), "controllers.yaml"),
     "TX503": ("warning", (robot(ros1()), "c:\n  type: effort_controllers/JointEfortController\n"
                           "  joint: j\n"), "controllers.yaml"),
+    # ... and a launch file of its package starting two of them (launch/bringup.launch).
+    "TX504": ("error", (robot(ros1()), "a:\n  type: effort_controllers/JointEffortController\n"
+                        "  joint: j\nb:\n  type: effort_controllers/JointPositionController\n"
+                        "  joint: j\n", '<launch><node pkg="controller_manager" type="spawner" '
+                        'name="s" args="a b"/></launch>'), "controllers.yaml"),
 }
 
 
@@ -186,6 +191,10 @@ def test_each_rule_reports_its_registered_severity(code, tmp_path):
 
         (tmp_path / "r.urdf").write_text(document[0])
         (tmp_path / filename).write_text(document[1])
+        if len(document) > 2:
+            (tmp_path / "package.xml").write_text('<package format="3"><name>p</name></package>')
+            (tmp_path / "launch").mkdir()
+            (tmp_path / "launch" / "bringup.launch").write_text(document[2])
         found = [p for p in txtool.validate([str(tmp_path / "r.urdf")],
                                             controllers=[str(tmp_path / filename)])
                  if p.code == code]

@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING
 from lxml import etree
 
 from txtool.io.controller_yaml import MAX_BYTES, ControllerFile, read_controller_file
+from txtool.io.launch_spawners import Spawn, launch_files, spawns_in
 from txtool.io.load import load
 from txtool.io.xmlio import InputError, parse_bytes, read_regular
 from txtool.lint.discover import scan
@@ -127,6 +128,8 @@ class ControllerContext:
     generation: str
     controllers: list[Controller]
     provision: Provision
+    # The spawners of the launch files of the controller file's package and the robot's.
+    spawns: tuple[Spawn, ...] = ()
 
     def problem(self, code: str, controller: Controller, message: str) -> Problem:
         """A finding at the controller's name."""
@@ -287,8 +290,13 @@ def _expression_interface(path: str) -> str | None:
     if match is None:
         return None
     line = data.count(b"\n", 0, match.start()) + 1
-    shown = os.path.relpath(path)
-    return f"{path if shown.startswith('..') else shown}:{line}"
+    return f"{shown(path)}:{line}"
+
+
+def shown(path: str) -> str:
+    """``path`` as a message names another file: from the current folder, unless outside it."""
+    relative = os.path.relpath(path)
+    return path if relative.startswith("..") else relative
 
 
 def pick_robot(controllers: list[Controller], generation: str,
@@ -357,8 +365,16 @@ def controller_problems(
                             {robot: provisions[robot] for robot, _ in candidates}, near=path)
         if chosen is None:
             continue
-        ctx = ControllerContext(path, chosen, file.generation, controllers, provisions[chosen])
+        ctx = ControllerContext(path, chosen, file.generation, controllers, provisions[chosen],
+                                spawns_near(path, chosen))
         yield judged(ctx, settings_for(path))
+
+
+def spawns_near(*files: str) -> tuple[Spawn, ...]:
+    """The spawners of the launch files of the packages holding ``files``, each file once."""
+    packages = dict.fromkeys(p for p in map(package_root, files) if p is not None)
+    launches = dict.fromkeys(launch for package in packages for launch in launch_files(package))
+    return tuple(spawn for launch in launches for spawn in spawns_in(launch))
 
 
 def judged(ctx: ControllerContext, settings: Settings) -> list[Problem]:

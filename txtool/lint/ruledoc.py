@@ -23,8 +23,12 @@ SECTIONS = ("What it does", "Why it matters", "Loader", "Failing example", "Expe
 _EXAMPLES = ("Failing example", "Passing example")
 # A rule about a robot with its controllers (TX5xx) shows the robot its examples control in a
 # section of its own after ``Loader``: ``Robot (urdf/robot.urdf)::``.
+# A rule about the controllers a launch file starts (TX504) shows it after the robot:
+# ``Launch (launch/bringup.launch.py)::``.
 ROBOT = "Robot"
-_LABEL = re.compile(r"^(" + "|".join((*SECTIONS, ROBOT)) + r")(?: \(([^)]*)\))?(::?)(?:[ \t]+|$)")
+LAUNCH = "Launch"
+_LABEL = re.compile(r"^(" + "|".join((*SECTIONS, ROBOT, LAUNCH)) +
+                    r")(?: \(([^)]*)\))?(::?)(?:[ \t]+|$)")
 _SOURCE_FILE = re.compile(r"\b[\w./-]*\w\.(?:cpp|hpp|h|cc|py|ex|exs|xml)\b")
 _FINDING = re.compile(r"``(\d+):(\d+) (error|warning|info) (TX\d{3}) ([^`]+)``")
 _ROLE = re.compile(r":(?:func|mod|class|meth|data|attr):`~?([^`]+)`")
@@ -50,7 +54,8 @@ def markdown(rule: Any, *, heading: str = "**") -> str:
             out += ["```", ""]
             fenced = False
         if line.rstrip().endswith("::") and not fenced:
-            fence = "```yaml" if ".yaml)" in line or ".yml)" in line else "```xml"
+            fence = ("```yaml" if ".yaml)" in line or ".yml)" in line else
+                     "```python" if ".py)" in line else "```xml")
             out += [line.rstrip()[:-1], "", fence]
             fenced = True
             continue
@@ -60,7 +65,10 @@ def markdown(rule: Any, *, heading: str = "**") -> str:
         out.append(line[4:] if fenced else line)
     if fenced:
         out.append("```")
-    return "\n".join(out).replace("```xml\n\n", "```xml\n").replace("```yaml\n\n", "```yaml\n")
+    text = "\n".join(out)
+    for fence in ("```xml", "```yaml", "```python"):
+        text = text.replace(f"{fence}\n\n", f"{fence}\n")
+    return text
 
 
 def _inline(text: str) -> str:
@@ -98,7 +106,7 @@ def sections(doc: str) -> list[Section]:
             found[-1][2].append(line)
     result = []
     for label, filename, lines in found:
-        if label in (*_EXAMPLES, ROBOT):
+        if label in (*_EXAMPLES, ROBOT, LAUNCH):
             text = textwrap.dedent("\n".join(lines)).strip("\n") + "\n"
         else:
             text = " ".join(" ".join(lines).split())
@@ -125,6 +133,8 @@ def layout_problems(code: str, doc: str) -> list[str]:
     labels = [s.label for s in found]
     if labels[3:4] == [ROBOT]:
         labels.pop(3)
+        if labels[3:4] == [LAUNCH]:
+            labels.pop(3)
     if labels != list(SECTIONS):
         problems.append(f"sections {labels}, expected {list(SECTIONS)} in that order, each once")
     by_label = {s.label: s for s in found}

@@ -74,6 +74,7 @@ RULE_MODULES: tuple[str, ...] = (
     "tx501_controller_command_interface",
     "tx502_controller_state_interface",
     "tx503_unknown_controller_type",
+    "tx504_controllers_claim_one_interface",
 )
 
 
