@@ -149,3 +149,38 @@ async def _edits(editor: Editor, workspace: Path) -> None:
     assert await editor.diagnostics(yaml, None) == []
     editor.text_document_did_change(full_change(robot, 3, position + "\n"))
     assert codes(await editor.diagnostics(robot, 3)) == []
+
+
+def test_a_robot_in_no_package_is_paired_with_nothing(tmp_path: Path) -> None:
+    """Without a package.xml above it, a robot's folder may be any folder (a home folder):
+    no walk for controller files starts there."""
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "arm.urdf").write_text(ROBOT)
+    (tmp_path / "controllers.yaml").write_text(CONTROLLERS)
+    asyncio.run(asyncio.wait_for(_lone(tmp_path), 90))
+
+
+async def _lone(folder: Path) -> None:
+    editor = Editor()
+    await editor.start_io(sys.executable, "-m", "txtool", "lsp", cwd=str(ROOT))
+    server = editor._server
+    assert server is not None
+    try:
+        await asyncio.wait_for(editor.initialize_async(lsp.InitializeParams(
+            capabilities=lsp.ClientCapabilities(),
+            workspace_folders=[lsp.WorkspaceFolder(uri=folder.as_uri(), name="f")])), WAIT)
+        editor.initialized(lsp.InitializedParams())
+        robot, yaml = (folder / "arm.urdf").as_uri(), (folder / "controllers.yaml").as_uri()
+        _open(editor, robot, ROBOT)
+        _open(editor, yaml, CONTROLLERS)
+        # Each publishes itself, with nothing, and nothing else is published between.
+        published = [await asyncio.wait_for(editor.published.get(), WAIT) for _ in range(2)]
+        assert [(p.uri, p.version, list(p.diagnostics)) for p in published] == [
+            (robot, 1, []), (yaml, 1, [])]
+        await asyncio.wait_for(editor.shutdown_async(None), WAIT)
+        editor.exit(None)
+        await asyncio.wait_for(server.wait(), WAIT)
+    finally:
+        if server.returncode is None:
+            server.kill()
+        await editor.stop()

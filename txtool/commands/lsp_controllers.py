@@ -20,7 +20,7 @@ from __future__ import annotations
 import itertools
 import os
 import re
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 
 from txtool.commands.lsp_document import Options, encode, load_buffer, settings_for
@@ -33,6 +33,7 @@ from txtool.lint.controller_files import (
     controller_files_under,
     controllers_of,
     exported_controllers,
+    forget_packages,
     judged,
     package_root,
     pick_robot,
@@ -63,10 +64,11 @@ def is_controller_candidate(path: str) -> bool:
 
 def family_folders(path: str) -> list[str]:
     """The package folders of the family of the file at ``path`` (absolute): its package and
-    those beside it sharing its name's stem; the file's own folder when it is in no package."""
+    those beside it sharing its name's stem; none when it is in no package (its folder may be
+    any folder: no walk starts there)."""
     package = package_root(path)
     if package is None:
-        return [os.path.dirname(path)]
+        return []
     package = package.rstrip(os.sep) or os.sep
     stem = os.path.basename(package).split("_")[0]
     parent = os.path.dirname(package)
@@ -83,11 +85,13 @@ def family_folders(path: str) -> list[str]:
     return [package, *beside[:MAX_PACKAGES - 1]]
 
 
-def family_findings(path: str, buffers: Mapping[str, str], root: str, options: Options
-                    ) -> Family:
+def family_findings(path: str, buffers: Mapping[str, str], root: str, options: Options,
+                    serves: Callable[[str], bool] = lambda folder: True) -> Family:
     """The TX5xx findings of the family of the file at ``path`` (absolute); ``buffers``: the
-    text of each file the editor has open, by path."""
-    folders = family_folders(path)
+    text of each file the editor has open, by path; ``serves``: whether a package folder may
+    be read (over TCP, only inside the client's folders)."""
+    forget_packages()  # a package.xml may have come or gone since the last check
+    folders = [folder for folder in family_folders(path) if serves(folder)]
     family = Family(folders)
     family.controller_files = _controller_files(folders, buffers)
     if not family.controller_files:

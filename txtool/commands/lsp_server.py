@@ -1,13 +1,16 @@
 """``txtool lsp``'s language server (pygls): diagnostics, quick fixes and hover for robot files.
 
 Each opened, changed or saved buffer is checked as ``txtool validate`` checks the file
-(:mod:`txtool.commands.lsp_document`) and its problems are published; a fixable problem gets
+(:mod:`txtool.commands.lsp_document`) and its problems are published; for a robot or controller
+file, so are the controller findings of its package family in the controller files and the
+robots they are judged against (:mod:`txtool.commands.lsp_controllers`); a fixable problem gets
 ``txtool migrate``'s fix as a quick fix, and the document a "fix all"; a hover on a
 ``<transmission>`` shows what each loader reads of it (:mod:`txtool.commands.lsp_hover`).
 
 Only documents the client opened are served: the server never reads a file for a document
-(pygls would read one it was asked about from disk, special files included); over TCP, only
-those inside the workspace folders the client declared. Changes are checked once typing
+(pygls would read one it was asked about from disk, special files included); the controller
+files of a family are its one exception, published from their regular files on disk. Over TCP,
+only files inside the workspace folders the client declared. Changes are checked once typing
 pauses (:data:`PAUSE`), the newest version only; every edit names the version it applies to.
 Only this module and :mod:`txtool.commands.lsp_transport` import pygls, and only
 ``txtool lsp`` imports them.
@@ -245,7 +248,7 @@ def _controller_findings(ls: TxtoolServer, document: TextDocument) -> list[str]:
             is_controller_candidate(path) or _checked_path(document)):
         return []
     family = family_findings(path, ls.buffers(), root_of(path, ls.workspace_paths()),
-                             ls.options)
+                             ls.options, ls.serves)
     before = ls.controller_part
     gone = [p for p in before if inside(p, family.folders) and p not in family.findings]
     changed = [p for p in gone if before.pop(p)]

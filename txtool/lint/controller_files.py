@@ -144,6 +144,11 @@ def package_root(path: str) -> str | None:
 _PACKAGE_OF: dict[str, str | None] = {}  # folder -> its package's folder, as found
 
 
+def forget_packages() -> None:
+    """Look for each folder's ``package.xml`` again (a long-running caller's files change)."""
+    _PACKAGE_OF.clear()
+
+
 def _package_of_folder(folder: str) -> str | None:
     # One look per folder (a walk finds many robot files in few folders), up the tree in a
     # loop (a folder may be a thousand deep); a relative path is looked up to the current
