@@ -184,3 +184,20 @@ async def _lone(folder: Path) -> None:
         if server.returncode is None:
             server.kill()
         await editor.stop()
+
+
+@pytest.mark.parametrize("one, other, family", [
+    ("rrbot_description", "rrbot_control", True),
+    ("rrbot_control", "rrbot_gazebo", True),
+    ("ur_description", "ur_robot_driver", True),  # its config/ur_controllers.yaml
+    ("ur_robot_driver", "ur_description", True),
+    ("my_robot_description", "my_robot_bringup", True),
+    ("my_robot_description", "my_other_control", False),
+    ("rrbot_description", "rrbot2_control", False),
+    ("arm", "arm_control", True),
+    ("arm", "leg", False),
+])
+def test_the_packages_of_a_family(one: str, other: str, family: bool) -> None:
+    from txtool.commands.lsp_controllers import related
+
+    assert related(one, other) is family

@@ -1,11 +1,11 @@
 """What the language server says of controller configurations (TX5xx), without the protocol.
 
 An opened robot file or controller YAML file belongs to a family of packages: its own package
-and the packages beside it whose names share its stem (``rrbot_description``,
-``rrbot_control``, ``rrbot_gazebo``: ``rrbot``). The family is checked as
-``txtool validate`` checks those package folders together
-(:func:`txtool.lint.controller_files.controller_problems`): each controller file is judged
-against the family's robot having most of the joints its controllers claim. The editor's
+and the packages beside it of the same stem (:func:`related`: ``rrbot_description``,
+``rrbot_control``, ``rrbot_gazebo``). The family is checked as a ``txtool validate`` walk of
+those packages pairs their files (:func:`txtool.lint.controller_files.controller_problems`):
+each controller file is judged against the family's robot having most of the joints its
+controllers claim. The editor's
 buffers stand for the files it has open; the others are read from disk. Each finding is
 placed in the controller file, at the controller's name, and in the robot file judged, at
 each ``<joint>`` of its ``<transmission>`` or ``<ros2_control>`` (else the robot's own joint)
@@ -23,7 +23,13 @@ import re
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 
-from txtool.commands.lsp_document import Options, encode, load_buffer, settings_for
+from txtool.commands.lsp_document import (
+    Options,
+    encode,
+    is_robot_file,
+    load_buffer,
+    settings_for,
+)
 from txtool.io.controller_yaml import ControllerFile, read_controller_file
 from txtool.io.xmlio import InputError, local, parse_bytes, read_regular
 from txtool.lint.controller_files import (
@@ -59,30 +65,37 @@ class Family:
 
 
 def is_controller_candidate(path: str) -> bool:
+    """Whether the file may be a controller configuration (a YAML file)."""
     return path.endswith(YAML_SUFFIXES)
 
 
 def family_folders(path: str) -> list[str]:
     """The package folders of the family of the file at ``path`` (absolute): its package and
-    those beside it sharing its name's stem; none when it is in no package (its folder may be
-    any folder: no walk starts there)."""
+    those beside it of its family (:func:`related`); none when it is in no package (its
+    folder may be any folder: no walk starts there)."""
     package = package_root(path)
     if package is None:
         return []
     package = package.rstrip(os.sep) or os.sep
-    stem = os.path.basename(package).split("_")[0]
-    parent = os.path.dirname(package)
-    beside = []
+    name, parent = os.path.basename(package), os.path.dirname(package)
     try:
         names = sorted(os.listdir(parent))
     except OSError:
         names = []
-    for name in names:
-        folder = os.path.join(parent, name)
-        if (name != os.path.basename(package) and name.split("_")[0] == stem
-                and os.path.isfile(os.path.join(folder, "package.xml"))):
-            beside.append(folder)
+    beside = [os.path.join(parent, other) for other in names
+              if other != name and related(name, other)
+              and os.path.isfile(os.path.join(parent, other, "package.xml"))]
     return [package, *beside[:MAX_PACKAGES - 1]]
+
+
+def related(one: str, other: str) -> bool:
+    """Whether two package names are of one family: one starts with the other's stem, its name
+    without the last ``_`` part (``rrbot_description`` and ``rrbot_control``; ``ur_description``
+    and ``ur_robot_driver``)."""
+    def stem(name: str) -> str:
+        return name.rpartition("_")[0] or name
+
+    return one.startswith(stem(other) + "_") or other.startswith(stem(one) + "_")
 
 
 def family_findings(path: str, buffers: Mapping[str, str], root: str, options: Options,
@@ -93,15 +106,16 @@ def family_findings(path: str, buffers: Mapping[str, str], root: str, options: O
     forget_packages()  # a package.xml may have come or gone since the last check
     folders = [folder for folder in family_folders(path) if serves(folder)]
     family = Family(folders)
-    family.controller_files = _controller_files(folders, buffers)
-    if not family.controller_files:
+    files = _controller_files(folders, buffers)
+    family.controller_files = list(files)
+    if not files:
         return family
     family.robots = _robots(folders, buffers)
     provisions = {robot: _provision(robot, buffers, root, options) for robot in family.robots}
     family.findings = {file: [] for file in [*family.controller_files, *family.robots]}
-    for file in family.controller_files:
-        for problem, robot, joints in _judged(file, buffers, provisions, root, options):
-            family.findings[file].append(problem)
+    for path, file in files.items():
+        for problem, robot, joints in _judged(file, provisions, root, options):
+            family.findings[path].append(problem)
             family.findings[robot].extend(_in_robot(problem, robot, joints, buffers))
     return family
 
@@ -110,16 +124,18 @@ def inside(path: str, folders: Sequence[str]) -> bool:
     return any(path.startswith(os.path.join(folder, "")) for folder in folders)
 
 
-def _controller_files(folders: Sequence[str], buffers: Mapping[str, str]) -> list[str]:
-    """The family's controller files: those on disk (an opened one judged by its buffer) and
-    the opened YAML buffers in its folders that define controllers."""
+def _controller_files(folders: Sequence[str], buffers: Mapping[str, str]
+                      ) -> dict[str, ControllerFile]:
+    """The family's controller files by path: those on disk (an opened one read from its
+    buffer) and the opened YAML buffers in its folders that define controllers."""
     found: dict[str, None] = {}
     for folder in folders:
         found.update(dict.fromkeys(controller_files_under(folder)))
     for path in buffers:
         if is_controller_candidate(path) and inside(path, folders):
             found[path] = None
-    return [path for path in found if _controllers(path, buffers) is not None]
+    read = {path: _controllers(path, buffers) for path in found}
+    return {path: file for path, file in read.items() if file is not None}
 
 
 def _controllers(path: str, buffers: Mapping[str, str]) -> ControllerFile | None:
@@ -133,8 +149,8 @@ def _controllers(path: str, buffers: Mapping[str, str]) -> ControllerFile | None
 
 
 def _robots(folders: Sequence[str], buffers: Mapping[str, str]) -> list[str]:
-    opened = [path for path in buffers if inside(path, folders)
-              and not is_controller_candidate(path)]
+    opened = [path for path, text in buffers.items() if inside(path, folders)
+              and is_robot_file(path, text)]
     found: dict[str, None] = dict.fromkeys(opened)
     for folder in folders:
         walk = expand_paths([folder], report=lambda where, reason: None)
@@ -157,13 +173,11 @@ def _provision(robot: str, buffers: Mapping[str, str], root: str, options: Optio
         return None
 
 
-def _judged(path: str, buffers: Mapping[str, str], provisions: dict[str, Provision | None],
-            root: str, options: Options) -> list[tuple[Problem, str, list[str]]]:
+def _judged(file: ControllerFile, provisions: dict[str, Provision | None], root: str,
+            options: Options) -> list[tuple[Problem, str, list[str]]]:
     """The findings of the controller file, each with the robot judged and the joints of it
     the finding names."""
-    file = _controllers(path, buffers)
-    if file is None:
-        return []
+    path = file.path
     controllers = controllers_of(file, exported_controllers(package_root(path)))
     chosen = pick_robot(controllers, file.generation, provisions)
     provision = provisions.get(chosen) if chosen is not None else None
@@ -209,7 +223,8 @@ def _joint_places(robot: str, joint: str, buffers: Mapping[str, str]) -> list[tu
         tree = parse_bytes(data, robot)
     except InputError:
         return []
-    lines = data.decode("utf-8", errors="replace").splitlines()
+    text = buffers[robot] if robot in buffers else data.decode("utf-8", errors="replace")
+    lines = text.splitlines()
     named = [e for e in tree.getroot().iter("{*}joint") if e.get("name") == joint]
     driving = [e for e in named if e.getparent() is not None
                and local(e.getparent()) in ("transmission", "ros2_control")]
