@@ -52,7 +52,7 @@ def _mode(check: bool, diff: bool, write: bool) -> str:
 @click.option("--reversible", is_flag=True,
               help="With --to ros2-p1/ros2-p2: keep each transmission's original text in a "
                    "comment before it, so that migrating back gives its bytes back.")
-@controllers_option("each migrated robot")
+@controllers_option("the migrated robot driving its joints")
 @click.option("--ros-distro", type=click.Choice(DISTROS), default=None,
               help="The ROS distribution whose programs read the files, as validate takes it: "
                    "only what validate reports for them is fixed (over the configuration's "
