@@ -334,3 +334,56 @@ def complete_rules(ctx: click.Context, param: click.Parameter, incomplete: str) 
              if rule.code.startswith(incomplete.upper())]
             + [CompletionItem(rule.name, help=rule.code) for rule in rules
                if incomplete and rule.name.startswith(incomplete.lower())])
+
+
+def controllers_option(what: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """``--controllers FILE`` (repeatable) of convert and migrate: ``what`` is converted."""
+    return click.option(
+        "--controllers", "controller_files", multiple=True, type=click.Path(dir_okay=False),
+        metavar="FILE",
+        help=f"A ROS 1 controller configuration (YAML): say what each controller is in ROS 2 "
+             f"and whether the <ros2_control> of {what} provides what it claims "
+             f"(--to ros2-p1/ros2-p2; repeatable).")
+
+
+def controller_configurations(paths: tuple[str, ...], target: str | None) -> list:
+    """The ROS 1 controller configurations ``--controllers`` names, read before anything is
+    written; an :class:`InputError` for a target other than ROS 2 or a file that is no ROS 1
+    controller configuration."""
+    if not paths:
+        return []
+    if target not in ("ros2-p1", "ros2-p2"):
+        raise InputError("--controllers applies to --to ros2-p1 and ros2-p2")
+    from txtool.lint.controller_files import ros1_controller_file
+
+    return [ros1_controller_file(path) for path in paths]
+
+
+def tell_controller_needs(controllers: list, robots: dict[str, Any]) -> None:
+    """Each ROS 1 controller's ROS 2 form, against the converted robot (``robots``: each
+    converted robot's root element by its path) having most of the joints the file's
+    controllers claim; a note for a file that no converted robot fits."""
+    from txtool.lint.controller_files import (
+        controllers_of,
+        pick_robot,
+        provision_of,
+        ros2_needs,
+    )
+
+    provisions = {path: provision_of(root) for path, root in robots.items()}
+    for file in controllers:
+        chosen = pick_robot(controllers_of(file), "ros2", provisions)  # type: ignore[arg-type]
+        if chosen is None and len(robots) == 1:  # the one robot named: judged all the same
+            chosen = next(iter(robots))
+        if chosen is None:
+            click.echo(f"note: {printable(file.path)}: no robot converted to ROS 2 here drives "
+                       "the joints its controllers claim; not checked", err=True)
+            continue
+        if len(robots) > 1:
+            click.echo(f"note: {printable(file.path)}: against {printable(chosen)}, the robot "
+                       "driving most of the joints its controllers claim", err=True)
+        notes, warnings = ros2_needs(file, robots[chosen])
+        for note in notes:
+            click.echo(f"note: {printable(note)}", err=True)
+        for warning in warnings:
+            click.echo(f"warning: {printable(warning)}", err=True)

@@ -14,7 +14,10 @@ from txtool.commands.common import (
     TARGET_HINTS,
     Choice,
     configured_packages,
+    controller_configurations,
+    controllers_option,
     exit_on_input_error,
+    tell_controller_needs,
     xacro_disabled,
     xacro_options,
 )
@@ -39,11 +42,7 @@ TARGETS = ("ros1", "ros2-p1", "ros2-p2", "bb")
 @click.option("--reversible", is_flag=True,
               help="To ROS 2: keep each transmission's original text in a comment before it, "
                    "so that converting back gives its bytes back.")
-@click.option("--controllers", "controller_files", multiple=True,
-              type=click.Path(dir_okay=False), metavar="FILE",
-              help="A ROS 1 controller configuration (YAML): say what each controller is in "
-                   "ROS 2 and whether the converted <ros2_control> provides what it claims "
-                   "(--to ros2-p1/ros2-p2; repeatable).")
+@controllers_option("the converted robot")
 @click.option("--stdin-filename", help="Name to report for '-' (stdin).")
 @click.option("--ros-distro", type=click.Choice(DISTROS), default=None,
               help="Check what is written for this distribution's loaders only (default: "
@@ -74,9 +73,7 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, revers
     from txtool.io.load import load
     from txtool.io.xmlio import InputError, replace_if_unchanged, write_atomic
 
-    if controller_files and target not in ("ros2-p1", "ros2-p2"):
-        raise InputError("--controllers applies to --to ros2-p1 and ros2-p2")
-    controllers = _controller_configurations(controller_files)  # refused before any write
+    controllers = controller_configurations(controller_files, target)  # before any write
     if target != "bb" and (bb_direction or bb_topology):
         raise InputError("--bb-direction and --bb-topology apply to --to bb only")
     if target == "bb" and ros_distro:
@@ -144,7 +141,10 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, revers
         sys.stdout.buffer.flush()
     if placeholder is not None:
         click.echo(f"warning: {printable(placeholder)}", err=True)
-    _controller_needs(controllers, data, source.path)
+    if controllers:
+        from txtool.io.xmlio import parse_bytes
+
+        tell_controller_needs(controllers, {source.path: parse_bytes(data, source.path).getroot()})
     return 0
 
 
@@ -168,30 +168,6 @@ def _judged(data: bytes, source, target: str, distro, path: str, xacro, stdin_fi
 
     return judge_converted(data, source, target, distro=distro,  # type: ignore[arg-type]
                            reload=reload if path != "-" else None)
-
-
-def _controller_configurations(paths: tuple[str, ...]) -> list:
-    if not paths:
-        return []
-    from txtool.lint.controller_files import ros1_controller_file
-
-    return [ros1_controller_file(path) for path in paths]
-
-
-def _controller_needs(controllers: list, data: bytes, display: str) -> None:
-    """--controllers: each ROS 1 controller's ROS 2 form, against the converted robot."""
-    if not controllers:
-        return
-    from txtool.io.xmlio import parse_bytes
-    from txtool.lint.controller_files import ros2_needs
-
-    converted = parse_bytes(data, display).getroot()
-    for file in controllers:
-        notes, warnings = ros2_needs(file, converted)
-        for note in notes:
-            click.echo(f"note: {printable(note)}", err=True)
-        for warning in warnings:
-            click.echo(f"warning: {printable(warning)}", err=True)
 
 
 def _same_file(a: str, b: str) -> bool:

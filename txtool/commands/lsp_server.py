@@ -1,13 +1,16 @@
 """``txtool lsp``'s language server (pygls): diagnostics, quick fixes and hover for robot files.
 
 Each opened, changed or saved buffer is checked as ``txtool validate`` checks the file
-(:mod:`txtool.commands.lsp_document`) and its problems are published; a fixable problem gets
+(:mod:`txtool.commands.lsp_document`) and its problems are published; for a robot or controller
+file, so are the controller findings of its package family in the controller files and the
+robots they are judged against (:mod:`txtool.commands.lsp_controllers`); a fixable problem gets
 ``txtool migrate``'s fix as a quick fix, and the document a "fix all"; a hover on a
 ``<transmission>`` shows what each loader reads of it (:mod:`txtool.commands.lsp_hover`).
 
 Only documents the client opened are served: the server never reads a file for a document
-(pygls would read one it was asked about from disk, special files included); over TCP, only
-those inside the workspace folders the client declared. Changes are checked once typing
+(pygls would read one it was asked about from disk, special files included); the controller
+files of a family are its one exception, published from their regular files on disk. Over TCP,
+only files inside the workspace folders the client declared. Changes are checked once typing
 pauses (:data:`PAUSE`), the newest version only; every edit names the version it applies to.
 Only this module and :mod:`txtool.commands.lsp_transport` import pygls, and only
 ``txtool lsp`` imports them.
@@ -62,6 +65,10 @@ class TxtoolServer(LanguageServer):
         self.options = options
         self.confined = False  # over TCP: only documents inside the declared folders
         self.pending: dict[str, asyncio.TimerHandle] = {}  # checks waiting for a pause
+        # What was last published of each URI: its own findings (with the version checked),
+        # and, by path, the controller findings (TX5xx) of the family it was found in.
+        self.own: dict[str, tuple[int | None, list[lsp.Diagnostic]]] = {}
+        self.controller_part: dict[str, list[Problem]] = {}
 
     def workspace_paths(self) -> list[str]:
         """The folders the editor opened (each like the folder ``txtool validate`` runs in)."""
@@ -79,6 +86,19 @@ class TxtoolServer(LanguageServer):
             os.path.realpath(path).startswith(os.path.join(os.path.realpath(top), ""))
             for top in self.workspace_paths())
         return document if inside else None
+
+    def serves(self, path: str) -> bool:
+        """Whether findings may be published for the file at ``path`` (over TCP: only inside
+        the declared folders)."""
+        return not self.confined or any(
+            os.path.realpath(path).startswith(os.path.join(os.path.realpath(top), ""))
+            for top in self.workspace_paths())
+
+    def buffers(self) -> dict[str, str]:
+        """The text of each file the client has open (and this server serves), by path."""
+        opened = (self.opened(uri) for uri in list(self.workspace.text_documents))
+        return {d.path: d.source for d in opened
+                if d is not None and d.path and d.uri.startswith("file:")}
 
     def start_io(self, stdin, stdout) -> None:  # type: ignore[no-untyped-def, override]
         """Serve standard input and output with the bounded loop."""
@@ -159,11 +179,16 @@ def build(options: Options) -> TxtoolServer:
 
     @server.feature(lsp.TEXT_DOCUMENT_DID_CLOSE)
     def did_close(ls: TxtoolServer, params: lsp.DidCloseTextDocumentParams) -> None:
-        waiting = ls.pending.pop(params.text_document.uri, None)
+        uri = params.text_document.uri
+        waiting = ls.pending.pop(uri, None)
         if waiting is not None:
             waiting.cancel()
+        ls.own.pop(uri, None)
+        path = to_fs_path(uri)
+        if path is not None:
+            ls.controller_part.pop(path, None)
         ls.text_document_publish_diagnostics(
-            lsp.PublishDiagnosticsParams(uri=params.text_document.uri, diagnostics=[]))
+            lsp.PublishDiagnosticsParams(uri=uri, diagnostics=[]))
 
     @server.feature(lsp.TEXT_DOCUMENT_CODE_ACTION, lsp.CodeActionOptions(
         code_action_kinds=[lsp.CodeActionKind.QuickFix, FIX_ALL]))
@@ -201,12 +226,71 @@ def after_a_pause(ls: TxtoolServer, uri: str) -> None:
 
 
 def publish(ls: TxtoolServer, uri: str) -> None:
+    """Check the buffer at ``uri`` and publish its findings; for a robot or controller file,
+    also check its family's controller files and publish what changed in each of them."""
     document = ls.opened(uri)
     if document is None:  # never opened (or outside the folders): nothing is read for it
         return
-    diagnostics = diagnostics_of(document, ls.workspace_paths(), ls.options)
+    ls.own[uri] = (document.version, diagnostics_of(document, ls.workspace_paths(), ls.options))
+    changed = _controller_findings(ls, document)
+    _publish_own(ls, document)
+    for path in changed:
+        _publish_paired(ls, path)
+
+
+def _controller_findings(ls: TxtoolServer, document: TextDocument) -> list[str]:
+    """Check the family of the document's file (:mod:`txtool.commands.lsp_controllers`) and
+    keep its findings; the other paths whose findings changed (or were cleared)."""
+    from txtool.commands.lsp_controllers import family_findings, inside, is_controller_candidate
+
+    path = document.path
+    if not document.uri.startswith("file:") or not path or not (
+            is_controller_candidate(path) or _checked_path(document)):
+        return []
+    family = family_findings(path, ls.buffers(), root_of(path, ls.workspace_paths()),
+                             ls.options, ls.serves)
+    before = ls.controller_part
+    gone = [p for p in before if inside(p, family.folders) and p not in family.findings]
+    changed = [p for p in gone if before.pop(p)]
+    for each, found in family.findings.items():
+        if each not in before or _shown(before[each]) != _shown(found):
+            changed.append(each)
+        before[each] = found
+    return [p for p in dict.fromkeys(changed) if p != path and ls.serves(p)]
+
+
+def _shown(problems: list[Problem]) -> list[tuple]:
+    return [(p.line, p.column, p.code, p.severity, p.message, p.related) for p in problems]
+
+
+def _publish_own(ls: TxtoolServer, document: TextDocument) -> None:
+    version, own = ls.own.get(document.uri, (document.version, []))
+    paired = ls.controller_part.get(document.path or "", [])
     ls.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(
-        uri=uri, diagnostics=diagnostics, version=document.version))
+        uri=document.uri, version=version,
+        diagnostics=[*own, *(diagnostic(document, p) for p in paired)]))
+
+
+def _publish_paired(ls: TxtoolServer, path: str) -> None:
+    """Publish the file at ``path`` again with its family's new controller findings: an
+    opened one with its own findings of its last check (unless a newer check is waiting), one
+    not opened with those findings alone, placed in its text on disk."""
+    uri = from_fs_path(path) or path
+    document = ls.opened(uri)
+    if document is not None:
+        if uri not in ls.pending and ls.own.get(uri, (document.version,))[0] == document.version:
+            _publish_own(ls, document)
+        return
+    from txtool.io.xmlio import InputError, read_regular
+
+    found = ls.controller_part.get(path, [])
+    try:
+        text = read_regular(path).decode("utf-8", errors="replace") if found else ""
+    except InputError:
+        return
+    on_disk = TextDocument(uri, text)
+    ls.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(
+        uri=uri, diagnostics=[diagnostic(on_disk, p) for p in found]))
 
 
 def _checked_path(document: TextDocument) -> str | None:

@@ -4,7 +4,15 @@ from __future__ import annotations
 
 import click
 
-from txtool.commands.common import TARGET_HINTS, Choice, complete_codes, exit_on_input_error
+from txtool.commands.common import (
+    TARGET_HINTS,
+    Choice,
+    complete_codes,
+    controller_configurations,
+    controllers_option,
+    exit_on_input_error,
+    tell_controller_needs,
+)
 from txtool.io.printable import printable
 from txtool.model.distro import CHOICES as DISTROS
 
@@ -44,6 +52,7 @@ def _mode(check: bool, diff: bool, write: bool) -> str:
 @click.option("--reversible", is_flag=True,
               help="With --to ros2-p1/ros2-p2: keep each transmission's original text in a "
                    "comment before it, so that migrating back gives its bytes back.")
+@controllers_option("the migrated robot driving its joints")
 @click.option("--ros-distro", type=click.Choice(DISTROS), default=None,
               help="The ROS distribution whose programs read the files, as validate takes it: "
                    "only what validate reports for them is fixed (over the configuration's "
@@ -58,7 +67,8 @@ def _mode(check: bool, diff: bool, write: bool) -> str:
                    "(only for files you trust).")
 @exit_on_input_error
 def command(paths, target, check, diff, write, select, ignore, config_path, allow_lossy,
-            hardware_plugin, reversible, ros_distro, no_xacro, trust_xacro) -> int:
+            hardware_plugin, reversible, controller_files, ros_distro, no_xacro,
+            trust_xacro) -> int:
     """Apply the fixable rules (and, with --to, the conversion) to files and folders in place.
 
     Folders are searched like validate does (*.urdf, *.xacro, robot *.xml). xacro files are
@@ -80,6 +90,7 @@ def command(paths, target, check, diff, write, select, ignore, config_path, allo
         target_distro(target, ros_distro)
     except ValueError as exc:
         raise click.UsageError(str(exc)) from None
+    controllers = controller_configurations(controller_files, target)  # before any write
     options = MigrateOptions(
         mode=_mode(check, diff, write),  # type: ignore[arg-type]
         target=target,
@@ -99,4 +110,30 @@ def command(paths, target, check, diff, write, select, ignore, config_path, allo
         click.echo(diff, nl=False)
     for message in report.messages:  # each one line, whatever the file names hold
         click.echo(printable(message), err=True)
+    if controllers:
+        tell_controller_needs(controllers, _robots(report, options))
     return report.exit_code
+
+
+def _robots(report, options) -> dict:
+    """Each migrated robot file, as validate reads it (a xacro file expanded), with what the
+    run wrote or would write: its root element by its path. A refused file is left out, and a
+    xacro file is expanded with the files it includes as they are on disk (written, under
+    --write)."""
+    from txtool.io.xmlio import InputError, read_bytes
+    from txtool.lint.config import Overrides, SettingsCache
+    from txtool.lint.target_check import prepared
+
+    settings = SettingsCache(Overrides(xacro=options.xacro, no_xacro=options.no_xacro,
+                                       ros_distro=options.ros_distro), options.config)
+    robots = {}
+    for result in report.files:
+        if result.refused or result.unwritten:
+            continue
+        try:
+            data = result.data if result.changed else read_bytes(result.path)[1]
+            source = prepared(result.path, result.path, data, settings.for_file(result.path))
+        except InputError:  # changed on disk since: migrate said nothing of it to judge
+            continue
+        robots[result.path] = source.root
+    return robots

@@ -27,7 +27,7 @@ from lxml import etree
 from txtool.io.controller_yaml import MAX_BYTES, ControllerFile, read_controller_file
 from txtool.io.launch_spawners import Spawn, launch_files, spawns_in
 from txtool.io.load import load
-from txtool.io.xmlio import InputError, parse_bytes, read_regular
+from txtool.io.xmlio import InputError, Source, parse_bytes, read_regular
 from txtool.lint.discover import scan
 from txtool.lint.problem import InputFailure, Problem
 from txtool.model.controllers import (
@@ -147,6 +147,11 @@ def package_root(path: str) -> str | None:
 _PACKAGE_OF: dict[str, str | None] = {}  # folder -> its package's folder, as found
 
 
+def forget_packages() -> None:
+    """Look for each folder's ``package.xml`` again (a long-running caller's files change)."""
+    _PACKAGE_OF.clear()
+
+
 def _package_of_folder(folder: str) -> str | None:
     # One look per folder (a walk finds many robot files in few folders), up the tree in a
     # loop (a folder may be a thousand deep); a relative path is looked up to the current
@@ -257,12 +262,14 @@ def _exported_in(manifest: Path) -> Iterator[str]:
                 yield cls.get("name") or cls.get("type", "")
 
 
-def robot_provision(robot: str, settings: Settings) -> Provision | None:
-    """What the robot file at ``robot`` provides, or None when it cannot be read (its own
-    check says why)."""
+def robot_provision(robot: str, settings: Settings, source: Source | None = None
+                    ) -> Provision | None:
+    """What the robot file at ``robot`` provides (as ``source`` holds it, when given: an
+    editor's buffer), or None when it cannot be read (its own check says why)."""
     try:
-        source = load(robot, xacro=settings.xacro, expand=not settings.no_xacro,
-                      warn_unused=False)
+        if source is None:
+            source = load(robot, xacro=settings.xacro, expand=not settings.no_xacro,
+                          warn_unused=False)
     except InputError:
         return None
     provision = provision_of(source.root)
