@@ -4,11 +4,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from txtool.lint.readers import FileReaders
 from txtool.simulation.params import GainSource
+
+if TYPE_CHECKING:
+    from txtool.simulation.controlled import Driver
 
 LIMIT_SLACK = 1e-9  # position limits: ignore round-off at a limit
 SHOWN_REASONS = 2  # why a run checked nothing: the first reasons, in the verdict line
@@ -28,6 +32,7 @@ KINDS = (
     "xml_order",  # ROS 2: parameters in XML order, bound to the names sorted
     "interface",  # commanded through other interfaces than the robot's
     "not_transmissions",  # the maps agree: the failure comes from elsewhere
+    "controller_refused",  # --controllers: the controller manager refuses a controller
 )
 
 
@@ -208,6 +213,8 @@ class RunResult:
     readers: dict[str, FileReaders] = field(default_factory=dict)
     # what differs from the robot's config, each with its kind (diagnose.Cause)
     causes: list[Cause] = field(default_factory=list)
+    # --controllers: per joint of the model, the controller commanding it (None: held)
+    controllers: dict[str, Driver | None] = field(default_factory=dict)
 
     @property
     def failed(self) -> bool:

@@ -15,6 +15,7 @@ from txtool.lint.config import readers_of
 from txtool.lint.readers import FileReaders, record
 from txtool.simulation import (
     checks,
+    controlled,
     counterbalance,
     feasible,
     gains,
@@ -26,7 +27,7 @@ from txtool.simulation import (
 from txtool.simulation.drive import Drive, read_drive
 from txtool.simulation.model import Massless, RobotModel, build
 from txtool.simulation.parameter_files import load_params
-from txtool.simulation.params import Params
+from txtool.simulation.params import Params, merge
 from txtool.simulation.plan import Controller, Plan, RunState
 from txtool.simulation.sensing import Sensing
 
@@ -66,6 +67,7 @@ class Options:
     encoder_counts: int | None = None
     counterbalance: bool = True  # static loads beyond the effort limits: counterbalance.py
     ros_distro: str | None = None  # --ros-distro: the distribution reading the files
+    controllers: tuple[str, ...] = ()  # --controllers: the configurations of the controllers
 
 
 @dataclass(frozen=True)
@@ -131,6 +133,7 @@ class Prepared:
     notes: tuple[str, ...] = ()
     carried: dict[str, dict[str, float | str]] = field(default_factory=dict)
     unstable: list[str] = field(default_factory=list)  # joints whose sampled loop is unstable
+    controllers: dict[str, controlled.Driver | None] = field(default_factory=dict)
 
 
 @dataclass
@@ -231,10 +234,19 @@ def prepare(options: Options, config: str | None, label: str | None = None
         raise InputError(f"--skip: no transmission named {', '.join(map(repr, unknown))} in "
                          f"{options.robot}" + (f" or {config}" if config else ""))
     covered = coverage_of(robot, ctrl)
+    drives = None
+    if options.controllers:
+        drives = controlled.read(options.controllers, candidate, robot.joints,
+                                 frozenset(robot.followers))
+        if drives.refused or not drives.drivers:
+            return _uncontrolled(options, label, drives, readers)
     if covered.nothing:
         return Unchecked(options, label, _notes(robot, plant, ctrl, config is not None), covered,
                          readers, dropped(plant, ctrl) if config is not None else [])
     params = load_params(options.params, options.robot)
+    if drives is not None:  # --params over the controllers' gains: the tuning asked for
+        params = merge([drives.params, params])
+        params = replace(params, notes=drives.notes + params.notes)
     params.check_names(set(plant.actuators) | set(ctrl.actuators), set(robot.joints),
                        options.robot)
     run_settings = settings(options, params)
@@ -259,8 +271,11 @@ def prepare(options: Options, config: str | None, label: str | None = None
     else:
         ref, duration, ref_notes = _reference(options, table, robot, run_settings)
         weak, carry = [], None
-        if finder is not None:  # found on every tenth pose, applied at every step
-            carry = finder(setup.gravity_along(robot, ref.q[::10]))
+    if drives is not None and drives.held:
+        ref, held_note = reference.hold(ref, robot.joints, drives.held)
+        ref_notes.append(held_note)
+    if table is not None and finder is not None:  # found on every tenth pose, used at every step
+        carry = finder(setup.gravity_along(robot, ref.q[::10]))
     carried, carry_notes, carry_table = None, [], {}
     if table is not None and carry is not None:
         carry_notes = carry.refused  # (the default motion's planner notes them itself)
@@ -276,7 +291,21 @@ def prepare(options: Options, config: str | None, label: str | None = None
     return Prepared(options, config, label, robot, plant, ctrl, binding, plan, ref,
                     run_settings, duration, effort_limit, speed_limit,
                     time.perf_counter() - started, carry_notes + ref_notes, weak, controller,
-                    readers, used, params.notes + tuple(stiff), carry_table, unstable)
+                    readers, used, params.notes + tuple(stiff), carry_table, unstable,
+                    drives.report(robot.joints) if drives is not None else {})
+
+
+def _uncontrolled(options: Options, label: str, drives: controlled.Controlled,
+                  readers: dict[str, FileReaders]) -> Unchecked:
+    """A run the controller configuration stops before it starts: a controller its manager
+    refuses (a failure, with the findings as validate gives them), or no controller
+    commanding a joint of the model (nothing to check)."""
+    causes = [result.Cause("controller_refused", str(p)) for p in drives.refused]
+    notes = [] if causes else list(drives.notes)
+    if not drives.drivers and not causes:
+        notes.append(f"no controller of {', '.join(drives.files)} commands a moving joint "
+                     "of the robot: nothing is driven")
+    return Unchecked(options, label, notes, result.Coverage(), readers, causes)
 
 
 def _stability(robot: RobotModel, inertia: np.ndarray, ref: reference.Reference,
@@ -304,7 +333,9 @@ STILL = 0.005  # a joint moving less than this share of the default move is not 
 def _still(p: Prepared) -> tuple[str, ...]:
     """The checked joints the reference moves less than STILL of the default 25% -> 75%."""
     ranges = _ranges(p.robot)
+    held = {j for j, driver in p.controllers.items() if driver is None}
     return tuple(j for v, j in enumerate(p.robot.joints) if j not in p.ctrl.direct
+                 and j not in held
                  and np.ptp(p.ref.q[:, v]) < STILL * 0.5 * (ranges[v][1] - ranges[v][0]))
 
 
@@ -339,6 +370,7 @@ def finish(p: Prepared, state: RunState, loop_s: float) -> result.RunResult:
     run.counterbalance = p.carried
     run.coverage = replace(coverage_of(p.robot, p.ctrl), still=_still(p))
     run.readers = p.readers
+    run.controllers = p.controllers
     checks.judge(run, series, p.plant, p.ctrl, p.binding.S, p.config is not None,
                  p.plan.encoder, p.plan.delay)
     run.timings = {"setup_s": p.setup_s, "loop_s": loop_s,
