@@ -35,7 +35,16 @@ from txtool.lint.controller_files import (
     provision_of,
 )
 from txtool.lint.problem import Problem
-from txtool.model.controllers import EFFORT, POS_VEL, POS_VEL_ACC, POSITION, STATE, VELOCITY
+from txtool.model.controllers import (
+    EFFORT,
+    POS_VEL,
+    POS_VEL_ACC,
+    POSITION,
+    STATE,
+    VELOCITY,
+    Claim,
+    Controller,
+)
 from txtool.simulation.params import Params, merge, read_text
 from txtool.simulation.yaml_gains import controller_gains
 
@@ -106,7 +115,7 @@ def read(paths: tuple[str, ...], config: Source, joints: tuple[str, ...],
                          f"are not checked: {config.path} provides none for them")
         text = read_text(path)
         for controller in controllers:
-            commanded = _commanded(controller.claims, file.generation)
+            commanded = _commanded(controller, file.generation)
             mine = [j for j in commanded if j in joints and j not in drivers]
             for joint in commanded:
                 if joint in drivers and drivers[joint].controller != controller.name:
@@ -128,16 +137,30 @@ def read(paths: tuple[str, ...], config: Source, joints: tuple[str, ...],
 _GENERATION = {"ros1": "ROS 1", "ros2": "ROS 2"}
 
 
-def _commanded(claims: tuple, generation: str) -> dict[str, tuple[str, ...]]:
-    """Joint -> the command interfaces the claims take of it, as names (position, ...)."""
+def _commanded(controller: Controller, generation: str) -> dict[str, tuple[str, ...]]:
+    """Joint -> the command interfaces the controller takes of it, as names (position, ...)."""
     commanded: dict[str, tuple[str, ...]] = {}
-    for claim in claims:
+    for claim in controller.claims or _pid_claims(controller):
         if not claim.command or claim.interface == STATE:
             continue
         names = _ROS1_COMMANDS.get(claim.interface, (claim.interface,)) \
             if generation == "ros1" else (claim.interface,)
         commanded[claim.joint] = commanded.get(claim.joint, ()) + names
     return commanded
+
+
+def _pid_claims(controller: Controller) -> tuple[Claim, ...]:
+    """pid_controller's command interfaces, ``dof_names`` x ``command_interface``
+    (pid_controller.cpp:308-320, ros2_controllers @94e74de), which validate does not check; a
+    name with a ``/`` is a chained controller's reference, not a joint."""
+    if controller.type != "pid_controller/PidController":
+        return ()
+    interface = controller.params.get("command_interface")
+    names = controller.params.get("dof_names")
+    if not isinstance(interface, str) or not interface or not isinstance(names, list):
+        return ()
+    return tuple(Claim(name, interface, True) for name in names
+                 if isinstance(name, str) and name and "/" not in name and "$(" not in name)
 
 
 def _gains_of(text: str, path: str, name: str, joints: list[str], notes: list[str]) -> Params:

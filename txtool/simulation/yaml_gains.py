@@ -245,6 +245,13 @@ def _kind(ctrl: _Controller, declared: str | None) -> tuple[str | None, str, str
         return "effort", "effort_controllers/JointPositionController", ""
     fmt = "pid_controller" if "pid_controller" in kind or "dof_names" in ctrl.params \
         or "command_interface" in ctrl.params else "joint_trajectory_controller"
+    measured = ctrl.params.get("reference_and_state_interfaces")
+    if fmt == "pid_controller" and isinstance(measured, list) and measured \
+            and measured[0] != "position":
+        # pid_controller.cpp:566-596 (ros2_controllers @94e74de): its PID acts on the error of
+        # the first of them.
+        return None, fmt, (f"its PID acts on the {measured[0]} error "
+                           "(reference_and_state_interfaces), not the position error")
     interfaces = ctrl.params.get("command_interfaces", ctrl.params.get("command_interface"))
     if isinstance(interfaces, str):
         interfaces = [interfaces]
