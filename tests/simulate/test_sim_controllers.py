@@ -110,7 +110,7 @@ def test_a_controller_its_manager_refuses_fails_the_run_with_validates_findings(
     assert run["causes"] == [{"kind": "controller_refused", "text": str(p)} for p in found]
 
 
-def test_a_joint_no_controller_commands_is_held_where_it_starts(tmp_path):
+def test_a_joint_no_controller_commands_is_held(tmp_path):
     control = write(tmp_path, "controllers.yaml", JTC_EFFORT)
     [run] = txtool.simulate(DEMO_ROS2, controllers=control, duration=0.5, keep_series=True)
     assert run.verdict == "pass"
@@ -120,8 +120,8 @@ def test_a_joint_no_controller_commands_is_held_where_it_starts(tmp_path):
     roll = series.joints.index("wrist_roll")
     assert np.all(series.q_ref[:, roll] == series.q_ref[0, roll])
     assert np.ptp(series.q_ref[:, series.joints.index("shoulder")]) > 0
-    assert "held at the start of the reference (no controller commands them, so their drive " \
-           "keeps them where they are): 'wrist_roll'" in run.notes
+    assert "held at the middle of their range: no controller commands them, so their drive " \
+           "keeps them where they are: 'wrist_roll'" in run.notes
 
 
 def test_trajectory_controller_effort_gains_are_used_and_its_feed_forward_reported(tmp_path):
@@ -229,3 +229,13 @@ def test_the_text_report_names_each_joints_controller(tmp_path):
     assert "controllers (--controllers)" in rows
     assert "shoulder arm_controller effort controllers.yaml:4" in rows
     assert "wrist_roll none: held - -" in rows
+
+
+def test_a_trajectory_moving_a_joint_no_controller_commands_holds_it_at_its_start(tmp_path):
+    control = write(tmp_path, "controllers.yaml", JTC_EFFORT)
+    csv = write(tmp_path, "motion.csv", "time,shoulder,wrist_roll\n0,0,0.2\n0.5,0.05,0.4\n")
+    [run] = txtool.simulate(DEMO_ROS2, controllers=control, trajectory=csv, keep_series=True)
+    roll = run.series.joints.index("wrist_roll")
+    assert np.all(run.series.q_ref[:, roll] == 0.2)
+    assert "held at the start of the trajectory: no controller commands them, so their drive " \
+           "keeps them where they are: 'wrist_roll'" in run.notes

@@ -223,18 +223,15 @@ def follow(ref: Reference, joints: tuple[str, ...],
     return Reference(ref.time, q, qd, qdd, ref.source)
 
 
-def hold(ref: Reference, joints: tuple[str, ...], held: tuple[str, ...]
-         ) -> tuple[Reference, str]:
+def hold(ref: Reference, joints: tuple[str, ...], held: tuple[str, ...]) -> Reference:
     """``ref`` with the ``held`` joints kept at their first position, at rest (joints no
-    controller commands: their drive keeps them where they are); and a note naming them."""
+    controller commands: their drive keeps them where they are)."""
     q, qd, qdd = ref.q.copy(), ref.qd.copy(), ref.qdd.copy()
     columns = [joints.index(j) for j in held]
     q[:, columns] = ref.q[0, columns]
     qd[:, columns] = 0.0
     qdd[:, columns] = 0.0
-    note = ("held at the start of the reference (no controller commands them, so their "
-            "drive keeps them where they are): " + ", ".join(f"'{j}'" for j in held))
-    return replace(ref, q=q, qd=qd, qdd=qdd), note
+    return replace(ref, q=q, qd=qd, qdd=qdd)
 
 
 def saturate(ref: Reference, joints: tuple[str, ...], lower: np.ndarray, upper: np.ndarray,

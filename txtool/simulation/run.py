@@ -267,13 +267,14 @@ def prepare(options: Options, config: str | None, label: str | None = None
         limits = setup.motion_limits(robot, plant, inertia, controller, effort_limit,
                                      speed_limit, run_settings.dt, options.delay)
         ref, duration, ref_notes, weak, carry = _default_reference(
-            robot, run_settings, limits, setup.reference_dynamics(robot, inertia), fixed, finder)
+            robot, run_settings, limits, setup.reference_dynamics(robot, inertia), fixed, finder,
+            drives.held if drives is not None else ())
     else:
         ref, duration, ref_notes = _reference(options, table, robot, run_settings)
         weak, carry = [], None
     if drives is not None and drives.held:
-        ref, held_note = reference.hold(ref, robot.joints, drives.held)
-        ref_notes.append(held_note)
+        ref = reference.hold(ref, robot.joints, drives.held)
+        ref_notes.append(_held_note(drives.held, table is None))
     if table is not None and finder is not None:  # found on every tenth pose, used at every step
         carry = finder(setup.gravity_along(robot, ref.q[::10]))
     carried, carry_notes, carry_table = None, [], {}
@@ -387,11 +388,14 @@ def _ranges(robot: RobotModel) -> list[tuple[float, float]]:
 
 def _default_reference(robot: RobotModel, s: Settings, limits: feasible.Limits,
                        dynamics: feasible.Dynamics, fixed: bool,
-                       finder: Callable[[np.ndarray], counterbalance.Counterbalance] | None
+                       finder: Callable[[np.ndarray], counterbalance.Counterbalance] | None,
+                       held: tuple[str, ...] = ()
                        ) -> tuple[reference.Reference, float, list[str], list[str],
                                   counterbalance.Counterbalance | None]:
-    """The minimum-jerk motion, slowed (or, with a fixed duration, shrunk) to be feasible."""
-    ranges = _ranges(robot)
+    """The minimum-jerk motion, slowed (or, with a fixed duration, shrunk) to be feasible;
+    the ``held`` joints stay at the middle of their range (a range of none to plan)."""
+    ranges = [((lo + hi) / 2, (lo + hi) / 2) if joint in held else (lo, hi)
+              for joint, (lo, hi) in zip(robot.joints, _ranges(robot), strict=True)]
     chosen = feasible.plan_motion(ranges, limits, dynamics, s.duration / 2, fixed, s.tolerance,
                                   finder)
     price(2 * chosen.move, s.dt, 2 * len(robot.joints), "the motion slowed to be feasible")
@@ -408,6 +412,12 @@ def _default_reference(robot: RobotModel, s: Settings, limits: feasible.Limits,
                         + " move in a range of 2 near 0, as continuous joints do")
     return (ref, float(ref.time[-1]), list(chosen.notes) + notes, list(chosen.cannot_hold),
             chosen.carry)
+
+
+def _held_note(held: tuple[str, ...], default: bool) -> str:
+    where = "the middle of their range" if default else "the start of the trajectory"
+    return (f"held at {where}: no controller commands them, so their drive keeps them where "
+            "they are: " + ", ".join(f"'{j}'" for j in held))
 
 
 def _table(options: Options, robot: RobotModel) -> reference.Table:
