@@ -115,6 +115,7 @@ def test_a_joint_no_controller_commands_is_held(tmp_path):
     [run] = txtool.simulate(DEMO_ROS2, controllers=control, duration=0.5, keep_series=True)
     assert run.verdict == "pass"
     assert run.controllers["wrist_roll"] is None
+    assert run.coverage.still == ("wrist_roll",)  # its maps checked at one pose only
     assert run.controllers["shoulder"].controller == "arm_controller"
     series = run.series
     roll = series.joints.index("wrist_roll")

@@ -334,9 +334,7 @@ STILL = 0.005  # a joint moving less than this share of the default move is not 
 def _still(p: Prepared) -> tuple[str, ...]:
     """The checked joints the reference moves less than STILL of the default 25% -> 75%."""
     ranges = _ranges(p.robot)
-    held = {j for j, driver in p.controllers.items() if driver is None}
     return tuple(j for v, j in enumerate(p.robot.joints) if j not in p.ctrl.direct
-                 and j not in held
                  and np.ptp(p.ref.q[:, v]) < STILL * 0.5 * (ranges[v][1] - ranges[v][0]))
 
 
