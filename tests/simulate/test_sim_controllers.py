@@ -210,8 +210,24 @@ def test_a_configuration_commanding_no_joint_checks_nothing(tmp_path):
                              "JointTrajectoryController\n", ""))
     code, out, err = simulate(str(DEMO_ROS2), "--controllers", control)
     assert (code, err) == (3, "")
-    assert f"note: no controller of {control} commands a moving joint of the robot: nothing " \
-           "is driven" in out
+    assert out.splitlines()[-1] == f"INCONCLUSIVE: nothing checked: no controller of {control} " \
+                                   "commands a moving joint of the robot"
+
+
+def test_a_controller_type_whose_interfaces_are_not_known_drives_nothing_said_so(tmp_path):
+    control = write(tmp_path, "ct.yaml", """\
+ct:
+  type: computed_torque_controllers/PositionJointController
+  joints:
+    shoulder: {p: 400, d: 40}
+""")
+    code, out, err = simulate(str(ROOT / "fixtures" / "demo_robot.urdf"), "--controllers",
+                              control)
+    assert (code, err) == (3, "")
+    assert f"note: {control}:1: which joints 'ct' (computed_torque_controllers/" \
+           "PositionJointController) commands is not known (txtool does not work out the " \
+           "interfaces of its type): they are not counted as driven (--params FILE takes its " \
+           "gains)" in out.splitlines()
 
 
 def test_a_file_without_controllers_is_one_line_and_exit_2(tmp_path):

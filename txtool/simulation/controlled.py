@@ -116,6 +116,11 @@ def read(paths: tuple[str, ...], config: Source, joints: tuple[str, ...],
         text = read_text(path)
         for controller in controllers:
             commanded = _commanded(controller, file.generation)
+            if not commanded and _names_joints(controller):
+                notes.append(f"{path}:{controller.line}: which joints '{controller.name}' "
+                             f"({controller.type}) commands is not known (txtool does not work "
+                             "out the interfaces of its type): they are not counted as driven"
+                             " (--params FILE takes its gains)")
             mine = [j for j in commanded if j in joints and j not in drivers]
             for joint in commanded:
                 if joint in drivers and drivers[joint].controller != controller.name:
@@ -147,6 +152,14 @@ def _commanded(controller: Controller, generation: str) -> dict[str, tuple[str, 
             if generation == "ros1" else (claim.interface,)
         commanded[claim.joint] = commanded.get(claim.joint, ()) + names
     return commanded
+
+
+def _names_joints(controller: Controller) -> bool:
+    """Whether the parameters of a controller that claims nothing name joints (a type whose
+    interfaces txtool does not work out; a state broadcaster's joints are only read)."""
+    if "broadcaster" in controller.type or "state_controller" in controller.type:
+        return False
+    return any(controller.params.get(key) for key in ("joints", "joint", "dof_names"))
 
 
 def _pid_claims(controller: Controller) -> tuple[Claim, ...]:

@@ -151,6 +151,7 @@ class Coverage:
     joints_checked: int = 0  # joints driven through a simulated transmission
     unread: tuple[tuple[str, str], ...] = ()  # (transmission, why) no reader of the file reads
     still: tuple[str, ...] = ()  # checked joints the reference does not move (limits cut it)
+    why: str = ""  # why nothing was checked, when no transmission was the reason
 
     @property
     def nothing(self) -> bool:
@@ -178,6 +179,8 @@ class Coverage:
                 f"{self.joints_checked} of {self.joints} joints{still}")
 
     def why_nothing(self) -> str:
+        if self.why:
+            return self.why
         if not self.transmissions and self.unread:
             return (f"no reader of the config reads any of its {len(self.unread)} "
                     f"transmissions ({self.unread[0][1]})")

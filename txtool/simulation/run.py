@@ -302,11 +302,10 @@ def _uncontrolled(options: Options, label: str, drives: controlled.Controlled,
     refuses (a failure, with the findings as validate gives them), or no controller
     commanding a joint of the model (nothing to check)."""
     causes = [result.Cause("controller_refused", str(p)) for p in drives.refused]
-    notes = [] if causes else list(drives.notes)
-    if not drives.drivers and not causes:
-        notes.append(f"no controller of {', '.join(drives.files)} commands a moving joint "
-                     "of the robot: nothing is driven")
-    return Unchecked(options, label, notes, result.Coverage(), readers, causes)
+    why = "" if causes else (f"no controller of {', '.join(drives.files)} commands a moving "
+                             "joint of the robot")
+    return Unchecked(options, label, [] if causes else list(drives.notes),
+                     result.Coverage(why=why), readers, causes)
 
 
 def _stability(robot: RobotModel, inertia: np.ndarray, ref: reference.Reference,
