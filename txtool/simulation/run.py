@@ -243,10 +243,7 @@ def prepare(options: Options, config: str | None, label: str | None = None
     if covered.nothing:
         return Unchecked(options, label, _notes(robot, plant, ctrl, config is not None), covered,
                          readers, dropped(plant, ctrl) if config is not None else [])
-    params = load_params(options.params, options.robot)
-    if drives is not None:  # --params over the controllers' gains: the tuning asked for
-        params = merge([drives.params, params])
-        params = replace(params, notes=drives.notes + params.notes)
+    params = _params(options, drives)
     params.check_names(set(plant.actuators) | set(ctrl.actuators), set(robot.joints),
                        options.robot)
     run_settings = settings(options, params)
@@ -294,6 +291,15 @@ def prepare(options: Options, config: str | None, label: str | None = None
                     time.perf_counter() - started, carry_notes + ref_notes, weak, controller,
                     readers, used, params.notes + tuple(stiff), carry_table, unstable,
                     drives.report(robot.joints) if drives is not None else {})
+
+
+def _params(options: Options, drives: controlled.Controlled | None) -> Params:
+    """The parameter files' values over the gains of the controllers driving the joints:
+    ``--params`` is the tuning asked for."""
+    params = load_params(options.params, options.robot)
+    if drives is None:
+        return params
+    return replace(merge([drives.params, params]), notes=drives.notes + params.notes)
 
 
 def _uncontrolled(options: Options, label: str, drives: controlled.Controlled,
