@@ -115,28 +115,36 @@ def read(paths: tuple[str, ...], config: Source, joints: tuple[str, ...],
                          f"are not checked: {config.path} provides none for them")
         text = read_text(path)
         for controller in controllers:
-            commanded = _commanded(controller, file.generation)
-            if not commanded and _names_joints(controller):
-                notes.append(f"{path}:{controller.line}: which joints '{controller.name}' "
-                             f"({controller.type}) commands is not known (txtool does not work "
-                             "out the interfaces of its type): they are not counted as driven"
-                             " (--params FILE takes its gains)")
-            mine = [j for j in commanded if j in joints and j not in drivers]
-            for joint in commanded:
-                if joint in drivers and drivers[joint].controller != controller.name:
-                    first = drivers[joint]
-                    notes.append(f"{path}:{controller.line}: '{controller.name}' also commands "
-                                 f"joint '{joint}': simulated as '{first.controller}' "
-                                 f"({first.file}:{first.line}) drives it (the manager refuses "
-                                 "the second of them activated)")
-            for joint in mine:
-                drivers[joint] = Driver(controller.name, controller.type, commanded[joint],
-                                        path, controller.line)
+            mine = _drive(controller, file.generation, path, joints, drivers, notes)
             if mine:
                 gains.append(_gains_of(text, path, controller.name, mine, notes))
     held = tuple(j for j in joints if j not in drivers and j not in followers)
     return Controlled(paths, drivers, held, tuple(refused), merge(gains) if gains else Params(),
                       tuple(notes) + _interface_notes(drivers))
+
+
+def _drive(controller: Controller, generation: str, path: str, joints: tuple[str, ...],
+           drivers: dict[str, Driver], notes: list[str]) -> list[str]:
+    """The joints ``controller`` drives, entered in ``drivers``: those it commands that no
+    earlier controller does (a note for the others)."""
+    commanded = _commanded(controller, generation)
+    if not commanded and _names_joints(controller):
+        notes.append(f"{path}:{controller.line}: which joints '{controller.name}' "
+                     f"({controller.type}) commands is not known (txtool does not work out the "
+                     "interfaces of its type): they are not counted as driven (--params FILE "
+                     "takes its gains)")
+    mine = [j for j in commanded if j in joints and j not in drivers]
+    for joint in commanded:
+        first = drivers.get(joint)
+        if first is not None and first.controller != controller.name:
+            notes.append(f"{path}:{controller.line}: '{controller.name}' also commands joint "
+                         f"'{joint}': simulated as '{first.controller}' ({first.file}:"
+                         f"{first.line}) drives it (the manager refuses the second of them "
+                         "activated)")
+    for joint in mine:
+        drivers[joint] = Driver(controller.name, controller.type, commanded[joint], path,
+                                controller.line)
+    return mine
 
 
 _GENERATION = {"ros1": "ROS 1", "ros2": "ROS 2"}
