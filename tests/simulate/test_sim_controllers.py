@@ -167,8 +167,7 @@ def test_params_override_the_controllers_gains(tmp_path):
     assert run["gains"]["wrist_pitch"]["source"]["file"] == control
 
 
-def test_pid_controller_on_a_velocity_error_drives_its_joints_without_its_gains(tmp_path):
-    control = write(tmp_path, "pid.yaml", """\
+PID_CONTROLLER = """\
 controller_manager:
   ros__parameters:
     pid:
@@ -179,8 +178,23 @@ pid:
     command_interface: effort
     reference_and_state_interfaces: [velocity]
     gains:
-      shoulder: {p: 1.0}
-""")
+      shoulder: {p: 1.0, d: 0.1}
+"""
+
+
+def test_pid_controller_on_the_position_error_drives_its_joints_with_its_gains(tmp_path):
+    control = write(tmp_path, "pid.yaml", PID_CONTROLLER.replace("[velocity]",
+                                                                 "[position, velocity]"))
+    code, run = run_json(str(DEMO_ROS2), "--controllers", control, "--duration", "0.5")
+    assert code == 0
+    assert {d["controller"] for d in run["controllers"].values()} == {"pid"}
+    shoulder = run["gains"]["shoulder"]
+    assert (shoulder["source"]["file"], shoulder["source"]["line"]) == (control, 11)
+    assert shoulder["kp"] * shoulder["source"]["divided_by_inertia"] == pytest.approx(1.0)
+
+
+def test_pid_controller_on_a_velocity_error_drives_its_joints_without_its_gains(tmp_path):
+    control = write(tmp_path, "pid.yaml", PID_CONTROLLER)
     code, run = run_json(str(DEMO_ROS2), "--controllers", control, "--duration", "0.5")
     assert code == 0
     assert {d["controller"] for d in run["controllers"].values()} == {"pid"}
