@@ -189,6 +189,7 @@ def simulate(
     configs: PathLike | Sequence[PathLike] = (),
     *,
     params: PathLike | Sequence[PathLike] = (),
+    controllers: PathLike | Sequence[PathLike] = (),
     duration: float | None = None,
     dt: float | None = None,
     tolerance: float | None = None,
@@ -214,11 +215,13 @@ def simulate(
 
     Each result has ``verdict`` (``pass``, ``fail`` or ``inconclusive``: nothing of the config
     could be simulated), ``passed``, ``reasons``, ``notes``, ``coverage`` (a
-    :class:`Coverage`), ``joints`` (:class:`JointStats` by joint) and ``actuators``
-    (:class:`ActuatorStats`); ``series`` holds the time series when ``keep_series``. The
-    keywords are the command's options (``effort_convention`` is ``--effort-convention``);
-    None takes the value of the parameter files, else the default. Needs the ``sim`` extra
-    (Pinocchio): without it :class:`MissingExtra` names the extra to install."""
+    :class:`Coverage`), ``joints`` (:class:`JointStats` by joint), ``actuators``
+    (:class:`ActuatorStats`) and ``controllers`` (with ``controllers``: the controller
+    commanding each joint, None for a joint held); ``series`` holds the time series when
+    ``keep_series``. The keywords are the command's options (``effort_convention`` is
+    ``--effort-convention``); None takes the value of the parameter files, else the default.
+    Needs the ``sim`` extra (Pinocchio): without it :class:`MissingExtra` names the extra to
+    install."""
     _require("pinocchio", "sim", "txtool.simulate")
     from txtool.simulation.jobs import execute
     from txtool.simulation.run import Options
@@ -230,7 +233,7 @@ def simulate(
         interpolation=interpolation, allow_saturation=allow_saturation, loader=loader,
         convention=effort_convention, ros_distro=ros_distro, delay=delay,
         encoder_counts=encoder_counts, counterbalance=counterbalance, skip=tuple(skip),
-        jobs=jobs, keep_series=keep_series,
+        jobs=jobs, keep_series=keep_series, controllers=_paths(controllers),
         xacro=_xacro_options(xacro_args, pkg_dirs, pkg_paths),
     )
     return execute(options)

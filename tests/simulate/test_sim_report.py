@@ -133,6 +133,32 @@ def test_json_shape_matches_golden(tmp_path):
     assert text == path.read_text(encoding="utf-8")
 
 
+def test_json_shape_with_controllers_matches_golden(tmp_path):
+    """--controllers: each joint's controller (or null: held) and the gains it carries."""
+    robot = FIXTURES / "demo_robot.ros2-p2.urdf"
+    control = write(tmp_path, "controllers.yaml", """\
+controller_manager:
+  ros__parameters:
+    arm_controller:
+      type: joint_trajectory_controller/JointTrajectoryController
+arm_controller:
+  ros__parameters:
+    joints: [shoulder, wrist_pitch]
+    command_interfaces: [effort]
+    state_interfaces: [position, velocity]
+    gains:
+      shoulder: {p: 1.0, d: 0.1}
+""")
+    code, out, err = simulate(str(robot), "--controllers", control, "--duration", "0.5",
+                              "--format", "json")
+    assert (code, err) == (0, "")
+    text = json.dumps(_shape(json.loads(out)), indent=2, ensure_ascii=False) + "\n"
+    path = GOLDEN / "simulate_controllers_shape.json"
+    if os.environ.get("TXTOOL_UPDATE_GOLDEN") == "1":
+        path.write_text(text, encoding="utf-8")
+    assert text == path.read_text(encoding="utf-8")
+
+
 @needs_matplotlib
 @pytest.mark.parametrize(("suffix", "magic"),
                          [(".png", b"\x89PNG"), (".svg", b"<?xml"), (".PDF", b"%PDF")])

@@ -102,6 +102,11 @@ def refuse_campaign_options(campaign: dict[str, Any]) -> None:
               help="Actuator and gain parameters, or a ROS controllers YAML with PID gains "
                    "(repeat to combine; default: [tool.txtool.simulate] in the nearest "
                    "pyproject.toml above ROBOT).")
+@click.option("--controllers", "controllers", multiple=True, type=click.Path(dir_okay=False),
+              metavar="FILE",
+              help="A controller configuration (YAML; repeatable): the joints its controllers "
+                   "command are driven, the others held; the effort controllers' PID gains "
+                   "are used. A controller its manager refuses (TX5xx error) fails the run.")
 @click.option("--bandwidth", type=float, metavar="RAD/S",
               help="Closed-loop bandwidth w for default gains kp=w^2, kd=2w  [default: 20]")
 @click.option("--duration", type=float, metavar="S",
@@ -158,7 +163,7 @@ def refuse_campaign_options(campaign: dict[str, Any]) -> None:
 @campaign_options
 @exit_on_input_error
 def command(robot: str, configs: tuple[str, ...], params: tuple[str, ...],
-            bandwidth: float | None,
+            controllers: tuple[str, ...], bandwidth: float | None,
             duration: float | None, dt: float | None, tolerance: float | None,
             trajectory: str | None, interpolation: str, allow_saturation: bool, loader: str,
             ros_distro: str | None, convention: str | None, delay: bool, encoder_counts: int | None,
@@ -189,7 +194,7 @@ def command(robot: str, configs: tuple[str, ...], params: tuple[str, ...],
         dt=dt, tolerance=tolerance, trajectory=trajectory, interpolation=interpolation,
         allow_saturation=allow_saturation, loader=loader, convention=convention, xacro=xacro,
         jobs=jobs, skip=skip, delay=delay, encoder_counts=encoder_counts,
-        counterbalance=counterbalance, ros_distro=ros_distro,
+        counterbalance=counterbalance, ros_distro=ros_distro, controllers=controllers,
     )
     if campaign["campaign_path"] is not None:
         return run_campaign(options, csv_path=csv_path, plot_path=plot_path,

@@ -8,10 +8,13 @@ every object holding numbers has a ``units`` map giving the unit of each of its 
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from txtool.simulation.report import overall_verdict
 from txtool.simulation.result import ActuatorStats, Coverage, GainsUsed, JointStats, RunResult
+
+if TYPE_CHECKING:
+    from txtool.simulation.controlled import Driver
 
 ONE = "1"  # counts, shares, line numbers
 
@@ -39,6 +42,7 @@ def run_json(run: RunResult) -> dict[str, Any]:
         "counterbalance": {name: counterbalance_json(entry)
                            for name, entry in run.counterbalance.items()},
         "checked": coverage_json(run.coverage),
+        "controllers": {name: driver_json(d) for name, d in run.controllers.items()},
         "tolerance": run.tolerance,
         "steps": run.steps,
         "dt": run.dt,
@@ -84,6 +88,16 @@ def coverage_json(covered: Coverage) -> dict[str, Any]:
             "joints": covered.joints, "joints_checked": covered.joints_checked,
             "still": list(covered.still),
             "units": {"transmissions": ONE, "joints": ONE, "joints_checked": ONE}}
+
+
+def driver_json(driver: Driver | None) -> dict[str, Any] | None:
+    """The controller commanding a joint (``--controllers``); None: no controller does, the
+    joint is held."""
+    if driver is None:
+        return None
+    return {"controller": driver.controller, "type": driver.type,
+            "command_interfaces": list(driver.interfaces), "file": driver.file,
+            "line": driver.line or None, "units": {"line": ONE}}
 
 
 def gains_json(g: GainsUsed) -> dict[str, Any]:

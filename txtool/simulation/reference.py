@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import csv
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -221,6 +221,17 @@ def follow(ref: Reference, joints: tuple[str, ...],
         qd[:, f] = multiplier * ref.qd[:, lead]
         qdd[:, f] = multiplier * ref.qdd[:, lead]
     return Reference(ref.time, q, qd, qdd, ref.source)
+
+
+def hold(ref: Reference, joints: tuple[str, ...], held: tuple[str, ...]) -> Reference:
+    """``ref`` with the ``held`` joints kept at their first position, at rest (joints no
+    controller commands: their drive keeps them where they are)."""
+    q, qd, qdd = ref.q.copy(), ref.qd.copy(), ref.qdd.copy()
+    columns = [joints.index(j) for j in held]
+    q[:, columns] = ref.q[0, columns]
+    qd[:, columns] = 0.0
+    qdd[:, columns] = 0.0
+    return replace(ref, q=q, qd=qd, qdd=qdd)
 
 
 def saturate(ref: Reference, joints: tuple[str, ...], lower: np.ndarray, upper: np.ndarray,

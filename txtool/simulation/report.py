@@ -96,6 +96,8 @@ def render_run(run: RunResult, console: Console) -> None:
         console.print(escape(line), soft_wrap=True)
     for table in [*joint_tables(run), *actuator_tables(run)]:
         _print_table(console, table)
+    if run.controllers:
+        _print_table(console, controllers_table(run))
     gains = gains_table(run)
     if isinstance(gains, Table):
         _print_table(console, gains)
@@ -233,6 +235,20 @@ def gains_table(run: RunResult) -> Table | str:
         if divided:
             row.append(_num(g.inertia, 3))
         table.add_row(*row, escape(gain_origin(g)))
+    return table
+
+
+def controllers_table(run: RunResult) -> Table:
+    """``--controllers``: the controller commanding each joint, or none (the joint is held)."""
+    table = _table("controllers (--controllers)")
+    for name in ("joint", "controller", "command", "at"):
+        table.add_column(name, overflow="fold")
+    for joint, driver in run.controllers.items():
+        if driver is None:
+            table.add_row(escape(joint), "none: held", "-", "-")
+            continue
+        table.add_row(escape(joint), escape(driver.controller), "/".join(driver.interfaces),
+                      escape(f"{Path(driver.file).name}:{driver.line}"))
     return table
 
 

@@ -4,11 +4,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from txtool.lint.readers import FileReaders
 from txtool.simulation.params import GainSource
+
+if TYPE_CHECKING:
+    from txtool.simulation.controlled import Driver
 
 LIMIT_SLACK = 1e-9  # position limits: ignore round-off at a limit
 SHOWN_REASONS = 2  # why a run checked nothing: the first reasons, in the verdict line
@@ -28,6 +32,7 @@ KINDS = (
     "xml_order",  # ROS 2: parameters in XML order, bound to the names sorted
     "interface",  # commanded through other interfaces than the robot's
     "not_transmissions",  # the maps agree: the failure comes from elsewhere
+    "controller_refused",  # --controllers: the controller manager refuses a controller
 )
 
 
@@ -146,6 +151,7 @@ class Coverage:
     joints_checked: int = 0  # joints driven through a simulated transmission
     unread: tuple[tuple[str, str], ...] = ()  # (transmission, why) no reader of the file reads
     still: tuple[str, ...] = ()  # checked joints the reference does not move (limits cut it)
+    why: str = ""  # why nothing was checked, when no transmission was the reason
 
     @property
     def nothing(self) -> bool:
@@ -173,6 +179,8 @@ class Coverage:
                 f"{self.joints_checked} of {self.joints} joints{still}")
 
     def why_nothing(self) -> str:
+        if self.why:
+            return self.why
         if not self.transmissions and self.unread:
             return (f"no reader of the config reads any of its {len(self.unread)} "
                     f"transmissions ({self.unread[0][1]})")
@@ -208,6 +216,8 @@ class RunResult:
     readers: dict[str, FileReaders] = field(default_factory=dict)
     # what differs from the robot's config, each with its kind (diagnose.Cause)
     causes: list[Cause] = field(default_factory=list)
+    # --controllers: per joint of the model, the controller commanding it (None: held)
+    controllers: dict[str, Driver | None] = field(default_factory=dict)
 
     @property
     def failed(self) -> bool:

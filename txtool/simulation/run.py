@@ -15,6 +15,7 @@ from txtool.lint.config import readers_of
 from txtool.lint.readers import FileReaders, record
 from txtool.simulation import (
     checks,
+    controlled,
     counterbalance,
     feasible,
     gains,
@@ -26,7 +27,7 @@ from txtool.simulation import (
 from txtool.simulation.drive import Drive, read_drive
 from txtool.simulation.model import Massless, RobotModel, build
 from txtool.simulation.parameter_files import load_params
-from txtool.simulation.params import Params
+from txtool.simulation.params import Params, merge
 from txtool.simulation.plan import Controller, Plan, RunState
 from txtool.simulation.sensing import Sensing
 
@@ -66,6 +67,7 @@ class Options:
     encoder_counts: int | None = None
     counterbalance: bool = True  # static loads beyond the effort limits: counterbalance.py
     ros_distro: str | None = None  # --ros-distro: the distribution reading the files
+    controllers: tuple[str, ...] = ()  # --controllers: the configurations of the controllers
 
 
 @dataclass(frozen=True)
@@ -131,6 +133,7 @@ class Prepared:
     notes: tuple[str, ...] = ()
     carried: dict[str, dict[str, float | str]] = field(default_factory=dict)
     unstable: list[str] = field(default_factory=list)  # joints whose sampled loop is unstable
+    controllers: dict[str, controlled.Driver | None] = field(default_factory=dict)
 
 
 @dataclass
@@ -231,10 +234,16 @@ def prepare(options: Options, config: str | None, label: str | None = None
         raise InputError(f"--skip: no transmission named {', '.join(map(repr, unknown))} in "
                          f"{options.robot}" + (f" or {config}" if config else ""))
     covered = coverage_of(robot, ctrl)
+    drives = None
+    if options.controllers:
+        drives = controlled.read(options.controllers, candidate, robot.joints,
+                                 frozenset(robot.followers))
+        if drives.refused or not drives.drivers:
+            return _uncontrolled(options, label, drives, readers)
     if covered.nothing:
         return Unchecked(options, label, _notes(robot, plant, ctrl, config is not None), covered,
                          readers, dropped(plant, ctrl) if config is not None else [])
-    params = load_params(options.params, options.robot)
+    params = _params(options, drives)
     params.check_names(set(plant.actuators) | set(ctrl.actuators), set(robot.joints),
                        options.robot)
     run_settings = settings(options, params)
@@ -255,12 +264,16 @@ def prepare(options: Options, config: str | None, label: str | None = None
         limits = setup.motion_limits(robot, plant, inertia, controller, effort_limit,
                                      speed_limit, run_settings.dt, options.delay)
         ref, duration, ref_notes, weak, carry = _default_reference(
-            robot, run_settings, limits, setup.reference_dynamics(robot, inertia), fixed, finder)
+            robot, run_settings, limits, setup.reference_dynamics(robot, inertia), fixed, finder,
+            drives.held if drives is not None else ())
     else:
         ref, duration, ref_notes = _reference(options, table, robot, run_settings)
         weak, carry = [], None
-        if finder is not None:  # found on every tenth pose, applied at every step
-            carry = finder(setup.gravity_along(robot, ref.q[::10]))
+    if drives is not None and drives.held:
+        ref = reference.hold(ref, robot.joints, drives.held)
+        ref_notes.append(_held_note(drives.held, table is None))
+    if table is not None and finder is not None:  # found on every tenth pose, used at every step
+        carry = finder(setup.gravity_along(robot, ref.q[::10]))
     carried, carry_notes, carry_table = None, [], {}
     if table is not None and carry is not None:
         carry_notes = carry.refused  # (the default motion's planner notes them itself)
@@ -276,7 +289,29 @@ def prepare(options: Options, config: str | None, label: str | None = None
     return Prepared(options, config, label, robot, plant, ctrl, binding, plan, ref,
                     run_settings, duration, effort_limit, speed_limit,
                     time.perf_counter() - started, carry_notes + ref_notes, weak, controller,
-                    readers, used, params.notes + tuple(stiff), carry_table, unstable)
+                    readers, used, params.notes + tuple(stiff), carry_table, unstable,
+                    drives.report(robot.joints) if drives is not None else {})
+
+
+def _params(options: Options, drives: controlled.Controlled | None) -> Params:
+    """The parameter files' values over the gains of the controllers driving the joints:
+    ``--params`` is the tuning asked for."""
+    params = load_params(options.params, options.robot)
+    if drives is None:
+        return params
+    return replace(merge([drives.params, params]), notes=drives.notes + params.notes)
+
+
+def _uncontrolled(options: Options, label: str, drives: controlled.Controlled,
+                  readers: dict[str, FileReaders]) -> Unchecked:
+    """A run the controller configuration stops before it starts: a controller its manager
+    refuses (a failure, with the findings as validate gives them), or no controller
+    commanding a joint of the model (nothing to check)."""
+    causes = [result.Cause("controller_refused", str(p)) for p in drives.refused]
+    why = "" if causes else (f"no controller of {', '.join(drives.files)} commands a moving "
+                             "joint of the robot")
+    return Unchecked(options, label, [] if causes else list(drives.notes),
+                     result.Coverage(why=why), readers, causes)
 
 
 def _stability(robot: RobotModel, inertia: np.ndarray, ref: reference.Reference,
@@ -339,6 +374,7 @@ def finish(p: Prepared, state: RunState, loop_s: float) -> result.RunResult:
     run.counterbalance = p.carried
     run.coverage = replace(coverage_of(p.robot, p.ctrl), still=_still(p))
     run.readers = p.readers
+    run.controllers = p.controllers
     checks.judge(run, series, p.plant, p.ctrl, p.binding.S, p.config is not None,
                  p.plan.encoder, p.plan.delay)
     run.timings = {"setup_s": p.setup_s, "loop_s": loop_s,
@@ -355,11 +391,14 @@ def _ranges(robot: RobotModel) -> list[tuple[float, float]]:
 
 def _default_reference(robot: RobotModel, s: Settings, limits: feasible.Limits,
                        dynamics: feasible.Dynamics, fixed: bool,
-                       finder: Callable[[np.ndarray], counterbalance.Counterbalance] | None
+                       finder: Callable[[np.ndarray], counterbalance.Counterbalance] | None,
+                       held: tuple[str, ...] = ()
                        ) -> tuple[reference.Reference, float, list[str], list[str],
                                   counterbalance.Counterbalance | None]:
-    """The minimum-jerk motion, slowed (or, with a fixed duration, shrunk) to be feasible."""
-    ranges = _ranges(robot)
+    """The minimum-jerk motion, slowed (or, with a fixed duration, shrunk) to be feasible;
+    the ``held`` joints stay at the middle of their range (a range of none to plan)."""
+    ranges = [((lo + hi) / 2, (lo + hi) / 2) if joint in held else (lo, hi)
+              for joint, (lo, hi) in zip(robot.joints, _ranges(robot), strict=True)]
     chosen = feasible.plan_motion(ranges, limits, dynamics, s.duration / 2, fixed, s.tolerance,
                                   finder)
     price(2 * chosen.move, s.dt, 2 * len(robot.joints), "the motion slowed to be feasible")
@@ -376,6 +415,12 @@ def _default_reference(robot: RobotModel, s: Settings, limits: feasible.Limits,
                         + " move in a range of 2 near 0, as continuous joints do")
     return (ref, float(ref.time[-1]), list(chosen.notes) + notes, list(chosen.cannot_hold),
             chosen.carry)
+
+
+def _held_note(held: tuple[str, ...], default: bool) -> str:
+    where = "the middle of their range" if default else "the start of the trajectory"
+    return (f"held at {where}: no controller commands them, so their drive keeps them where "
+            "they are: " + ", ".join(f"'{j}'" for j in held))
 
 
 def _table(options: Options, robot: RobotModel) -> reference.Table:

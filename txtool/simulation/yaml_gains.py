@@ -36,6 +36,19 @@ PID_KEYS = ("p", "i", "d", "i_clamp", "i_clamp_max", "i_clamp_min")
 OTHER_KEYS = ("antiwindup", "publish_state", "ff_velocity_scale", "feedforward_gain",
               "u_clamp_max", "u_clamp_min", "antiwindup_strategy", "tracking_time_constant",
               "error_deadband", "angle_wraparound", "normalize_error", "saturation")
+# Feed-forward gains a controller adds to its PID's output, which simulate's law replaces with
+# the computed torque of the reference (rnea of its position, speed and acceleration).
+FEED_FORWARD = {
+    # joint_trajectory_controller.cpp:439 (ros2_controllers @94e74de): the command is
+    # ff_velocity_scale * reference speed + PID, in the command interface's unit.
+    "ff_velocity_scale": "joint_trajectory_controller adds ff_velocity_scale times the "
+                         "reference speed to its PID's output; simulate's feed-forward is the "
+                         "computed torque of the reference instead",
+    # pid_controller.cpp:558-563: the command is feedforward_gain * reference + PID.
+    "feedforward_gain": "pid_controller adds feedforward_gain times its reference to its PID's "
+                        "output; simulate's feed-forward is the computed torque of the "
+                        "reference instead",
+}
 MAX_DEPTH = 8
 
 Path_ = tuple[str, ...]
@@ -76,16 +89,7 @@ def parse_yaml(text: str, path: str, only: str | None = None) -> Params:
     When two controllers give gains for one joint (a ROS 1 file often holds alternatives), the
     first one's are used and a note names the other; ``FILE.yaml#NAME`` picks one.
     """
-    data, lines = _load(text, path)
-    source = _File(path, lines)
-    if not isinstance(data, dict):
-        raise InputError(f"{path}: expected a mapping of controllers, got "
-                         f"{type(data).__name__ if data is not None else 'an empty file'}")
-    types = dict(_types(data, ()))
-    joints: dict[str, JointGains] = {}
-    where: dict[str, str] = {}
-    notes: list[str] = []
-    unusable: list[str] = []
+    data, source = _document(text, path)
     found = list(_controllers(data, (), False))
     if only is not None:
         names = [c.name for c in found]
@@ -93,6 +97,42 @@ def parse_yaml(text: str, path: str, only: str | None = None) -> Params:
         if not found:
             raise InputError(f"{path}: no controller '{only}' with gains (there are: "
                              f"{', '.join(names) or 'none'})")
+    if not found:
+        raise InputError(f"{path}: no controller gains found (expected <ns>: {{joints: "
+                         "{<joint>: {p, i, d}}}, or gains: {<joint>: {p, i, d}})")
+    params, unusable = _collect(data, source, text, found)
+    if not params.joints:
+        raise InputError(f"{path}: no gains of an effort or computed-torque controller: "
+                         + "; ".join(unusable))
+    return params
+
+
+def controller_gains(text: str, path: str, name: str) -> Params:
+    """The gains controller ``name`` of the file carries, for ``simulate --controllers``: none
+    is no error (a position controller has none), and gains simulate cannot use get a note."""
+    data, source = _document(text, path)
+    return _collect(data, source, text,
+                    [c for c in _controllers(data, (), False) if c.name == name])[0]
+
+
+def _document(text: str, path: str) -> tuple[dict[str, Any], _File]:
+    data, lines = _load(text, path)
+    if not isinstance(data, dict):
+        raise InputError(f"{path}: expected a mapping of controllers, got "
+                         f"{type(data).__name__ if data is not None else 'an empty file'}")
+    return data, _File(path, lines)
+
+
+def _collect(data: dict[str, Any], source: _File, text: str, found: list[_Controller]
+             ) -> tuple[Params, list[str]]:
+    """(the gains of the controllers ``found``, why each unusable one is), the first
+    controller's gains for a joint winning."""
+    path = source.path
+    types = dict(_types(data, ()))
+    joints: dict[str, JointGains] = {}
+    where: dict[str, str] = {}
+    notes: list[str] = []
+    unusable: list[str] = []
     for ctrl in found:
         per, fmt, why = _kind(ctrl, types.get(ctrl.name))
         line = source.line(ctrl.keys)
@@ -114,13 +154,7 @@ def parse_yaml(text: str, path: str, only: str | None = None) -> Params:
             notes.append(f"{at}: gains of '{ctrl.name}' for "
                          f"{', '.join(taken)} not used: an earlier controller in the file gives "
                          f"them (pick one with {Path(path).name}#{ctrl.name})")
-    if not found:
-        raise InputError(f"{path}: no controller gains found (expected <ns>: {{joints: "
-                         "{<joint>: {p, i, d}}}, or gains: {<joint>: {p, i, d}})")
-    if not joints:
-        raise InputError(f"{path}: no gains of an effort or computed-torque controller: "
-                         + "; ".join(unusable))
-    return Params(joints=joints, path=path, text=text, where=where, notes=tuple(notes))
+    return Params(joints=joints, path=path, text=text, where=where, notes=tuple(notes)), unusable
 
 
 def _load(text: str, path: str) -> tuple[Any, dict[Path_, int]]:
@@ -211,6 +245,13 @@ def _kind(ctrl: _Controller, declared: str | None) -> tuple[str | None, str, str
         return "effort", "effort_controllers/JointPositionController", ""
     fmt = "pid_controller" if "pid_controller" in kind or "dof_names" in ctrl.params \
         or "command_interface" in ctrl.params else "joint_trajectory_controller"
+    measured = ctrl.params.get("reference_and_state_interfaces")
+    if fmt == "pid_controller" and isinstance(measured, list) and measured \
+            and measured[0] != "position":
+        # pid_controller.cpp:566-596 (ros2_controllers @94e74de): its PID acts on the error of
+        # the first of them.
+        return None, fmt, (f"its PID acts on the {measured[0]} error "
+                           "(reference_and_state_interfaces), not the position error")
     interfaces = ctrl.params.get("command_interfaces", ctrl.params.get("command_interface"))
     if isinstance(interfaces, str):
         interfaces = [interfaces]
@@ -240,6 +281,8 @@ def _gains(source: _File, keys: Path_, values: dict[str, Any], ros2: bool, per: 
     given: dict[str, float] = {}
     for key, value in values.items():
         key = str(key)
+        if key in FEED_FORWARD and type(value) in (int, float) and value:
+            notes.append(f"{source.where((*keys, key))}: {value!r} not used: {FEED_FORWARD[key]}")
         if key in OTHER_KEYS:
             continue
         if key not in PID_KEYS:
