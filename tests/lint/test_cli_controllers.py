@@ -144,3 +144,17 @@ def test_of_robots_with_the_same_joints_the_controllers_own_package_is_chosen(
                                 f"{interface.lower()}_controllers/JointGroup{interface}"))
     code, out, err = run(".", folder=tmp_path)
     assert (code, out, err) == (0, "No problems in 2 files.\n", "")
+
+
+def test_a_controller_finding_spans_the_controllers_name_in_json(tmp_path, monkeypatch):
+    import json
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "robot.urdf").write_text(ROBOT)
+    (tmp_path / "controllers.yaml").write_text(CONTROLLERS)
+    code, out, err = run("robot.urdf", "--controllers", "controllers.yaml", "--format", "json",
+                         folder=tmp_path)
+    found = json.loads(out)["problems"]
+    assert (code, err) == (1, "")
+    assert [(p["line"], p["column"], p["end_line"], p["end_column"], p["code"])
+            for p in found] == [(4, 3, 4, 6, "TX501")]  # 'arm'

@@ -21,7 +21,7 @@ import itertools
 import os
 import re
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 from txtool.commands.lsp_document import (
     Options,
@@ -44,6 +44,7 @@ from txtool.lint.controller_files import (
     package_root,
     pick_robot,
     robot_provision,
+    spawns_near,
 )
 from txtool.lint.discover import expand_paths
 from txtool.lint.problem import Note, Problem
@@ -179,7 +180,7 @@ def _judged(file: ControllerFile, provisions: dict[str, Provision | None], root:
     the finding names."""
     path = file.path
     controllers = controllers_of(file, exported_controllers(package_root(path)))
-    chosen = pick_robot(controllers, file.generation, provisions)
+    chosen = pick_robot(controllers, file.generation, provisions, near=path)
     provision = provisions.get(chosen) if chosen is not None else None
     if chosen is None or provision is None:
         return []
@@ -187,7 +188,8 @@ def _judged(file: ControllerFile, provisions: dict[str, Provision | None], root:
         settings = settings_for(path, root, options)
     except (InputError, OSError):  # a robot's diagnostics say why
         return []
-    ctx = ControllerContext(path, chosen, file.generation, controllers, provision)
+    ctx = ControllerContext(path, chosen, file.generation, controllers, provision,
+                            spawns_near(path, chosen))
     by_place = {(c.line, c.column): c for c in controllers}
     found = []
     for problem in judged(ctx, settings):
@@ -195,9 +197,6 @@ def _judged(file: ControllerFile, provisions: dict[str, Provision | None], root:
         if controller is None:
             found.append((problem, chosen, []))
             continue
-        # The range of the controller's name (which the rules' stamped findings leave out).
-        problem = replace(problem, end_line=controller.line,
-                          end_column=controller.column + max(len(controller.name), 1))
         joints = [joint for joint in controller.joints if f"'{joint}'" in problem.message]
         found.append((problem, chosen, joints))
     return found

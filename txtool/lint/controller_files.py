@@ -395,9 +395,8 @@ def judged(ctx: ControllerContext, settings: Settings) -> list[Problem]:
             continue
         configured = settings.severity.get(code)
         problems.extend(
-            Problem(p.path, p.line, p.column, p.code, p.message,
-                    severity=configured or p.loader_severity or rule.severity,
-                    name=rule.name, fixable=False)
+            dataclasses.replace(p, severity=configured or p.loader_severity or rule.severity,
+                                name=rule.name, fixable=False)
             for p in check(ctx)
         )
     return sorted(problems)
