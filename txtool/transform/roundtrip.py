@@ -15,7 +15,6 @@ import copy
 import hashlib
 import itertools
 from collections import deque
-from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 from lxml import etree
@@ -23,7 +22,7 @@ from lxml import etree
 from txtool.dialects.read import read_source
 from txtool.io.xmlio import Source, parse_bytes
 from txtool.model.core import DIALECTS, Dialect, Transmission
-from txtool.model.robot import JointInfo, JointsOnDemand, joint_elements
+from txtool.model.robot import JointInfo, joint_elements, joint_info
 from txtool.model.semantics import listed_against_roles
 from txtool.transform.check import judge
 from txtool.transform.convert import convert_source
@@ -102,16 +101,10 @@ def _reconvert(source: Source, target: Dialect, *, consume: bool, whole: bool) -
 def roundtrip(source: Source, *, consume: bool = False) -> RoundTripReport:
     """The rows of every cycle of every transmission of ``source``. With ``consume`` the
     caller gives up ``source.tree``: the last conversion of it converts it in place."""
-    joints = JointsOnDemand(joint_elements(source.root))
-    return _report(source, joints, consume=consume)
-
-
-def _report(source: Source, joints: Mapping[str, JointInfo], *, consume: bool
-            ) -> RoundTripReport:
-    """:func:`roundtrip`'s report on ``source``."""
     report = RoundTripReport(source.path)
     originals = [f.transmission for f in read_source(source, locate=False)]
     groups = _groups(originals)
+    joints = _joints(source.root, originals)
     starts = [start for start in DIALECTS if groups[start]]
     firsts = list(dict.fromkeys(cycle[1] for start in starts for cycle in cycles_from(start)))
     # Each first leg converts the document as read, once for every group that starts with it.
@@ -122,6 +115,14 @@ def _report(source: Source, joints: Mapping[str, JointInfo], *, consume: bool
         report.rows.extend(_cycles(source.path, start, groups[start], joints, legs, whole))
     report.skipped = [f"{t.name}: custom type '{t.type}'" for t in originals if t.kind == "other"]
     return report
+
+
+def _joints(root: etree._Element, originals: list[Transmission]) -> dict[str, JointInfo]:
+    """The joints the transmissions name, read before the document is converted: the
+    equivalence checks sample them, and holding their elements would hold the whole tree."""
+    elements = joint_elements(root)
+    named = dict.fromkeys(j.name for t in originals for j in t.joints)
+    return {name: joint_info(elements[name]) for name in named if name in elements}
 
 
 def _groups(originals: list[Transmission]) -> dict[Dialect, list[Transmission]]:
