@@ -15,7 +15,10 @@ import copy
 import hashlib
 import itertools
 from collections import deque
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from functools import cache
+from types import MappingProxyType
 
 from lxml import etree
 
@@ -34,7 +37,7 @@ from txtool.views.tables import FIELDS
 class CycleRow:
     transmission: str
     cycle: tuple[Dialect, ...]
-    fields: dict[str, bool]
+    fields: Mapping[str, bool]  # shared by the rows that keep the same fields
     equivalent: str  # "yes", "no: reason", or "n/a: reason"
     details: tuple[str, ...] = ()
 
@@ -248,16 +251,23 @@ def _rows(cycle: tuple[Dialect, ...], group: list[Transmission], judged: _Judged
     rows = []
     for index, (t, lost) in enumerate(zip(group, judged, strict=True)):
         if lost is None:
-            rows.append(CycleRow(t.name, cycle, dict.fromkeys(FIELDS, False), "n/a: lost",
+            rows.append(CycleRow(t.name, cycle, _fields(frozenset(FIELDS)), "n/a: lost",
                                  ("the transmission is missing after the cycle",)))
             continue
         details = [f"{key}: {change}" for key, change in lost.items()]
         if verdicts[index].startswith("no") and t.dialect == "ros1" and listed_against_roles(t):
             details.append("the original lists its members against their roles (TX404): "
                            "ros_control binds their data in XML order, ros2_control by name")
-        rows.append(CycleRow(t.name, cycle, {key: key not in lost for key in FIELDS},
-                             verdicts[index], tuple(details)))
+        rows.append(CycleRow(t.name, cycle, _fields(frozenset(lost)), verdicts[index],
+                             tuple(details)))
     return rows
+
+
+@cache
+def _fields(lost: frozenset[str]) -> Mapping[str, bool]:
+    """Whether each field is kept, given those ``lost``: one read-only mapping for each
+    combination, which the rows share (and the reports write once)."""
+    return MappingProxyType({key: key not in lost for key in FIELDS})
 
 
 def _verdict(row) -> str:
