@@ -152,7 +152,8 @@ def _take(found: dict[_Key, deque[Transmission]], name: str) -> Transmission | N
     return same.popleft() if same else None
 
 
-def _cycles(path: str, start: Dialect, group: list[Transmission], joints,
+def _cycles(path: str, start: Dialect, group: list[Transmission],
+            joints: Mapping[str, JointInfo],
             legs: dict[Dialect, bytes], whole: bool) -> list[CycleRow]:
     """The rows of every cycle from ``start``. Cycles that begin with the same conversion
     share it (and its equivalence check); the first cycle converts the parse the shared leg
@@ -163,7 +164,7 @@ def _cycles(path: str, start: Dialect, group: list[Transmission], joints,
     for first in dict.fromkeys(cycle[1] for cycle in cycles):
         data = legs[first]
         tree = parse_bytes(data, path, limit=None)
-        verdicts = _Verdicts(group, _by_name(Source(path, data, tree)), joints)
+        verdicts = _verdicts(group, _by_name(Source(path, data, tree)), joints)
         parsed = [tree]
         del tree
         for cycle in (c for c in cycles if c[1] == first):
@@ -216,25 +217,18 @@ def _digest(data: bytes) -> bytes:
     return hashlib.sha256(data).digest()
 
 
-class _Verdicts:
-    """Whether each transmission's first conversion drives the actuators like the original,
-    computed when a cycle first asks (once per first leg)."""
+def _verdicts(group: list[Transmission], first_leg: dict[_Key, deque[Transmission]],
+              joints: Mapping[str, JointInfo]) -> list[str]:
+    """Whether each transmission's first conversion drives the actuators like the original
+    (once per first leg, before its cycles convert: the transmissions it holds are not
+    kept while they do)."""
+    from txtool.mechanics.equivalence import compare_pair
 
-    def __init__(self, group: list[Transmission], first_leg: dict[_Key, deque[Transmission]],
-                 joints) -> None:
-        self.converted = [_take(first_leg, t.name) for t in group]
-        self.group = group
-        self.joints = joints
-        self.known: dict[int, str] = {}
-
-    def __getitem__(self, index: int) -> str:
-        from txtool.mechanics.equivalence import compare_pair
-
-        if index not in self.known:
-            t, converted = self.group[index], self.converted[index]
-            self.known[index] = _verdict(
-                None if converted is None else compare_pair(t, converted, self.joints))
-        return self.known[index]
+    verdicts = []
+    for t in group:
+        converted = _take(first_leg, t.name)
+        verdicts.append(_verdict(None if converted is None else compare_pair(t, converted, joints)))
+    return verdicts
 
 
 def _judge(group: list[Transmission], final: dict[_Key, deque[Transmission]]) -> _Judged:
@@ -247,7 +241,7 @@ def _judge(group: list[Transmission], final: dict[_Key, deque[Transmission]]) ->
 
 
 def _rows(cycle: tuple[Dialect, ...], group: list[Transmission], judged: _Judged,
-          verdicts: _Verdicts) -> list[CycleRow]:
+          verdicts: list[str]) -> list[CycleRow]:
     rows = []
     for index, (t, lost) in enumerate(zip(group, judged, strict=True)):
         if lost is None:
