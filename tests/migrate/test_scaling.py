@@ -8,7 +8,8 @@ as 2). A loop inside one C call (a search through the rest of the document for e
 element) is one call, and shows only at sizes where it outweighs the rest: the processor
 time of ``convert`` and ``migrate --diff`` at 1,000 and 8,000 transmissions, measured in one
 run, must grow with an exponent of at most 1.3 (the line search the span index once made at
-each child of the root grew with 1.6 to 2.0 in the same shapes).
+each child of the root grew with 1.6 to 2.0 in the same shapes). ``roundtrip``, which
+converts six times, makes at most three times the calls of ``convert`` on the same document.
 """
 
 from __future__ import annotations
@@ -28,6 +29,7 @@ from txtool.cli import cli
 
 SMALL, LARGE = 100, 800
 TIMED = (1_000, 8_000)
+RATIO_SIZE = 50
 COMMANDS = {
     "convert": ["convert", "--to", "ros2-p2", "--no-xacro"],
     "convert-reversible": ["convert", "--to", "ros2-p2", "--reversible", "--no-xacro"],
@@ -92,6 +94,20 @@ def test_calls_grow_linearly_with_the_document(tmp_path: Path, command: str, sha
     counted = {size: calls(run) for size, run in runs.items()}
     growth = (counted[large] - counted[1]) / (counted[small] - counted[1])
     assert math.log(growth, large / small) <= 1.15, counted
+
+
+@pytest.mark.parametrize("shape", SHAPES)
+def test_roundtrip_does_the_work_of_three_conversions(tmp_path: Path, shape: str):
+    """roundtrip's six conversions each convert a tree and read its transmissions back, with
+    no edits said, no text parsed back for them and no check for the target's readers:
+    beyond start-up, it makes at most three times the calls ``convert`` makes on the same
+    document."""
+    counted = {}
+    for command in ("convert", "roundtrip"):
+        runs = _documents(tmp_path, command, shape, (1, RATIO_SIZE))
+        runs[1]()  # imports and first-call caches
+        counted[command] = calls(runs[RATIO_SIZE]) - calls(runs[1])
+    assert counted["roundtrip"] <= 3 * counted["convert"], counted
 
 
 @pytest.mark.parametrize("shape", SHAPES)

@@ -75,6 +75,12 @@ def annotate(element: etree._Element, block: bytes, after: bool = False) -> None
     comment.tail = newline + indent
 
 
+def carries_originals(root: etree._Element) -> bool:
+    """Whether a comment under ``root`` carries an original (converting the document to ROS 1
+    may write it back as its bytes)."""
+    return any((c.text or "").strip().startswith(MARK) for c in root.iter(etree.Comment))
+
+
 def original_of(element: etree._Element) -> bytes | None:
     """The block carried by the comment right before ``element``; b"" for a damaged one."""
     comment = _marker(element)

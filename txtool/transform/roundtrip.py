@@ -2,29 +2,34 @@
 
 For every transmission and every cycle that starts from its dialect (``ros1 -> ros2-p2 ->
 ros1``, ``ros1 -> ros2-p1 -> ros2-p2 -> ros1``, ...), the whole document is converted through
-the cycle, read back, and compared field by field with the original (floats bit for bit), on
-what the original defines (:func:`txtool.transform.check.judge`).
+the cycle, each leg converting the tree the one before converted, and the transmissions it
+ends with are compared field by field with the original (floats bit for bit), on what the
+original defines (:func:`txtool.transform.check.judge`).
 Each first leg is also checked numerically: the converted config must drive the actuators
 exactly like the original (:mod:`txtool.mechanics.equivalence`).
 """
 
 from __future__ import annotations
 
+import copy
 import hashlib
 import itertools
 from collections import deque
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from functools import cache
+from types import MappingProxyType
 
 from lxml import etree
 
 from txtool.dialects.read import read_source
 from txtool.io.xmlio import Source, parse_bytes
 from txtool.model.core import DIALECTS, Dialect, Transmission
-from txtool.model.robot import JointInfo, JointsOnDemand, joint_elements
+from txtool.model.robot import JointInfo, joint_elements, joint_info
 from txtool.model.semantics import listed_against_roles
 from txtool.transform.check import judge
 from txtool.transform.convert import convert_source
+from txtool.transform.reversible import carries_originals
 from txtool.views.tables import FIELDS
 
 
@@ -32,7 +37,7 @@ from txtool.views.tables import FIELDS
 class CycleRow:
     transmission: str
     cycle: tuple[Dialect, ...]
-    fields: dict[str, bool]
+    fields: Mapping[str, bool]  # shared by the rows that keep the same fields
     equivalent: str  # "yes", "no: reason", or "n/a: reason"
     details: tuple[str, ...] = ()
 
@@ -75,34 +80,52 @@ def cycles_from(start: Dialect) -> list[tuple[Dialect, ...]]:
     return two + three
 
 
-def _reconvert(source: Source, target: Dialect, *, consume: bool) -> bytes:
-    """``source`` converted to ``target``. The conversion's own read-back check is left out:
-    the cycle's result is judged here, against the original."""
-    return convert_source(source, target, consume=consume, check=False).data
+_Leg = tuple[bytes, etree._ElementTree | None]  # a conversion's text, and its tree if kept
+
+
+def _reconvert(source: Source, target: Dialect, *, consume: bool, whole: bool) -> _Leg:
+    """``source`` converted to ``target``: the text and, ``whole``, the tree converted. The
+    conversion's own read-back check is left out: the cycle's result is judged here, against
+    the original.
+
+    ``whole``: the converted tree is written whole rather than said as edits of
+    ``source.data``. Only its transmissions are read (from the tree itself), and the edits
+    write that same tree (``convert`` checks it), but for originals a document carries
+    (:func:`.reversible.carries_originals`): going back to ROS 1 writes them as their bytes,
+    which only a parse of the edited text reads."""
+    tree = source.tree if consume else copy.deepcopy(source.tree)
+    converting = Source(source.path, source.data, tree, expanded=source.expanded or whole)
+    data = convert_source(converting, target, consume=True, check=False).data
+    if consume:
+        source.tree = converting.tree  # the empty document left in its place
+    return data, tree if whole else None
 
 
 def roundtrip(source: Source, *, consume: bool = False) -> RoundTripReport:
     """The rows of every cycle of every transmission of ``source``. With ``consume`` the
     caller gives up ``source.tree``: the last conversion of it converts it in place."""
-    joints = JointsOnDemand(joint_elements(source.root))
-    return _report(source, joints, consume=consume)
-
-
-def _report(source: Source, joints: Mapping[str, JointInfo], *, consume: bool
-            ) -> RoundTripReport:
-    """:func:`roundtrip`'s report on ``source``."""
     report = RoundTripReport(source.path)
     originals = [f.transmission for f in read_source(source, locate=False)]
     groups = _groups(originals)
+    joints = _joints(source.root, originals)
     starts = [start for start in DIALECTS if groups[start]]
     firsts = list(dict.fromkeys(cycle[1] for start in starts for cycle in cycles_from(start)))
     # Each first leg converts the document as read, once for every group that starts with it.
-    legs = {first: _reconvert(source, first, consume=consume and first == firsts[-1])
-            for first in firsts}
+    whole = not carries_originals(source.root)
+    legs = {first: _reconvert(source, first, consume=consume and first == firsts[-1],
+                              whole=whole)[0] for first in firsts}
     for start in starts:
-        report.rows.extend(_cycles(source.path, start, groups[start], joints, legs))
+        report.rows.extend(_cycles(source.path, start, groups[start], joints, legs, whole))
     report.skipped = [f"{t.name}: custom type '{t.type}'" for t in originals if t.kind == "other"]
     return report
+
+
+def _joints(root: etree._Element, originals: list[Transmission]) -> dict[str, JointInfo]:
+    """The joints the transmissions name, read before the document is converted: the
+    equivalence checks sample them, and holding their elements would hold the whole tree."""
+    elements = joint_elements(root)
+    named = dict.fromkeys(j.name for t in originals for j in t.joints)
+    return {name: joint_info(elements[name]) for name in named if name in elements}
 
 
 def _groups(originals: list[Transmission]) -> dict[Dialect, list[Transmission]]:
@@ -129,18 +152,19 @@ def _take(found: dict[_Key, deque[Transmission]], name: str) -> Transmission | N
     return same.popleft() if same else None
 
 
-def _cycles(path: str, start: Dialect, group: list[Transmission], joints,
-            legs: dict[Dialect, bytes]) -> list[CycleRow]:
+def _cycles(path: str, start: Dialect, group: list[Transmission],
+            joints: Mapping[str, JointInfo],
+            legs: dict[Dialect, bytes], whole: bool) -> list[CycleRow]:
     """The rows of every cycle from ``start``. Cycles that begin with the same conversion
-    share it (and its equivalence check); each later leg converts a fresh parse (the first
-    cycle takes the parse the shared leg was read from): one tree of each leg alive at once."""
+    share it (and its equivalence check); the first cycle converts the parse the shared leg
+    was read from, each later one a fresh parse: one tree of each leg alive at once."""
     rows: dict[tuple[Dialect, ...], list[CycleRow]] = {}
     cycles = cycles_from(start)
-    ends = _Ends(path, group)
+    ends = _Ends(path, group, whole)
     for first in dict.fromkeys(cycle[1] for cycle in cycles):
         data = legs[first]
         tree = parse_bytes(data, path, limit=None)
-        verdicts = _Verdicts(group, _by_name(Source(path, data, tree)), joints)
+        verdicts = _verdicts(group, _by_name(Source(path, data, tree)), joints)
         parsed = [tree]
         del tree
         for cycle in (c for c in cycles if c[1] == first):
@@ -158,9 +182,10 @@ class _Ends:
     ros2-p2`` often writes what ``ros1 -> ros2-p2`` wrote) brings back what it brought back
     then: a conversion depends on nothing but the text and the dialect."""
 
-    def __init__(self, path: str, group: list[Transmission]) -> None:
+    def __init__(self, path: str, group: list[Transmission], whole: bool) -> None:
         self.path = path
         self.group = group
+        self.whole = whole  # (see _reconvert)
         self.known: dict[tuple[bytes, Dialect], _Judged] = {}
 
     def judged(self, data: bytes, steps: tuple[Dialect, ...],
@@ -168,20 +193,23 @@ class _Ends:
         """The judgement of the group after converting ``data`` through ``steps``;
         ``parsed`` holds a parse of ``data`` or nothing; the first conversion takes it."""
         *between, last = steps
+        leg: _Leg = (data, parsed.pop() if parsed else None)
         for step in between:
-            data = self._convert(data, step, parsed)
-        key = (_digest(data), last)
+            leg = self._convert(leg, step)
+        key = (_digest(leg[0]), last)
         if key not in self.known:
-            final = self._convert(data, last, parsed)
-            self.known[key] = _judge(self.group, _by_name(self._parse(final)))
+            final, tree = self._convert(leg, last)
+            self.known[key] = _judge(self.group, _by_name(self._source(final, tree)))
         return self.known[key]
 
-    def _convert(self, data: bytes, target: Dialect, parsed: list[etree._ElementTree]) -> bytes:
-        tree = parsed.pop() if parsed else parse_bytes(data, self.path, limit=None)
-        return _reconvert(Source(self.path, data, tree), target, consume=True)
+    def _convert(self, leg: _Leg, target: Dialect) -> _Leg:
+        return _reconvert(self._source(*leg), target, consume=True, whole=self.whole)
 
-    def _parse(self, data: bytes) -> Source:
-        return Source(self.path, data, parse_bytes(data, self.path, limit=None))
+    def _source(self, data: bytes, tree: etree._ElementTree | None) -> Source:
+        """The document of ``data``: ``tree``, or a parse of it."""
+        if tree is None:
+            tree = parse_bytes(data, self.path, limit=None)
+        return Source(self.path, data, tree)
 
 
 def _digest(data: bytes) -> bytes:
@@ -189,25 +217,18 @@ def _digest(data: bytes) -> bytes:
     return hashlib.sha256(data).digest()
 
 
-class _Verdicts:
-    """Whether each transmission's first conversion drives the actuators like the original,
-    computed when a cycle first asks (once per first leg)."""
+def _verdicts(group: list[Transmission], first_leg: dict[_Key, deque[Transmission]],
+              joints: Mapping[str, JointInfo]) -> list[str]:
+    """Whether each transmission's first conversion drives the actuators like the original
+    (once per first leg, before its cycles convert: the transmissions it holds are not
+    kept while they do)."""
+    from txtool.mechanics.equivalence import compare_pair
 
-    def __init__(self, group: list[Transmission], first_leg: dict[_Key, deque[Transmission]],
-                 joints) -> None:
-        self.converted = [_take(first_leg, t.name) for t in group]
-        self.group = group
-        self.joints = joints
-        self.known: dict[int, str] = {}
-
-    def __getitem__(self, index: int) -> str:
-        from txtool.mechanics.equivalence import compare_pair
-
-        if index not in self.known:
-            t, converted = self.group[index], self.converted[index]
-            self.known[index] = _verdict(
-                None if converted is None else compare_pair(t, converted, self.joints))
-        return self.known[index]
+    verdicts = []
+    for t in group:
+        converted = _take(first_leg, t.name)
+        verdicts.append(_verdict(None if converted is None else compare_pair(t, converted, joints)))
+    return verdicts
 
 
 def _judge(group: list[Transmission], final: dict[_Key, deque[Transmission]]) -> _Judged:
@@ -220,20 +241,27 @@ def _judge(group: list[Transmission], final: dict[_Key, deque[Transmission]]) ->
 
 
 def _rows(cycle: tuple[Dialect, ...], group: list[Transmission], judged: _Judged,
-          verdicts: _Verdicts) -> list[CycleRow]:
+          verdicts: list[str]) -> list[CycleRow]:
     rows = []
     for index, (t, lost) in enumerate(zip(group, judged, strict=True)):
         if lost is None:
-            rows.append(CycleRow(t.name, cycle, dict.fromkeys(FIELDS, False), "n/a: lost",
+            rows.append(CycleRow(t.name, cycle, _fields(frozenset(FIELDS)), "n/a: lost",
                                  ("the transmission is missing after the cycle",)))
             continue
         details = [f"{key}: {change}" for key, change in lost.items()]
         if verdicts[index].startswith("no") and t.dialect == "ros1" and listed_against_roles(t):
             details.append("the original lists its members against their roles (TX404): "
                            "ros_control binds their data in XML order, ros2_control by name")
-        rows.append(CycleRow(t.name, cycle, {key: key not in lost for key in FIELDS},
-                             verdicts[index], tuple(details)))
+        rows.append(CycleRow(t.name, cycle, _fields(frozenset(lost)), verdicts[index],
+                             tuple(details)))
     return rows
+
+
+@cache
+def _fields(lost: frozenset[str]) -> Mapping[str, bool]:
+    """Whether each field is kept, given those ``lost``: one read-only mapping for each
+    combination, which the rows share (and the reports write once)."""
+    return MappingProxyType({key: key not in lost for key in FIELDS})
 
 
 def _verdict(row) -> str:
