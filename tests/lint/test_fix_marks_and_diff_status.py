@@ -1,0 +1,41 @@
+"""``validate --diff`` and ``--fix``: a finding marked fixable only where migrate fixes its code,
+and the exit status where one of the files named cannot be read (2: an input error outranks
+findings), the others still shown."""
+
+from __future__ import annotations
+
+import json
+
+from tests.lint.test_validate_fix import XACRO, robots, run  # noqa: F401 - the fixture
+
+LEGACY_T2 = """  <joint name="k" type="revolute"><limit effort="1" velocity="1" lower="-1" upper="1"/></joint>
+  <transmission name="t2" type="transmission_interface/SimpleTransmission">
+    <joint name="k"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m2"><mechanicalReduction>50</mechanicalReduction></actuator>
+  </transmission>
+"""
+MISSING = "txtool: urdf/missing.urdf: no such file"
+
+
+def test_diff_shows_the_fixable_file_and_exits_2_for_the_missing_one(robots):  # noqa: F811
+    code, out, err = run("validate", "--diff", "urdf/legacy.urdf", "urdf/missing.urdf")
+    assert code == 2
+    assert out == run("migrate", "--diff", "urdf/legacy.urdf")[1]
+    assert err.splitlines() == [MISSING, "would change urdf/legacy.urdf (TX300 x1, TX301 x1, "
+                                "TX302 x1)", "1 file(s) would be changed"]
+
+
+def test_diff_with_nothing_to_fix_exits_2_for_the_missing_one(robots):  # noqa: F811
+    code, out, err = run("validate", "--diff", "urdf/zero.urdf", "urdf/missing.urdf")
+    assert (code, out) == (2, "")
+    assert err.splitlines() == [MISSING, "txtool: nothing to fix"]
+
+
+def test_a_finding_is_fixable_only_where_its_own_code_is_fixed(robots):  # noqa: F811
+    """migrate rewrites the file for the legacy type attribute (TX302); the unprefixed
+    interface is a xacro expression it cannot prefix (TX300), so that finding stays unmarked."""
+    (robots / "m.urdf.xacro").write_text(XACRO.replace("</robot>", LEGACY_T2 + "</robot>"))
+    code, out, _ = run("validate", "--format", "json", "urdf/m.urdf.xacro")
+    assert code == 1
+    assert sorted((p["code"], p["fixable"]) for p in json.loads(out)["problems"]) == [
+        ("TX300", False), ("TX302", True)]
