@@ -39,3 +39,20 @@ def test_a_finding_is_fixable_only_where_its_own_code_is_fixed(robots):  # noqa:
     assert code == 1
     assert sorted((p["code"], p["fixable"]) for p in json.loads(out)["problems"]) == [
         ("TX300", False), ("TX302", True)]
+
+
+def test_fix_rewrites_as_the_distribution_said_reads_the_file(tmp_path, monkeypatch):
+    """An ament package's ROS 1 robot is read by ros2_control, which reads none of its
+    transmissions: nothing to fix. Said to be read by Noetic, its fixes are made."""
+    from tests.migrate.test_fixes_under_readers import FIXED, ROBOT
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "package.xml").write_text(
+        '<package format="3"><name>arm</name><buildtool_depend>ament_cmake</buildtool_depend>'
+        "<export><build_type>ament_cmake</build_type></export></package>\n")
+    (tmp_path / "r.urdf").write_text(ROBOT[1:])
+    code, out, err = run("validate", "--fix", "r.urdf")
+    assert (code, err, (tmp_path / "r.urdf").read_text()) == (0, "", ROBOT[1:])
+    code, out, err = run("validate", "--fix", "--ros-distro", "noetic", "r.urdf")
+    assert err == "txtool: fixed r.urdf (TX300 x1, TX302 x1)\n"
+    assert (code, (tmp_path / "r.urdf").read_text()) == (0, FIXED)
