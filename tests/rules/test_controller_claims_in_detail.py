@@ -164,10 +164,12 @@ def test_a_walk_of_a_packages_robot_folder_finds_the_packages_controller_files(t
         (str(tmp_path / "config" / "arm.yaml"), 1, "TX501")]
 
 
-def test_a_controller_file_named_and_walked_is_judged_once(tmp_path):
+def test_a_controller_file_named_and_walked_is_judged_once(tmp_path, monkeypatch):
+    """Named by its full path, found by the walk of '.': one file all the same."""
+    monkeypatch.chdir(tmp_path)
     (tmp_path / "package.xml").write_text('<package format="3"><name>p</name></package>')
     (tmp_path / "robot.urdf").write_text(ros1_robot(j1="EffortJointInterface"))
     (tmp_path / "arm.yaml").write_text(
         "arm:\n  type: position_controllers/JointPositionController\n  joint: j1\n")
-    found = txtool.validate([str(tmp_path)], controllers=[str(tmp_path / "arm.yaml")])
+    found = txtool.validate(["."], controllers=[str(tmp_path / "arm.yaml")])
     assert [(p.line, p.code) for p in found if p.code >= "TX500"] == [(1, "TX501")]
