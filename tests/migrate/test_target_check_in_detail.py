@@ -1,6 +1,6 @@
 """What the target check of a conversion says in the cases its main tests leave out: a robot
 without transmissions is no robot refused for lacking <ros2_control>, a conversion to ROS 1
-is judged by ros_control alone, and the input's own finding on a transmission does not hide
+names ros_control alone where it refuses one, and the input's own finding on a transmission does not hide
 what the conversion brings to it."""
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ def test_a_robot_without_transmissions_converts_to_ros2_without_a_refusal(run, h
     assert (code, out) == (0, "") and "refuses" not in err
 
 
-def test_a_conversion_to_ros1_is_judged_by_ros_control_alone(run, here):
+def test_a_clean_robot_converts_back_to_ros1_with_the_replacement_noted(run, here):
     (here / "arm.urdf").write_text(CLEAN)
     assert run("convert", "arm.urdf", "--to", "ros2-p2", "-o", "ros2.urdf")[0] == 0
     code, out, err = run("convert", "ros2.urdf", "--to", "ros1", "-o", "back.urdf")
@@ -54,3 +54,15 @@ def test_the_inputs_warning_on_a_transmission_does_not_hide_the_p1_form(run, her
     code, out, err = run("convert", "arm.urdf", "--to", "ros2-p1", "-o", "p1.urdf")
     assert code == 0
     assert "warning: ros2-p1 is not what ros2_control reads" in err
+
+
+def test_a_refusal_of_a_conversion_to_ros1_names_ros_control_alone(run, here):
+    """The robot lacks a link (urdfdom refuses it): the ROS 1 file written has no
+    <ros2_control>, so ros2_control is no reader of it to name."""
+    (here / "arm.urdf").write_text(CLEAN.replace('<link name="l2"/>', ""))
+    assert run("convert", "arm.urdf", "--to", "ros2-p2", "--allow-lossy", "-o", "ros2.urdf")[0] == 0
+    code, out, err = run("convert", "ros2.urdf", "--to", "ros1", "-o", "back.urdf")
+    assert (code, out) == (1, "") and not (here / "back.urdf").exists()
+    (refused,) = [line for line in err.splitlines() if line.startswith("error:")]
+    assert refused.startswith("error: line 6: TX210 urdf-refused for ros_control (noetic): "
+                              "urdfdom refuses the robot")
