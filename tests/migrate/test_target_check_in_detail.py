@@ -1,7 +1,7 @@
 """What the target check of a conversion says in the cases its main tests leave out: a robot
 without transmissions is no robot refused for lacking <ros2_control>, a conversion to ROS 1
-names ros_control alone where it refuses one, and the input's own finding on a transmission does not hide
-what the conversion brings to it."""
+names ros_control alone where it refuses one, and the input's own finding on a transmission
+does not hide what the conversion brings to it."""
 
 from __future__ import annotations
 
