@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import json
 
-from tests.lint.test_validate_fix import XACRO, robots, run  # noqa: F401 - the fixture
+from tests.lint.test_validate_fix import LEGACY, XACRO, robots, run  # noqa: F401 - the fixture
 
 LEGACY_T2 = """  <joint name="k" type="revolute"><limit effort="1" velocity="1" lower="-1" upper="1"/></joint>
   <transmission name="t2" type="transmission_interface/SimpleTransmission">
@@ -56,3 +56,13 @@ def test_fix_rewrites_as_the_distribution_said_reads_the_file(tmp_path, monkeypa
     code, out, err = run("validate", "--fix", "--ros-distro", "noetic", "r.urdf")
     assert err == "txtool: fixed r.urdf (TX300 x1, TX302 x1)\n"
     assert (code, (tmp_path / "r.urdf").read_text()) == (0, FIXED)
+
+
+def test_standard_input_gets_no_fixes_from_the_file_its_name_gives(robots):  # noqa: F811
+    """--stdin-filename names the text read, not the file on disk of that name: SARIF offers
+    no fixes computed from that file (which may hold anything)."""
+    code, out, _ = run("validate", "--format", "sarif", "--stdin-filename", "urdf/legacy.urdf",
+                       "-", input=LEGACY)
+    results = json.loads(out)["runs"][0]["results"]
+    assert code == 1 and len(results) == 4
+    assert [r for r in results if "fixes" in r] == []

@@ -44,3 +44,17 @@ def test_a_ros1_plugin_beside_a_ros2_one_is_no_unloadable_plugin(validate, tmp_p
     path.write_text(ROBOT.format(body=body))
     code, found, _ = findings(validate, str(path))
     assert (code, found) == (0, [(1, 1, "TX006", "info")])
+
+
+def test_a_xacro_file_read_as_written_says_nothing_of_its_ros1_plugin(tmp_path):
+    """Read without expansion, the plugin may sit in a macro or branch that never writes it:
+    TX306 waits for the expanded robot."""
+    from tests.rules.test_tx306_ros1_gazebo_plugin import AMENT, robot_in, validate
+
+    path = robot_in(tmp_path, AMENT)
+    xacro = path.with_name("arm.urdf.xacro")
+    xacro.write_text(path.read_text().replace(
+        '<robot name="arm">', '<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">'))
+    path.unlink()
+    assert ("TX306", "warning") in {(c, s) for *_, c, s in validate(xacro)[1]}
+    assert "TX306" not in {c for *_, c, _ in validate(xacro, "--no-xacro")[1]}

@@ -32,3 +32,31 @@ def test_concise_keeps_the_reason_after_a_clause_that_only_names_the_tool(valida
     assert code == 1
     assert out.splitlines()[0] == (
         f"{tmp_path / 'r.urdf.xacro'}:2:3: TX002 xacro: [Errno 2] No such file or directory")
+
+
+TWO_BLOCKS = """<robot name="r">
+  <link name="base"/><link name="arm"/>
+  <joint name="wrist_roll" type="revolute">
+    <parent link="base"/><child link="arm"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+  <ros2_control name="arm" type="system">
+    <hardware><plugin>my_hardware/ArmSystem</plugin></hardware>
+    <joint name="wrist_roll"><command_interface name="position"/></joint>
+  </ros2_control>
+  <ros2_control name="mock" type="system">
+    <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+    <joint name="wrist_roll"><command_interface name="position"/></joint>
+  </ros2_control>
+</robot>
+"""
+
+
+def test_concise_cuts_a_long_headline_at_a_word_without_its_comma(validate, tmp_path,
+                                                                  monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "r.urdf").write_text(TWO_BLOCKS)
+    code, out, _ = validate("--format", "concise", "--select", "TX209", "r.urdf")
+    assert (code, out.splitlines()[0]) == (1, (
+        "r.urdf:13:5: TX209 joint 'wrist_roll' of <ros2_control> 'mock' exports command "
+        "interface 'wrist_roll/position'…"))

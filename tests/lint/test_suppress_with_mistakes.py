@@ -11,3 +11,7 @@ def test_a_directive_with_a_token_that_is_no_code_still_silences_its_codes():
     written without ';' does not bring back the findings the comment was written for."""
     found = check(fill(next="<!-- txtool: disable-next-line TX106 on purpose -->"))
     assert found == [(7, 5, "TX005", "warning")]
+
+
+def test_a_code_written_in_lower_case_silences_its_rule():
+    assert check(fill(next="<!-- txtool: disable-next-line tx106 -->")) == []
