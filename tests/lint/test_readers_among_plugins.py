@@ -5,7 +5,15 @@ reported as unloadable only where ROS 2 programs alone read the robot."""
 
 from __future__ import annotations
 
-from tests.lint.test_readers import COMPONENT, GAZEBO, ROBOT, findings, package, robot_file
+from tests.lint.test_readers import (  # noqa: F401 - no_ros_environment: autouse
+    COMPONENT,
+    GAZEBO,
+    ROBOT,
+    findings,
+    no_ros_environment,
+    package,
+    robot_file,
+)
 
 BLOCK = COMPONENT.format(hardware="mock_components/GenericSystem", inner="")
 TRANSMISSION = ('    <transmission name="t"><plugin>transmission_interface/SimpleTransmission'
