@@ -36,11 +36,6 @@ class Directive:
         self.codes = codes  # empty: every code
         self.used: set[str] = set()
 
-    def covers(self, problem: Problem) -> bool:
-        if self.target is not None and problem.line != self.target:
-            return False
-        return not self.codes or problem.code in self.codes
-
 
 class Invalid(NamedTuple):
     """A ``txtool:`` comment that silences nothing as written: a misspelt directive or a
