@@ -12,7 +12,10 @@ runs. Tests that need one of these set it themselves with ``monkeypatch``.
 
 from __future__ import annotations
 
+import contextlib
 import os
+import sys
+from collections.abc import Iterator
 
 import pytest
 from hypothesis import settings
@@ -25,6 +28,20 @@ HYPOTHESIS_PROFILE = "TXTOOL_HYPOTHESIS"
 settings.register_profile("derandomized", derandomize=True, database=None, print_blob=True)
 settings.register_profile("random", derandomize=False, database=None, print_blob=True)
 settings.load_profile(os.environ.get(HYPOTHESIS_PROFILE) or "derandomized")
+
+@contextlib.contextmanager
+def untraced() -> Iterator[None]:
+    """The block without the line tracer that measures coverage (.ci/run) in this thread, for
+    a test that measures the work or the time of a large input: the tracer's cost would be part
+    of the time measured, and the large input takes no path that the test's smaller ones, run
+    traced, do not. Without a tracer, nothing changes."""
+    tracer = sys.gettrace()
+    sys.settrace(None)
+    try:
+        yield
+    finally:
+        sys.settrace(tracer)  # coverage's tracer installs itself the fast way again at once
+
 
 # Variables the test suite itself reads: they steer the tests, not txtool.
 SUITE_CONTROLS = frozenset({"TXTOOL_REQUIRE_CORPUS", "TXTOOL_UPDATE_GOLDEN", "TXTOOL_ORACLE",

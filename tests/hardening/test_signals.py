@@ -237,6 +237,58 @@ def test_a_signal_inside_an_event_loops_callback_ends_the_process_once_the_callb
         143, "cleaned up\n", "txtool: terminated\n")
 
 
+def threads_of(pid: int) -> dict[int, tuple[str, str, set[int]]]:
+    """Each thread of process ``pid`` (Linux): its state, where it sleeps in the kernel
+    (``wchan``, "0" where the kernel does not say) and which of SIGINT and SIGTERM it blocks."""
+    threads = {}
+    for task in Path(f"/proc/{pid}/task").iterdir():
+        try:
+            status = (task / "status").read_text()
+            wchan = (task / "wchan").read_text().strip() if (task / "wchan").exists() else "0"
+        except FileNotFoundError:  # the thread ended meanwhile
+            continue
+        fields = dict(line.split(":", 1) for line in status.splitlines() if ":" in line)
+        mask = int(fields["SigBlk"], 16)
+        threads[int(task.name)] = (fields["State"].split()[0], wchan or "0", {
+            number for number in (signal.SIGINT, signal.SIGTERM) if mask >> (number - 1) & 1})
+    return threads
+
+
+def wait_until_it_waits_for_its_editor(process: subprocess.Popen[str]) -> None:
+    """Until the language server has answered and has nothing left to do: every thread asleep,
+    and its reading thread in a read of standard input where the kernel says where it sleeps
+    (an editor that says nothing leaves it so). Without /proc, its answer is the sign."""
+    if not Path("/proc/self/task").is_dir():
+        return
+    deadline = time.monotonic() + 60
+    while True:
+        threads = threads_of(process.pid)
+        asleep = len(threads) > 1 and all(state == "S" for state, _, _ in threads.values())
+        kernel_says = [wchan for _, wchan, _ in threads.values() if wchan != "0"]
+        if asleep and (not kernel_says or any("pipe_read" in w for w in kernel_says)):
+            return
+        assert process.poll() is None and time.monotonic() < deadline, threads
+        time.sleep(0.005)
+
+
+def serving(tmp_path: Path) -> subprocess.Popen[str]:
+    """``txtool lsp`` on standard input, once it has answered a request and waits for the next."""
+    process = subprocess.Popen([sys.executable, "-m", "txtool", "lsp"], cwd=tmp_path, env=ENV,
+                               preexec_fn=as_from_a_terminal,
+                               stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+    try:
+        request = '{"jsonrpc":"2.0","id":1,"method":"shutdown"}'
+        process.stdin.write(f"Content-Length: {len(request)}\r\n\r\n{request}")
+        process.stdin.flush()
+        process.stdout.readline()  # the answer's header: the server is serving
+        wait_until_it_waits_for_its_editor(process)
+    except BaseException:
+        process.kill()
+        raise
+    return process
+
+
 @pytest.mark.parametrize(("number", "code", "line"), [
     (signal.SIGTERM, 143, "txtool: terminated\n"),
     (signal.SIGINT, 130, "txtool: interrupted\n"),
@@ -246,18 +298,13 @@ def test_the_language_server_on_standard_input_ends_on_a_signal_while_its_editor
     """The server reads its standard input in a thread; a normal exit waits for that thread,
     so a signal while the editor holds the pipe open must not end by the usual unwinding."""
     pytest.importorskip("pygls")
-    process = subprocess.Popen([sys.executable, "-m", "txtool", "lsp"], cwd=tmp_path, env=ENV,
-                               preexec_fn=as_from_a_terminal,
-                               stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                               stderr=subprocess.PIPE, text=True)
-    with process:
-        request = '{"jsonrpc":"2.0","id":1,"method":"shutdown"}'
-        process.stdin.write(f"Content-Length: {len(request)}\r\n\r\n{request}")
-        process.stdin.flush()
-        process.stdout.readline()  # the answer's header: the server is serving
+    with serving(tmp_path) as process:
         process.send_signal(number)
         try:
             returncode = process.wait(timeout=30)
+        except subprocess.TimeoutExpired:  # where each thread is, to tell why
+            where = threads_of(process.pid) if Path("/proc/self/task").is_dir() else "?"
+            pytest.fail(f"still running 30 s after the signal; its threads: {where}")
         finally:
             process.kill()
             process.stdin.close()
@@ -288,23 +335,8 @@ def test_the_language_servers_reading_thread_leaves_the_signals_to_the_main_thre
     the thread reading standard input would wait for the main thread, asleep in its event
     loop: the server would not end. Every thread but the main one blocks SIGINT and SIGTERM."""
     pytest.importorskip("pygls")
-    process = subprocess.Popen([sys.executable, "-m", "txtool", "lsp"], cwd=tmp_path, env=ENV,
-                               preexec_fn=as_from_a_terminal,
-                               stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                               stderr=subprocess.PIPE, text=True)
-    with process:
-        request = '{"jsonrpc":"2.0","id":1,"method":"shutdown"}'
-        process.stdin.write(f"Content-Length: {len(request)}\r\n\r\n{request}")
-        process.stdin.flush()
-        process.stdout.readline()  # serving, its reading thread waiting for the next message
-        time.sleep(0.2)
-        blocked = {}
-        for task in Path(f"/proc/{process.pid}/task").iterdir():
-            status = (task / "status").read_text()
-            mask = int(next(line.split()[1] for line in status.splitlines()
-                            if line.startswith("SigBlk:")), 16)
-            blocked[int(task.name)] = {number for number in (signal.SIGINT, signal.SIGTERM)
-                                       if mask >> (number - 1) & 1}
+    with serving(tmp_path) as process:  # its reading thread waiting for the next message
+        blocked = {tid: masked for tid, (_, _, masked) in threads_of(process.pid).items()}
         process.kill()
         process.stdin.close()
     others = [tid for tid in blocked if tid != process.pid]
