@@ -379,3 +379,37 @@ def test_each_substitution_reads_only_a_variable_given(repo, route, given):
     assert (text.startswith("refused: ") if said == "refused" else said in text), text
     if not given:
         assert "value" not in text
+
+
+# -- a folder beside the repository whose name begins with the repository's ---------------------
+
+SIBLINGS = ["../repo-old/secret", "../repo2/secret", "../rep/secret", "{tmp}/repo-old/secret",
+            "{tmp}/repo.bak/secret"]
+FILE_ROUTES = {
+    "include": lambda p: f'<xacro:include filename="{p}.xacro"/>',
+    "load_yaml": lambda p: f'<link name="${{xacro.load_yaml(\'{p}.yaml\')}}"/>',
+}
+
+
+@pytest.mark.parametrize("route", FILE_ROUTES)
+@pytest.mark.parametrize("name", SIBLINGS)
+def test_a_sibling_sharing_the_repositorys_prefix_is_outside(repo, route, name):
+    """Outside, not merely hidden: the repository's folder is no prefix of the sibling's."""
+    for sibling in ("repo-old", "repo2", "rep", "repo.bak"):
+        write(repo.parent / sibling / "secret.xacro", robot(f'<link name="{SECRET}"/>'))
+        write(repo.parent / sibling / "secret.yaml", f"k: {SECRET}\n")
+    path = FILE_ROUTES[route](name.format(tmp=repo.parent))
+    text = guarded(write(repo / "robot.urdf.xacro", robot(path)))
+    assert text.startswith("refused: ") and "is outside the repository" in text, text
+    assert SECRET not in text
+
+
+@pytest.mark.parametrize(("children", "expected"), [(4000, OK), (6000, f"{MAX_WORK} steps")])
+def test_moving_a_macro_body_into_its_caller_is_priced_by_the_lists_it_scans(
+        repo, children, expected):
+    """Each child moved scans the list it leaves and the one it joins (minidom's C loops):
+    quadratic in a body of many children, and stopped at the budget."""
+    text = guarded(write(repo / "robot.urdf.xacro", robot(
+        '<xacro:macro name="m" params="">' + "<a/>" * children + "</xacro:macro>"
+        "<g><xacro:m/></g>")))
+    assert (text.count("<a/>") == children) if expected == OK else expected in text, text[:200]

@@ -5,10 +5,13 @@ files (what one file's request sets must not reach the next).
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
+from click.testing import CliRunner
 
+from txtool.cli import cli
 from txtool.io.packages import packages_below
 from txtool.io.xacro import expand_text
 from txtool.io.xacro_guard import XacroGuard
@@ -110,6 +113,15 @@ def test_the_memory_bound_shared_by_n_processes(repo, monkeypatch, fresh_worker,
         assert sandboxed(path).startswith("<?xml")
 
 
+def test_an_attribute_past_the_memory_bound_is_the_memory_limit(repo, monkeypatch):
+    """expat says it ran out of memory as a syntax error: the bound's, not the file's."""
+    monkeypatch.setenv("TXTOOL_XACRO_MEMORY_MB", "64")
+    path = repo / "wide.urdf.xacro"
+    path.write_text(robot(f"<t a='{'_' * (8 << 20)}'/>"))
+    assert sandboxed(path) == ("stopped: wide.urdf.xacro: xacro: expansion exceeded 64 MiB of "
+                               "memory (a safety limit)")
+
+
 # -- one worker, many files: the package variables are the parent's at each request -------------
 
 def package_under(variable: str, root: Path) -> str:
@@ -136,3 +148,17 @@ def test_a_package_variable_reaches_the_request_it_is_set_for_only(repo, monkeyp
     monkeypatch.delenv(variable)
     text = sandboxed(path)  # the same worker, the next file
     assert text.startswith("stopped: robot.urdf.xacro:1: xacro: package 'evil' not found"), text
+
+
+def test_a_commands_inputs_are_its_own_in_a_reused_worker(repo):
+    """What an earlier command's expansion read is no input of the next one: its report may
+    be written over such a file (the worker, reused, says only what this file read)."""
+    (repo / "part.inc").write_text(robot('<link name="p"/>'))
+    (repo / "a.urdf.xacro").write_text(robot('<xacro:include filename="part.inc"/>'))
+    (repo / "b.urdf.xacro").write_text(robot('<link name="b"/>'))
+    runner = CliRunner()
+    refused = runner.invoke(cli, ["validate", "--format", "json:part.inc", "a.urdf.xacro"])
+    assert refused.exit_code == 2 and "is an input of this command" in refused.stderr
+    written = runner.invoke(cli, ["validate", "--format", "json:part.inc", "b.urdf.xacro"])
+    assert (written.exit_code, written.stderr) == (0, "")
+    assert json.loads((repo / "part.inc").read_text())
