@@ -413,3 +413,18 @@ def test_moving_a_macro_body_into_its_caller_is_priced_by_the_lists_it_scans(
         '<xacro:macro name="m" params="">' + "<a/>" * children + "</xacro:macro>"
         "<g><xacro:m/></g>")))
     assert (text.count("<a/>") == children) if expected == OK else expected in text, text[:200]
+
+
+# Three sums: about 4,400,000 steps of the budget, whatever else the file does.
+SUMS = ('<s a="${python.sum(range(999999))}" b="${python.sum(range(999999))}" '
+        'c="${python.sum(range(200000))}"/>')
+
+
+@pytest.mark.parametrize(("calls", "expected"), [(5, OK), (15, f"{MAX_WORK} steps")])
+def test_each_cloned_node_is_priced(repo, calls, expected):
+    """A macro body of 5,000 comments in one element: each call clones 5,002 nodes (well under
+    the node bound at 15 calls), and moves one; what the clones cost decides."""
+    text = guarded(write(repo / "robot.urdf.xacro", robot(
+        '<xacro:macro name="m" params=""><g>' + "<!---->" * 5000 + "</g></xacro:macro>"
+        + "<xacro:m/>" * calls + SUMS)))
+    assert (text.count("<g>") == calls) if expected == OK else expected in text, text[:200]
