@@ -428,3 +428,12 @@ def test_each_cloned_node_is_priced(repo, calls, expected):
         '<xacro:macro name="m" params=""><g>' + "<!---->" * 5000 + "</g></xacro:macro>"
         + "<xacro:m/>" * calls + SUMS)))
     assert (text.count("<g>") == calls) if expected == OK else expected in text, text[:200]
+
+
+@pytest.mark.parametrize(("calls", "expected"), [(1000, OK), (3000, f"{MAX_WORK} steps")])
+def test_each_macro_call_is_priced(repo, calls, expected):
+    """Calls of an empty macro, each in an element of its own (nothing cloned, no long list
+    scanned): what the calls cost decides."""
+    text = guarded(write(repo / "robot.urdf.xacro", robot(
+        '<xacro:macro name="e" params=""/>' + "<p><xacro:e/></p>" * calls + SUMS)))
+    assert (text.count("<p/>") == calls) if expected == OK else expected in text, text[:200]
