@@ -90,6 +90,9 @@ EDGES = {
     "a power to inf": ("python.pow(2.0, math.inf)", OK),
     "a shift by a negative": ("1 << -1", "ValueError"),
     "factorial of a string": ("math.factorial('5')", "TypeError"),
+    "a name of two underscores": ("__builtins__", "the name '__builtins__' is not allowed"),
+    "a name of three underscores": ("___x", "the name '___x' is not allowed"),
+    "a name of one underscore": ("_x", "NameError"),
     "a width from a string": ("'a'.center('5')", "TypeError"),
 }
 
