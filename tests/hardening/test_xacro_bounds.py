@@ -290,17 +290,19 @@ def test_a_small_file_is_refused_or_expands_within_a_second(repo, body, expected
 
 
 def test_the_node_budget_inside_at_and_outside(repo):
-    """Clones counted one by one: a fan-out of exactly MAX_NODES cloned nodes expands."""
-    def body(calls: int) -> str:  # each call clones the macro's body: <g> and its 99 <a/>
+    """Clones counted one by one: a fan-out of exactly MAX_NODES cloned nodes expands, one
+    node more is refused."""
+    def body(calls: int, last: int) -> str:  # each call clones its body: <g> and its children
         return ('<xacro:macro name="m" params=""><g>' + "<a/>" * 99 + "</g></xacro:macro>"
-                + "<h><xacro:m/></h>" * calls)
+                + '<xacro:macro name="n" params=""><g>' + "<a/>" * (last - 2) + "</g></xacro:macro>"
+                + "<h><xacro:m/></h>" * calls + "<h><xacro:n/></h>")
 
     per_call = 101  # the macro call's body element and its <g> and 99 <a/>
-    calls = MAX_NODES // per_call
-    left = MAX_NODES - calls * per_call
-    text, guard = guarded(repo, body(calls))
-    assert not text.startswith("refused") and guard.nodes == left
-    text, _ = guarded(repo, body(calls + 1))
+    calls = MAX_NODES // per_call - 1
+    left = MAX_NODES - calls * per_call  # what the last call, of n, clones at the bound
+    text, guard = guarded(repo, body(calls, left))
+    assert not text.startswith("refused") and guard.nodes == 0
+    text, _ = guarded(repo, body(calls, left + 1))
     assert text == "refused: NodeLimit "
 
 
