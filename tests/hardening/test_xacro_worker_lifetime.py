@@ -144,3 +144,31 @@ def test_the_worker_ends_when_txtool_is_killed(repo):
         parent.wait()
         if parent.stdout is not None:
             parent.stdout.close()
+
+
+def cpu_seconds(pid: int) -> float:
+    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")  # utime + stime
+
+
+def cpu_limit(pid: int) -> int:
+    line = next(line for line in Path(f"/proc/{pid}/limits").read_text().splitlines()
+                if line.startswith("Max cpu time"))
+    return int(line.split()[3])
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_a_reused_worker_has_a_whole_cpu_budget_for_each_file(repo):
+    """The worker's processor-time limit is set before each file from the time it has used:
+    a worker that has spent seconds on earlier files still has the whole timeout (and 2 s) for
+    the next, however long it has lived."""
+    expand(repo, "warm.urdf.xacro", '<link name="x"/>')
+    pid = worker_pid()
+    for attempt in range(20):
+        used = cpu_seconds(pid)
+        expand(repo, f"f{attempt}.urdf.xacro", NODES)
+        assert worker_pid() == pid
+        if used >= 1.2:
+            break
+    assert used >= 1.2, "the worker did not spend the time this test needs"
+    assert cpu_limit(pid) >= int(used + 30) + 2
