@@ -434,6 +434,11 @@ class Placer:
             dialects.pretty(new, indent, step)  # build() laid out all but these
         if record:
             self.built[move.old] = new
+            # What the old element held is read (the new one is built, its comments and
+            # carried children copied): freed now rather than with the tree, so that the old
+            # and the new transmissions of a document are not held at once. The element
+            # itself stays, empty, where the edits will look for it.
+            del move.old[:]
         return new
 
 
