@@ -1,7 +1,7 @@
 """Convert the transmissions of a whole document, keeping everything else as written.
 
 Only transmissions whose dialect differs from the target are rewritten, and the change is
-said as edits of the original bytes (:mod:`txtool.transform.edits.conversion_edits`), so every byte
+said as edits of the original bytes (:mod:`txtool.transform.edits.document`), so every byte
 the conversion does not change stays as written. Where converted transmissions go is
 :mod:`txtool.transform.placement.placer`. Every conversion is checked by reading the result back and
 converting it back.
@@ -22,13 +22,13 @@ from txtool.dialects.read import (
     transmission_elements,
 )
 from txtool.dialects.translate import family, is_expression, translate
-from txtool.io.xmlio import MAX_DEPTH, InputError, Source, XMLSyntax, local, parse_bytes, serialize
+from txtool.io.xmlio import MAX_DEPTH, Source, local, serialize
 from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
 from txtool.model.semantics import Effective, NotLoadable, effective, listed_against_roles
-from txtool.transform.check import judge, round_trip
-from txtool.transform.edits.conversion_edits import ConversionEdits, check_written
+from txtool.transform.check import Verdict, judge, round_trip
 from txtool.transform.edits.core import Edit
+from txtool.transform.edits.document import conversion_edits, read_back
 from txtool.transform.edits.tree_edits import serialization
 from txtool.transform.next_steps import gazebo_plugin
 from txtool.transform.placement.macros import MacroCalls
@@ -80,7 +80,7 @@ def convert_source(
     macro_calls: MacroCalls | None = None,
 ) -> ConvertedDocument:
     """Convert ``source``: read its transmissions, change the tree, say the change as edits
-    of ``source.data`` (:mod:`.edits.conversion_edits`; the result's ``edits``), make them
+    of ``source.data`` (:mod:`.edits.document`; the result's ``edits``), make them
     once, and read the result back (:mod:`.check`). A xacro expansion, which has no bytes of
     its own, is written whole.
 
@@ -96,22 +96,24 @@ def convert_source(
                                                          consume, reversible, macro_calls)
     if consume:
         source.tree = etree.ElementTree(etree.Element("consumed"))
-    if deep:
-        _reads_back(result.data, source.path)
     # What the edits must write, kept as text: the tree goes before the bytes are parsed.
     expected = serialization(tree) if result.edits and not restored else None
-    if check:
-        if restored and result.data != source.data:
-            # Originals written as their bytes: only a parse of the output shows what it holds.
-            del tree
-            tree = parse_bytes(result.data, source.path, limit=None)
-        verdict = round_trip(originals, tree.getroot())
-        result.losses.extend(verdict.losses)
-        result.notes.extend(verdict.notes)
+    # Originals written as their bytes: only a parse of the output shows what it holds.
+    reparse = check and restored and result.data != source.data
+    if check and not reparse:
+        _take_verdict(result, round_trip(originals, tree.getroot()))
+        del originals
     del tree
-    if expected is not None:
-        check_written(result.data, source.path, expected)
+    if deep or expected is not None or reparse:
+        written = read_back(result.data, source.path, expected, deep=deep)
+        if reparse:
+            _take_verdict(result, round_trip(originals, written.getroot()))
     return result
+
+
+def _take_verdict(result: ConvertedDocument, verdict: Verdict) -> None:
+    result.losses.extend(verdict.losses)
+    result.notes.extend(verdict.notes)
 
 
 def _converted(source: Source, target: Dialect, hardware_plugin: str, consume: bool,
@@ -126,7 +128,7 @@ def _converted(source: Source, target: Dialect, hardware_plugin: str, consume: b
     root = tree.getroot()
     elements = transmission_elements(root)
     deep = _near_depth_limit(elements, root)
-    writer = None if source.expanded else ConversionEdits(
+    writer = None if source.expanded else conversion_edits(
         source.path, source.data, root, elements, target)
     result = ConvertedDocument(data=b"", target=target, found=len(elements))
     placer = Placer(root, hardware_plugin, macro_calls=macro_calls)
@@ -187,17 +189,6 @@ def _near_depth_limit(elements: list[etree._Element], root: etree._Element) -> b
         if depth + _WRITTEN_DEPTH > MAX_DEPTH:
             return True
     return False
-
-
-def _reads_back(data: bytes, path: str) -> None:
-    """Refuse a converted document that txtool (or any reader with libxml2's limits) could
-    not read back: it nests elements too deep."""
-    try:
-        parse_bytes(data, path, limit=None)
-    except XMLSyntax as exc:
-        raise InputError(
-            f"{path}: cannot convert: the result could not be read back; its line {exc.line}: "
-            f"{exc.reason}") from None
 
 
 def _convert_one(found: Found, tree: etree._ElementTree, target: Dialect,
