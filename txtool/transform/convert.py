@@ -22,7 +22,7 @@ from txtool.dialects.read import (
     transmission_elements,
 )
 from txtool.dialects.translate import family, is_expression, translate
-from txtool.io.xmlio import MAX_DEPTH, Source, local, serialize
+from txtool.io.xmlio import Source, local, serialize
 from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
 from txtool.model.semantics import Effective, NotLoadable, effective, listed_against_roles
@@ -80,9 +80,9 @@ def convert_source(
     macro_calls: MacroCalls | None = None,
 ) -> ConvertedDocument:
     """Convert ``source``: read its transmissions, change the tree, say the change as edits
-    of ``source.data`` (:mod:`.edits.document`; the result's ``edits``), make them
-    once, and read the result back (:mod:`.check`). A xacro expansion, which has no bytes of
-    its own, is written whole.
+    of ``source.data`` (:mod:`.edits.document`; the result's ``edits``), make them once, and
+    read the result back (:func:`.edits.document.read_back`) and judge it (:mod:`.check`). A
+    xacro expansion, which has no bytes of its own, is written whole.
 
     With ``consume`` the caller gives up ``source.tree``: it is converted in place instead of
     in a copy (an empty document is left in its place). With ``reversible`` each transmission
@@ -92,8 +92,8 @@ def convert_source(
     ``macro_calls``: where the files converted with this one call each xacro macro
     (:func:`.placement.macros.calls_in_files`; ``migrate`` gives those of its files).
     """
-    result, tree, originals, restored, deep = _converted(source, target, hardware_plugin,
-                                                         consume, reversible, macro_calls)
+    result, tree, originals, restored = _converted(source, target, hardware_plugin, consume,
+                                                   reversible, macro_calls)
     if consume:
         source.tree = etree.ElementTree(etree.Element("consumed"))
     # What the edits must write, kept as text: the tree goes before the bytes are parsed.
@@ -104,8 +104,8 @@ def convert_source(
         _take_verdict(result, round_trip(originals, tree.getroot()))
         del originals
     del tree
-    if deep or expected is not None or reparse:
-        written = read_back(result.data, source.path, expected, deep=deep)
+    if result.data != source.data:  # (what a parse reads: nested no deeper than its limit)
+        written = read_back(result.data, source.path, expected)
         if reparse:
             _take_verdict(result, round_trip(originals, written.getroot()))
     return result
@@ -118,16 +118,15 @@ def _take_verdict(result: ConvertedDocument, verdict: Verdict) -> None:
 
 def _converted(source: Source, target: Dialect, hardware_plugin: str, consume: bool,
                reversible: bool, macro_calls: MacroCalls | None
-               ) -> tuple[ConvertedDocument, etree._ElementTree, list[Transmission], bool, bool]:
+               ) -> tuple[ConvertedDocument, etree._ElementTree, list[Transmission], bool]:
     """:func:`convert_source` up to its checks: the result, the converted tree, the
-    transmissions as read, whether originals were put back as their bytes, and whether a
-    transmission stood near the depth limit. What the conversion held besides (the index,
-    the elements replaced) is freed at the return, before the result is read back."""
+    transmissions as read, and whether originals were put back as their bytes. What the
+    conversion held besides (the index, the elements replaced) is freed at the return, before
+    the result is read back."""
     carry = Carrier(source, target, reversible)
     tree = source.tree if consume else copy.deepcopy(source.tree)
     root = tree.getroot()
     elements = transmission_elements(root)
-    deep = _near_depth_limit(elements, root)
     writer = None if source.expanded else conversion_edits(
         source.path, source.data, root, elements, target)
     result = ConvertedDocument(data=b"", target=target, found=len(elements))
@@ -151,7 +150,7 @@ def _converted(source: Source, target: Dialect, hardware_plugin: str, consume: b
         result.edits = edits or None
         result.data = writer.applied(edits) if edits else source.data
     result.notes.extend(carry.notes)
-    return result, tree, originals, bool(restored), deep
+    return result, tree, originals, bool(restored)
 
 
 def _place_each(elements: list[etree._Element], tree: etree._ElementTree, target: Dialect,
@@ -169,26 +168,6 @@ def _place_each(elements: list[etree._Element], tree: etree._ElementTree, target
         if _convert_one(Found(t, element), tree, target, result, placer, carry):
             result.converted += 1
     return originals
-
-
-# What replaces a transmission nests at most this many levels below where it stood
-# (<ros2_control>, <transmission>, <joint>, <role> or <mechanical_reduction>).
-_WRITTEN_DEPTH = 4
-
-
-def _near_depth_limit(elements: list[etree._Element], root: etree._Element) -> bool:
-    """Whether a transmission stands so deep that what is written in its place may nest
-    deeper than a parse reads (:data:`~txtool.io.xmlio.MAX_DEPTH`)."""
-    for element in elements:
-        depth, parent = 1, element.getparent()
-        if parent is root:
-            continue  # (the common case, without a walk)
-        while parent is not None:
-            depth += 1
-            parent = parent.getparent()
-        if depth + _WRITTEN_DEPTH > MAX_DEPTH:
-            return True
-    return False
 
 
 def _convert_one(found: Found, tree: etree._ElementTree, target: Dialect,

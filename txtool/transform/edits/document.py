@@ -97,20 +97,17 @@ def conversion_edits(path: str, data: bytes, root: etree._Element,
     return DocumentEdits(path, data, root, inside, containers, "convert")
 
 
-def read_back(data: bytes, path: str, expected: str | None, verb: str = "convert",
-              deep: bool = False) -> etree._ElementTree:
-    """The parse of ``data``, the bytes a change's edits wrote, refused
-    (:class:`InputError`) where it fails or, given ``expected`` (the changed document as lxml
-    writes it: :func:`.tree_edits.serialization`), does not read as it. ``deep``: the change
-    may have nested elements deeper than a parse reads, said so where it does."""
+def read_back(data: bytes, path: str, expected: str | None, verb: str = "convert"
+              ) -> etree._ElementTree:
+    """The parse of ``data``, the bytes a change wrote, refused (:class:`InputError`) where
+    it fails (a change may nest elements deeper than a parse reads) or, given ``expected``
+    (the changed document as lxml writes it: :func:`.tree_edits.serialization`), where it
+    does not read as that."""
     try:
         written = parse_bytes(utf8_form(data), path, limit=None)
-    except InputError as exc:
-        if deep and isinstance(exc, XMLSyntax):
-            raise InputError(f"{path}: cannot {verb}: the result could not be read back; its "
-                             f"line {exc.line}: {exc.reason}") from None
-        raise InputError(f"{path}: cannot {verb}: what the edits write does not read "
-                         f"back ({exc})") from None
+    except XMLSyntax as exc:
+        raise InputError(f"{path}: cannot {verb}: the result could not be read back; its line "
+                         f"{exc.line}: {exc.reason}") from None
     if expected is not None and not reads_as_serialized(written, expected, path):
         got = hashlib.sha256(canonical(written)).digest()
         raise InputError(f"{path}: cannot {verb}: what the edits write does not read as the "
