@@ -347,13 +347,3 @@ def serialization(tree: etree._ElementTree) -> str:
     """A document as lxml writes it (no XML declaration): what :func:`reads_as_serialized`
     compares first."""
     return etree.tostring(tree, encoding="unicode")
-
-
-def reads_as(data: bytes, tree: etree._ElementTree, path: str) -> bool:
-    """Whether ``data`` parses to the document ``tree`` holds (:func:`reads_as_serialized`):
-    the check of bytes written by edits."""
-    try:
-        written = parse_bytes(data, path, limit=None)
-    except InputError:
-        return False
-    return reads_as_serialized(written, serialization(tree), path)
