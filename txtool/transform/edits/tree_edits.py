@@ -108,7 +108,7 @@ class TreeChange:
                 self._element(child, text, index, edits)
             return
         if span.empty:
-            name = index.data[span.start + 1:span.start + 1 + _name_length(index.data, span)]
+            name = index.data[span.start + 1:span.name_end]
             edits.append(Edit(span.attributes_end, span.end, text.encode(
                 ">" + _escaped(element.text)) + self._nodes(children, text) + b"</" + name
                 + b">"))
@@ -230,13 +230,6 @@ def _written_name(element: etree._Element, key: str, written: dict[bytes, Attrib
     namespace, _, name = key[1:].partition("}")
     return next(spelled for prefix, uri in element.nsmap.items() if uri == namespace and (
         spelled := f"{prefix}:{name}".encode()) in written)
-
-
-def _name_length(data: bytes, span: Span) -> int:
-    end = span.start + 1
-    while data[end:end + 1] not in (b"", b" ", b"\t", b"\r", b"\n", b"/", b">"):
-        end += 1
-    return end - span.start - 1
 
 
 def _trimmed(data: bytes, start: int, end: int, written: bytes) -> Edit:
