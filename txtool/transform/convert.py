@@ -26,7 +26,7 @@ from txtool.io.xmlio import Source, local, serialize
 from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
 from txtool.model.semantics import Effective, NotLoadable, effective, listed_against_roles
-from txtool.transform.check import Verdict, judge, round_trip
+from txtool.transform.check import Verdict, round_trip
 from txtool.transform.edits.core import Edit
 from txtool.transform.edits.document import conversion_edits, read_back
 from txtool.transform.edits.tree_edits import serialization
@@ -35,7 +35,7 @@ from txtool.transform.placement.macros import MacroCalls
 from txtool.transform.placement.placer import DEFAULT_HARDWARE_PLUGIN, Placer
 from txtool.transform.reversible import Carrier
 
-__all__ = ["DEFAULT_HARDWARE_PLUGIN", "ConvertedDocument", "convert_source", "judge"]
+__all__ = ["DEFAULT_HARDWARE_PLUGIN", "ConvertedDocument", "convert_source"]
 
 KNOWN_CHILDREN = {
     "ros1": {

@@ -354,8 +354,7 @@ class Placer:
                             name: str) -> bool:
         """Whether ``old`` can move out of ``component``: what stands between them is
         ``xacro:if`` / ``xacro:unless`` at most (copied around it), not a macro."""
-        parent = old.getparent()
-        while parent is not None and parent is not component:
+        for parent in between(old, component):
             if not is_condition(parent):
                 self.losses.append(
                     f"transmission '{name}': stands inside <{prefixed(parent)}> within "
@@ -363,7 +362,6 @@ class Placer:
                     "must stand outside the block, and it cannot leave that element; left as "
                     "written")
                 return False
-            parent = parent.getparent()
         return True
 
     def _joints_of(self, component: etree._Element) -> set[str]:
