@@ -85,7 +85,7 @@ class FileResult:
     path: str
     original: bytes
     data: bytes
-    fixes: dict[str, int] = field(default_factory=dict)
+    fixes: Counter[str] = field(default_factory=Counter)  # by code
     converted: int = 0
     target: Dialect | None = None
     losses: list[str] = field(default_factory=list)
@@ -392,7 +392,7 @@ def _fix_stage(result: FileResult, data: bytes, tree: etree._ElementTree,
                rules: Sequence[Rule], stages: list[list[Edit]]) -> bytes:
     """Fix ``tree`` (the parse of ``data``) as a stage of :func:`_steps`: the fixed bytes."""
     fixed, edits, fixes = _fixed(data, tree, rules, result.path)
-    _count(result.fixes, fixes)
+    result.fixes.update(fixes)
     stages.append(edits)
     return fixed
 
@@ -443,11 +443,6 @@ def _fixed(data: bytes, tree: etree._ElementTree, rules: Sequence[Rule], path: s
     return fixed, edits, fixes
 
 
-def _carried(comment: str | None) -> bool:
-    """A comment carrying a transmission's original (``--reversible``)."""
-    return (comment or "").strip().startswith(MARK)
-
-
 def _dropped(before: list[tuple[str | None, int | None]], after: list[str | None]) -> list[str]:
     """A loss for each comment of ``before`` (its text and line) that ``after`` (the texts of
     the comments) no longer has: conversions rebuild the transmissions they convert, without
@@ -455,7 +450,7 @@ def _dropped(before: list[tuple[str | None, int | None]], after: list[str | None
     left = Counter(after)
     lost = []
     for comment, line in before:
-        if _carried(comment):
+        if (comment or "").strip().startswith(MARK):
             continue  # a carried original, put back by the conversion (--reversible)
         if left[comment] > 0:
             left[comment] -= 1
@@ -476,11 +471,6 @@ def _comment_nodes(tree: etree._ElementTree) -> list[etree._Comment]:
 
 def _comments(tree: etree._ElementTree) -> list[str | None]:
     return [node.text for node in _comment_nodes(tree)]
-
-
-def _count(total: dict[str, int], counts: dict[str, int]) -> None:
-    for code, count in counts.items():
-        total[code] = total.get(code, 0) + count
 
 
 # Fixes -----------------------------------------------------------------------------------------
