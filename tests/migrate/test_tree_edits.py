@@ -11,19 +11,29 @@ from hypothesis import given
 from hypothesis import strategies as st
 from lxml import etree
 
-from txtool.io.xmlio import parse_bytes
+from txtool.io.xmlio import InputError, parse_bytes
 from txtool.rules import all_rules
 from txtool.transform.edits.core import EditedText
+from txtool.transform.edits.document import read_back
 from txtool.transform.edits.spans import SpanIndex
 from txtool.transform.edits.tree_edits import (
     NotEditable,
     TreeChange,
-    reads_as,
     reads_as_serialized,
+    serialization,
 )
 from txtool.transform.migrate import MigrateOptions, migrate_file
 
 FIXES = [rule for rule in all_rules().values() if rule.fixable]
+
+
+def reads_as(data: bytes, tree: etree._ElementTree, path: str) -> bool:
+    """Whether the bytes an edit wrote read back as ``tree`` (as every fix's are checked)."""
+    try:
+        read_back(data, path, serialization(tree), "fix")
+    except InputError:
+        return False
+    return True
 
 
 def _changed(data: bytes, change: Callable[[etree._Element], None]) -> bytes:

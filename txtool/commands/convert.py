@@ -108,6 +108,9 @@ def command(path, target, output, in_place, allow_lossy, hardware_plugin, revers
         # Well-formed even where nothing changed: a declaration after a comment or spaces
         # (which txtool reads) is not printed there.
         data = without_late_declaration(result.data)
+        # Not needed here: released before the check lints what is written (the edits hold
+        # the bytes the conversion adds).
+        result.edits = None
         judged = _judged(data, source, target, distro, path, xacro, stdin_filename)
         if source.expanded:  # xacro's text: a few long lines, this machine's paths
             from txtool.io.expansion_text import readable

@@ -40,6 +40,7 @@ def converted(source: Source, to: Dialect, ros_distro: str | None = None) -> Con
 
     distro = target_distro(to, ros_distro)
     done = convert_source(source, to)  # not consumed: the input is still there to compare
+    done.edits = None  # (not returned: released before the check lints what is written)
     judged = judge_converted(done.data, source, to, distro=distro, reload=lambda: source)
     return Conversion(
         text=document_text(done.data), data=done.data,

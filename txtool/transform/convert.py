@@ -1,7 +1,7 @@
 """Convert the transmissions of a whole document, keeping everything else as written.
 
 Only transmissions whose dialect differs from the target are rewritten, and the change is
-said as edits of the original bytes (:mod:`txtool.transform.edits.conversion_edits`), so every byte
+said as edits of the original bytes (:mod:`txtool.transform.edits.document`), so every byte
 the conversion does not change stays as written. Where converted transmissions go is
 :mod:`txtool.transform.placement.placer`. Every conversion is checked by reading the result back and
 converting it back.
@@ -22,20 +22,20 @@ from txtool.dialects.read import (
     transmission_elements,
 )
 from txtool.dialects.translate import family, is_expression, translate
-from txtool.io.xmlio import MAX_DEPTH, InputError, Source, XMLSyntax, local, parse_bytes, serialize
+from txtool.io.xmlio import Source, local, serialize
 from txtool.model.core import Dialect, Transmission
 from txtool.model.robot import children
 from txtool.model.semantics import Effective, NotLoadable, effective, listed_against_roles
-from txtool.transform.check import judge, round_trip
-from txtool.transform.edits.conversion_edits import ConversionEdits, check_written
+from txtool.transform.check import Verdict, round_trip
 from txtool.transform.edits.core import Edit
+from txtool.transform.edits.document import conversion_edits, read_back
 from txtool.transform.edits.tree_edits import serialization
 from txtool.transform.next_steps import gazebo_plugin
 from txtool.transform.placement.macros import MacroCalls
 from txtool.transform.placement.placer import DEFAULT_HARDWARE_PLUGIN, Placer
 from txtool.transform.reversible import Carrier
 
-__all__ = ["DEFAULT_HARDWARE_PLUGIN", "ConvertedDocument", "convert_source", "judge"]
+__all__ = ["DEFAULT_HARDWARE_PLUGIN", "ConvertedDocument", "convert_source"]
 
 KNOWN_CHILDREN = {
     "ros1": {
@@ -80,9 +80,9 @@ def convert_source(
     macro_calls: MacroCalls | None = None,
 ) -> ConvertedDocument:
     """Convert ``source``: read its transmissions, change the tree, say the change as edits
-    of ``source.data`` (:mod:`.edits.conversion_edits`; the result's ``edits``), make them
-    once, and read the result back (:mod:`.check`). A xacro expansion, which has no bytes of
-    its own, is written whole.
+    of ``source.data`` (:mod:`.edits.document`; the result's ``edits``), make them once, and
+    read the result back (:func:`.edits.document.read_back`) and judge it (:mod:`.check`). A
+    xacro expansion, which has no bytes of its own, is written whole.
 
     With ``consume`` the caller gives up ``source.tree``: it is converted in place instead of
     in a copy (an empty document is left in its place). With ``reversible`` each transmission
@@ -92,41 +92,42 @@ def convert_source(
     ``macro_calls``: where the files converted with this one call each xacro macro
     (:func:`.placement.macros.calls_in_files`; ``migrate`` gives those of its files).
     """
-    result, tree, originals, restored, deep = _converted(source, target, hardware_plugin,
-                                                         consume, reversible, macro_calls)
+    result, tree, originals, restored = _converted(source, target, hardware_plugin, consume,
+                                                   reversible, macro_calls)
     if consume:
         source.tree = etree.ElementTree(etree.Element("consumed"))
-    if deep:
-        _reads_back(result.data, source.path)
     # What the edits must write, kept as text: the tree goes before the bytes are parsed.
     expected = serialization(tree) if result.edits and not restored else None
-    if check:
-        if restored and result.data != source.data:
-            # Originals written as their bytes: only a parse of the output shows what it holds.
-            del tree
-            tree = parse_bytes(result.data, source.path, limit=None)
-        verdict = round_trip(originals, tree.getroot())
-        result.losses.extend(verdict.losses)
-        result.notes.extend(verdict.notes)
+    # Originals written as their bytes: only a parse of the output shows what it holds.
+    reparse = check and restored and result.data != source.data
+    if check and not reparse:
+        _take_verdict(result, round_trip(originals, tree.getroot()))
+        del originals
     del tree
-    if expected is not None:
-        check_written(result.data, source.path, expected)
+    if result.data != source.data:  # (what a parse reads: nested no deeper than its limit)
+        written = read_back(result.data, source.path, expected)
+        if reparse:
+            _take_verdict(result, round_trip(originals, written.getroot()))
     return result
+
+
+def _take_verdict(result: ConvertedDocument, verdict: Verdict) -> None:
+    result.losses.extend(verdict.losses)
+    result.notes.extend(verdict.notes)
 
 
 def _converted(source: Source, target: Dialect, hardware_plugin: str, consume: bool,
                reversible: bool, macro_calls: MacroCalls | None
-               ) -> tuple[ConvertedDocument, etree._ElementTree, list[Transmission], bool, bool]:
+               ) -> tuple[ConvertedDocument, etree._ElementTree, list[Transmission], bool]:
     """:func:`convert_source` up to its checks: the result, the converted tree, the
-    transmissions as read, whether originals were put back as their bytes, and whether a
-    transmission stood near the depth limit. What the conversion held besides (the index,
-    the elements replaced) is freed at the return, before the result is read back."""
+    transmissions as read, and whether originals were put back as their bytes. What the
+    conversion held besides (the index, the elements replaced) is freed at the return, before
+    the result is read back."""
     carry = Carrier(source, target, reversible)
     tree = source.tree if consume else copy.deepcopy(source.tree)
     root = tree.getroot()
     elements = transmission_elements(root)
-    deep = _near_depth_limit(elements, root)
-    writer = None if source.expanded else ConversionEdits(
+    writer = None if source.expanded else conversion_edits(
         source.path, source.data, root, elements, target)
     result = ConvertedDocument(data=b"", target=target, found=len(elements))
     placer = Placer(root, hardware_plugin, macro_calls=macro_calls)
@@ -149,7 +150,7 @@ def _converted(source: Source, target: Dialect, hardware_plugin: str, consume: b
         result.edits = edits or None
         result.data = writer.applied(edits) if edits else source.data
     result.notes.extend(carry.notes)
-    return result, tree, originals, bool(restored), deep
+    return result, tree, originals, bool(restored)
 
 
 def _place_each(elements: list[etree._Element], tree: etree._ElementTree, target: Dialect,
@@ -167,37 +168,6 @@ def _place_each(elements: list[etree._Element], tree: etree._ElementTree, target
         if _convert_one(Found(t, element), tree, target, result, placer, carry):
             result.converted += 1
     return originals
-
-
-# What replaces a transmission nests at most this many levels below where it stood
-# (<ros2_control>, <transmission>, <joint>, <role> or <mechanical_reduction>).
-_WRITTEN_DEPTH = 4
-
-
-def _near_depth_limit(elements: list[etree._Element], root: etree._Element) -> bool:
-    """Whether a transmission stands so deep that what is written in its place may nest
-    deeper than a parse reads (:data:`~txtool.io.xmlio.MAX_DEPTH`)."""
-    for element in elements:
-        depth, parent = 1, element.getparent()
-        if parent is root:
-            continue  # (the common case, without a walk)
-        while parent is not None:
-            depth += 1
-            parent = parent.getparent()
-        if depth + _WRITTEN_DEPTH > MAX_DEPTH:
-            return True
-    return False
-
-
-def _reads_back(data: bytes, path: str) -> None:
-    """Refuse a converted document that txtool (or any reader with libxml2's limits) could
-    not read back: it nests elements too deep."""
-    try:
-        parse_bytes(data, path, limit=None)
-    except XMLSyntax as exc:
-        raise InputError(
-            f"{path}: cannot convert: the result could not be read back; its line {exc.line}: "
-            f"{exc.reason}") from None
 
 
 def _convert_one(found: Found, tree: etree._ElementTree, target: Dialect,

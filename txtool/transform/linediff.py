@@ -104,20 +104,14 @@ def _anchors(a: Sequence[Hashable], b: Sequence[Hashable], a0: int, a1: int, b0:
     return chain[::-1]
 
 
-def unified(a: Sequence[str], b: Sequence[str], fromfile: str, tofile: str,
-            context: int = 3) -> Iterator[str]:
-    """The lines of :func:`difflib.unified_diff` (no dates), from :func:`matching_blocks`."""
-    for prefix, lines in _runs(a, b, fromfile, tofile, context):
-        yield from (prefix + line for line in lines)
-
-
 NO_NEWLINE = "\n\\ No newline at end of file\n"
 
 
 def unified_text(a: Sequence[str], b: Sequence[str], fromfile: str, tofile: str,
                  context: int = 3) -> str:
-    """The lines of :func:`unified` as one text, each line that does not end with a newline
-    followed by a newline and ``diff``'s ``\\ No newline at end of file``."""
+    """The lines of :func:`difflib.unified_diff` (no dates), from :func:`matching_blocks`, as
+    one text, each line that does not end with a newline followed by a newline and
+    ``diff``'s ``\\ No newline at end of file``."""
     out = []
     for prefix, lines in _runs(a, b, fromfile, tofile, context):
         run = prefix.join(lines)
@@ -131,7 +125,7 @@ def unified_text(a: Sequence[str], b: Sequence[str], fromfile: str, tofile: str,
 
 def _runs(a: Sequence[str], b: Sequence[str], fromfile: str, tofile: str,
           context: int) -> Iterator[tuple[str, Sequence[str]]]:
-    """:func:`unified`'s lines as runs: (prefix, the lines it goes before)."""
+    """The diff's lines as runs: (prefix, the lines it goes before)."""
     matcher = _Matcher(a, b)
     started = False
     for group in matcher.get_grouped_opcodes(context):

@@ -44,9 +44,8 @@ from txtool.model.core import Dialect
 from txtool.rules import Rule, all_rules
 from txtool.transform.convert import DEFAULT_HARDWARE_PLUGIN, ConvertedDocument, convert_source
 from txtool.transform.edits.core import Edit, EditedText, compose
-from txtool.transform.edits.declaration import late_declaration
-from txtool.transform.edits.spans import SpanError, SpanIndex
-from txtool.transform.edits.tree_edits import NotEditable, TreeChange, reads_as
+from txtool.transform.edits.document import DocumentEdits, read_back
+from txtool.transform.edits.tree_edits import serialization
 from txtool.transform.fixable import might_fix
 from txtool.transform.linediff import unified_text
 from txtool.transform.next_steps import package_build_types, package_gazebo_plugins
@@ -86,7 +85,7 @@ class FileResult:
     path: str
     original: bytes
     data: bytes
-    fixes: dict[str, int] = field(default_factory=dict)
+    fixes: Counter[str] = field(default_factory=Counter)  # by code
     converted: int = 0
     target: Dialect | None = None
     losses: list[str] = field(default_factory=list)
@@ -270,7 +269,7 @@ def _record(report: Report, result: FileResult, options: MigrateOptions) -> None
     if not result.changed:
         return
     if options.mode == "diff":
-        report.diffs.append(diff_of(result.path, result.original, result.data))
+        report.diffs.append(unified_diff(result.path, result.original, result.data))
     if options.mode == "write":
         try:
             _write(result)
@@ -393,7 +392,7 @@ def _fix_stage(result: FileResult, data: bytes, tree: etree._ElementTree,
                rules: Sequence[Rule], stages: list[list[Edit]]) -> bytes:
     """Fix ``tree`` (the parse of ``data``) as a stage of :func:`_steps`: the fixed bytes."""
     fixed, edits, fixes = _fixed(data, tree, rules, result.path)
-    _count(result.fixes, fixes)
+    result.fixes.update(fixes)
     stages.append(edits)
     return fixed
 
@@ -431,35 +430,17 @@ def _take_messages(result: FileResult, conversion: ConvertedDocument,
 def _fixed(data: bytes, tree: etree._ElementTree, rules: Sequence[Rule], path: str
            ) -> tuple[bytes, list[Edit], dict[str, int]]:
     """Fix ``tree`` (the parse of ``data``) and say what the fixes changed as edits of
-    ``data`` (:mod:`.edits.tree_edits`): the fixed bytes, the edits and the fixes by code. The bytes
-    are read back: they must parse to the fixed tree."""
-    text = EditedText(data)
+    ``data`` (:mod:`.edits.document`): the fixed bytes, the edits and the fixes by code. The
+    bytes are read back: they must parse to the fixed tree."""
     elements = transmission_elements(tree.getroot())  # what the fixes may change
-    try:
-        index = SpanIndex(text.data, tree.getroot(), elements, text.codec)
-    except SpanError as exc:
-        raise InputError(f"{path}: cannot fix: the bytes do not read as parsed ({exc})"
-                         ) from None
-    change = TreeChange(elements)
+    writer = DocumentEdits(path, data, tree.getroot(), elements)
     del elements
     fixes = fix_tree(tree, rules, data)
-    try:
-        edits = change.written(text, index)
-    except NotEditable as exc:
-        raise InputError(f"{path}: cannot fix: {exc}") from None
-    late = late_declaration(text.data) if edits else None
-    if late is not None:
-        edits.append(late)
-    fixed = text.applied(edits)
-    if fixed != data and not reads_as(fixed, tree, path):
-        raise InputError(f"{path}: cannot fix: what the edits write does not read as the "
-                         "fixed document; please report this file")
+    edits = writer.edits()
+    fixed = writer.applied(edits)
+    if fixed != data:
+        read_back(fixed, path, serialization(tree), "fix")
     return fixed, edits, fixes
-
-
-def _carried(comment: str | None) -> bool:
-    """A comment carrying a transmission's original (``--reversible``)."""
-    return (comment or "").strip().startswith(MARK)
 
 
 def _dropped(before: list[tuple[str | None, int | None]], after: list[str | None]) -> list[str]:
@@ -469,7 +450,7 @@ def _dropped(before: list[tuple[str | None, int | None]], after: list[str | None
     left = Counter(after)
     lost = []
     for comment, line in before:
-        if _carried(comment):
+        if (comment or "").strip().startswith(MARK):
             continue  # a carried original, put back by the conversion (--reversible)
         if left[comment] > 0:
             left[comment] -= 1
@@ -490,11 +471,6 @@ def _comment_nodes(tree: etree._ElementTree) -> list[etree._Comment]:
 
 def _comments(tree: etree._ElementTree) -> list[str | None]:
     return [node.text for node in _comment_nodes(tree)]
-
-
-def _count(total: dict[str, int], counts: dict[str, int]) -> None:
-    for code, count in counts.items():
-        total[code] = total.get(code, 0) + count
 
 
 # Fixes -----------------------------------------------------------------------------------------
@@ -544,12 +520,8 @@ def _silenced(element: etree._Element, code: str, suppressions: Suppressions) ->
 
 
 def unified_diff(path: str, before: bytes, after: bytes) -> str:
-    """A unified diff with ``a/PATH`` and ``b/PATH`` headers (``git apply`` / ``patch -p1``)."""
-    return diff_of(path, before, after)
-
-
-def diff_of(path: str, before: bytes, after: bytes) -> str:
-    """:func:`unified_diff`: the lines of both documents as text (:mod:`.linediff`)."""
+    """A unified diff with ``a/PATH`` and ``b/PATH`` headers (``git apply`` / ``patch -p1``)
+    of the lines of both documents as text (:mod:`.linediff`)."""
     name = path.replace(os.sep, "/")
     while name.startswith("./"):  # a walk of "." names src/robot.urdf, as git diff does
         name = name[2:]

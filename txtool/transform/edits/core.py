@@ -54,11 +54,7 @@ def apply_edits(original: bytes, edits: Iterable[Edit]) -> bytes:
     kept = memoryview(original)  # what is copied is copied once, into the result
     parts: list[bytes | memoryview] = []
     copied = 0
-    for edit in sorted(edits, key=lambda edit: (edit.start, edit.end)):
-        if edit.start < copied:
-            raise ValueError(f"edits overlap at byte {edit.start}")
-        if edit.end > len(original):
-            raise ValueError(f"edit past the end of the document: byte {edit.end}")
+    for edit in _in_order(edits, len(original)):
         parts.append(kept[copied:edit.start])
         parts.append(edit.content)
         copied = edit.end

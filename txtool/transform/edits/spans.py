@@ -259,11 +259,16 @@ def _nests(data: bytes, name: bytes, start: int, end: int) -> bool:
 def _bounds(token: re.Match[bytes], node: etree._Element, codec: str) -> Span:
     """Where ``node`` starts, and where its start tag ends (its end, until its end tag is
     read); its name checked, not its line."""
-    name = token.group("name")
-    if name is not None and name.rpartition(b":")[2].decode(
-            codec, "replace") != node.tag.rpartition("}")[2]:
+    if not _named(token, node, codec):
         raise SpanError(f"byte {token.start()}: the bytes do not hold the tree's {node.tag!r}")
     return Span(token.start(), token.end())
+
+
+def _named(token: re.Match[bytes], node: etree._Element, codec: str) -> bool:
+    """Whether ``token`` (a start tag, or a comment or instruction) names ``node``'s tag."""
+    name = token.group("name")
+    return name is None or name.rpartition(b":")[2].decode(
+        codec, "replace") == node.tag.rpartition("}")[2]
 
 
 # libxml2 keeps a node's line exactly below 65,535; past it, the line it reports may be one
@@ -273,12 +278,10 @@ _EXACT_LINES = 65_535
 
 def _span(token: re.Match[bytes], node: etree._Element, line: int, codec: str) -> Span:
     start, end = token.span()
-    name = token.group("name")
-    if name is not None and name.rpartition(b":")[2].decode(
-            codec, "replace") != node.tag.rpartition("}")[2] or node.sourceline not in (
-            None, line) and line < _EXACT_LINES:
+    if not _named(token, node, codec) or node.sourceline not in (None, line) and (
+            line < _EXACT_LINES):
         raise SpanError(f"line {line}: the bytes do not hold the tree's {node.tag!r} here")
-    if name is None:
+    if token.group("name") is None:
         return Span(start, end)
     empty = token.start("empty") != token.end("empty")
     return Span(start, end, empty, token.end("name"), token.end("attributes"),

@@ -108,7 +108,7 @@ class TreeChange:
                 self._element(child, text, index, edits)
             return
         if span.empty:
-            name = index.data[span.start + 1:span.start + 1 + _name_length(index.data, span)]
+            name = index.data[span.start + 1:span.name_end]
             edits.append(Edit(span.attributes_end, span.end, text.encode(
                 ">" + _escaped(element.text)) + self._nodes(children, text) + b"</" + name
                 + b">"))
@@ -232,13 +232,6 @@ def _written_name(element: etree._Element, key: str, written: dict[bytes, Attrib
         spelled := f"{prefix}:{name}".encode()) in written)
 
 
-def _name_length(data: bytes, span: Span) -> int:
-    end = span.start + 1
-    while data[end:end + 1] not in (b"", b" ", b"\t", b"\r", b"\n", b"/", b">"):
-        end += 1
-    return end - span.start - 1
-
-
 def _trimmed(data: bytes, start: int, end: int, written: bytes) -> Edit:
     """The edit of ``[start, end)`` to ``written`` without the bytes both begin or end with."""
     old = memoryview(data)[start:end]  # (no copy: a run may hold thousands of elements)
@@ -324,22 +317,16 @@ def canonical(tree: etree._ElementTree) -> bytes:
     return etree.tostring(tree, method="c14n", exclusive=True)
 
 
-def same_document(read: etree._ElementTree, tree: etree._ElementTree) -> bool:
-    """Whether ``read``, parsed from bytes written for ``tree``, holds the document ``tree``
-    holds. lxml writes a tree, parsed or changed, as the document it holds, so the same
-    serialization is the same document: that is compared first, made in a third of the time
-    of a canonical form. Where the two differ (a namespace declared on another element than
-    where it is used, an empty text written as ``<a></a>`` where a parse reads ``<a/>``;
-    quotes and spaces in tags never differ, lxml writes both), the canonical forms
-    (:func:`canonical`) decide."""
-    return serialization(read) == serialization(tree) or canonical(read) == canonical(tree)
-
-
 def reads_as_serialized(read: etree._ElementTree, text: str, path: str) -> bool:
-    """:func:`same_document` for a tree kept only as its :func:`serialization` ``text``
-    (whose memory the parse of ``read`` could then reuse): where the serializations differ,
-    the canonical form of ``text`` parsed decides (lxml writes a tree as the document it
-    holds: parsed again, it has the tree's canonical form)."""
+    """Whether ``read``, parsed from bytes written for a tree kept only as its
+    :func:`serialization` ``text`` (whose memory the parse of ``read`` could then reuse),
+    holds the document that tree holds. lxml writes a tree, parsed or changed, as the
+    document it holds, so the same serialization is the same document: that is compared
+    first, made in a third of the time of a canonical form. Where the two differ (a
+    namespace declared on another element than where it is used, an empty text written as
+    ``<a></a>`` where a parse reads ``<a/>``; quotes and spaces in tags never differ, lxml
+    writes both), the canonical form (:func:`canonical`) of ``text`` parsed decides (parsed
+    again, it has the tree's canonical form)."""
     if serialization(read) == text:
         return True
     try:
@@ -350,16 +337,6 @@ def reads_as_serialized(read: etree._ElementTree, text: str, path: str) -> bool:
 
 
 def serialization(tree: etree._ElementTree) -> str:
-    """A document as lxml writes it (no XML declaration): what :func:`same_document`
+    """A document as lxml writes it (no XML declaration): what :func:`reads_as_serialized`
     compares first."""
     return etree.tostring(tree, encoding="unicode")
-
-
-def reads_as(data: bytes, tree: etree._ElementTree, path: str) -> bool:
-    """Whether ``data`` parses to the document ``tree`` holds (:func:`same_document`): the
-    check of bytes written by edits."""
-    try:
-        written = parse_bytes(data, path, limit=None)
-    except InputError:
-        return False
-    return same_document(written, tree)

@@ -68,13 +68,9 @@ class RobotJoints:
     def _known(self, name: str) -> etree._Element | None:
         """The joint named ``name``, when the document says what it is for every argument."""
         element = self.elements.get(name)
-        if element is None or _expression(element.get("type")):
+        if element is None or _expression(element.get("type")) or any(
+                map(is_condition, element.iterancestors())):
             return None
-        parent = element.getparent()
-        while parent is not None:
-            if is_condition(parent):
-                return None
-            parent = parent.getparent()
         return element
 
     def refusal(self, names: Iterable[str]) -> str | None:

@@ -8,7 +8,6 @@ from collections.abc import Callable
 
 from lxml import etree
 
-from txtool import dialects
 from txtool.io.xmlio import local
 from txtool.model.core import Dialect
 from txtool.model.robot import children
@@ -98,8 +97,7 @@ def reindent(tail: str | None, indent: str) -> str:
     return head + newline + indent if newline else "\n" + indent
 
 
-def with_comments(new: etree._Element, old: etree._Element, indent: str | None = None,
-                  step: str | None = None) -> etree._Element:
+def with_comments(new: etree._Element, old: etree._Element) -> None:
     """Carry the comments of the old element: under the same joint or actuator when they
     stood there, else at the top of the transmission."""
     parents: list[etree._Element] = []  # none without a comment (most transmissions)
@@ -116,9 +114,6 @@ def with_comments(new: etree._Element, old: etree._Element, indent: str | None =
         else:
             for comment in comments:
                 target.append(comment)
-    if indent is not None and step is not None and has_comment(new):
-        dialects.pretty(new, indent, step)
-    return new
 
 
 def has_comment(element: etree._Element) -> bool:
@@ -136,8 +131,7 @@ def become(old: etree._Element, new: etree._Element) -> None:
     old.attrib.clear()
     old.attrib.update(new.attrib)
     old.text = new.text
-    for child in list(old):
-        old.remove(child)
+    del old[:]
     old.extend(list(new))
 
 
@@ -156,18 +150,14 @@ def leading_space(element: etree._Element) -> str:
 
 
 def indentation(element: etree._Element) -> tuple[str, str]:
-    indent = leading_space(element)
-    return indent, _step(element)
-
-
-def _step(element: etree._Element) -> str:
+    """The indentation of ``element`` and the step its first child element is indented by
+    (two spaces where it has none)."""
     indent = leading_space(element)
     first = next((c for c in element if isinstance(c.tag, str)), None)
-    if first is not None:
-        inner = leading_space(first)
-        if inner.startswith(indent) and len(inner) > len(indent):
-            return inner[len(indent):]
-    return "  "
+    inner = leading_space(first) if first is not None else ""
+    if inner.startswith(indent) and len(inner) > len(indent):
+        return indent, inner[len(indent):]
+    return indent, "  "
 
 
 def child_indentation(parent: etree._Element) -> tuple[str, str]:

@@ -35,12 +35,8 @@ def is_xacro(element: etree._Element) -> bool:
 
 def enclosing_macro(element: etree._Element) -> etree._Element | None:
     """The nearest ``xacro:macro`` around ``element``, or None."""
-    parent = element.getparent()
-    while parent is not None:
-        if local(parent) == "macro" and is_xacro(parent):
-            return parent
-        parent = parent.getparent()
-    return None
+    return next((parent for parent in element.iterancestors()
+                 if local(parent) == "macro" and is_xacro(parent)), None)
 
 
 class Call(NamedTuple):

@@ -4,10 +4,9 @@ from __future__ import annotations
 
 from lxml import etree
 
-from txtool.model.core import Dialect, Transmission
+from txtool.model.core import Transmission
 
 Carried = dict[tuple[str, str | None], list[etree._Element]]
-Joints = list[tuple[str, tuple[str, ...], tuple[str, ...]]]  # names and interfaces
 
 
 class Move:
@@ -21,10 +20,3 @@ class Move:
         self.old = old
         self.new = new
         self.carried = carried
-
-    @property
-    def dialect(self) -> Dialect:
-        return self.new.dialect
-
-    def joints(self) -> Joints:
-        return [(j.name, j.interfaces, j.state_interfaces) for j in self.new.joints]

@@ -78,7 +78,6 @@ class Placer:
         self._components: list[etree._Element] | None = None
         self._declared: dict[etree._Element, set[str]] = {}
         self.built: dict[etree._Element, etree._Element] = {}  # old element -> the last built
-        self._replaced = etree.Element("replaced")  # what the generated block replaced
         # What the conversion cannot do as the document asks (it says why).
         self.losses: list[str] = []
         # What to look at, though nothing is lost (a transmission left as written).
@@ -199,20 +198,29 @@ class Placer:
     def _generate(self, moves: list[Move]) -> None:
         first = moves[0].old
         indent, step = indentation(first)
-        runs = runs_of([m.old for m in moves])
         name = self._fresh_name(self.root.get("name", "robot"),
                                 "the <ros2_control> generated for the document")
         block = self.block(name, self.hardware_plugin, moves, first, indent, step)
+        self._put(block, moves, indent, step)
+
+    def _put(self, block: etree._Element, moves: list[Move], indent: str, step: str) -> None:
+        """Put ``block`` (built for ``moves``) at the place of the first of them: those that
+        stood together with it stand together in the block, keeping the blank lines between
+        them; the others are cut from where they stood."""
+        runs = runs_of([move.old for move in moves])
         for old in runs[0][:-1]:
             self.built[old].tail = reindent(old.tail, indent + step)
+        block.tail = runs[0][-1].tail
         for run in runs[1:]:
             for old in run:
                 cut(old)
-        block.tail = runs[0][-1].tail
-        # Moved into one element of their own (their tails go with them), not removed one by
-        # one: lxml frees a removed element by searching its subtree, once per element.
-        self._replaced.extend(runs[0][1:])
-        first.getparent().replace(first, block)
+        first = runs[0][0]
+        parent = first.getparent()
+        for later in runs[0][1:]:
+            # With its tail (the block's is the run's last); emptied once built (see
+            # build()), it is removed without a walk through what it held.
+            parent.remove(later)
+        parent.replace(first, block)
         self._components = None
 
     def block(self, name: str, plugin: str, moves: list[Move], like: etree._Element,
@@ -346,8 +354,7 @@ class Placer:
                             name: str) -> bool:
         """Whether ``old`` can move out of ``component``: what stands between them is
         ``xacro:if`` / ``xacro:unless`` at most (copied around it), not a macro."""
-        parent = old.getparent()
-        while parent is not None and parent is not component:
+        for parent in between(old, component):
             if not is_condition(parent):
                 self.losses.append(
                     f"transmission '{name}': stands inside <{prefixed(parent)}> within "
@@ -355,7 +362,6 @@ class Placer:
                     "must stand outside the block, and it cannot leave that element; left as "
                     "written")
                 return False
-            parent = parent.getparent()
         return True
 
     def _joints_of(self, component: etree._Element) -> set[str]:
@@ -379,20 +385,7 @@ class Placer:
         fresh = self._fresh_name(moves[0].new.name, f"the <ros2_control> around transmission "
                                  f"'{moves[0].new.name}'")
         block = self.block(fresh, self.hardware_plugin, moves, old, indent, step)
-        # Laid out as _generate lays out the document's block: the first run stays together
-        # in it, the others are cut from where they stood.
-        runs = runs_of([move.old for move in moves])
-        for first in runs[0][:-1]:
-            self.built[first].tail = reindent(first.tail, indent + step)
-        block.tail = runs[0][-1].tail
-        for run in runs[1:]:
-            for later in run:
-                cut(later)
-        parent = old.getparent()
-        for later in runs[0][1:]:
-            parent.remove(later)  # with its tail: the block's is the run's last
-        parent.replace(old, block)
-        self._components = None
+        self._put(block, moves, indent, step)
         if macro is not None and not count:
             self.notes.append(per_call(block.get("name"), macro))
 
@@ -434,6 +427,11 @@ class Placer:
             dialects.pretty(new, indent, step)  # build() laid out all but these
         if record:
             self.built[move.old] = new
+            # What the old element held is read (the new one is built, its comments and
+            # carried children copied): freed now rather than with the tree, so that the old
+            # and the new transmissions of a document are not held at once. The element
+            # itself stays, empty, where the edits will look for it.
+            del move.old[:]
         return new
 
 
@@ -443,10 +441,10 @@ def _declared(moves: list[Move]) -> list[tuple[str, tuple]]:
     seen: set[str] = set()
     declared: list[tuple[str, tuple]] = []
     for move in moves:
-        for name, commands, states in move.joints():
-            if name not in seen:
-                seen.add(name)
-                declared.append((name, (commands, states)))
+        for joint in move.new.joints:
+            if joint.name not in seen:
+                seen.add(joint.name)
+                declared.append((joint.name, (joint.interfaces, joint.state_interfaces)))
     return declared
 
 

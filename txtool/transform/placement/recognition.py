@@ -29,7 +29,7 @@ class Builder(Protocol):
 
     def block(self, name: str, plugin: str, moves: list[Move], like: etree._Element,
               indent: str, step: str, *, record: bool = True,
-              transmissions: bool = True, alone: bool = False) -> etree._Element: ...
+              transmissions: bool = True) -> etree._Element: ...
 
     def build(self, move: Move, indent: str, step: str, like: etree._Element, *,
               record: bool = True) -> etree._Element: ...
@@ -67,20 +67,17 @@ def generated_from(component: etree._Element, moves: list[Move], document: str,
         return None
     forward = [Move(m.old, f.forward, m.carried) for m, f in zip(moves, found, strict=True)]
     namespace = namespace_of(component)
-    if all(namespace_of(m.old) == namespace for m in moves):
-        # Each transmission as generated is already known to have the shape of the one
-        # written: compare the rest of the block, and those shapes, without building them
-        # again (shape() of the block as written takes them from ``known``).
-        tag, attrib, text, kids = shape(
-            builder.block(component.get("name"), plugins[0].text, forward, component, "", "",
-                          record=False, transmissions=False), comments=False)
-        expected = (tag, attrib, text, (*kids, *(f.shape for f in found)))
-        known = {m.old: f.shape for m, f in zip(moves, found, strict=True)}
-    else:
-        expected = shape(builder.block(component.get("name"), plugins[0].text, forward,
-                                       component, "", "", record=False), comments=False)
-        known = {}
-    if expected != shape(component, comments=False, known=known):
+    if any(namespace_of(m.old) != namespace for m in moves):
+        return None  # txtool builds a block's transmissions in the block's namespace
+    # Each transmission as generated is already known to have the shape of the one written:
+    # compare the rest of the block, and those shapes, without building them again (shape()
+    # of the block as written takes them from ``known``).
+    tag, attrib, text, kids = shape(
+        builder.block(component.get("name"), plugins[0].text, forward, component, "", "",
+                      record=False, transmissions=False))
+    expected = (tag, attrib, text, (*kids, *(f.shape for f in found)))
+    known = {m.old: f.shape for m, f in zip(moves, found, strict=True)}
+    if expected != shape(component, known=known):
         return None
     return [f.source for f in found]
 
@@ -94,12 +91,12 @@ def _generating(move: Move, dialect: Dialect, builder: Builder) -> Generating | 
     if t.kind == "simple" and t.actuators and t.actuators[0].mechanical_reduction:
         bare = replace(t.actuators[0], mechanical_reduction=None)
         candidates.append(replace(t, actuators=(bare, *t.actuators[1:])))
-    want = shape(move.old, comments=False)
+    want = shape(move.old)
     for candidate in candidates:
         forward = translate(candidate, dialect).transmission
         built = builder.build(Move(move.old, forward, move.carried), "", "", move.old,
                               record=False)
-        if shape(built, comments=False) == want:
+        if shape(built) == want:
             return Generating(candidate, forward, want)
     return None
 
@@ -112,21 +109,21 @@ def named_after(name: str | None, bases: list[str]) -> bool:
         for base in bases)
 
 
-def shape(element: etree._Element, *, comments: bool = True,
-          known: dict[etree._Element, tuple] | None = None) -> tuple:
-    """Tags, attributes, stripped texts and children: the element without its layout.
-    ``comments=False`` leaves out the comments inside transmissions (carried, not generated);
-    ``known``: shapes already computed, by element."""
+def shape(element: etree._Element, *, known: dict[etree._Element, tuple] | None = None
+          ) -> tuple:
+    """Tags, attributes, stripped texts and children: the element without its layout, nor
+    the comments inside transmissions (carried, not generated); ``known``: shapes already
+    computed, by element."""
     if known and element in known:
         return known[element]
     kids = []
     for child in element:
         if isinstance(child, etree._Comment):
-            if comments or local(element) != "transmission" and not _in_transmission(element):
+            if local(element) != "transmission" and not _in_transmission(element):
                 kids.append(("#comment", child.text))
             continue
         if isinstance(child.tag, str):
-            kids.append(shape(child, comments=comments, known=known))
+            kids.append(shape(child, known=known))
     return (element.tag, dict(element.attrib), (element.text or "").strip(), tuple(kids))
 
 

@@ -3,6 +3,8 @@ around it), and how to name any of them in a message."""
 
 from __future__ import annotations
 
+from itertools import takewhile
+
 from lxml import etree
 
 from txtool.io.xmlio import local
@@ -19,12 +21,7 @@ def is_condition(element: etree._Element) -> bool:
 
 def between(old: etree._Element, component: etree._Element) -> list[etree._Element]:
     """The elements between ``old`` and its ancestor ``component``, innermost first."""
-    chain = []
-    parent = old.getparent()
-    while parent is not None and parent is not component:
-        chain.append(parent)
-        parent = parent.getparent()
-    return chain
+    return list(takewhile(lambda parent: parent is not component, old.iterancestors()))
 
 
 def prefixed(element: etree._Element) -> str:
