@@ -99,8 +99,6 @@ def test_calls_grow_linearly_with_the_document(tmp_path: Path, command: str, sha
     assert math.log(growth, large / small) <= 1.15, counted
 
 
-# Outside coverage in .ci/run: the size-1 run, the only one traced, is test_calls_grow_linearly's.
-@pytest.mark.timing
 @pytest.mark.parametrize("shape", SHAPES)
 def test_roundtrip_does_the_work_of_three_conversions(tmp_path: Path, shape: str):
     """roundtrip's six conversions each convert a tree and read its transmissions back, with
@@ -115,6 +113,8 @@ def test_roundtrip_does_the_work_of_three_conversions(tmp_path: Path, shape: str
     assert counted["roundtrip"] <= 3 * counted["convert"], counted
 
 
+# Outside coverage in .ci/run: the size-1 run, the only one traced, is test_calls_grow_linearly's.
+@pytest.mark.timing
 @pytest.mark.parametrize("shape", SHAPES)
 @pytest.mark.parametrize("command", ["convert", "migrate-diff"])
 def test_time_grows_linearly_with_the_document(tmp_path: Path, command: str, shape: str):
