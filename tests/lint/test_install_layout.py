@@ -116,3 +116,45 @@ def test_load_yaml_reads_the_installed_layout_too(tmp_path):
     code, out, err = convert(robot)
     assert code == 0, err
     assert "<mechanical_reduction>42.5</mechanical_reduction>" in out
+
+
+@pytest.mark.parametrize(("cmake", "asked", "found"), [
+    ("install(DIRECTORY description/ros2_control description/urdf\n"
+     "        DESTINATION share/${PROJECT_NAME})", "ros2_control/r.xacro",
+     "description/ros2_control/r.xacro"),
+    ('install(DIRECTORY "description/parts/" DESTINATION share/demo_pkg/urdf/parts)',
+     "urdf/parts/r.xacro", "description/parts/r.xacro"),
+    ("install(FILES config/ratio.xacro DESTINATION share/${PROJECT_NAME}/params)",
+     "params/ratio.xacro", "config/ratio.xacro"),
+    ("install(DIRECTORY description/ DESTINATION share/${PROJECT_NAME})",
+     "ros2_control/r.xacro", "description/ros2_control/r.xacro"),
+    ("install(DIRECTORY description/ros2_control DESTINATION include/${PROJECT_NAME})",
+     "ros2_control/r.xacro", None),
+    ("install(DIRECTORY ${X}/ros2_control ../ros2_control /ros2_control\n"
+     "        DESTINATION share/${PROJECT_NAME})", "ros2_control/r.xacro", None),
+    ("install(DIRECTORY description/ros2_control DESTINATION)", "ros2_control/r.xacro", None),
+    ("# install(DIRECTORY description/ros2_control DESTINATION share/${PROJECT_NAME})",
+     "ros2_control/r.xacro", None),
+    ("install(DIRECTORY description/ros2_control DESTINATION share/${PROJECT_NAME})",
+     "ros2_control/absent.xacro", None),
+])
+def test_the_installed_path_and_its_source_in_the_checkout(tmp_path, cmake, asked, found):
+    """The rules read in-process, as the expansion's worker reads them."""
+    from txtool.io.install_layout import installed_source
+
+    robot = checkout(tmp_path, cmake + "\n", "unused.xacro", "description/ros2_control/r.xacro")
+    pkg = robot.parents[2]
+    for source in ("description/parts/r.xacro", "config/ratio.xacro"):
+        (pkg / source).parent.mkdir(parents=True, exist_ok=True)
+        (pkg / source).write_text(RATIO)
+    expected = None if found is None else str(pkg / found)
+    assert installed_source(str(pkg / asked)) == expected
+
+
+def test_no_package_or_no_cmake_file_installs_nothing(tmp_path):
+    from txtool.io.install_layout import installed_source
+
+    assert installed_source(str(tmp_path / "nowhere" / "r.xacro")) is None
+    robot = checkout(tmp_path, "", "unused.xacro", "description/ros2_control/r.xacro")
+    (robot.parents[2] / "CMakeLists.txt").unlink()
+    assert installed_source(str(robot.parents[2] / "ros2_control" / "r.xacro")) is None
