@@ -4,23 +4,12 @@ asserted together)."""
 
 from __future__ import annotations
 
-import shutil
-
 from click.testing import CliRunner
 
-from tests.corpus import workspace_dir
+from tests.migrate.test_convert_controllers import ROBOT
+from tests.rules.test_tx5xx_real_packages import RRBOT_CONTROL, rrbot_workspace
 from txtool.cli import cli
 
-ROBOT = """<robot name="r">
-  <link name="a"/><link name="b"/>
-  <joint name="j" type="revolute"><parent link="a"/><child link="b"/>
-    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
-  <transmission name="t"><type>transmission_interface/SimpleTransmission</type>
-    <joint name="j"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
-    </joint><actuator name="m"><mechanicalReduction>1</mechanicalReduction></actuator>
-  </transmission>
-</robot>
-"""
 CONTROLLERS = """\
 arm:
   type: effort_controllers/JointTrajectoryController
@@ -108,21 +97,6 @@ def test_controllers_no_migrated_robot_drives(tmp_path, monkeypatch):
                        "joints its controllers claim; not checked")
 
 
-RRBOT_CONTROL = """\
-rrbot:
-  joint_state_controller:
-    type: joint_state_controller/JointStateController
-    publish_rate: 50
-
-  joint1_position_controller:
-    type: effort_controllers/JointPositionController
-    joint: joint1
-    pid: {p: 100.0, i: 0.01, d: 10.0}
-  joint2_position_controller:
-    type: effort_controllers/JointPositionController
-    joint: joint2
-    pid: {p: 100.0, i: 0.01, d: 10.0}
-"""
 
 
 def test_rrbot_package_with_its_controllers(tmp_path, monkeypatch):
@@ -130,10 +104,7 @@ def test_rrbot_package_with_its_controllers(tmp_path, monkeypatch):
     its rrbot_control package (config/rrbot_control.yaml of the same repository, as in
     tests/rules/test_tx5xx_real_packages.py): the ROS 2 controllers its effort
     transmissions serve."""
-    src = tmp_path / "src"
-    shutil.copytree(workspace_dir() / "src" / "rrbot_description", src / "rrbot_description")
-    (src / "rrbot_control" / "config").mkdir(parents=True)
-    (src / "rrbot_control" / "config" / "rrbot_control.yaml").write_text(RRBOT_CONTROL)
+    src = rrbot_workspace(tmp_path, RRBOT_CONTROL)
     monkeypatch.chdir(tmp_path)
     code, out, err = migrate("src/rrbot_description", "--to", "ros2-p2", "--write", *PLUGIN,
                              "--controllers", "src/rrbot_control/config/rrbot_control.yaml")
@@ -143,14 +114,14 @@ def test_rrbot_package_with_its_controllers(tmp_path, monkeypatch):
     assert err[at + 1:] == [
         f"note: {yaml}: against src/rrbot_description/urdf/rrbot.xacro, the robot driving "
         "most of the joints its controllers claim",
-        f"note: {yaml}:2:3: controller 'joint_state_controller' (joint_state_controller/"
+        f"note: {yaml}:3:3: controller 'joint_state_controller' (joint_state_controller/"
         "JointStateController) is joint_state_broadcaster/JointStateBroadcaster in ROS 2; the "
         "converted <ros2_control> provides what it claims",
         *(f"note: {yaml}:{line}:3: controller 'joint{n}_position_controller' (effort_controllers"
           "/JointPositionController) is pid_controller/PidController in ROS 2 (dof_names: "
           f"[joint{n}], command_interface: effort, reference_and_state_interfaces: [position]); "
           "its pid gains go to pid_controller's gains; the converted <ros2_control> provides "
-          "what it claims" for n, line in ((1, 6), (2, 10))),
+          "what it claims" for n, line in ((1, 8), (2, 12))),
     ]
     written = (src / "rrbot_description" / "urdf" / "rrbot.xacro").read_text()
     assert '<joint name="joint1">' in written and "<plugin>my/Hardware</plugin>" in written
