@@ -85,6 +85,7 @@ def _documents(tmp_path: Path, command: str, shape: str, sizes: tuple[int, ...]
     return runs
 
 
+@pytest.mark.scaling
 @pytest.mark.parametrize("shape", SHAPES)
 @pytest.mark.parametrize("command", COMMANDS)
 def test_calls_grow_linearly_with_the_document(tmp_path: Path, command: str, shape: str):
@@ -93,12 +94,12 @@ def test_calls_grow_linearly_with_the_document(tmp_path: Path, command: str, sha
     runs = _documents(tmp_path, command, shape, (1, small, large))
     runs[1]()  # imports and first-call caches
     counted = {1: calls(runs[1]), small: calls(runs[small])}
-    with untraced():  # the small document's paths, eight times over: nothing new to cover
-        counted[large] = calls(runs[large])
+    counted[large] = calls(runs[large])
     growth = (counted[large] - counted[1]) / (counted[small] - counted[1])
     assert math.log(growth, large / small) <= 1.15, counted
 
 
+@pytest.mark.scaling
 @pytest.mark.parametrize("shape", SHAPES)
 def test_roundtrip_does_the_work_of_three_conversions(tmp_path: Path, shape: str):
     """roundtrip's six conversions each convert a tree and read its transmissions back, with
@@ -113,8 +114,7 @@ def test_roundtrip_does_the_work_of_three_conversions(tmp_path: Path, shape: str
     assert counted["roundtrip"] <= 3 * counted["convert"], counted
 
 
-# Outside coverage in .ci/run: the size-1 run, the only one traced, is test_calls_grow_linearly's.
-@pytest.mark.timing
+@pytest.mark.scaling
 @pytest.mark.parametrize("shape", SHAPES)
 @pytest.mark.parametrize("command", ["convert", "migrate-diff"])
 def test_time_grows_linearly_with_the_document(tmp_path: Path, command: str, shape: str):
