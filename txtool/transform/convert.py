@@ -88,12 +88,13 @@ def convert_source(
     in a copy (an empty document is left in its place). With ``reversible`` each transmission
     converted to ROS 2 carries its original block (:mod:`.reversible`); the originals carried
     by a document are put back whenever it goes back to ROS 1. ``check=False`` leaves out the
-    read-back judgement, for a caller that judges the result itself (``roundtrip``).
+    judgements (the read-back, how the target loader binds each transmission, the Gazebo
+    plugin), for a caller that judges the result itself (``roundtrip``).
     ``macro_calls``: where the files converted with this one call each xacro macro
     (:func:`.placement.macros.calls_in_files`; ``migrate`` gives those of its files).
     """
     result, tree, originals, restored = _converted(source, target, hardware_plugin, consume,
-                                                   reversible, macro_calls)
+                                                   reversible, macro_calls, check)
     if consume:
         source.tree = etree.ElementTree(etree.Element("consumed"))
     # What the edits must write, kept as text: the tree goes before the bytes are parsed.
@@ -117,7 +118,7 @@ def _take_verdict(result: ConvertedDocument, verdict: Verdict) -> None:
 
 
 def _converted(source: Source, target: Dialect, hardware_plugin: str, consume: bool,
-               reversible: bool, macro_calls: MacroCalls | None
+               reversible: bool, macro_calls: MacroCalls | None, check: bool
                ) -> tuple[ConvertedDocument, etree._ElementTree, list[Transmission], bool]:
     """:func:`convert_source` up to its checks: the result, the converted tree, the
     transmissions as read, and whether originals were put back as their bytes. What the
@@ -132,13 +133,13 @@ def _converted(source: Source, target: Dialect, hardware_plugin: str, consume: b
     result = ConvertedDocument(data=b"", target=target, found=len(elements))
     placer = Placer(root, hardware_plugin, macro_calls=macro_calls)
     placer.after = carry.after_block
-    originals = _place_each(elements, tree, target, result, placer, carry)
+    originals = _place_each(elements, tree, target, result, placer, carry, check)
     placer.finish()
     restored = carry.after(tree, placer.built)
     result.notes.extend(placer.notes)
     result.losses.extend(placer.losses)
     result.warnings.extend(placer.warnings)
-    if target != "ros1" and result.converted:
+    if check and target != "ros1" and result.converted:
         result.warnings.extend(gazebo_plugin(root))
     result.placeholder = placer.placeholder
     if writer is None:
@@ -154,7 +155,7 @@ def _converted(source: Source, target: Dialect, hardware_plugin: str, consume: b
 
 
 def _place_each(elements: list[etree._Element], tree: etree._ElementTree, target: Dialect,
-                result: ConvertedDocument, placer: Placer, carry: Carrier
+                result: ConvertedDocument, placer: Placer, carry: Carrier, check: bool
                 ) -> list[Transmission]:
     """Read, convert and place each transmission: the transmissions as read, in order."""
     # The declarations read, by their <ros2_control>.
@@ -165,13 +166,14 @@ def _place_each(elements: list[etree._Element], tree: etree._ElementTree, target
         originals.append(t)
         if t.dialect == target:
             result.already += 1
-        if _convert_one(Found(t, element), tree, target, result, placer, carry):
+        if _convert_one(Found(t, element), tree, target, result, placer, carry, check):
             result.converted += 1
     return originals
 
 
 def _convert_one(found: Found, tree: etree._ElementTree, target: Dialect,
-                 result: ConvertedDocument, placer: Placer, carry: Carrier) -> bool:
+                 result: ConvertedDocument, placer: Placer, carry: Carrier, check: bool
+                 ) -> bool:
     """Convert one transmission (whether it is converted: those already in the target
     dialect, and some others, are not)."""
     t = found.transmission
@@ -194,7 +196,8 @@ def _convert_one(found: Found, tree: etree._ElementTree, target: Dialect,
     result.notes.extend(translation.notes)
     result.warnings.extend(translation.warnings)
     carried = _other_children(found.element, t, target, result)
-    _behaviour(t, translation.transmission, result)
+    if check:
+        _behaviour(t, translation.transmission, result)
     carry.before(found)
     return placer.place(found.element, translation.transmission, carried, t.dialect)
 
