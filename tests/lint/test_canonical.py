@@ -20,7 +20,6 @@ from txtool.lint.config import Config, resolve
 from txtool.lint.engine import context_for, finish, run_rules
 from txtool.lint.problem import Problem
 from txtool.lint.rule_helpers import all_canonical
-from txtool.model.robot import indexed_children
 
 EVERY_RULE = resolve(Config(select=["ALL"]))
 SIMPLE = "transmission_interface/SimpleTransmission"
@@ -29,12 +28,11 @@ EFFORT = "hardware_interface/EffortJointInterface"
 
 def _findings(source: Source, *, walk_all: bool) -> tuple[bool, list[Problem]]:
     """(whether the document read as canonical, its findings)."""
-    with indexed_children():
-        ctx = context_for(source, EVERY_RULE)
-        if walk_all:
-            ctx.memo["canonical"] = False
-        canonical = bool(ctx.found) and all_canonical(ctx)
-        return canonical, finish(run_rules(ctx, EVERY_RULE), source, EVERY_RULE)
+    ctx = context_for(source, EVERY_RULE)
+    if walk_all:
+        ctx.memo["canonical"] = False
+    canonical = bool(ctx.found) and all_canonical(ctx)
+    return canonical, finish(run_rules(ctx, EVERY_RULE), source, EVERY_RULE)
 
 
 def _compare(data: bytes, path: str = "arm.urdf") -> bool:

@@ -21,7 +21,6 @@ from txtool.lint.engine import context_for, lint_source
 from txtool.lint.facts import Facts
 from txtool.lint.problem import Problem
 from txtool.lint.rule_helpers import loader_text, numbers_of
-from txtool.model.robot import indexed_children
 
 T = "transmission_interface/"
 SHAPES = {
@@ -56,22 +55,21 @@ SHAPES = {
 
 def _check(source: Source) -> int:
     """Compare every transmission's facts with its model; the number compared."""
-    with indexed_children():
-        ctx = context_for(source, resolve(None))
-        for tx in ctx.facts:
-            model = read_transmission(tx.element, None)
-            assert (tx.ros1, tx.type, tx.kind, tx.name) == (
-                model.dialect == "ros1", model.type, model.kind, model.name
-            )
-            assert [r.name for r in tx.joints] == [m.name for m in model.joints]
-            assert [r.name for r in tx.actuators] == [m.name for m in model.actuators]
-            assert tx.transmission == model  # the model read on first use is the reader's
-            assert [r.member for r in tx.members] == [*model.joints, *model.actuators]
-            if tx.ros1:
-                assert [tuple(r.interfaces) for r in tx.members] == [
-                    m.interfaces for m in (*model.joints, *model.actuators)
-                ]
-        return len(ctx.facts)
+    ctx = context_for(source, resolve(None))
+    for tx in ctx.facts:
+        model = read_transmission(tx.element, None)
+        assert (tx.ros1, tx.type, tx.kind, tx.name) == (
+            model.dialect == "ros1", model.type, model.kind, model.name
+        )
+        assert [r.name for r in tx.joints] == [m.name for m in model.joints]
+        assert [r.name for r in tx.actuators] == [m.name for m in model.actuators]
+        assert tx.transmission == model  # the model read on first use is the reader's
+        assert [r.member for r in tx.members] == [*model.joints, *model.actuators]
+        if tx.ros1:
+            assert [tuple(r.interfaces) for r in tx.members] == [
+                m.interfaces for m in (*model.joints, *model.actuators)
+            ]
+    return len(ctx.facts)
 
 
 @pytest.mark.parametrize("name", sorted(SHAPES))
@@ -114,17 +112,16 @@ def test_numbers_read_without_cdata_are_those_read_node_by_node(name: str) -> No
     else:
         display, data = read_bytes(str(corpus_file(name)))
     source = Source(path=display, data=data, tree=parse_bytes(data, display))
-    with indexed_children():
-        ctx = context_for(source, resolve(None))
-        for tx in ctx.facts:
-            unsure = Facts(tx.found)  # plain=False: every text node read
-            fields = ("element", "field", "noun", "member", "text", "unknown",
-                      "unknown_written", "strict")
-            assert [[getattr(n, f) for f in fields] for n in numbers_of(tx)] == [
-                [getattr(n, f) for f in fields] for n in numbers_of(unsure)
-            ]
-            if tx.plain:
-                assert all(n.single == (not len(n.element)) for n in numbers_of(tx))
+    ctx = context_for(source, resolve(None))
+    for tx in ctx.facts:
+        unsure = Facts(tx.found)  # plain=False: every text node read
+        fields = ("element", "field", "noun", "member", "text", "unknown",
+                  "unknown_written", "strict")
+        assert [[getattr(n, f) for f in fields] for n in numbers_of(tx)] == [
+            [getattr(n, f) for f in fields] for n in numbers_of(unsure)
+        ]
+        if tx.plain:
+            assert all(n.single == (not len(n.element)) for n in numbers_of(tx))
 
 
 @pytest.mark.parametrize("name", sorted(SHAPES))

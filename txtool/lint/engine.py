@@ -37,7 +37,6 @@ from txtool.lint.rule_helpers import all_canonical
 from txtool.lint.suppress import Suppressions
 from txtool.lint.suppress import parse as parse_suppressions
 from txtool.lint.text import scanned_form
-from txtool.model.robot import indexed_children
 from txtool.rules import Rule, all_rules
 
 if TYPE_CHECKING:
@@ -177,14 +176,13 @@ def context_for(source: Source, settings: Settings) -> LintContext:
 
 
 def _checked(source: Source, settings: Settings) -> Findings:
-    """Read a document and run the rules on it, each element's children indexed once; the
-    readers the document was judged for go with the problems."""
-    with indexed_children():
-        ctx = context_for(source, settings)
-        found = Findings(run_rules(ctx, settings))
-        if ctx.found:
-            found.readers = record(source.path, ctx.readers)
-        return found
+    """Read a document and run the rules on it; the readers the document was judged for go
+    with the problems."""
+    ctx = context_for(source, settings)
+    found = Findings(run_rules(ctx, settings))
+    if ctx.found:
+        found.readers = record(source.path, ctx.readers)
+    return found
 
 
 def _carry(problems: list[Problem], checked: Findings) -> Findings:

@@ -21,7 +21,7 @@ from lxml import etree
 
 from txtool.dialects.read import Found, detect_dialect, read_transmission
 from txtool.model.core import kind_of
-from txtool.model.robot import ancestor, child_index, index_children
+from txtool.model.robot import ancestor, child_index
 
 if TYPE_CHECKING:
     from txtool.model.core import Member, Transmission
@@ -75,7 +75,7 @@ class MemberRef:
         self.name: str = element.get("name", "")  # as the model's Member.name
         # Its children by local name, not kept with the element (most members have one or
         # two children, and few rules ask for them again).
-        kids = self.kids = index_children(element)
+        kids = self.kids = child_index(element)
         # The non-empty <hardwareInterface> texts, stripped (for ROS 1, the model's
         # Member.interfaces): read here, as most rules ask for them.
         named = kids.get("hardwareInterface")

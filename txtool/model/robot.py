@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Iterator, Mapping
-from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any, NamedTuple
@@ -76,61 +75,18 @@ class Component:
 
 
 def children(element: etree._Element, name: str) -> list[etree._Element]:
-    """Child elements named ``name`` in any namespace (or none).
-
-    Inside :func:`indexed_children` the list is the kept index's own: do not change it.
-    """
-    if _INDEXES is None:
-        # A plain loop: iterchildren("{*}" + name) sets up a tag matcher on every call.
-        found = []
-        for child in element:
-            tag = child.tag  # a function for comments and processing instructions
-            if tag == name or tag.__class__ is str and tag.endswith("}" + name):
-                found.append(child)
-        return found
-    index = _INDEXES.get(element)  # the kept index looked up here: the linter's most frequent call
-    if index is None:
-        index = child_index(element)
-    return index.get(name, _NONE)
-
-
-_NONE: list[etree._Element] = []  # shared, never changed
-
-
-# While the linter reads and checks one document its tree does not change, and the same
-# children are asked for many times: inside ``indexed_children()`` each element's index is kept.
-# Elsewhere (fixes and conversions edit trees) nothing is kept.
-_INDEXES: dict[etree._Element, dict[str, list[etree._Element]]] | None = None
-
-
-@contextmanager
-def indexed_children() -> Iterator[None]:
-    """Keep :func:`child_index` answers for the duration (the trees must not change)."""
-    global _INDEXES
-    previous, _INDEXES = _INDEXES, {}
-    try:
-        yield
-    finally:
-        _INDEXES = previous
+    """Child elements named ``name`` in any namespace (or none)."""
+    # A plain loop: iterchildren("{*}" + name) sets up a tag matcher on every call.
+    found = []
+    for child in element:
+        tag = child.tag  # a function for comments and processing instructions
+        if tag == name or tag.__class__ is str and tag.endswith("}" + name):
+            found.append(child)
+    return found
 
 
 def child_index(element: etree._Element) -> dict[str, list[etree._Element]]:
-    """Child elements by local name, in document order: one pass for many lookups (kept
-    inside :func:`indexed_children`).
-
-    The lists are shared: do not change them.
-    """
-    indexes = _INDEXES
-    if indexes is None:
-        return index_children(element)
-    index = indexes.get(element)
-    if index is None:
-        index = indexes[element] = index_children(element)
-    return index
-
-
-def index_children(element: etree._Element) -> dict[str, list[etree._Element]]:
-    """Child elements by local name, in document order, worked out now (never kept)."""
+    """Child elements by local name, in document order: one pass for many lookups."""
     index: dict[str, list[etree._Element]] = {}
     for child in element[:]:  # the list in one call: iterating sets up an iterator per element
         tag = child.tag
