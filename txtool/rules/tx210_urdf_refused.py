@@ -65,7 +65,6 @@ from collections.abc import Iterator
 
 from lxml import etree
 
-from txtool.io.xmlio import local
 from txtool.lint.context import LintContext
 from txtool.lint.problem import Problem
 from txtool.lint.rule_helpers import whole_robot
@@ -106,7 +105,10 @@ def check(ctx: LintContext) -> Iterator[Problem]:
 
 def _urdf(element: etree._Element, name: str) -> bool:
     """An element urdfdom reads as ``name``: tinyxml2 compares the tag as written."""
-    return element.prefix is None and local(element) == name
+    tag = element.tag  # a function for comments and processing instructions
+    # (a prefixed tag always has its namespace: only a default namespace hides in a bare name)
+    return tag == name or (tag.__class__ is str and tag.endswith("}" + name)
+                           and element.prefix is None)
 
 
 def _robot(root: etree._Element) -> Iterator[Refusal]:
@@ -195,4 +197,7 @@ def _end(joint: etree._Element, tag: str) -> tuple[etree._Element, str]:
 
 
 def _child(element: etree._Element, name: str) -> etree._Element | None:
-    return next((e for e in element if _urdf(e, name)), None)
+    for child in element:
+        if _urdf(child, name):
+            return child
+    return None
