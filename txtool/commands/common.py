@@ -183,7 +183,10 @@ def configured_packages(xacro: XacroOptions, path: str, config: str | None) -> X
     applies to ``path``, or ``config`` (``--config``)."""
     from txtool.lint.config import Overrides, SettingsCache
 
-    configured = SettingsCache(Overrides(), config).for_file(path).xacro
+    settings = SettingsCache(Overrides(), config)
+    if settings.config_for(path) is None:
+        return xacro  # the defaults add no folder (and the rules' settings need not be read)
+    configured = settings.for_file(path).xacro
     return xacro._replace(pkg_dirs=xacro.pkg_dirs + configured.pkg_dirs,
                           pkg_paths=xacro.pkg_paths + configured.pkg_paths)
 

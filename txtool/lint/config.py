@@ -353,6 +353,8 @@ def merged(config: Config | None, overrides: Overrides) -> Values:
 
 def check_overrides(overrides: Overrides) -> None:
     """Reject unknown codes given on the command line before any file is read."""
+    if not (overrides.select or overrides.ignore):
+        return  # nothing to look up: the rules need not be loaded (convert, roundtrip, show)
     from txtool.rules import all_rules
 
     rules = all_rules()
@@ -393,16 +395,19 @@ class SettingsCache:
             known = self._by_path[path] = self._for_file(path, is_link)
         return known
 
-    def _for_file(self, path: str, is_link: bool | None) -> Settings:
+    def config_for(self, path: str, is_link: bool | None = None) -> Path | None:
+        """The configuration file that applies to ``path`` (None: the defaults)."""
         if self.explicit is not None:
-            config_path: Path | None = self.explicit
-        elif path == "-":
-            config_path = self._applicable(os.getcwd())
-        elif os.path.islink(path) if is_link is None else is_link:
+            return self.explicit
+        if path == "-":
+            return self._applicable(os.getcwd())
+        if os.path.islink(path) if is_link is None else is_link:
             # where the file really is (realpath: a link loop is reported when the file is read)
-            config_path = self._applicable(os.path.dirname(os.path.realpath(path)))
-        else:
-            config_path = self._config_of_folder(absolute_folder(path, self._absolute))
+            return self._applicable(os.path.dirname(os.path.realpath(path)))
+        return self._config_of_folder(absolute_folder(path, self._absolute))
+
+    def _for_file(self, path: str, is_link: bool | None) -> Settings:
+        config_path = self.config_for(path, is_link)
         if config_path not in self._by_file:
             self._by_file[config_path] = self._settings(config_path)
         return self._by_file[config_path].for_path(path)
