@@ -85,14 +85,19 @@ Refusal = tuple[etree._Element, str]
 @whole_robot
 def check(ctx: LintContext) -> Iterator[Problem]:
     root = ctx.source.root
-    if ctx.literal or not _urdf(root, "robot") or not (ctx.found or ctx.hints.components):
+    if ctx.literal or _urdf(root) != "robot" or not (ctx.found or ctx.hints.components):
         return
     if ctx.source.expanded and root.get("name") is None:
         return  # a xacro fragment: written to be included, its links are its includer's
-    links = [e for e in root if _urdf(e, "link")]
+    links, joints = [], []
+    for element in root:
+        name = _urdf(element)
+        if name == "link":
+            links.append(element)
+        elif name == "joint":
+            joints.append(_Joint(element))
     if not links:
         return  # a fragment (urdfdom: "No link elements found in urdf file")
-    joints = [e for e in root if _urdf(e, "joint")]
     refused = [*_robot(root), *_links(links), *_joints(joints)]
     if not refused:
         refused = _tree(links, joints)
@@ -103,12 +108,29 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             "it (ros2_control throws \"Failed to parse URDF file\")", refuses_whole=True)
 
 
-def _urdf(element: etree._Element, name: str) -> bool:
-    """An element urdfdom reads as ``name``: tinyxml2 compares the tag as written."""
+def _urdf(element: etree._Element) -> str | None:
+    """The name urdfdom reads ``element`` as (None: a comment, or a prefixed name): tinyxml2
+    compares the tag as written, so only a default namespace hides in a bare name."""
     tag = element.tag  # a function for comments and processing instructions
-    # (a prefixed tag always has its namespace: only a default namespace hides in a bare name)
-    return tag == name or (tag.__class__ is str and tag.endswith("}" + name)
-                           and element.prefix is None)
+    if tag.__class__ is not str:
+        return None
+    if tag[0] != "{":
+        return tag
+    return tag.rpartition("}")[2] if element.prefix is None else None
+
+
+class _Joint:
+    """A ``<joint>`` and the first of each child urdfdom reads of it, found in one pass."""
+
+    __slots__ = ("element", "parts")
+
+    def __init__(self, element: etree._Element) -> None:
+        self.element = element
+        self.parts: dict[str, etree._Element] = {}
+        for child in element:
+            name = _urdf(child)
+            if name is not None and name not in self.parts:
+                self.parts[name] = child
 
 
 def _robot(root: etree._Element) -> Iterator[Refusal]:
@@ -127,15 +149,16 @@ def _links(links: list[etree._Element]) -> Iterator[Refusal]:
         seen.add(name or "")
 
 
-def _joints(joints: list[etree._Element]) -> Iterator[Refusal]:
+def _joints(joints: list[_Joint]) -> Iterator[Refusal]:
     seen: set[str] = set()
-    for joint in joints:
+    for read in joints:
+        joint = read.element
         name = joint.get("name")
         if name is None:
             yield joint, "unnamed joint found"
             continue
         kind = joint.get("type")
-        limit = _child(joint, "limit")
+        limit = read.parts.get("limit")
         if kind is None:
             yield joint, f"joint [{name}] has no type, check to see if it's a reference."
         elif kind not in _TYPES:
@@ -150,15 +173,16 @@ def _joints(joints: list[etree._Element]) -> Iterator[Refusal]:
         seen.add(name)
 
 
-def _tree(links: list[etree._Element], joints: list[etree._Element]) -> list[Refusal]:
+def _tree(links: list[etree._Element], joints: list[_Joint]) -> list[Refusal]:
     """What ``initTree`` refuses, else what ``initRoot`` refuses, once every link and joint
     was read."""
     names = {link.get("name", "") for link in links}
     children: set[str] = set()
     refused: list[Refusal] = []
-    for joint in joints:
+    for read in joints:
+        joint = read.element
         name = joint.get("name", "")
-        (parent, parent_name), (child, child_name) = _end(joint, "parent"), _end(joint, "child")
+        (parent, parent_name), (child, child_name) = _end(read, "parent"), _end(read, "child")
         if not parent_name or not child_name:
             refused.append((joint, f"Failed to build tree: Joint [{name}] is missing a parent "
                                    "and/or child link specification."))
@@ -187,17 +211,10 @@ def _root(links: list[etree._Element], children: set[str]) -> list[Refusal]:
                        f"[{second}]")]
 
 
-def _end(joint: etree._Element, tag: str) -> tuple[etree._Element, str]:
+def _end(joint: _Joint, tag: str) -> tuple[etree._Element, str]:
     """The ``<parent>`` or ``<child>`` element of ``joint`` (the joint itself when it has none)
     and the link it names ("" for none)."""
-    element = _child(joint, tag)
+    element = joint.parts.get(tag)
     if element is None:
-        return joint, ""
+        return joint.element, ""
     return element, element.get("link") or ""
-
-
-def _child(element: etree._Element, name: str) -> etree._Element | None:
-    for child in element:
-        if _urdf(child, name):
-            return child
-    return None
