@@ -111,3 +111,34 @@ def test_progress_with_workers_reports_what_one_process_reports(tmp_path):
     many = lint_paths(files, LintOptions(jobs=2), progress=lambda *pair: told.append(pair))
     assert many.problems == lint_paths(files, LintOptions(jobs=1)).problems
     assert told[-1] == (len(files), len(files)) and len(told) > len(files)
+
+
+UNPREFIXED = CLEAN.replace("</joint>", """</joint>
+  <transmission name="t"><type>transmission_interface/SimpleTransmission</type>
+    <joint name="j"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m"><mechanicalReduction>2</mechanicalReduction></actuator></transmission>""")
+
+
+def test_fixes_are_confirmed_and_made_alike_by_many_processes(tmp_path):
+    """Which findings migrate's fixes really fix (validate's fixable marks) and what --fix
+    writes do not depend on how many processes share the files."""
+    for folder in ("one", "two"):
+        (tmp_path / folder).mkdir()
+        for index in range(4 * MIN_FILES_PER_WORKER):  # half with a finding: two processes
+            text = UNPREFIXED if index % 2 else CLEAN
+            (tmp_path / folder / f"robot_{index:03d}.urdf").write_text(text)
+    runner = CliRunner()
+    serial = runner.invoke(cli, ["validate", "-j", "1", "--format", "json", str(tmp_path / "one")])
+    parallel = runner.invoke(cli, ["validate", "-j", "2", "--format", "json",
+                                   str(tmp_path / "one")])
+    assert serial.exit_code == parallel.exit_code == 1
+    assert parallel.stdout == serial.stdout
+    assert serial.stdout.count('"fixable": true') == 2 * MIN_FILES_PER_WORKER  # one a file
+    for folder, jobs in (("one", "1"), ("two", "2")):
+        fixed = runner.invoke(cli, ["validate", "-j", jobs, "--fix", str(tmp_path / folder)])
+        assert fixed.exit_code == 0, fixed.output
+    for index in range(4 * MIN_FILES_PER_WORKER):
+        name = f"robot_{index:03d}.urdf"
+        written = (tmp_path / "two" / name).read_text()
+        assert written == (tmp_path / "one" / name).read_text()
+        assert ("hardware_interface/EffortJointInterface" in written) == bool(index % 2)

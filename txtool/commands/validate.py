@@ -159,7 +159,7 @@ def command(paths, output_formats, select, ignore, strict, exit_zero, config_pat
         _warn_unused_args(list(paths), no_xacro)
     targets = list(paths) or ["."]
     selection = FixSelection(options.select, options.ignore, config_path, ros_distro,
-                             options.xacro, options.no_xacro)
+                             options.xacro, options.no_xacro, options.jobs)
     from txtool.commands.progress import file_progress
 
     with file_progress() as progress:

@@ -38,6 +38,7 @@ class FixSelection:
     ros_distro: str | None = None
     xacro: XacroOptions | None = None
     no_xacro: bool = False
+    jobs: int = 0  # validate's --jobs: the processes that share the files
 
 
 def fixable_paths(problems: Sequence[Problem], stdin_name: str | None) -> list[str]:
@@ -100,7 +101,7 @@ def run_fixes(paths: Sequence[str], mode: str, selection: FixSelection) -> Repor
     options = MigrateOptions(mode=mode,  # type: ignore[arg-type]
                              select=selection.select, ignore=selection.ignore,
                              config=selection.config, ros_distro=selection.ros_distro,
-                             no_xacro=selection.no_xacro)
+                             no_xacro=selection.no_xacro, jobs=selection.jobs)
     if selection.xacro is not None:
         options = dataclasses.replace(options, xacro=selection.xacro)
     return migrate_paths(paths, options)

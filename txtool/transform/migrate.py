@@ -76,6 +76,9 @@ class MigrateOptions:
     ros_distro: str | None = None
     xacro: XacroOptions = XacroOptions()
     no_xacro: bool = False
+    # Processes that migrate the files, as validate's --jobs (0: one per usable CPU when
+    # there are enough files); what is written is written by this one, in order.
+    jobs: int = 1
 
 
 @dataclass
@@ -166,12 +169,8 @@ def migrate_paths(paths: Iterable[str], options: MigrateOptions) -> Report:
     # it (_judge_includers), and the files after it with it.
     waiting: list[FileResult | str] = []
     held: list[FileResult] = []
-    for path, rules, settings in plan:
-        try:
-            waiting.append(migrate_file(path, rules, options, settings))
-        except InputError as exc:
-            waiting.append(str(exc))
-        last = waiting[-1]
+    for last in _migrated_files(plan, options):
+        waiting.append(last)
         if isinstance(last, FileResult) and last.changed and is_xacro(last.path):
             held.append(last)
         if not held:
@@ -184,6 +183,28 @@ def migrate_paths(paths: Iterable[str], options: MigrateOptions) -> Report:
         report.messages.extend(f"warning: {step}" for step in steps)
     report.messages.append(report.summary())
     return report
+
+
+def _migrated_files(plan: list[tuple[str, list[Rule], Settings]], options: MigrateOptions
+                    ) -> Iterator[FileResult | str]:
+    """Each planned file's result, or why it could not be read, in order: from this process
+    and, for many files, forks of it (:mod:`txtool.lint.workers`; nothing is written there)."""
+    from txtool.lint.api import worker_count
+
+    def one(index: int) -> FileResult | str:
+        path, rules, settings = plan[index]
+        try:
+            return migrate_file(path, rules, options, settings)
+        except InputError as exc:
+            return str(exc)
+
+    workers = worker_count(len(plan), options.jobs)
+    if workers == 1:
+        yield from map(one, range(len(plan)))
+        return
+    from txtool.lint.workers import forked_map
+
+    yield from forked_map(one, len(plan), workers)
 
 
 def _bytes_of(plan: list[tuple[str, list[Rule], Settings]]) -> Iterator[tuple[str, bytes]]:
