@@ -222,7 +222,7 @@ def _checks(enabled: frozenset[str]) -> tuple[Checks, Checks]:
     if known is None:
         every = [
             rule.check for rule in all_rules().values()
-            if rule.code in enabled and rule.code not in PIPELINE_CODES
+            if rule.check is not None and rule.code in enabled and rule.code not in PIPELINE_CODES
         ]
         whole = [check for check in every if not getattr(check, "per_transmission", False)]
         known = _CHECKS[enabled] = (every, whole)

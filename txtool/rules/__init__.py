@@ -1,8 +1,9 @@
 """The rule registry: an explicit list of rule modules, loaded on first use.
 
 Each rule is one module ``txtool/rules/txNNN_kebab_name.py`` with ``CODE``, ``NAME``,
-``SEVERITY``, ``FIXABLE``, ``check(ctx)`` (and ``fix(root)`` when fixable); its module docstring
-is its documentation. To add a rule, write the module and add its name to :data:`RULE_MODULES`.
+``SEVERITY``, ``FIXABLE``, ``check(ctx)`` for a robot document or ``check_controllers(ctx)``
+for controller files (and ``fix(root)`` when fixable); its module docstring is its
+documentation. To add a rule, write the module and add its name to :data:`RULE_MODULES`.
 """
 
 from __future__ import annotations
@@ -93,8 +94,9 @@ class Rule(NamedTuple):
     module: ModuleType
 
     @property
-    def check(self) -> Callable[[LintContext], Iterator[Problem]]:
-        return self.module.check  # type: ignore[no-any-return]
+    def check(self) -> Callable[[LintContext], Iterator[Problem]] | None:
+        """What it finds in a robot document (None: a rule about controller files only)."""
+        return getattr(self.module, "check", None)
 
     @property
     def fix(self) -> Callable[[etree._Element], int] | None:
@@ -140,6 +142,8 @@ def _check_contract(module_name: str, rule: Rule) -> None:
         raise ValueError(f"rule module {module_name} should be named {expected}")
     if rule.severity not in SEVERITIES:
         raise ValueError(f"{rule.code}: severity {rule.severity!r} is not one of {SEVERITIES}")
+    if rule.check is None and not hasattr(rule.module, "check_controllers"):
+        raise ValueError(f"{rule.code}: neither check() nor check_controllers()")
     if rule.fixable and rule.fix is None:
         raise ValueError(f"{rule.code}: FIXABLE but no fix() function")
 

@@ -65,7 +65,6 @@ from typing import TYPE_CHECKING
 from txtool.lint.controller_files import refusal
 
 if TYPE_CHECKING:
-    from txtool.lint.context import LintContext
     from txtool.lint.controller_files import ControllerContext
     from txtool.lint.problem import Problem
 
@@ -73,11 +72,6 @@ CODE = "TX500"
 NAME = "controller-joint-not-driven"
 SEVERITY = "error"
 FIXABLE = False
-
-
-def check(ctx: LintContext) -> Iterator[Problem]:
-    """A robot file alone has no controllers: see :func:`check_controllers`."""
-    return iter(())
 
 
 def check_controllers(ctx: ControllerContext) -> Iterator[Problem]:

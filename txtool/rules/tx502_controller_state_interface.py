@@ -76,7 +76,6 @@ from typing import TYPE_CHECKING
 from txtool.lint.controller_files import controller_interface_problems
 
 if TYPE_CHECKING:
-    from txtool.lint.context import LintContext
     from txtool.lint.controller_files import ControllerContext
     from txtool.lint.problem import Problem
 
@@ -84,11 +83,6 @@ CODE = "TX502"
 NAME = "controller-state-interface"
 SEVERITY = "error"
 FIXABLE = False
-
-
-def check(ctx: LintContext) -> Iterator[Problem]:
-    """A robot file alone has no controllers: see :func:`check_controllers`."""
-    return iter(())
 
 
 def check_controllers(ctx: ControllerContext) -> Iterator[Problem]:

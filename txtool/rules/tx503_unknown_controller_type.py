@@ -62,7 +62,6 @@ from collections.abc import Iterator
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from txtool.lint.context import LintContext
     from txtool.lint.controller_files import ControllerContext
     from txtool.lint.problem import Problem
 
@@ -70,11 +69,6 @@ CODE = "TX503"
 NAME = "unknown-controller-type"
 SEVERITY = "warning"
 FIXABLE = False
-
-
-def check(ctx: LintContext) -> Iterator[Problem]:
-    """A robot file alone has no controllers: see :func:`check_controllers`."""
-    return iter(())
 
 
 def check_controllers(ctx: ControllerContext) -> Iterator[Problem]:

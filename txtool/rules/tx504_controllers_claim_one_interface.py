@@ -99,7 +99,6 @@ from txtool.lint.controller_files import shown
 from txtool.model.controllers import ROS1
 
 if TYPE_CHECKING:
-    from txtool.lint.context import LintContext
     from txtool.lint.controller_files import ControllerContext
     from txtool.lint.problem import Problem
     from txtool.model.controllers import Controller
@@ -108,11 +107,6 @@ CODE = "TX504"
 NAME = "controllers-claim-one-interface"
 SEVERITY = "error"
 FIXABLE = False
-
-
-def check(ctx: LintContext) -> Iterator[Problem]:
-    """A robot file alone has no controllers: see :func:`check_controllers`."""
-    return iter(())
 
 
 def check_controllers(ctx: ControllerContext) -> Iterator[Problem]:
