@@ -11,34 +11,18 @@ from __future__ import annotations
 
 import asyncio
 import sys
+from collections.abc import Awaitable, Callable
 from pathlib import Path
 
 import pytest
 from lsprotocol import types as lsp
 
+from tests.lsp.robots import ARM
 from tests.lsp.test_client import ROOT, WAIT, Editor, codes, full_change
 
-ROBOT = """\
-<?xml version="1.0"?>
-<robot name="arm">
-  <link name="base"/>
-  <link name="upper"/>
-  <joint name="shoulder" type="revolute">
-    <parent link="base"/>
-    <child link="upper"/>
-    <limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <transmission name="shoulder_trans">
-    <type>transmission_interface/SimpleTransmission</type>
-    <joint name="shoulder">
-      <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
-    </joint>
-    <actuator name="shoulder_motor">
-      <mechanicalReduction>50</mechanicalReduction>
-    </actuator>
-  </transmission>
-</robot>
-"""
+# The language-server tests' arm, driven through effort handles with a reduction of 50.
+ROBOT = (ARM.replace("PositionJointInterface", "hardware_interface/EffortJointInterface")
+         .replace(">0</mechanicalReduction>", ">50</mechanicalReduction>"))
 TRANSMISSION_JOINT = 11  # 0-based line of the transmission's <joint name="shoulder">
 CONTROLLERS = """\
 arm:
@@ -71,10 +55,12 @@ def workspace(tmp_path: Path) -> Path:
 
 
 def test_controller_findings_in_both_files(workspace: Path) -> None:
-    asyncio.run(asyncio.wait_for(_session(workspace), 90))
+    asyncio.run(asyncio.wait_for(_session(workspace, _edits), 90))
 
 
-async def _session(workspace: Path) -> None:
+async def _session(folder: Path, body: Callable[[Editor, Path], Awaitable[None]]) -> None:
+    """``body`` in a session of the server whose workspace is ``folder``, which then shuts
+    down and exits cleanly."""
     editor = Editor()
     await editor.start_io(sys.executable, "-m", "txtool", "lsp", cwd=str(ROOT))
     server = editor._server
@@ -82,9 +68,9 @@ async def _session(workspace: Path) -> None:
     try:
         await asyncio.wait_for(editor.initialize_async(lsp.InitializeParams(
             capabilities=lsp.ClientCapabilities(),
-            workspace_folders=[lsp.WorkspaceFolder(uri=workspace.as_uri(), name="ws")])), WAIT)
+            workspace_folders=[lsp.WorkspaceFolder(uri=folder.as_uri(), name="ws")])), WAIT)
         editor.initialized(lsp.InitializedParams())
-        await _edits(editor, workspace)
+        await body(editor, folder)
         await asyncio.wait_for(editor.shutdown_async(None), WAIT)
         editor.exit(None)
         await asyncio.wait_for(server.wait(), WAIT)
@@ -157,33 +143,17 @@ def test_a_robot_in_no_package_is_paired_with_nothing(tmp_path: Path) -> None:
     (tmp_path / ".git").mkdir()
     (tmp_path / "arm.urdf").write_text(ROBOT)
     (tmp_path / "controllers.yaml").write_text(CONTROLLERS)
-    asyncio.run(asyncio.wait_for(_lone(tmp_path), 90))
+    asyncio.run(asyncio.wait_for(_session(tmp_path, _lone), 90))
 
 
-async def _lone(folder: Path) -> None:
-    editor = Editor()
-    await editor.start_io(sys.executable, "-m", "txtool", "lsp", cwd=str(ROOT))
-    server = editor._server
-    assert server is not None
-    try:
-        await asyncio.wait_for(editor.initialize_async(lsp.InitializeParams(
-            capabilities=lsp.ClientCapabilities(),
-            workspace_folders=[lsp.WorkspaceFolder(uri=folder.as_uri(), name="f")])), WAIT)
-        editor.initialized(lsp.InitializedParams())
-        robot, yaml = (folder / "arm.urdf").as_uri(), (folder / "controllers.yaml").as_uri()
-        _open(editor, robot, ROBOT)
-        _open(editor, yaml, CONTROLLERS)
-        # Each publishes itself, with nothing, and nothing else is published between.
-        published = [await asyncio.wait_for(editor.published.get(), WAIT) for _ in range(2)]
-        assert [(p.uri, p.version, list(p.diagnostics)) for p in published] == [
-            (robot, 1, []), (yaml, 1, [])]
-        await asyncio.wait_for(editor.shutdown_async(None), WAIT)
-        editor.exit(None)
-        await asyncio.wait_for(server.wait(), WAIT)
-    finally:
-        if server.returncode is None:
-            server.kill()
-        await editor.stop()
+async def _lone(editor: Editor, folder: Path) -> None:
+    robot, yaml = (folder / "arm.urdf").as_uri(), (folder / "controllers.yaml").as_uri()
+    _open(editor, robot, ROBOT)
+    _open(editor, yaml, CONTROLLERS)
+    # Each publishes itself, with nothing, and nothing else is published between.
+    published = [await asyncio.wait_for(editor.published.get(), WAIT) for _ in range(2)]
+    assert [(p.uri, p.version, list(p.diagnostics)) for p in published] == [
+        (robot, 1, []), (yaml, 1, [])]
 
 
 @pytest.mark.parametrize("one, other, family", [
