@@ -117,3 +117,9 @@ def one_line_error(err: str) -> str:
     lines = err.splitlines()
     assert len(lines) == 1, f"expected one line on stderr, got {err!r}"
     return lines[0]
+
+
+def xacro_robot(body: str) -> str:
+    """A xacro robot of one link holding ``body``."""
+    return ('<?xml version="1.0"?>\n<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+            f"  <link name=\"base\"/>\n{body}\n</robot>\n")

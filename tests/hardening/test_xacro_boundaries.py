@@ -17,6 +17,7 @@ from typing import Any
 
 import pytest
 
+from tests.hardening.hostile_inputs import xacro_robot as robot
 from txtool.io import packages
 from txtool.io import xacro as xacro_support
 from txtool.io.packages import packages_below
@@ -38,11 +39,6 @@ from txtool.io.xmlio import XacroError, XacroOptions
 OK = "ok"
 L = MAX_LENGTH
 BIG = 2**4095 - 1  # the largest integer the evaluator holds
-
-
-def robot(body: str) -> str:
-    return ('<?xml version="1.0"?>\n<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
-            f"  <link name=\"base\"/>\n{body}\n</robot>\n")
 
 
 def verdict(expression: str, names: dict[str, Any] | None = None, budget: int = MAX_WORK) -> str:
@@ -138,18 +134,6 @@ def test_each_expensive_function_is_charged(term, n, names):
 
 
 # -- whole expansions under the guard, in this process ------------------------------------------
-
-@pytest.fixture
-def repo(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
-    root = tmp_path / "repo"
-    (root / ".git").mkdir(parents=True)
-    monkeypatch.chdir(root)
-    for name in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH", "CMAKE_PREFIX_PATH", "TXTOOL_NO_XACRO",
-                 "TXTOOL_XACRO_TIMEOUT", "TXTOOL_XACRO_MEMORY_MB"):
-        monkeypatch.delenv(name, raising=False)
-    packages_below.cache_clear()
-    return root
-
 
 def guarded(path: Path, options: XacroOptions | None = None,
             environment: dict[str, str] | None = None, data: bytes | None = None) -> str:

@@ -11,31 +11,14 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
+from tests.hardening.hostile_inputs import xacro_robot as robot
 from txtool.cli import cli
-from txtool.io.packages import packages_below
 from txtool.io.xacro import expand_text
 from txtool.io.xacro_guard import XacroGuard
 from txtool.io.xacro_sandbox import MAX_OUTPUT, XacroLimit, expand_in_sandbox, sharing
 from txtool.io.xmlio import XacroError, XacroOptions
 
 SECRET = "s3cr3t-2e90"
-
-
-def robot(body: str) -> str:
-    return ('<?xml version="1.0"?>\n<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
-            f"  <link name=\"base\"/>\n{body}\n</robot>\n")
-
-
-@pytest.fixture
-def repo(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
-    root = tmp_path / "repo"
-    (root / ".git").mkdir(parents=True)
-    monkeypatch.chdir(root)
-    for name in ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH", "CMAKE_PREFIX_PATH", "TXTOOL_NO_XACRO",
-                 "TXTOOL_XACRO_TIMEOUT", "TXTOOL_XACRO_MEMORY_MB"):
-        monkeypatch.delenv(name, raising=False)
-    packages_below.cache_clear()
-    return root
 
 
 def sandboxed(path: Path, options: XacroOptions | None = None) -> str:
