@@ -104,7 +104,8 @@ def main() -> int:
         parse_peak = measure([], sources[large], warm_up)[1]
         for name in options.commands.split(","):
             figures = {size: measure(COMMANDS[name], sources[size], warm_up) for size in sizes}
-            exponent = math.log(figures[large][0] / figures[small][0]) / math.log(large / small)
+            exponent = (math.log(figures[large][0] / figures[small][0]) / math.log(large / small)
+                        if large != small else math.nan)  # one size: no growth to measure
             memory = figures[large][1] / parse_peak
             print(f"{shape:13} {name:14} " + " ".join(f"{figures[s][0]:8.3f}" for s in sizes)
                   + f"  {exponent:8.2f}  {memory:12.1f}", flush=True)

@@ -110,12 +110,20 @@ def roundtrip(source: Source, *, consume: bool = False) -> RoundTripReport:
     joints = _joints(source.root, originals)
     starts = [start for start in DIALECTS if groups[start]]
     firsts = list(dict.fromkeys(cycle[1] for start in starts for cycle in cycles_from(start)))
-    # Each first leg converts the document as read, once for every group that starts with it.
     whole = not carries_originals(source.root)
-    legs = {first: _reconvert(source, first, consume=consume and first == firsts[-1],
-                              whole=whole)[0] for first in firsts}
-    for start in starts:
-        report.rows.extend(_cycles(source.path, start, groups[start], joints, legs, whole))
+    ends = {start: _Ends(source.path, groups[start], whole) for start in starts}
+    rows: dict[tuple[Dialect, ...], list[CycleRow]] = {}
+    # Each first leg converts the document as read, once for every group that starts with
+    # it; its cycles run before the next first leg converts: one tree of each leg alive.
+    for first in firsts:
+        data, tree = _reconvert(source, first, consume=consume and first == firsts[-1],
+                                whole=whole)
+        parsed = [] if tree is None else [tree]
+        del tree
+        for start in starts:
+            rows.update(_cycles(start, first, data, parsed, ends[start], joints))
+    report.rows = [row for start in starts for cycle in cycles_from(start)
+                   for row in rows[cycle]]
     report.skipped = [f"{t.name}: custom type '{t.type}'" for t in originals if t.kind == "other"]
     return report
 
@@ -152,25 +160,20 @@ def _take(found: dict[_Key, deque[Transmission]], name: str) -> Transmission | N
     return same.popleft() if same else None
 
 
-def _cycles(path: str, start: Dialect, group: list[Transmission],
-            joints: Mapping[str, JointInfo],
-            legs: dict[Dialect, bytes], whole: bool) -> list[CycleRow]:
-    """The rows of every cycle from ``start``. Cycles that begin with the same conversion
-    share it (and its equivalence check); the first cycle converts the parse the shared leg
-    was read from, each later one a fresh parse: one tree of each leg alive at once."""
-    rows: dict[tuple[Dialect, ...], list[CycleRow]] = {}
-    cycles = cycles_from(start)
-    ends = _Ends(path, group, whole)
-    for first in dict.fromkeys(cycle[1] for cycle in cycles):
-        data = legs[first]
-        tree = parse_bytes(data, path, limit=None)
-        verdicts = _verdicts(group, _by_name(Source(path, data, tree)), joints)
-        parsed = [tree]
-        del tree
-        for cycle in (c for c in cycles if c[1] == first):
-            rows[cycle] = _rows(cycle, group, ends.judged(data, cycle[2:], parsed), verdicts)
-        parsed.clear()
-    return [row for cycle in cycles for row in rows[cycle]]
+def _cycles(start: Dialect, first: Dialect, data: bytes, parsed: list[etree._ElementTree],
+            ends: _Ends, joints: Mapping[str, JointInfo]
+            ) -> dict[tuple[Dialect, ...], list[CycleRow]]:
+    """The rows of the cycles from ``start`` that begin with the leg to ``first``, whose text
+    is ``data``. ``parsed`` holds its tree or nothing: the first cycle converts that tree, each
+    later one a fresh parse."""
+    cycles = [c for c in cycles_from(start) if c[1] == first]
+    if not cycles:
+        return {}
+    if not parsed:
+        parsed.append(parse_bytes(data, ends.path, limit=None))
+    verdicts = _verdicts(ends.group, _by_name(Source(ends.path, data, parsed[0])), joints)
+    return {cycle: _rows(cycle, ends.group, ends.judged(data, cycle[2:], parsed), verdicts)
+            for cycle in cycles}
 
 
 _Judged = list[dict[str, str] | None]  # per transmission: what it lost, or None: missing
