@@ -112,14 +112,18 @@ def roundtrip(source: Source, *, consume: bool = False) -> RoundTripReport:
     firsts = list(dict.fromkeys(cycle[1] for start in starts for cycle in cycles_from(start)))
     whole = not carries_originals(source.root)
     ends = {start: _Ends(source.path, groups[start], whole) for start in starts}
-    rows: dict[tuple[Dialect, ...], list[CycleRow]] = {}
     # Each first leg converts the document as read, once for every group that starts with
-    # it; its cycles run before the next first leg converts: one tree of each leg alive.
+    # it; the last converts the document itself, whose tree its cycles, run first, go on
+    # converting (the others parse their text): one tree alive at a time.
+    legs = {}
     for first in firsts:
         data, tree = _reconvert(source, first, consume=consume and first == firsts[-1],
                                 whole=whole)
-        parsed = [] if tree is None else [tree]
+        legs[first] = (data, [tree] if tree is not None and first == firsts[-1] else [])
         del tree
+    rows: dict[tuple[Dialect, ...], list[CycleRow]] = {}
+    for first in reversed(firsts):
+        data, parsed = legs.pop(first)
         for start in starts:
             rows.update(_cycles(start, first, data, parsed, ends[start], joints))
     report.rows = [row for start in starts for cycle in cycles_from(start)
