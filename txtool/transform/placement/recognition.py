@@ -3,8 +3,8 @@ transmissions, so that converting back replaces it by them at its place (any oth
 kept, and they move out to stand beside it).
 
 A block is recognized by building it again, without recording anything, through the placer's
-own builder (:class:`Builder`) and comparing shapes (:func:`shape`: tags, attributes, stripped
-texts and children, without the layout).
+own builder (:class:`Builder`) and comparing the two element by element (:func:`same`: tags,
+attributes, stripped texts and children, without the layout), holding nothing of either.
 """
 
 from __future__ import annotations
@@ -37,12 +37,11 @@ class Builder(Protocol):
 
 @dataclass
 class Generating:
-    """A ROS 1 transmission (``source``) from which txtool generates exactly a ROS 2 element
-    of ``shape`` (:func:`shape`), through ``forward``."""
+    """A ROS 1 transmission (``source``) from which txtool generates exactly a ROS 2 element,
+    through ``forward``."""
 
     source: Transmission
     forward: Transmission
-    shape: tuple
 
 
 def generated_from(component: etree._Element, moves: list[Move], document: str,
@@ -69,15 +68,11 @@ def generated_from(component: etree._Element, moves: list[Move], document: str,
     namespace = namespace_of(component)
     if any(namespace_of(m.old) != namespace for m in moves):
         return None  # txtool builds a block's transmissions in the block's namespace
-    # Each transmission as generated is already known to have the shape of the one written:
-    # compare the rest of the block, and those shapes, without building them again (shape()
-    # of the block as written takes them from ``known``).
-    tag, attrib, text, kids = shape(
-        builder.block(component.get("name"), plugins[0].text, forward, component, "", "",
-                      record=False, transmissions=False))
-    expected = (tag, attrib, text, (*kids, *(f.shape for f in found)))
-    known = {m.old: f.shape for m, f in zip(moves, found, strict=True)}
-    if expected != shape(component, known=known):
+    # Each transmission is known to be as generated: compare the rest of the block, which
+    # ends with them, without building them again.
+    built = builder.block(component.get("name"), plugins[0].text, forward, component, "", "",
+                          record=False, transmissions=False)
+    if not same(built, component, tail=[m.old for m in moves]):
         return None
     return [f.source for f in found]
 
@@ -91,13 +86,12 @@ def _generating(move: Move, dialect: Dialect, builder: Builder) -> Generating | 
     if t.kind == "simple" and t.actuators and t.actuators[0].mechanical_reduction:
         bare = replace(t.actuators[0], mechanical_reduction=None)
         candidates.append(replace(t, actuators=(bare, *t.actuators[1:])))
-    want = shape(move.old)
     for candidate in candidates:
         forward = translate(candidate, dialect).transmission
         built = builder.build(Move(move.old, forward, move.carried), "", "", move.old,
                               record=False)
-        if shape(built) == want:
-            return Generating(candidate, forward, want)
+        if same(built, move.old):
+            return Generating(candidate, forward)
     return None
 
 
@@ -109,23 +103,51 @@ def named_after(name: str | None, bases: list[str]) -> bool:
         for base in bases)
 
 
-def shape(element: etree._Element, *, known: dict[etree._Element, tuple] | None = None
-          ) -> tuple:
-    """Tags, attributes, stripped texts and children: the element without its layout, nor
-    the comments inside transmissions (carried, not generated); ``known``: shapes already
-    computed, by element."""
-    if known and element in known:
-        return known[element]
-    kids = []
-    for child in element:
-        if isinstance(child, etree._Comment):
-            if local(element) != "transmission" and not _in_transmission(element):
-                kids.append(("#comment", child.text))
+def same(built: etree._Element, written: etree._Element,
+         tail: list[etree._Element] | None = None) -> bool:
+    """Whether ``written`` is ``built`` but for the layout: the same tags, attributes,
+    stripped texts and children, comments included but for those inside transmissions
+    (carried, not generated); ``tail``: children of ``written`` after those ``built`` has,
+    known to be as generated."""
+    return _same(built, written, _in_transmission(built), _in_transmission(written), tail)
+
+
+def _same(a: etree._Element, b: etree._Element, a_inside: bool, b_inside: bool,
+          tail: list[etree._Element] | None = None) -> bool:
+    if a.tag != b.tag or (a.text or "").strip() != (b.text or "").strip() \
+            or dict(a.attrib) != dict(b.attrib):
+        return False
+    kids_a, kids_b = _kids(a, a_inside), _kids(b, b_inside)
+    if tail is not None:
+        if kids_b[len(kids_b) - len(tail):] != tail:
+            return False
+        kids_b = kids_b[:len(kids_b) - len(tail)]
+    if len(kids_a) != len(kids_b):
+        return False
+    for x, y in zip(kids_a, kids_b, strict=True):
+        if x.__class__ is str or y.__class__ is str:
+            if x != y:
+                return False
             continue
-        if isinstance(child.tag, str):
-            kids.append(shape(child, known=known))
-    return (element.tag, dict(element.attrib), (element.text or "").strip(), tuple(kids))
+        tag = x.tag
+        here = tag == "transmission" or tag.endswith("}transmission")
+        if not _same(x, y, a_inside or here, b_inside or here):
+            return False
+    return True
+
+
+def _kids(element: etree._Element, inside: bool) -> list[etree._Element | str]:
+    """The child elements, and the texts of the comments (outside transmissions)."""
+    kids: list[etree._Element | str] = []
+    for child in element:
+        if child.tag.__class__ is str:
+            kids.append(child)
+        elif not inside and isinstance(child, etree._Comment):
+            kids.append(child.text or "")
+    return kids
 
 
 def _in_transmission(element: etree._Element) -> bool:
-    return any(local(a) == "transmission" for a in element.iterancestors())
+    """Whether ``element`` is or stands in a transmission."""
+    return local(element) == "transmission" or any(
+        local(a) == "transmission" for a in element.iterancestors())
