@@ -11,7 +11,6 @@ exactly like the original (:mod:`txtool.mechanics.equivalence`).
 
 from __future__ import annotations
 
-import copy
 import hashlib
 import itertools
 from collections import deque
@@ -23,7 +22,7 @@ from types import MappingProxyType
 from lxml import etree
 
 from txtool.dialects.read import read_source
-from txtool.io.xmlio import Source, parse_bytes
+from txtool.io.xmlio import Source, parse_bytes, serialize
 from txtool.model.core import DIALECTS, Dialect, Transmission
 from txtool.model.robot import JointInfo, joint_elements, joint_info
 from txtool.model.semantics import listed_against_roles
@@ -83,27 +82,26 @@ def cycles_from(start: Dialect) -> list[tuple[Dialect, ...]]:
 _Leg = tuple[bytes, etree._ElementTree | None]  # a conversion's text, and its tree if kept
 
 
-def _reconvert(source: Source, target: Dialect, *, consume: bool, whole: bool) -> _Leg:
-    """``source`` converted to ``target``: the text and, ``whole``, the tree converted. The
-    conversion's own read-back check is left out: the cycle's result is judged here, against
-    the original.
+def _reconvert(source: Source, target: Dialect, *, whole: bool) -> _Leg:
+    """``source`` converted to ``target``, its tree converted in place (an empty document is
+    left in its place): the text and, ``whole``, the tree converted. The conversion's own
+    read-back check is left out: the cycle's result is judged here, against the original.
 
     ``whole``: the converted tree is written whole rather than said as edits of
     ``source.data``. Only its transmissions are read (from the tree itself), and the edits
     write that same tree (``convert`` checks it), but for originals a document carries
     (:func:`.reversible.carries_originals`): going back to ROS 1 writes them as their bytes,
     which only a parse of the edited text reads."""
-    tree = source.tree if consume else copy.deepcopy(source.tree)
+    tree = source.tree
     converting = Source(source.path, source.data, tree, expanded=source.expanded or whole)
     data = convert_source(converting, target, consume=True, check=False).data
-    if consume:
-        source.tree = converting.tree  # the empty document left in its place
+    source.tree = converting.tree
     return data, tree if whole else None
 
 
 def roundtrip(source: Source, *, consume: bool = False) -> RoundTripReport:
     """The rows of every cycle of every transmission of ``source``. With ``consume`` the
-    caller gives up ``source.tree``: the last conversion of it converts it in place."""
+    caller gives up ``source.tree``: the first conversion of it converts it in place."""
     report = RoundTripReport(source.path)
     originals = [f.transmission for f in read_source(source, locate=False)]
     groups = _groups(originals)
@@ -113,14 +111,19 @@ def roundtrip(source: Source, *, consume: bool = False) -> RoundTripReport:
     whole = not carries_originals(source.root)
     ends = {start: _Ends(source.path, groups[start], whole) for start in starts}
     # Each first leg converts the document as read, once for every group that starts with
-    # it; the last converts the document itself, whose tree its cycles, run first, go on
-    # converting (the others parse their text): one tree alive at a time.
+    # it: the first leg its tree (given up with ``consume``), the others a parse of its text;
+    # the last leg's tree is where its cycles, run first, go on converting (the others parse
+    # the text the leg wrote): one tree alive at a time.
+    text = serialize(source.tree) if source.expanded else source.data
     legs = {}
     for first in firsts:
-        data, tree = _reconvert(source, first, consume=consume and first == firsts[-1],
-                                whole=whole)
+        document = source if consume and first == firsts[0] else Source(
+            source.path, source.data, parse_bytes(text, source.path, limit=None),
+            expanded=source.expanded)
+        data, tree = _reconvert(document, first, whole=whole)
         legs[first] = (data, [tree] if tree is not None and first == firsts[-1] else [])
-        del tree
+        del document, tree
+    del text
     rows: dict[tuple[Dialect, ...], list[CycleRow]] = {}
     for first in reversed(firsts):
         data, parsed = legs.pop(first)
@@ -210,7 +213,7 @@ class _Ends:
         return self.known[key]
 
     def _convert(self, leg: _Leg, target: Dialect) -> _Leg:
-        return _reconvert(self._source(*leg), target, consume=True, whole=self.whole)
+        return _reconvert(self._source(*leg), target, whole=self.whole)
 
     def _source(self, data: bytes, tree: etree._ElementTree | None) -> Source:
         """The document of ``data``: ``tree``, or a parse of it."""
