@@ -68,6 +68,7 @@ def command(path, output_format, effective, actuator_limits, stdin_filename, ros
                  "velocity": lim.velocity, "effort": lim.effort}
                 for t, a, lim in limits
             ]
+        del source, found  # the document goes before its report is written
         click.echo(json.dumps(data, indent=2))
         return 0
     from txtool.views.render import console as make_console
