@@ -29,7 +29,7 @@ from txtool.model.semantics import Effective, NotLoadable, effective, listed_aga
 from txtool.transform.check import Verdict, round_trip
 from txtool.transform.edits.core import Edit
 from txtool.transform.edits.document import conversion_edits, read_back
-from txtool.transform.edits.tree_edits import serialization
+from txtool.transform.edits.tree_edits import fingerprint
 from txtool.transform.next_steps import gazebo_plugin
 from txtool.transform.placement.macros import MacroCalls
 from txtool.transform.placement.placer import DEFAULT_HARDWARE_PLUGIN, Placer
@@ -99,8 +99,9 @@ def convert_source(
         source.tree = etree.ElementTree(etree.Element("consumed"))
     if not check:
         return result
-    # What the edits must write, kept as text: the tree goes before the bytes are parsed.
-    expected = serialization(tree) if result.edits and not restored else None
+    # What the edits must write, kept as its fingerprint: the tree goes before the bytes are
+    # parsed.
+    expected = fingerprint(tree) if result.edits and not restored else None
     # Originals written as their bytes: only a parse of the output shows what it holds.
     reparse = restored and result.data != source.data
     if not reparse:
