@@ -57,13 +57,17 @@ _DECLARED = re.compile(r"""<\?xml[^>]*?\sencoding\s*=\s*["']([A-Za-z0-9._-]+)["'
 _HEAD = 4096
 
 
-@lru_cache(maxsize=4)
 def detect_encoding(data: bytes) -> Encoding:
     """The encoding by the byte-order mark, else by the zero bytes of UTF-16/32 around the first
-    (ASCII) characters (XML 1.0 appendix F), else the declaration's; UTF-8 by default.
+    (ASCII) characters (XML 1.0 appendix F), else the declaration's; UTF-8 by default."""
+    return _encoding_of(data[:len(_MARKS[0][0]) + _HEAD])
 
-    Kept for the last few documents: the parser, its checks and the scanners all ask about the
-    same bytes (a ``bytes`` object keeps its hash, so asking again costs a lookup)."""
+
+@lru_cache(maxsize=4)
+def _encoding_of(data: bytes) -> Encoding:
+    """:func:`detect_encoding` of a document's head (all that it reads), kept for the last few
+    documents: the parser, its checks and the scanners all ask about the same bytes. The head
+    is the key, not the document: a cache must not hold a document once it is done with."""
     for mark, codec in _MARKS:
         if data.startswith(mark):
             return Encoding(codec, mark, _declared(data[len(mark):], codec))
