@@ -150,9 +150,8 @@ def _converted(source: Source, target: Dialect, hardware_plugin: str, consume: b
     else:
         for node, block in restored:
             writer.substitute(node, block)
-        edits = writer.edits()
+        edits, result.data = writer.written()
         result.edits = edits or None
-        result.data = writer.applied(edits) if edits else source.data
     result.notes.extend(carry.notes)
     return result, tree, originals, bool(restored)
 

@@ -457,8 +457,7 @@ def _fixed(data: bytes, tree: etree._ElementTree, rules: Sequence[Rule], path: s
     writer = DocumentEdits(path, data, tree.getroot(), elements)
     del elements
     fixes = fix_tree(tree, rules, data)
-    edits = writer.edits()
-    fixed = writer.applied(edits)
+    edits, fixed = writer.written()
     if fixed != data:
         read_back(fixed, path, fingerprint(tree), "fix")
     return fixed, edits, fixes

@@ -6,7 +6,7 @@ restyles a Proposal 1 transmission's roles in place (the placer:
 :mod:`txtool.transform.placement.placer`). :class:`DocumentEdits` records, before the change,
 what it may touch (:func:`conversion_edits`: each transmission's ancestors and each
 ``<ros2_control>`` with its own, the elements whose children a conversion may change, and the
-transmissions it changes inside); afterwards :meth:`DocumentEdits.edits` says the change as
+transmissions it changes inside); afterwards :meth:`DocumentEdits.written` says the change as
 edits of their spans (:mod:`.tree_edits`, :mod:`.spans`), the one applier
 (:func:`txtool.transform.edits.core.apply_edits`) makes the bytes, and :func:`read_back`
 parses them and holds them to the changed tree.
@@ -53,20 +53,20 @@ class DocumentEdits:
         markup = block.lstrip(b" \t")
         self.change.substitute(node, markup[:len(markup.rstrip(b"\r\n"))])
 
-    def edits(self) -> list[Edit]:
-        """The edits that write the changed tree."""
+    def written(self) -> tuple[list[Edit], bytes]:
+        """The edits that write the changed tree, and the document they make, stored as the
+        original was. The change is said once: what was recorded to say it (the state
+        before, the spans) is let go before the bytes are made."""
         try:
             edits = self.change.written(self.text, self.index)
         except NotEditable as exc:
             raise InputError(f"{self.path}: cannot {self.verb}: {exc}") from None
+        finally:
+            del self.change, self.index
         late = late_declaration(self.text.data) if edits else None
         if late is not None:
             edits.append(late)
-        return edits
-
-    def applied(self, edits: list[Edit]) -> bytes:
-        """The document with ``edits`` made, stored as the original was."""
-        return self.text.applied(edits)
+        return edits, self.text.applied(edits)
 
 
 def conversion_edits(path: str, data: bytes, root: etree._Element,
