@@ -33,7 +33,7 @@ class NotEditable(ValueError):
     or element in a namespace the document declares elsewhere)."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class _Before:
     attributes: dict[str, str]
     text: str | None
