@@ -50,6 +50,9 @@ def round_trip(originals: Sequence[Transmission], written: etree._Element) -> Ve
     blocks = cache(lambda: {e.get("name") for e in written.iter("{*}ros2_control")})
     components: dict[etree._Element, Any] = {}
     for element in transmission_elements(written):
+        component = enclosing_component(element)
+        if component not in components:
+            components.clear()  # a block's transmissions come one after another
         out = read_transmission(element, None, components)
         queue = waiting.get((out.name, out.kind == "other"))
         if not queue:
@@ -59,7 +62,7 @@ def round_trip(originals: Sequence[Transmission], written: etree._Element) -> Ve
         if t.kind == "other":
             continue
         heard = Verdict()
-        _judge(t, Found(out, element), enclosing_component(element) is not None, heard, blocks)
+        _judge(t, Found(out, element), component is not None, heard, blocks)
         if heard.losses or heard.notes:
             said[i] = heard
     verdict = Verdict()
