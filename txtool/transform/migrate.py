@@ -338,8 +338,9 @@ def _judge(result: FileResult, path: str, options: MigrateOptions,
         distro = target_distro(options.target, options.ros_distro)
     except ValueError as exc:
         raise InputError(str(exc)) from None
-    written = prepared(path, result.path, result.data, settings)
-    judged = judge(written, lambda: prepared(path, result.path, result.original, settings),
+    # What is written is given to judge alone, which lets its tree go before it reads the input.
+    judged = judge(prepared(path, result.path, result.data, settings),
+                   lambda: prepared(path, result.path, result.original, settings),
                    options.target, distro=distro, own=settings.stated, settings=settings)
     result.warnings.extend(judged.warnings)
     result.losses.extend(judged.losses)
