@@ -86,6 +86,23 @@ def test_a_utf16_document_is_edited_in_its_utf8_form_and_stored_back() -> None:
     assert text.applied([]) is original
 
 
+@pytest.mark.parametrize("pad", [0, 1])
+@pytest.mark.parametrize("codec", ["utf-16-le", "utf-16-be", "utf-32-le"])
+def test_a_wide_document_larger_than_a_piece_is_stored_back_whole(codec: str, pad: int) -> None:
+    """Stored back a piece at a time: the characters of a text of nothing but two- and
+    four-byte UTF-8 characters (one of the two paddings puts one across any given byte
+    boundary), and the declaration's own encoding name, come back as they were."""
+    declared = codec.replace("-le", "").replace("-be", "").upper()
+    text = (f'<?xml version="1.0" encoding="{declared}"?>\n<robot><link name="'
+            + "x" * pad + "é𝄞" * 200_000 + '"/></robot>\n')  # over 1 MiB as UTF-8
+    mark = "\ufeff".encode(codec)
+    original = mark + text.encode(codec)
+    edited = EditedText(original)
+    at = edited.data.index(b"</robot>")
+    written = edited.applied([Edit.insertion(at, edited.encode('<link name="new"/>'))])
+    assert written == mark + text.replace("</robot>", '<link name="new"/></robot>').encode(codec)
+
+
 def test_new_text_takes_the_documents_line_ending_and_encoding() -> None:
     text = EditedText(b'<?xml version="1.0" encoding="ISO-8859-1"?>\r<robot/>\r')
     assert text.encode("<a>\u00e9\u20ac</a>\n") == b"<a>\xe9&#8364;</a>\r"

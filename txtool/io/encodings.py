@@ -9,6 +9,7 @@ writers store what they produce back with :meth:`Encoding.from_utf8`.
 from __future__ import annotations
 
 import codecs
+import io
 import re
 from functools import lru_cache
 from typing import NamedTuple
@@ -19,6 +20,9 @@ _MARKS = (  # UTF-32 first: its little-endian mark starts like UTF-16's
     (codecs.BOM_UTF16_BE, "utf-16-be"),
 )
 
+
+# What from_utf8 stores at a time: at least _HEAD characters, whatever the text.
+_PIECE = 1 << 20
 
 # Encodings that store ASCII as ASCII, one byte each: a byte pattern finds every tag.
 SCANNABLE = frozenset({"utf-8", "ascii", "iso8859-1", "cp1252"})
@@ -44,11 +48,18 @@ class Encoding(NamedTuple):
 
     def from_utf8(self, data: bytes) -> bytes:
         """A document in :func:`utf8_form` stored back this way: the mark, the declaration's
-        own encoding name and the codec as before."""
-        text = data.decode("utf-8")
-        if self.declared is not None:
-            text = _renamed(text, self.declared)
-        return self.mark + text.encode(self.codec)
+        own encoding name and the codec as before. Stored a piece at a time: the document is
+        never held whole as text beside the bytes it becomes."""
+        stored = io.BytesIO()
+        stored.write(self.mark)
+        decoder = codecs.getincrementaldecoder("utf-8")()
+        view = memoryview(data)
+        for start in range(0, len(data), _PIECE):
+            text = decoder.decode(view[start:start + _PIECE], final=start + _PIECE >= len(data))
+            if start == 0 and self.declared is not None:  # the first piece holds the head
+                text = _renamed(text, self.declared)
+            stored.write(text.encode(self.codec))
+        return stored.getvalue()
 
 
 # The XML declaration's encoding; looked for in the head of the document, as a declaration
@@ -57,13 +68,17 @@ _DECLARED = re.compile(r"""<\?xml[^>]*?\sencoding\s*=\s*["']([A-Za-z0-9._-]+)["'
 _HEAD = 4096
 
 
-@lru_cache(maxsize=4)
 def detect_encoding(data: bytes) -> Encoding:
     """The encoding by the byte-order mark, else by the zero bytes of UTF-16/32 around the first
-    (ASCII) characters (XML 1.0 appendix F), else the declaration's; UTF-8 by default.
+    (ASCII) characters (XML 1.0 appendix F), else the declaration's; UTF-8 by default."""
+    return _encoding_of(data[:len(_MARKS[0][0]) + _HEAD])
 
-    Kept for the last few documents: the parser, its checks and the scanners all ask about the
-    same bytes (a ``bytes`` object keeps its hash, so asking again costs a lookup)."""
+
+@lru_cache(maxsize=4)
+def _encoding_of(data: bytes) -> Encoding:
+    """:func:`detect_encoding` of a document's head (all that it reads), kept for the last few
+    documents: the parser, its checks and the scanners all ask about the same bytes. The head
+    is the key, not the document: a cache must not hold a document once it is done with."""
     for mark, codec in _MARKS:
         if data.startswith(mark):
             return Encoding(codec, mark, _declared(data[len(mark):], codec))

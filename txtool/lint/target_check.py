@@ -143,9 +143,8 @@ def judge_converted(data: bytes, source: Source, target: Dialect, *,
     # The expansion of a xacro input is judged as the plain document it is (its lines, not
     # traced back to the source), and the input's expansion likewise.
     name = f"{source.path}.expanded" if source.expanded else source.path
-    written = prepared(source.path, name, data, expand=False)
     if data == source.data:  # nothing converted: only what the document misses as a whole
-        return Judged(losses=_whole(written, target))
+        return Judged(losses=_whole(prepared(source.path, name, data, expand=False), target))
 
     def before() -> Source | None:
         if not source.expanded:
@@ -156,7 +155,8 @@ def judge_converted(data: bytes, source: Source, target: Dialect, *,
         text = etree.tostring(again.tree, encoding="utf-8", xml_declaration=True)
         return Source(name, text, again.tree)
 
-    return judge(written, before, target, distro=distro)
+    # Given to judge alone, which lets the tree go before it reads the input.
+    return judge(prepared(source.path, name, data, expand=False), before, target, distro=distro)
 
 
 def prepared(path: str, display: str, data: bytes, settings: Settings | None = None,
@@ -203,6 +203,8 @@ def judge(written: Source, before: Callable[[], Source | None], target: Dialect 
             found.append((run, [p for p in problems if p.severity == "error"]))
     if not any(errors for _, errors in found):
         return judged
+    text = written.data  # all that is read of it now: its tree goes before the input is read
+    del written
     earlier: Source | None = None
     asked = False
     blamed: dict[tuple[int, int, str, str], list[Run]] = {}
@@ -227,7 +229,7 @@ def judge(written: Source, before: Callable[[], Source | None], target: Dialect 
                 continue
             if _transmission(problem) in flagged:
                 continue
-            if target == "ros2-p1" and _p1_form(problem, written):
+            if target == "ros2-p1" and _p1_form(problem, text):
                 form.append(problem)
                 continue
             blamed.setdefault(where, []).append(run)
@@ -303,12 +305,12 @@ def _flagged(found: list[Problem]) -> frozenset[str | None]:
                      if p.severity in ("error", "warning") and _transmission(p) is not None)
 
 
-def _p1_form(problem: Problem, written: Source) -> bool:
+def _p1_form(problem: Problem, data: bytes) -> bool:
     """Whether ``problem`` is ros2_control's refusal of a Proposal 1 ``<role>`` element: TX303
-    placed on a ``<role>`` start tag of the text checked."""
+    placed on a ``<role>`` start tag of ``data``, the text checked."""
     if problem.code != _P1_FORM:
         return False
-    lines = text_lines(written.data)
+    lines = text_lines(data)
     if not 1 <= problem.line <= len(lines):
         return False
     text = lines[problem.line - 1][problem.column - 1:]

@@ -139,11 +139,13 @@ def _all_known(ctx: LintContext) -> bool:
 def _component_joints(
     ctx: LintContext, tx: Facts, seen: dict[etree._Element, tuple[str, Names] | None]
 ) -> tuple[str, Names] | None:
-    """Name and joint names of the enclosing component, None if none or not knowable."""
+    """Name and joint names of the enclosing component, None if none or not knowable; ``seen``
+    keeps the last component's (a component's transmissions come one after another)."""
     component = tx.component
     if component is None or opaque(ctx, component):
         return None
     if component not in seen:
+        seen.clear()
         names = Names(j.get("name", "").strip(C_SPACE) for j in children(component, "joint"))
         seen[component] = (component.get("name", ""), names)
     return seen[component]

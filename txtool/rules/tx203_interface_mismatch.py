@@ -137,10 +137,12 @@ def component_joint(
 
 def _joints_of(ctx: LintContext, component: etree._Element) -> dict[str, etree._Element]:
     """A block's ``<joint>`` elements by name (the first of a repeated name), found once per
-    block: a block generated for thousands of transmissions is asked about each of them."""
+    block: a block generated for thousands of transmissions is asked about each of them. Only
+    the last block's are kept: a block's transmissions come one after another."""
     known = ctx.memo.setdefault("component joints", {})
     joints = known.get(component)
     if joints is None:
+        known.clear()
         joints = known[component] = {}
         for joint in children(component, "joint"):
             joints.setdefault(joint.get("name"), joint)

@@ -113,7 +113,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             if not REGISTERED.issuperset(tx.joint_interfaces):
                 yield from _check_ros1(ctx, tx.found)  # else every name is registered
         elif tx.component is not None:  # else no component declares its joints' interfaces
-            yield from _check_ros2(ctx, tx.found)
+            yield from _check_ros2(ctx, tx.found, tx.kind)
 
 
 def unprefixed_registered(text: str) -> bool:
@@ -159,8 +159,8 @@ def ros1_hint(text: str) -> str:
     return f"; did you mean '{guess[0]}'?" if guess else ""
 
 
-def _check_ros2(ctx: LintContext, found: Found) -> Iterator[Problem]:
-    mapped = ROS2_INTERFACES[found.transmission.kind]
+def _check_ros2(ctx: LintContext, found: Found, kind: str) -> Iterator[Problem]:
+    mapped = ROS2_INTERFACES[kind]
     for ref, _component, names in ros2_joint_interfaces(ctx, found):
         where = f"joint '{ref.name}' of {label(found)}"
         for name in names:

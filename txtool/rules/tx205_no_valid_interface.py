@@ -98,7 +98,7 @@ def check(ctx: LintContext) -> Iterator[Problem]:
             if refused is not None and not covered_by_tx300(ctx, refused[1]):
                 yield from _check_ros1(ctx, tx, *refused)
         elif tx.component is not None:  # else no component declares its joints' interfaces
-            yield from _check_ros2(ctx, tx.found)
+            yield from _check_ros2(ctx, tx.found, tx.kind)
 
 
 def refusal(ctx: LintContext, tx: Facts) -> tuple[list, list[str]] | None:
@@ -170,8 +170,7 @@ def _check_ros1(ctx: LintContext, tx: Facts, joints: list,
     yield ctx.problem(CODE, joints[0].element, message + advice)
 
 
-def _check_ros2(ctx: LintContext, found: Found) -> Iterator[Problem]:
-    kind = found.transmission.kind
+def _check_ros2(ctx: LintContext, found: Found, kind: str) -> Iterator[Problem]:
     mapped = ROS2_INTERFACES[kind]
     for ref, component, names in ros2_joint_interfaces(ctx, found):
         if any(name in mapped for name in names):

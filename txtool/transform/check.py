@@ -40,31 +40,36 @@ class Verdict:
 def round_trip(originals: Sequence[Transmission], written: etree._Element) -> Verdict:
     """Judge each of ``originals`` (the transmissions as read) against what ``written``
     (the root of the converted document, as a parse of its bytes reads it) holds of it.
-    A custom type, or one the written document no longer holds, is not judged."""
-    verdict = Verdict()
-    found = _by_name(written)
+    A custom type, or one the written document no longer holds, is not judged. Each written
+    transmission is judged as it is read and let go (the document is not held read whole);
+    what is said comes in the order of the originals."""
+    waiting: dict[tuple[str, bool], deque[int]] = {}  # the originals by name and custom type
+    for i, t in enumerate(originals):
+        waiting.setdefault((t.name, t.kind == "other"), deque()).append(i)
+    said: dict[int, Verdict] = {}
     blocks = cache(lambda: {e.get("name") for e in written.iter("{*}ros2_control")})
-    for t in originals:
-        queue = found.get((t.name, t.kind == "other"))
+    components: dict[etree._Element, Any] = {}
+    for element in transmission_elements(written):
+        component = enclosing_component(element)
+        if component not in components:
+            components.clear()  # a block's transmissions come one after another
+        out = read_transmission(element, None, components)
+        queue = waiting.get((out.name, out.kind == "other"))
         if not queue:
             continue
-        out = queue.popleft()  # same-named transmissions keep their order
+        i = queue.popleft()  # same-named transmissions keep their order
+        t = originals[i]
         if t.kind == "other":
             continue
-        _judge(t, out, enclosing_component(out.element) is not None, verdict, blocks)
+        heard = Verdict()
+        _judge(t, Found(out, element), component is not None, heard, blocks)
+        if heard.losses or heard.notes:
+            said[i] = heard
+    verdict = Verdict()
+    for i in sorted(said):
+        verdict.losses.extend(said[i].losses)
+        verdict.notes.extend(said[i].notes)
     return verdict
-
-
-def _by_name(root: etree._Element) -> dict[tuple[str, bool], deque[Found]]:
-    """The transmissions under ``root``, read, by their name and whether their type is
-    custom, in document order."""
-    found: dict[tuple[str, bool], deque[Found]] = {}
-    components: dict[etree._Element, Any] = {}
-    for element in transmission_elements(root):
-        read = Found(read_transmission(element, None, components), element)
-        key = (read.transmission.name, read.transmission.kind == "other")
-        found.setdefault(key, deque()).append(read)
-    return found
 
 
 def _judge(t: Transmission, out: Found, in_component: bool, result: Verdict,

@@ -28,8 +28,8 @@ from txtool.model.robot import children
 from txtool.model.semantics import Effective, NotLoadable, effective, listed_against_roles
 from txtool.transform.check import Verdict, round_trip
 from txtool.transform.edits.core import Edit
-from txtool.transform.edits.document import conversion_edits, read_back
-from txtool.transform.edits.tree_edits import serialization
+from txtool.transform.edits.document import DocumentEdits, conversion_edits, read_back
+from txtool.transform.edits.tree_edits import fingerprint
 from txtool.transform.next_steps import gazebo_plugin
 from txtool.transform.placement.macros import MacroCalls
 from txtool.transform.placement.placer import DEFAULT_HARDWARE_PLUGIN, Placer
@@ -93,19 +93,26 @@ def convert_source(
     ``macro_calls``: where the files converted with this one call each xacro macro
     (:func:`.placement.macros.calls_in_files`; ``migrate`` gives those of its files).
     """
-    result, tree, originals, restored = _converted(source, target, hardware_plugin, consume,
-                                                   reversible, macro_calls, check)
+    result, tree, originals, restored, writer = _converted(
+        source, target, hardware_plugin, consume, reversible, macro_calls, check)
     if consume:
         source.tree = etree.ElementTree(etree.Element("consumed"))
+    if check and not restored:
+        # Judged on the converted tree before its bytes are made: the transmissions as read
+        # go before the edits and the bytes take their place.
+        _take_verdict(result, round_trip(originals, tree.getroot()))
+        originals = []
+    _write(result, tree, writer, source.data)
+    del writer
     if not check:
         return result
-    # What the edits must write, kept as text: the tree goes before the bytes are parsed.
-    expected = serialization(tree) if result.edits and not restored else None
+    # What the edits must write, kept as its fingerprint: the tree goes before the bytes are
+    # parsed.
+    expected = fingerprint(tree) if result.edits and not restored else None
     # Originals written as their bytes: only a parse of the output shows what it holds.
     reparse = restored and result.data != source.data
-    if not reparse:
+    if restored and not reparse:
         _take_verdict(result, round_trip(originals, tree.getroot()))
-        del originals
     del tree
     if result.data != source.data:  # (what a parse reads: nested no deeper than its limit)
         written = read_back(result.data, source.path, expected)
@@ -121,11 +128,12 @@ def _take_verdict(result: ConvertedDocument, verdict: Verdict) -> None:
 
 def _converted(source: Source, target: Dialect, hardware_plugin: str, consume: bool,
                reversible: bool, macro_calls: MacroCalls | None, check: bool
-               ) -> tuple[ConvertedDocument, etree._ElementTree, list[Transmission], bool]:
-    """:func:`convert_source` up to its checks: the result, the converted tree, the
-    transmissions as read, and whether originals were put back as their bytes. What the
-    conversion held besides (the index, the elements replaced) is freed at the return, before
-    the result is read back."""
+               ) -> tuple[ConvertedDocument, etree._ElementTree, list[Transmission], bool,
+                          DocumentEdits | None]:
+    """:func:`convert_source` up to the bytes: the result, the converted tree, the
+    transmissions as read, whether originals are put back as their bytes, and the writer
+    that says the change as edits (None for an expansion, written whole). What the conversion
+    held besides (the placer, the elements replaced) is let go at the return."""
     carry = Carrier(source, target, reversible)
     tree = source.tree if consume else copy.deepcopy(source.tree)
     root = tree.getroot()
@@ -144,16 +152,22 @@ def _converted(source: Source, target: Dialect, hardware_plugin: str, consume: b
     if check and target != "ros1" and result.converted:
         result.warnings.extend(gazebo_plugin(root))
     result.placeholder = placer.placeholder
-    if writer is None:
-        result.data = serialize(tree, source.data)
-    else:
+    if writer is not None:
         for node, block in restored:
             writer.substitute(node, block)
-        edits = writer.edits()
-        result.edits = edits or None
-        result.data = writer.applied(edits) if edits else source.data
     result.notes.extend(carry.notes)
-    return result, tree, originals, bool(restored)
+    return result, tree, originals, bool(restored), writer
+
+
+def _write(result: ConvertedDocument, tree: etree._ElementTree, writer: DocumentEdits | None,
+           data: bytes) -> None:
+    """The bytes of the converted ``tree``: the edits of ``data`` that ``writer`` says, made
+    once; an expansion (no ``writer``) written whole."""
+    if writer is None:
+        result.data = serialize(tree, data)
+    else:
+        edits, result.data = writer.written()
+        result.edits = edits or None
 
 
 def _place_each(elements: list[etree._Element], tree: etree._ElementTree, target: Dialect,

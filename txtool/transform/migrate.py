@@ -45,7 +45,7 @@ from txtool.rules import Rule, all_rules
 from txtool.transform.convert import DEFAULT_HARDWARE_PLUGIN, ConvertedDocument, convert_source
 from txtool.transform.edits.core import Edit, EditedText, compose
 from txtool.transform.edits.document import DocumentEdits, read_back
-from txtool.transform.edits.tree_edits import serialization
+from txtool.transform.edits.tree_edits import fingerprint
 from txtool.transform.fixable import might_fix
 from txtool.transform.linediff import unified_text
 from txtool.transform.next_steps import package_build_types, package_gazebo_plugins
@@ -338,8 +338,9 @@ def _judge(result: FileResult, path: str, options: MigrateOptions,
         distro = target_distro(options.target, options.ros_distro)
     except ValueError as exc:
         raise InputError(str(exc)) from None
-    written = prepared(path, result.path, result.data, settings)
-    judged = judge(written, lambda: prepared(path, result.path, result.original, settings),
+    # What is written is given to judge alone, which lets its tree go before it reads the input.
+    judged = judge(prepared(path, result.path, result.data, settings),
+                   lambda: prepared(path, result.path, result.original, settings),
                    options.target, distro=distro, own=settings.stated, settings=settings)
     result.warnings.extend(judged.warnings)
     result.losses.extend(judged.losses)
@@ -457,10 +458,9 @@ def _fixed(data: bytes, tree: etree._ElementTree, rules: Sequence[Rule], path: s
     writer = DocumentEdits(path, data, tree.getroot(), elements)
     del elements
     fixes = fix_tree(tree, rules, data)
-    edits = writer.edits()
-    fixed = writer.applied(edits)
+    edits, fixed = writer.written()
     if fixed != data:
-        read_back(fixed, path, serialization(tree), "fix")
+        read_back(fixed, path, fingerprint(tree), "fix")
     return fixed, edits, fixes
 
 

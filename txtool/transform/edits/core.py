@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from txtool.io.encodings import Encoding, detect_encoding, utf8_form
 
 
-@dataclass(frozen=True, order=True)
+@dataclass(frozen=True, order=True, slots=True)
 class Edit:
     """Replace the bytes ``[start, end)`` of the original by ``content``: an insertion where
     ``start == end``, a deletion where ``content`` is empty."""

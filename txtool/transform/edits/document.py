@@ -6,7 +6,7 @@ restyles a Proposal 1 transmission's roles in place (the placer:
 :mod:`txtool.transform.placement.placer`). :class:`DocumentEdits` records, before the change,
 what it may touch (:func:`conversion_edits`: each transmission's ancestors and each
 ``<ros2_control>`` with its own, the elements whose children a conversion may change, and the
-transmissions it changes inside); afterwards :meth:`DocumentEdits.edits` says the change as
+transmissions it changes inside); afterwards :meth:`DocumentEdits.written` says the change as
 edits of their spans (:mod:`.tree_edits`, :mod:`.spans`), the one applier
 (:func:`txtool.transform.edits.core.apply_edits`) makes the bytes, and :func:`read_back`
 parses them and holds them to the changed tree.
@@ -17,8 +17,6 @@ A transmission going back to ROS 1 whose original ``--reversible`` carried
 
 from __future__ import annotations
 
-import hashlib
-
 from lxml import etree
 
 from txtool.dialects.read import detect_dialect
@@ -27,12 +25,7 @@ from txtool.io.xmlio import InputError, XMLSyntax, parse_bytes
 from txtool.transform.edits.core import Edit, EditedText
 from txtool.transform.edits.declaration import late_declaration
 from txtool.transform.edits.spans import SpanError, SpanIndex
-from txtool.transform.edits.tree_edits import (
-    NotEditable,
-    TreeChange,
-    canonical,
-    reads_as_serialized,
-)
+from txtool.transform.edits.tree_edits import NotEditable, TreeChange, fingerprint
 
 
 class DocumentEdits:
@@ -60,20 +53,20 @@ class DocumentEdits:
         markup = block.lstrip(b" \t")
         self.change.substitute(node, markup[:len(markup.rstrip(b"\r\n"))])
 
-    def edits(self) -> list[Edit]:
-        """The edits that write the changed tree."""
+    def written(self) -> tuple[list[Edit], bytes]:
+        """The edits that write the changed tree, and the document they make, stored as the
+        original was. The change is said once: what was recorded to say it (the state
+        before, the spans) is let go before the bytes are made."""
         try:
             edits = self.change.written(self.text, self.index)
         except NotEditable as exc:
             raise InputError(f"{self.path}: cannot {self.verb}: {exc}") from None
+        finally:
+            del self.change, self.index
         late = late_declaration(self.text.data) if edits else None
         if late is not None:
             edits.append(late)
-        return edits
-
-    def applied(self, edits: list[Edit]) -> bytes:
-        """The document with ``edits`` made, stored as the original was."""
-        return self.text.applied(edits)
+        return edits, self.text.applied(edits)
 
 
 def conversion_edits(path: str, data: bytes, root: etree._Element,
@@ -97,19 +90,17 @@ def conversion_edits(path: str, data: bytes, root: etree._Element,
     return DocumentEdits(path, data, root, inside, containers, "convert")
 
 
-def read_back(data: bytes, path: str, expected: str | None, verb: str = "convert"
+def read_back(data: bytes, path: str, expected: bytes | None, verb: str = "convert"
               ) -> etree._ElementTree:
     """The parse of ``data``, the bytes a change wrote, refused (:class:`InputError`) where
     it fails (a change may nest elements deeper than a parse reads) or, given ``expected``
-    (the changed document as lxml writes it: :func:`.tree_edits.serialization`), where it
-    does not read as that."""
+    (the changed tree's :func:`.tree_edits.fingerprint`), where it does not read as that."""
     try:
         written = parse_bytes(utf8_form(data), path, limit=None)
     except XMLSyntax as exc:
         raise InputError(f"{path}: cannot {verb}: the result could not be read back; its line "
                          f"{exc.line}: {exc.reason}") from None
-    if expected is not None and not reads_as_serialized(written, expected, path):
-        got = hashlib.sha256(canonical(written)).digest()
+    if expected is not None and (got := fingerprint(written)) != expected:
         raise InputError(f"{path}: cannot {verb}: what the edits write does not read as the "
                          f"{verb}ed document (read back {got[:6].hex()}); please report "
                          "this file")

@@ -36,7 +36,7 @@ class SpanError(ValueError):
     """The bytes do not read as the tree says (they are not what it was parsed from)."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class Attribute:
     """An attribute as written: ``lead`` is where the whitespace before its name starts,
     ``[value_start, value_end)`` its value between the quotes ``quote``."""
