@@ -106,17 +106,18 @@ def convert_source(
     del writer
     if not check:
         return result
+    changed = result.data != source.data
+    # Originals put back are written as their bytes: only a parse of the output shows what
+    # it holds.
+    if restored and not changed:
+        _take_verdict(result, round_trip(originals, tree.getroot()))
     # What the edits must write, kept as its fingerprint: the tree goes before the bytes are
     # parsed.
     expected = fingerprint(tree) if result.edits and not restored else None
-    # Originals written as their bytes: only a parse of the output shows what it holds.
-    reparse = restored and result.data != source.data
-    if restored and not reparse:
-        _take_verdict(result, round_trip(originals, tree.getroot()))
     del tree
-    if result.data != source.data:  # (what a parse reads: nested no deeper than its limit)
+    if changed:  # (what a parse reads: nested no deeper than its limit)
         written = read_back(result.data, source.path, expected)
-        if reparse:
+        if restored:
             _take_verdict(result, round_trip(originals, written.getroot()))
     return result
 
