@@ -16,7 +16,12 @@ from txtool.rules import all_rules
 from txtool.transform.edits.core import EditedText
 from txtool.transform.edits.document import read_back
 from txtool.transform.edits.spans import SpanIndex
-from txtool.transform.edits.tree_edits import NotEditable, TreeChange, fingerprint
+from txtool.transform.edits.tree_edits import (
+    NotEditable,
+    TreeChange,
+    reads_as_serialized,
+    serialization,
+)
 from txtool.transform.migrate import MigrateOptions, migrate_file
 
 FIXES = [rule for rule in all_rules().values() if rule.fixable]
@@ -25,7 +30,7 @@ FIXES = [rule for rule in all_rules().values() if rule.fixable]
 def reads_as(data: bytes, tree: etree._ElementTree, path: str) -> bool:
     """Whether the bytes an edit wrote read back as ``tree`` (as every fix's are checked)."""
     try:
-        read_back(data, path, fingerprint(tree), "fix")
+        read_back(data, path, serialization(tree), "fix")
     except InputError:
         return False
     return True
@@ -172,6 +177,11 @@ def test_bytes_read_as_a_tree_by_names_texts_and_comments(written: bytes, same: 
     with their prefixes and namespaces, texts and comments are."""
     tree = etree.fromstring(b'<robot xmlns:x="urn:a"><x:t/></robot>').getroottree()
     assert reads_as(written, tree, "robot.urdf") is same
+
+
+def test_a_serialization_that_does_not_parse_reads_as_no_tree() -> None:
+    read = parse_bytes(b"<robot/>", "r.urdf")
+    assert not reads_as_serialized(read, "<robot>", "r.urdf")
 
 
 def test_bytes_that_do_not_parse_do_not_read_as_the_tree() -> None:

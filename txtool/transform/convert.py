@@ -29,7 +29,7 @@ from txtool.model.semantics import Effective, NotLoadable, effective, listed_aga
 from txtool.transform.check import Verdict, round_trip
 from txtool.transform.edits.core import Edit
 from txtool.transform.edits.document import DocumentEdits, conversion_edits, read_back
-from txtool.transform.edits.tree_edits import fingerprint
+from txtool.transform.edits.tree_edits import serialization
 from txtool.transform.next_steps import gazebo_plugin
 from txtool.transform.placement.macros import MacroCalls
 from txtool.transform.placement.placer import DEFAULT_HARDWARE_PLUGIN, Placer
@@ -111,9 +111,8 @@ def convert_source(
     # it holds.
     if restored and not changed:
         _take_verdict(result, round_trip(originals, tree.getroot()))
-    # What the edits must write, kept as its fingerprint: the tree goes before the bytes are
-    # parsed.
-    expected = fingerprint(tree) if result.edits and not restored else None
+    # What the edits must write, kept as text: the tree goes before the bytes are parsed.
+    expected = serialization(tree) if result.edits and not restored else None
     del tree
     if changed:  # (what a parse reads: nested no deeper than its limit)
         written = read_back(result.data, source.path, expected)

@@ -45,7 +45,7 @@ from txtool.rules import Rule, all_rules
 from txtool.transform.convert import DEFAULT_HARDWARE_PLUGIN, ConvertedDocument, convert_source
 from txtool.transform.edits.core import Edit, EditedText, compose
 from txtool.transform.edits.document import DocumentEdits, read_back
-from txtool.transform.edits.tree_edits import fingerprint
+from txtool.transform.edits.tree_edits import serialization
 from txtool.transform.fixable import might_fix
 from txtool.transform.linediff import unified_text
 from txtool.transform.next_steps import package_build_types, package_gazebo_plugins
@@ -460,7 +460,7 @@ def _fixed(data: bytes, tree: etree._ElementTree, rules: Sequence[Rule], path: s
     fixes = fix_tree(tree, rules, data)
     edits, fixed = writer.written()
     if fixed != data:
-        read_back(fixed, path, fingerprint(tree), "fix")
+        read_back(fixed, path, serialization(tree), "fix")
     return fixed, edits, fixes
 
 

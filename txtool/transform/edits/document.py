@@ -17,6 +17,8 @@ A transmission going back to ROS 1 whose original ``--reversible`` carried
 
 from __future__ import annotations
 
+import hashlib
+
 from lxml import etree
 
 from txtool.dialects.read import detect_dialect
@@ -25,7 +27,12 @@ from txtool.io.xmlio import InputError, XMLSyntax, parse_bytes
 from txtool.transform.edits.core import Edit, EditedText
 from txtool.transform.edits.declaration import late_declaration
 from txtool.transform.edits.spans import SpanError, SpanIndex
-from txtool.transform.edits.tree_edits import NotEditable, TreeChange, fingerprint
+from txtool.transform.edits.tree_edits import (
+    NotEditable,
+    TreeChange,
+    canonical,
+    reads_as_serialized,
+)
 
 
 class DocumentEdits:
@@ -90,17 +97,19 @@ def conversion_edits(path: str, data: bytes, root: etree._Element,
     return DocumentEdits(path, data, root, inside, containers, "convert")
 
 
-def read_back(data: bytes, path: str, expected: bytes | None, verb: str = "convert"
+def read_back(data: bytes, path: str, expected: str | None, verb: str = "convert"
               ) -> etree._ElementTree:
     """The parse of ``data``, the bytes a change wrote, refused (:class:`InputError`) where
     it fails (a change may nest elements deeper than a parse reads) or, given ``expected``
-    (the changed tree's :func:`.tree_edits.fingerprint`), where it does not read as that."""
+    (the changed document as lxml writes it: :func:`.tree_edits.serialization`), where it
+    does not read as that."""
     try:
         written = parse_bytes(utf8_form(data), path, limit=None)
     except XMLSyntax as exc:
         raise InputError(f"{path}: cannot {verb}: the result could not be read back; its line "
                          f"{exc.line}: {exc.reason}") from None
-    if expected is not None and (got := fingerprint(written)) != expected:
+    if expected is not None and not reads_as_serialized(written, expected, path):
+        got = hashlib.sha256(canonical(written)).digest()
         raise InputError(f"{path}: cannot {verb}: what the edits write does not read as the "
                          f"{verb}ed document (read back {got[:6].hex()}); please report "
                          "this file")

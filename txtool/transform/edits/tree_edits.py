@@ -11,17 +11,15 @@ did not touch is never written: it keeps its bytes because no edit covers them.
 
 from __future__ import annotations
 
-import hashlib
 import re
 from collections.abc import Iterable
 from dataclasses import dataclass
 from itertools import compress, count, repeat
 from operator import attrgetter, is_not, lt, ne, or_, sub
-from types import SimpleNamespace
 
 from lxml import etree
 
-from txtool.io.xmlio import attributes
+from txtool.io.xmlio import InputError, attributes, parse_bytes
 from txtool.transform.edits.core import Edit, EditedText
 from txtool.transform.edits.spans import Attribute, Span, SpanIndex
 
@@ -309,14 +307,36 @@ def _written(node: etree._Element, redeclare: bool = False) -> str:
     return markup + _escaped(node.tail)
 
 
-def fingerprint(tree: etree._ElementTree) -> bytes:
-    """The SHA-256 of the form two documents are compared in to tell whether bytes read as a
-    tree: its exclusive canonical XML, comments kept (about twice as fast as the inclusive
-    form on a large robot). Element and attribute names are compared with their namespaces,
-    texts, comments and instructions as they are; a namespace declaration that no name uses is
-    not compared: no loader reads one (tinyxml2 and urdfdom read no namespaces, xacro reads
-    prefixes). The form is hashed as lxml writes it, never held: a changed tree is kept as
-    its fingerprint alone while the bytes written for it are parsed back."""
-    hashed = hashlib.sha256()
-    tree.write(SimpleNamespace(write=hashed.update), method="c14n", exclusive=True)
-    return hashed.digest()
+def canonical(tree: etree._ElementTree) -> bytes:
+    """The form two documents are compared in to tell whether bytes read as a tree: its
+    exclusive canonical XML, comments kept (about twice as fast as the inclusive form on a
+    large robot). Element and attribute names are compared with their namespaces, texts,
+    comments and instructions as they are; a namespace declaration that no name uses is not
+    compared: no loader reads one (tinyxml2 and urdfdom read no namespaces, xacro reads
+    prefixes)."""
+    return etree.tostring(tree, method="c14n", exclusive=True)
+
+
+def reads_as_serialized(read: etree._ElementTree, text: str, path: str) -> bool:
+    """Whether ``read``, parsed from bytes written for a tree kept only as its
+    :func:`serialization` ``text`` (whose memory the parse of ``read`` could then reuse),
+    holds the document that tree holds. lxml writes a tree, parsed or changed, as the
+    document it holds, so the same serialization is the same document: that is compared
+    first, made in a third of the time of a canonical form. Where the two differ (a
+    namespace declared on another element than where it is used, an empty text written as
+    ``<a></a>`` where a parse reads ``<a/>``; quotes and spaces in tags never differ, lxml
+    writes both), the canonical form (:func:`canonical`) of ``text`` parsed decides (parsed
+    again, it has the tree's canonical form)."""
+    if serialization(read) == text:
+        return True
+    try:
+        tree = parse_bytes(text.encode(), path, limit=None)
+    except InputError:
+        return False
+    return canonical(read) == canonical(tree)
+
+
+def serialization(tree: etree._ElementTree) -> str:
+    """A document as lxml writes it (no XML declaration): what :func:`reads_as_serialized`
+    compares first."""
+    return etree.tostring(tree, encoding="unicode")
