@@ -5,7 +5,8 @@ Run: ``python bench/bench_scale.py [--sizes 1000,8000] [--shapes after,...] [--c
 Each document is one of the shapes of ``tests/shapes.py`` (the transmissions after the links and
 joints, interleaved with them, on one line, CRLF, UTF-16, with comments between, prettified, with
 a ``<ros2_control>`` block, as xacro writes them, the demo robot repeated). Each command runs
-through the command line (click) in a fresh interpreter that first runs it on the one-transmission
+through txtool's entry point (``txtool.cli.main``, as the ``txtool`` command runs it) in a
+fresh interpreter that first runs it on the one-transmission
 document of the same shape (imports and first-call caches not counted) and then times the run
 itself (processor seconds) and measures its peak memory above what it held before; what it
 writes goes to the null device, as a pipe would take it (nothing holds it). The floor is
@@ -45,15 +46,16 @@ REAL = ROOT.parent / "shared" / "corpus" / "tiago_robot__tiago_pal-hey5.urdf"
 
 MEASURE = """
 import contextlib, os, resource, shutil, sys, time
-from txtool.cli import cli
+from txtool import cli
 def rss():
     with open("/proc/self/status") as status:
         return next(int(line.split()[1]) for line in status if line.startswith("VmRSS"))
-def run(argv):  # as the command line runs it, its output going where nothing holds it
+def run(argv):  # as the txtool command runs it, its output going where nothing holds it
+    sys.argv = ["txtool", *argv]
     with open(os.devnull, "w") as sink, contextlib.redirect_stdout(sink), \\
             contextlib.redirect_stderr(sink):
         try:
-            cli.main(argv, prog_name="txtool")
+            cli.main()
         except SystemExit as exit:
             return exit.code or 0
     return 0
