@@ -61,6 +61,7 @@ def in_full(monkeypatch: pytest.MonkeyPatch) -> None:
 
 @pytest.mark.parametrize("path", [
     FIXTURES / "demo_robot.urdf", FIXTURES / "demo_robot.ros2-p1.urdf", "MIXED",
+    FIXTURES / "examples" / "arm.urdf.xacro",
     "ros_control__transmission_interface_loader_bidirectional_valid.urdf",
 ], ids=lambda p: getattr(p, "name", p))
 def test_the_rows_are_those_of_every_cycle_converted_in_full(
