@@ -135,7 +135,6 @@ class _Scan:
         self.children: list[Iterator[etree._Element]] = []
         self.line, self.counted = 1, 0  # the line at byte ``counted``
         self.tokens = _MARKUP.finditer(data)
-        self.cdata = b"<![CDATA[" in data
 
     def run(self) -> None:
         """Read the tokens up to the root's end tag (or the end of the bytes)."""
@@ -194,7 +193,7 @@ class _Scan:
         below = _DEEP if deep else _CHILDREN if node in self.outline else _NONE
         if below == _NONE and self.open and node not in self.way:
             # Nothing inside is indexed: passed over to its end tag.
-            closing, self.tokens = _pass_over(token, self.tokens, data, self.cdata)
+            closing = _pass_over(self.tokens, data)
             if span is not None:
                 span.tail_start, span.end = closing
             return False
@@ -210,28 +209,10 @@ def _lines(data: bytes, start: int, end: int) -> int:
     return feeds + returns - data.count(b"\r\n", start, end) if returns else feeds
 
 
-_END_TAGS: dict[bytes, re.Pattern[bytes]] = {}
-
-
-def _pass_over(token: re.Match[bytes], tokens: Iterator[re.Match[bytes]], data: bytes,
-               cdata: bool) -> tuple[tuple[int, int], Iterator[re.Match[bytes]]]:
-    """Read past the element whose start tag is ``token`` (just read) in ``tokens``: where
-    its end tag starts and ends, and the tokens after it. The first end tag of its name ends
-    it where nothing between can hide or nest one (no start tag of the same name, comment or
-    instruction between, and ``cdata`` false: no CDATA section in the document); else every
-    token is read. The nodes inside are not paired: one out of step with the tree shows at
+def _pass_over(tokens: Iterator[re.Match[bytes]], data: bytes) -> tuple[int, int]:
+    """Read past the element whose start tag was just read from ``tokens``: where its end tag
+    starts and ends. The nodes inside are not paired: one out of step with the tree shows at
     the next node indexed, or at the end."""
-    if not cdata:
-        name = token.group("name")
-        end_tag = _END_TAGS.get(name)
-        if end_tag is None:
-            end_tag = _END_TAGS[name] = re.compile(b"</" + re.escape(name) + rb"\s*>")
-        end = end_tag.search(data, token.end())
-        if end is not None:
-            inside = token.end(), end.start()
-            if data.find(b"<!--", *inside) < 0 and data.find(b"<?", *inside) < 0 and (
-                    _nests(data, name, *inside) is False):
-                return end.span(), _MARKUP.finditer(data, end.end())
     depth = 1
     for token in tokens:
         at = token.start()
@@ -239,21 +220,10 @@ def _pass_over(token: re.Match[bytes], tokens: Iterator[re.Match[bytes]], data: 
         if kind == _SLASH:
             depth -= 1
             if not depth:
-                return (at, token.end()), tokens
+                return at, token.end()
         elif kind not in (_BANG, _QUESTION) and data[token.end() - 2] != _SLASH:
             depth += 1
     raise SpanError("an element the bytes do not end")
-
-
-def _nests(data: bytes, name: bytes, start: int, end: int) -> bool:
-    """Whether a start tag of ``name`` may stand in ``data[start:end]``."""
-    at = data.find(b"<" + name, start, end)
-    while at >= 0:
-        if data[at + 1 + len(name):at + 2 + len(name)] in (b" ", b"\t", b"\r", b"\n", b"/",
-                                                           b">"):
-            return True
-        at = data.find(b"<" + name, at + 1, end)
-    return False
 
 
 def _bounds(token: re.Match[bytes], node: etree._Element, codec: str) -> Span:
