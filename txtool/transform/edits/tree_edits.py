@@ -14,8 +14,8 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable
 from dataclasses import dataclass
-from itertools import compress, count, repeat
-from operator import attrgetter, is_not, lt, ne, or_, sub
+from itertools import pairwise
+from operator import attrgetter
 
 from lxml import etree
 
@@ -117,27 +117,26 @@ class TreeChange:
             # Emptied by the change: written as lxml writes an empty element, <x/>.
             edits.append(Edit(span.close, span.end, b"/>"))
             return
-        was_at = dict(zip(before.children, range(len(before.children)), strict=True))
-        olds = list(map(was_at.get, children))  # where each child stood before (None: new)
-        is_kept = list(map(is_not, olds, repeat(None)))
-        places = list(compress(range(len(children)), is_kept))
-        kept_olds = list(compress(olds, is_kept))
-        if not all(map(lt, kept_olds, kept_olds[1:])):
-            places = kept_olds = []  # reordered: all of the content is written anew
-        self._regions(element, span, children, tails, places, kept_olds, text, index, edits)
-        for child in filter(self._before.__contains__, map(children.__getitem__, places)):
+        was_at = {child: place for place, child in enumerate(before.children)}
+        # Each kept child: where it stands, and where it stood before.
+        kept = [(place, was_at[child]) for place, child in enumerate(children)
+                if child in was_at]
+        if any(old >= later for (_, old), (_, later) in pairwise(kept)):
+            kept = []  # reordered: all of the content is written anew
+        self._regions(element, span, children, tails, kept, text, index, edits)
+        for child in filter(self._before.__contains__, (children[place] for place, _ in kept)):
             self._element(child, text, index, edits)
 
     def _regions(self, element: etree._Element, span: Span, children: list[etree._Element],
-                 tails: list[str | None], places: list[int], olds: list[int],
+                 tails: list[str | None], kept: list[tuple[int, int]],
                  text: EditedText, index: SpanIndex, edits: list[Edit]) -> None:
         """An edit for each run of content between two kept children (or the start or end
         of the element) that the change made differ: a node put in or taken out there, or
-        the text before the run's first node (``places``, ``olds``: where each kept child
-        stands among ``children`` and stood before)."""
+        the text before the run's first node (``kept``: where each kept child stands among
+        ``children`` and stood before)."""
         before = self._before[element]
         for place, next_place in _changed_runs(
-                places, olds, tails, before.tails, element.text != before.text,
+                kept, tails, before.tails, element.text != before.text,
                 len(children), len(before.children)):
             lead = element.text if place < 0 else tails[place]
             # Only the bounds of a run that changed are read (the index may hold no more).
@@ -162,21 +161,20 @@ class TreeChange:
         return b"".join(written)
 
 
-def _changed_runs(places: list[int], olds: list[int], tails: list[str | None],
+def _changed_runs(kept: list[tuple[int, int]], tails: list[str | None],
                   tails_before: list[str | None], text_changed: bool, size: int,
                   size_before: int) -> list[tuple[int, int]]:
     """The runs of content between two kept children that differ, as the places of their
     bounds among the children (-1: the element's start; ``size``, ``size_before``: its end,
     now and before): a node put in or taken out between them, or the text before the run
-    (the tail of the kept child it starts at, or the element's text) changed. Compared a
-    list at a time: an element may hold thousands of children, most of them kept."""
-    starts, start_olds = [-1, *places], [-1, *olds]
-    ends, end_olds = [*places, size], [*olds, size_before]
-    moved = map(or_, map(ne, map(sub, ends, starts), repeat(1)),
-                map(ne, map(sub, end_olds, start_olds), repeat(1)))
-    retold = [text_changed, *map(ne, map(tails.__getitem__, places),
-                                 map(tails_before.__getitem__, olds))]
-    return [(starts[i], ends[i]) for i in compress(count(), map(or_, moved, retold))]
+    (the tail of the kept child it starts at, or the element's text) changed."""
+    bounds = [(-1, -1), *kept, (size, size_before)]
+    runs = []
+    for (start, was), (end, was_end) in pairwise(bounds):
+        retold = text_changed if start < 0 else tails[start] != tails_before[was]
+        if end - start != 1 or was_end - was != 1 or retold:
+            runs.append((start, end))
+    return runs
 
 
 def _prefixed_name(element: etree._Element, key: str) -> str | None:
