@@ -10,7 +10,6 @@ attributes, stripped texts and children, without the layout), holding nothing of
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 from typing import Protocol
 
 from lxml import etree
@@ -35,15 +34,6 @@ class Builder(Protocol):
               record: bool = True) -> etree._Element: ...
 
 
-@dataclass
-class Generating:
-    """A ROS 1 transmission (``source``) from which txtool generates exactly a ROS 2 element,
-    through ``forward``."""
-
-    source: Transmission
-    forward: Transmission
-
-
 def generated_from(component: etree._Element, moves: list[Move], document: str,
                    builder: Builder) -> list[Transmission] | None:
     """The ROS 1 transmissions from which txtool generates exactly ``component`` (holding
@@ -60,11 +50,10 @@ def generated_from(component: etree._Element, moves: list[Move], document: str,
     if len(plugins) != 1 or not plugins[0].text:
         return None
     dialect = detect_dialect(moves[0].old)
-    generating = [_generating(move, dialect, builder) for move in moves]
-    found = [g for g in generating if g is not None]
+    found = [g for g in (_generating(move, dialect, builder) for move in moves) if g]
     if len(found) < len(moves):
         return None
-    forward = [Move(m.old, f.forward, m.carried) for m, f in zip(moves, found, strict=True)]
+    forward = [Move(m.old, f, m.carried) for m, (_, f) in zip(moves, found, strict=True)]
     namespace = namespace_of(component)
     if any(namespace_of(m.old) != namespace for m in moves):
         return None  # txtool builds a block's transmissions in the block's namespace
@@ -74,13 +63,14 @@ def generated_from(component: etree._Element, moves: list[Move], document: str,
                           record=False, transmissions=False)
     if not same(built, component, tail=[m.old for m in moves]):
         return None
-    return [f.source for f in found]
+    return [source for source, _ in found]
 
 
-def _generating(move: Move, dialect: Dialect, builder: Builder) -> Generating | None:
-    """The ROS 1 transmission from which txtool generates exactly ``move.old``: the
-    conversion itself, or the same without the reduction it had to write (ROS 1 requires
-    one; ros2_control reads a missing one as 1.0)."""
+def _generating(move: Move, dialect: Dialect, builder: Builder
+                ) -> tuple[Transmission, Transmission] | None:
+    """The ROS 1 transmission from which txtool generates exactly ``move.old``, and what it
+    generates: the conversion itself, or the same without the reduction it had to write
+    (ROS 1 requires one; ros2_control reads a missing one as 1.0)."""
     t = move.new
     candidates = [t]
     if t.kind == "simple" and t.actuators and t.actuators[0].mechanical_reduction:
@@ -91,7 +81,7 @@ def _generating(move: Move, dialect: Dialect, builder: Builder) -> Generating | 
         built = builder.build(Move(move.old, forward, move.carried), "", "", move.old,
                               record=False)
         if same(built, move.old):
-            return Generating(candidate, forward)
+            return candidate, forward
     return None
 
 
