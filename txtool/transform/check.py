@@ -10,7 +10,7 @@ original's dialect and compared with it on what the original itself defines
 from __future__ import annotations
 
 from collections import deque
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from functools import cache
 from typing import Any
@@ -39,30 +39,17 @@ class Verdict:
 
 def round_trip(originals: Sequence[Transmission], written: etree._Element) -> Verdict:
     """Judge each of ``originals`` (the transmissions as read) against what ``written``
-    (the root of the converted document, as a parse of its bytes reads it) holds of it.
-    A custom type, or one the written document no longer holds, is not judged. Each written
-    transmission is judged as it is read and let go (the document is not held read whole);
-    what is said comes in the order of the originals."""
-    waiting: dict[tuple[str, bool], deque[int]] = {}  # the originals by name and custom type
-    for i, t in enumerate(originals):
-        waiting.setdefault((t.name, t.kind == "other"), deque()).append(i)
+    (the root of the converted document, as a parse of its bytes reads it) holds of it
+    (:func:`paired`). A custom type, or one the written document no longer holds, is not
+    judged; what is said comes in the order of the originals."""
     said: dict[int, Verdict] = {}
     blocks = cache(lambda: {e.get("name") for e in written.iter("{*}ros2_control")})
-    components: dict[etree._Element, Any] = {}
-    for element in transmission_elements(written):
-        component = enclosing_component(element)
-        if component not in components:
-            components.clear()  # a block's transmissions come one after another
-        out = read_transmission(element, None, components)
-        queue = waiting.get((out.name, out.kind == "other"))
-        if not queue:
-            continue
-        i = queue.popleft()  # same-named transmissions keep their order
+    for i, out, in_component in paired(originals, written):
         t = originals[i]
         if t.kind == "other":
             continue
         heard = Verdict()
-        _judge(t, Found(out, element), component is not None, heard, blocks)
+        _judge(t, out, in_component, heard, blocks)
         if heard.losses or heard.notes:
             said[i] = heard
     verdict = Verdict()
@@ -70,6 +57,27 @@ def round_trip(originals: Sequence[Transmission], written: etree._Element) -> Ve
         verdict.losses.extend(said[i].losses)
         verdict.notes.extend(said[i].notes)
     return verdict
+
+
+def paired(originals: Sequence[Transmission], written: etree._Element
+           ) -> Iterator[tuple[int, Found, bool]]:
+    """Each of ``originals`` that the document of root ``written`` holds: its index, what
+    ``written`` holds of it, and whether that stands in a ``<ros2_control>``. Paired by name
+    and by whether the type is custom, same-named ones in document order (the order a
+    conversion keeps among them); each written transmission is read as it comes and let go
+    (the document is not held read whole)."""
+    waiting: dict[tuple[str, bool], deque[int]] = {}
+    for i, t in enumerate(originals):
+        waiting.setdefault((t.name, t.kind == "other"), deque()).append(i)
+    components: dict[etree._Element, Any] = {}
+    for element in transmission_elements(written):
+        component = enclosing_component(element)
+        if component not in components:
+            components.clear()  # a block's transmissions come one after another
+        out = read_transmission(element, None, components)
+        queue = waiting.get((out.name, out.kind == "other"))
+        if queue:
+            yield queue.popleft(), Found(out, element), component is not None
 
 
 def _judge(t: Transmission, out: Found, in_component: bool, result: Verdict,
@@ -90,8 +98,6 @@ def _judge(t: Transmission, out: Found, in_component: bool, result: Verdict,
     for key, change in lost.items():
         result.losses.append(f"transmission '{t.name}' did not survive the round trip: "
                              f"{key}: {change}")
-
-
 
 
 def judge(before: Transmission, after: Transmission) -> dict[str, str]:

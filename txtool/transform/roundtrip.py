@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import hashlib
 import itertools
-from collections import deque
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from functools import cache
@@ -26,7 +25,7 @@ from txtool.io.xmlio import Source, parse_bytes, serialize
 from txtool.model.core import DIALECTS, Dialect, Transmission
 from txtool.model.robot import JointInfo, joint_elements, joint_info
 from txtool.model.semantics import listed_against_roles
-from txtool.transform.check import judge
+from txtool.transform.check import judge, paired
 from txtool.transform.convert import convert_source
 from txtool.transform.reversible import carries_originals
 from txtool.views.tables import FIELDS
@@ -149,24 +148,6 @@ def _groups(originals: list[Transmission]) -> dict[Dialect, list[Transmission]]:
             for start in DIALECTS}
 
 
-_Key = tuple[str, bool]
-
-
-def _by_name(source: Source) -> dict[_Key, deque[Transmission]]:
-    """Standard and custom transmissions by name; same-named ones in document order (the
-    order conversions keep among them)."""
-    found: dict[_Key, deque[Transmission]] = {}
-    for f in read_source(source, locate=False):
-        found.setdefault((f.transmission.name, f.transmission.kind == "other"), deque()).append(
-            f.transmission)
-    return found
-
-
-def _take(found: dict[_Key, deque[Transmission]], name: str) -> Transmission | None:
-    same = found.get((name, False))
-    return same.popleft() if same else None
-
-
 def _cycles(start: Dialect, first: Dialect, data: bytes, parsed: list[etree._ElementTree],
             ends: _Ends, joints: Mapping[str, JointInfo]
             ) -> dict[tuple[Dialect, ...], list[CycleRow]]:
@@ -178,7 +159,7 @@ def _cycles(start: Dialect, first: Dialect, data: bytes, parsed: list[etree._Ele
         return {}
     if not parsed:
         parsed.append(parse_bytes(data, ends.path, limit=None))
-    verdicts = _verdicts(ends.group, _by_name(Source(ends.path, data, parsed[0])), joints)
+    verdicts = _verdicts(ends.group, parsed[0].getroot(), joints)
     return {cycle: _rows(cycle, ends.group, ends.judged(data, cycle[2:], parsed), verdicts)
             for cycle in cycles}
 
@@ -209,7 +190,7 @@ class _Ends:
         key = (_digest(leg[0]), last)
         if key not in self.known:
             final, tree = self._convert(leg, last)
-            self.known[key] = _judge(self.group, _by_name(self._source(final, tree)))
+            self.known[key] = _judge(self.group, self._source(final, tree).root)
         return self.known[key]
 
     def _convert(self, leg: _Leg, target: Dialect) -> _Leg:
@@ -227,26 +208,25 @@ def _digest(data: bytes) -> bytes:
     return hashlib.sha256(data).digest()
 
 
-def _verdicts(group: list[Transmission], first_leg: dict[_Key, deque[Transmission]],
+def _verdicts(group: list[Transmission], first_leg: etree._Element,
               joints: Mapping[str, JointInfo]) -> list[str]:
-    """Whether each transmission's first conversion drives the actuators like the original
-    (once per first leg, before its cycles convert: the transmissions it holds are not
-    kept while they do)."""
+    """Whether each transmission's first conversion (the document of root ``first_leg``)
+    drives the actuators like the original (once per first leg, before its cycles convert:
+    the transmissions it holds are not kept while they do)."""
     from txtool.mechanics.equivalence import compare_pair
 
-    verdicts = []
-    for t in group:
-        converted = _take(first_leg, t.name)
-        verdicts.append(_verdict(None if converted is None else compare_pair(t, converted, joints)))
+    verdicts = ["n/a: not converted"] * len(group)
+    for i, converted, _ in paired(group, first_leg):
+        verdicts[i] = _verdict(compare_pair(group[i], converted.transmission, joints))
     return verdicts
 
 
-def _judge(group: list[Transmission], final: dict[_Key, deque[Transmission]]) -> _Judged:
-    """What each transmission of ``group`` lost in ``final`` (None: it is missing there)."""
-    judged: _Judged = []
-    for t in group:
-        back = _take(final, t.name)
-        judged.append(None if back is None else judge(t, back))
+def _judge(group: list[Transmission], final: etree._Element) -> _Judged:
+    """What each transmission of ``group`` lost in the document of root ``final`` (None: it
+    is missing there)."""
+    judged: _Judged = [None] * len(group)
+    for i, back, _ in paired(group, final):
+        judged[i] = judge(group[i], back.transmission)
     return judged
 
 
@@ -275,8 +255,6 @@ def _fields(lost: frozenset[str]) -> Mapping[str, bool]:
 
 
 def _verdict(row) -> str:
-    if row is None:
-        return "n/a: not converted"
     if row.status == "equivalent":
         return "yes"
     if row.status == "not loadable":
