@@ -13,9 +13,9 @@ from lxml import etree
 from tests.corpus import corpus_file, corpus_names
 from tests.hardening.fuzz_inputs import FuzzDocument, documents
 from txtool.io.xmlio import InputError, parse_bytes
+from txtool.lint.fixes import fix_tree, might_fix
 from txtool.rules import Rule, all_rules
-from txtool.transform.fixable import might_fix
-from txtool.transform.migrate import MigrateOptions, fix_tree, migrate_file
+from txtool.transform.migrate import MigrateOptions, migrate_file
 
 ROOT = Path(__file__).resolve().parents[2]
 FIXTURES = ROOT / "fixtures"

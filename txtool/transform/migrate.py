@@ -37,23 +37,19 @@ from txtool.io.xmlio import (
 )
 from txtool.lint.config import Overrides, Settings, SettingsCache
 from txtool.lint.discover import expand_paths
-from txtool.lint.read_fixes import fixes_read
-from txtool.lint.suppress import Suppressions
-from txtool.lint.suppress import parse as parse_suppressions
+from txtool.lint.fixes import fix_tree, fixes_read, might_fix
 from txtool.model.core import Dialect
 from txtool.rules import Rule, all_rules
 from txtool.transform.convert import DEFAULT_HARDWARE_PLUGIN, ConvertedDocument, convert_source
 from txtool.transform.edits.core import Edit, EditedText, compose
 from txtool.transform.edits.document import DocumentEdits, read_back
 from txtool.transform.edits.tree_edits import serialization
-from txtool.transform.fixable import might_fix
 from txtool.transform.linediff import unified_text
 from txtool.transform.next_steps import package_build_types, package_gazebo_plugins
 from txtool.transform.placement.macros import MacroCalls, calls_in_files
 from txtool.transform.reversible import MARK
 
 Mode = Literal["check", "diff", "write"]
-MAX_FIX_ROUNDS = 4
 
 
 @dataclass(frozen=True)
@@ -492,49 +488,6 @@ def _comment_nodes(tree: etree._ElementTree) -> list[etree._Comment]:
 
 def _comments(tree: etree._ElementTree) -> list[str | None]:
     return [node.text for node in _comment_nodes(tree)]
-
-
-# Fixes -----------------------------------------------------------------------------------------
-
-
-def fix_tree(tree: etree._ElementTree, rules: Sequence[Rule], data: bytes) -> dict[str, int]:
-    """Apply the fixes of ``rules`` until none finds anything more; counts by code.
-
-    Suppression comments in ``data`` (the text ``tree`` was parsed from) are honoured: a
-    ``disable-file`` directive turns a fix off, a line directive keeps it off the transmission
-    holding that line.
-    """
-    suppressions = parse_suppressions(data)
-    counts: dict[str, int] = {}
-    for _ in range(MAX_FIX_ROUNDS):
-        fixed = 0
-        for rule in rules:
-            count = _fix_one(tree.getroot(), rule, suppressions)
-            if count:
-                counts[rule.code] = counts.get(rule.code, 0) + count
-                fixed += count
-        if not fixed:
-            break
-    return counts
-
-
-def _fix_one(root: etree._Element, rule: Rule, suppressions: Suppressions) -> int:
-    fix = rule.fix
-    assert fix is not None
-    if not _mentions(suppressions, rule.code):
-        return fix(root)
-    return sum(fix(element) for element in transmission_elements(root)
-               if not _silenced(element, rule.code, suppressions))
-
-
-def _mentions(suppressions: Suppressions, code: str) -> bool:
-    return any(not d.codes or code in d.codes for d in suppressions.directives)
-
-
-def _silenced(element: etree._Element, code: str, suppressions: Suppressions) -> bool:
-    """Whether a directive covers ``code`` on any line of ``element`` (as originally parsed)."""
-    lines = {e.sourceline for e in element.iter() if e.sourceline is not None}
-    return suppressions.silences(code, lines or {0})
 
 
 # Diff ------------------------------------------------------------------------------------------
