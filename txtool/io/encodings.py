@@ -161,7 +161,7 @@ _LINE_END = re.compile(r"\r\n|\r|\n")
 class Lines(Sequence[str]):
     """The lines of a document's text, without their line breaks: the text once and where
     each line starts, a line cut out only when asked for (a list of the lines would hold a
-    string object for each, about twice the text again).
+    string object for each, which for lines of a tag or two outweighs the text itself).
 
     Split where libxml2 counts lines (see :func:`parsing_form`), not at the other breaks
     ``str.splitlines`` knows (form feed, NEL, U+2028), which XML text may hold.
