@@ -11,16 +11,19 @@ import gzip
 import json
 import os
 import random
+import re
 from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from hypothesis import given
+from hypothesis import strategies as st
 from lxml import etree
 
 from tests.corpus import corpus_dir, corpus_file
 from tests.hardening.hostile_inputs import one_line_error, robot, run
 from txtool.cli import cli
-from txtool.io.encodings import document_text
+from txtool.io.encodings import document_text, text_lines
 from txtool.io.xmlio import parse_bytes
 
 # Named, not the default placeholder (which a written conversion points out): what these
@@ -102,6 +105,15 @@ def test_document_text_follows_the_mark_or_declaration():
     for name, data in ENCODINGS.items():
         assert document_text(data) == GERMAN.replace('"1.0"?>', _declared(name), 1), name
     assert document_text(b"<r>\xff</r>") == "<r>\ufffd</r>"
+
+
+@given(st.text(alphabet="a <>\r\n\x0c\x85\u2028", max_size=40))
+def test_lines_are_cut_where_libxml2_counts_lines(text):
+    """At CR LF, CR and LF alone (not at form feed, NEL or U+2028, which XML text may hold),
+    each line without its break, as a finding's line and column count them."""
+    lines = text_lines(text.encode("utf-8"))
+    assert list(lines) == re.split(r"\r\n|\r|\n", text)
+    assert [lines.text[slice(*lines.span(n))] for n in range(len(lines))] == list(lines)
 
 
 def _declared(name: str) -> str:

@@ -126,6 +126,42 @@ def test_ros2_p1_is_held_to_ros2_control_but_for_its_role_elements(run, here):
     assert code == 1 and "TX105 invalid-number" in err
 
 
+P1_ALREADY = CLEAN.replace("</robot>", """\
+  <ros2_control name="Arm" type="system">
+    <hardware><plugin>arm/Hardware</plugin></hardware>
+    <joint name="j2"><command_interface name="effort"/></joint>
+    <transmission name="t2">
+      <plugin>transmission_interface/SimpleTransmission</plugin>
+      <joint name="j2"><role>joint1</role><mechanical_reduction>5</mechanical_reduction></joint>
+      <actuator name="m2"><role>actuator1</role></actuator>
+    </transmission>
+  </ros2_control>
+</robot>""")
+
+
+def test_ros2_p1_role_elements_the_input_had_are_said_as_the_inputs(run, here):
+    """The input's own Proposal 1 transmission keeps its two findings, said as the input's;
+    the <role> elements the conversion wrote are the form asked for."""
+    (here / "arm.urdf").write_text(P1_ALREADY.replace("command_interface", "state_interface"))
+    code, out, err = run("convert", "arm.urdf", "--to", "ros2-p1")
+    joint, actuator, form = err.splitlines()[:3]
+    kept = _line_of(out, '<joint name="j2"><role>')
+    assert code == 0 and _line_of(out, '<actuator name="m2"><role>') == kept + 1
+    assert joint.startswith(f"warning: line {kept}: TX303 wrong-dialect-tag for ros2_control "
+                            "(humble, jazzy, kilted, rolling): joint 'j2' of transmission 't2' "
+                            "gives its role as a <role> element")
+    assert actuator.startswith(f"warning: line {kept + 1}: TX303 wrong-dialect-tag for "
+                               "ros2_control (humble, jazzy, kilted, rolling): actuator 'm2' of "
+                               "transmission 't2' gives its role as a <role> element")
+    assert joint.endswith("(the input has it already)")
+    assert actuator.endswith("(the input has it already)")
+    written = _line_of(out, "<role>")
+    assert written != kept
+    assert form.startswith("warning: ros2-p1 is not what ros2_control reads: it throws \"no "
+                           "attribute 'role' in 'joint' tag\" on its <role> elements (TX303, "
+                           f"first at line {written});")
+
+
 def test_migrate_refuses_to_write_what_the_target_refuses(run, here):
     (here / "arm.urdf").write_text(UNDERFLOW)
     code, out, err = run("migrate", "--write", "--to", "ros2-p2", "arm.urdf")

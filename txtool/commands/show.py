@@ -68,8 +68,8 @@ def command(path, output_format, effective, actuator_limits, stdin_filename, ros
                  "velocity": lim.velocity, "effort": lim.effort}
                 for t, a, lim in limits
             ]
-        del source, found  # the document goes before its report is written
-        click.echo(json.dumps(data, indent=2))
+        del source, found, transmissions  # the document goes before its report is written
+        _echo_json(data)
         return 0
     from txtool.views.render import console as make_console
     from txtool.views.render import limits_table, print_table, transmissions_table
@@ -93,6 +93,23 @@ def command(path, output_format, effective, actuator_limits, stdin_filename, ros
     if limits is not None:
         print_table(console, limits_table(limits))
     return 0
+
+
+_PIECES = 8192  # of the encoder's, written at a time
+
+
+def _echo_json(data: dict) -> None:
+    """``click.echo(json.dumps(data, indent=2))``, written a few thousand pieces at a time:
+    with an indent, ``json.dumps`` joins a list of every piece of the text (a few for each
+    value), which outweighs the data it encodes."""
+    pieces: list[str] = []
+    for piece in json.JSONEncoder(indent=2).iterencode(data):
+        pieces.append(piece)
+        if len(pieces) == _PIECES:
+            click.echo("".join(pieces), nl=False)
+            pieces.clear()
+    pieces.append("\n")
+    click.echo("".join(pieces), nl=False)
 
 
 def _verdicts(source, transmissions, ros_distro, config_path) -> dict[str, list[str]]:

@@ -11,8 +11,10 @@ from __future__ import annotations
 import codecs
 import io
 import re
+from array import array
+from collections.abc import Sequence
 from functools import lru_cache
-from typing import NamedTuple
+from typing import NamedTuple, overload
 
 _MARKS = (  # UTF-32 first: its little-endian mark starts like UTF-16's
     (codecs.BOM_UTF32_LE, "utf-32-le"), (codecs.BOM_UTF32_BE, "utf-32-be"),
@@ -156,14 +158,57 @@ def document_text(data: bytes) -> str:
 _LINE_END = re.compile(r"\r\n|\r|\n")
 
 
-@lru_cache(maxsize=2)
-def text_lines(data: bytes) -> list[str]:
-    """The lines of a document as written (shared by everything that places findings in it).
+class Lines(Sequence[str]):
+    """The lines of a document's text, without their line breaks: the text once and where
+    each line starts, a line cut out only when asked for (a list of the lines would hold a
+    string object for each, which for lines of a tag or two outweighs the text itself).
 
     Split where libxml2 counts lines (see :func:`parsing_form`), not at the other breaks
     ``str.splitlines`` knows (form feed, NEL, U+2028), which XML text may hold.
     """
-    return _LINE_END.split(document_text(data))
+
+    __slots__ = ("text", "_starts")
+
+    def __init__(self, text: str) -> None:
+        self.text = text
+        starts = array("l", [0])
+        starts.extend(match.end() for match in _LINE_END.finditer(text))
+        self._starts = starts
+
+    def __len__(self) -> int:
+        return len(self._starts)
+
+    @overload
+    def __getitem__(self, index: int) -> str: ...
+    @overload
+    def __getitem__(self, index: slice) -> list[str]: ...
+    def __getitem__(self, index: int | slice) -> str | list[str]:
+        if isinstance(index, slice):
+            return [self[each] for each in range(*index.indices(len(self)))]
+        start, end = self.span(index)
+        return self.text[start:end]
+
+    def span(self, index: int) -> tuple[int, int]:
+        """Where line ``index`` (0-based, as for ``[]``) starts and ends in :attr:`text`, its
+        line break left out."""
+        count = len(self._starts)
+        if index < 0:
+            index += count
+        if not 0 <= index < count:
+            raise IndexError("line index out of range")
+        start = self._starts[index]
+        if index + 1 == count:
+            return start, len(self.text)
+        end = self._starts[index + 1] - 1  # the last character of the break
+        if end > start and self.text[end] == "\n" and self.text[end - 1] == "\r":
+            end -= 1
+        return start, end
+
+
+@lru_cache(maxsize=2)
+def text_lines(data: bytes) -> Lines:
+    """The lines of a document as written (shared by everything that places findings in it)."""
+    return Lines(document_text(data))
 
 
 _FITTING = {  # the names (lower case, without - and _) a declaration may give each encoding

@@ -20,7 +20,7 @@ from collections.abc import Callable, Iterable
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
-from txtool.io.encodings import document_text, text_lines
+from txtool.io.encodings import Lines, document_text, text_lines
 from txtool.io.load import needs_expansion
 from txtool.io.xmlio import (
     InputError,
@@ -292,17 +292,17 @@ def _pipeline(path: str, line: int, column: int, code: str, message: str) -> Pro
 class _Lines:
     """The document's lines, and where the text of each ends (worked out once per line)."""
 
-    __slots__ = ("text", "_text_ends")
+    __slots__ = ("lines", "_text_ends")
 
-    def __init__(self, text: list[str]) -> None:
-        self.text = text
+    def __init__(self, lines: Lines) -> None:
+        self.lines = lines
         self._text_ends: dict[int, int] = {}
 
     def text_end(self, line: int) -> int:
         """Characters up to the last one that is not white space on ``line`` (1-based)."""
         end = self._text_ends.get(line)
         if end is None:
-            end = self._text_ends[line] = len(self.text[line - 1].rstrip())
+            end = self._text_ends[line] = len(self.lines[line - 1].rstrip())
         return end
 
 
@@ -311,12 +311,13 @@ def _end_column(problem: Problem, lines: _Lines) -> int:
 
     Read in place, never by copying the rest of the line: a document written on one line
     holds every problem on that line."""
-    if not 1 <= problem.line <= len(lines.text):
+    if not 1 <= problem.line <= len(lines.lines):
         return problem.column + 1
     start = problem.column - 1
-    match = _TAG_END.match(lines.text[problem.line - 1], start)
+    first, last = lines.lines.span(problem.line - 1)
+    match = _TAG_END.match(lines.lines.text, first + start, last)
     if match:
-        return match.end() + 1
+        return match.end() - first + 1
     end = lines.text_end(problem.line)
     return end + 1 if end > start else problem.column + 1
 

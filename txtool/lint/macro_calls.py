@@ -51,7 +51,7 @@ class Tracer:
         self.locator = locator
         self.path = path
         self._options = options or XacroOptions()
-        self._files: dict[str, tuple[etree._Element, list[str]] | None] = {}
+        self._files: dict[str, tuple[etree._Element, Sequence[str]] | None] = {}
         self._definitions = self._find_definitions()
         self._pools: Pools = {}
         locator.add_macros({name: body for name, (_, body) in self._definitions.items()})
@@ -128,7 +128,7 @@ class Tracer:
                 break
         return at
 
-    def _lines(self, where: str) -> list[str]:
+    def _lines(self, where: str) -> Sequence[str]:
         if where == self.path:
             return self.locator.lines
         known = self._files.get(os.path.realpath(where))

@@ -27,7 +27,7 @@ class Note(NamedTuple):
     message: str
 
 
-@dataclass(frozen=True, order=True)
+@dataclass(frozen=True, order=True, slots=True)  # slots: a document may have thousands
 class Problem:
     """A finding at a 1-based ``line:column`` of ``path``.
 
