@@ -15,7 +15,7 @@ from functools import cached_property, lru_cache
 
 from lxml import etree
 
-from txtool.io.encodings import text_lines
+from txtool.io.encodings import Lines, text_lines
 from txtool.io.xmlio import Source, is_xacro_element, local
 
 
@@ -35,7 +35,7 @@ class Locator:
         self._positions: dict[etree._Element, Position] = {}
 
     @cached_property
-    def lines(self) -> list[str]:
+    def lines(self) -> Lines:
         return text_lines(self.source.data)
 
     def column(self, line: int, tag: str, name: str | None = None) -> int:
