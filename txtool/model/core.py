@@ -225,7 +225,10 @@ def kind_of(type_string: str) -> Kind:
 
 def standard_type(kind: Kind) -> str:
     """The plugin name of a standard kind, as both ROS loaders register it."""
-    for short, k in STANDARD_TYPES.items():
-        if k == kind:
-            return TYPE_PREFIX + short
-    raise ValueError(f"kind {kind!r} has no standard type")
+    standard = _STANDARD_TYPE.get(kind)
+    if standard is None:
+        raise ValueError(f"kind {kind!r} has no standard type")
+    return standard
+
+
+_STANDARD_TYPE = {kind: TYPE_PREFIX + short for short, kind in STANDARD_TYPES.items()}
