@@ -180,12 +180,15 @@ def detect_dialect(element: etree._Element,
     if kids is None:
         kids = child_index(element)
     members = (*kids.get("joint", ()), *kids.get("actuator", ()))
-    role_attributes = any(m.get("role") is not None for m in members)
-    if not (role_attributes or "plugin" in kids or enclosing_component(element) is not None):
+    for member in members:
+        if member.get("role") is not None:
+            return "ros2-p2"
+    if "plugin" not in kids and enclosing_component(element) is None:
         return "ros1"
-    if role_attributes:
-        return "ros2-p2"
-    return "ros2-p1" if any(children(m, "role") for m in members) else "ros2-p2"
+    for member in members:
+        if children(member, "role"):
+            return "ros2-p1"
+    return "ros2-p2"
 
 
 def read_transmission(

@@ -129,9 +129,14 @@ def _retext(number: Number | None, parse: Callable[[str | None], float | None]) 
 
 
 def _ordered(members: tuple[Member, ...], roles: tuple[str, str]) -> tuple[Member, ...] | None:
-    by_role = {m.role: m for m in members}
-    if len(members) == 2 and set(by_role) == set(roles):
-        return tuple(by_role[r] for r in roles)
+    """The two ``members`` in the order of ``roles``, where they have those roles."""
+    if len(members) != 2:
+        return None
+    first, second = members
+    if (first.role, second.role) == roles:
+        return members
+    if (second.role, first.role) == roles:
+        return second, first
     return None
 
 
@@ -172,7 +177,7 @@ def _interfaces_from_actuators(t: Transmission, result: Translation) -> Transmis
     gazebo_ros_control still reads (gazebo_ros_control/src/default_robot_hw_sim.cpp,
     ``initSim``: "The <hardware_interface> element of tranmission ... should be nested inside
     the <joint> element, not <actuator>"), as TX301's fix moves it."""
-    named = {tuple(i.strip() for i in a.interfaces) for a in t.actuators if a.interfaces}
+    named = {tuple([i.strip() for i in a.interfaces]) for a in t.actuators if a.interfaces}
     if len(named) != 1 or all(j.interfaces for j in t.joints):
         return t
     interfaces = next(a.interfaces for a in t.actuators if a.interfaces)
