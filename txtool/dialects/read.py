@@ -292,17 +292,33 @@ def _read_ros1(element: etree._Element, locator: Locator | None,
 
 
 def _ros1_member(element: etree._Element, locator: Locator | None) -> Member:
-    kids = child_index(element)
-    declared = kids.get("hardwareInterface")
-    role = kids.get("role")
-    reduction = kids.get("mechanicalReduction")
-    offset = kids.get("offset")
+    role: str | None = None
+    reduction: Number | None = None
+    offset: Number | None = None
+    interfaces: list[str] = []
+    for child in element[:]:  # one pass: the first role, reduction and offset, each interface
+        tag = child.tag
+        if tag.__class__ is not str:
+            continue  # a comment or processing instruction
+        tag = tag.rpartition("}")[2]
+        if tag == "hardwareInterface":
+            text = (child.text or "").strip()
+            if text:
+                interfaces.append(text)
+        elif tag == "mechanicalReduction":
+            if reduction is None:
+                reduction = _ros1_number(child)
+        elif tag == "offset":
+            if offset is None:
+                offset = _ros1_number(child)
+        elif tag == "role" and role is None:
+            role = (child.text or "").strip()
     return _new_member(
         name=element.get("name", ""),
-        role=(role[0].text or "").strip() if role else None,
-        mechanical_reduction=_ros1_number(reduction[0]) if reduction else None,
-        offset=_ros1_number(offset[0]) if offset else None,
-        interfaces=_stripped_texts(declared) if declared else (),
+        role=role,
+        mechanical_reduction=reduction,
+        offset=offset,
+        interfaces=tuple(interfaces),
         location=_location(element, locator) if locator is not None else None,
     )
 
@@ -321,12 +337,6 @@ def _ros1_number_of(text: str) -> Number:
 @lru_cache(maxsize=4096)
 def _ros2_number_of(text: str) -> Number:
     return _new_number(value=parse_ros2(text), text=text)
-
-
-def _stripped_texts(elements: list[etree._Element]) -> tuple[str, ...]:
-    """The texts of ``elements``, stripped, without the empty ones."""
-    texts = [(e.text or "").strip() for e in elements]
-    return tuple([text for text in texts if text])
 
 
 def _read_ros2(
@@ -374,23 +384,33 @@ def _ros2_number(found: list[etree._Element]) -> Number:
 def _ros2_member(
     element: etree._Element, locator: Locator | None, component: Declarations | None
 ) -> Member:
-    kids = child_index(element)
+    role_element: etree._Element | None = None
+    reductions: list[etree._Element] = []
+    offsets: list[etree._Element] = []
+    for child in element[:]:  # one pass: the first <role>, each reduction and offset
+        tag = child.tag
+        if tag.__class__ is not str:
+            continue  # a comment or processing instruction
+        tag = tag.rpartition("}")[2]
+        if tag == "mechanical_reduction":
+            reductions.append(child)
+        elif tag == "offset":
+            offsets.append(child)
+        elif tag == "role" and role_element is None:
+            role_element = child
     role = element.get("role")
     if role is not None:
         role = role.strip(C_SPACE)  # component_parser.cpp get_attribute_value strips
-    else:
-        role_text = _first_text(kids, "role")
-        role = role_text.strip() if role_text is not None else None
+    elif role_element is not None:
+        role = (role_element.text or "").strip()
     name = element.get("name", "").strip(C_SPACE)
     commands, states = component.interfaces(name) if component is not None else _UNDECLARED
-    reduction = kids.get("mechanical_reduction")
-    offset = kids.get("offset")
     read_only = element.get("read_only")
     return _new_member(
         name=name,
         role=role,
-        mechanical_reduction=_ros2_number(reduction) if reduction else None,
-        offset=_ros2_number(offset) if offset else None,
+        mechanical_reduction=_ros2_number(reductions) if reductions else None,
+        offset=_ros2_number(offsets) if offsets else None,
         interfaces=commands,
         state_interfaces=states,
         read_only=read_only is not None and read_only.strip(C_SPACE).lower() == "true",
