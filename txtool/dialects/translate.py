@@ -159,8 +159,8 @@ def _to_ros2(t: Transmission, target: Dialect) -> Translation:
         joints, actuators = _simple_to_ros2(t, result)
     else:
         joints, actuators = _order_coupled(t, result)
-        joints = tuple(_ros2_joint(j, result) for j in joints)
-        actuators = tuple(_ros2_actuator(a, result) for a in actuators)
+        joints = tuple([_ros2_joint(j, result) for j in joints])
+        actuators = tuple([_ros2_actuator(a, result) for a in actuators])
     result.transmission = replace(
         t,
         type=standard_type(t.kind),
@@ -206,10 +206,10 @@ def _simple_to_ros2(t: Transmission, result: Translation) -> tuple[tuple[Member,
         moved = _retext(reduction, parse_ros2) if index == 0 else None
         joints.append(_ros2_joint(joint, result, mechanical_reduction=moved,
                                   role=joint.role or "joint1"))
-    actuators = tuple(
+    actuators = tuple([
         _ros2_actuator(a, result, mechanical_reduction=None, role=a.role or "actuator1")
         for a in t.actuators
-    )
+    ])
     return tuple(joints), actuators
 
 
@@ -271,8 +271,8 @@ def _to_ros1(t: Transmission) -> Translation:
         joints, actuators = _simple_to_ros1(t, result)
     else:
         joints, actuators = _order_coupled(t, result)
-        joints = tuple(_ros1_joint(j, result) for j in joints)
-        actuators = tuple(_ros1_actuator(a, result, required=True) for a in actuators)
+        joints = tuple([_ros1_joint(j, result) for j in joints])
+        actuators = tuple([_ros1_actuator(a, result, required=True) for a in actuators])
     for name, value in t.parameters:
         result.losses.append(f"transmission '{t.name}': <param name=\"{name}\"> {value} has no "
                              "place in ROS 1")
@@ -311,8 +311,8 @@ def _simple_to_ros1(t: Transmission, result: Translation) -> tuple[tuple[Member,
             f"transmission '{t.name}': no actuator; wrote 'actuator1' as ros2_control names it"
         )
         actuators.append(Member(name="actuator1", mechanical_reduction=reduction))
-    joints = tuple(_ros1_joint(j, result, mechanical_reduction=None,
-                               role=_unless(j.role, "joint1")) for j in t.joints)
+    joints = tuple([_ros1_joint(j, result, mechanical_reduction=None,
+                                role=_unless(j.role, "joint1")) for j in t.joints])
     return joints, tuple(actuators)
 
 
