@@ -165,6 +165,12 @@ def test_a_checked_document_is_freed_without_the_garbage_collector(name: str) ->
      '</p:macro></robot>', ["a", "b"], ["a"]),
     ('<robot><transmissions/><transmission name="a"/></robot>', ["a"], ["a"]),
     ('<robot><m><transmission name="a"/></m></robot>', ["a"], []),
+    # several under one parent: inside a transmission (none of them), or not (each)
+    ('<robot><transmission name="a"><m><transmission name="n"/><transmission name="o"/></m>'
+     '</transmission><m><transmission name="b"/><transmission name="c"/></m></robot>',
+     ["a", "b", "c"], ["a"]),
+    ('<robot><ros2_control name="x"><transmission name="a"/><transmission name="b"/>'
+     '</ros2_control></robot>', ["a", "b"], []),
 ])
 @pytest.mark.parametrize("encoding", ["utf-8", "utf-16"])
 def test_transmissions_found_and_those_at_the_root(xml, found, at_root, encoding):

@@ -27,7 +27,7 @@ def build(
 
 def pretty(element: etree._Element, indent: str, step: str) -> None:
     """Indent ``element``'s descendants; leaf text is left alone."""
-    children = list(element)
+    children = element[:]
     if not children:
         return
     inner = "\n" + indent + step

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import TYPE_CHECKING, Any
 
 from lxml import etree
@@ -30,7 +31,7 @@ from txtool.model.core import (
     replace,
 )
 from txtool.model.numbers import C_SPACE, parse_ros1, parse_ros2
-from txtool.model.robot import ComponentJoint, ancestor, child_index, children
+from txtool.model.robot import ancestor, child_index, children
 
 if TYPE_CHECKING:
     from txtool.io.locate import Locator
@@ -42,38 +43,48 @@ _new_member = builder(Member)
 _new_number = builder(Number)
 
 
+_Interfaces = tuple[tuple[str, ...], tuple[str, ...]]  # command and state interface names
+_UNDECLARED: _Interfaces = ((), ())
+
+
 class Declarations:
-    """What the reader asks of a ``<ros2_control>``: its name and the declaration of a joint
-    (the first of a repeated name, as :func:`~txtool.model.robot.component_of` keeps it),
-    each joint read when it is asked for: a block generated for thousands of transmissions
-    is read back one member at a time."""
+    """What the reader asks of a ``<ros2_control>``: its name and the interfaces a joint is
+    declared with (the first of a repeated name, as :func:`~txtool.model.robot.component_of`
+    keeps it), each joint read when it is asked for: a block generated for thousands of
+    transmissions is read back one member at a time."""
 
     def __init__(self, element: etree._Element) -> None:
         self.name = element.get("name", "")
         self._element = element
         self._index: dict[str, etree._Element] | None = None
-        self._read: dict[str, ComponentJoint | None] = {}
+        self._read: dict[str, _Interfaces] = {}
 
-    def joint(self, name: str) -> ComponentJoint | None:
-        if name in self._read:
-            return self._read[name]
+    def interfaces(self, name: str) -> _Interfaces:
+        """The command and state interfaces of joint ``name``; none where it is undeclared."""
+        read = self._read.get(name)
+        if read is not None:
+            return read
         if self._index is None:
             self._index = {}
             for declared in children(self._element, "joint"):
                 # the parser strips names (component_parser.cpp get_attribute_value)
                 self._index.setdefault(declared.get("name", "").strip(C_SPACE), declared)
         element = self._index.get(name)
-        self._read[name] = joint = None if element is None else ComponentJoint(
-            name=name,
-            command_interfaces=_names(children(element, "command_interface")),
-            state_interfaces=_names(children(element, "state_interface")),
-            line=element.sourceline or 0,
-        )
-        return joint
+        self._read[name] = read = _UNDECLARED if element is None else _declared(element)
+        return read
 
 
-def _names(elements: list[etree._Element]) -> tuple[str, ...]:
-    return tuple([e.get("name", "").strip(C_SPACE) for e in elements])
+def _declared(element: etree._Element) -> _Interfaces:
+    commands, states = [], []
+    for child in element[:]:  # one pass: a declaration has a few interfaces and nothing else
+        tag = child.tag
+        if tag.__class__ is str:  # not a comment or processing instruction
+            tag = tag.rpartition("}")[2]
+            if tag == "command_interface":
+                commands.append(child.get("name", "").strip(C_SPACE))
+            elif tag == "state_interface":
+                states.append(child.get("name", "").strip(C_SPACE))
+    return tuple(commands), tuple(states)
 
 
 @dataclass(frozen=True)
@@ -135,17 +146,27 @@ def _found(root: etree._Element, candidates: Iterable[etree._Element] | None
         candidates = list(root.iter("{*}transmission"))
         if candidates == root.findall("{*}transmission"):
             return candidates, True
+    nested: dict[etree._Element, bool] = {}  # by parent: transmissions share a few parents
     for element in root.iter("{*}transmission") if candidates is None else candidates:
-        if element.getparent() is top:
+        parent = element.getparent()
+        if parent is top:
             if not in_root:
                 found.append(element)
-        elif not _inside_transmission(element):
+            continue
+        inside = nested.get(parent)
+        if inside is None:
+            inside = nested[parent] = _is_or_inside_transmission(parent)
+        if not inside:
             found.append(element)
     return found, False
 
 
-def _inside_transmission(element: etree._Element) -> bool:
-    return ancestor(element, "transmission") is not None
+def _is_or_inside_transmission(element: etree._Element | None) -> bool:
+    if element is None:
+        return False
+    tag = element.tag
+    return (tag == "transmission" or tag.endswith("}transmission")
+            or ancestor(element, "transmission") is not None)
 
 
 def enclosing_component(element: etree._Element) -> etree._Element | None:
@@ -159,12 +180,15 @@ def detect_dialect(element: etree._Element,
     if kids is None:
         kids = child_index(element)
     members = (*kids.get("joint", ()), *kids.get("actuator", ()))
-    role_attributes = any(m.get("role") is not None for m in members)
-    if not (role_attributes or "plugin" in kids or enclosing_component(element) is not None):
+    for member in members:
+        if member.get("role") is not None:
+            return "ros2-p2"
+    if "plugin" not in kids and enclosing_component(element) is None:
         return "ros1"
-    if role_attributes:
-        return "ros2-p2"
-    return "ros2-p1" if any(children(m, "role") for m in members) else "ros2-p2"
+    for member in members:
+        if children(member, "role"):
+            return "ros2-p1"
+    return "ros2-p2"
 
 
 def read_transmission(
@@ -268,30 +292,51 @@ def _read_ros1(element: etree._Element, locator: Locator | None,
 
 
 def _ros1_member(element: etree._Element, locator: Locator | None) -> Member:
-    kids = child_index(element)
-    declared = kids.get("hardwareInterface")
-    role = kids.get("role")
-    reduction = kids.get("mechanicalReduction")
-    offset = kids.get("offset")
+    role: str | None = None
+    reduction: Number | None = None
+    offset: Number | None = None
+    interfaces: list[str] = []
+    for child in element[:]:  # one pass: the first role, reduction and offset, each interface
+        tag = child.tag
+        if tag.__class__ is not str:
+            continue  # a comment or processing instruction
+        tag = tag.rpartition("}")[2]
+        if tag == "hardwareInterface":
+            text = (child.text or "").strip()
+            if text:
+                interfaces.append(text)
+        elif tag == "mechanicalReduction":
+            if reduction is None:
+                reduction = _ros1_number(child)
+        elif tag == "offset":
+            if offset is None:
+                offset = _ros1_number(child)
+        elif tag == "role" and role is None:
+            role = (child.text or "").strip()
     return _new_member(
         name=element.get("name", ""),
-        role=(role[0].text or "").strip() if role else None,
-        mechanical_reduction=_ros1_number(reduction[0]) if reduction else None,
-        offset=_ros1_number(offset[0]) if offset else None,
-        interfaces=_stripped_texts(declared) if declared else (),
+        role=role,
+        mechanical_reduction=reduction,
+        offset=offset,
+        interfaces=tuple(interfaces),
         location=_location(element, locator) if locator is not None else None,
     )
 
 
 def _ros1_number(element: etree._Element) -> Number:
-    text = element.text or ""
+    return _ros1_number_of(element.text or "")
+
+
+# One value for each text (the models are immutable): a document writes its numbers with a
+# few texts, which these read once.
+@lru_cache(maxsize=4096)
+def _ros1_number_of(text: str) -> Number:
     return _new_number(value=parse_ros1(text), text=text)
 
 
-def _stripped_texts(elements: list[etree._Element]) -> tuple[str, ...]:
-    """The texts of ``elements``, stripped, without the empty ones."""
-    texts = [(e.text or "").strip() for e in elements]
-    return tuple([text for text in texts if text])
+@lru_cache(maxsize=4096)
+def _ros2_number_of(text: str) -> Number:
+    return _new_number(value=parse_ros2(text), text=text)
 
 
 def _read_ros2(
@@ -317,7 +362,7 @@ def _read_ros2(
         kind=kind,
         joints=tuple([_ros2_member(j, locator, component) for j in kids.get("joint", ())]),
         actuators=tuple([_ros2_member(a, locator, None) for a in kids.get("actuator", ())]),
-        parameters=_parameters(kids),
+        parameters=_parameters(kids) if "param" in kids else (),
         dialect=dialect,
         location=_location(element, locator) if locator is not None else None,
         ros2_control=component.name if component is not None else None,
@@ -325,37 +370,50 @@ def _read_ros2(
     )
 
 
-def _ros2_number(kids: dict[str, list[etree._Element]], name: str) -> Number | None:
-    # ros2_control takes the first child of that name whose GetText() is not null, and its
-    # default where that text does not convert (component_parser.cpp get_parameter_value_or).
-    found = kids.get(name, ())
+def _ros2_number(found: list[etree._Element]) -> Number:
+    """The number of the ``found`` children of one name, as ros2_control takes it: the first
+    whose GetText() is not null, and its default where that text does not convert
+    (component_parser.cpp get_parameter_value_or)."""
     for child in found:
         text = get_text(child)
         if text is not None:
-            return _new_number(value=parse_ros2(text), text=text)
-    return _new_number(value=None, text="") if found else None
+            return _ros2_number_of(text)
+    return _ros2_number_of("")  # none: the default (a value of None, as "" reads)
 
 
 def _ros2_member(
     element: etree._Element, locator: Locator | None, component: Declarations | None
 ) -> Member:
-    kids = child_index(element)
+    role_element: etree._Element | None = None
+    reductions: list[etree._Element] = []
+    offsets: list[etree._Element] = []
+    for child in element[:]:  # one pass: the first <role>, each reduction and offset
+        tag = child.tag
+        if tag.__class__ is not str:
+            continue  # a comment or processing instruction
+        tag = tag.rpartition("}")[2]
+        if tag == "mechanical_reduction":
+            reductions.append(child)
+        elif tag == "offset":
+            offsets.append(child)
+        elif tag == "role" and role_element is None:
+            role_element = child
     role = element.get("role")
     if role is not None:
         role = role.strip(C_SPACE)  # component_parser.cpp get_attribute_value strips
-    else:
-        role_text = _first_text(kids, "role")
-        role = role_text.strip() if role_text is not None else None
+    elif role_element is not None:
+        role = (role_element.text or "").strip()
     name = element.get("name", "").strip(C_SPACE)
-    declared = component.joint(name) if component is not None else None
+    commands, states = component.interfaces(name) if component is not None else _UNDECLARED
+    read_only = element.get("read_only")
     return _new_member(
         name=name,
         role=role,
-        mechanical_reduction=_ros2_number(kids, "mechanical_reduction"),
-        offset=_ros2_number(kids, "offset"),
-        interfaces=declared.command_interfaces if declared is not None else (),
-        state_interfaces=declared.state_interfaces if declared is not None else (),
-        read_only=(element.get("read_only") or "").strip(C_SPACE).lower() == "true",
+        mechanical_reduction=_ros2_number(reductions) if reductions else None,
+        offset=_ros2_number(offsets) if offsets else None,
+        interfaces=commands,
+        state_interfaces=states,
+        read_only=read_only is not None and read_only.strip(C_SPACE).lower() == "true",
         location=_location(element, locator) if locator is not None else None,
     )
 

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import Any
 
 from txtool.model.core import Dialect, Member, Number, Transmission, replace, standard_type
@@ -42,6 +43,7 @@ def family(dialect: Dialect) -> str:
     return "ros1" if dialect == "ros1" else "ros2"
 
 
+@lru_cache(maxsize=256)  # a document spells its interfaces a few ways: each member asks
 def interface_kind(name: str) -> str | None:
     """``hardware_interface/BiDirectionalPositionJointInterface`` -> ``position``."""
     short = name.strip().rsplit("/", 1)[-1]
@@ -66,6 +68,7 @@ COMBINED = {
 }
 
 
+@lru_cache(maxsize=256)
 def combined_kinds(name: str) -> tuple[str, ...] | None:
     """``hardware_interface/PosVelJointInterface`` -> ``("position", "velocity")``."""
     return COMBINED.get(name.strip().rsplit("/", 1)[-1])
@@ -80,6 +83,7 @@ def command_kinds(name: str) -> tuple[str, ...]:
     return (kind,) if kind in ("position", "velocity", "effort") else ()
 
 
+@lru_cache(maxsize=256)
 def ros2_interfaces(ros1_names: tuple[str, ...]) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """Command and state interfaces of a ros2_control joint for ROS 1 hardware interfaces."""
     commands: list[str] = []
@@ -125,9 +129,14 @@ def _retext(number: Number | None, parse: Callable[[str | None], float | None]) 
 
 
 def _ordered(members: tuple[Member, ...], roles: tuple[str, str]) -> tuple[Member, ...] | None:
-    by_role = {m.role: m for m in members}
-    if len(members) == 2 and set(by_role) == set(roles):
-        return tuple(by_role[r] for r in roles)
+    """The two ``members`` in the order of ``roles``, where they have those roles."""
+    if len(members) != 2:
+        return None
+    first, second = members
+    if (first.role, second.role) == roles:
+        return members
+    if (second.role, first.role) == roles:
+        return second, first
     return None
 
 
@@ -150,8 +159,8 @@ def _to_ros2(t: Transmission, target: Dialect) -> Translation:
         joints, actuators = _simple_to_ros2(t, result)
     else:
         joints, actuators = _order_coupled(t, result)
-        joints = tuple(_ros2_joint(j, result) for j in joints)
-        actuators = tuple(_ros2_actuator(a, result) for a in actuators)
+        joints = tuple([_ros2_joint(j, result) for j in joints])
+        actuators = tuple([_ros2_actuator(a, result) for a in actuators])
     result.transmission = replace(
         t,
         type=standard_type(t.kind),
@@ -168,7 +177,7 @@ def _interfaces_from_actuators(t: Transmission, result: Translation) -> Transmis
     gazebo_ros_control still reads (gazebo_ros_control/src/default_robot_hw_sim.cpp,
     ``initSim``: "The <hardware_interface> element of tranmission ... should be nested inside
     the <joint> element, not <actuator>"), as TX301's fix moves it."""
-    named = {tuple(i.strip() for i in a.interfaces) for a in t.actuators if a.interfaces}
+    named = {tuple([i.strip() for i in a.interfaces]) for a in t.actuators if a.interfaces}
     if len(named) != 1 or all(j.interfaces for j in t.joints):
         return t
     interfaces = next(a.interfaces for a in t.actuators if a.interfaces)
@@ -197,16 +206,26 @@ def _simple_to_ros2(t: Transmission, result: Translation) -> tuple[tuple[Member,
         moved = _retext(reduction, parse_ros2) if index == 0 else None
         joints.append(_ros2_joint(joint, result, mechanical_reduction=moved,
                                   role=joint.role or "joint1"))
-    actuators = tuple(
+    actuators = tuple([
         _ros2_actuator(a, result, mechanical_reduction=None, role=a.role or "actuator1")
         for a in t.actuators
-    )
+    ])
     return tuple(joints), actuators
 
 
 def _ros2_joint(joint: Member, result: Translation, **changes: Any) -> Member:
     """``joint`` as ros2_control declares it (``changes``: fields the caller sets itself)."""
     commands, states = ros2_interfaces(joint.interfaces)
+    if joint.interfaces:
+        _tell_interfaces(joint, commands, result)
+    if "mechanical_reduction" not in changes:
+        changes["mechanical_reduction"] = _retext(joint.mechanical_reduction, parse_ros2)
+    return replace(joint, offset=_retext(joint.offset, parse_ros2), interfaces=commands,
+                   state_interfaces=states, **changes)
+
+
+def _tell_interfaces(joint: Member, commands: tuple[str, ...], result: Translation) -> None:
+    """What the ros2_control declaration of ``joint``'s ROS 1 interfaces leaves out or adds."""
     expressions = [i for i in joint.interfaces if "${" in i or "$(" in i]
     if expressions:
         result.losses.append(
@@ -233,10 +252,6 @@ def _ros2_joint(joint: Member, result: Translation, **changes: Any) -> Member:
             f"joint '{joint.name}': hardware interface(s) {', '.join(unknown)} are not ones "
             f"ros_control knows{refused}; no ros2_control command interface for them"
         )
-    if "mechanical_reduction" not in changes:
-        changes["mechanical_reduction"] = _retext(joint.mechanical_reduction, parse_ros2)
-    return replace(joint, offset=_retext(joint.offset, parse_ros2), interfaces=commands,
-                   state_interfaces=states, **changes)
 
 
 def _ros2_actuator(actuator: Member, result: Translation, **changes: Any) -> Member:
@@ -256,8 +271,8 @@ def _to_ros1(t: Transmission) -> Translation:
         joints, actuators = _simple_to_ros1(t, result)
     else:
         joints, actuators = _order_coupled(t, result)
-        joints = tuple(_ros1_joint(j, result) for j in joints)
-        actuators = tuple(_ros1_actuator(a, result, required=True) for a in actuators)
+        joints = tuple([_ros1_joint(j, result) for j in joints])
+        actuators = tuple([_ros1_actuator(a, result, required=True) for a in actuators])
     for name, value in t.parameters:
         result.losses.append(f"transmission '{t.name}': <param name=\"{name}\"> {value} has no "
                              "place in ROS 1")
@@ -286,20 +301,18 @@ def _simple_to_ros1(t: Transmission, result: Translation) -> tuple[tuple[Member,
                 f"{actuator.mechanical_reduction.text} is ignored by ros2_control for simple "
                 "transmissions"
             )
-        actuators.append(
-            replace(
-                _ros1_actuator(actuator, result),
-                mechanical_reduction=_retext(reduction, parse_ros1) if index == 0 else None,
-            )
-        )
+        actuators.append(_ros1_actuator(
+            actuator, result,
+            mechanical_reduction=_retext(reduction, parse_ros1) if index == 0 else None,
+            role=_unless(actuator.role, "actuator1"),
+        ))
     if not actuators:
         result.notes.append(
             f"transmission '{t.name}': no actuator; wrote 'actuator1' as ros2_control names it"
         )
         actuators.append(Member(name="actuator1", mechanical_reduction=reduction))
-    joints = tuple(_ros1_joint(j, result, mechanical_reduction=None,
-                               role=_unless(j.role, "joint1")) for j in t.joints)
-    actuators = [replace(a, role=_unless(a.role, "actuator1")) for a in actuators]
+    joints = tuple([_ros1_joint(j, result, mechanical_reduction=None,
+                                role=_unless(j.role, "joint1")) for j in t.joints])
     return joints, tuple(actuators)
 
 
@@ -335,8 +348,10 @@ def _as_loaded(number: Number | None, default: float) -> Number | None:
     return number
 
 
-def _ros1_actuator(actuator: Member, result: Translation, *, required: bool = False) -> Member:
-    """``required``: ROS 1 refuses a coupled actuator without a reduction; ROS 2 meant 1.0."""
+def _ros1_actuator(actuator: Member, result: Translation, *, required: bool = False,
+                   **changes: Any) -> Member:
+    """``actuator`` as ros_control reads it (``changes``: fields the caller sets itself).
+    ``required``: ROS 1 refuses a coupled actuator without a reduction; ROS 2 meant 1.0."""
     if actuator.offset is not None:
         result.losses.append(
             f"actuator '{actuator.name}': <offset> {actuator.offset.text} is ignored by "
@@ -344,14 +359,11 @@ def _ros1_actuator(actuator: Member, result: Translation, *, required: bool = Fa
         )
     if actuator.read_only:
         result.losses.append(f"actuator '{actuator.name}': read_only has no place in ROS 1")
-    reduction = _retext(actuator.mechanical_reduction, parse_ros1)
-    if required and (reduction is None or reduction.value is None) and not is_expression(reduction):
-        reduction = Number(value=1.0, text="1")
-    return replace(
-        actuator,
-        mechanical_reduction=reduction,
-        offset=None,
-        interfaces=(),
-        state_interfaces=(),
-        read_only=False,
-    )
+    if "mechanical_reduction" not in changes:
+        reduction = _retext(actuator.mechanical_reduction, parse_ros1)
+        if required and (reduction is None or reduction.value is None) and not is_expression(
+                reduction):
+            reduction = Number(value=1.0, text="1")
+        changes["mechanical_reduction"] = reduction
+    return replace(actuator, offset=None, interfaces=(), state_interfaces=(), read_only=False,
+                   **changes)

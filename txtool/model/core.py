@@ -127,13 +127,13 @@ def _copier(model: type) -> Callable[[Any, dict[str, Any]], Any]:
     scope: dict[str, Any] = {"new": object.__new__, "model": model, "known": frozenset(names),
                              "unknown": _unknown}
     lines = ["def copy(value, changes):",
-             "    if changes and not changes.keys() <= known:",
+             "    if not changes.keys() <= known:",
              "        unknown(model, changes, known)",
+             "    get = changes.get",
              "    result = new(model)"]
     for index, name in enumerate(names):
         scope[f"set{index}"] = model.__dict__[name].__set__
-        lines.append(f"    set{index}(result, changes[{name!r}] if {name!r} in changes "
-                     f"else value.{name})")
+        lines.append(f"    set{index}(result, get({name!r}, value.{name}))")
     lines.append("    return result")
     exec("\n".join(lines), scope)  # noqa: S102 (code from the model's own field names)
     return scope["copy"]  # type: ignore[no-any-return]
@@ -225,7 +225,10 @@ def kind_of(type_string: str) -> Kind:
 
 def standard_type(kind: Kind) -> str:
     """The plugin name of a standard kind, as both ROS loaders register it."""
-    for short, k in STANDARD_TYPES.items():
-        if k == kind:
-            return TYPE_PREFIX + short
-    raise ValueError(f"kind {kind!r} has no standard type")
+    standard = _STANDARD_TYPE.get(kind)
+    if standard is None:
+        raise ValueError(f"kind {kind!r} has no standard type")
+    return standard
+
+
+_STANDARD_TYPE = {kind: TYPE_PREFIX + short for short, kind in STANDARD_TYPES.items()}

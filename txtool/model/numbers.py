@@ -154,11 +154,17 @@ def parse_ros2(text: str | None, reading: NumberReading | None = None) -> float 
     """
     if text is None:
         return None
-    stripped = text.strip(C_SPACE)
     if reading is None:
-        values = {_read_ros2(stripped, r) for r in ROS2_READINGS}
-        return values.pop() if len(values) == 1 else None
-    return _read_ros2(stripped, reading)
+        return _read_every_ros2(text)
+    return _read_ros2(text.strip(C_SPACE), reading)
+
+
+@lru_cache(maxsize=4096)  # the same few texts recur in every transmission
+def _read_every_ros2(text: str) -> float | None:
+    """:func:`parse_ros2` of ``text`` without a reading: the value all builds agree on."""
+    stripped = text.strip(C_SPACE)
+    values = {_read_ros2(stripped, r) for r in ROS2_READINGS}
+    return values.pop() if len(values) == 1 else None
 
 
 ROS2_READINGS = (NumberReading.ISTRINGSTREAM, NumberReading.FROM_CHARS)
