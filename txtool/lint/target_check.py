@@ -26,9 +26,7 @@ message (which names the element: the transmission, joint or actuator and what i
 it) as a multiset, so a problem the conversion carried over unchanged is not blamed on it, and
 one it made (a mimic joint given a command interface, a transmission put on a fixed joint) is.
 A fix is not blamed either for an error on a transmission the input already had an error or a
-warning for (see :func:`_flagged`). The input is linted only when the output has an error,
-and not when the only errors are ros2_control's refusal of Proposal 1's ``<role>`` elements
-and the input has no ``<role>`` element (it cannot have had them).
+warning for (see :func:`_flagged`). The input is linted only when the output has an error.
 
 A robot that a conversion to ROS 2 leaves without any ``<ros2_control>`` is refused whole
 (:func:`_whole`: no rule says so, since a ROS 1 robot is not refused for it).
@@ -136,13 +134,6 @@ def _has_components(source: Source) -> bool:
     return next(root.iter("{*}ros2_control", "ros2_control"), None) is not None
 
 
-def _has_roles(source: Source) -> bool:
-    """Whether a tree of ``source`` that a lint reads (the expansion or the file as written)
-    has a ``<role>`` element."""
-    return any(tree is not None and next(tree.getroot().iter("{*}role", "role"), None) is not None
-               for tree in (source.tree, source.source_tree))
-
-
 def judge_converted(data: bytes, source: Source, target: Dialect, *,
                     distro: Distro | None = None,
                     reload: Callable[[], Source | None] | None = None) -> Judged:
@@ -214,10 +205,6 @@ def judge(written: Source, before: Callable[[], Source | None], target: Dialect 
         return judged
     text = written.data  # all that is read of it now: its tree goes before the input is read
     del written
-    # Only ros2_control's refusal of Proposal 1's <role> elements: an input without such an
-    # element cannot have had it, and is not linted then.
-    form_only = target == "ros2-p1" and all(_p1_form(problem, text)
-                                            for _, errors in found for problem in errors)
     earlier: Source | None = None
     asked = False
     blamed: dict[tuple[int, int, str, str], list[Run]] = {}
@@ -229,8 +216,6 @@ def judge(written: Source, before: Callable[[], Source | None], target: Dialect 
             continue
         if not asked:
             earlier, asked = before(), True
-            if earlier is not None and form_only and not _has_roles(earlier):
-                earlier = None
         before_found = _findings(earlier, base, run) if earlier is not None else []
         had = Counter((p.code, p.message) for p in before_found if p.severity == "error")
         flagged = _flagged(before_found) if target is None else frozenset()
