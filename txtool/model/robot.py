@@ -76,11 +76,13 @@ class Component:
 
 def children(element: etree._Element, name: str) -> list[etree._Element]:
     """Child elements named ``name`` in any namespace (or none)."""
-    # A plain loop over the list of children (made in one call): iterchildren("{*}" + name)
-    # sets up a tag matcher, and iterating the element an iterator, on every call.
+    # A plain loop: iterchildren("{*}" + name) sets up a tag matcher on every call. Iterated,
+    # not listed at once: each child's proxy goes as the loop passes it, where a list of
+    # thousands (comments in a transmission) would hold them for the garbage collector to
+    # walk, whose passes grow with everything a long-lived process holds.
     found = []
     qualified = "}" + name
-    for child in element[:]:
+    for child in element:
         tag = child.tag  # a function for comments and processing instructions
         if tag == name or tag.__class__ is str and tag.endswith(qualified):
             found.append(child)

@@ -230,7 +230,7 @@ def _other_children(
     for parent in [element, *children(element, "joint"), *children(element, "actuator")]:
         kind = "transmission" if parent is element else local(parent)
         ours = known[kind]
-        for child in parent[:]:  # (a list made at once: faster than lxml's iterator)
+        for child in parent:
             tag = child.tag
             if tag.__class__ is not str or tag.rpartition("}")[2] in ours:
                 continue  # a comment, or a child its own dialect reads

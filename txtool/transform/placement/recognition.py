@@ -129,7 +129,7 @@ def _same(a: etree._Element, b: etree._Element, a_inside: bool, b_inside: bool,
 def _kids(element: etree._Element, inside: bool) -> list[etree._Element | str]:
     """The child elements, and the texts of the comments (outside transmissions)."""
     kids: list[etree._Element | str] = []
-    for child in element[:]:
+    for child in element:
         if child.tag.__class__ is str:
             kids.append(child)
         elif not inside and isinstance(child, etree._Comment):
