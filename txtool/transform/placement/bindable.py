@@ -47,6 +47,7 @@ class RobotJoints:
         self.root = root
         self._elements: dict[str, etree._Element] | None = None
         self._whole: bool | None = None
+        self._leaders: dict[str, str] | None = None
 
     @property
     def elements(self) -> dict[str, etree._Element]:
@@ -88,11 +89,19 @@ class RobotJoints:
 
     def mimicked(self, name: str) -> str | None:
         """The joint ``name`` mimics in the URDF, or None."""
-        element = None if _expression(name) else self._known(name)
-        if element is None:
+        if self._leaders is None:
+            # Few joints mimic: their <mimic> elements are found in one walk of the document,
+            # rather than looked for in every joint asked about.
+            self._leaders = {}
+            for mimic in self.root.iter("{*}mimic"):
+                joint = mimic.getparent()
+                named = joint.get("name") if joint is not None else None
+                if named is not None and self.elements.get(named) is joint:
+                    self._leaders.setdefault(named, mimic.get("joint") or "")
+        leader = self._leaders.get(name)
+        if leader is None or _expression(name) or self._known(name) is None:
             return None
-        mimic = children(element, "mimic")
-        return (mimic[0].get("joint") or "") if mimic else None
+        return leader
 
 
 def _expression(text: str | None) -> bool:
