@@ -22,9 +22,8 @@ from txtool.dialects.read import (
     transmission_elements,
 )
 from txtool.dialects.translate import family, is_expression, translate
-from txtool.io.xmlio import Source, local, serialize
+from txtool.io.xmlio import Source, serialize
 from txtool.model.core import Dialect, Transmission
-from txtool.model.robot import children
 from txtool.model.semantics import Effective, NotLoadable, effective, listed_against_roles
 from txtool.transform.check import Verdict, round_trip
 from txtool.transform.edits.core import Edit
@@ -227,14 +226,19 @@ def _other_children(
     known = KNOWN_CHILDREN[family(t.dialect)]
     theirs = KNOWN_CHILDREN[family(target)]
     carried: dict[tuple[str, str | None], list[etree._Element]] = {}
-    for parent in [element, *children(element, "joint"), *children(element, "actuator")]:
-        kind = "transmission" if parent is element else local(parent)
+    members: dict[str, list[etree._Element]] = {"joint": [], "actuator": []}
+
+    def look(kind: str, parent: etree._Element) -> None:
         ours = known[kind]
         for child in parent:
             tag = child.tag
-            if tag.__class__ is not str or tag.rpartition("}")[2] in ours:
-                continue  # a comment, or a child its own dialect reads
-            name = local(child)
+            if tag.__class__ is not str:
+                continue  # a comment or processing instruction
+            name = tag.rpartition("}")[2]
+            if name in ours:
+                if kind == "transmission" and name in members:
+                    members[name].append(child)
+                continue  # a child its own dialect reads
             owner = f"{kind} '{parent.get('name', '')}'"
             if name in theirs[kind]:
                 result.losses.append(f"{owner}: <{name}> is not read in {family(t.dialect)} "
@@ -243,6 +247,11 @@ def _other_children(
             carried.setdefault((kind, parent.get("name")), []).append(child)
             result.notes.append(f"{owner}: <{name}> is read by neither loader; carried as "
                                 "written")
+
+    look("transmission", element)  # (and its members found on the way, looked at after it)
+    for kind in ("joint", "actuator"):
+        for member in members[kind]:
+            look(kind, member)
     return carried
 
 
