@@ -97,23 +97,25 @@ def reindent(tail: str | None, indent: str) -> str:
     return head + newline + indent if newline else "\n" + indent
 
 
-def with_comments(new: etree._Element, old: etree._Element) -> None:
+def with_comments(new: etree._Element, old: etree._Element) -> bool:
     """Carry the comments of the old element: under the same joint or actuator when they
-    stood there, else at the top of the transmission."""
-    parents: list[etree._Element] = []  # none without a comment (most transmissions)
-    targets: dict[tuple[str, str | None], etree._Element] = {}
-    if has_comment(old):
-        parents = [old, *children(old, "joint"), *children(old, "actuator")]
-        targets = {(local(m), m.get("name")): m for m in new if isinstance(m.tag, str)}
+    stood there, else at the top of the transmission. Whether there was one to carry."""
+    if not has_comment(old):
+        return False  # (most transmissions)
+    parents = [old, *children(old, "joint"), *children(old, "actuator")]
+    targets = {(local(m), m.get("name")): m for m in new if isinstance(m.tag, str)}
+    carried = False
     for parent in parents:
         target = new if parent is old else targets.get((local(parent), parent.get("name")), new)
         comments = [etree.Comment(c.text) for c in parent if isinstance(c, etree._Comment)]
+        carried = carried or bool(comments)
         if target is new:  # at the top, in order: each put first, the last one first
             for comment in reversed(comments):  # (lxml walks to an index: insert(i) costs i)
                 new.insert(0, comment)
         else:
             for comment in comments:
                 target.append(comment)
+    return carried
 
 
 def has_comment(element: etree._Element) -> bool:

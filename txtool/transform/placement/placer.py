@@ -34,7 +34,6 @@ from txtool.transform.placement.layout import (
     become,
     child_indentation,
     cut,
-    has_comment,
     indentation,
     namespace_of,
     qualifier,
@@ -422,8 +421,7 @@ class Placer:
             owner = new if kind == "transmission" else next(
                 (m for m in children(new, kind) if m.get("name") == name), new)
             owner.extend(copy.deepcopy(e) for e in elements)
-        with_comments(new, move.old)
-        if move.carried or has_comment(new):
+        if with_comments(new, move.old) or move.carried:
             dialects.pretty(new, indent, step)  # build() laid out all but these
         if record:
             self.built[move.old] = new
