@@ -18,7 +18,6 @@ from typing import Any
 from lxml import etree
 
 from txtool.dialects.read import (
-    Found,
     enclosing_component,
     read_transmission,
     transmission_elements,
@@ -60,7 +59,7 @@ def round_trip(originals: Sequence[Transmission], written: etree._Element) -> Ve
 
 
 def paired(originals: Sequence[Transmission], written: etree._Element
-           ) -> Iterator[tuple[int, Found, bool]]:
+           ) -> Iterator[tuple[int, Transmission, bool]]:
     """Each of ``originals`` that the document of root ``written`` holds: its index, what
     ``written`` holds of it, and whether that stands in a ``<ros2_control>``. Paired by name
     and by whether the type is custom, same-named ones in document order (the order a
@@ -77,16 +76,16 @@ def paired(originals: Sequence[Transmission], written: etree._Element
         out = read_transmission(element, None, components)
         queue = waiting.get((out.name, out.kind == "other"))
         if queue:
-            yield queue.popleft(), Found(out, element), component is not None
+            yield queue.popleft(), out, component is not None
 
 
-def _judge(t: Transmission, out: Found, in_component: bool, result: Verdict,
+def _judge(t: Transmission, out: Transmission, in_component: bool, result: Verdict,
            blocks: Callable[[], set[str | None]]) -> None:
     """Convert ``out``, what the output holds of the original ``t``, back to ``t``'s dialect,
     and say in ``result`` what did not survive. ``in_component``: ``out`` stands in a
     ``<ros2_control>``; ``blocks``: the names of the output's ``<ros2_control>`` blocks (asked
     only where needed)."""
-    back = translate(out.transmission, t.dialect).transmission
+    back = translate(out, t.dialect).transmission
     a_view, b_view = view(t), view(back)
     lost = _lost(a_view, b_view)
     if in_component:

@@ -217,7 +217,7 @@ def _verdicts(group: list[Transmission], first_leg: etree._Element,
 
     verdicts = ["n/a: not converted"] * len(group)
     for i, converted, _ in paired(group, first_leg):
-        verdicts[i] = _verdict(compare_pair(group[i], converted.transmission, joints))
+        verdicts[i] = _verdict(compare_pair(group[i], converted, joints))
     return verdicts
 
 
@@ -226,7 +226,7 @@ def _judge(group: list[Transmission], final: etree._Element) -> _Judged:
     is missing there)."""
     judged: _Judged = [None] * len(group)
     for i, back, _ in paired(group, final):
-        judged[i] = judge(group[i], back.transmission)
+        judged[i] = judge(group[i], back)
     return judged
 
 
