@@ -12,7 +12,7 @@ Numbers are parsed the way the detected loader parses them (see :mod:`txtool.mod
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from functools import lru_cache
 from typing import TYPE_CHECKING, Any
@@ -122,6 +122,18 @@ def read_source(
         Found(read_transmission(element, locator, components), element)
         for element in transmission_elements(source.root, candidates)
     ]
+
+
+def read_each(root: etree._Element) -> Iterator[Transmission]:
+    """The transmissions of ``root`` in document order, each read as it comes (the document
+    is not held read whole: a ``<ros2_control>``'s declarations are let go when its
+    transmissions, which come one after another, are read)."""
+    components: dict[etree._Element, Declarations] = {}
+    for element in transmission_elements(root):
+        component = enclosing_component(element)
+        if component not in components:
+            components.clear()
+        yield read_transmission(element, None, components)
 
 
 def transmission_elements(

@@ -10,18 +10,14 @@ original's dialect and compared with it on what the original itself defines
 from __future__ import annotations
 
 from collections import deque
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from functools import cache
 from typing import Any
 
 from lxml import etree
 
-from txtool.dialects.read import (
-    enclosing_component,
-    read_transmission,
-    transmission_elements,
-)
+from txtool.dialects.read import read_each
 from txtool.dialects.translate import translate
 from txtool.model.core import Transmission
 from txtool.views.tables import FIELDS, view
@@ -43,12 +39,12 @@ def round_trip(originals: Sequence[Transmission], written: etree._Element) -> Ve
     judged; what is said comes in the order of the originals."""
     said: dict[int, Verdict] = {}
     blocks = cache(lambda: {e.get("name") for e in written.iter("{*}ros2_control")})
-    for i, out, in_component in paired(originals, written):
+    for i, out in paired(originals, read_each(written)):
         t = originals[i]
         if t.kind == "other":
             continue
         heard = Verdict()
-        _judge(t, out, in_component, heard, blocks)
+        _judge(t, out, heard, blocks)
         if heard.losses or heard.notes:
             said[i] = heard
     verdict = Verdict()
@@ -58,37 +54,30 @@ def round_trip(originals: Sequence[Transmission], written: etree._Element) -> Ve
     return verdict
 
 
-def paired(originals: Sequence[Transmission], written: etree._Element
-           ) -> Iterator[tuple[int, Transmission, bool]]:
-    """Each of ``originals`` that the document of root ``written`` holds: its index, what
-    ``written`` holds of it, and whether that stands in a ``<ros2_control>``. Paired by name
-    and by whether the type is custom, same-named ones in document order (the order a
-    conversion keeps among them); each written transmission is read as it comes and let go
-    (the document is not held read whole)."""
+def paired(originals: Sequence[Transmission], written: Iterable[Transmission]
+           ) -> Iterator[tuple[int, Transmission]]:
+    """Each of ``originals`` that ``written`` (the transmissions of a written document, in
+    document order: :func:`~txtool.dialects.read.read_each`) holds: its index and what
+    ``written`` holds of it. Paired by name and by whether the type is custom, same-named
+    ones in document order (the order a conversion keeps among them)."""
     waiting: dict[tuple[str, bool], deque[int]] = {}
     for i, t in enumerate(originals):
         waiting.setdefault((t.name, t.kind == "other"), deque()).append(i)
-    components: dict[etree._Element, Any] = {}
-    for element in transmission_elements(written):
-        component = enclosing_component(element)
-        if component not in components:
-            components.clear()  # a block's transmissions come one after another
-        out = read_transmission(element, None, components)
+    for out in written:
         queue = waiting.get((out.name, out.kind == "other"))
         if queue:
-            yield queue.popleft(), out, component is not None
+            yield queue.popleft(), out
 
 
-def _judge(t: Transmission, out: Transmission, in_component: bool, result: Verdict,
+def _judge(t: Transmission, out: Transmission, result: Verdict,
            blocks: Callable[[], set[str | None]]) -> None:
     """Convert ``out``, what the output holds of the original ``t``, back to ``t``'s dialect,
-    and say in ``result`` what did not survive. ``in_component``: ``out`` stands in a
-    ``<ros2_control>``; ``blocks``: the names of the output's ``<ros2_control>`` blocks (asked
-    only where needed)."""
+    and say in ``result`` what did not survive. ``blocks``: the names of the output's
+    ``<ros2_control>`` blocks (asked only where needed)."""
     back = translate(out, t.dialect).transmission
     a_view, b_view = view(t), view(back)
     lost = _lost(a_view, b_view)
-    if in_component:
+    if out.ros2_control is not None:  # it stands in a <ros2_control>
         lost.pop("interfaces", None)
         _interfaces(t, *_defined(a_view["interfaces"], b_view["interfaces"]), result)
     elif "interfaces" in lost and t.ros2_control is not None and t.ros2_control in blocks():

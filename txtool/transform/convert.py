@@ -76,7 +76,7 @@ class ConvertedDocument:
 def convert_source(
     source: Source, target: Dialect, *, hardware_plugin: str = DEFAULT_HARDWARE_PLUGIN,
     consume: bool = False, reversible: bool = False, check: bool = True,
-    macro_calls: MacroCalls | None = None,
+    macro_calls: MacroCalls | None = None, found: list[Found] | None = None,
 ) -> ConvertedDocument:
     """Convert ``source``: read its transmissions, change the tree, say the change as edits
     of ``source.data`` (:mod:`.edits.document`; the result's ``edits``), make them once, and
@@ -91,9 +91,13 @@ def convert_source(
     plugin), for a caller that judges the result itself (``roundtrip``).
     ``macro_calls``: where the files converted with this one call each xacro macro
     (:func:`.placement.macros.calls_in_files`; ``migrate`` gives those of its files).
+    ``found``: the transmissions of ``source.tree`` as :func:`.read_source` reads them
+    (``locate=False``), for a caller that has read them and gives the tree up (``consume``).
     """
+    if found is not None and not consume:
+        raise ValueError("found: the transmissions of a tree converted in place (consume)")
     result, tree, originals, restored, writer = _converted(
-        source, target, hardware_plugin, consume, reversible, macro_calls, check)
+        source, target, hardware_plugin, consume, reversible, macro_calls, check, found)
     if consume:
         source.tree = etree.ElementTree(etree.Element("consumed"))
     if check and not restored:
@@ -126,7 +130,8 @@ def _take_verdict(result: ConvertedDocument, verdict: Verdict) -> None:
 
 
 def _converted(source: Source, target: Dialect, hardware_plugin: str, consume: bool,
-               reversible: bool, macro_calls: MacroCalls | None, check: bool
+               reversible: bool, macro_calls: MacroCalls | None, check: bool,
+               found: list[Found] | None
                ) -> tuple[ConvertedDocument, etree._ElementTree, list[Transmission], bool,
                           DocumentEdits | None]:
     """:func:`convert_source` up to the bytes: the result, the converted tree, the
@@ -136,13 +141,16 @@ def _converted(source: Source, target: Dialect, hardware_plugin: str, consume: b
     carry = Carrier(source, target, reversible)
     tree = source.tree if consume else copy.deepcopy(source.tree)
     root = tree.getroot()
-    elements = transmission_elements(root)
+    if found is None:
+        found = _read(transmission_elements(root))
+    elements = [f.element for f in found]
     writer = None if source.expanded else conversion_edits(
         source.path, source.data, root, elements, target)
     result = ConvertedDocument(data=b"", target=target, found=len(elements))
     placer = Placer(root, hardware_plugin, macro_calls=macro_calls)
     placer.after = carry.after_block
-    originals = _place_each(elements, tree, target, result, placer, carry, check)
+    originals = _place_each(found, tree, target, result, placer, carry, check)
+    del found
     placer.finish()
     restored = carry.after(tree, placer.built)
     result.notes.extend(placer.notes)
@@ -169,19 +177,22 @@ def _write(result: ConvertedDocument, tree: etree._ElementTree, writer: Document
         result.edits = edits or None
 
 
-def _place_each(elements: list[etree._Element], tree: etree._ElementTree, target: Dialect,
+def _read(elements: list[etree._Element]) -> list[Found]:
+    components: dict[etree._Element, Any] = {}  # the declarations read, by <ros2_control>
+    return [Found(read_transmission(e, None, components), e) for e in elements]
+
+
+def _place_each(found: list[Found], tree: etree._ElementTree, target: Dialect,
                 result: ConvertedDocument, placer: Placer, carry: Carrier, check: bool
                 ) -> list[Transmission]:
-    """Read, convert and place each transmission: the transmissions as read, in order."""
-    # The declarations read, by their <ros2_control>.
-    components: dict[etree._Element, Any] = {}
+    """Convert and place each transmission: the transmissions as read, in order."""
     originals = []
-    for element in elements:
-        t = read_transmission(element, None, components)
+    for each in found:
+        t = each.transmission
         originals.append(t)
         if t.dialect == target:
             result.already += 1
-        if _convert_one(Found(t, element), tree, target, result, placer, carry, check):
+        if _convert_one(each, tree, target, result, placer, carry, check):
             result.converted += 1
     return originals
 

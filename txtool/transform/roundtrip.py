@@ -20,7 +20,7 @@ from types import MappingProxyType
 
 from lxml import etree
 
-from txtool.dialects.read import read_source
+from txtool.dialects.read import Found, read_each, read_source
 from txtool.io.xmlio import Source, parse_bytes, serialize
 from txtool.model.core import DIALECTS, Dialect, Transmission
 from txtool.model.robot import JointInfo, joint_elements, joint_info
@@ -78,13 +78,28 @@ def cycles_from(start: Dialect) -> list[tuple[Dialect, ...]]:
     return two + three
 
 
-_Leg = tuple[bytes, etree._ElementTree | None]  # a conversion's text, and its tree if kept
+@dataclass(slots=True)
+class _Leg:
+    """A conversion's text; its tree, when kept to be converted next (in place), and the
+    transmissions read from that tree, once read."""
+
+    data: bytes
+    tree: etree._ElementTree | None = None
+    found: list[Found] | None = None
+
+    def taken(self) -> _Leg:
+        """This leg, its tree given up to the one returned (converted in place there)."""
+        leg = _Leg(self.data, self.tree, self.found)
+        self.tree = self.found = None
+        return leg
 
 
-def _reconvert(source: Source, target: Dialect, *, whole: bool) -> _Leg:
+def _reconvert(source: Source, target: Dialect, *, whole: bool,
+               found: list[Found] | None = None) -> _Leg:
     """``source`` converted to ``target``, its tree converted in place (an empty document is
-    left in its place): the text and, ``whole``, the tree converted. The conversion's own
-    read-back check is left out: the cycle's result is judged here, against the original.
+    left in its place; ``found``: its transmissions, when read): the text and, ``whole``,
+    the tree converted. The conversion's own read-back check is left out: the cycle's
+    result is judged here, against the original.
 
     ``whole``: the converted tree is written whole rather than said as edits of
     ``source.data``. Only its transmissions are read (from the tree itself), and the edits
@@ -93,16 +108,17 @@ def _reconvert(source: Source, target: Dialect, *, whole: bool) -> _Leg:
     which only a parse of the edited text reads."""
     tree = source.tree
     converting = Source(source.path, source.data, tree, expanded=source.expanded or whole)
-    data = convert_source(converting, target, consume=True, check=False).data
+    data = convert_source(converting, target, consume=True, check=False, found=found).data
     source.tree = converting.tree
-    return data, tree if whole else None
+    return _Leg(data, tree if whole else None)
 
 
 def roundtrip(source: Source, *, consume: bool = False) -> RoundTripReport:
     """The rows of every cycle of every transmission of ``source``. With ``consume`` the
     caller gives up ``source.tree``: the first conversion of it converts it in place."""
     report = RoundTripReport(source.path)
-    originals = [f.transmission for f in read_source(source, locate=False)]
+    found: list[Found] | None = read_source(source, locate=False)
+    originals = [f.transmission for f in found]
     groups = _groups(originals)
     joints = _joints(source.root, originals)
     starts = [start for start in DIALECTS if groups[start]]
@@ -116,18 +132,21 @@ def roundtrip(source: Source, *, consume: bool = False) -> RoundTripReport:
     text = serialize(source.tree) if source.expanded else source.data
     legs = {}
     for first in firsts:
-        document = source if consume and first == firsts[0] else Source(
+        document, read = (source, found) if consume and first == firsts[0] else (Source(
             source.path, source.data, parse_bytes(text, source.path, limit=None),
-            expanded=source.expanded)
-        data, tree = _reconvert(document, first, whole=whole)
-        legs[first] = (data, [tree] if tree is not None and first == firsts[-1] else [])
-        del document, tree
+            expanded=source.expanded), None)
+        found = None  # (what was read of the tree its conversion converts)
+        leg = _reconvert(document, first, whole=whole, found=read)
+        if first != firsts[-1]:
+            leg.tree = None  # parsed again when its cycles come
+        legs[first] = leg
+        del document, read
     del text
     rows: dict[tuple[Dialect, ...], list[CycleRow]] = {}
     for first in reversed(firsts):
-        data, parsed = legs.pop(first)
+        leg = legs.pop(first)
         for start in starts:
-            rows.update(_cycles(start, first, data, parsed, ends[start], joints))
+            rows.update(_cycles(start, first, leg, ends[start], joints))
     report.rows = [row for start in starts for cycle in cycles_from(start)
                    for row in rows[cycle]]
     report.skipped = [f"{t.name}: custom type '{t.type}'" for t in originals if t.kind == "other"]
@@ -148,19 +167,20 @@ def _groups(originals: list[Transmission]) -> dict[Dialect, list[Transmission]]:
             for start in DIALECTS}
 
 
-def _cycles(start: Dialect, first: Dialect, data: bytes, parsed: list[etree._ElementTree],
-            ends: _Ends, joints: Mapping[str, JointInfo]
-            ) -> dict[tuple[Dialect, ...], list[CycleRow]]:
-    """The rows of the cycles from ``start`` that begin with the leg to ``first``, whose text
-    is ``data``. ``parsed`` holds its tree or nothing: the first cycle converts that tree, each
-    later one a fresh parse."""
+def _cycles(start: Dialect, first: Dialect, leg: _Leg, ends: _Ends,
+            joints: Mapping[str, JointInfo]) -> dict[tuple[Dialect, ...], list[CycleRow]]:
+    """The rows of the cycles from ``start`` that begin with the leg to ``first``. The
+    first cycle converts the leg's tree, each later one a fresh parse; the transmissions read
+    from it for the verdicts are the ones that conversion converts."""
     cycles = [c for c in cycles_from(start) if c[1] == first]
     if not cycles:
         return {}
-    if not parsed:
-        parsed.append(parse_bytes(data, ends.path, limit=None))
-    verdicts = _verdicts(ends.group, parsed[0].getroot(), joints)
-    return {cycle: _rows(cycle, ends.group, ends.judged(data, cycle[2:], parsed), verdicts)
+    if leg.tree is None:
+        leg.tree = parse_bytes(leg.data, ends.path, limit=None)
+    if leg.found is None:
+        leg.found = read_source(Source(ends.path, leg.data, leg.tree), locate=False)
+    verdicts = _verdicts(ends.group, [f.transmission for f in leg.found], joints)
+    return {cycle: _rows(cycle, ends.group, ends.judged(leg, cycle[2:]), verdicts)
             for cycle in cycles}
 
 
@@ -179,28 +199,27 @@ class _Ends:
         self.whole = whole  # (see _reconvert)
         self.known: dict[tuple[bytes, Dialect], _Judged] = {}
 
-    def judged(self, data: bytes, steps: tuple[Dialect, ...],
-               parsed: list[etree._ElementTree]) -> _Judged:
-        """The judgement of the group after converting ``data`` through ``steps``;
-        ``parsed`` holds a parse of ``data`` or nothing; the first conversion takes it."""
+    def judged(self, leg: _Leg, steps: tuple[Dialect, ...]) -> _Judged:
+        """The judgement of the group after converting ``leg`` through ``steps``; the first
+        conversion takes its tree, when it has one."""
         *between, last = steps
-        leg: _Leg = (data, parsed.pop() if parsed else None)
+        current = leg.taken()
         for step in between:
-            leg = self._convert(leg, step)
-        key = (_digest(leg[0]), last)
+            current = self._convert(current, step)
+        key = (_digest(current.data), last)
         if key not in self.known:
-            final, tree = self._convert(leg, last)
-            self.known[key] = _judge(self.group, self._source(final, tree).root)
+            final = self._convert(current, last)
+            self.known[key] = _judge(self.group, self._tree(final).getroot())
         return self.known[key]
 
     def _convert(self, leg: _Leg, target: Dialect) -> _Leg:
-        return _reconvert(self._source(*leg), target, whole=self.whole)
+        return _reconvert(Source(self.path, leg.data, self._tree(leg)), target,
+                          whole=self.whole, found=leg.found)
 
-    def _source(self, data: bytes, tree: etree._ElementTree | None) -> Source:
-        """The document of ``data``: ``tree``, or a parse of it."""
-        if tree is None:
-            tree = parse_bytes(data, self.path, limit=None)
-        return Source(self.path, data, tree)
+    def _tree(self, leg: _Leg) -> etree._ElementTree:
+        """The tree of ``leg``, or a parse of its text."""
+        return leg.tree if leg.tree is not None else parse_bytes(leg.data, self.path,
+                                                                  limit=None)
 
 
 def _digest(data: bytes) -> bytes:
@@ -208,15 +227,14 @@ def _digest(data: bytes) -> bytes:
     return hashlib.sha256(data).digest()
 
 
-def _verdicts(group: list[Transmission], first_leg: etree._Element,
+def _verdicts(group: list[Transmission], first_leg: list[Transmission],
               joints: Mapping[str, JointInfo]) -> list[str]:
-    """Whether each transmission's first conversion (the document of root ``first_leg``)
-    drives the actuators like the original (once per first leg, before its cycles convert:
-    the transmissions it holds are not kept while they do)."""
+    """Whether each transmission's first conversion (``first_leg``: the transmissions of the
+    document it wrote) drives the actuators like the original."""
     from txtool.mechanics.equivalence import compare_pair
 
     verdicts = ["n/a: not converted"] * len(group)
-    for i, converted, _ in paired(group, first_leg):
+    for i, converted in paired(group, first_leg):
         verdicts[i] = _verdict(compare_pair(group[i], converted, joints))
     return verdicts
 
@@ -225,7 +243,7 @@ def _judge(group: list[Transmission], final: etree._Element) -> _Judged:
     """What each transmission of ``group`` lost in the document of root ``final`` (None: it
     is missing there)."""
     judged: _Judged = [None] * len(group)
-    for i, back, _ in paired(group, final):
+    for i, back in paired(group, read_each(final)):
         judged[i] = judge(group[i], back)
     return judged
 
