@@ -178,7 +178,8 @@ def _write(result: ConvertedDocument, tree: etree._ElementTree, writer: Document
 
 
 def _read(elements: list[etree._Element]) -> list[Found]:
-    components: dict[etree._Element, Any] = {}  # the declarations read, by <ros2_control>
+    """Each of ``elements`` read (a ``<ros2_control>``'s declarations read once for all)."""
+    components: dict[etree._Element, Any] = {}
     return [Found(read_transmission(e, None, components), e) for e in elements]
 
 

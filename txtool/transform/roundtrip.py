@@ -170,8 +170,8 @@ def _groups(originals: list[Transmission]) -> dict[Dialect, list[Transmission]]:
 def _cycles(start: Dialect, first: Dialect, leg: _Leg, ends: _Ends,
             joints: Mapping[str, JointInfo]) -> dict[tuple[Dialect, ...], list[CycleRow]]:
     """The rows of the cycles from ``start`` that begin with the leg to ``first``. The
-    first cycle converts the leg's tree, each later one a fresh parse; the transmissions read
-    from it for the verdicts are the ones that conversion converts."""
+    first conversion of the leg takes its tree, each later one a fresh parse; the
+    transmissions read from it for the verdicts are the ones that conversion converts."""
     cycles = [c for c in cycles_from(start) if c[1] == first]
     if not cycles:
         return {}
@@ -200,10 +200,10 @@ class _Ends:
         self.known: dict[tuple[bytes, Dialect], _Judged] = {}
 
     def judged(self, leg: _Leg, steps: tuple[Dialect, ...]) -> _Judged:
-        """The judgement of the group after converting ``leg`` through ``steps``; the first
-        conversion takes its tree, when it has one."""
+        """The judgement of the group after converting ``leg`` through ``steps`` (a cycle
+        whose end is known converts nothing: ``leg`` keeps its tree for the next)."""
         *between, last = steps
-        current = leg.taken()
+        current = leg
         for step in between:
             current = self._convert(current, step)
         key = (_digest(current.data), last)
@@ -213,8 +213,11 @@ class _Ends:
         return self.known[key]
 
     def _convert(self, leg: _Leg, target: Dialect) -> _Leg:
-        return _reconvert(Source(self.path, leg.data, self._tree(leg)), target,
-                          whole=self.whole, found=leg.found)
+        """``leg`` converted to ``target``: its tree, which the conversion takes, or a parse
+        of its text."""
+        taken = leg.taken()
+        return _reconvert(Source(self.path, taken.data, self._tree(taken)), target,
+                          whole=self.whole, found=taken.found)
 
     def _tree(self, leg: _Leg) -> etree._ElementTree:
         """The tree of ``leg``, or a parse of its text."""
