@@ -70,6 +70,27 @@ def test_a_mimic_joint_keeps_its_command_interface_and_says_mimic_false(run, tmp
     assert code == 0 and "mimic" not in back.split("<transmission", 1)[1]
 
 
+def test_only_the_mimic_of_a_joint_the_document_says_for_every_argument_counts(run, tmp_path):
+    # The right finger mimics the left one only for some arguments (its definition in a
+    # xacro:if): the document does not say, and no mimic="false" is written; a <mimic> that
+    # is not a joint's own child is no joint's.
+    conditional = (
+        '  <xacro:unless value="${coupled}">\n' + _joint("right", "prismatic", 0, 2)
+        + '  </xacro:unless>\n  <xacro:if value="${coupled}">\n'
+        + _joint("right", "prismatic", 0, 2, mimic="left") + "  </xacro:if>\n")
+    stray = '  <gazebo reference="left"><mimic joint="right"/></gazebo>\n'
+    path = tmp_path / "gripper.urdf.xacro"
+    path.write_text(_robot(_joint("left", "prismatic", 0, 1), conditional, stray,
+                           _transmission("left_trans", "left"),
+                           _transmission("right_trans", "right"))
+                    .replace('<robot name="gripper">',
+                             '<robot name="gripper" xmlns:xacro="http://ros.org/wiki/xacro">'))
+    code, out, err = run("convert", "--no-xacro", str(path), "--to", "ros2-p2")
+    assert code == 0
+    assert _declarations(out) == {"left": (None, ["effort"]), "right": (None, ["effort"])}
+    assert "mimics" not in err
+
+
 def test_a_transmission_on_a_fixed_joint_is_left_as_written(run, tmp_path):
     path = tmp_path / "arm.urdf"
     robot = _robot(_joint("shoulder"), _joint("flange", "fixed", 1, 2),
