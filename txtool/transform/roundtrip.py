@@ -93,6 +93,12 @@ class _Leg:
         self.tree = self.found = None
         return leg
 
+    def parsed(self, path: str) -> etree._ElementTree:
+        """Its tree: the one kept, or a parse of its text (kept from then on)."""
+        if self.tree is None:
+            self.tree = parse_bytes(self.data, path, limit=None)
+        return self.tree
+
 
 def _reconvert(source: Source, target: Dialect, *, whole: bool,
                found: list[Found] | None = None) -> _Leg:
@@ -175,10 +181,9 @@ def _cycles(start: Dialect, first: Dialect, leg: _Leg, ends: _Ends,
     cycles = [c for c in cycles_from(start) if c[1] == first]
     if not cycles:
         return {}
-    if leg.tree is None:
-        leg.tree = parse_bytes(leg.data, ends.path, limit=None)
     if leg.found is None:
-        leg.found = read_source(Source(ends.path, leg.data, leg.tree), locate=False)
+        leg.found = read_source(Source(ends.path, leg.data, leg.parsed(ends.path)),
+                                locate=False)
     verdicts = _verdicts(ends.group, [f.transmission for f in leg.found], joints)
     return {cycle: _rows(cycle, ends.group, ends.judged(leg, cycle[2:]), verdicts)
             for cycle in cycles}
@@ -209,20 +214,15 @@ class _Ends:
         key = (_digest(current.data), last)
         if key not in self.known:
             final = self._convert(current, last)
-            self.known[key] = _judge(self.group, self._tree(final).getroot())
+            self.known[key] = _judge(self.group, final.parsed(self.path).getroot())
         return self.known[key]
 
     def _convert(self, leg: _Leg, target: Dialect) -> _Leg:
         """``leg`` converted to ``target``: its tree, which the conversion takes, or a parse
         of its text."""
         taken = leg.taken()
-        return _reconvert(Source(self.path, taken.data, self._tree(taken)), target,
+        return _reconvert(Source(self.path, taken.data, taken.parsed(self.path)), target,
                           whole=self.whole, found=taken.found)
-
-    def _tree(self, leg: _Leg) -> etree._ElementTree:
-        """The tree of ``leg``, or a parse of its text."""
-        return leg.tree if leg.tree is not None else parse_bytes(leg.data, self.path,
-                                                                  limit=None)
 
 
 def _digest(data: bytes) -> bytes:
