@@ -119,6 +119,51 @@ ROLE_ORDER = """<robot name="r">
 """
 
 
+MACROS_ONLY = """\
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="wrist_transmission" params="prefix">
+    <transmission name="${prefix}_wrist_trans">
+      <type>transmission_interface/SimpleTransmission</type>
+      <joint name="${prefix}_wrist">
+        <hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface>
+      </joint>
+      <actuator name="${prefix}_wrist_motor"><mechanicalReduction>50</mechanicalReduction></actuator>
+    </transmission>
+  </xacro:macro>
+</robot>
+"""
+
+
+@pytest.mark.parametrize("force_color", ["", "1"], ids=["plain", "rich"])
+def test_roundtrip_of_a_file_of_macros_says_that_nothing_was_cycled(
+        run, tmp_path, monkeypatch, force_color):
+    # Expanded, a file that only defines a macro holds no transmission: no cycle ran, which is
+    # said, not passed as "all cycles keep every field"; as written, the macro's is cycled.
+    monkeypatch.setenv("FORCE_COLOR", force_color)
+    path = tmp_path / "wrist.transmission.xacro"
+    path.write_text(MACROS_ONLY)
+    code, out, err = run("roundtrip", str(path))
+    assert (code, err) == (0, "")
+    assert "all cycles keep every field" not in out
+    assert out.rstrip().endswith(
+        "nothing cycled: no transmission of a standard type in the document as xacro expands "
+        "it (transmissions inside macros are cycled as written with --no-xacro)")
+    code, out, err = run("roundtrip", "--no-xacro", str(path))
+    assert (code, err) == (0, "") and out.rstrip().endswith("all cycles keep every field")
+    assert "${prefix}_wrist_trans" in out
+
+
+def test_roundtrip_of_custom_types_alone_passes_them_through_and_cycles_nothing(run, tmp_path):
+    path = tmp_path / "hand.urdf"
+    path.write_text('<robot name="hand"><transmission name="t"><type>acme/Tendon</type>'
+                    '<joint name="j"/><actuator name="m"/></transmission></robot>')
+    code, out, _ = run("roundtrip", str(path))
+    assert code == 0
+    assert out.rstrip().splitlines()[-2:] == [
+        "passed through untouched: t: custom type 'acme/Tendon'",
+        "nothing cycled: no transmission of a standard type in the document"]
+
+
 def test_roundtrip_table_marks_the_cycles_that_change_behaviour(run, tmp_path):
     robot = tmp_path / "role_order.urdf"
     robot.write_text(ROLE_ORDER)

@@ -104,8 +104,8 @@ def _print_rich_table(report) -> None:
                       soft_wrap=True)
     for skipped in report.skipped:
         out.print(safe(f"passed through untouched: {skipped}"), soft_wrap=True)
-    out.print("all cycles keep every field" if report.ok else "[red]some cycles lose data "
-              "or change behaviour[/red]")
+    out.print(safe(report.summary) if report.ok else f"[red]{safe(report.summary)}[/red]",
+              soft_wrap=True)
 
 
 def _against(a, b, output_format, convention) -> int:

@@ -49,10 +49,23 @@ class RoundTripReport:
     path: str
     rows: list[CycleRow] = field(default_factory=list)
     skipped: list[str] = field(default_factory=list)  # custom types, passed through untouched
+    expanded: bool = False  # read from a xacro expansion
 
     @property
     def ok(self) -> bool:
         return all(row.ok for row in self.rows)
+
+    @property
+    def summary(self) -> str:
+        """The report's last line: what the cycles kept, or that there was nothing to cycle
+        (a file of xacro macros expands to no transmission; a custom type is passed
+        through), which is no proof that anything survives."""
+        if not self.rows:
+            where = (" as xacro expands it (transmissions inside macros are cycled as written "
+                     "with --no-xacro)" if self.expanded else "")
+            return f"nothing cycled: no transmission of a standard type in the document{where}"
+        return ("all cycles keep every field" if self.ok
+                else "some cycles lose data or change behaviour")
 
     def to_json(self) -> dict:
         """The JSON document (schemas/roundtrip.schema.json; its --against keys empty)."""
@@ -122,7 +135,7 @@ def _reconvert(source: Source, target: Dialect, *, whole: bool,
 def roundtrip(source: Source, *, consume: bool = False) -> RoundTripReport:
     """The rows of every cycle of every transmission of ``source``. With ``consume`` the
     caller gives up ``source.tree``: the first conversion of it converts it in place."""
-    report = RoundTripReport(source.path)
+    report = RoundTripReport(source.path, expanded=source.expanded)
     found: list[Found] | None = read_source(source, locate=False)
     originals = [f.transmission for f in found]
     groups = _groups(originals)

@@ -139,7 +139,6 @@ def roundtrip_text(report: Any) -> str | None:
             lines.extend(printable(f"{row.transmission} ({cycle}): {detail}")
                          for detail in (*row.details, *reason))
     lines.extend(printable(f"passed through untouched: {skipped}") for skipped in report.skipped)
-    lines.append("all cycles keep every field" if report.ok
-                 else "some cycles lose data or change behaviour")
+    lines.append(report.summary)
     columns = ("transmission", "cycle", *FIELDS, "equivalent")
     return plain_table(printable(f"{report.path}: round trips"), columns, rows, lines)
