@@ -11,16 +11,10 @@ from __future__ import annotations
 
 import copy
 from dataclasses import dataclass, field
-from typing import Any
 
 from lxml import etree
 
-from txtool.dialects.read import (
-    Found,
-    enclosing_component,
-    read_transmission,
-    transmission_elements,
-)
+from txtool.dialects.read import Found, enclosing_component, read_source
 from txtool.dialects.translate import family, is_expression, translate
 from txtool.io.xmlio import Source, serialize
 from txtool.model.core import Dialect, Transmission
@@ -142,7 +136,7 @@ def _converted(source: Source, target: Dialect, hardware_plugin: str, consume: b
     tree = source.tree if consume else copy.deepcopy(source.tree)
     root = tree.getroot()
     if found is None:
-        found = _read(transmission_elements(root))
+        found = read_source(Source(source.path, source.data, tree), locate=False)
     elements = [f.element for f in found]
     writer = None if source.expanded else conversion_edits(
         source.path, source.data, root, elements, target)
@@ -175,12 +169,6 @@ def _write(result: ConvertedDocument, tree: etree._ElementTree, writer: Document
     else:
         edits, result.data = writer.written()
         result.edits = edits or None
-
-
-def _read(elements: list[etree._Element]) -> list[Found]:
-    """Each of ``elements`` read (a ``<ros2_control>``'s declarations read once for all)."""
-    components: dict[etree._Element, Any] = {}
-    return [Found(read_transmission(e, None, components), e) for e in elements]
 
 
 def _place_each(found: list[Found], tree: etree._ElementTree, target: Dialect,
