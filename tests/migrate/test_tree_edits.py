@@ -3,7 +3,9 @@ what changed is written, everything else keeps its bytes."""
 
 from __future__ import annotations
 
+import hashlib
 import textwrap
+import zlib
 from collections.abc import Callable
 
 import pytest
@@ -18,6 +20,7 @@ from txtool.transform.edits.document import read_back
 from txtool.transform.edits.spans import SpanIndex
 from txtool.transform.edits.tree_edits import (
     NotEditable,
+    Serialized,
     TreeChange,
     reads_as_serialized,
     serialization,
@@ -181,7 +184,9 @@ def test_bytes_read_as_a_tree_by_names_texts_and_comments(written: bytes, same: 
 
 def test_a_serialization_that_does_not_parse_reads_as_no_tree() -> None:
     read = parse_bytes(b"<robot/>", "r.urdf")
-    assert not reads_as_serialized(read, "<robot>", "r.urdf")
+    text = b"<robot>"
+    written = Serialized(hashlib.sha256(text).digest(), zlib.compress(text))
+    assert not reads_as_serialized(read, written, "r.urdf")
 
 
 def test_bytes_that_do_not_parse_do_not_read_as_the_tree() -> None:

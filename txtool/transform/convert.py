@@ -108,7 +108,7 @@ def convert_source(
     # it holds.
     if restored and not changed:
         _take_verdict(result, round_trip(originals, tree.getroot()))
-    # What the edits must write, kept as text: the tree goes before the bytes are parsed.
+    # What the edits must write, kept as its digest: the tree goes before the bytes are parsed.
     expected = serialization(tree) if result.edits and not restored else None
     del tree
     if changed:  # (what a parse reads: nested no deeper than its limit)

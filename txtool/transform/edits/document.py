@@ -29,6 +29,7 @@ from txtool.transform.edits.declaration import late_declaration
 from txtool.transform.edits.spans import SpanError, SpanIndex
 from txtool.transform.edits.tree_edits import (
     NotEditable,
+    Serialized,
     TreeChange,
     canonical,
     reads_as_serialized,
@@ -97,7 +98,7 @@ def conversion_edits(path: str, data: bytes, root: etree._Element,
     return DocumentEdits(path, data, root, inside, containers, "convert")
 
 
-def read_back(data: bytes, path: str, expected: str | None, verb: str = "convert"
+def read_back(data: bytes, path: str, expected: Serialized | None, verb: str = "convert"
               ) -> etree._ElementTree:
     """The parse of ``data``, the bytes a change wrote, refused (:class:`InputError`) where
     it fails (a change may nest elements deeper than a parse reads) or, given ``expected``

@@ -11,7 +11,9 @@ did not touch is never written: it keeps its bytes because no edit covers them.
 
 from __future__ import annotations
 
+import hashlib
 import re
+import zlib
 from collections.abc import Iterable
 from dataclasses import dataclass
 from itertools import pairwise
@@ -315,26 +317,58 @@ def canonical(tree: etree._ElementTree) -> bytes:
     return etree.tostring(tree, method="c14n", exclusive=True)
 
 
-def reads_as_serialized(read: etree._ElementTree, text: str, path: str) -> bool:
+def reads_as_serialized(read: etree._ElementTree, written: Serialized, path: str) -> bool:
     """Whether ``read``, parsed from bytes written for a tree kept only as its
-    :func:`serialization` ``text`` (whose memory the parse of ``read`` could then reuse),
+    :func:`serialization` ``written`` (whose memory the parse of ``read`` could then reuse),
     holds the document that tree holds. lxml writes a tree, parsed or changed, as the
     document it holds, so the same serialization is the same document: that is compared
-    first, made in a third of the time of a canonical form. Where the two differ (a
+    first, by digest, in a third of the time of a canonical form. Where the two differ (a
     namespace declared on another element than where it is used, an empty text written as
     ``<a></a>`` where a parse reads ``<a/>``; quotes and spaces in tags never differ, lxml
-    writes both), the canonical form (:func:`canonical`) of ``text`` parsed decides (parsed
-    again, it has the tree's canonical form)."""
-    if serialization(read) == text:
+    writes both), the canonical form (:func:`canonical`) of the serialization parsed decides
+    (parsed again, it has the tree's canonical form)."""
+    if _Sink(pack=False).of(read).digest == written.digest:
         return True
     try:
-        tree = parse_bytes(text.encode(), path, limit=None)
+        tree = parse_bytes(zlib.decompress(written.packed), path, limit=None)
     except InputError:
         return False
     return canonical(read) == canonical(tree)
 
 
-def serialization(tree: etree._ElementTree) -> str:
-    """A document as lxml writes it (no XML declaration): what :func:`reads_as_serialized`
-    compares first."""
-    return etree.tostring(tree, encoding="unicode")
+@dataclass(frozen=True, slots=True)
+class Serialized:
+    """A document as lxml writes it (UTF-8, no XML declaration), held small: the digest of
+    its bytes, and the bytes compressed for the comparison that parses them
+    (:func:`reads_as_serialized`)."""
+
+    digest: bytes
+    packed: bytes
+
+
+def serialization(tree: etree._ElementTree) -> Serialized:
+    """A document as lxml writes it: what :func:`reads_as_serialized` compares first. Made as
+    lxml writes it out, piece by piece: the text of a large document is never held whole
+    (twice, as bytes and as a string), while the changed tree and its written bytes are."""
+    return _Sink(pack=True).of(tree)
+
+
+class _Sink:
+    """Where lxml writes a document (a file object: its ``write``), taken as a digest and,
+    with ``pack``, compressed."""
+
+    def __init__(self, pack: bool) -> None:
+        self.hash = hashlib.sha256()
+        self.packer = zlib.compressobj(1) if pack else None
+        self.parts: list[bytes] = []
+
+    def write(self, piece: bytes) -> None:
+        self.hash.update(piece)
+        if self.packer is not None:
+            self.parts.append(self.packer.compress(piece))
+
+    def of(self, tree: etree._ElementTree) -> Serialized:
+        tree.write(self, encoding="utf-8")
+        if self.packer is not None:
+            self.parts.append(self.packer.flush())
+        return Serialized(self.hash.digest(), b"".join(self.parts))
