@@ -120,17 +120,36 @@ def _urdf(element: etree._Element) -> str | None:
 
 
 class _Joint:
-    """A ``<joint>`` and the first of each child urdfdom reads of it, found in one pass."""
+    """A ``<joint>`` and what urdfdom reads of the first of each of its children, found in
+    one pass and kept as strings: a robot's joints are all held at once, their children are
+    looked up again only for a refusal."""
 
-    __slots__ = ("element", "parts")
+    __slots__ = ("element", "limit", "parent", "child")
 
     def __init__(self, element: etree._Element) -> None:
         self.element = element
-        self.parts: dict[str, etree._Element] = {}
+        # None: no <limit>; else the first of its attributes urdfdom requires that it lacks
+        # ("" for none).
+        self.limit: str | None = None
+        # The link the first <parent> and <child> name ("" for none, or for no such child).
+        self.parent = self.child = ""
+        seen: set[str] = set()
         for child in element:
             name = _urdf(child)
-            if name is not None and name not in self.parts:
-                self.parts[name] = child
+            if name not in ("limit", "parent", "child") or name in seen:
+                continue
+            seen.add(name)
+            if name == "limit":
+                self.limit = next((key for key in ("effort", "velocity")
+                                   if child.get(key) is None), "")
+            elif name == "parent":
+                self.parent = child.get("link") or ""
+            else:
+                self.child = child.get("link") or ""
+
+    def part(self, name: str) -> etree._Element:
+        """The first child urdfdom reads as ``name`` (the joint itself where it has none)."""
+        return next((child for child in self.element if _urdf(child) == name), self.element)
 
 
 def _robot(root: etree._Element) -> Iterator[Refusal]:
@@ -158,16 +177,15 @@ def _joints(joints: list[_Joint]) -> Iterator[Refusal]:
             yield joint, "unnamed joint found"
             continue
         kind = joint.get("type")
-        limit = read.parts.get("limit")
+        limit = read.limit
         if kind is None:
             yield joint, f"joint [{name}] has no type, check to see if it's a reference."
         elif kind not in _TYPES:
             yield joint, f"Joint [{name}] has no known type [{kind}]"
         elif limit is None and kind in _LIMITED:
             yield joint, f"Joint [{name}] is of type {_LIMITED[kind]}"
-        elif limit is not None and (limit.get("effort") is None or limit.get("velocity") is None):
-            missing = "effort" if limit.get("effort") is None else "velocity"
-            yield limit, f"joint limit: no {missing}"
+        elif limit:
+            yield read.part("limit"), f"joint limit: no {limit}"
         elif name in seen:
             yield joint, f"joint '{name}' is not unique."
         seen.add(name)
@@ -182,16 +200,16 @@ def _tree(links: list[etree._Element], joints: list[_Joint]) -> list[Refusal]:
     for read in joints:
         joint = read.element
         name = joint.get("name", "")
-        (parent, parent_name), (child, child_name) = _end(read, "parent"), _end(read, "child")
+        parent_name, child_name = read.parent, read.child
         if not parent_name or not child_name:
             refused.append((joint, f"Failed to build tree: Joint [{name}] is missing a parent "
                                    "and/or child link specification."))
         elif child_name not in names:
-            refused.append((child, f"Failed to build tree: child link [{child_name}] of joint "
-                                   f"[{name}] not found"))
+            refused.append((read.part("child"), f"Failed to build tree: child link "
+                                                f"[{child_name}] of joint [{name}] not found"))
         elif parent_name not in names:
-            refused.append((parent, f"Failed to build tree: parent link [{parent_name}] of "
-                                    f"joint [{name}] not found"))
+            refused.append((read.part("parent"), f"Failed to build tree: parent link "
+                                                 f"[{parent_name}] of joint [{name}] not found"))
         else:
             children.add(child_name)
     return refused or _root(links, children)
@@ -209,12 +227,3 @@ def _root(links: list[etree._Element], children: set[str]) -> list[Refusal]:
     first, second = roots[0].get("name"), roots[1].get("name")
     return [(roots[1], f"Failed to find root link: Two root links found: [{first}] and "
                        f"[{second}]")]
-
-
-def _end(joint: _Joint, tag: str) -> tuple[etree._Element, str]:
-    """The ``<parent>`` or ``<child>`` element of ``joint`` (the joint itself when it has none)
-    and the link it names ("" for none)."""
-    element = joint.parts.get(tag)
-    if element is None:
-        return joint.element, ""
-    return element, element.get("link") or ""
