@@ -18,8 +18,10 @@ from lxml import etree
 from txtool.io.encodings import Lines, text_lines
 from txtool.io.xmlio import Source, is_xacro_element, local
 
+_RECENT = 1024
 
-@dataclass(frozen=True)
+
+@dataclass(frozen=True, slots=True)
 class Position:
     line: int
     column: int
@@ -29,9 +31,12 @@ class Position:
 class Locator:
     def __init__(self, source: Source) -> None:
         self.source = source
+        # What the last lines and elements asked about hold and where they are: rules report
+        # in document order, and several at the same element or on the same line, so a few
+        # recent ones answer nearly every question (a document written on one line asks about
+        # one line). Kept for the last _RECENT only, not for every finding of a large document;
+        # the keys keep the lxml proxies (and so their identities) alive.
         self._tag_index: dict[tuple[int, str], tuple[list[int], dict[str, int]]] = {}
-        # Several rules report at the same element; the keys keep the lxml proxies (and so
-        # their identities) alive.
         self._positions: dict[etree._Element, Position] = {}
 
     @cached_property
@@ -62,6 +67,8 @@ class Locator:
                 attribute = _NAME_ATTRIBUTE.search(text, start, end if end >= 0 else len(text))
                 if attribute is not None:
                     by_name.setdefault(attribute.group(2), start)
+            if len(self._tag_index) >= _RECENT:
+                self._tag_index.clear()
             found = self._tag_index[key] = (starts, by_name)
         return found
 
@@ -69,6 +76,8 @@ class Locator:
         """Where ``element`` (of :attr:`Source.tree`) is written."""
         known = self._positions.get(element)
         if known is None:
+            if len(self._positions) >= _RECENT:
+                self._positions.clear()
             known = self._positions[element] = self._position(element)
         return known
 
