@@ -21,7 +21,7 @@ from lxml import etree
 
 from txtool.dialects.read import Found, detect_dialect, read_transmission
 from txtool.model.core import kind_of
-from txtool.model.robot import ancestor, child_index
+from txtool.model.robot import ancestor, child_index, children
 
 if TYPE_CHECKING:
     from txtool.model.core import Member, Transmission
@@ -61,36 +61,50 @@ class LintFound(Found):
 
 
 class MemberRef:
-    """A joint or actuator of a transmission: its element, name and children, and (read on
-    first use) its model.
+    """A joint or actuator of a transmission: its element and name, and (read on first use)
+    its children by local name, its interface names and its model."""
 
-    ``kids`` indexes the element's children by local name (shared: do not change it).
-    """
-
-    __slots__ = ("noun", "element", "name", "kids", "interfaces", "_found", "_index")
+    __slots__ = ("noun", "element", "name", "_kids", "_interfaces", "_found", "_index")
 
     def __init__(self, noun: str, element: etree._Element, found: Found, index: int) -> None:
         self.noun = noun  # "joint" or "actuator"
         self.element = element
         self.name: str = element.get("name", "")  # as the model's Member.name
-        # Its children by local name, not kept with the element (most members have one or
-        # two children, and few rules ask for them again).
-        kids = self.kids = child_index(element)
-        # The non-empty <hardwareInterface> texts, stripped (for ROS 1, the model's
-        # Member.interfaces): read here, as most rules ask for them.
-        named = kids.get("hardwareInterface")
-        if named is None:
-            self.interfaces: list[str] = []
-        elif len(named) == 1:  # the common case, without a call
-            text = (named[0].text or "").strip()
-            self.interfaces = [text] if text else []
-        else:
-            self.interfaces = texts_of(named)
+        # Read when a rule first asks: the rules about a ROS 1 transmission ask for a
+        # member's children several times (kept), those about a ROS 2 one for a number or
+        # two (looked up without keeping an index: see tagged()).
+        self._kids: Index | None = None
+        self._interfaces: list[str] | None = None
         self._found = found
         self._index = index
 
     def __repr__(self) -> str:
         return f"MemberRef({self.noun!r}, {self.name!r})"
+
+    @property
+    def kids(self) -> Index:
+        """The element's children by local name (shared: do not change it)."""
+        kids = self._kids
+        if kids is None:
+            kids = self._kids = child_index(self.element)
+        return kids
+
+    @property
+    def interfaces(self) -> list[str]:
+        """The non-empty ``<hardwareInterface>`` texts, stripped (for ROS 1, the model's
+        Member.interfaces)."""
+        known = self._interfaces
+        if known is None:
+            named = self.kids.get("hardwareInterface")
+            if named is None:
+                known = []
+            elif len(named) == 1:  # the common case, without a call
+                text = (named[0].text or "").strip()
+                known = [text] if text else []
+            else:
+                known = texts_of(named)
+            self._interfaces = known
+        return known
 
     @property
     def member(self) -> Member:
@@ -99,8 +113,12 @@ class MemberRef:
         return (t.joints if self.noun == "joint" else t.actuators)[self._index]
 
     def tagged(self, name: str) -> list[etree._Element] | tuple[etree._Element, ...]:
-        """The member's children named ``name`` (in any namespace)."""
-        return self.kids.get(name, _NONE)
+        """The member's children named ``name`` (in any namespace): from :attr:`kids` where
+        a rule has asked for them, else looked up alone."""
+        kids = self._kids
+        if kids is None:
+            return children(self.element, name)
+        return kids.get(name, _NONE)
 
 
 def texts_of(elements: list[etree._Element] | tuple[etree._Element, ...]) -> list[str]:

@@ -184,7 +184,7 @@ def _read_numbers(facts: Facts) -> list[NumberRef]:
     for refs, tags in ((joints, joint_tags), (actuators, actuator_tags)):
         for ref in refs:
             for tag in tags:
-                elements = ref.kids.get(tag)
+                elements = ref.tagged(tag)
                 if not elements:
                     continue
                 element = elements[0] if ros1 else _number_element(elements, plain)
