@@ -156,7 +156,7 @@ class Facts:
     """One transmission as the rules see it (``found`` is the reader's transmission)."""
 
     __slots__ = (
-        "found", "element", "name", "ros1", "type", "kind", "kids", "type_element",
+        "found", "element", "name", "ros1", "type", "kind", "_kids", "type_element",
         "type_text", "typed_ros1", "own_loader", "members", "joints", "actuators", "plain",
         "component", "numbers", "_joint_interfaces", "_actuator_interfaces",
     )
@@ -203,7 +203,9 @@ class Facts:
         self.name: str = element.get("name", "")  # as the model's Transmission.name
         self.ros1 = ros1
         self.kind = kind_of(text)
-        self.kids = kids
+        # Kept for the rules that read a transmission's children again, all about ROS 1 (a
+        # ROS 2 transmission's are indexed again if one asks).
+        self._kids = kids if ros1 else None
         # ros_control gets past parsing only with a <type> element (the pre-Hydro type=
         # attribute alone is skipped before any loader runs) and a name.
         self.typed_ros1 = ros1 and typed is not None
@@ -233,6 +235,14 @@ class Facts:
     def transmission(self) -> Transmission:
         """The canonical model (read on first use)."""
         return self.found.transmission
+
+    @property
+    def kids(self) -> Index:
+        """The transmission's children by local name (shared: do not change it)."""
+        kids = self._kids
+        if kids is None:
+            kids = self._kids = child_index(self.element)
+        return kids
 
     def tagged(self, name: str) -> list[etree._Element] | tuple[etree._Element, ...]:
         """The transmission's children named ``name`` (in any namespace)."""
