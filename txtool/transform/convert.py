@@ -99,7 +99,18 @@ def convert_source(
         # go before the edits and the bytes take their place.
         _take_verdict(result, round_trip(originals, tree.getroot()))
         originals = []
-    _write(result, tree, writer, source.data)
+    expected = None
+    if writer is None:  # an expansion, written whole
+        result.data = serialize(tree, source.data)
+    else:
+        edits = writer.said()
+        result.edits = edits or None
+        if not restored:
+            # What the edits must write, kept as its digest: the tree goes before their
+            # bytes are made, the read-back parses them in its place.
+            expected = serialization(tree) if check and edits else None
+            del tree
+        result.data = writer.text.applied(edits)
     del writer
     if not check:
         return result
@@ -108,9 +119,6 @@ def convert_source(
     # it holds.
     if restored and not changed:
         _take_verdict(result, round_trip(originals, tree.getroot()))
-    # What the edits must write, kept as its digest: the tree goes before the bytes are parsed.
-    expected = serialization(tree) if result.edits and not restored else None
-    del tree
     if changed:  # (what a parse reads: nested no deeper than its limit)
         written = read_back(result.data, source.path, expected)
         if restored:
@@ -158,17 +166,6 @@ def _converted(source: Source, target: Dialect, hardware_plugin: str, consume: b
             writer.substitute(node, block)
     result.notes.extend(carry.notes)
     return result, tree, originals, bool(restored), writer
-
-
-def _write(result: ConvertedDocument, tree: etree._ElementTree, writer: DocumentEdits | None,
-           data: bytes) -> None:
-    """The bytes of the converted ``tree``: the edits of ``data`` that ``writer`` says, made
-    once; an expansion (no ``writer``) written whole."""
-    if writer is None:
-        result.data = serialize(tree, data)
-    else:
-        edits, result.data = writer.written()
-        result.edits = edits or None
 
 
 def _place_each(found: list[Found], tree: etree._ElementTree, target: Dialect,

@@ -61,10 +61,9 @@ class DocumentEdits:
         markup = block.lstrip(b" \t")
         self.change.substitute(node, markup[:len(markup.rstrip(b"\r\n"))])
 
-    def written(self) -> tuple[list[Edit], bytes]:
-        """The edits that write the changed tree, and the document they make, stored as the
-        original was. The change is said once: what was recorded to say it (the state
-        before, the spans) is let go before the bytes are made."""
+    def said(self) -> list[Edit]:
+        """The edits that write the changed tree. The change is said once: what was recorded
+        to say it (the state before, the spans, and with them the tree) is let go."""
         try:
             edits = self.change.written(self.text, self.index)
         except NotEditable as exc:
@@ -74,6 +73,11 @@ class DocumentEdits:
         late = late_declaration(self.text.data) if edits else None
         if late is not None:
             edits.append(late)
+        return edits
+
+    def written(self) -> tuple[list[Edit], bytes]:
+        """:meth:`said`, and the document the edits make, stored as the original was."""
+        edits = self.said()
         return edits, self.text.applied(edits)
 
 
