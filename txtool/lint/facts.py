@@ -60,7 +60,32 @@ class LintFound(Found):
         return read
 
 
-class MemberRef:
+class _Children:
+    """An element (``element``) whose children by local name are indexed on first use
+    (``_kids``, None until then)."""
+
+    __slots__ = ()
+    element: etree._Element
+    _kids: Index | None
+
+    @property
+    def kids(self) -> Index:
+        """The element's children by local name (shared: do not change it)."""
+        kids = self._kids
+        if kids is None:
+            kids = self._kids = child_index(self.element)
+        return kids
+
+    def tagged(self, name: str) -> list[etree._Element] | tuple[etree._Element, ...]:
+        """The element's children named ``name`` (in any namespace): from :attr:`kids` where
+        they were indexed, else looked up alone."""
+        kids = self._kids
+        if kids is None:
+            return children(self.element, name)
+        return kids.get(name, _NONE)
+
+
+class MemberRef(_Children):
     """A joint or actuator of a transmission: its element and name, and (read on first use)
     its children by local name, its interface names and its model."""
 
@@ -82,28 +107,13 @@ class MemberRef:
         return f"MemberRef({self.noun!r}, {self.name!r})"
 
     @property
-    def kids(self) -> Index:
-        """The element's children by local name (shared: do not change it)."""
-        kids = self._kids
-        if kids is None:
-            kids = self._kids = child_index(self.element)
-        return kids
-
-    @property
     def interfaces(self) -> list[str]:
         """The non-empty ``<hardwareInterface>`` texts, stripped (for ROS 1, the model's
         Member.interfaces)."""
         known = self._interfaces
         if known is None:
             named = self.kids.get("hardwareInterface")
-            if named is None:
-                known = []
-            elif len(named) == 1:  # the common case, without a call
-                text = (named[0].text or "").strip()
-                known = [text] if text else []
-            else:
-                known = texts_of(named)
-            self._interfaces = known
+            known = self._interfaces = texts_of(named) if named else []
         return known
 
     @property
@@ -111,14 +121,6 @@ class MemberRef:
         """The model of this joint or actuator (reads the transmission when first asked)."""
         t = self._found.transmission
         return (t.joints if self.noun == "joint" else t.actuators)[self._index]
-
-    def tagged(self, name: str) -> list[etree._Element] | tuple[etree._Element, ...]:
-        """The member's children named ``name`` (in any namespace): from :attr:`kids` where
-        a rule has asked for them, else looked up alone."""
-        kids = self._kids
-        if kids is None:
-            return children(self.element, name)
-        return kids.get(name, _NONE)
 
 
 def texts_of(elements: list[etree._Element] | tuple[etree._Element, ...]) -> list[str]:
@@ -152,7 +154,7 @@ class Hints:
 _UNSURE = Hints()
 
 
-class Facts:
+class Facts(_Children):
     """One transmission as the rules see it (``found`` is the reader's transmission)."""
 
     __slots__ = (
@@ -236,17 +238,6 @@ class Facts:
         """The canonical model (read on first use)."""
         return self.found.transmission
 
-    @property
-    def kids(self) -> Index:
-        """The transmission's children by local name (shared: do not change it)."""
-        kids = self._kids
-        if kids is None:
-            kids = self._kids = child_index(self.element)
-        return kids
-
-    def tagged(self, name: str) -> list[etree._Element] | tuple[etree._Element, ...]:
-        """The transmission's children named ``name`` (in any namespace)."""
-        return self.kids.get(name, _NONE)
 
     @property
     def joint_interfaces(self) -> frozenset[str]:
