@@ -9,7 +9,6 @@ original's dialect and compared with it on what the original itself defines
 
 from __future__ import annotations
 
-from collections import deque
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from functools import cache
@@ -60,13 +59,16 @@ def paired(originals: Sequence[Transmission], written: Iterable[Transmission]
     document order: :func:`~txtool.dialects.read.read_each`) holds: its index and what
     ``written`` holds of it. Paired by name and by whether the type is custom, same-named
     ones in document order (the order a conversion keeps among them)."""
-    waiting: dict[tuple[str, bool], deque[int]] = {}
-    for i, t in enumerate(originals):
-        waiting.setdefault((t.name, t.kind == "other"), deque()).append(i)
+    # Each name's indexes last first, taken from the end: a list of one or two (a deque is
+    # ten times the size, and a document has a queue per transmission).
+    waiting: dict[tuple[str, bool], list[int]] = {}
+    for i in range(len(originals) - 1, -1, -1):
+        t = originals[i]
+        waiting.setdefault((t.name, t.kind == "other"), []).append(i)
     for out in written:
         queue = waiting.get((out.name, out.kind == "other"))
         if queue:
-            yield queue.popleft(), out
+            yield queue.pop(), out
 
 
 def _judge(t: Transmission, out: Transmission, result: Verdict,
