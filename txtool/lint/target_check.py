@@ -26,7 +26,9 @@ message (which names the element: the transmission, joint or actuator and what i
 it) as a multiset, so a problem the conversion carried over unchanged is not blamed on it, and
 one it made (a mimic joint given a command interface, a transmission put on a fixed joint) is.
 A fix is not blamed either for an error on a transmission the input already had an error or a
-warning for (see :func:`_flagged`). The input is linted only when the output has an error.
+warning for (see :func:`_flagged`). The input is linted only when the output has an error, and
+for a conversion only with the rules that found one (and those they defer to:
+``Rule.defers_to``): the other rules' findings would be compared with nothing.
 
 A robot that a conversion to ROS 2 leaves without any ``<ros2_control>`` is refused whole
 (:func:`_whole`: no rule says so, since a ROS 1 robot is not refused for it).
@@ -216,7 +218,8 @@ def judge(written: Source, before: Callable[[], Source | None], target: Dialect 
             continue
         if not asked:
             earlier, asked = before(), True
-        before_found = _findings(earlier, base, run) if earlier is not None else []
+        only = _compared(errors) if target is not None else None
+        before_found = _findings(earlier, base, run, only) if earlier is not None else []
         had = Counter((p.code, p.message) for p in before_found if p.severity == "error")
         flagged = _flagged(before_found) if target is None else frozenset()
         for problem in errors:
@@ -280,8 +283,23 @@ def _defaults() -> Settings:
     return _DEFAULTS[0]
 
 
-def _findings(source: Source, base: Settings, run: Run) -> list[Problem]:
-    return lint_source(source, dataclasses.replace(base, stated=run.stated))
+def _findings(source: Source, base: Settings, run: Run,
+              only: frozenset[str] | None = None) -> list[Problem]:
+    """What every rule finds in ``source`` for the run's readers; ``only``: these rules alone."""
+    settings = dataclasses.replace(base, stated=run.stated)
+    if only is not None:
+        settings = dataclasses.replace(settings, enabled=settings.enabled & only)
+    return lint_source(source, settings)
+
+
+def _compared(errors: list[Problem]) -> frozenset[str]:
+    """The rules whose findings of the input ``errors`` are compared with, with those they
+    defer to (which decide what they report)."""
+    from txtool.rules import all_rules
+
+    rules = all_rules()
+    codes = {p.code for p in errors}
+    return frozenset(codes.union(*(rules[code].defers_to for code in codes if code in rules)))
 
 
 def _errors(source: Source, base: Settings, run: Run) -> list[Problem]:

@@ -99,6 +99,12 @@ class Rule(NamedTuple):
         return getattr(self.module, "check", None)
 
     @property
+    def defers_to(self) -> tuple[str, ...]:
+        """The rules whose running changes what this one reports (``DEFERS_TO``: it leaves a
+        finding to one of them while it runs, :meth:`txtool.lint.context.LintContext.runs`)."""
+        return tuple(getattr(self.module, "DEFERS_TO", ()))
+
+    @property
     def fix(self) -> Callable[[etree._Element], int] | None:
         return getattr(self.module, "fix", None) if self.fixable else None
 

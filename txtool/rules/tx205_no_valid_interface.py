@@ -86,6 +86,7 @@ CODE = "TX205"
 NAME = "no-valid-interface"
 SEVERITY = "error"
 FIXABLE = False
+DEFERS_TO = ("TX300",)  # see covered_by_tx300
 
 
 @per_transmission
