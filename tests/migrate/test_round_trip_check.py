@@ -38,3 +38,16 @@ def test_a_transmission_the_written_document_no_longer_holds_is_not_judged() -> 
     written = parse_bytes(_robot(("b", 70)), "r.urdf").getroot()
 
     assert [loss.split("'")[1] for loss in round_trip(originals, written).losses] == ["b"]
+
+
+def test_same_named_transmissions_are_paired_in_document_order() -> None:
+    # The first "a" read with the first "a" written, the second with the second.
+    read = _robot(("a", 5), ("b", 7), ("a", 9))
+    originals = [found.transmission for found in read_source(
+        Source("r.urdf", read, parse_bytes(read, "r.urdf")), locate=False)]
+    kept = parse_bytes(_robot(("a", 5), ("a", 9), ("b", 7)), "r.urdf").getroot()
+    swapped = parse_bytes(_robot(("a", 9), ("b", 7), ("a", 5)), "r.urdf").getroot()
+
+    assert round_trip(originals, kept).losses == []
+    assert [loss.split(": ", 1)[1] for loss in round_trip(originals, swapped).losses] == [
+        "reduction: {*: 5.0} -> {*: 9.0}", "reduction: {*: 9.0} -> {*: 5.0}"]
