@@ -293,8 +293,8 @@ def _findings(source: Source, base: Settings, run: Run,
 
 
 def _compared(errors: list[Problem]) -> frozenset[str]:
-    """The rules whose findings of the input ``errors`` are compared with, with those they
-    defer to (which decide what they report)."""
+    """The rules that found ``errors`` (the input's findings of no other rule are compared
+    with them), and those they defer to (which decide what they report)."""
     from txtool.rules import all_rules
 
     rules = all_rules()
