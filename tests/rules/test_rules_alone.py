@@ -31,11 +31,8 @@ UNPREFIXED = """
 """
 
 
-def _documents() -> list[tuple[str, str]]:
-    found = [("unprefixed", UNPREFIXED)]
-    for path in sorted(FIXTURES.glob("*.urdf")):
-        found.append((path.name, path.read_text(encoding="utf-8")))
-    return found
+DOCUMENTS = [("unprefixed", UNPREFIXED), *(
+    (path.name, path.read_text(encoding="utf-8")) for path in sorted(FIXTURES.glob("*.urdf")))]
 
 
 def _found(xml: str, code: str, select: list[str]) -> list[tuple[int, int, str, str]]:
@@ -43,7 +40,7 @@ def _found(xml: str, code: str, select: list[str]) -> list[tuple[int, int, str, 
             for p in problems(xml, select=select) if p.code == code]
 
 
-@pytest.mark.parametrize(("name", "xml"), _documents(), ids=[n for n, _ in _documents()])
+@pytest.mark.parametrize(("name", "xml"), DOCUMENTS, ids=[name for name, _ in DOCUMENTS])
 def test_each_rule_alone_finds_what_it_finds_among_all(name, xml):
     rules = all_rules()
     every = problems(xml)

@@ -238,7 +238,6 @@ class Facts(_Children):
         """The canonical model (read on first use)."""
         return self.found.transmission
 
-
     @property
     def joint_interfaces(self) -> frozenset[str]:
         """Every interface name of the joints (see :attr:`MemberRef.interfaces`)."""
