@@ -165,6 +165,24 @@ def test_a_declaration_after_a_comment_is_not_written_again():
     etree.fromstring(out)  # well-formed for a strict parser
 
 
+def test_a_licence_comment_and_a_run_of_comments_convert_at_once():
+    # Found by the fuzz tests (a Franka xacro converted to ros2-p1 and back): with no
+    # declaration after the licence, the search for one tried every way the licence comment
+    # could end at a later comment's -->, twice as many for each comment of the run.
+    data = (b"<!-- licence -->\n<robot name='r'>\n" + b"  <!-- ===== -->\n" * 60
+            + b"  <transmission name='t'>\n"
+            b"    <type>transmission_interface/SimpleTransmission</type>\n"
+            b"    <joint name='j'><hardwareInterface>hardware_interface/EffortJointInterface"
+            b"</hardwareInterface></joint>\n"
+            b"    <actuator name='m'><mechanicalReduction>2</mechanicalReduction></actuator>\n"
+            b"  </transmission>\n</robot>\n")
+    head = b"<!-- licence -->\n<robot name='r'>\n" + b"  <!-- ===== -->\n" * 60
+    out = convert(data, "ros2-p2")
+    assert out.startswith(head) and b"<ros2_control" in out
+    back = convert(out, "ros1")
+    assert back.startswith(head) and b"<ros2_control" not in back
+
+
 # What may stand before an XML declaration in a file txtool reads (tinyxml2 skips whitespace
 # there; licence comments are common) but that no strict parser (expat, libxml2) accepts.
 PROLOGS = [b" ", b"\n", b"\t\r\n  ", b"<!-- licence -->\n", b"<!-- licence -->",
